@@ -1,0 +1,46 @@
+//! Errors of the symbolic engine. Each names the expression or symbol involved.
+
+use std::fmt;
+
+/// What went wrong while building, parsing or transforming expressions.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Error {
+    /// Folding constants would give NaN or an infinity, e.g. `ln(0)` or `1/0`.
+    NotFinite {
+        /// The offending constant expression in the text syntax.
+        expression: String,
+        /// Why it has no finite value.
+        reason: &'static str,
+    },
+    /// A name is already used for a symbol of another kind.
+    NameTaken {
+        /// The name.
+        name: String,
+    },
+    /// The text syntax could not be read.
+    Parse {
+        /// Byte offset of the problem in the input.
+        position: usize,
+        /// What was expected or found.
+        message: String,
+    },
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::NotFinite { expression, reason } => {
+                write!(f, "`{expression}` has no finite value: {reason}")
+            }
+            Error::NameTaken { name } => {
+                write!(f, "the name `{name}` is already used by another symbol")
+            }
+            Error::Parse { position, message } => write!(f, "at byte {position}: {message}"),
+        }
+    }
+}
+
+impl std::error::Error for Error {}
+
+/// Results of the symbolic engine.
+pub type Result<T> = std::result::Result<T, Error>;

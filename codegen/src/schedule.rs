@@ -1,0 +1,190 @@
+//! Common-subexpression elimination and scheduling: many outputs (a
+//! right-hand side and its Jacobian, say) become one straight-line program in
+//! which every shared node is computed once, into a named temporary.
+//!
+//! Hash-consing already made equal subexpressions one node; this pass decides
+//! which nodes get a `let`: those used more than once, those that emission
+//! would otherwise write twice (`x*x` for `x^2`), named intermediates, and
+//! nodes whose inline form would nest deeper than [`MAX_INLINE_DEPTH`] (deep
+//! nesting slows rustc and would recurse deeply in emission).
+
+use crate::graph::Graph;
+use crate::node::{Func, Id, Node, SymbolKind};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// Deepest inline nesting before a node is put into a temporary.
+pub const MAX_INLINE_DEPTH: u32 = 12;
+
+/// A temporary of a [`Program`]: `let name = <node>;`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Temp {
+    /// The node it holds.
+    pub node: Id,
+    /// Its name: `t0`, `t1`, ... or an intermediate's own name.
+    pub name: String,
+}
+
+/// Straight-line code for a list of outputs.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Program {
+    /// Temporaries in evaluation order (each only uses earlier ones).
+    pub temps: Vec<Temp>,
+    /// The outputs, in the order asked for.
+    pub outputs: Vec<Id>,
+    temp_of: BTreeMap<Id, usize>,
+}
+
+impl Program {
+    /// The temporary holding `id`, if it has one.
+    pub fn temp(&self, id: Id) -> Option<&Temp> {
+        self.temp_of.get(&id).map(|&i| &self.temps[i])
+    }
+
+    /// Evaluates the program as emitted code would: temporaries in order, each
+    /// from earlier ones; outputs last. Fails if a temporary is read before it
+    /// is written (a scheduling bug).
+    pub fn evaluate(
+        &self,
+        g: &Graph,
+        value: &dyn Fn(crate::SymbolId) -> f64,
+    ) -> Result<Vec<f64>, String> {
+        let mut done: BTreeMap<Id, f64> = BTreeMap::new();
+        for t in &self.temps {
+            let v = self.inline_value(g, t.node, true, &done, value)?;
+            done.insert(t.node, v);
+        }
+        self.outputs
+            .iter()
+            .map(|&o| self.inline_value(g, o, false, &done, value))
+            .collect()
+    }
+
+    fn inline_value(
+        &self,
+        g: &Graph,
+        id: Id,
+        defining: bool,
+        done: &BTreeMap<Id, f64>,
+        value: &dyn Fn(crate::SymbolId) -> f64,
+    ) -> Result<f64, String> {
+        if !defining && self.temp_of.contains_key(&id) {
+            return done
+                .get(&id)
+                .copied()
+                .ok_or_else(|| format!("temporary for {id} read before it was written"));
+        }
+        let v = |c: Id| self.inline_value(g, c, false, done, value);
+        Ok(match g.node(id) {
+            Node::Number(n) => n.to_f64(),
+            Node::Symbol(s) => match g.symbol(*s).kind {
+                SymbolKind::Intermediate { definition } => v(definition)?,
+                _ => value(*s),
+            },
+            Node::Add(t) => t.iter().map(|&c| v(c)).sum::<Result<f64, String>>()?,
+            Node::Mul(f) => f.iter().map(|&c| v(c)).product::<Result<f64, String>>()?,
+            Node::Pow([b, e]) => match g.as_number(*e) {
+                Some(n) => crate::number::pow_f64(v(*b)?, n),
+                None => v(*b)?.powf(v(*e)?),
+            },
+            Node::Call(f, a) => f.apply(v(*a)?),
+            Node::Atan2([y, x]) => v(*y)?.atan2(v(*x)?),
+        })
+    }
+}
+
+/// `true` for nodes emitted as a plain token (a symbol or a literal).
+fn is_leaf(g: &Graph, id: Id) -> bool {
+    match g.node(id) {
+        Node::Number(_) => true,
+        Node::Symbol(s) => !matches!(g.symbol(*s).kind, SymbolKind::Intermediate { .. }),
+        _ => false,
+    }
+}
+
+/// Operands that emission writes more than once: the base of `x^2`, `x^3`,
+/// `x^(3/2)` (`x * x.sqrt()`), the argument of `sign`.
+fn duplicated_operand(g: &Graph, id: Id) -> Option<Id> {
+    match g.node(id) {
+        Node::Pow([b, e]) => {
+            let r = g.as_number(*e)?.as_rational()?;
+            let n = r.numer().unsigned_abs();
+            let dup = (r.is_integer() && (n == 2 || n == 3)) || (r.denom() == 2 && n >= 3);
+            dup.then_some(*b)
+        }
+        Node::Call(Func::Sign, a) => Some(*a),
+        _ => None,
+    }
+}
+
+impl Graph {
+    /// Schedules `outputs` into a [`Program`]. Deterministic: the same graph and
+    /// outputs give the same temporaries with the same names.
+    pub fn schedule(&self, outputs: &[Id]) -> Program {
+        let order = self.reachable(outputs);
+        let mut uses: BTreeMap<Id, u32> = BTreeMap::new();
+        for &o in outputs {
+            *uses.entry(o).or_default() += 1;
+        }
+        for &id in &order {
+            for &c in self.operands(id) {
+                *uses.entry(c).or_default() += 1;
+            }
+            if let Some(b) = duplicated_operand(self, id) {
+                *uses.entry(b).or_default() += 1;
+            }
+        }
+        let mut is_temp: BTreeSet<Id> = BTreeSet::new();
+        let mut depth: BTreeMap<Id, u32> = BTreeMap::new();
+        for &id in &order {
+            if is_leaf(self, id) {
+                depth.insert(id, 0);
+                continue;
+            }
+            let d = 1 + self
+                .operands(id)
+                .iter()
+                .map(|c| depth[c])
+                .max()
+                .unwrap_or(0);
+            let named = matches!(self.node(id), Node::Symbol(_));
+            if named || uses[&id] > 1 || d > MAX_INLINE_DEPTH {
+                is_temp.insert(id);
+                depth.insert(id, 0);
+            } else {
+                depth.insert(id, d);
+            }
+        }
+        let taken: BTreeSet<&str> = is_temp
+            .iter()
+            .filter_map(|&id| self.as_symbol(id).map(|s| self.symbol(s).name.as_str()))
+            .collect();
+        let mut counter = 0usize;
+        let mut temps = Vec::with_capacity(is_temp.len());
+        let mut temp_of = BTreeMap::new();
+        for &id in &is_temp {
+            let name = match self.as_symbol(id) {
+                Some(s) => self.symbol(s).name.clone(),
+                None => loop {
+                    let candidate = format!("t{counter}");
+                    counter += 1;
+                    if !taken.contains(candidate.as_str()) {
+                        break candidate;
+                    }
+                },
+            };
+            temp_of.insert(id, temps.len());
+            temps.push(Temp { node: id, name });
+        }
+        Program {
+            temps,
+            outputs: outputs.to_vec(),
+            temp_of,
+        }
+    }
+
+    /// Number of distinct nodes reachable from `roots`: the size of the DAG
+    /// they form, the measure of expression swell.
+    pub fn dag_size(&self, roots: &[Id]) -> usize {
+        self.reachable(roots).len()
+    }
+}
