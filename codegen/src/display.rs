@@ -111,7 +111,7 @@ fn term_text(g: &Graph, id: Id) -> (bool, String, Prec) {
         }
         Node::Mul(factors) => {
             let mut coefficient = Number::ONE;
-            let mut numerator: Vec<String> = Vec::new();
+            let mut numerator: Vec<(String, Prec)> = Vec::new();
             let mut denominator: Vec<(String, Prec)> = Vec::new();
             for &f in factors.iter() {
                 match g.node(f) {
@@ -124,27 +124,47 @@ fn term_text(g: &Graph, id: Id) -> (bool, String, Prec) {
                             power_text(g, *b, &number_text(e))
                         });
                     }
-                    _ => numerator.push(wrap(text(g, f), Prec::Unary)),
+                    _ => numerator.push(text(g, f)),
                 }
             }
             let negative = coefficient.is_negative();
             let c = coefficient.abs();
+            let mut leading: Option<String> = None;
             match c.as_rational() {
                 Some(r) => {
                     if r.numer() != 1 {
-                        numerator.insert(0, r.numer().to_string());
+                        leading = Some(r.numer().to_string());
                     }
                     if r.denom() != 1 {
                         denominator.insert(0, (r.denom().to_string(), Prec::Atom));
                     }
                 }
-                None => numerator.insert(0, c.to_string()),
+                None => leading = Some(c.to_string()),
             }
-            let mut s = if numerator.is_empty() {
-                "1".to_string()
+            // The parser multiplies left to right, and a coefficient times a lone
+            // sum distributes (`3*(x + y)` is `3*x + 3*y`): never let the
+            // coefficient meet a sum first.
+            let (sums, others): (Vec<(String, Prec)>, Vec<(String, Prec)>) =
+                numerator.into_iter().partition(|f| f.1 == Prec::Sum);
+            let only_number_below = denominator.iter().all(|d| d.1 == Prec::Atom && d.0.bytes().all(|b| b.is_ascii_digit()));
+            let wrapped = |v: Vec<(String, Prec)>| v.into_iter().map(|f| wrap(f, Prec::Unary)).collect::<Vec<_>>();
+            let mut after_denominator: Vec<String> = Vec::new();
+            let mut head: Vec<String> = Vec::new();
+            if !others.is_empty() || sums.is_empty() {
+                head.extend(leading);
+                head.extend(wrapped(others));
+                head.extend(wrapped(sums));
+            } else if denominator.is_empty() || only_number_below {
+                head.extend(wrapped(sums));
+                head.extend(leading);
             } else {
-                numerator.join("*")
-            };
+                head.extend(leading);
+                after_denominator = wrapped(sums);
+            }
+            // `x/(2*(y + z))` would read back as `x/(2*y + 2*z)`: write `x/(y + z)/2`.
+            let trailing = (denominator.len() == 2 && denominator[0].1 == Prec::Atom && denominator[1].1 == Prec::Sum)
+                .then(|| denominator.remove(0).0);
+            let mut s = if head.is_empty() { "1".to_string() } else { head.join("*") };
             match denominator.len() {
                 0 => {}
                 1 => {
@@ -152,12 +172,17 @@ fn term_text(g: &Graph, id: Id) -> (bool, String, Prec) {
                     s.push_str(&wrap(denominator.remove(0), Prec::Unary));
                 }
                 _ => {
-                    let d: Vec<String> = denominator
-                        .into_iter()
-                        .map(|p| wrap(p, Prec::Unary))
-                        .collect();
+                    let d: Vec<String> = denominator.into_iter().map(|p| wrap(p, Prec::Unary)).collect();
                     s.push_str(&format!("/({})", d.join("*")));
                 }
+            }
+            if let Some(q) = trailing {
+                s.push('/');
+                s.push_str(&q);
+            }
+            for f in after_denominator {
+                s.push('*');
+                s.push_str(&f);
             }
             (negative, s, Prec::Product)
         }

@@ -127,8 +127,8 @@ impl Emitter<'_> {
                 _ => ((self.symbol)(*s), Prec::Postfix),
             },
             Node::Add(terms) => self.sum(terms),
-            Node::Mul(_) => {
-                let (negative, body, prec) = self.term(id);
+            Node::Mul(factors) => {
+                let (negative, body, prec) = self.product(factors);
                 if negative {
                     (quote! { -#body }, Prec::Product.min(prec))
                 } else {
@@ -197,19 +197,23 @@ impl Emitter<'_> {
         (quote! { #b.powf(#exponent) }, Prec::Postfix)
     }
 
-    /// A product without its sign: `(is_negative, tokens of |term|, precedence)`.
+    /// A term of a sum without its sign: `(is_negative, tokens of |term|, precedence)`.
     fn term(&self, id: Id) -> (bool, TokenStream, Prec) {
-        let factors = match self.g.node(id) {
-            Node::Mul(f) if self.program.temp(id).is_none() => f,
+        match self.g.node(id) {
+            Node::Mul(factors) if self.program.temp(id).is_none() => self.product(factors),
             Node::Number(n) => {
                 let (t, p) = number(n.abs());
-                return (n.is_negative(), t, p);
+                (n.is_negative(), t, p)
             }
             _ => {
                 let (t, p) = self.render(id);
-                return (false, t, p);
+                (false, t, p)
             }
-        };
+        }
+    }
+
+    /// A product without its sign: `(is_negative, tokens of |product|, precedence)`.
+    fn product(&self, factors: &[Id]) -> (bool, TokenStream, Prec) {
         let mut coefficient = Number::ONE;
         let mut numerator: Vec<TokenStream> = Vec::new();
         let mut denominator: Vec<Piece> = Vec::new();
