@@ -68,7 +68,8 @@ fn text(g: &Graph, id: Id) -> (String, Prec) {
         Node::Mul(_) => {
             let (negative, s, prec) = term_text(g, id);
             if negative {
-                (format!("-{}", wrap((s, prec), Prec::Unary)), Prec::Unary)
+                // `-2*x` reads as `(-2)*x`: the same product, so no parentheses.
+                (format!("-{s}"), prec.min(Prec::Product))
             } else {
                 (s, prec)
             }
@@ -146,8 +147,14 @@ fn term_text(g: &Graph, id: Id) -> (bool, String, Prec) {
             // coefficient meet a sum first.
             let (sums, others): (Vec<(String, Prec)>, Vec<(String, Prec)>) =
                 numerator.into_iter().partition(|f| f.1 == Prec::Sum);
-            let only_number_below = denominator.iter().all(|d| d.1 == Prec::Atom && d.0.bytes().all(|b| b.is_ascii_digit()));
-            let wrapped = |v: Vec<(String, Prec)>| v.into_iter().map(|f| wrap(f, Prec::Unary)).collect::<Vec<_>>();
+            let only_number_below = denominator
+                .iter()
+                .all(|d| d.1 == Prec::Atom && d.0.bytes().all(|b| b.is_ascii_digit()));
+            let wrapped = |v: Vec<(String, Prec)>| {
+                v.into_iter()
+                    .map(|f| wrap(f, Prec::Unary))
+                    .collect::<Vec<_>>()
+            };
             let mut after_denominator: Vec<String> = Vec::new();
             let mut head: Vec<String> = Vec::new();
             if !others.is_empty() || sums.is_empty() {
@@ -162,9 +169,15 @@ fn term_text(g: &Graph, id: Id) -> (bool, String, Prec) {
                 after_denominator = wrapped(sums);
             }
             // `x/(2*(y + z))` would read back as `x/(2*y + 2*z)`: write `x/(y + z)/2`.
-            let trailing = (denominator.len() == 2 && denominator[0].1 == Prec::Atom && denominator[1].1 == Prec::Sum)
+            let trailing = (denominator.len() == 2
+                && denominator[0].1 == Prec::Atom
+                && denominator[1].1 == Prec::Sum)
                 .then(|| denominator.remove(0).0);
-            let mut s = if head.is_empty() { "1".to_string() } else { head.join("*") };
+            let mut s = if head.is_empty() {
+                "1".to_string()
+            } else {
+                head.join("*")
+            };
             match denominator.len() {
                 0 => {}
                 1 => {
@@ -172,7 +185,10 @@ fn term_text(g: &Graph, id: Id) -> (bool, String, Prec) {
                     s.push_str(&wrap(denominator.remove(0), Prec::Unary));
                 }
                 _ => {
-                    let d: Vec<String> = denominator.into_iter().map(|p| wrap(p, Prec::Unary)).collect();
+                    let d: Vec<String> = denominator
+                        .into_iter()
+                        .map(|p| wrap(p, Prec::Unary))
+                        .collect();
                     s.push_str(&format!("/({})", d.join("*")));
                 }
             }
