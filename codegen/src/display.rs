@@ -131,13 +131,14 @@ fn term_text(g: &Graph, id: Id) -> (bool, String, Prec) {
             let negative = coefficient.is_negative();
             let c = coefficient.abs();
             let mut leading: Option<String> = None;
+            let mut below: Option<String> = None;
             match c.as_rational() {
                 Some(r) => {
                     if r.numer() != 1 {
                         leading = Some(r.numer().to_string());
                     }
                     if r.denom() != 1 {
-                        denominator.insert(0, (r.denom().to_string(), Prec::Atom));
+                        below = Some(r.denom().to_string());
                     }
                 }
                 None => leading = Some(c.to_string()),
@@ -147,9 +148,7 @@ fn term_text(g: &Graph, id: Id) -> (bool, String, Prec) {
             // coefficient meet a sum first.
             let (sums, others): (Vec<(String, Prec)>, Vec<(String, Prec)>) =
                 numerator.into_iter().partition(|f| f.1 == Prec::Sum);
-            let only_number_below = denominator
-                .iter()
-                .all(|d| d.1 == Prec::Atom && d.0.bytes().all(|b| b.is_ascii_digit()));
+            let only_number_below = denominator.is_empty();
             let wrapped = |v: Vec<(String, Prec)>| {
                 v.into_iter()
                     .map(|f| wrap(f, Prec::Unary))
@@ -168,11 +167,19 @@ fn term_text(g: &Graph, id: Id) -> (bool, String, Prec) {
                 head.extend(leading);
                 after_denominator = wrapped(sums);
             }
-            // `x/(2*(y + z))` would read back as `x/(2*y + 2*z)`: write `x/(y + z)/2`.
-            let trailing = (denominator.len() == 2
-                && denominator[0].1 == Prec::Atom
-                && denominator[1].1 == Prec::Sum)
-                .then(|| denominator.remove(0).0);
+            // The same below the line: `2*(y + z)` would read back as
+            // `2*y + 2*z`, so with a sum there the number goes last
+            // (`x/((y + z)*w*2)`), or after its own slash (`x/(y + z)/2`).
+            let mut trailing = None;
+            if let Some(q) = below {
+                if !denominator.iter().any(|d| d.1 == Prec::Sum) {
+                    denominator.insert(0, (q, Prec::Atom));
+                } else if denominator.len() == 1 {
+                    trailing = Some(q);
+                } else {
+                    denominator.push((q, Prec::Atom));
+                }
+            }
             let mut s = if head.is_empty() {
                 "1".to_string()
             } else {

@@ -137,10 +137,10 @@ impl Emitter<'_> {
             }
             Node::Pow([b, e]) => match self.g.as_number(*e) {
                 Some(n) if n.is_negative() => {
-                    let den = paren(self.power(*b, n.neg()), Prec::Unary);
+                    let den = paren(self.power(id, *b, n.neg()), Prec::Unary);
                     (quote! { 1.0 / #den }, Prec::Product)
                 }
-                Some(n) => self.power(*b, n),
+                Some(n) => self.power(id, *b, n),
                 None => {
                     let base = self.at(*b, Prec::Postfix);
                     let exponent = self.render(*e).0;
@@ -159,16 +159,18 @@ impl Emitter<'_> {
     fn call(&self, f: Func, a: Id) -> Piece {
         if f == Func::Sign {
             let a = self.at(a, Prec::Postfix);
-            let piece = quote! { (if #a > 0.0 { 1.0 } else if #a < 0.0 { -1.0 } else { 0.0 }) };
-            return (piece, Prec::Postfix);
+            // An `if` binds weakest of all: parenthesised wherever it is an operand.
+            let piece = quote! { if #a > 0.0 { 1.0 } else if #a < 0.0 { -1.0 } else { 0.0 } };
+            return (piece, Prec::Sum);
         }
         let a = self.at(a, Prec::Postfix);
         let method = format_ident!("{}", f.name());
         (quote! { #a.#method() }, Prec::Postfix)
     }
 
-    /// `base ^ e` for a positive numeric exponent.
-    fn power(&self, base: Id, e: Number) -> Piece {
+    /// `base ^ e` for a positive numeric exponent; `pow` is the node (whose
+    /// exponent may be `-e`), for its shared square root.
+    fn power(&self, pow: Id, base: Id, e: Number) -> Piece {
         let b = self.at(base, Prec::Postfix);
         if let Some(r) = e.as_rational() {
             let n = r.numer();
@@ -179,6 +181,17 @@ impl Emitter<'_> {
                     _ => {
                         let n = Literal::i32_unsuffixed(n as i32);
                         (quote! { #b.powi(#n) }, Prec::Postfix)
+                    }
+                };
+            }
+            if let (2, Some(root)) = (r.denom(), self.program.shared_root(pow)) {
+                let s = self.render(root).0;
+                return match (n - 1) / 2 {
+                    0 => (s, Prec::Postfix),
+                    1 => (quote! { #b * #s }, Prec::Product),
+                    k => {
+                        let k = Literal::i32_unsuffixed(k as i32);
+                        (quote! { #b.powi(#k) * #s }, Prec::Product)
                     }
                 };
             }
@@ -228,7 +241,7 @@ impl Emitter<'_> {
                     denominator.push(if e.is_one() {
                         self.render(*b)
                     } else {
-                        self.power(*b, e)
+                        self.power(f, *b, e)
                     });
                 }
                 _ => numerator.push(self.at(f, Prec::Product)),

@@ -32,12 +32,19 @@ pub struct Program {
     /// The outputs, in the order asked for.
     pub outputs: Vec<Id>,
     temp_of: BTreeMap<Id, usize>,
+    /// For half-integer powers `b^(k/2)`: the shared `b^(1/2)` they are built from.
+    root_of: BTreeMap<Id, Id>,
 }
 
 impl Program {
     /// The temporary holding `id`, if it has one.
     pub fn temp(&self, id: Id) -> Option<&Temp> {
         self.temp_of.get(&id).map(|&i| &self.temps[i])
+    }
+
+    /// The shared square root `b^(1/2)` that emission builds `id = b^(k/2)` from.
+    pub fn shared_root(&self, id: Id) -> Option<Id> {
+        self.root_of.get(&id).copied()
     }
 
     /// Evaluates the program as emitted code would: temporaries in order, each
@@ -101,6 +108,17 @@ fn is_leaf(g: &Graph, id: Id) -> bool {
     }
 }
 
+/// `-x` for a leaf `x`: cheaper to repeat than to store (it folds into a subtraction).
+fn is_negated_leaf(g: &Graph, id: Id) -> bool {
+    match g.node(id) {
+        Node::Mul(f) if f.len() == 2 => {
+            let minus_one = |i: Id| g.as_number(i) == Some(crate::Number::MINUS_ONE);
+            (minus_one(f[0]) && is_leaf(g, f[1])) || (minus_one(f[1]) && is_leaf(g, f[0]))
+        }
+        _ => false,
+    }
+}
+
 /// Operands that emission writes more than once: the base of `x^2`, `x^3`,
 /// `x^(3/2)` (`x * x.sqrt()`), the argument of `sign`.
 fn duplicated_operand(g: &Graph, id: Id) -> Option<Id> {
@@ -119,8 +137,9 @@ fn duplicated_operand(g: &Graph, id: Id) -> Option<Id> {
 impl Graph {
     /// Schedules `outputs` into a [`Program`]. Deterministic: the same graph and
     /// outputs give the same temporaries with the same names.
-    pub fn schedule(&self, outputs: &[Id]) -> Program {
-        let order = self.reachable(outputs);
+    pub fn schedule(&mut self, outputs: &[Id]) -> Program {
+        let root_of = self.shared_square_roots(outputs);
+        let order = self.dependency_order(outputs, &root_of);
         let mut uses: BTreeMap<Id, u32> = BTreeMap::new();
         for &o in outputs {
             *uses.entry(o).or_default() += 1;
@@ -132,11 +151,14 @@ impl Graph {
             if let Some(b) = duplicated_operand(self, id) {
                 *uses.entry(b).or_default() += 1;
             }
+            if let Some(r) = root_of.get(&id) {
+                *uses.entry(*r).or_default() += 1;
+            }
         }
         let mut is_temp: BTreeSet<Id> = BTreeSet::new();
         let mut depth: BTreeMap<Id, u32> = BTreeMap::new();
         for &id in &order {
-            if is_leaf(self, id) {
+            if is_leaf(self, id) || is_negated_leaf(self, id) {
                 depth.insert(id, 0);
                 continue;
             }
@@ -161,7 +183,7 @@ impl Graph {
         let mut counter = 0usize;
         let mut temps = Vec::with_capacity(is_temp.len());
         let mut temp_of = BTreeMap::new();
-        for &id in &is_temp {
+        for &id in order.iter().filter(|id| is_temp.contains(id)) {
             let name = match self.as_symbol(id) {
                 Some(s) => self.symbol(s).name.clone(),
                 None => loop {
@@ -179,7 +201,74 @@ impl Graph {
             temps,
             outputs: outputs.to_vec(),
             temp_of,
+            root_of,
         }
+    }
+
+    /// Every node the outputs need, dependencies first: operands, and for a
+    /// half-integer power its shared root (which may have a larger id than the
+    /// power, so id order is not enough). Deterministic: a depth-first
+    /// post-order visiting operands in ascending id order.
+    fn dependency_order(&self, outputs: &[Id], root_of: &BTreeMap<Id, Id>) -> Vec<Id> {
+        let mut visited = vec![false; self.len()];
+        let mut order = Vec::new();
+        let mut starts: Vec<Id> = outputs.to_vec();
+        starts.sort_unstable();
+        let mut stack: Vec<(Id, bool)> = starts.into_iter().rev().map(|id| (id, false)).collect();
+        while let Some((id, expanded)) = stack.pop() {
+            if expanded {
+                order.push(id);
+                continue;
+            }
+            if visited[id.index()] {
+                continue;
+            }
+            visited[id.index()] = true;
+            stack.push((id, true));
+            let mut deps: Vec<Id> = self.operands(id).to_vec();
+            deps.extend(root_of.get(&id));
+            deps.sort_unstable();
+            stack.extend(
+                deps.into_iter()
+                    .rev()
+                    .filter(|d| !visited[d.index()])
+                    .map(|d| (d, false)),
+            );
+        }
+        order
+    }
+
+    /// Half-integer powers of one base (`r^(-3/2)` and `r^(-5/2)` in gravity
+    /// Jacobians, `u^(1/2)` and `u^(-1/2)` in `sqrt(u)` and its derivative)
+    /// share one square root: maps each such power to the node `b^(1/2)`,
+    /// created if needed.
+    fn shared_square_roots(&mut self, outputs: &[Id]) -> BTreeMap<Id, Id> {
+        let mut family: BTreeMap<Id, Vec<Id>> = BTreeMap::new();
+        for id in self.reachable(outputs) {
+            if let Node::Pow([b, e]) = self.node(id) {
+                if self
+                    .as_number(*e)
+                    .and_then(crate::Number::as_rational)
+                    .is_some_and(|r| r.denom() == 2)
+                {
+                    family.entry(*b).or_default().push(id);
+                }
+            }
+        }
+        let half = self.num(crate::Number::Rational(
+            crate::Rational::new(1, 2).unwrap_or(crate::Rational::ONE),
+        ));
+        let mut root_of = BTreeMap::new();
+        for (base, powers) in family {
+            if powers.len() < 2 {
+                continue;
+            }
+            let root = self.intern(Node::Pow([base, half]));
+            for p in powers.into_iter().filter(|&p| p != root) {
+                root_of.insert(p, root);
+            }
+        }
+        root_of
     }
 
     /// Number of distinct nodes reachable from `roots`: the size of the DAG

@@ -398,6 +398,42 @@ proptest! {
 }
 
 #[test]
+fn shared_square_roots_are_defined_before_use() {
+    // r^(-3/2) in f and r^(-5/2) in its Jacobian share a sqrt(r) that is
+    // created while scheduling, after both powers.
+    let (mut g, s) = graph();
+    let f = g.parse("x*(x^2 + y^2)^(-3/2)").unwrap();
+    let d = g.partial(f, s[0]).unwrap();
+    let program = g.schedule(&[f, d]);
+    let at = [0.3, -1.2, 0.0, 0.0];
+    let code = emit_program(
+        &g,
+        &program,
+        &|sym| {
+            let n = quote::format_ident!("{}", NAMES[sym.index()]);
+            quote!(#n)
+        },
+        &|i, v| {
+            let i = Literal::usize_unsuffixed(i);
+            quote!(out[#i] = #v;)
+        },
+    );
+    let emitted = interpret(&code, &at).unwrap_or_else(|e| panic!("{e}\n{code}"));
+    let direct = g.eval(&[f, d], &|sym| at[sym.index()]);
+    for k in 0..2 {
+        assert!(
+            (emitted[k] - direct[k]).abs() < 1e-14 * direct[k].abs(),
+            "{code}"
+        );
+    }
+    assert_eq!(
+        code.to_string().matches("sqrt").count(),
+        1,
+        "one square root for both powers:\n{code}"
+    );
+}
+
+#[test]
 fn partial_derivatives_are_memoised_per_node_and_symbol() {
     let (mut g, s) = graph();
     let e = g.parse("sin(x*y)^2 + exp(x*y)").unwrap();
