@@ -3,8 +3,8 @@
 //! base and keep children sorted, so that equal expressions get equal ids.
 //!
 //! Every rewrite preserves values: wherever the expression as written
-//! evaluates to a finite number, the built one evaluates to the same number
-//! (up to rounding). Identities such as `x - x = 0` or `x/x = 1` may remove a
+//! evaluates to a finite number without passing through an infinity or NaN,
+//! the built one evaluates to the same number (up to rounding). Identities such as `x - x = 0` or `x/x = 1` may remove a
 //! point where the written form was undefined; none adds one. Folding that
 //! would create NaN or an infinity (`1/0`, `ln(0)`) is an [`Error`].
 
@@ -287,7 +287,16 @@ impl Graph {
                 };
             }
         }
-        if e.and_then(Number::as_integer).is_some() {
+        if let Some(n) = e.and_then(Number::as_integer) {
+            // (a - b)^2 = (b - a)^2 exactly: of a sum and its negation, even
+            // powers take the one with the smaller id (a symmetric choice, so
+            // (i, j) and (j, i) pair distances become one node).
+            if n % 2 == 0 && matches!(self.node(base), Node::Add(_)) {
+                let flipped = self.neg(base)?;
+                if flipped < base {
+                    return Ok(self.intern(Node::Pow([flipped, exponent])));
+                }
+            }
             match self.node(base).clone() {
                 Node::Pow([inner_base, inner_exp]) => {
                     let composed = self.mul(inner_exp, exponent)?;

@@ -68,8 +68,13 @@ fn text(g: &Graph, id: Id) -> (String, Prec) {
         Node::Mul(_) => {
             let (negative, s, prec) = term_text(g, id);
             if negative {
-                // `-2*x` reads as `(-2)*x`: the same product, so no parentheses.
-                (format!("-{s}"), prec.min(Prec::Product))
+                // `-2*x` reads as `(-2)*x`: the same product, so no parentheses,
+                // unless a sum comes first: `-(a + b)*c` would negate the sum.
+                if s.starts_with('(') {
+                    (format!("-({s})"), Prec::Unary)
+                } else {
+                    (format!("-{s}"), prec.min(Prec::Product))
+                }
             } else {
                 (s, prec)
             }

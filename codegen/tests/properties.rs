@@ -265,11 +265,11 @@ fn dual(r: &R, point: &[f64; 4], direction: usize, scale: &mut f64) -> Dual {
         v: if out.v == 0.0 { 0.0 } else { out.v },
         d: out.d,
     };
-    if out.v.is_finite() {
-        *scale = scale.max(out.v.abs());
-    }
-    if out.d.is_finite() {
-        *scale = scale.max(out.d.abs());
+    // Values are only promised where no intermediate is infinite or NaN (where
+    // `inf^(-3/2)` happens to give 0, say): an infinite scale marks the point unusable.
+    *scale = scale.max(out.v.abs()).max(out.d.abs());
+    if out.v.is_nan() || out.d.is_nan() {
+        *scale = f64::INFINITY;
     }
     out
 }

@@ -74,6 +74,8 @@ fn like_terms_and_powers_are_collected() {
     same("x*(x*y)^-1", "1/y");
     same("2*(x + y) - 2*x", "2*y");
     same("x^m * x", "x^(m + 1)");
+    same("(x - y)^2", "(y - x)^2");
+    same("(x - y)^-4", "(y - x)^-4");
 }
 
 #[test]
