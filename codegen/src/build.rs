@@ -65,8 +65,6 @@ impl Graph {
 
     /// The sum of `terms`: flattened, like terms collected, constants folded.
     pub fn sum(&mut self, terms: &[Id]) -> Result<Id> {
-        let mut constant = Number::ZERO;
-        let mut collected: Vec<(Id, Number)> = Vec::with_capacity(terms.len());
         let mut pending: Vec<Id> = Vec::with_capacity(terms.len());
         for &t in terms {
             match self.node(t) {
@@ -74,14 +72,39 @@ impl Graph {
                 _ => pending.push(t),
             }
         }
-        for t in pending {
+        // `e + 0` is `e` itself, even when `e` is a scaled sum like `2*(x + y)`.
+        let mut non_numbers = pending.iter().filter(|&&t| self.as_number(t).is_none());
+        if let (Some(&only), None) = (non_numbers.next(), non_numbers.next()) {
+            if pending
+                .iter()
+                .all(|&t| t == only || self.as_number(t).is_some_and(Number::is_zero))
+            {
+                return Ok(only);
+            }
+        }
+        let mut constant = Number::ZERO;
+        let mut collected: Vec<(Id, Number)> = Vec::with_capacity(pending.len());
+        let mut work: Vec<(Number, Id)> = pending.into_iter().map(|t| (Number::ONE, t)).collect();
+        while let Some((scale, t)) = work.pop() {
             if let Some(n) = self.as_number(t) {
+                let n = scale
+                    .mul(n)
+                    .ok_or_else(|| overflow(format!("{scale} * {n}")))?;
                 constant = constant
                     .add(n)
                     .ok_or_else(|| overflow(format!("{constant} + {n}")))?;
-            } else {
-                let (coefficient, rest) = self.split_coefficient(t);
-                collected.push((rest, coefficient));
+                continue;
+            }
+            let (coefficient, rest) = self.split_coefficient(t);
+            let c = scale
+                .mul(coefficient)
+                .ok_or_else(|| overflow(format!("{scale} * {coefficient}")))?;
+            match self.node(rest) {
+                // A scaled sum inside a sum is spread into its terms, so that
+                // `x + y - (x + y)` cancels; products keep `c*(x + y)` whole,
+                // so that the sum stays shared.
+                Node::Add(children) => work.extend(children.iter().map(|&child| (c, child))),
+                _ => collected.push((rest, c)),
             }
         }
         collected.sort_by_key(|&(rest, _)| rest);
@@ -160,9 +183,9 @@ impl Graph {
     }
 
     /// The product of `factors`: flattened, constants folded, powers of the
-    /// same base merged (`x * x^-1` is `1`), and a numeric coefficient
-    /// distributed over a lone sum (`2*(x + y)` is `2*x + 2*y`), so that sums
-    /// cancel term by term.
+    /// same base merged (`x * x^-1` is `1`). A coefficient is not distributed
+    /// over a sum (`2*(x - y)` keeps `x - y` shared with other uses); `sum`
+    /// spreads such terms where cancellation can use them.
     pub fn product(&mut self, factors: &[Id]) -> Result<Id> {
         let mut coefficient = Number::ONE;
         let mut powers: Vec<(Id, Id)> = Vec::with_capacity(factors.len());
@@ -220,17 +243,6 @@ impl Graph {
             let c = self.num(coefficient);
             out.push(c);
             return self.product(&out);
-        }
-        if out.len() == 1 && !coefficient.is_one() {
-            if let Node::Add(terms) = self.node(out[0]) {
-                let terms = terms.to_vec();
-                let c = self.num(coefficient);
-                let scaled = terms
-                    .into_iter()
-                    .map(|t| self.product(&[c, t]))
-                    .collect::<Result<Vec<_>>>()?;
-                return self.sum(&scaled);
-            }
         }
         Ok(match (out.len(), coefficient.is_one()) {
             (0, _) => self.num(coefficient),
@@ -291,8 +303,13 @@ impl Graph {
             // (a - b)^2 = (b - a)^2 exactly: of a sum and its negation, even
             // powers take the one with the smaller id (a symmetric choice, so
             // (i, j) and (j, i) pair distances become one node).
-            if n % 2 == 0 && matches!(self.node(base), Node::Add(_)) {
-                let flipped = self.neg(base)?;
+            if let (0, Node::Add(terms)) = (n % 2, self.node(base)) {
+                let terms = terms.to_vec();
+                let negated = terms
+                    .into_iter()
+                    .map(|t| self.neg(t))
+                    .collect::<Result<Vec<_>>>()?;
+                let flipped = self.sum(&negated)?;
                 if flipped < base {
                     return Ok(self.intern(Node::Pow([flipped, exponent])));
                 }

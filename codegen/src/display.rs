@@ -68,13 +68,8 @@ fn text(g: &Graph, id: Id) -> (String, Prec) {
         Node::Mul(_) => {
             let (negative, s, prec) = term_text(g, id);
             if negative {
-                // `-2*x` reads as `(-2)*x`: the same product, so no parentheses,
-                // unless a sum comes first: `-(a + b)*c` would negate the sum.
-                if s.starts_with('(') {
-                    (format!("-({s})"), Prec::Unary)
-                } else {
-                    (format!("-{s}"), prec.min(Prec::Product))
-                }
+                // `-2*x` reads as `(-2)*x`: the same product, so no parentheses.
+                (format!("-{s}"), prec.min(Prec::Product))
             } else {
                 (s, prec)
             }
@@ -135,60 +130,25 @@ fn term_text(g: &Graph, id: Id) -> (bool, String, Prec) {
             }
             let negative = coefficient.is_negative();
             let c = coefficient.abs();
-            let mut leading: Option<String> = None;
-            let mut below: Option<String> = None;
             match c.as_rational() {
                 Some(r) => {
                     if r.numer() != 1 {
-                        leading = Some(r.numer().to_string());
+                        numerator.insert(0, (r.numer().to_string(), Prec::Atom));
                     }
                     if r.denom() != 1 {
-                        below = Some(r.denom().to_string());
+                        denominator.insert(0, (r.denom().to_string(), Prec::Atom));
                     }
                 }
-                None => leading = Some(c.to_string()),
+                None => numerator.insert(0, (c.to_string(), Prec::Atom)),
             }
-            // The parser multiplies left to right, and a coefficient times a lone
-            // sum distributes (`3*(x + y)` is `3*x + 3*y`): never let the
-            // coefficient meet a sum first.
-            let (sums, others): (Vec<(String, Prec)>, Vec<(String, Prec)>) =
-                numerator.into_iter().partition(|f| f.1 == Prec::Sum);
-            let only_number_below = denominator.is_empty();
-            let wrapped = |v: Vec<(String, Prec)>| {
-                v.into_iter()
-                    .map(|f| wrap(f, Prec::Unary))
-                    .collect::<Vec<_>>()
-            };
-            let mut after_denominator: Vec<String> = Vec::new();
-            let mut head: Vec<String> = Vec::new();
-            if !others.is_empty() || sums.is_empty() {
-                head.extend(leading);
-                head.extend(wrapped(others));
-                head.extend(wrapped(sums));
-            } else if denominator.is_empty() || only_number_below {
-                head.extend(wrapped(sums));
-                head.extend(leading);
-            } else {
-                head.extend(leading);
-                after_denominator = wrapped(sums);
-            }
-            // The same below the line: `2*(y + z)` would read back as
-            // `2*y + 2*z`, so with a sum there the number goes last
-            // (`x/((y + z)*w*2)`), or after its own slash (`x/(y + z)/2`).
-            let mut trailing = None;
-            if let Some(q) = below {
-                if !denominator.iter().any(|d| d.1 == Prec::Sum) {
-                    denominator.insert(0, (q, Prec::Atom));
-                } else if denominator.len() == 1 {
-                    trailing = Some(q);
-                } else {
-                    denominator.push((q, Prec::Atom));
-                }
-            }
-            let mut s = if head.is_empty() {
+            let numerator: Vec<String> = numerator
+                .into_iter()
+                .map(|f| wrap(f, Prec::Unary))
+                .collect();
+            let mut s = if numerator.is_empty() {
                 "1".to_string()
             } else {
-                head.join("*")
+                numerator.join("*")
             };
             match denominator.len() {
                 0 => {}
@@ -203,14 +163,6 @@ fn term_text(g: &Graph, id: Id) -> (bool, String, Prec) {
                         .collect();
                     s.push_str(&format!("/({})", d.join("*")));
                 }
-            }
-            if let Some(q) = trailing {
-                s.push('/');
-                s.push_str(&q);
-            }
-            for f in after_denominator {
-                s.push('*');
-                s.push_str(&f);
             }
             (negative, s, Prec::Product)
         }
