@@ -397,6 +397,28 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+    /// The same model always expands to the same code: two fresh graphs, the
+    /// same construction, byte-identical output.
+    #[test]
+    fn emission_is_deterministic(r in recipe(), q in recipe()) {
+        let emit_once = || {
+            let (mut g, s) = graph();
+            let (e, f) = (build(&mut g, &s, &r)?, build(&mut g, &s, &q)?);
+            let j = g.jacobian(&[e, f], &s).ok()?;
+            let mut outputs = vec![e, f];
+            outputs.extend(j.expressions());
+            let program = g.schedule(&outputs);
+            let code = emit_program(&g, &program, &|sym| { let n = quote::format_ident!("{}", NAMES[sym.index()]); quote!(#n) },
+                &|i, v| { let i = Literal::usize_unsuffixed(i); quote!(out[#i] = #v;) });
+            Some(code.to_string())
+        };
+        prop_assert_eq!(emit_once(), emit_once());
+    }
+}
+
 #[test]
 fn shared_square_roots_are_defined_before_use() {
     // r^(-3/2) in f and r^(-5/2) in its Jacobian share a sqrt(r) that is
