@@ -12,7 +12,6 @@ use crate::error::{Error, Result};
 use crate::graph::Graph;
 use crate::node::{Func, Id, Node};
 use crate::number::Number;
-use crate::rational::Rational;
 
 fn overflow(expression: String) -> Error {
     Error::NotFinite {
@@ -399,12 +398,5 @@ fn paren_if_fraction(n: Number) -> String {
     match n.as_rational() {
         Some(r) if r.is_integer() && !r.is_negative() => n.to_string(),
         _ => format!("({n})"),
-    }
-}
-
-/// Convenience for rationals in code that builds expressions.
-impl From<Rational> for Number {
-    fn from(r: Rational) -> Number {
-        Number::Rational(r)
     }
 }

@@ -4,16 +4,20 @@
 //!
 //! Choices that matter for speed and accuracy: `x^2` and `x^3` are products,
 //! larger integer powers `powi` (which LLVM expands into multiplications);
-//! half-integer powers use `sqrt` (`r^(-3/2)` is `1.0 / (r * r.sqrt())`,
-//! the kernel of every gravity model); negative powers become one division;
+//! half-integer powers use `sqrt`, one per base (`r^(-3/2)` is
+//! `1.0 / (r * s)` with `s = r.sqrt()`); negative powers become one division;
 //! constants are exact literals, or `p / q` for rationals that have none.
+//!
+//! The code is written as text and lexed once: building thousands of small
+//! token streams costs more than the rest of the pipeline.
 
 use crate::graph::Graph;
-use crate::node::{Func, Id, Node, SymbolId};
+use crate::node::{Func, Id, Node, SymbolId, SymbolKind};
 use crate::number::Number;
 use crate::schedule::Program;
-use proc_macro2::{Literal, TokenStream, TokenTree};
-use quote::{format_ident, quote};
+use proc_macro2::{TokenStream, TokenTree};
+use quote::quote;
+use std::fmt::Write;
 
 /// Binding strength of an emitted piece, weakest first.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -25,7 +29,7 @@ enum Prec {
     Postfix,
 }
 
-type Piece = (TokenStream, Prec);
+type Piece = (String, Prec);
 
 /// Emits `program` as statements: one `let` per temporary, then
 /// `assign(i, value)` for each output `i`.
@@ -38,17 +42,39 @@ pub fn emit_program(
     symbol: &dyn Fn(SymbolId) -> TokenStream,
     assign: &dyn Fn(usize, TokenStream) -> TokenStream,
 ) -> TokenStream {
-    let e = Emitter { g, program, symbol };
-    let mut out = TokenStream::new();
-    for t in &program.temps {
-        let name = format_ident!("{}", t.name);
-        let value = e.inline(t.node).0;
-        out.extend(quote! { let #name = #value; });
+    let mut symbols: Vec<Option<String>> = vec![None; g.symbols().count()];
+    for id in g.reachable(&program.outputs) {
+        if let Node::Symbol(s) = g.node(id) {
+            symbols[s.index()] = Some(symbol(*s).to_string());
+        }
     }
+    let e = Emitter {
+        g,
+        program,
+        symbols,
+    };
+    let mut text = String::new();
+    for t in &program.temps {
+        let _ = write!(text, "let {} = {};\n", t.name, e.inline(t.node).0);
+    }
+    let mut out = lex(&text);
     for (i, &o) in program.outputs.iter().enumerate() {
-        out.extend(assign(i, e.render(o).0));
+        out.extend(assign(i, lex(&e.render(o).0)));
     }
     out
+}
+
+/// Lexes emitted text. It is well-formed by construction; should it ever not
+/// be, the user gets a compile error naming the bug, not a panic.
+fn lex(text: &str) -> TokenStream {
+    match text.parse::<TokenStream>() {
+        Ok(tokens) => tokens,
+        Err(err) => {
+            let message =
+                format!("daegen emitted code that does not lex ({err}); please report this model");
+            quote! { compile_error!(#message); }
+        }
+    }
 }
 
 /// Number of tokens in a stream, counting inside groups: the size measure of
@@ -64,54 +90,37 @@ pub fn token_count(tokens: &TokenStream) -> usize {
         .sum()
 }
 
-/// A non-negative finite `f64` as a literal that reads back exactly.
-fn literal(v: f64) -> TokenStream {
-    let text = format!("{v:?}");
-    match text.parse::<Literal>() {
-        Ok(lit) => quote! { #lit },
-        Err(_) => {
-            let lit = Literal::f64_unsuffixed(v);
-            quote! { #lit }
-        }
-    }
+/// A non-negative finite `f64` as a literal that reads back exactly
+/// (`Debug` is the shortest round-trip form: `0.1`, `2.0`, `1e-20`).
+fn literal(v: f64) -> String {
+    format!("{v:?}")
 }
 
-/// A literal safe as a method receiver (`2f64`, not the ambiguous `2.0`).
-fn typed_literal(v: f64) -> TokenStream {
-    let lit = Literal::f64_suffixed(v);
-    quote! { #lit }
-}
-
-fn integer_literal(n: i64) -> TokenStream {
+fn integer_literal(n: i64) -> String {
     literal(n.unsigned_abs() as f64)
 }
 
 struct Emitter<'a> {
     g: &'a Graph,
     program: &'a Program,
-    symbol: &'a dyn Fn(SymbolId) -> TokenStream,
+    symbols: Vec<Option<String>>,
 }
 
 impl Emitter<'_> {
     /// The value of `id`: its temporary's name if it has one.
     fn render(&self, id: Id) -> Piece {
         match self.program.temp(id) {
-            Some(t) => {
-                let name = format_ident!("{}", t.name);
-                (quote! { #name }, Prec::Postfix)
-            }
+            Some(t) => (t.name.clone(), Prec::Postfix),
             None => self.inline(id),
         }
     }
 
-    fn at(&self, id: Id, min: Prec) -> TokenStream {
-        if min == Prec::Postfix {
+    fn at(&self, id: Id, min: Prec) -> String {
+        if min == Prec::Postfix && self.program.temp(id).is_none() {
             if let Some(n) = self.g.as_number(id) {
-                if self.program.temp(id).is_none()
-                    && !n.is_negative()
-                    && n.as_rational().is_none_or(|r| r.is_exact_in_f64())
-                {
-                    return typed_literal(n.to_f64());
+                if !n.is_negative() && n.as_rational().is_none_or(|r| r.is_exact_in_f64()) {
+                    // `2.0.powf(x)` is ambiguous to rustc; `2.0_f64.powf(x)` is not.
+                    return format!("{}_f64", literal(n.to_f64()));
                 }
             }
         }
@@ -123,14 +132,17 @@ impl Emitter<'_> {
         match self.g.node(id) {
             Node::Number(n) => number(*n),
             Node::Symbol(s) => match self.g.symbol(*s).kind {
-                crate::SymbolKind::Intermediate { definition } => self.render(definition),
-                _ => ((self.symbol)(*s), Prec::Postfix),
+                SymbolKind::Intermediate { definition } => self.render(definition),
+                _ => (
+                    self.symbols[s.index()].clone().unwrap_or_default(),
+                    Prec::Postfix,
+                ),
             },
             Node::Add(terms) => self.sum(terms),
             Node::Mul(factors) => {
                 let (negative, body, prec) = self.product(factors);
                 if negative {
-                    (quote! { -#body }, Prec::Product.min(prec))
+                    (format!("-{body}"), Prec::Product.min(prec))
                 } else {
                     (body, prec)
                 }
@@ -138,34 +150,34 @@ impl Emitter<'_> {
             Node::Pow([b, e]) => match self.g.as_number(*e) {
                 Some(n) if n.is_negative() => {
                     let den = paren(self.power(id, *b, n.neg()), Prec::Unary);
-                    (quote! { 1.0 / #den }, Prec::Product)
+                    (format!("1.0 / {den}"), Prec::Product)
                 }
                 Some(n) => self.power(id, *b, n),
                 None => {
                     let base = self.at(*b, Prec::Postfix);
                     let exponent = self.render(*e).0;
-                    (quote! { #base.powf(#exponent) }, Prec::Postfix)
+                    (format!("{base}.powf({exponent})"), Prec::Postfix)
                 }
             },
             Node::Call(f, a) => self.call(*f, *a),
             Node::Atan2([y, x]) => {
                 let y = self.at(*y, Prec::Postfix);
                 let x = self.render(*x).0;
-                (quote! { #y.atan2(#x) }, Prec::Postfix)
+                (format!("{y}.atan2({x})"), Prec::Postfix)
             }
         }
     }
 
     fn call(&self, f: Func, a: Id) -> Piece {
-        if f == Func::Sign {
-            let a = self.at(a, Prec::Postfix);
-            // An `if` binds weakest of all: parenthesised wherever it is an operand.
-            let piece = quote! { if #a > 0.0 { 1.0 } else if #a < 0.0 { -1.0 } else { 0.0 } };
-            return (piece, Prec::Sum);
-        }
         let a = self.at(a, Prec::Postfix);
-        let method = format_ident!("{}", f.name());
-        (quote! { #a.#method() }, Prec::Postfix)
+        if f == Func::Sign {
+            // An `if` binds weakest of all: parenthesised wherever it is an operand.
+            return (
+                format!("if {a} > 0.0 {{ 1.0 }} else if {a} < 0.0 {{ -1.0 }} else {{ 0.0 }}"),
+                Prec::Sum,
+            );
+        }
+        (format!("{a}.{}()", f.name()), Prec::Postfix)
     }
 
     /// `base ^ e` for a positive numeric exponent; `pow` is the node (whose
@@ -176,42 +188,28 @@ impl Emitter<'_> {
             let n = r.numer();
             if r.is_integer() {
                 return match n {
-                    2 => (quote! { #b * #b }, Prec::Product),
-                    3 => (quote! { #b * #b * #b }, Prec::Product),
-                    _ => {
-                        let n = Literal::i32_unsuffixed(n as i32);
-                        (quote! { #b.powi(#n) }, Prec::Postfix)
-                    }
-                };
-            }
-            if let (2, Some(root)) = (r.denom(), self.program.shared_root(pow)) {
-                let s = self.render(root).0;
-                return match (n - 1) / 2 {
-                    0 => (s, Prec::Postfix),
-                    1 => (quote! { #b * #s }, Prec::Product),
-                    k => {
-                        let k = Literal::i32_unsuffixed(k as i32);
-                        (quote! { #b.powi(#k) * #s }, Prec::Product)
-                    }
+                    2 => (format!("{b} * {b}"), Prec::Product),
+                    3 => (format!("{b} * {b} * {b}"), Prec::Product),
+                    _ => (format!("{b}.powi({n})"), Prec::Postfix),
                 };
             }
             if r.denom() == 2 {
+                let root = match self.program.shared_root(pow) {
+                    Some(root) => self.render(root).0,
+                    None => format!("{b}.sqrt()"),
+                };
                 return match (n - 1) / 2 {
-                    0 => (quote! { #b.sqrt() }, Prec::Postfix),
-                    1 => (quote! { #b * #b.sqrt() }, Prec::Product),
-                    k => {
-                        let k = Literal::i32_unsuffixed(k as i32);
-                        (quote! { #b.powi(#k) * #b.sqrt() }, Prec::Product)
-                    }
+                    0 => (root, Prec::Postfix),
+                    1 => (format!("{b} * {root}"), Prec::Product),
+                    k => (format!("{b}.powi({k}) * {root}"), Prec::Product),
                 };
             }
         }
-        let exponent = number(e).0;
-        (quote! { #b.powf(#exponent) }, Prec::Postfix)
+        (format!("{b}.powf({})", number(e).0), Prec::Postfix)
     }
 
-    /// A term of a sum without its sign: `(is_negative, tokens of |term|, precedence)`.
-    fn term(&self, id: Id) -> (bool, TokenStream, Prec) {
+    /// A term of a sum without its sign: `(is_negative, text of |term|, precedence)`.
+    fn term(&self, id: Id) -> (bool, String, Prec) {
         match self.g.node(id) {
             Node::Mul(factors) if self.program.temp(id).is_none() => self.product(factors),
             Node::Number(n) => {
@@ -225,12 +223,12 @@ impl Emitter<'_> {
         }
     }
 
-    /// A product without its sign: `(is_negative, tokens of |product|, precedence)`.
-    fn product(&self, factors: &[Id]) -> (bool, TokenStream, Prec) {
+    /// A product without its sign: `(is_negative, text of |product|, precedence)`.
+    fn product(&self, factors: &[Id]) -> (bool, String, Prec) {
         let mut coefficient = Number::ONE;
-        let mut numerator: Vec<TokenStream> = Vec::new();
+        let mut numerator: Vec<String> = Vec::new();
         let mut denominator: Vec<Piece> = Vec::new();
-        for &f in factors.iter() {
+        for &f in factors {
             match self.g.node(f) {
                 Node::Number(n) => coefficient = *n,
                 Node::Pow([b, e])
@@ -250,6 +248,7 @@ impl Emitter<'_> {
         let negative = coefficient.is_negative();
         match coefficient.abs() {
             Number::Rational(r) if !r.is_exact_in_f64() => {
+                // x/3.0 rounds once; x * (1.0/3.0) would round twice.
                 if r.numer() != 1 {
                     numerator.insert(0, integer_literal(r.numer()));
                 }
@@ -259,51 +258,48 @@ impl Emitter<'_> {
             _ => {}
         }
         let mut body = if numerator.is_empty() {
-            quote! { 1.0 }
+            "1.0".to_string()
         } else {
-            join(&numerator, quote! { * })
+            numerator.join(" * ")
         };
         match denominator.len() {
             0 => {}
             1 => {
                 let d = paren(denominator.remove(0), Prec::Unary);
-                body = quote! { #body / #d };
+                let _ = write!(body, " / {d}");
             }
             _ => {
-                let parts: Vec<TokenStream> = denominator
+                let parts: Vec<String> = denominator
                     .into_iter()
                     .map(|p| paren(p, Prec::Product))
                     .collect();
-                let d = join(&parts, quote! { * });
-                body = quote! { #body / (#d) };
+                let _ = write!(body, " / ({})", parts.join(" * "));
             }
         }
         (negative, body, Prec::Product)
     }
 
     fn sum(&self, terms: &[Id]) -> Piece {
-        let rendered: Vec<(bool, TokenStream, Prec)> =
-            terms.iter().map(|&t| self.term(t)).collect();
+        let rendered: Vec<(bool, String, Prec)> = terms.iter().map(|&t| self.term(t)).collect();
         let is_constant = |t: &Id| self.g.as_number(*t).is_some();
-        let mut ordered = Vec::with_capacity(terms.len());
+        let mut out = String::new();
+        let mut first = true;
         for want_negative in [false, true] {
             for constants in [false, true] {
-                for (t, r) in terms.iter().zip(&rendered) {
-                    if is_constant(t) == constants && r.0 == want_negative {
-                        ordered.push(r.clone());
+                for (t, (negative, body, prec)) in terms.iter().zip(&rendered) {
+                    if is_constant(t) != constants || *negative != want_negative {
+                        continue;
                     }
+                    let body = paren((body.clone(), *prec), Prec::Product);
+                    match (first, negative) {
+                        (true, false) => out.push_str(&body),
+                        (true, true) => out.push_str(&format!("-{body}")),
+                        (false, false) => out.push_str(&format!(" + {body}")),
+                        (false, true) => out.push_str(&format!(" - {body}")),
+                    }
+                    first = false;
                 }
             }
-        }
-        let mut out = TokenStream::new();
-        for (i, (negative, body, prec)) in ordered.into_iter().enumerate() {
-            let body = paren((body, prec), Prec::Product);
-            out.extend(match (i, negative) {
-                (0, false) => body,
-                (0, true) => quote! { -#body },
-                (_, false) => quote! { + #body },
-                (_, true) => quote! { - #body },
-            });
         }
         (out, Prec::Sum)
     }
@@ -311,35 +307,28 @@ impl Emitter<'_> {
 
 fn number(n: Number) -> Piece {
     let (body, prec) = match n.abs() {
-        Number::Rational(r) if !r.is_exact_in_f64() => {
-            let (p, q) = (integer_literal(r.numer()), integer_literal(r.denom()));
-            (quote! { #p / #q }, Prec::Product)
-        }
+        Number::Rational(r) if !r.is_exact_in_f64() => (
+            format!(
+                "{} / {}",
+                integer_literal(r.numer()),
+                integer_literal(r.denom())
+            ),
+            Prec::Product,
+        ),
         a => (literal(a.to_f64()), Prec::Postfix),
     };
     if n.is_negative() {
-        (quote! { -#body }, Prec::Unary.min(prec))
+        (format!("-{body}"), Prec::Unary.min(prec))
     } else {
         (body, prec)
     }
 }
 
-fn paren(piece: Piece, min: Prec) -> TokenStream {
-    let (tokens, prec) = piece;
+fn paren(piece: Piece, min: Prec) -> String {
+    let (text, prec) = piece;
     if prec < min {
-        quote! { (#tokens) }
+        format!("({text})")
     } else {
-        tokens
+        text
     }
-}
-
-fn join(parts: &[TokenStream], sep: TokenStream) -> TokenStream {
-    let mut out = TokenStream::new();
-    for (i, p) in parts.iter().enumerate() {
-        if i > 0 {
-            out.extend(sep.clone());
-        }
-        out.extend(p.clone());
-    }
-    out
 }

@@ -35,8 +35,8 @@ impl Graph {
         roots.iter().map(|r| values[slot[r.index()]]).collect()
     }
 
-    /// The value of one expression, with symbol values given by name
-    /// (symbols not listed are an error in the caller's test: they read NaN).
+    /// The value of one expression, with symbol values given by name; a
+    /// symbol not listed reads as NaN, so a forgotten value shows in the result.
     pub fn eval_named(&self, id: Id, values: &[(&str, f64)]) -> f64 {
         let lookup = |s: SymbolId| {
             let name = &self.symbol(s).name;

@@ -82,13 +82,7 @@ impl Graph {
     /// The operands a value depends on: the children, or for an intermediate
     /// symbol its definition.
     pub fn operands(&self, id: Id) -> &[Id] {
-        match self.node(id) {
-            Node::Symbol(s) => match &self.symbols[s.index()].kind {
-                SymbolKind::Intermediate { definition } => std::slice::from_ref(definition),
-                _ => &[],
-            },
-            node => node.children(),
-        }
+        self.operands_of(self.node(id))
     }
 
     /// The constant value, if the node is a number.
@@ -294,24 +288,24 @@ impl Graph {
     /// Like [`Graph::reachable`], but does not enter (or list) nodes for which
     /// `stop` holds.
     pub(crate) fn reachable_until(&self, roots: &[Id], stop: impl Fn(Id) -> bool) -> Vec<Id> {
-        let mut seen = vec![false; self.nodes.len()];
+        // A set, not an arena-sized bitmap: Jacobians call this once per entry,
+        // each visiting a small part of a large graph.
+        let mut seen: std::collections::HashSet<Id, BuildHasherDefault<FxHasher>> =
+            Default::default();
         let mut stack: Vec<Id> = Vec::new();
-        let mut out = Vec::new();
         for &r in roots {
-            if !seen[r.index()] && !stop(r) {
-                seen[r.index()] = true;
+            if !stop(r) && seen.insert(r) {
                 stack.push(r);
             }
         }
         while let Some(id) = stack.pop() {
-            out.push(id);
             for &c in self.operands(id) {
-                if !seen[c.index()] && !stop(c) {
-                    seen[c.index()] = true;
+                if !stop(c) && seen.insert(c) {
                     stack.push(c);
                 }
             }
         }
+        let mut out: Vec<Id> = seen.into_iter().collect();
         out.sort_unstable();
         out
     }

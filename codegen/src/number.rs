@@ -196,6 +196,12 @@ pub fn pow_f64(b: f64, e: Number) -> f64 {
     b.powf(e.to_f64())
 }
 
+impl From<Rational> for Number {
+    fn from(r: Rational) -> Number {
+        Number::Rational(r)
+    }
+}
+
 impl fmt::Display for Number {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

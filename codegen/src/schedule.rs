@@ -8,7 +8,7 @@
 //! nodes whose inline form would nest deeper than [`MAX_INLINE_DEPTH`] (deep
 //! nesting slows rustc and would recurse deeply in emission).
 
-use crate::graph::Graph;
+use crate::graph::{FxHashMap, Graph};
 use crate::node::{Func, Id, Node, SymbolKind};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -31,7 +31,7 @@ pub struct Program {
     pub temps: Vec<Temp>,
     /// The outputs, in the order asked for.
     pub outputs: Vec<Id>,
-    temp_of: BTreeMap<Id, usize>,
+    temp_of: FxHashMap<Id, usize>,
     /// For half-integer powers `b^(k/2)`: the shared `b^(1/2)` they are built from.
     root_of: BTreeMap<Id, Id>,
 }
@@ -140,50 +140,56 @@ impl Graph {
     pub fn schedule(&mut self, outputs: &[Id]) -> Program {
         let root_of = self.shared_square_roots(outputs);
         let order = self.dependency_order(outputs, &root_of);
-        let mut uses: BTreeMap<Id, u32> = BTreeMap::new();
-        for &o in outputs {
-            *uses.entry(o).or_default() += 1;
+        let position: FxHashMap<Id, usize> =
+            order.iter().enumerate().map(|(i, &id)| (id, i)).collect();
+        let mut uses = vec![0u32; order.len()];
+        for o in outputs {
+            uses[position[o]] += 1;
         }
         for &id in &order {
-            for &c in self.operands(id) {
-                *uses.entry(c).or_default() += 1;
+            for c in self.operands(id) {
+                uses[position[c]] += 1;
             }
             if let Some(b) = duplicated_operand(self, id) {
-                *uses.entry(b).or_default() += 1;
+                uses[position[&b]] += 1;
             }
             if let Some(r) = root_of.get(&id) {
-                *uses.entry(*r).or_default() += 1;
+                uses[position[r]] += 1;
             }
         }
-        let mut is_temp: BTreeSet<Id> = BTreeSet::new();
-        let mut depth: BTreeMap<Id, u32> = BTreeMap::new();
-        for &id in &order {
+        let mut is_temp = vec![false; order.len()];
+        let mut depth = vec![0u32; order.len()];
+        for (i, &id) in order.iter().enumerate() {
             if is_leaf(self, id) || is_negated_leaf(self, id) {
-                depth.insert(id, 0);
                 continue;
             }
             let d = 1 + self
                 .operands(id)
                 .iter()
-                .map(|c| depth[c])
+                .map(|c| depth[position[c]])
                 .max()
                 .unwrap_or(0);
             let named = matches!(self.node(id), Node::Symbol(_));
-            if named || uses[&id] > 1 || d > MAX_INLINE_DEPTH {
-                is_temp.insert(id);
-                depth.insert(id, 0);
+            if named || uses[i] > 1 || d > MAX_INLINE_DEPTH {
+                is_temp[i] = true;
             } else {
-                depth.insert(id, d);
+                depth[i] = d;
             }
         }
-        let taken: BTreeSet<&str> = is_temp
+        let temp_nodes: Vec<Id> = order
+            .iter()
+            .zip(&is_temp)
+            .filter(|(_, &t)| t)
+            .map(|(&id, _)| id)
+            .collect();
+        let taken: BTreeSet<&str> = temp_nodes
             .iter()
             .filter_map(|&id| self.as_symbol(id).map(|s| self.symbol(s).name.as_str()))
             .collect();
         let mut counter = 0usize;
-        let mut temps = Vec::with_capacity(is_temp.len());
-        let mut temp_of = BTreeMap::new();
-        for &id in order.iter().filter(|id| is_temp.contains(id)) {
+        let mut temps = Vec::with_capacity(temp_nodes.len());
+        let mut temp_of = FxHashMap::default();
+        for &id in &temp_nodes {
             let name = match self.as_symbol(id) {
                 Some(s) => self.symbol(s).name.clone(),
                 None => loop {
