@@ -1,9 +1,40 @@
 //! daegen: symbolic ODE/DAE models compiled into specialised solvers.
 //!
-//! The facade over the workspace: [`codegen`] is the symbolic engine
-//! (expression DAG, differentiation, CSE, emission), [`runtime`] the code that
-//! generated models run on. The `#[dae_model]` front end is being built on
-//! top of them (see the README for what works today).
+//! Write a model as a function in the model language under `#[dae_model]`;
+//! the macro differentiates it symbolically, shares common subexpressions
+//! and emits a type implementing [`Model`], which [`Model::simulate`] runs.
+//!
+//! ```
+//! use daegen::prelude::*;
+//!
+//! /// A harmonic oscillator, written with its second derivative.
+//! #[dae_model]
+//! fn oscillator() {
+//!     /// Angular frequency.
+//!     let omega = param(2.0);
+//!     let x = state(1.0);
+//!     init(der(x), 0.0);
+//!     der(der(x)) == -omega * omega * x;
+//!     let energy = output(0.5 * (der(x) * der(x) + omega * omega * x * x));
+//! }
+//!
+//! let model = Oscillator::default();
+//! let sol = model.simulate(0.0, 1.0, &Options::new().method(Method::Rk4).step(1e-3))?;
+//! assert!((sol.last("x")? - 2f64.cos()).abs() < 1e-10);
+//! assert!((sol.last("der(x)")? + 2.0 * 2f64.sin()).abs() < 1e-10);
+//! assert!((sol.last("energy")? - 2.0).abs() < 1e-10);
+//! # Ok::<(), daegen::Error>(())
+//! ```
+//!
+//! The crates behind it: [`codegen`] is the symbolic engine, [`runtime`]
+//! the integrators and the run API.
 
 pub use daegen_codegen as codegen;
+pub use daegen_macros::dae_model;
 pub use daegen_runtime as runtime;
+pub use daegen_runtime::{Error, EvalError, Method, Model, ModelInfo, Options, Solution, Stats};
+
+/// Everything a model file needs: `use daegen::prelude::*;`.
+pub mod prelude {
+    pub use crate::{dae_model, Error, Method, Model, Options, Solution};
+}

@@ -10,7 +10,7 @@ use std::hash::{BuildHasherDefault, Hasher};
 /// The multiply-rotate hash of rustc (FxHash): hash-consing does millions of
 /// look-ups of small keys, where SipHash's DoS resistance buys nothing.
 #[derive(Default)]
-pub(crate) struct FxHasher(u64);
+pub struct FxHasher(u64);
 
 impl Hasher for FxHasher {
     fn write(&mut self, bytes: &[u8]) {
@@ -37,8 +37,9 @@ impl Hasher for FxHasher {
     }
 }
 
-/// A `HashMap` with [`FxHasher`]. Never iterated where order could leak into output.
-pub(crate) type FxHashMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
+/// A `HashMap` with a fast non-cryptographic hash. Never iterated where order
+/// could leak into output.
+pub type FxHashMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
 
 /// The expression DAG: an arena of canonical nodes and a symbol table.
 ///

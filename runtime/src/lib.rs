@@ -1,6 +1,19 @@
-//! `daegen-runtime`: what generated models run on. Today it holds the Taylor
-//! step shared by the economic Taylor scheme and the high-order Taylor
-//! method; integrators, Newton solvers, projection, dense output, events and
-//! errors land here as the front end grows.
+//! `daegen-runtime`: what generated models run on — the [`Model`] trait that
+//! `#[dae_model]` implements, the run API ([`Options`], [`Method`],
+//! [`Solution`], [`Error`]), the integrators, and small numerical helpers the
+//! generated code calls.
 
+mod error;
+pub mod explicit_rk;
+pub mod linalg;
+mod model;
+mod options;
+mod simulate;
+mod solution;
 pub mod taylor_series;
+
+pub use error::Error;
+pub use model::{EvalError, Model, ModelInfo};
+pub use options::{Method, Options};
+pub use simulate::simulate;
+pub use solution::{Solution, Stats};

@@ -1,0 +1,95 @@
+//! The model as the front end understood it: declarations and equations over
+//! one expression graph, each with the user's tokens for error messages.
+
+use crate::{Graph, Id, SymbolId};
+use proc_macro2::TokenStream;
+
+/// `let name = param(default);`
+pub struct Param {
+    /// The field name.
+    pub ident: syn::Ident,
+    /// Its default value.
+    pub default: f64,
+    /// Its doc comment.
+    pub doc: String,
+}
+
+/// One scalar state (`state(x0)` or an element of `state_array`).
+pub struct StateDecl {
+    /// `x` or `q[2]`.
+    pub name: String,
+    /// Its symbol.
+    pub symbol: SymbolId,
+    /// Initial value (constants and parameters).
+    pub init: Id,
+    /// The declaration, for errors.
+    pub origin: TokenStream,
+}
+
+/// `let z = algebraic(guess);`
+pub struct AlgebraicDecl {
+    /// Its name.
+    pub name: String,
+    /// The declaration, for errors.
+    pub origin: TokenStream,
+}
+
+/// `let e = output(value);`
+pub struct Output {
+    /// Its name.
+    pub name: String,
+    /// Its value.
+    pub value: Id,
+    /// Its doc comment.
+    pub doc: String,
+    /// The declaration, for errors.
+    pub origin: TokenStream,
+}
+
+/// `lhs == rhs;` or `constraint(phi);` (as `phi == 0`).
+pub struct Equation {
+    /// Left side.
+    pub lhs: Id,
+    /// Right side.
+    pub rhs: Id,
+    /// The statement, for errors.
+    pub origin: TokenStream,
+    /// Written as `constraint(..)`.
+    pub is_constraint: bool,
+}
+
+/// `init(der(x), v);`
+pub struct Init {
+    /// The derivative symbol `der^k(x)`.
+    pub target: SymbolId,
+    /// The value (constants and parameters).
+    pub value: Id,
+    /// The statement, for errors.
+    pub origin: TokenStream,
+}
+
+/// Everything `lower` found.
+pub struct ModelIr {
+    /// The function's name.
+    pub fn_name: syn::Ident,
+    /// Its visibility, given to the generated type.
+    pub vis: syn::Visibility,
+    /// Its doc comment.
+    pub doc: String,
+    /// The expressions.
+    pub graph: Graph,
+    /// The independent variable (declared with `time()`, or implicit).
+    pub time: SymbolId,
+    /// Parameters in declaration order.
+    pub params: Vec<Param>,
+    /// Scalar states in declaration order.
+    pub states: Vec<StateDecl>,
+    /// Algebraic variables.
+    pub algebraics: Vec<AlgebraicDecl>,
+    /// Outputs.
+    pub outputs: Vec<Output>,
+    /// Equations and constraints in order.
+    pub equations: Vec<Equation>,
+    /// Initial values of derivatives.
+    pub inits: Vec<Init>,
+}

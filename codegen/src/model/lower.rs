@@ -1,0 +1,1036 @@
+//! Lowering: the function body, read as the model language, into a
+//! [`ModelIr`]. Names are resolved, `const`s evaluated, `for` loops and
+//! constant `if`s unrolled; every mistake is recorded with the user's tokens
+//! and lowering goes on, so all mistakes are reported together.
+
+use super::ctxt::Ctxt;
+use super::ir::{AlgebraicDecl, Equation, Init, ModelIr, Output, Param, StateDecl};
+use super::names::did_you_mean;
+use crate::{Func, Graph, Id, Node, SymbolId, SymbolKind};
+use quote::ToTokens;
+use std::collections::HashMap;
+use syn::{BinOp, Expr, Lit, Pat, Stmt, UnOp};
+
+/// Most loop iterations, over all loops, before unrolling is refused.
+const MAX_UNROLLED: usize = 100_000;
+
+/// What a name stands for.
+#[derive(Clone)]
+enum Binding {
+    Param(Id),
+    State(SymbolId),
+    StateArray(Vec<SymbolId>),
+    Algebraic(Id),
+    Time(Id),
+    /// A `let` intermediate (possibly `mut`) or an output.
+    Value {
+        id: Id,
+        mutable: bool,
+    },
+    /// A `const` or a loop index.
+    Const(Id),
+}
+
+impl Binding {
+    fn describe(&self) -> &'static str {
+        match self {
+            Binding::Param(_) => "a parameter",
+            Binding::State(_) => "a state",
+            Binding::StateArray(_) => "an array of states",
+            Binding::Algebraic(_) => "an algebraic variable",
+            Binding::Time(_) => "the time",
+            Binding::Value { .. } => "an intermediate value",
+            Binding::Const(_) => "a constant",
+        }
+    }
+}
+
+const DECLARATIONS: [&str; 6] = [
+    "param",
+    "state",
+    "state_array",
+    "algebraic",
+    "time",
+    "output",
+];
+const FUNCTIONS: [&str; 19] = [
+    "sin",
+    "cos",
+    "tan",
+    "asin",
+    "acos",
+    "atan",
+    "atan2",
+    "sinh",
+    "cosh",
+    "tanh",
+    "exp",
+    "ln",
+    "sqrt",
+    "abs",
+    "der",
+    "init",
+    "constraint",
+    "powi",
+    "powf",
+];
+
+struct Lower<'c> {
+    cx: &'c mut Ctxt,
+    g: Graph,
+    scopes: Vec<HashMap<String, Binding>>,
+    time: Option<SymbolId>,
+    params: Vec<Param>,
+    states: Vec<StateDecl>,
+    algebraics: Vec<AlgebraicDecl>,
+    outputs: Vec<Output>,
+    equations: Vec<Equation>,
+    inits: Vec<Init>,
+    unrolled: usize,
+}
+
+/// Lowers the body of `item`. Errors go to `cx`; the IR is returned even
+/// then (with the parts that could be read) so that a stub can be emitted.
+pub fn lower(cx: &mut Ctxt, item: &syn::ItemFn) -> ModelIr {
+    let mut l = Lower {
+        cx,
+        g: Graph::new(),
+        scopes: vec![HashMap::new()],
+        time: None,
+        params: Vec::new(),
+        states: Vec::new(),
+        algebraics: Vec::new(),
+        outputs: Vec::new(),
+        equations: Vec::new(),
+        inits: Vec::new(),
+        unrolled: 0,
+    };
+    if !item.sig.inputs.is_empty() {
+        l.cx.error_at(
+            &item.sig.inputs,
+            "a model takes no arguments: declare parameters with `let m = param(1.0);`",
+        );
+    }
+    if let syn::ReturnType::Type(_, ty) = &item.sig.output {
+        l.cx.error_at(ty, "a model returns nothing: remove the return type");
+    }
+    for stmt in &item.block.stmts {
+        l.stmt(stmt);
+    }
+    // Without `time()`, the model is autonomous; it still gets a time symbol,
+    // under a name no declaration took.
+    let time = l.time.or_else(|| {
+        let names = std::iter::once("t".to_string()).chain((0..).map(|k| format!("__time{k}")));
+        names
+            .into_iter()
+            .find_map(|n| l.g.time(&n).ok())
+            .and_then(|id| l.g.as_symbol(id))
+    });
+    let time = time.unwrap_or(SymbolId(0));
+    if l.states.is_empty() && l.cx.is_ok() {
+        l.cx.error_at(&item.sig.ident, "the model declares no state: add one with `let x = state(0.0);` and an equation `der(x) == ...;`");
+    }
+    ModelIr {
+        fn_name: item.sig.ident.clone(),
+        vis: item.vis.clone(),
+        doc: doc_comment(&item.attrs),
+        graph: l.g,
+        time,
+        params: l.params,
+        states: l.states,
+        algebraics: l.algebraics,
+        outputs: l.outputs,
+        equations: l.equations,
+        inits: l.inits,
+    }
+}
+
+/// The `///` lines of `attrs`, joined.
+pub fn doc_comment(attrs: &[syn::Attribute]) -> String {
+    let lines: Vec<String> = attrs
+        .iter()
+        .filter(|a| a.path().is_ident("doc"))
+        .filter_map(|a| match &a.meta {
+            syn::Meta::NameValue(nv) => match &nv.value {
+                Expr::Lit(syn::ExprLit {
+                    lit: Lit::Str(s), ..
+                }) => Some(s.value()),
+                _ => None,
+            },
+            _ => None,
+        })
+        .map(|l| l.strip_prefix(' ').unwrap_or(&l).to_string())
+        .collect();
+    lines.join("\n")
+}
+
+fn call_name(e: &Expr) -> Option<(String, &syn::ExprCall)> {
+    match e {
+        Expr::Call(c) => match &*c.func {
+            Expr::Path(p) => p.path.get_ident().map(|i| (i.to_string(), c)),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
+impl Lower<'_> {
+    fn lookup(&self, name: &str) -> Option<&Binding> {
+        self.scopes.iter().rev().find_map(|s| s.get(name))
+    }
+
+    fn known_names(&self) -> Vec<String> {
+        self.scopes.iter().flat_map(|s| s.keys().cloned()).collect()
+    }
+
+    fn in_loop(&self) -> bool {
+        self.scopes.len() > 1
+    }
+
+    /// Binds `name`, refusing to redeclare a model variable.
+    fn bind(&mut self, ident: &syn::Ident, binding: Binding) {
+        let name = ident.to_string();
+        if let Some(old) = self.lookup(&name) {
+            let is_value = |b: &Binding| matches!(b, Binding::Value { .. });
+            if !(is_value(old) && is_value(&binding)) {
+                let what = old.describe();
+                self.cx.error_at(
+                    ident,
+                    format!("`{name}` is already declared as {what}: choose another name"),
+                );
+                return;
+            }
+        }
+        if let Some(scope) = self.scopes.last_mut() {
+            scope.insert(name, binding);
+        }
+    }
+
+    fn stmt(&mut self, stmt: &Stmt) {
+        match stmt {
+            Stmt::Local(local) => self.local(local),
+            Stmt::Item(syn::Item::Const(c)) => {
+                if let Some(v) = self.constant(&c.expr) {
+                    self.bind(&c.ident, Binding::Const(v));
+                }
+            }
+            Stmt::Expr(e, _) => self.expr_stmt(e),
+            Stmt::Item(other) => self
+                .cx
+                .error_at(other, "only `const` items are allowed in a model"),
+            Stmt::Macro(m) => self
+                .cx
+                .error_at(m, "macros are not part of the model language"),
+        }
+    }
+
+    fn local(&mut self, local: &syn::Local) {
+        let (ident, mutable) = match &local.pat {
+            Pat::Ident(p) => (p.ident.clone(), p.mutability.is_some()),
+            Pat::Type(t) => match &*t.pat {
+                Pat::Ident(p) => (p.ident.clone(), p.mutability.is_some()),
+                other => {
+                    return self
+                        .cx
+                        .error_at(other, "bind a single name: `let x = ...;`")
+                }
+            },
+            other => {
+                return self
+                    .cx
+                    .error_at(other, "bind a single name: `let x = ...;`")
+            }
+        };
+        let Some(init) = &local.init else {
+            return self.cx.error_at(
+                local,
+                format!("`{ident}` needs a value: `let {ident} = ...;`"),
+            );
+        };
+        if let Some((_, else_branch)) = &init.diverge {
+            return self.cx.error_at(
+                else_branch,
+                "`let ... else` is not part of the model language",
+            );
+        }
+        let e = &*init.expr;
+        let doc = doc_comment(&local.attrs);
+        if let Some((name, call)) = call_name(e) {
+            if DECLARATIONS.contains(&name.as_str()) {
+                if self.in_loop() {
+                    return self.cx.error_at(e, format!("declare `{name}(...)` outside loops: each iteration would declare `{ident}` again"));
+                }
+                if mutable {
+                    self.cx.error_at(
+                        &local.pat,
+                        format!("a {name} cannot be `mut`: remove `mut`"),
+                    );
+                }
+                return self.declaration(&ident, &name, call, doc, local);
+            }
+        }
+        if let Some(id) = self.value(e) {
+            self.bind(&ident, Binding::Value { id, mutable });
+        }
+    }
+
+    fn arity(&mut self, call: &syn::ExprCall, name: &str, n: usize) -> bool {
+        if call.args.len() == n {
+            return true;
+        }
+        let args = match n {
+            0 => "no argument".to_string(),
+            1 => "one argument".to_string(),
+            n => format!("{n} arguments"),
+        };
+        self.cx.error_at(
+            call,
+            format!("`{name}` takes {args}, not {}", call.args.len()),
+        );
+        false
+    }
+
+    fn declaration(
+        &mut self,
+        ident: &syn::Ident,
+        kind: &str,
+        call: &syn::ExprCall,
+        doc: String,
+        local: &syn::Local,
+    ) {
+        let name = ident.to_string();
+        let origin = local.to_token_stream();
+        match kind {
+            "param" => {
+                if !self.arity(call, "param", 1) {
+                    return;
+                }
+                let Some(v) = self.constant(&call.args[0]) else {
+                    return;
+                };
+                let default = self.g.as_number(v).map_or(f64::NAN, |n| n.to_f64());
+                match self.g.parameter(&name) {
+                    Ok(id) => {
+                        self.params.push(Param {
+                            ident: ident.clone(),
+                            default,
+                            doc,
+                        });
+                        self.bind(ident, Binding::Param(id));
+                    }
+                    Err(e) => self.cx.error_at(ident, e),
+                }
+            }
+            "state" => {
+                if !self.arity(call, "state", 1) {
+                    return;
+                }
+                let Some(init) = self.initial_value(&call.args[0]) else {
+                    return;
+                };
+                match self.g.state(&name) {
+                    Ok(id) => {
+                        let symbol = self.g.as_symbol(id).unwrap_or(SymbolId(0));
+                        self.states.push(StateDecl {
+                            name,
+                            symbol,
+                            init,
+                            origin,
+                        });
+                        self.bind(ident, Binding::State(symbol));
+                    }
+                    Err(e) => self.cx.error_at(ident, e),
+                }
+            }
+            "state_array" => {
+                if !self.arity(call, "state_array", 1) {
+                    return;
+                }
+                let inits: Vec<Option<Id>> = match &call.args[0] {
+                    Expr::Array(a) => a.elems.iter().map(|e| self.initial_value(e)).collect(),
+                    Expr::Repeat(r) => {
+                        let v = self.initial_value(&r.expr);
+                        match self.index_constant(&r.len) {
+                            Some(n) => vec![v; n],
+                            None => return,
+                        }
+                    }
+                    other => {
+                        return self.cx.error_at(other, "`state_array` takes an array of initial values: `state_array([1.0, 0.0])` or `state_array([0.0; N])`");
+                    }
+                };
+                if inits.is_empty() {
+                    return self
+                        .cx
+                        .error_at(&call.args[0], "a state array needs at least one element");
+                }
+                let mut symbols = Vec::new();
+                for (i, init) in inits.into_iter().enumerate() {
+                    let element = format!("{name}[{i}]");
+                    let (Some(init), Ok(id)) = (init, self.g.state(&element)) else {
+                        continue;
+                    };
+                    let symbol = self.g.as_symbol(id).unwrap_or(SymbolId(0));
+                    self.states.push(StateDecl {
+                        name: element,
+                        symbol,
+                        init,
+                        origin: origin.clone(),
+                    });
+                    symbols.push(symbol);
+                }
+                self.bind(ident, Binding::StateArray(symbols));
+            }
+            "algebraic" => {
+                if !self.arity(call, "algebraic", 1) {
+                    return;
+                }
+                let Some(_) = self.initial_value(&call.args[0]) else {
+                    return;
+                };
+                match self.g.algebraic(&name) {
+                    Ok(id) => {
+                        self.algebraics.push(AlgebraicDecl { name, origin });
+                        self.bind(ident, Binding::Algebraic(id));
+                    }
+                    Err(e) => self.cx.error_at(ident, e),
+                }
+            }
+            "time" => {
+                if !self.arity(call, "time", 0) {
+                    return;
+                }
+                if self.time.is_some() {
+                    return self.cx.error_at(
+                        local,
+                        "the time is already declared: a model has one `time()`",
+                    );
+                }
+                match self.g.time(&name) {
+                    Ok(id) => {
+                        self.time = self.g.as_symbol(id);
+                        self.bind(ident, Binding::Time(id));
+                    }
+                    Err(e) => self.cx.error_at(ident, e),
+                }
+            }
+            _ => {
+                // output
+                if !self.arity(call, "output", 1) {
+                    return;
+                }
+                let Some(value) = self.value(&call.args[0]) else {
+                    return;
+                };
+                self.outputs.push(Output {
+                    name,
+                    value,
+                    doc,
+                    origin,
+                });
+                self.bind(
+                    ident,
+                    Binding::Value {
+                        id: value,
+                        mutable: false,
+                    },
+                );
+            }
+        }
+    }
+
+    /// An initial value or guess: constants and parameters only.
+    fn initial_value(&mut self, e: &Expr) -> Option<Id> {
+        let v = self.value(e)?;
+        let bad = self
+            .g
+            .free_symbols(v)
+            .into_iter()
+            .find(|s| self.g.symbol(*s).kind != SymbolKind::Parameter);
+        if let Some(s) = bad {
+            let name = self.g.symbol(s).name.clone();
+            self.cx.error_at(
+                e,
+                format!("an initial value may use constants and parameters, not `{name}`"),
+            );
+            return None;
+        }
+        Some(v)
+    }
+
+    /// A compile-time constant (literals, `const`s, loop indices, arithmetic).
+    fn constant(&mut self, e: &Expr) -> Option<Id> {
+        let v = self.value(e)?;
+        if self.g.as_number(v).is_some() {
+            return Some(v);
+        }
+        self.cx.error_at(
+            e,
+            "this must be a constant: use literals, `const`s and loop indices",
+        );
+        None
+    }
+
+    /// A non-negative whole constant (loop bound, array index or length).
+    fn index_constant(&mut self, e: &Expr) -> Option<usize> {
+        let v = self.value(e)?;
+        match self
+            .g
+            .as_number(v)
+            .and_then(|n| n.as_integer())
+            .and_then(|n| usize::try_from(n).ok())
+        {
+            Some(n) => Some(n),
+            None => {
+                let message = if self.g.as_number(v).is_some() {
+                    "this must be a whole number ≥ 0"
+                } else {
+                    "this must be a constant: use literals, `const`s and loop indices"
+                };
+                self.cx.error_at(e, message);
+                None
+            }
+        }
+    }
+
+    fn expr_stmt(&mut self, e: &Expr) {
+        match e {
+            Expr::Binary(b) if matches!(b.op, BinOp::Eq(_)) => {
+                let (lhs, rhs) = (self.value(&b.left), self.value(&b.right));
+                if let (Some(lhs), Some(rhs)) = (lhs, rhs) {
+                    self.equations.push(Equation { lhs, rhs, origin: e.to_token_stream(), is_constraint: false });
+                }
+            }
+            Expr::ForLoop(f) => self.for_loop(f),
+            Expr::If(i) => self.const_if(i),
+            Expr::Assign(a) => {
+                let v = self.value(&a.right);
+                self.assign(&a.left, v, e);
+            }
+            Expr::Binary(b) if is_compound_assignment(&b.op) => {
+                let current = self.value(&b.left);
+                let rhs = self.value(&b.right);
+                let combined = match (current, rhs) {
+                    (Some(c), Some(r)) => self.arith(&b.op, c, r, e),
+                    _ => None,
+                };
+                self.assign(&b.left, combined, e);
+            }
+            Expr::Block(b) => {
+                self.scopes.push(HashMap::new());
+                for s in &b.block.stmts {
+                    self.stmt(s);
+                }
+                self.scopes.pop();
+            }
+            _ => match call_name(e) {
+                Some((name, call)) if name == "constraint" => {
+                    if self.arity(call, "constraint", 1) {
+                        if let Some(phi) = self.value(&call.args[0]) {
+                            let zero = self.g.zero();
+                            self.equations.push(Equation { lhs: phi, rhs: zero, origin: e.to_token_stream(), is_constraint: true });
+                        }
+                    }
+                }
+                Some((name, call)) if name == "init" => self.init(call, e),
+                Some((name, _)) if DECLARATIONS.contains(&name.as_str()) => {
+                    self.cx.error_at(e, format!("`{name}(...)` declares a variable: write `let x = {name}(...);`"))
+                }
+                _ => self.cx.error_at(
+                    e,
+                    "a model statement is `let`, an equation `lhs == rhs;`, `constraint(...)`, `init(...)`, `const` or `for`",
+                ),
+            },
+        }
+    }
+
+    fn assign(&mut self, target: &Expr, value: Option<Id>, whole: &Expr) {
+        let name = match target {
+            Expr::Path(p) => p.path.get_ident().map(|i| i.to_string()),
+            _ => None,
+        };
+        let Some(name) = name else {
+            return self
+                .cx
+                .error_at(target, "only `let mut` intermediates can be assigned to");
+        };
+        match self.lookup(&name).cloned() {
+            Some(Binding::Value { mutable: true, .. }) => {
+                if let Some(id) = value {
+                    // Assign in the scope that declared it, so loops can accumulate.
+                    if let Some(scope) = self.scopes.iter_mut().rev().find(|s| s.contains_key(&name)) {
+                        scope.insert(name, Binding::Value { id, mutable: true });
+                    }
+                }
+            }
+            Some(Binding::Value { mutable: false, .. }) => {
+                self.cx.error_at(whole, format!("`{name}` is not `mut`: declare it with `let mut {name} = ...;` to accumulate into it"))
+            }
+            Some(b) => {
+                let what = b.describe();
+                self.cx.error_at(whole, format!("cannot assign to `{name}`, {what}: state its dynamics as an equation, e.g. `der({name}) == ...;`"))
+            }
+            None => self.unknown_name(target, &name),
+        }
+    }
+
+    fn init(&mut self, call: &syn::ExprCall, whole: &Expr) {
+        if !self.arity(call, "init", 2) {
+            return;
+        }
+        let (target, value) = (self.value(&call.args[0]), self.initial_value(&call.args[1]));
+        let (Some(target), Some(value)) = (target, value) else {
+            return;
+        };
+        match self.g.as_symbol(target).map(|s| (s, self.g.symbol(s).kind)) {
+            Some((s, SymbolKind::Derivative { .. })) => {
+                self.inits.push(Init { target: s, value, origin: whole.to_token_stream() })
+            }
+            _ => self.cx.error_at(&call.args[0], "`init` sets a derivative of a state: `init(der(x), 0.0)`; set the state itself in `state(...)`"),
+        }
+    }
+
+    fn for_loop(&mut self, f: &syn::ExprForLoop) {
+        let Pat::Ident(var) = &*f.pat else {
+            return self
+                .cx
+                .error_at(&f.pat, "loop over one index: `for i in 0..N`");
+        };
+        let Expr::Range(range) = &*f.expr else {
+            return self
+                .cx
+                .error_at(&f.expr, "loop over a constant range: `for i in 0..N`");
+        };
+        let (Some(start), Some(end)) = (&range.start, &range.end) else {
+            return self
+                .cx
+                .error_at(range, "the range needs both bounds: `0..N`");
+        };
+        let (Some(start), Some(end)) = (self.index_constant(start), self.index_constant(end))
+        else {
+            return;
+        };
+        let end = match range.limits {
+            syn::RangeLimits::HalfOpen(_) => end,
+            syn::RangeLimits::Closed(_) => end + 1,
+        };
+        let count = end.saturating_sub(start);
+        self.unrolled += count;
+        if self.unrolled > MAX_UNROLLED {
+            return self.cx.error_at(
+                &f.expr,
+                format!("loops unroll to more than {MAX_UNROLLED} iterations"),
+            );
+        }
+        for i in start..end {
+            let index = self.g.int(i as i64);
+            let mut scope = HashMap::new();
+            scope.insert(var.ident.to_string(), Binding::Const(index));
+            self.scopes.push(scope);
+            for s in &f.body.stmts {
+                self.stmt(s);
+            }
+            self.scopes.pop();
+        }
+    }
+
+    fn const_if(&mut self, i: &syn::ExprIf) {
+        let Some(taken) = self.condition(&i.cond) else {
+            return;
+        };
+        let branch: Option<Vec<Stmt>> = if taken {
+            Some(i.then_branch.stmts.clone())
+        } else {
+            match &i.else_branch {
+                Some((_, e)) => match &**e {
+                    Expr::Block(b) => Some(b.block.stmts.clone()),
+                    Expr::If(inner) => {
+                        self.const_if(inner);
+                        None
+                    }
+                    other => {
+                        self.cx.error_at(other, "expected a block after `else`");
+                        None
+                    }
+                },
+                None => None,
+            }
+        };
+        if let Some(stmts) = branch {
+            self.scopes.push(HashMap::new());
+            for s in &stmts {
+                self.stmt(s);
+            }
+            self.scopes.pop();
+        }
+    }
+
+    /// A condition on constants (loop indices): `i != j`, `i < N && j > 0`.
+    fn condition(&mut self, e: &Expr) -> Option<bool> {
+        match e {
+            Expr::Paren(p) => self.condition(&p.expr),
+            Expr::Unary(u) if matches!(u.op, UnOp::Not(_)) => self.condition(&u.expr).map(|b| !b),
+            Expr::Lit(syn::ExprLit {
+                lit: Lit::Bool(b), ..
+            }) => Some(b.value),
+            Expr::Binary(b) if matches!(b.op, BinOp::And(_) | BinOp::Or(_)) => {
+                let (l, r) = (self.condition(&b.left)?, self.condition(&b.right)?);
+                Some(if matches!(b.op, BinOp::And(_)) {
+                    l && r
+                } else {
+                    l || r
+                })
+            }
+            Expr::Binary(b) if is_comparison(&b.op) => {
+                let (l, r) = (self.value(&b.left)?, self.value(&b.right)?);
+                match (self.g.as_number(l), self.g.as_number(r)) {
+                    (Some(l), Some(r)) => {
+                        let (l, r) = (l.to_f64(), r.to_f64());
+                        Some(match b.op {
+                            BinOp::Eq(_) => l == r,
+                            BinOp::Ne(_) => l != r,
+                            BinOp::Lt(_) => l < r,
+                            BinOp::Le(_) => l <= r,
+                            BinOp::Gt(_) => l > r,
+                            _ => l >= r,
+                        })
+                    }
+                    _ => {
+                        self.cx.error_at(e, "`if` is only for constants (loop indices), not model variables: the model must be smooth; use `abs`, or split the model");
+                        None
+                    }
+                }
+            }
+            other => {
+                self.cx.error_at(
+                    other,
+                    "`if` is only for conditions on constants, such as `i != j`",
+                );
+                None
+            }
+        }
+    }
+
+    fn unknown_name(&mut self, at: impl ToTokens, name: &str) {
+        let known = self.known_names();
+        let mut candidates: Vec<&str> = known.iter().map(String::as_str).collect();
+        candidates.extend(FUNCTIONS);
+        match did_you_mean(name, candidates.into_iter()) {
+            Some(s) => self.cx.error_at(at, format!("unknown name `{name}`; did you mean `{s}`?")),
+            None => self.cx.error_at(at, format!("unknown name `{name}`: declare it with `let {name} = param(..)`, `state(..)` or a value")),
+        }
+    }
+
+    fn graph_result(&mut self, r: crate::Result<Id>, at: &Expr) -> Option<Id> {
+        match r {
+            Ok(id) => Some(id),
+            Err(e) => {
+                self.cx.error_at(at, e);
+                None
+            }
+        }
+    }
+
+    fn arith(&mut self, op: &BinOp, a: Id, b: Id, at: &Expr) -> Option<Id> {
+        let r = match op {
+            BinOp::Add(_) | BinOp::AddAssign(_) => self.g.add(a, b),
+            BinOp::Sub(_) | BinOp::SubAssign(_) => self.g.sub(a, b),
+            BinOp::Mul(_) | BinOp::MulAssign(_) => self.g.mul(a, b),
+            BinOp::Div(_) | BinOp::DivAssign(_) => self.g.div(a, b),
+            _ => {
+                self.cx.error_at(op, format!("operator `{}` is not part of the model language: use + - * / and `powi`, `powf`", op.to_token_stream()));
+                return None;
+            }
+        };
+        self.graph_result(r, at)
+    }
+
+    /// An expression of the model language.
+    fn value(&mut self, e: &Expr) -> Option<Id> {
+        match e {
+            Expr::Lit(l) => self.literal(&l.lit),
+            Expr::Paren(p) => self.value(&p.expr),
+            Expr::Group(g) => self.value(&g.expr),
+            Expr::Cast(c) => self.value(&c.expr),
+            Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => {
+                let a = self.value(&u.expr)?;
+                let r = self.g.neg(a);
+                self.graph_result(r, e)
+            }
+            Expr::Binary(b) if matches!(b.op, BinOp::Eq(_)) => {
+                self.cx.error_at(
+                    e,
+                    "`==` states an equation and must be a whole statement: `lhs == rhs;`",
+                );
+                None
+            }
+            Expr::Binary(b) => {
+                let (l, r) = (self.value(&b.left), self.value(&b.right));
+                self.arith(&b.op, l?, r?, e)
+            }
+            Expr::Path(p) => {
+                let Some(ident) = p.path.get_ident() else {
+                    self.cx.error_at(p, "use a plain name here");
+                    return None;
+                };
+                let name = ident.to_string();
+                match self.lookup(&name).cloned() {
+                    Some(
+                        Binding::Param(id)
+                        | Binding::Algebraic(id)
+                        | Binding::Time(id)
+                        | Binding::Const(id),
+                    ) => Some(id),
+                    Some(Binding::Value { id, .. }) => Some(id),
+                    Some(Binding::State(s)) => Some(self.g.symbol_node(s)),
+                    Some(Binding::StateArray(_)) => {
+                        self.cx.error_at(
+                            e,
+                            format!("`{name}` is an array of states: index it, `{name}[0]`"),
+                        );
+                        None
+                    }
+                    None => {
+                        self.unknown_name(e, &name);
+                        None
+                    }
+                }
+            }
+            Expr::Index(ix) => {
+                let Expr::Path(p) = &*ix.expr else {
+                    self.cx
+                        .error_at(&ix.expr, "only state arrays can be indexed");
+                    return None;
+                };
+                let name = p
+                    .path
+                    .get_ident()
+                    .map(|i| i.to_string())
+                    .unwrap_or_default();
+                let elements = match self.lookup(&name).cloned() {
+                    Some(Binding::StateArray(s)) => s,
+                    Some(b) => {
+                        let what = b.describe();
+                        self.cx.error_at(
+                            &ix.expr,
+                            format!("`{name}` is {what}, not an array of states"),
+                        );
+                        return None;
+                    }
+                    None => {
+                        self.unknown_name(&ix.expr, &name);
+                        return None;
+                    }
+                };
+                let i = self.index_constant(&ix.index)?;
+                match elements.get(i) {
+                    Some(&s) => Some(self.g.symbol_node(s)),
+                    None => {
+                        self.cx.error_at(
+                            &ix.index,
+                            format!(
+                                "index {i} is out of bounds: `{name}` has {} elements",
+                                elements.len()
+                            ),
+                        );
+                        None
+                    }
+                }
+            }
+            Expr::Call(c) => self.call(c, e),
+            Expr::MethodCall(m) => self.method_call(m, e),
+            Expr::Closure(_) => self.unsupported(e, "closures"),
+            Expr::If(_) => self.unsupported(
+                e,
+                "`if` expressions (the model must be smooth; `if` on constants is a statement)",
+            ),
+            Expr::Match(_) => self.unsupported(e, "`match`"),
+            Expr::Block(_) => self.unsupported(e, "blocks as values"),
+            Expr::Assign(_) => self.unsupported(e, "assignments inside expressions"),
+            Expr::Macro(_) => self.unsupported(e, "macros"),
+            Expr::Reference(_) => self.unsupported(e, "references"),
+            Expr::Field(_) => self.unsupported(e, "field access"),
+            _ => self.unsupported(e, "this syntax"),
+        }
+    }
+
+    fn unsupported(&mut self, e: &Expr, what: &str) -> Option<Id> {
+        self.cx
+            .error_at(e, format!("{what} are not part of the model language"));
+        None
+    }
+
+    fn literal(&mut self, lit: &Lit) -> Option<Id> {
+        let parsed = match lit {
+            Lit::Int(i) => i.base10_parse::<f64>(),
+            Lit::Float(f) => f.base10_parse::<f64>(),
+            other => {
+                self.cx.error_at(other, "expected a number");
+                return None;
+            }
+        };
+        match parsed {
+            Ok(v) if v.is_finite() => self.g.float(v).ok(),
+            Ok(_) => {
+                self.cx.error_at(
+                    lit,
+                    format!(
+                        "`{}` is not a finite f64: write a number below 1.8e308",
+                        lit.to_token_stream()
+                    ),
+                );
+                None
+            }
+            Err(err) => {
+                self.cx.push(err);
+                None
+            }
+        }
+    }
+
+    fn call(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<Id> {
+        let Some((name, _)) = call_name(e) else {
+            self.cx
+                .error_at(&c.func, "call a function by name: `sin(x)`");
+            return None;
+        };
+        if DECLARATIONS.contains(&name.as_str()) {
+            self.cx.error_at(e, format!("`{name}(...)` declares a variable and must be the value of a `let`: `let x = {name}(...);`"));
+            return None;
+        }
+        if name == "der" {
+            return self.der(c, e);
+        }
+        if matches!(name.as_str(), "init" | "constraint") {
+            self.cx
+                .error_at(e, format!("`{name}(...)` is a statement, not a value"));
+            return None;
+        }
+        let func = Func::ALL
+            .iter()
+            .copied()
+            .find(|f| f.name() == name && *f != Func::Sign);
+        let arity = match name.as_str() {
+            "atan2" => 2,
+            _ if func.is_some() || name == "sqrt" => 1,
+            _ => {
+                let suggestion = did_you_mean(&name, FUNCTIONS.into_iter());
+                match suggestion {
+                    Some(s) => self.cx.error_at(&c.func, format!("unknown function `{name}`; did you mean `{s}`?")),
+                    None => self.cx.error_at(&c.func, format!("unknown function `{name}`: the model language has sin cos tan asin acos atan atan2 sinh cosh tanh exp ln sqrt abs, and `powi`/`powf` methods")),
+                }
+                return None;
+            }
+        };
+        if !self.arity(c, &name, arity) {
+            return None;
+        }
+        let args: Vec<Option<Id>> = c.args.iter().map(|a| self.value(a)).collect();
+        let args: Vec<Id> = args.into_iter().collect::<Option<_>>()?;
+        let r = match (name.as_str(), func) {
+            ("atan2", _) => self.g.atan2(args[0], args[1]),
+            ("sqrt", _) => self.g.sqrt(args[0]),
+            (_, Some(f)) => self.g.call(f, args[0]),
+            _ => return None,
+        };
+        self.graph_result(r, e)
+    }
+
+    fn der(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<Id> {
+        if !self.arity(c, "der", 1) {
+            return None;
+        }
+        let arg = &c.args[0];
+        let inner = self.value(arg)?;
+        let symbol = self.g.as_symbol(inner).filter(|&s| {
+            matches!(
+                self.g.symbol(s).kind,
+                SymbolKind::State | SymbolKind::Derivative { .. }
+            )
+        });
+        match symbol {
+            Some(s) => {
+                let r = self.g.derivative(s, 1);
+                self.graph_result(r, e)
+            }
+            None => {
+                let what = match self.g.node(inner) {
+                    Node::Number(_) => "a constant".to_string(),
+                    Node::Symbol(s) => match self.g.symbol(*s).kind {
+                        SymbolKind::Parameter => "a parameter (constant during a run)".to_string(),
+                        SymbolKind::Time => "the time (its derivative is 1)".to_string(),
+                        SymbolKind::Algebraic => "an algebraic variable".to_string(),
+                        _ => "not a state".to_string(),
+                    },
+                    _ => "an expression".to_string(),
+                };
+                self.cx.error_at(
+                    arg,
+                    format!(
+                        "`der` takes a state, and `{}` is {what}: declare it with `state(..)`",
+                        arg.to_token_stream()
+                    ),
+                );
+                None
+            }
+        }
+    }
+
+    fn method_call(&mut self, m: &syn::ExprMethodCall, e: &Expr) -> Option<Id> {
+        let method = m.method.to_string();
+        match method.as_str() {
+            "powi" | "powf" if m.args.len() == 1 => {
+                let base = self.value(&m.receiver);
+                let exponent = if method == "powi" {
+                    let v = self.constant(&m.args[0])?;
+                    if self.g.as_number(v).and_then(|n| n.as_integer()).is_none() {
+                        self.cx.error_at(
+                            &m.args[0],
+                            "`powi` takes a whole number; use `powf` for others",
+                        );
+                        return None;
+                    }
+                    v
+                } else {
+                    self.value(&m.args[0])?
+                };
+                let r = self.g.pow(base?, exponent);
+                self.graph_result(r, e)
+            }
+            "powi" | "powf" => {
+                self.cx
+                    .error_at(e, format!("`{method}` takes one argument"));
+                None
+            }
+            other if FUNCTIONS.contains(&other) || other == "sqrt" => {
+                let receiver = m.receiver.to_token_stream();
+                self.cx.error_at(
+                    &m.method,
+                    format!("write `{other}({receiver})`: the only methods are `powi` and `powf`"),
+                );
+                None
+            }
+            other => {
+                self.cx.error_at(
+                    &m.method,
+                    format!("unknown method `{other}`: the only methods are `powi` and `powf`"),
+                );
+                None
+            }
+        }
+    }
+}
+
+fn is_comparison(op: &BinOp) -> bool {
+    matches!(
+        op,
+        BinOp::Eq(_) | BinOp::Ne(_) | BinOp::Lt(_) | BinOp::Le(_) | BinOp::Gt(_) | BinOp::Ge(_)
+    )
+}
+
+fn is_compound_assignment(op: &BinOp) -> bool {
+    matches!(
+        op,
+        BinOp::AddAssign(_) | BinOp::SubAssign(_) | BinOp::MulAssign(_) | BinOp::DivAssign(_)
+    )
+}

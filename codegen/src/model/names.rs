@@ -1,0 +1,57 @@
+//! Naming helpers: the generated type's name and "did you mean" suggestions.
+
+/// `pendulum` -> `Pendulum`, `example_1_1` -> `Example11`.
+pub fn upper_camel_case(snake: &str) -> String {
+    snake
+        .split('_')
+        .filter(|p| !p.is_empty())
+        .map(|p| {
+            let mut c = p.chars();
+            match c.next() {
+                Some(f) => f.to_uppercase().chain(c).collect::<String>(),
+                None => String::new(),
+            }
+        })
+        .collect()
+}
+
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let cur = row[j + 1];
+            row[j + 1] = (prev + usize::from(ca != cb)).min(row[j] + 1).min(cur + 1);
+            prev = cur;
+        }
+    }
+    row[b.len()]
+}
+
+/// The known name closest to `name`, if it is close enough to be a typo.
+pub fn did_you_mean<'a>(name: &str, known: impl Iterator<Item = &'a str>) -> Option<&'a str> {
+    let limit = (name.chars().count() / 3).max(1);
+    known
+        .map(|k| (edit_distance(name, k), k))
+        .filter(|&(d, _)| d <= limit)
+        .min()
+        .map(|(_, k)| k)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn camel_case_and_suggestions() {
+        assert_eq!(upper_camel_case("pendulum"), "Pendulum");
+        assert_eq!(upper_camel_case("three_body_2d"), "ThreeBody2d");
+        assert_eq!(
+            did_you_mean("lamda", ["lambda", "l", "m"].into_iter()),
+            Some("lambda")
+        );
+        assert_eq!(did_you_mean("zeta", ["lambda", "l", "m"].into_iter()), None);
+    }
+}

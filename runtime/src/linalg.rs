@@ -1,0 +1,63 @@
+//! Dense linear solves for the small mass-matrix blocks that generated code
+//! cannot solve symbolically (`M(q) q'' = f` with `M` full and
+//! configuration-dependent). Stack arrays, no allocation.
+
+/// Solves `a x = b` in place (`b` becomes `x`) by Gaussian elimination with
+/// partial pivoting; `a` is row-major `N × N` and is destroyed. Returns
+/// `false` when a pivot is zero or not finite (a singular matrix).
+pub fn solve_in_place<const N: usize>(a: &mut [[f64; N]; N], b: &mut [f64; N]) -> bool {
+    for col in 0..N {
+        let mut pivot = col;
+        for row in col + 1..N {
+            if a[row][col].abs() > a[pivot][col].abs() {
+                pivot = row;
+            }
+        }
+        let p = a[pivot][col];
+        if p == 0.0 || !p.is_finite() {
+            return false;
+        }
+        a.swap(col, pivot);
+        b.swap(col, pivot);
+        for row in col + 1..N {
+            let factor = a[row][col] / p;
+            if factor != 0.0 {
+                for k in col..N {
+                    a[row][k] -= factor * a[col][k];
+                }
+                b[row] -= factor * b[col];
+            }
+        }
+    }
+    for col in (0..N).rev() {
+        let mut v = b[col];
+        for k in col + 1..N {
+            v -= a[col][k] * b[k];
+        }
+        b[col] = v / a[col][col];
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn solves_a_system_that_needs_pivoting() {
+        // x = (1, 2, 3); the first pivot is zero.
+        let mut a = [[0.0, 2.0, 1.0], [1.0, 1.0, 1.0], [2.0, 1.0, 3.0]];
+        let mut b = [7.0, 6.0, 13.0];
+        assert!(solve_in_place(&mut a, &mut b));
+        for (x, want) in b.iter().zip([1.0, 2.0, 3.0]) {
+            assert!((x - want).abs() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn reports_a_singular_matrix() {
+        let mut a = [[1.0, 2.0], [2.0, 4.0]];
+        let mut b = [1.0, 2.0];
+        assert!(!solve_in_place(&mut a, &mut b));
+    }
+}

@@ -1,0 +1,82 @@
+//! What a generated model gives the integrators: the contract between
+//! `#[dae_model]` and the runtime.
+
+/// Why a model could not be evaluated at a point.
+#[derive(Clone, Debug, PartialEq)]
+pub enum EvalError {
+    /// A block of the mass matrix `E(t, y)` in `E y' = g` is singular here.
+    SingularMassMatrix {
+        /// The derivatives of the block, by name.
+        unknowns: Vec<&'static str>,
+    },
+    /// The model has no analytic Jacobian (its mass matrix is solved at run time).
+    JacobianUnavailable,
+}
+
+/// Names and documentation of a model, known at compile time.
+#[derive(Clone, Copy, Debug)]
+pub struct ModelInfo {
+    /// The generated type's name.
+    pub name: &'static str,
+    /// The model's doc comment.
+    pub doc: &'static str,
+    /// States in solution order: declared states, then (for each state of
+    /// order k ≥ 2) its derivatives `der(x)` … `der^(k-1)(x)` right after it.
+    pub states: &'static [&'static str],
+    /// Parameters in declaration order.
+    pub parameters: &'static [&'static str],
+    /// Each parameter's doc comment.
+    pub parameter_docs: &'static [&'static str],
+    /// Named outputs (`let e = output(...)`).
+    pub outputs: &'static [&'static str],
+    /// Each output's doc comment.
+    pub output_docs: &'static [&'static str],
+    /// Number of equations the user wrote (after unrolling loops).
+    pub equations: usize,
+}
+
+/// A model compiled by `#[dae_model]`: `y' = f(t, y)` with `y` the states
+/// after reduction to first order.
+///
+/// Generated code implements every method; integrators call only what they
+/// need, and a method nobody calls is removed from the final binary.
+pub trait Model {
+    /// Number of first-order states.
+    const STATES: usize;
+    /// Differentiation index found at compile time (0 for an ODE).
+    const INDEX: usize;
+    /// Names and documentation.
+    const INFO: ModelInfo;
+    /// `(row, column)` of the structurally non-zero entries of `∂f/∂y`, in
+    /// the order [`Model::jacobian`] writes them.
+    const JACOBIAN_PATTERN: &'static [(usize, usize)];
+
+    /// Writes the initial state (values may depend on the parameters).
+    fn initial_state(&self, y: &mut [f64]);
+
+    /// Writes `dy = f(t, y)`. `y` and `dy` have [`Model::STATES`] entries.
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), EvalError>;
+
+    /// Writes the non-zero entries of `∂f/∂y` in the order of
+    /// [`Model::JACOBIAN_PATTERN`].
+    fn jacobian(&self, t: f64, y: &[f64], values: &mut [f64]) -> Result<(), EvalError>;
+
+    /// Writes `∂f/∂t`.
+    fn time_derivative(&self, t: f64, y: &[f64], dfdt: &mut [f64]) -> Result<(), EvalError>;
+
+    /// The output number `index` (see [`ModelInfo::outputs`]) at `(t, y)`.
+    fn output(&self, index: usize, t: f64, y: &[f64]) -> f64;
+
+    /// Integrates from `t0` to `t1`; see [`crate::Options`] and [`crate::Solution`].
+    fn simulate(
+        &self,
+        t0: f64,
+        t1: f64,
+        options: &crate::Options,
+    ) -> Result<crate::Solution, crate::Error>
+    where
+        Self: Sized + Clone + Send + Sync + 'static,
+    {
+        crate::simulate::simulate(self, t0, t1, options)
+    }
+}

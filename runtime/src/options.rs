@@ -1,0 +1,94 @@
+//! How to run a model: the method and its settings, as a by-value builder.
+
+/// An integration method.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Method {
+    /// Picks a method for the model. Today: `Rk4` with the fixed step of
+    /// [`Options::step`]; adaptive and stiff methods will take over as they land.
+    Auto,
+    /// Taylor series with adaptive order and step (not available yet).
+    Taylor,
+    /// The economic Taylor scheme of the given order with a fixed step (not available yet).
+    TaylorFixed {
+        /// Order p of the series.
+        order: usize,
+        /// Step size.
+        step: f64,
+    },
+    /// Explicit Euler, fixed step (order 1).
+    Euler,
+    /// Implicit Euler with Newton, fixed step (not available yet).
+    BackwardEuler,
+    /// The classic Runge–Kutta method, fixed step (order 4).
+    Rk4,
+    /// Kutta's 3/8 rule, fixed step (order 4).
+    Rk38,
+    /// Dormand–Prince 5(4), adaptive (not available yet).
+    Dopri5,
+    /// Hairer's DOP853, adaptive (not available yet).
+    Dop853,
+    /// Radau IIA of order 5 for stiff problems (not available yet).
+    Radau5,
+}
+
+/// Settings of a run. Build with `Options::new().method(..).rtol(..)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    pub(crate) method: Method,
+    pub(crate) rtol: f64,
+    pub(crate) atol: f64,
+    pub(crate) step: Option<f64>,
+    pub(crate) max_steps: usize,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            method: Method::Auto,
+            rtol: 1e-6,
+            atol: 1e-9,
+            step: None,
+            max_steps: 10_000_000,
+        }
+    }
+}
+
+impl Options {
+    /// `Method::Auto`, rtol 1e-6, atol 1e-9, default step, at most 10⁷ steps.
+    pub fn new() -> Options {
+        Options::default()
+    }
+
+    /// The integration method.
+    pub fn method(self, method: Method) -> Options {
+        Options { method, ..self }
+    }
+
+    /// Relative tolerance of adaptive methods.
+    pub fn rtol(self, rtol: f64) -> Options {
+        Options { rtol, ..self }
+    }
+
+    /// Absolute tolerance of adaptive methods.
+    pub fn atol(self, atol: f64) -> Options {
+        Options { atol, ..self }
+    }
+
+    /// Step size of fixed-step methods (default: the interval over 1000).
+    pub fn step(self, step: f64) -> Options {
+        Options {
+            step: Some(step),
+            ..self
+        }
+    }
+
+    /// Most steps a run may take before it stops with [`crate::Error::MaxSteps`].
+    pub fn max_steps(self, max_steps: usize) -> Options {
+        Options { max_steps, ..self }
+    }
+
+    /// The method chosen.
+    pub fn get_method(&self) -> Method {
+        self.method
+    }
+}
