@@ -38,6 +38,23 @@ impl Graph {
         self.product(&[m1, a])
     }
 
+    /// `-a`, with a sum negated term by term (`-(x - y)` is `y - x`) where
+    /// `neg` keeps `-1 * (x - y)` whole. For results read by people (the
+    /// right-hand side solved from an equation) and for sign choices.
+    pub fn negate_terms(&mut self, a: Id) -> Result<Id> {
+        match self.node(a) {
+            Node::Add(terms) => {
+                let terms = terms.to_vec();
+                let negated = terms
+                    .into_iter()
+                    .map(|t| self.neg(t))
+                    .collect::<Result<Vec<_>>>()?;
+                self.sum(&negated)
+            }
+            _ => self.neg(a),
+        }
+    }
+
     /// `a * b`.
     pub fn mul(&mut self, a: Id, b: Id) -> Result<Id> {
         self.product(&[a, b])
@@ -302,13 +319,8 @@ impl Graph {
             // (a - b)^2 = (b - a)^2 exactly: of a sum and its negation, even
             // powers take the one with the smaller id (a symmetric choice, so
             // (i, j) and (j, i) pair distances become one node).
-            if let (0, Node::Add(terms)) = (n % 2, self.node(base)) {
-                let terms = terms.to_vec();
-                let negated = terms
-                    .into_iter()
-                    .map(|t| self.neg(t))
-                    .collect::<Result<Vec<_>>>()?;
-                let flipped = self.sum(&negated)?;
+            if n % 2 == 0 && matches!(self.node(base), Node::Add(_)) {
+                let flipped = self.negate_terms(base)?;
                 if flipped < base {
                     return Ok(self.intern(Node::Pow([flipped, exponent])));
                 }

@@ -161,7 +161,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
             }
         }
         let r0 = g.substitute(eq.residual, &z_zero).ok()?;
-        g_vec.push(g.neg(r0).ok()?);
+        g_vec.push(g.negate_terms(r0).ok()?);
         e_matrix.push(row);
     }
     let blocks = connected_blocks(&e_matrix, n);

@@ -1,0 +1,105 @@
+//! Snapshots of the full `#[dae_model]` expansion, formatted with
+//! prettyplease: every change to the generated models is reviewed here.
+
+use daegen::codegen::expand_dae_model;
+use quote::quote;
+
+fn expand(item: proc_macro2::TokenStream) -> String {
+    let tokens = expand_dae_model(proc_macro2::TokenStream::new(), item);
+    match syn::parse2::<syn::File>(tokens.clone()) {
+        Ok(file) => prettyplease::unparse(&file),
+        Err(e) => panic!("expansion does not parse: {e}\n{tokens}"),
+    }
+}
+
+#[test]
+fn pendulum_in_its_angle() {
+    insta::assert_snapshot!(expand(quote! {
+        /// Planar pendulum in its angle: the contract's pendulum as an ODE.
+        fn pendulum() {
+            /// Length (m).
+            let l = param(1.0);
+            /// Gravity (m/s²).
+            let g = param(9.81);
+            let theta = state(1.0);
+            init(der(theta), 0.0);
+            der(der(theta)) == -g / l * sin(theta);
+            /// Energy per unit mass (J/kg).
+            let energy = output(0.5 * l * l * der(theta) * der(theta) - g * l * cos(theta));
+        }
+    }));
+}
+
+#[test]
+fn harmonic_oscillator_with_second_derivative() {
+    insta::assert_snapshot!(expand(quote! {
+        fn oscillator() {
+            let omega = param(2.0);
+            let x = state(1.0);
+            der(der(x)) == -omega.powi(2) * x;
+        }
+    }));
+}
+
+#[test]
+fn example_1_1_third_order_system() {
+    insta::assert_snapshot!(expand(quote! {
+        /// Course notes, Example 1.1.
+        fn example_1_1() {
+            let t = time();
+            let x = state(0.0);
+            let y = state(0.0);
+            init(der(x), 0.0);
+            init(der(der(x)), 2.0);
+            init(der(y), 2.0);
+            der(der(der(x))) + der(y) == x * x + t;
+            der(der(y)) + x == t * t + 1.0;
+        }
+    }));
+}
+
+#[test]
+fn three_body_with_state_arrays_and_loops() {
+    insta::assert_snapshot!(expand(quote! {
+        fn three_body() {
+            const N: usize = 3;
+            let gm = param(1.0);
+            let x = state_array([1.0, -0.5, -0.5]);
+            let y = state_array([0.0, 0.8660254037844386, -0.8660254037844386]);
+            let u = state_array([0.0; N]);
+            let v = state_array([0.0; N]);
+            for i in 0..N {
+                der(x[i]) == u[i];
+                der(y[i]) == v[i];
+                let mut ax = 0.0;
+                let mut ay = 0.0;
+                for j in 0..N {
+                    if j != i {
+                        let dx = x[j] - x[i];
+                        let dy = y[j] - y[i];
+                        let r3 = (dx * dx + dy * dy).powf(-1.5);
+                        ax += gm * dx * r3;
+                        ay += gm * dy * r3;
+                    }
+                }
+                der(u[i]) == ax;
+                der(v[i]) == ay;
+            }
+        }
+    }));
+}
+
+#[test]
+fn double_pendulum_with_a_runtime_mass_matrix() {
+    insta::assert_snapshot!(expand(quote! {
+        fn double_pendulum() {
+            let g = param(9.81);
+            let a = state(1.0);
+            let b = state(-0.5);
+            let c = cos(a - b);
+            let s = sin(a - b);
+            2.0 * der(der(a)) + c * der(der(b)) == -s * der(b) * der(b) - 2.0 * g * sin(a);
+            c * der(der(a)) + der(der(b)) == s * der(a) * der(a) - g * sin(b);
+        }
+    }));
+}
