@@ -305,7 +305,14 @@ impl Graph {
                 return match b.pow(e) {
                     Some(v) => Ok(self.num(v)),
                     None => Err(Error::NotFinite {
-                        expression: format!("{}^{}", paren_if_negative(b), paren_if_fraction(e)),
+                        expression: if e
+                            .as_rational()
+                            .is_some_and(|r| r.numer() == 1 && r.denom() == 2)
+                        {
+                            format!("sqrt({b})")
+                        } else {
+                            format!("{}^{}", paren_if_negative(b), paren_if_fraction(e))
+                        },
                         reason: if b.is_zero() {
                             "division by zero"
                         } else {

@@ -121,7 +121,7 @@ fn folding_to_a_non_finite_value_is_an_error_naming_the_expression() {
         ("x + 1/(1 - 1)", "0^(-1)", "division by zero"),
         ("ln(0)", "ln(0)", "positive argument"),
         ("ln(-2)", "ln(-2)", "positive argument"),
-        ("sqrt(-1)", "(-1)^(1/2)", "not a real number"),
+        ("sqrt(-1)", "sqrt(-1)", "not a real number"),
         ("asin(2)", "asin(2)", "[-1, 1]"),
         ("exp(1000)", "exp(1000)", "overflows"),
         ("1e300 * 1e300", "* ", "overflows"),

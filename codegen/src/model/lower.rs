@@ -299,6 +299,13 @@ impl Lower<'_> {
         local: &syn::Local,
     ) {
         let name = ident.to_string();
+        if let Some(old) = self.lookup(&name) {
+            let what = old.describe();
+            return self.cx.error_at(
+                ident,
+                format!("`{name}` is already declared as {what}: choose another name"),
+            );
+        }
         let origin = local.to_token_stream();
         match kind {
             "param" => {
@@ -464,11 +471,22 @@ impl Lower<'_> {
         if self.g.as_number(v).is_some() {
             return Some(v);
         }
-        self.cx.error_at(
-            e,
-            "this must be a constant: use literals, `const`s and loop indices",
-        );
+        self.not_constant(e, v);
         None
+    }
+
+    /// Says which variable keeps `e` from being a compile-time constant.
+    fn not_constant(&mut self, e: &Expr, v: Id) {
+        let culprit = self.g.free_symbols(v).into_iter().next().map(|s| {
+            let kind = match self.g.symbol(s).kind {
+                SymbolKind::Parameter => "a parameter, known only at run time",
+                SymbolKind::Time => "the time",
+                _ => "a variable of the model",
+            };
+            format!("`{}` is {kind}", self.g.symbol(s).name)
+        });
+        let culprit = culprit.unwrap_or_else(|| "it is not a number".to_string());
+        self.cx.error_at(e, format!("this must be a constant, but {culprit}: use literals, `const N: usize = 3;` and loop indices"));
     }
 
     /// A non-negative whole constant (loop bound, array index or length).
@@ -482,12 +500,11 @@ impl Lower<'_> {
         {
             Some(n) => Some(n),
             None => {
-                let message = if self.g.as_number(v).is_some() {
-                    "this must be a whole number ≥ 0"
+                if self.g.as_number(v).is_some() {
+                    self.cx.error_at(e, "this must be a whole number ≥ 0");
                 } else {
-                    "this must be a constant: use literals, `const`s and loop indices"
-                };
-                self.cx.error_at(e, message);
+                    self.not_constant(e, v);
+                }
                 None
             }
         }
@@ -840,10 +857,10 @@ impl Lower<'_> {
             Expr::Call(c) => self.call(c, e),
             Expr::MethodCall(m) => self.method_call(m, e),
             Expr::Closure(_) => self.unsupported(e, "closures"),
-            Expr::If(_) => self.unsupported(
-                e,
-                "`if` expressions (the model must be smooth; `if` on constants is a statement)",
-            ),
+            Expr::If(_) => {
+                self.cx.error_at(e, "`if` on model variables is not supported: the model must be smooth (use `abs`, or split the model into two); `if` on constants such as loop indices is allowed as a statement");
+                None
+            }
             Expr::Match(_) => self.unsupported(e, "`match`"),
             Expr::Block(_) => self.unsupported(e, "blocks as values"),
             Expr::Assign(_) => self.unsupported(e, "assignments inside expressions"),

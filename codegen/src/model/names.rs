@@ -32,7 +32,12 @@ fn edit_distance(a: &str, b: &str) -> usize {
 
 /// The known name closest to `name`, if it is close enough to be a typo.
 pub fn did_you_mean<'a>(name: &str, known: impl Iterator<Item = &'a str>) -> Option<&'a str> {
-    let limit = (name.chars().count() / 3).max(1);
+    // One edit turns any one-letter name into any other: suggest only for
+    // names long enough that a typo is the likely story.
+    let limit = name.chars().count() / 3;
+    if limit == 0 {
+        return None;
+    }
     known
         .map(|k| (edit_distance(name, k), k))
         .filter(|&(d, _)| d <= limit)
@@ -53,5 +58,6 @@ mod tests {
             Some("lambda")
         );
         assert_eq!(did_you_mean("zeta", ["lambda", "l", "m"].into_iter()), None);
+        assert_eq!(did_you_mean("y", ["k", "x"].into_iter()), None);
     }
 }

@@ -263,7 +263,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
             && !ir.states.iter().any(|s| s.symbol == init.target);
         if !valid {
             let name = g.symbol(init.target).name.clone();
-            cx.error_at(&init.origin, format!("`{name}` is not a state of its own: `init` applies to der(x) … up to one below the highest derivative of x in the equations (x must appear at least as `der(der(x))`)"));
+            cx.error_at(&init.origin, format!("`{name}` follows from its equation, so it takes no initial value: `init` is for derivatives below the highest one the equations use"));
             ok = false;
         }
     }
@@ -339,10 +339,14 @@ fn matched(
         if !augment(e, equations, &mut owner, &mut seen) {
             let j = equations[e].unknowns[0];
             let name = g.symbol(z[j]).name.clone();
-            let other = owner[j]
-                .map(|o| equations[o].origin.to_string())
-                .unwrap_or_default();
-            cx.error_at(&equations[e].origin, format!("`{name}` already has an equation (`{other}`): remove one, or there are more equations than states"));
+
+            cx.error_at(&equations[e].origin, format!("`{name}` already has an equation: remove one of the two (or there are more equations than states)"));
+            if let Some(o) = owner[j] {
+                cx.error_at(
+                    &equations[o].origin,
+                    format!("the other equation that determines `{name}`"),
+                );
+            }
             ok = false;
         }
     }

@@ -1,0 +1,158 @@
+//! Diagnostics of the front end, tested without compiling a macro: each bad
+//! model yields the expected messages, all of them at once.
+
+use daegen_codegen::expand_dae_model;
+use daegen_codegen::model::diagnostics;
+use quote::quote;
+
+fn messages(item: proc_macro2::TokenStream) -> Vec<String> {
+    diagnostics(item)
+}
+
+#[test]
+fn every_mistake_is_reported_in_one_expansion() {
+    let m = messages(quote! {
+        fn model() {
+                        let gain = param(1.0);
+            let x = state(1.0);
+            der(x) == -gaim * x + sine(x);
+            let s = x.cos();
+            for i in 0..gain { }
+        }
+    });
+    assert_eq!(m.len(), 4, "{m:#?}");
+    assert!(m[0].contains("unknown name `gaim`; did you mean `gain`?"));
+    assert!(m[1].contains("unknown function `sine`; did you mean `sin`?"));
+    assert!(m[2].contains("write `cos(x)`"));
+    assert!(m[3].contains("`gain` is a parameter"));
+}
+
+#[test]
+fn structural_mistakes_name_the_derivative() {
+    let cases: [(proc_macro2::TokenStream, &str); 7] = [
+        (
+            quote! { fn m() { let x = state(1.0); let v = state(0.0); der(x) == x; } },
+            "state `v` has no equation",
+        ),
+        (
+            quote! { fn m() { let x = state(1.0); der(x) == -x; der(x) == x; } },
+            "`der(x)` already has an equation",
+        ),
+        (
+            quote! { fn m() { let x = state(1.0); let y = state(1.0); der(x) + der(y) == x; } },
+            "no equation determines `der(y)`",
+        ),
+        (
+            quote! { fn m() { let x = state(1.0); der(x) * der(x) == x; } },
+            "not linear in `der(x)`",
+        ),
+        (
+            quote! { fn m() { let x = state(1.0); let y = state(1.0); der(x) + der(y) == x; 2.0 * der(x) + 2.0 * der(y) == y; } },
+            "linearly dependent",
+        ),
+        (
+            quote! { fn m() { let x = state(1.0); init(der(x), 1.0); der(x) == x; } },
+            "`der(x)` follows from its equation",
+        ),
+        (
+            quote! { fn m() { let x = state(1.0); der(x) == x; x == 2.0; } },
+            "algebraic",
+        ),
+    ];
+    for (model, expected) in cases {
+        let m = messages(model.clone());
+        assert!(
+            m.iter().any(|s| s.contains(expected)),
+            "{model}\n→ {m:#?}\nexpected `{expected}`"
+        );
+    }
+}
+
+#[test]
+fn language_mistakes_say_how_to_fix_them() {
+    let cases: [(proc_macro2::TokenStream, &str); 10] = [
+        (
+            quote! { fn m() { let k = param(1.0); let x = state(1.0); der(x) == der(k); } },
+            "`k` is a parameter",
+        ),
+        (
+            quote! { fn m() { let x = state(1.0); der(x) == der(x * x); } },
+            "`x * x` is an expression",
+        ),
+        (
+            quote! { fn m() { let x = state(1.0); der(x) == atan2(x); } },
+            "`atan2` takes 2 arguments, not 1",
+        ),
+        (
+            quote! { fn m() { let m = param(1.0); let m = state(1.0); der(m) == 1.0; } },
+            "`m` is already declared as a parameter",
+        ),
+        (
+            quote! { fn m() { let x = state(1.0); der(x) == 1e400; } },
+            "not a finite f64",
+        ),
+        (
+            quote! { fn m() { let x = state(1.0); der(x) == ln(0.0); } },
+            "`ln(0)` has no finite value",
+        ),
+        (
+            quote! { fn m() { let x = state(1.0); x = 2.0; der(x) == 1.0; } },
+            "cannot assign to `x`, a state",
+        ),
+        (
+            quote! { fn m() { let q = state_array([1.0, 2.0]); der(q[2]) == 1.0; } },
+            "index 2 is out of bounds",
+        ),
+        (
+            quote! { fn m() { let q = state_array([1.0, 2.0]); der(q) == 1.0; } },
+            "`q` is an array of states",
+        ),
+        (
+            quote! { fn m(a: f64) { let x = state(1.0); der(x) == a; } },
+            "a model takes no arguments",
+        ),
+    ];
+    for (model, expected) in cases {
+        let m = messages(model.clone());
+        assert!(
+            m.iter().any(|s| s.contains(expected)),
+            "{model}\n→ {m:#?}\nexpected `{expected}`"
+        );
+    }
+}
+
+#[test]
+fn a_model_with_errors_still_expands_to_its_type() {
+    let tokens = expand_dae_model(
+        proc_macro2::TokenStream::new(),
+        quote! { fn decay() { let k = param(0.5); let x = state(1.0); der(x) == -k * y; } },
+    );
+    let text = tokens.to_string();
+    assert!(text.contains("compile_error"));
+    assert!(
+        text.contains("struct Decay"),
+        "the stub keeps the type so user code type-checks"
+    );
+    assert!(text.contains("pub k : f64"));
+    assert!(syn::parse2::<syn::File>(tokens).is_ok());
+}
+
+#[test]
+fn good_models_have_no_diagnostics() {
+    let m = messages(quote! {
+        fn model() {
+            const N: usize = 4;
+            let t = time();
+            let k = param(2.0);
+            let q = state_array([0.0; N]);
+            for i in 0..N {
+                let mut force = -k * q[i];
+                if i > 0 { force += q[i - 1] - q[i]; }
+                if i + 1 < N { force += q[i + 1] - q[i]; }
+                der(der(q[i])) == force + sin(t) / (1.0 + (i as f64));
+            }
+            init(der(q[0]), 1.0);
+        }
+    });
+    assert!(m.is_empty(), "{m:#?}");
+}
