@@ -276,3 +276,32 @@ fn bad_requests_are_errors_not_panics() {
     let nan_param = Oscillator { omega: f64::NAN }.simulate(0.0, 1.0, &Options::new());
     assert!(matches!(nan_param, Err(Error::NonFinite { .. })));
 }
+
+/// The README's model, verbatim, so the README cannot rot.
+mod readme {
+    use daegen::prelude::*;
+
+    /// Planar pendulum in its angle.
+    #[dae_model]
+    fn pendulum() {
+        /// Length (m).
+        let l = param(1.0);
+        let g = param(9.81);
+        let theta = state(1.0); // initial angle; der(theta) starts at 0
+        der(der(theta)) == -g / l * sin(theta); // reduced to first order by the macro
+        let energy = output(0.5 * l * l * der(theta) * der(theta) - g * l * cos(theta));
+    }
+
+    #[test]
+    fn readme_model_runs_and_conserves_energy() -> Result<(), daegen::Error> {
+        let model = Pendulum {
+            l: 2.0,
+            ..Pendulum::default()
+        };
+        let sol = model.simulate(0.0, 10.0, &Options::new().method(Method::Rk4).step(1e-3))?;
+        let e0 = -9.81 * 2.0 * 1f64.cos();
+        assert!((sol.last("energy")? - e0).abs() < 1e-9);
+        assert!(sol.last("theta")?.abs() <= 1.0 + 1e-9);
+        Ok(())
+    }
+}

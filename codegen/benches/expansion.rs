@@ -7,7 +7,7 @@
 //! schedule f and J together and to emit them (median of 7 runs), DAG sizes
 //! of f, of J, and of both, and the emitted token count.
 //!
-//! Run: `cargo bench -p daegen-codegen --bench expansion`
+//! Run: `cargo bench -p daegen-codegen --bench expansion` (flags after `--`).
 
 use daegen_codegen::{emit_program, token_count, Graph, Id, SymbolId};
 use quote::quote;
@@ -227,20 +227,106 @@ fn report(name: &str, build: fn() -> Model) {
     println!("emitted: {temps} temporaries, {tokens} tokens\n");
 }
 
+/// Full `#[dae_model]` expansions: parse, lower, reduce, differentiate,
+/// schedule and emit a whole model (median of 7).
+fn report_models() {
+    use daegen_codegen::expand_dae_model;
+    use quote::quote;
+    let n_body = |n: usize| {
+        let n_lit = proc_macro2::Literal::usize_unsuffixed(n);
+        quote! {
+            fn n_body() {
+                const N: usize = #n_lit;
+                let gm = param(1.0);
+                let x = state_array([0.0; N]);
+                let y = state_array([0.0; N]);
+                let z = state_array([0.0; N]);
+                let u = state_array([0.0; N]);
+                let v = state_array([0.0; N]);
+                let w = state_array([0.0; N]);
+                for i in 0..N {
+                    der(x[i]) == u[i];
+                    der(y[i]) == v[i];
+                    der(z[i]) == w[i];
+                    let mut ax = 0.0;
+                    let mut ay = 0.0;
+                    let mut az = 0.0;
+                    for j in 0..N {
+                        if j != i {
+                            let dx = x[j] - x[i];
+                            let dy = y[j] - y[i];
+                            let dz = z[j] - z[i];
+                            let r3 = (dx * dx + dy * dy + dz * dz).powf(-1.5);
+                            ax += gm * dx * r3;
+                            ay += gm * dy * r3;
+                            az += gm * dz * r3;
+                        }
+                    }
+                    der(u[i]) == ax;
+                    der(v[i]) == ay;
+                    der(w[i]) == az;
+                }
+            }
+        }
+    };
+    let chain = quote! {
+        /// 30 masses on a line, joined by nonlinear springs: 30 equations, 60 states.
+        fn chain() {
+            const N: usize = 30;
+            let k = param(1.0);
+            let c = param(0.1);
+            let q = state_array([0.0; N]);
+            for i in 0..N {
+                let mut f = -k * q[i] - c * q[i].powi(3);
+                if i > 0 { f += k * (q[i - 1] - q[i]) + c * (q[i - 1] - q[i]).powi(3); }
+                if i + 1 < N { f += k * (q[i + 1] - q[i]) + c * (q[i + 1] - q[i]).powi(3); }
+                der(der(q[i])) == f;
+            }
+            init(der(q[0]), 1.0);
+        }
+    };
+    let models = [
+        ("3-body, 3D (18 states)", n_body(3)),
+        ("10-body, 3D (60 states)", n_body(10)),
+        ("30-equation spring chain (60 states)", chain),
+    ];
+    println!("## #[dae_model] expansion (f, Jacobian, ∂f/∂t, outputs)");
+    for (name, item) in models {
+        let mut times = Vec::new();
+        let mut tokens = 0;
+        for _ in 0..7 {
+            let start = Instant::now();
+            let out = expand_dae_model(proc_macro2::TokenStream::new(), item.clone());
+            times.push(start.elapsed());
+            tokens = token_count(&out);
+        }
+        println!(
+            "{name}: {} , {tokens} tokens of generated code",
+            ms(median(times))
+        );
+    }
+}
+
+/// Flags: `--models-only` runs only the `#[dae_model]` expansions;
+/// `--histogram` lists, by kind, the nodes the Jacobian adds to f (where swell
+/// would show).
 fn main() {
-    if std::env::var("HISTOGRAM").is_ok() {
+    let flag = |f: &str| std::env::args().any(|a| a == f);
+    if flag("--histogram") {
         histogram(&mut n_body(10));
         histogram(&mut spring_chain(100));
         return;
     }
-    report("N-body, N = 10 (3D, 60 states)", || n_body(10));
-    report("100-link spring chain (400 states)", || spring_chain(100));
-    report("100-link rigid chain, constraint Jacobian Φ_q", || {
-        chain_constraints(100)
-    });
+    if !flag("--models-only") {
+        report("N-body, N = 10 (3D, 60 states)", || n_body(10));
+        report("100-link spring chain (400 states)", || spring_chain(100));
+        report("100-link rigid chain, constraint Jacobian Φ_q", || {
+            chain_constraints(100)
+        });
+    }
+    report_models();
 }
-
-#[allow(dead_code)]
+/// Nodes of the Jacobian that f does not have, by kind and coefficient.
 fn histogram(m: &mut Model) {
     let j = m.g.jacobian(&m.f, &m.states).unwrap();
     let in_f: std::collections::BTreeSet<Id> = m.g.reachable(&m.f).into_iter().collect();
