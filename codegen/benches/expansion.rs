@@ -79,20 +79,10 @@ fn spring_chain(n: usize) -> Model {
     let y: Vec<Id> = (0..n).map(|k| g.state(&format!("y{k}")).unwrap()).collect();
     let u: Vec<Id> = (0..n).map(|k| g.state(&format!("u{k}")).unwrap()).collect();
     let v: Vec<Id> = (0..n).map(|k| g.state(&format!("v{k}")).unwrap()).collect();
-    let zero = g.zero();
     // Tension of link k (between mass k-1, or the origin, and mass k).
     let mut tension = Vec::new();
     for k in 0..n {
-        let (px, py) = if k == 0 {
-            (zero, zero)
-        } else {
-            (x[k - 1], y[k - 1])
-        };
-        let dx = g.sub(x[k], px).unwrap();
-        let dy = g.sub(y[k], py).unwrap();
-        let dx2 = g.powi(dx, 2).unwrap();
-        let dy2 = g.powi(dy, 2).unwrap();
-        let len2 = g.add(dx2, dy2).unwrap();
+        let (dx, dy, len2) = link(&mut g, &x, &y, k);
         let len = g.sqrt(len2).unwrap();
         let stretch = g.sub(len, l).unwrap();
         let inv = g.powi(len, -1).unwrap();
@@ -132,25 +122,31 @@ fn chain_constraints(n: usize) -> Model {
     let l = g.parameter("l").unwrap();
     let x: Vec<Id> = (0..n).map(|k| g.state(&format!("x{k}")).unwrap()).collect();
     let y: Vec<Id> = (0..n).map(|k| g.state(&format!("y{k}")).unwrap()).collect();
-    let zero = g.zero();
     let l2 = g.powi(l, 2).unwrap();
     let f = (0..n)
         .map(|k| {
-            let (px, py) = if k == 0 {
-                (zero, zero)
-            } else {
-                (x[k - 1], y[k - 1])
-            };
-            let dx = g.sub(x[k], px).unwrap();
-            let dy = g.sub(y[k], py).unwrap();
-            let dx2 = g.powi(dx, 2).unwrap();
-            let dy2 = g.powi(dy, 2).unwrap();
-            let s = g.add(dx2, dy2).unwrap();
+            let (_, _, s) = link(&mut g, &x, &y, k);
             g.sub(s, l2).unwrap()
         })
         .collect();
     let states = x.iter().chain(&y).map(|&s| sym(&mut g, s)).collect();
     Model { g, states, f }
+}
+
+/// Link k of a planar chain hanging from the origin: `(dx, dy, dx² + dy²)`
+/// between point k-1 (the origin for k = 0) and point k.
+fn link(g: &mut Graph, x: &[Id], y: &[Id], k: usize) -> (Id, Id, Id) {
+    let zero = g.zero();
+    let (px, py) = if k == 0 {
+        (zero, zero)
+    } else {
+        (x[k - 1], y[k - 1])
+    };
+    let dx = g.sub(x[k], px).unwrap();
+    let dy = g.sub(y[k], py).unwrap();
+    let dx2 = g.powi(dx, 2).unwrap();
+    let dy2 = g.powi(dy, 2).unwrap();
+    (dx, dy, g.add(dx2, dy2).unwrap())
 }
 
 fn median(mut v: Vec<Duration>) -> Duration {

@@ -104,16 +104,16 @@ impl Graph {
         while let Some((scale, t)) = work.pop() {
             if let Some(n) = self.as_number(t) {
                 let n = scale
-                    .mul(n)
+                    .checked_mul(n)
                     .ok_or_else(|| overflow(format!("{scale} * {n}")))?;
                 constant = constant
-                    .add(n)
+                    .checked_add(n)
                     .ok_or_else(|| overflow(format!("{constant} + {n}")))?;
                 continue;
             }
             let (coefficient, rest) = self.split_coefficient(t);
             let c = scale
-                .mul(coefficient)
+                .checked_mul(coefficient)
                 .ok_or_else(|| overflow(format!("{scale} * {coefficient}")))?;
             match self.node(rest) {
                 // A scaled sum inside a sum is spread into its terms, so that
@@ -132,7 +132,7 @@ impl Graph {
             while i < collected.len() && collected[i].0 == rest {
                 let c = collected[i].1;
                 coefficient = coefficient
-                    .add(c)
+                    .checked_add(c)
                     .ok_or_else(|| overflow(format!("{coefficient} + {c}")))?;
                 i += 1;
             }
@@ -215,7 +215,7 @@ impl Graph {
         for f in pending {
             if let Some(n) = self.as_number(f) {
                 coefficient = coefficient
-                    .mul(n)
+                    .checked_mul(n)
                     .ok_or_else(|| overflow(format!("{coefficient} * {n}")))?;
             } else {
                 powers.push(self.split_power(f));
@@ -240,7 +240,7 @@ impl Graph {
                 Node::Number(n) => {
                     let n = *n;
                     coefficient = coefficient
-                        .mul(n)
+                        .checked_mul(n)
                         .ok_or_else(|| overflow(format!("{coefficient} * {n}")))?;
                 }
                 Node::Mul(_) => {

@@ -78,7 +78,7 @@ fn text(g: &Graph, id: Id) -> (String, Prec) {
             Some(n) if n.is_negative() => (
                 format!(
                     "1/{}",
-                    wrap(power_text(g, *b, &number_text(n.neg())), Prec::Unary)
+                    wrap(power_text(g, *b, &number_text(n.negated())), Prec::Unary)
                 ),
                 Prec::Product,
             ),
@@ -118,7 +118,7 @@ fn term_text(g: &Graph, id: Id) -> (bool, String, Prec) {
                 match g.node(f) {
                     Node::Number(n) => coefficient = *n,
                     Node::Pow([b, e]) if g.as_number(*e).is_some_and(Number::is_negative) => {
-                        let e = g.as_number(*e).unwrap_or(Number::ONE).neg();
+                        let e = g.as_number(*e).unwrap_or(Number::ONE).negated();
                         denominator.push(if e.is_one() {
                             text(g, *b)
                         } else {

@@ -55,7 +55,7 @@ pub fn emit_program(
     };
     let mut text = String::new();
     for t in &program.temps {
-        let _ = write!(text, "let {} = {};\n", t.name, e.inline(t.node).0);
+        let _ = writeln!(text, "let {} = {};", t.name, e.inline(t.node).0);
     }
     let mut out = lex(&text);
     for (i, &o) in program.outputs.iter().enumerate() {
@@ -149,7 +149,7 @@ impl Emitter<'_> {
             }
             Node::Pow([b, e]) => match self.g.as_number(*e) {
                 Some(n) if n.is_negative() => {
-                    let den = paren(self.power(id, *b, n.neg()), Prec::Unary);
+                    let den = paren(self.power(id, *b, n.negated()), Prec::Unary);
                     (format!("1.0 / {den}"), Prec::Product)
                 }
                 Some(n) => self.power(id, *b, n),
@@ -235,7 +235,7 @@ impl Emitter<'_> {
                     if self.program.temp(f).is_none()
                         && self.g.as_number(*e).is_some_and(Number::is_negative) =>
                 {
-                    let e = self.g.as_number(*e).unwrap_or(Number::MINUS_ONE).neg();
+                    let e = self.g.as_number(*e).unwrap_or(Number::MINUS_ONE).negated();
                     denominator.push(if e.is_one() {
                         self.render(*b)
                     } else {

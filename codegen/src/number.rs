@@ -113,7 +113,7 @@ impl Number {
     }
 
     /// Sum; exact for rationals, `None` if the float result is not finite.
-    pub fn add(self, o: Number) -> Option<Number> {
+    pub fn checked_add(self, o: Number) -> Option<Number> {
         match (self, o) {
             (Number::Rational(a), Number::Rational(b)) => match a.checked_add(b) {
                 Some(r) => Some(Number::Rational(r)),
@@ -124,7 +124,7 @@ impl Number {
     }
 
     /// Product; exact for rationals, `None` if the float result is not finite.
-    pub fn mul(self, o: Number) -> Option<Number> {
+    pub fn checked_mul(self, o: Number) -> Option<Number> {
         match (self, o) {
             (Number::Rational(a), Number::Rational(b)) => match a.checked_mul(b) {
                 Some(r) => Some(Number::Rational(r)),
@@ -135,7 +135,7 @@ impl Number {
     }
 
     /// Negation (always finite).
-    pub fn neg(self) -> Number {
+    pub fn negated(self) -> Number {
         match self {
             Number::Rational(r) => match r.checked_neg() {
                 Some(n) => Number::Rational(n),
@@ -148,7 +148,7 @@ impl Number {
     /// The absolute value.
     pub fn abs(self) -> Number {
         if self.is_negative() {
-            self.neg()
+            self.negated()
         } else {
             self
         }
@@ -246,7 +246,7 @@ mod tests {
     #[test]
     fn float_overflow_is_reported() {
         let big = Number::from_f64(1e308).unwrap();
-        assert_eq!(big.add(big), None);
-        assert_eq!(big.mul(big), None);
+        assert_eq!(big.checked_add(big), None);
+        assert_eq!(big.checked_mul(big), None);
     }
 }

@@ -27,6 +27,17 @@ fn every_mistake_is_reported_in_one_expansion() {
     assert!(m[3].contains("`gain` is a parameter"));
 }
 
+/// Each model's diagnostics include its expected message.
+fn assert_each_reports(cases: &[(proc_macro2::TokenStream, &str)]) {
+    for (model, expected) in cases {
+        let m = messages(model.clone());
+        assert!(
+            m.iter().any(|s| s.contains(expected)),
+            "{model}\n→ {m:#?}\nexpected `{expected}`"
+        );
+    }
+}
+
 #[test]
 fn structural_mistakes_name_the_derivative() {
     let cases: [(proc_macro2::TokenStream, &str); 7] = [
@@ -59,13 +70,7 @@ fn structural_mistakes_name_the_derivative() {
             "algebraic",
         ),
     ];
-    for (model, expected) in cases {
-        let m = messages(model.clone());
-        assert!(
-            m.iter().any(|s| s.contains(expected)),
-            "{model}\n→ {m:#?}\nexpected `{expected}`"
-        );
-    }
+    assert_each_reports(&cases);
 }
 
 #[test]
@@ -112,13 +117,7 @@ fn language_mistakes_say_how_to_fix_them() {
             "a model takes no arguments",
         ),
     ];
-    for (model, expected) in cases {
-        let m = messages(model.clone());
-        assert!(
-            m.iter().any(|s| s.contains(expected)),
-            "{model}\n→ {m:#?}\nexpected `{expected}`"
-        );
-    }
+    assert_each_reports(&cases);
 }
 
 #[test]

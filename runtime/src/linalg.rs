@@ -22,8 +22,9 @@ pub fn solve_in_place<const N: usize>(a: &mut [[f64; N]; N], b: &mut [f64; N]) -
         for row in col + 1..N {
             let factor = a[row][col] / p;
             if factor != 0.0 {
-                for k in col..N {
-                    a[row][k] -= factor * a[col][k];
+                let (above, below) = a.split_at_mut(row);
+                for (target, p) in below[0][col..].iter_mut().zip(&above[col][col..]) {
+                    *target -= factor * p;
                 }
                 b[row] -= factor * b[col];
             }

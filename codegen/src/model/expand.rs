@@ -40,6 +40,23 @@ fn doc_attr(text: &str) -> String {
         .join("\n")
 }
 
+/// The body of a method that reads `y` (`n` states) and writes the slice
+/// `out` (`len` entries): both become arrays first, so every index in `code`
+/// is checked at compile time and the method cannot panic. The runtime
+/// always passes the right lengths; were it not to, nothing is written.
+fn fixed_size_body(n: &Literal, out: &str, len: &Literal, code: TokenStream) -> TokenStream {
+    let out = format_ident!("{}", out);
+    quote! {
+        let (::core::result::Result::Ok(y), ::core::result::Result::Ok(#out)) =
+            (<&[f64; #n]>::try_from(y), <&mut [f64; #len]>::try_from(#out))
+        else {
+            return ::core::result::Result::Ok(());
+        };
+        #code
+        ::core::result::Result::Ok(())
+    }
+}
+
 fn index(i: usize) -> Literal {
     Literal::usize_unsuffixed(i)
 }
@@ -208,24 +225,8 @@ pub fn expand(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenStream> 
             });
             (
                 quote!(&[#(#pattern),*]),
-                quote! {
-                    let (::core::result::Result::Ok(y), ::core::result::Result::Ok(values)) =
-                        (<&[f64; #nn]>::try_from(y), <&mut [f64; #nnz]>::try_from(values))
-                    else {
-                        return ::core::result::Result::Ok(());
-                    };
-                    #values
-                    ::core::result::Result::Ok(())
-                },
-                quote! {
-                    let (::core::result::Result::Ok(y), ::core::result::Result::Ok(dfdt)) =
-                        (<&[f64; #nn]>::try_from(y), <&mut [f64; #nn]>::try_from(dfdt))
-                    else {
-                        return ::core::result::Result::Ok(());
-                    };
-                    #time
-                    ::core::result::Result::Ok(())
-                },
+                fixed_size_body(&nn, "values", &nnz, values),
+                fixed_size_body(&nn, "dfdt", &nn, time),
             )
         }
         None => (
@@ -250,6 +251,12 @@ pub fn expand(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenStream> 
         })
         .collect();
 
+    let rhs_method_body = fixed_size_body(
+        &index(n),
+        "dy",
+        &index(n),
+        quote!(#block_setup #rhs_body #block_solve),
+    );
     let info = info(ir, sys);
     let struct_and_default = struct_and_default(ir);
     let n_lit = index(n);
@@ -268,16 +275,8 @@ pub fn expand(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenStream> 
                 #initial_state
             }
 
-            fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
-                let (::core::result::Result::Ok(y), ::core::result::Result::Ok(dy)) =
-                    (<&[f64; #n_lit]>::try_from(y), <&mut [f64; #n_lit]>::try_from(dy))
-                else {
-                    return ::core::result::Result::Ok(());
-                };
-                #block_setup
-                #rhs_body
-                #block_solve
-                ::core::result::Result::Ok(())
+                        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
+                #rhs_method_body
             }
 
             #[inline]

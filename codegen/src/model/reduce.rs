@@ -419,12 +419,12 @@ fn solve_constant(
             if m[row][col].is_zero() {
                 continue;
             }
-            let factor = m[row][col].mul(reciprocal(m[col][col])?)?;
-            for c in col..k {
-                let sub = factor.mul(m[col][c])?;
-                m[row][c] = m[row][c].add(sub.neg())?;
+            let factor = m[row][col].checked_mul(reciprocal(m[col][col])?)?;
+            let (above, below) = m.split_at_mut(row);
+            for (target, &p) in below[0][col..].iter_mut().zip(&above[col][col..]) {
+                *target = target.checked_add(factor.checked_mul(p)?.negated())?;
             }
-            let f = g.num(factor.neg());
+            let f = g.num(factor.negated());
             let scaled = g.mul(f, rhs[col]).ok()?;
             rhs[row] = g.add(rhs[row], scaled).ok()?;
         }
@@ -433,7 +433,7 @@ fn solve_constant(
     for row in (0..k).rev() {
         let mut acc = rhs[row];
         for c in row + 1..k {
-            let coefficient = g.num(m[row][c].neg());
+            let coefficient = g.num(m[row][c].negated());
             let t = g.mul(coefficient, z[c]).ok()?;
             acc = g.add(acc, t).ok()?;
         }
