@@ -85,7 +85,7 @@ fn oscillator() {
 fn oscillator_follows_its_exact_solution() {
     let model = Oscillator { omega: 3.0 };
     let sol = model
-        .simulate(0.0, 5.0, &Options::new().step(1e-3))
+        .simulate(0.0, 5.0, &Options::new().method(Method::Rk4).step(1e-3))
         .unwrap();
     let t: f64 = 5.0;
     assert!((sol.last("x").unwrap() - (3.0 * t).cos()).abs() < 1e-10);
@@ -146,7 +146,7 @@ fn lagrange_triangle_rotates_rigidly() {
     let omega = 3f64.powf(-0.25);
     assert_eq!(omega, 0.7598356856515925);
     let sol = ThreeBody::default()
-        .simulate(0.0, 10.0, &Options::new().step(1e-3))
+        .simulate(0.0, 10.0, &Options::new().method(Method::Rk4).step(1e-3))
         .unwrap();
     let t = 10.0;
     for (i, phase) in [0.0, 2.0, 4.0].iter().enumerate() {
@@ -212,7 +212,7 @@ fn double_pendulum() {
 fn double_pendulum_conserves_energy_through_the_runtime_mass_matrix() {
     let model = DoublePendulum::default();
     let sol = model
-        .simulate(0.0, 5.0, &Options::new().step(1e-3))
+        .simulate(0.0, 5.0, &Options::new().method(Method::Rk4).step(1e-3))
         .unwrap();
     let e0 = -2.0 * 9.81 * 1f64.cos() - 9.81 * (-0.5f64).cos();
     let drift = (sol.last("energy").unwrap() - e0).abs();
@@ -236,7 +236,7 @@ fn leaves_its_domain() {
 #[test]
 fn a_run_that_breaks_down_says_where_and_keeps_the_partial_solution() {
     let err = LeavesItsDomain::default()
-        .simulate(0.0, 3.0, &Options::new().step(1e-3))
+        .simulate(0.0, 3.0, &Options::new().method(Method::Rk4).step(1e-3))
         .unwrap_err();
     match &err {
         Error::NonFinite {
@@ -271,8 +271,17 @@ fn bad_requests_are_errors_not_panics() {
     assert!(matches!(sol.at(2.0, "x"), Err(Error::OutOfRange { .. })));
     let radau = Oscillator::default().simulate(0.0, 1.0, &Options::new().method(Method::Radau5));
     assert!(matches!(radau, Err(Error::MethodNotAvailable { .. })));
-    let bad_step = Oscillator::default().simulate(0.0, 1.0, &Options::new().step(-1.0));
+    let bad_step =
+        Oscillator::default().simulate(0.0, 1.0, &Options::new().method(Method::Rk4).step(-1.0));
     assert!(matches!(bad_step, Err(Error::InvalidOptions { .. })));
+    for (rtol, atol) in [(0.0, 0.0), (-1e-6, 1e-9), (1e-6, f64::NAN)] {
+        let bad_tol =
+            Oscillator::default().simulate(0.0, 1.0, &Options::new().rtol(rtol).atol(atol));
+        assert!(
+            matches!(bad_tol, Err(Error::InvalidOptions { .. })),
+            "rtol {rtol}, atol {atol}"
+        );
+    }
     let nan_param = Oscillator { omega: f64::NAN }.simulate(0.0, 1.0, &Options::new());
     assert!(matches!(nan_param, Err(Error::NonFinite { .. })));
 }

@@ -24,6 +24,17 @@ pub enum Error {
         /// The accepted steps before it.
         partial: Box<Solution>,
     },
+    /// The step size became too small for the time's precision: the
+    /// problem is too stiff for an explicit method, singular, or the
+    /// tolerances are too tight.
+    StepSizeUnderflow {
+        /// Time reached.
+        t: f64,
+        /// The last step tried.
+        h: f64,
+        /// The accepted steps.
+        partial: Box<Solution>,
+    },
     /// More steps than [`crate::Options::max_steps`] allow.
     MaxSteps {
         /// Time reached.
@@ -65,7 +76,8 @@ impl Error {
         match self {
             Error::NonFinite { partial, .. }
             | Error::Evaluation { partial, .. }
-            | Error::MaxSteps { partial, .. } => Some(partial),
+            | Error::MaxSteps { partial, .. }
+            | Error::StepSizeUnderflow { partial, .. } => Some(partial),
             _ => None,
         }
     }
@@ -80,6 +92,10 @@ impl fmt::Display for Error {
             Error::Evaluation { t, cause, .. } => {
                 write!(f, "the model could not be evaluated at t = {t}: {cause:?}")
             }
+                        Error::StepSizeUnderflow { t, h, .. } => write!(
+                f,
+                "the step size fell to {h:e} at t = {t}: the problem may be stiff (use Method::Radau5), singular there, or the tolerances too tight"
+            ),
             Error::MaxSteps { t, max_steps, .. } => {
                 write!(f, "stopped at t = {t} after {max_steps} steps; raise Options::max_steps or the step size")
             }

@@ -3,6 +3,9 @@
 //! [`Solution`], [`Error`]), the integrators, and small numerical helpers the
 //! generated code calls.
 
+mod adaptive;
+pub mod dop853;
+pub mod dopri5;
 mod error;
 pub mod explicit_rk;
 pub mod linalg;
@@ -10,6 +13,7 @@ mod model;
 mod options;
 mod simulate;
 mod solution;
+pub mod step_control;
 pub mod taylor_series;
 
 pub use error::Error;

@@ -3,8 +3,9 @@
 /// An integration method.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Method {
-    /// Picks a method for the model. Today: `Rk4` with the fixed step of
-    /// [`Options::step`]; adaptive and stiff methods will take over as they land.
+    /// Picks a method for the model: `Dopri5` for rtol ≥ 1e-7, `Dop853` for
+    /// tighter tolerances (where its higher order pays, Hairer–Nørsett–Wanner
+    /// I §II.10). Stiff problems will need `Radau5` once it lands.
     Auto,
     /// Taylor series with adaptive order and step (not available yet).
     Taylor,
@@ -23,9 +24,9 @@ pub enum Method {
     Rk4,
     /// Kutta's 3/8 rule, fixed step (order 4).
     Rk38,
-    /// Dormand–Prince 5(4), adaptive (not available yet).
+    /// Dormand–Prince 5(4), adaptive, with 4th-order dense output.
     Dopri5,
-    /// Hairer's DOP853, adaptive (not available yet).
+    /// Hairer's DOP853, adaptive, with 7th-order dense output.
     Dop853,
     /// Radau IIA of order 5 for stiff problems (not available yet).
     Radau5,
@@ -38,6 +39,8 @@ pub struct Options {
     pub(crate) rtol: f64,
     pub(crate) atol: f64,
     pub(crate) step: Option<f64>,
+    pub(crate) initial_step: Option<f64>,
+    pub(crate) max_step: Option<f64>,
     pub(crate) max_steps: usize,
 }
 
@@ -48,6 +51,8 @@ impl Default for Options {
             rtol: 1e-6,
             atol: 1e-9,
             step: None,
+            initial_step: None,
+            max_step: None,
             max_steps: 10_000_000,
         }
     }
@@ -78,6 +83,23 @@ impl Options {
     pub fn step(self, step: f64) -> Options {
         Options {
             step: Some(step),
+            ..self
+        }
+    }
+
+    /// First step of adaptive methods (default: Hairer's estimate from f and
+    /// its change along an Euler step).
+    pub fn initial_step(self, h: f64) -> Options {
+        Options {
+            initial_step: Some(h),
+            ..self
+        }
+    }
+
+    /// Largest step of adaptive methods (default: the whole interval).
+    pub fn max_step(self, h: f64) -> Options {
+        Options {
+            max_step: Some(h),
             ..self
         }
     }

@@ -1,5 +1,8 @@
 //! Checks a run's request and hands it to the method.
 
+use crate::adaptive;
+use crate::dop853::Dop853;
+use crate::dopri5::Dopri5;
 use crate::error::Error;
 use crate::explicit_rk;
 use crate::model::Model;
@@ -18,14 +21,54 @@ pub fn simulate<M: Model + Clone + Send + Sync + 'static>(
             message: format!("the interval [{t0}, {t1}] must be finite"),
         });
     }
+    let tolerances_ok = options.rtol.is_finite()
+        && options.atol.is_finite()
+        && options.rtol >= 0.0
+        && options.atol >= 0.0
+        && (options.rtol >= 1e-15 || options.atol > 0.0);
+    if !tolerances_ok {
+        return Err(Error::InvalidOptions {
+            message: format!(
+                "tolerances must be finite and non-negative, with rtol ≥ 1e-15 or atol > 0; got rtol = {}, atol = {}",
+                options.rtol, options.atol
+            ),
+        });
+    }
+    let method = match options.method {
+        Method::Auto if options.rtol >= 1e-7 => Method::Dopri5,
+        Method::Auto => Method::Dop853,
+        m => m,
+    };
+    let capacity = 1024;
+    match method {
+        Method::Dopri5 => {
+            return adaptive::integrate::<M, Dopri5>(
+                model,
+                t0,
+                t1,
+                options,
+                Solution::new(model, capacity),
+            )
+        }
+        Method::Dop853 => {
+            return adaptive::integrate::<M, Dop853>(
+                model,
+                t0,
+                t1,
+                options,
+                Solution::new(model, capacity),
+            )
+        }
+        _ => {}
+    }
     let step = options.step.unwrap_or((t1 - t0).abs() / 1000.0);
     if !(step.is_finite() && step > 0.0) && t1 != t0 {
         return Err(Error::InvalidOptions {
             message: format!("the step must be positive and finite, not {step}"),
         });
     }
-    let tableau = match options.method {
-        Method::Auto | Method::Rk4 => &explicit_rk::RK4,
+    let tableau = match method {
+        Method::Rk4 => &explicit_rk::RK4,
         Method::Rk38 => &explicit_rk::RK38,
         Method::Euler => &explicit_rk::EULER,
         other => return Err(Error::MethodNotAvailable { method: other }),

@@ -42,7 +42,15 @@ pub struct Solution {
     output_names: &'static [&'static str],
     observables: Arc<dyn Observables>,
     stats: Stats,
+    /// Dense-output coefficients: `dense_width` vectors of length n per step
+    /// (the step ending at `times[k]` at block `k - 1`), read by `interpolant`.
+    dense: Vec<f64>,
+    dense_width: usize,
+    interpolant: Option<Interpolant>,
 }
+
+/// Component `i` at `s = (t - t_old)/h` from one step's coefficients.
+pub(crate) type Interpolant = fn(&[f64], usize, usize, f64) -> f64;
 
 impl std::fmt::Debug for Solution {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -68,7 +76,22 @@ impl Solution {
             output_names: M::INFO.outputs,
             observables: Arc::new(ModelObservables(model.clone())),
             stats: Stats::default(),
+            dense: Vec::new(),
+            dense_width: 0,
+            interpolant: None,
         }
+    }
+
+    /// Dense output of `width` coefficient vectors per step, read by `f`.
+    pub(crate) fn set_interpolant(&mut self, width: usize, f: Interpolant) {
+        self.dense_width = width;
+        self.interpolant = Some(f);
+    }
+
+    /// An accepted step with its dense-output coefficients.
+    pub(crate) fn push_dense(&mut self, t: f64, y: &[f64], coefficients: &[f64]) {
+        self.push(t, y);
+        self.dense.extend_from_slice(coefficients);
     }
 
     pub(crate) fn push(&mut self, t: f64, y: &[f64]) {
@@ -131,9 +154,10 @@ impl Solution {
         }
     }
 
-    /// A state or output at time `t`, interpolated linearly between the two
-    /// accepted steps around it (second-order accurate in the step: use it
-    /// for plotting, not for accuracy-critical values, until dense output lands).
+    /// A state or output at time `t`. Adaptive methods interpolate with
+    /// their own continuous extension (order 4 for DOPRI5, 7 for DOP853);
+    /// fixed-step methods interpolate linearly between steps (second order
+    /// in the step: for plotting, not for accuracy-critical values).
     pub fn at(&self, t: f64, name: &str) -> Result<f64, Error> {
         let (first, last) = match (self.times.first(), self.times.last()) {
             (Some(&a), Some(&b)) => (a, b),
@@ -144,33 +168,52 @@ impl Solution {
                 })
             }
         };
-        let (lo, hi) = if first <= last {
-            (first, last)
-        } else {
-            (last, first)
-        };
-        if !(lo..=hi).contains(&t) {
+        if !(first.min(last)..=first.max(last)).contains(&t) {
             return Err(Error::OutOfRange {
                 t,
                 interval: (first, last),
             });
         }
-        let forward = first <= last;
-        let k = self
-            .times
-            .partition_point(|&s| if forward { s <= t } else { s >= t });
-        let k = k
-            .clamp(1, self.times.len().max(2) - 1)
-            .min(self.times.len() - 1);
         if self.times.len() == 1 {
             return self.value_at_step(0, name);
         }
+        let forward = first <= last;
+        let k = self
+            .times
+            .partition_point(|&s| if forward { s < t } else { s > t })
+            .clamp(1, self.times.len() - 1);
         let (t0, t1) = (self.times[k - 1], self.times[k]);
-        let (v0, v1) = (
-            self.value_at_step(k - 1, name)?,
-            self.value_at_step(k, name)?,
-        );
-        let w = if t1 == t0 { 0.0 } else { (t - t0) / (t1 - t0) };
-        Ok(v0 + w * (v1 - v0))
+        let s = if t1 == t0 { 0.0 } else { (t - t0) / (t1 - t0) };
+        let state = |i: usize| -> f64 {
+            match self.interpolant {
+                Some(f) => {
+                    let width = self.dense_width * self.n;
+                    f(&self.dense[(k - 1) * width..k * width], self.n, i, s)
+                }
+                None => {
+                    let (a, b) = (
+                        self.states[(k - 1) * self.n + i],
+                        self.states[k * self.n + i],
+                    );
+                    a + s * (b - a)
+                }
+            }
+        };
+        if let Some(i) = self.state_names.iter().position(|n| *n == name) {
+            return Ok(state(i));
+        }
+        if let Some(o) = self.output_names.iter().position(|n| *n == name) {
+            let y: Vec<f64> = (0..self.n).map(state).collect();
+            return Ok(self.observables.output(o, t, &y));
+        }
+        Err(Error::UnknownName {
+            name: name.to_string(),
+            known: self
+                .state_names
+                .iter()
+                .chain(self.output_names)
+                .copied()
+                .collect(),
+        })
     }
 }

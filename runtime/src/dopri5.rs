@@ -1,0 +1,107 @@
+//! Dormand–Prince 5(4) with Hairer's dense output of order 4 (Dormand &
+//! Prince 1980; Hairer, Nørsett, Wanner, *Solving ODEs I*, §II.5 and §II.6,
+//! code `dopri5.f`). Seven stages, the last one evaluated at the new point
+//! and reused as the first of the next step (FSAL).
+
+use crate::adaptive::EmbeddedPair;
+use crate::step_control::{rms_norm, Controller};
+
+/// The DOPRI5 pair.
+pub struct Dopri5;
+
+const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
+const A: [&[f64]; 7] = [
+    &[],
+    &[1.0 / 5.0],
+    &[3.0 / 40.0, 9.0 / 40.0],
+    &[44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0],
+    &[
+        19372.0 / 6561.0,
+        -25360.0 / 2187.0,
+        64448.0 / 6561.0,
+        -212.0 / 729.0,
+    ],
+    &[
+        9017.0 / 3168.0,
+        -355.0 / 33.0,
+        46732.0 / 5247.0,
+        49.0 / 176.0,
+        -5103.0 / 18656.0,
+    ],
+    &[
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+    ],
+];
+/// b − b̂: the difference of the 5th- and 4th-order weights.
+const E: [f64; 7] = [
+    71.0 / 57600.0,
+    0.0,
+    -71.0 / 16695.0,
+    71.0 / 1920.0,
+    -17253.0 / 339200.0,
+    22.0 / 525.0,
+    -1.0 / 40.0,
+];
+/// Dense output weights (Shampine's 4th-order continuous extension, as in `dopri5.f`).
+const D: [f64; 7] = [
+    -12715105075.0 / 11282082432.0,
+    0.0,
+    87487479700.0 / 32700410799.0,
+    -10690763975.0 / 1880347072.0,
+    701980252875.0 / 199316789632.0,
+    -1453857185.0 / 822651844.0,
+    69997945.0 / 29380423.0,
+];
+
+impl EmbeddedPair for Dopri5 {
+    const ORDER: usize = 5;
+    const STAGES: usize = 7;
+    const DENSE_WIDTH: usize = 5;
+
+    fn nodes() -> &'static [f64] {
+        &C
+    }
+
+    fn coefficients() -> &'static [&'static [f64]] {
+        &A
+    }
+
+    fn controller() -> Controller {
+        Controller {
+            exponent: 0.2 - 0.04 * 0.75,
+            beta: 0.04,
+            min_factor: 0.2,
+            max_factor: 10.0,
+            safety: 0.9,
+        }
+    }
+
+    fn error(h: f64, k: &[f64], n: usize, sk: &[f64], scratch: &mut [f64]) -> f64 {
+        for (i, e) in scratch.iter_mut().enumerate().take(n) {
+            *e = h * (0..7).map(|j| E[j] * k[j * n + i]).sum::<f64>();
+        }
+        rms_norm(&scratch[..n], sk)
+    }
+
+    fn dense_coefficients(h: f64, y: &[f64], y_new: &[f64], k: &[f64], n: usize, out: &mut [f64]) {
+        for i in 0..n {
+            let dy = y_new[i] - y[i];
+            let bspl = h * k[i] - dy;
+            out[i] = y[i];
+            out[n + i] = dy;
+            out[2 * n + i] = bspl;
+            out[3 * n + i] = dy - h * k[6 * n + i] - bspl;
+            out[4 * n + i] = h * (0..7).map(|j| D[j] * k[j * n + i]).sum::<f64>();
+        }
+    }
+
+    fn interpolate(c: &[f64], n: usize, i: usize, s: f64) -> f64 {
+        let s1 = 1.0 - s;
+        c[i] + s * (c[n + i] + s1 * (c[2 * n + i] + s * (c[3 * n + i] + s1 * c[4 * n + i])))
+    }
+}

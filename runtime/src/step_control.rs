@@ -1,0 +1,171 @@
+//! Step-size control shared by the embedded Runge–Kutta pairs: Hairer's
+//! weighted RMS error norm, the PI controller of DOPRI5/DOP853 and the
+//! initial step selection (Hairer, Nørsett, Wanner, *Solving ODEs I*, §II.4,
+//! and the codes `dopri5.f`, `dop853.f`).
+
+/// Controller constants of one method.
+#[derive(Clone, Copy, Debug)]
+pub struct Controller {
+    /// Exponent of the error in the new step: 1/(q+1) − 0.75 β for DOPRI5.
+    pub exponent: f64,
+    /// PI stabilisation β (0.04 for DOPRI5, 0 for DOP853).
+    pub beta: f64,
+    /// The step shrinks by at most this factor (1/5 for DOPRI5, 1/3 for DOP853).
+    pub min_factor: f64,
+    /// The step grows by at most this factor (10 for DOPRI5, 6 for DOP853).
+    pub max_factor: f64,
+    /// Safety factor.
+    pub safety: f64,
+}
+
+/// State of the PI controller between steps.
+#[derive(Clone, Copy, Debug)]
+pub struct PiState {
+    previous_error: f64,
+}
+
+impl Default for PiState {
+    fn default() -> Self {
+        PiState {
+            previous_error: 1e-4,
+        }
+    }
+}
+
+impl Controller {
+    /// The factor `h_new / h` after a step with scaled error `err`, and the
+    /// controller state to keep if the step is accepted.
+    pub fn factor(&self, err: f64, state: PiState) -> (f64, PiState) {
+        let fac11 = err.powf(self.exponent);
+        let fac = fac11 / state.previous_error.powf(self.beta);
+        let fac = (fac / self.safety).clamp(1.0 / self.max_factor, 1.0 / self.min_factor);
+        (
+            1.0 / fac,
+            PiState {
+                previous_error: err.max(1e-4),
+            },
+        )
+    }
+
+    /// The factor after a rejected step: no PI memory, only shrinking.
+    pub fn rejected_factor(&self, err: f64) -> f64 {
+        let fac11 = err.powf(self.exponent);
+        1.0 / (fac11 / self.safety).min(1.0 / self.min_factor)
+    }
+}
+
+/// `sk_i = atol + rtol · max(|y_i|, |y_new_i|)`.
+pub fn scale(atol: f64, rtol: f64, y: &[f64], y_new: &[f64], sk: &mut [f64]) {
+    for ((s, a), b) in sk.iter_mut().zip(y).zip(y_new) {
+        *s = atol + rtol * a.abs().max(b.abs());
+    }
+}
+
+/// `sqrt(1/n Σ (e_i / sk_i)²)`.
+pub fn rms_norm(e: &[f64], sk: &[f64]) -> f64 {
+    let sum: f64 = e.iter().zip(sk).map(|(e, s)| (e / s) * (e / s)).sum();
+    (sum / e.len().max(1) as f64).sqrt()
+}
+
+/// Hairer's initial step (`hinit` of `dopri5.f`): a guess from ‖y‖/‖f‖,
+/// refined by one explicit Euler step that estimates the second derivative.
+/// `f1` is scratch for f at the Euler point; returns |h| (the caller adds the sign).
+#[allow(clippy::too_many_arguments)]
+pub fn initial_step(
+    f: &mut dyn FnMut(f64, &[f64], &mut [f64]) -> bool,
+    t: f64,
+    y: &[f64],
+    f0: &[f64],
+    direction: f64,
+    order: usize,
+    hmax: f64,
+    atol: f64,
+    rtol: f64,
+    scratch_y: &mut [f64],
+    f1: &mut [f64],
+) -> f64 {
+    let sk: Vec<f64> = y.iter().map(|v| atol + rtol * v.abs()).collect();
+    let dnf: f64 = f0.iter().zip(&sk).map(|(f, s)| (f / s).powi(2)).sum();
+    let dny: f64 = y.iter().zip(&sk).map(|(y, s)| (y / s).powi(2)).sum();
+    let mut h = if dnf <= 1e-10 || dny <= 1e-10 {
+        1e-6
+    } else {
+        (dny / dnf).sqrt() * 0.01
+    };
+    h = h.min(hmax);
+    for ((z, y), f) in scratch_y.iter_mut().zip(y).zip(f0) {
+        *z = y + direction * h * f;
+    }
+    if !f(t + direction * h, scratch_y, f1) {
+        return h * 1e-3;
+    }
+    let der2: f64 = f1
+        .iter()
+        .zip(f0)
+        .zip(&sk)
+        .map(|((a, b), s)| ((a - b) / s).powi(2))
+        .sum::<f64>()
+        .sqrt()
+        / h;
+    let der12 = der2.abs().max(dnf.sqrt());
+    let h1 = if der12 <= 1e-15 {
+        (h * 1e-3).max(1e-6)
+    } else {
+        (0.01 / der12).powf(1.0 / order as f64)
+    };
+    (100.0 * h).min(h1).min(hmax)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn controller_bounds_the_change_of_step() {
+        let c = Controller {
+            exponent: 0.2 - 0.04 * 0.75,
+            beta: 0.04,
+            min_factor: 0.2,
+            max_factor: 10.0,
+            safety: 0.9,
+        };
+        let s = PiState::default();
+        assert_eq!(
+            c.factor(0.0, s).0,
+            10.0,
+            "a zero error grows the step by the maximum factor"
+        );
+        assert_eq!(
+            c.factor(1e12, s).0,
+            0.2,
+            "a huge error shrinks it by the minimum factor"
+        );
+        let (grow, _) = c.factor(1e-3, s);
+        assert!(grow > 1.0 && grow <= 10.0);
+        assert!(c.rejected_factor(2.0) < 1.0);
+    }
+
+    #[test]
+    fn initial_step_for_exponential_decay_is_sensible() {
+        // y' = -y: the step of a 5th-order method at tol 1e-6 is O(0.1).
+        let mut f = |_t: f64, y: &[f64], dy: &mut [f64]| {
+            dy[0] = -y[0];
+            true
+        };
+        let (mut z, mut f1) = ([0.0], [0.0]);
+        let h = initial_step(
+            &mut f,
+            0.0,
+            &[1.0],
+            &[-1.0],
+            1.0,
+            5,
+            10.0,
+            1e-6,
+            1e-6,
+            &mut z,
+            &mut f1,
+        );
+        assert!(h > 1e-3 && h < 1.0, "h = {h}");
+    }
+}
