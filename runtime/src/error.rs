@@ -35,6 +35,23 @@ pub enum Error {
         /// The accepted steps.
         partial: Box<Solution>,
     },
+    /// Newton's method for an implicit method kept failing while the step
+    /// shrank to nothing: the problem is singular there, or the Jacobian wrong.
+    NewtonFailure {
+        /// Time reached.
+        t: f64,
+        /// The last step tried.
+        h: f64,
+        /// The accepted steps.
+        partial: Box<Solution>,
+    },
+    /// The iteration matrix `γ/h·I − J` was singular five times in a row.
+    SingularMatrix {
+        /// Time reached.
+        t: f64,
+        /// The accepted steps.
+        partial: Box<Solution>,
+    },
     /// More steps than [`crate::Options::max_steps`] allow.
     MaxSteps {
         /// Time reached.
@@ -77,7 +94,9 @@ impl Error {
             Error::NonFinite { partial, .. }
             | Error::Evaluation { partial, .. }
             | Error::MaxSteps { partial, .. }
-            | Error::StepSizeUnderflow { partial, .. } => Some(partial),
+            | Error::StepSizeUnderflow { partial, .. }
+            | Error::NewtonFailure { partial, .. }
+            | Error::SingularMatrix { partial, .. } => Some(partial),
             _ => None,
         }
     }
@@ -96,6 +115,13 @@ impl fmt::Display for Error {
                 f,
                 "the step size fell to {h:e} at t = {t}: the problem may be stiff (use Method::Radau5), singular there, or the tolerances too tight"
             ),
+                        Error::NewtonFailure { t, h, .. } => write!(
+                f,
+                "Newton's method did not converge at t = {t} even with steps down to {h:e}: the model may be singular there"
+            ),
+            Error::SingularMatrix { t, .. } => {
+                write!(f, "the Newton matrix was singular at t = {t} five times in a row: check the Jacobian and the model near there")
+            }
             Error::MaxSteps { t, max_steps, .. } => {
                 write!(f, "stopped at t = {t} after {max_steps} steps; raise Options::max_steps or the step size")
             }

@@ -4,6 +4,7 @@
 //! generated code calls.
 
 mod adaptive;
+pub mod dense_lu;
 pub mod dop853;
 pub mod dopri5;
 mod error;
@@ -11,6 +12,7 @@ pub mod explicit_rk;
 pub mod linalg;
 mod model;
 mod options;
+mod radau5;
 mod simulate;
 mod solution;
 pub mod step_control;

@@ -5,7 +5,7 @@
 pub enum Method {
     /// Picks a method for the model: `Dopri5` for rtol ≥ 1e-7, `Dop853` for
     /// tighter tolerances (where its higher order pays, Hairer–Nørsett–Wanner
-    /// I §II.10). Stiff problems will need `Radau5` once it lands.
+    /// I §II.10). Stiff problems need `Radau5`.
     Auto,
     /// Taylor series with adaptive order and step (not available yet).
     Taylor,
@@ -28,7 +28,8 @@ pub enum Method {
     Dopri5,
     /// Hairer's DOP853, adaptive, with 7th-order dense output.
     Dop853,
-    /// Radau IIA of order 5 for stiff problems (not available yet).
+    /// Radau IIA of order 5 for stiff problems (Hairer–Wanner's RADAU5),
+    /// with the generated Jacobian.
     Radau5,
 }
 

@@ -7,6 +7,7 @@ use crate::error::Error;
 use crate::explicit_rk;
 use crate::model::Model;
 use crate::options::{Method, Options};
+use crate::radau5;
 use crate::solution::Solution;
 
 /// Integrates `model` from `t0` to `t1` with `options`.
@@ -49,6 +50,9 @@ pub fn simulate<M: Model + Clone + Send + Sync + 'static>(
                 options,
                 Solution::new(model, capacity),
             )
+        }
+        Method::Radau5 => {
+            return radau5::integrate(model, t0, t1, options, Solution::new(model, capacity))
         }
         Method::Dop853 => {
             return adaptive::integrate::<M, Dop853>(

@@ -1,0 +1,567 @@
+//! RADAU5: the 3-stage Radau IIA collocation method of order 5 for stiff
+//! problems, as in Hairer & Wanner's code `radau5.f` (Hairer, Wanner,
+//! *Solving ODEs II*, §IV.8): simplified Newton on the system transformed by
+//! the eigenvectors of A⁻¹ (one real and one complex linear system of size
+//! n), Jacobian and factorisation reuse across steps, the embedded error
+//! estimate filtered through (γ/h − J)⁻¹, Gustafsson's predictive step
+//! control, and continuous output from the collocation polynomial.
+
+use crate::dense_lu::{ComplexLu, RealLu};
+use crate::error::Error;
+use crate::model::{EvalError, Model};
+use crate::options::Options;
+use crate::solution::Solution;
+
+const SQ6: f64 = 2.449_489_742_783_178;
+const C1: f64 = (4.0 - SQ6) / 10.0;
+const C2: f64 = (4.0 + SQ6) / 10.0;
+const C1M1: f64 = C1 - 1.0;
+const C2M1: f64 = C2 - 1.0;
+const C1MC2: f64 = C1 - C2;
+const DD1: f64 = -(13.0 + 7.0 * SQ6) / 3.0;
+const DD2: f64 = (-13.0 + 7.0 * SQ6) / 3.0;
+const DD3: f64 = -1.0 / 3.0;
+/// T and T⁻¹: A⁻¹ = T diag(γ, [α −β; β α]) T⁻¹ (values of `radau5.f`).
+const T: [[f64; 3]; 3] = [
+    [
+        9.1232394870892942792e-02,
+        -0.14125529502095420843,
+        -3.0029194105147424492e-02,
+    ],
+    [
+        0.24171793270710701896,
+        0.20412935229379993199,
+        0.38294211275726193779,
+    ],
+    [0.96604818261509293619, 1.0, 0.0],
+];
+const TI: [[f64; 3]; 3] = [
+    [
+        4.3255798900631553510,
+        0.33919925181580986954,
+        0.54177053993587487119,
+    ],
+    [
+        -4.1787185915519047273,
+        -0.32768282076106238708,
+        0.47662355450055045196,
+    ],
+    [
+        -0.50287263494578687595,
+        2.5719269498556054292,
+        -0.59603920482822492497,
+    ],
+];
+
+/// Eigenvalues of A⁻¹: the real γ and the complex pair α ± iβ.
+fn eigenvalues() -> (f64, f64, f64) {
+    let (c81, c9) = (81f64.cbrt(), 9f64.cbrt());
+    let u1 = (6.0 + c81 - c9) / 30.0;
+    let alpha = (12.0 - c81 + c9) / 60.0;
+    let beta = (c81 + c9) * 3f64.sqrt() / 60.0;
+    let cno = alpha * alpha + beta * beta;
+    (1.0 / u1, alpha / cno, beta / cno)
+}
+
+/// Controller constants of `radau5.f` (its defaults).
+const NIT: usize = 7;
+const SAFE: f64 = 0.9;
+const THET: f64 = 0.001;
+const FACL: f64 = 5.0;
+const FACR: f64 = 1.0 / 8.0;
+const QUOT1: f64 = 1.0;
+const QUOT2: f64 = 1.2;
+
+/// Component `i` of the collocation polynomial at `s = (t - t_old)/h`.
+pub(crate) fn interpolate(c: &[f64], n: usize, i: usize, s: f64) -> f64 {
+    // radau5's CONTR5 measures s from the new point: s - 1 ∈ [-1, 0].
+    let s = s - 1.0;
+    c[i] + s * (c[n + i] + (s - C2M1) * (c[2 * n + i] + (s - C1M1) * c[3 * n + i]))
+}
+
+/// What needs redoing before the next step: everything, the factorisation
+/// only, or nothing (same h, same LU).
+#[derive(Clone, Copy, PartialEq)]
+enum Refresh {
+    Jacobian,
+    Factorisation,
+    Nothing,
+}
+
+struct Work<'m, M> {
+    model: &'m M,
+    n: usize,
+    evals: usize,
+    jacobian_evals: usize,
+    jacobian: Vec<f64>,
+    values: Vec<f64>,
+}
+
+impl<M: Model> Work<'_, M> {
+    fn rhs(&mut self, t: f64, y: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
+        self.evals += 1;
+        self.model.rhs(t, y, out)
+    }
+
+    /// The dense Jacobian: the generated one, or finite differences
+    /// (`radau5.f`'s increments) when the model has none. `f0 = f(t, y)`.
+    fn evaluate_jacobian(
+        &mut self,
+        t: f64,
+        y: &mut [f64],
+        f0: &[f64],
+        scratch: &mut [f64],
+    ) -> Result<(), EvalError> {
+        self.jacobian_evals += 1;
+        let n = self.n;
+        self.jacobian.iter_mut().for_each(|v| *v = 0.0);
+        match self.model.jacobian(t, y, &mut self.values) {
+            Ok(()) => {
+                for (&(r, c), &v) in M::JACOBIAN_PATTERN.iter().zip(&self.values) {
+                    self.jacobian[r * n + c] = v;
+                }
+                Ok(())
+            }
+            Err(EvalError::JacobianUnavailable) => {
+                for j in 0..n {
+                    let saved = y[j];
+                    let delta = (f64::EPSILON * saved.abs().max(1e-5)).sqrt();
+                    y[j] = saved + delta;
+                    let r = self.rhs(t, y, scratch);
+                    y[j] = saved;
+                    r?;
+                    for i in 0..n {
+                        self.jacobian[i * n + j] = (scratch[i] - f0[i]) / delta;
+                    }
+                }
+                Ok(())
+            }
+            Err(e) => Err(e),
+        }
+    }
+}
+
+fn rms(values: [&[f64]; 3], scale: &[f64]) -> f64 {
+    let n = scale.len();
+    let sum: f64 = values
+        .iter()
+        .map(|v| {
+            v.iter()
+                .zip(scale)
+                .map(|(x, s)| (x / s).powi(2))
+                .sum::<f64>()
+        })
+        .sum();
+    (sum / (3 * n) as f64).sqrt()
+}
+
+/// Integrates `model` from `t0` to `t1` with RADAU5.
+pub(crate) fn integrate<M: Model>(
+    model: &M,
+    t0: f64,
+    t1: f64,
+    options: &Options,
+    mut solution: Solution,
+) -> Result<Solution, Error> {
+    let n = M::STATES;
+    // radau5.f tightens the user's tolerances: rtol' = 0.1 rtol^(2/3).
+    let rtol = 0.1 * options.rtol.max(1e-15).powf(2.0 / 3.0);
+    let atol = rtol * options.atol / options.rtol.max(1e-15);
+    let fnewt = (10.0 * f64::EPSILON / rtol).max(0.03f64.min(rtol.sqrt()));
+    let (gamma, alpha, beta) = eigenvalues();
+    let direction = if t1 >= t0 { 1.0 } else { -1.0 };
+    let hmax = options
+        .max_step
+        .unwrap_or((t1 - t0).abs())
+        .min((t1 - t0).abs());
+
+    let mut w = Work {
+        model,
+        n,
+        evals: 0,
+        jacobian_evals: 0,
+        jacobian: vec![0.0; n * n],
+        values: vec![0.0; M::JACOBIAN_PATTERN.len()],
+    };
+    let (mut e1, mut e2) = (RealLu::new(n), ComplexLu::new(n));
+    let mut y = vec![0.0; n];
+    let mut y0 = vec![0.0; n];
+    let (mut z1, mut z2, mut z3) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let (mut f1, mut f2, mut f3) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let mut cont = vec![0.0; 4 * n];
+    let mut stage = vec![0.0; n];
+    let mut scal = vec![0.0; n];
+    let mut scratch = vec![0.0; n];
+    solution.set_interpolant(4, interpolate);
+
+    model.initial_state(&mut y);
+    if let Some(i) = y.iter().position(|v| !v.is_finite()) {
+        return Err(Error::NonFinite {
+            t: t0,
+            variable: M::INFO.states[i],
+            partial: Box::new(solution),
+        });
+    }
+    solution.push(t0, &y);
+    if t0 == t1 {
+        return Ok(solution);
+    }
+    let fail = |solution: Solution,
+                w: &Work<'_, M>,
+                steps: usize,
+                rejected: usize,
+                t: f64,
+                cause: EvalError| {
+        let mut solution = solution;
+        finish(&mut solution, steps, rejected, w);
+        Err(Error::Evaluation {
+            t,
+            cause,
+            partial: Box::new(solution),
+        })
+    };
+    if let Err(cause) = w.rhs(t0, &y, &mut y0) {
+        return fail(solution, &w, 0, 0, t0, cause);
+    }
+    let set_scale = |scal: &mut [f64], y: &[f64]| {
+        for (s, v) in scal.iter_mut().zip(y) {
+            *s = atol + rtol * v.abs();
+        }
+    };
+    set_scale(&mut scal, &y);
+
+    let mut h = options.initial_step.unwrap_or(1e-6).abs().min(hmax) * direction;
+    let mut t = t0;
+    let mut last = false;
+    if (t + h * 1.0001 - t1) * direction >= 0.0 {
+        h = t1 - t;
+        last = true;
+    }
+    let (mut h_old, mut h_acc, mut err_acc) = (h, h, 1e-2);
+    let (mut first, mut reject) = (true, false);
+    let mut faccon = 1.0f64;
+    let mut theta = THET;
+    let cfac = SAFE * (1 + 2 * NIT) as f64;
+    let (mut accepted, mut rejected, mut singular) = (0usize, 0usize, 0usize);
+    let mut newton_failures = 0usize;
+    let mut refresh = Refresh::Jacobian;
+    let mut caljac;
+
+    'steps: loop {
+        if refresh == Refresh::Jacobian {
+            if let Err(cause) = w.evaluate_jacobian(t, &mut y, &y0, &mut scratch) {
+                return fail(solution, &w, accepted, rejected, t, cause);
+            }
+            caljac = true;
+        } else {
+            caljac = false;
+        }
+        if refresh != Refresh::Nothing {
+            let ok = e1.factor_shifted(gamma / h, &w.jacobian)
+                && e2.factor_shifted(alpha / h, beta / h, &w.jacobian);
+            if !ok {
+                singular += 1;
+                if singular >= 5 {
+                    finish(&mut solution, accepted, rejected, &w);
+                    return Err(Error::SingularMatrix {
+                        t,
+                        partial: Box::new(solution),
+                    });
+                }
+                h *= 0.5;
+                reject = true;
+                last = false;
+                refresh = if caljac {
+                    Refresh::Factorisation
+                } else {
+                    Refresh::Jacobian
+                };
+                continue 'steps;
+            }
+        }
+        if accepted + rejected >= options.max_steps {
+            finish(&mut solution, accepted, rejected, &w);
+            return Err(Error::MaxSteps {
+                t,
+                max_steps: options.max_steps,
+                partial: Box::new(solution),
+            });
+        }
+        if 0.1 * h.abs() <= t.abs().max(1e-300) * f64::EPSILON {
+            finish(&mut solution, accepted, rejected, &w);
+            let partial = Box::new(solution);
+            return Err(if newton_failures > 0 {
+                Error::NewtonFailure { t, h, partial }
+            } else {
+                Error::StepSizeUnderflow { t, h, partial }
+            });
+        }
+        // Starting values: zero, or the last collocation polynomial extrapolated.
+        if first {
+            for v in [&mut z1, &mut z2, &mut z3, &mut f1, &mut f2, &mut f3] {
+                v.iter_mut().for_each(|x| *x = 0.0);
+            }
+        } else {
+            let c3q = h / h_old;
+            let (c1q, c2q) = (C1 * c3q, C2 * c3q);
+            for i in 0..n {
+                let (ak1, ak2, ak3) = (cont[n + i], cont[2 * n + i], cont[3 * n + i]);
+                let z1i = c1q * (ak1 + (c1q - C2M1) * (ak2 + (c1q - C1M1) * ak3));
+                let z2i = c2q * (ak1 + (c2q - C2M1) * (ak2 + (c2q - C1M1) * ak3));
+                let z3i = c3q * (ak1 + (c3q - C2M1) * (ak2 + (c3q - C1M1) * ak3));
+                z1[i] = z1i;
+                z2[i] = z2i;
+                z3[i] = z3i;
+                f1[i] = TI[0][0] * z1i + TI[0][1] * z2i + TI[0][2] * z3i;
+                f2[i] = TI[1][0] * z1i + TI[1][1] * z2i + TI[1][2] * z3i;
+                f3[i] = TI[2][0] * z1i + TI[2][1] * z2i + TI[2][2] * z3i;
+            }
+        }
+        // Simplified Newton iteration on the transformed system.
+        let mut newt = 0usize;
+        faccon = faccon.max(f64::EPSILON).powf(0.8);
+        theta = theta.abs();
+        let (mut dyno_old, mut thq_old) = (0.0f64, 0.0f64);
+        loop {
+            if newt >= NIT {
+                newton_failures += 1;
+                h *= 0.5;
+                reject = true;
+                last = false;
+                refresh = if caljac {
+                    Refresh::Factorisation
+                } else {
+                    Refresh::Jacobian
+                };
+                continue 'steps;
+            }
+            for (z, c) in [(&mut z1, C1), (&mut z2, C2), (&mut z3, 1.0)] {
+                for i in 0..n {
+                    stage[i] = y[i] + z[i];
+                }
+                if let Err(cause) = w.rhs(t + c * h, &stage, z) {
+                    return fail(solution, &w, accepted, rejected, t + c * h, cause);
+                }
+            }
+            for i in 0..n {
+                let (a1, a2, a3) = (z1[i], z2[i], z3[i]);
+                z1[i] = TI[0][0] * a1 + TI[0][1] * a2 + TI[0][2] * a3;
+                z2[i] = TI[1][0] * a1 + TI[1][1] * a2 + TI[1][2] * a3;
+                z3[i] = TI[2][0] * a1 + TI[2][1] * a2 + TI[2][2] * a3;
+            }
+            let (fac1, alphn, betan) = (gamma / h, alpha / h, beta / h);
+            for i in 0..n {
+                let (s2, s3) = (-f2[i], -f3[i]);
+                z1[i] -= f1[i] * fac1;
+                z2[i] += s2 * alphn - s3 * betan;
+                z3[i] += s3 * alphn + s2 * betan;
+            }
+            e1.solve(&mut z1);
+            e2.solve(&mut z2, &mut z3);
+            newt += 1;
+            let dyno = rms([&z1, &z2, &z3], &scal);
+            if !dyno.is_finite() {
+                newton_failures += 1;
+                h *= 0.5;
+                reject = true;
+                last = false;
+                refresh = if caljac {
+                    Refresh::Factorisation
+                } else {
+                    Refresh::Jacobian
+                };
+                continue 'steps;
+            }
+            if newt > 1 && newt < NIT {
+                let thq = dyno / dyno_old;
+                theta = if newt == 2 {
+                    thq
+                } else {
+                    (thq * thq_old).sqrt()
+                };
+                thq_old = thq;
+                if theta < 0.99 {
+                    faccon = theta / (1.0 - theta);
+                    let dyth = faccon * dyno * theta.powi((NIT - 1 - newt) as i32) / fnewt;
+                    if dyth >= 1.0 {
+                        // Convergence too slow for the remaining iterations: shrink h.
+                        let qnewt = dyth.clamp(1e-4, 20.0);
+                        h *= 0.8 * qnewt.powf(-1.0 / (4.0 + (NIT - 1 - newt) as f64));
+                        reject = true;
+                        last = false;
+                        refresh = if caljac {
+                            Refresh::Factorisation
+                        } else {
+                            Refresh::Jacobian
+                        };
+                        continue 'steps;
+                    }
+                } else {
+                    newton_failures += 1;
+                    h *= 0.5;
+                    reject = true;
+                    last = false;
+                    refresh = if caljac {
+                        Refresh::Factorisation
+                    } else {
+                        Refresh::Jacobian
+                    };
+                    continue 'steps;
+                }
+            }
+            dyno_old = dyno.max(f64::EPSILON);
+            for i in 0..n {
+                let (a, b, c) = (f1[i] + z1[i], f2[i] + z2[i], f3[i] + z3[i]);
+                f1[i] = a;
+                f2[i] = b;
+                f3[i] = c;
+                z1[i] = T[0][0] * a + T[0][1] * b + T[0][2] * c;
+                z2[i] = T[1][0] * a + T[1][1] * b + T[1][2] * c;
+                z3[i] = T[2][0] * a + b;
+            }
+            if faccon * dyno <= fnewt {
+                break;
+            }
+        }
+        newton_failures = 0;
+        // Error estimate (ESTRAD): (γ/h − J)⁻¹ (f(y) + (DD·Z)/h), refined once
+        // through f after a rejection or on the first step.
+        let (hee1, hee2, hee3) = (DD1 / h, DD2 / h, DD3 / h);
+        for i in 0..n {
+            f2[i] = hee1 * z1[i] + hee2 * z2[i] + hee3 * z3[i];
+            scratch[i] = f2[i] + y0[i];
+        }
+        e1.solve(&mut scratch);
+        let mut err = (scratch
+            .iter()
+            .zip(&scal)
+            .map(|(e, s)| (e / s).powi(2))
+            .sum::<f64>()
+            / n as f64)
+            .sqrt()
+            .max(1e-10);
+        if err >= 1.0 && (first || reject) {
+            for i in 0..n {
+                stage[i] = y[i] + scratch[i];
+            }
+            if let Err(cause) = w.rhs(t, &stage, &mut f1) {
+                return fail(solution, &w, accepted, rejected, t, cause);
+            }
+            for i in 0..n {
+                scratch[i] = f1[i] + f2[i];
+            }
+            e1.solve(&mut scratch);
+            err = (scratch
+                .iter()
+                .zip(&scal)
+                .map(|(e, s)| (e / s).powi(2))
+                .sum::<f64>()
+                / n as f64)
+                .sqrt()
+                .max(1e-10);
+        }
+        if !err.is_finite() {
+            h *= 0.5;
+            reject = true;
+            last = false;
+            refresh = if caljac {
+                Refresh::Factorisation
+            } else {
+                Refresh::Jacobian
+            };
+            continue 'steps;
+        }
+        let fac = SAFE.min(cfac / (newt + 2 * NIT) as f64);
+        let mut quot = FACR.max(FACL.min(err.powf(0.25) / fac));
+        let mut h_new = h / quot;
+        if err < 1.0 {
+            // Accepted.
+            first = false;
+            accepted += 1;
+            if accepted > 1 {
+                // Gustafsson's predictive controller.
+                let facgus =
+                    ((h_acc / h) * (err * err / err_acc).powf(0.25) / SAFE).clamp(FACR, FACL);
+                quot = quot.max(facgus);
+                h_new = h / quot;
+            }
+            h_acc = h;
+            err_acc = err.max(1e-2);
+            h_old = h;
+            t = if last { t1 } else { t + h };
+            for i in 0..n {
+                y[i] += z3[i];
+                let (z1i, z2i) = (z1[i], z2[i]);
+                cont[n + i] = (z2i - z3[i]) / C2M1;
+                let ak = (z1i - z2i) / C1MC2;
+                let acont3 = (ak - z1i / C1) / C2;
+                cont[2 * n + i] = (ak - cont[n + i]) / C1M1;
+                cont[3 * n + i] = cont[2 * n + i] - acont3;
+                cont[i] = y[i];
+            }
+            if let Some(i) = y.iter().position(|v| !v.is_finite()) {
+                finish(&mut solution, accepted, rejected, &w);
+                return Err(Error::NonFinite {
+                    t,
+                    variable: M::INFO.states[i],
+                    partial: Box::new(solution),
+                });
+            }
+            set_scale(&mut scal, &y);
+            solution.push_dense(t, &y, &cont);
+            if last {
+                break;
+            }
+            if let Err(cause) = w.rhs(t, &y, &mut y0) {
+                return fail(solution, &w, accepted, rejected, t, cause);
+            }
+            h_new = direction * h_new.abs().min(hmax);
+            if reject {
+                h_new = direction * h_new.abs().min(h.abs());
+            }
+            reject = false;
+            if (t + h_new / QUOT1 - t1) * direction >= 0.0 {
+                h = t1 - t;
+                last = true;
+            } else {
+                let qt = h_new / h;
+                if theta <= THET && (QUOT1..=QUOT2).contains(&qt) {
+                    refresh = Refresh::Nothing;
+                    continue 'steps;
+                }
+                h = h_new;
+            }
+            refresh = if theta <= THET {
+                Refresh::Factorisation
+            } else {
+                Refresh::Jacobian
+            };
+        } else {
+            reject = true;
+            last = false;
+            if first {
+                h *= 0.1;
+            } else {
+                h = h_new;
+            }
+            if accepted >= 1 {
+                rejected += 1;
+            }
+            refresh = if caljac {
+                Refresh::Factorisation
+            } else {
+                Refresh::Jacobian
+            };
+        }
+    }
+    finish(&mut solution, accepted, rejected, &w);
+    Ok(solution)
+}
+
+fn finish<M: Model>(solution: &mut Solution, steps: usize, rejected: usize, w: &Work<'_, M>) {
+    let stats = solution.stats_mut();
+    stats.steps = steps;
+    stats.rejected = rejected;
+    stats.rhs_evals = w.evals;
+    stats.jacobian_evals = w.jacobian_evals;
+}

@@ -1,0 +1,166 @@
+//! RADAU5 on the stiff reference problems of the IVP Test Set (Bari) and
+//! Hairer–Wanner (../shared/notes/reference-problems.md §5–§7).
+
+use daegen::prelude::*;
+
+/// Van der Pol, ε = 1e-6 (test set `vdpol`).
+#[dae_model]
+fn van_der_pol() {
+    let eps = param(1e-6);
+    let y1 = state(2.0);
+    let y2 = state(0.0);
+    der(y1) == y2;
+    der(y2) == ((1.0 - y1 * y1) * y2 - y1) / eps;
+}
+
+/// Published at t = 2 (test set vdpol.f, RADAU in extended precision).
+const VDP_AT_2: [f64; 2] = [0.1706167732170483e1, -0.8928097010247975];
+
+/// Robertson's chemical kinetics (test set `rober`).
+#[dae_model]
+fn robertson() {
+    let y1 = state(1.0);
+    let y2 = state(0.0);
+    let y3 = state(0.0);
+    der(y1) == -0.04 * y1 + 1e4 * y2 * y3;
+    der(y2) == 0.04 * y1 - 1e4 * y2 * y3 - 3e7 * y2 * y2;
+    der(y3) == 3e7 * y2 * y2;
+}
+
+/// Published at t = 1e11 (test set rober.f).
+const ROBER_AT_1E11: [f64; 3] = [
+    0.2083340149701255e-7,
+    0.8333360770334713e-13,
+    0.9999999791665050,
+];
+
+/// HIRES (test set `hires`).
+#[dae_model]
+fn hires() {
+    let y = state_array([1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0057]);
+    der(y[0]) == -1.71 * y[0] + 0.43 * y[1] + 8.32 * y[2] + 0.0007;
+    der(y[1]) == 1.71 * y[0] - 8.75 * y[1];
+    der(y[2]) == -10.03 * y[2] + 0.43 * y[3] + 0.035 * y[4];
+    der(y[3]) == 8.32 * y[1] + 1.71 * y[2] - 1.12 * y[3];
+    der(y[4]) == -1.745 * y[4] + 0.43 * y[5] + 0.43 * y[6];
+    der(y[5]) == -280.0 * y[5] * y[7] + 0.69 * y[3] + 1.71 * y[4] - 0.43 * y[5] + 0.69 * y[6];
+    der(y[6]) == 280.0 * y[5] * y[7] - 1.81 * y[6];
+    der(y[7]) == -280.0 * y[5] * y[7] + 1.81 * y[6];
+}
+
+/// Published at t = 321.8122 (test set hires.f; Hairer's hir_exact.txt agrees).
+const HIRES_AT_END: [f64; 8] = [
+    0.7371312573325668e-3,
+    0.1442485726316185e-3,
+    0.5888729740967575e-4,
+    0.1175651343283149e-2,
+    0.2386356198831331e-2,
+    0.6238968252742796e-2,
+    0.2849998395185769e-2,
+    0.2850001604814231e-2,
+];
+
+fn last_state(sol: &Solution) -> Vec<f64> {
+    sol.state(sol.times().len() - 1).unwrap_or(&[]).to_vec()
+}
+
+/// Largest error relative to max(|reference|, atol/rtol floor).
+fn mixed_error(got: &[f64], reference: &[f64], floor: f64) -> f64 {
+    got.iter()
+        .zip(reference)
+        .map(|(g, r)| (g - r).abs() / r.abs().max(floor))
+        .fold(0.0, f64::max)
+}
+
+const TOLERANCES: [f64; 5] = [1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
+
+fn radau(tol: f64, atol: f64) -> Options {
+    Options::new().method(Method::Radau5).rtol(tol).atol(atol)
+}
+
+#[test]
+fn van_der_pol_reaches_the_published_solution() {
+    for tol in TOLERANCES {
+        let sol = VanDerPol::default()
+            .simulate(0.0, 2.0, &radau(tol, tol))
+            .unwrap();
+        let e = mixed_error(&last_state(&sol), &VDP_AT_2, 1.0);
+        assert!(e <= 10.0 * tol, "tol {tol:e}: mixed error {e:e}");
+        assert!(
+            sol.stats().jacobian_evals > 0 && sol.stats().jacobian_evals < sol.stats().steps,
+            "the Jacobian is reused across steps"
+        );
+    }
+}
+
+/// Hairer–Wanner's VDPOL data (hwode `vdp_exact.txt`) at t = 1: the end of
+/// a run, and the continuous output of a longer run. RADAU5's continuous
+/// output is the collocation polynomial, of order 3 (its stage order), so
+/// it is less accurate than the order-5 step values: allow 100 × tol.
+#[test]
+fn van_der_pol_at_t_1_from_steps_and_from_dense_output() {
+    let at_1 = [-0.1863646254808130e1, 0.7535430865435460];
+    for tol in [1e-6, 1e-8, 1e-10] {
+        let run = VanDerPol::default()
+            .simulate(0.0, 1.0, &radau(tol, tol))
+            .unwrap();
+        assert!(mixed_error(&last_state(&run), &at_1, 1.0) <= 10.0 * tol);
+        let longer = VanDerPol::default()
+            .simulate(0.0, 2.0, &radau(tol, tol))
+            .unwrap();
+        let dense = [longer.at(1.0, "y1").unwrap(), longer.at(1.0, "y2").unwrap()];
+        let e = mixed_error(&dense, &at_1, 1.0);
+        assert!(e <= 100.0 * tol, "tol {tol:e}: dense output error {e:e}");
+    }
+}
+
+/// Robertson to t = 1e11 with Hairer's driver convention atol = 1e-6·rtol
+/// (y2 ends near 8e-14): every component, y2 included, within 10 × tol in
+/// relative error, and the invariant y1 + y2 + y3 = 1 kept to rounding
+/// (collocation methods preserve linear invariants).
+#[test]
+fn robertson_reaches_t_1e11_with_every_component_accurate() {
+    for tol in TOLERANCES {
+        let sol = Robertson::default()
+            .simulate(0.0, 1e11, &radau(tol, 1e-6 * tol))
+            .unwrap();
+        let y = last_state(&sol);
+        let e = mixed_error(&y, &ROBER_AT_1E11, 0.0);
+        assert!(
+            e <= 10.0 * tol,
+            "tol {tol:e}: relative error {e:e}, y = {y:?}"
+        );
+        assert!((y[0] + y[1] + y[2] - 1.0).abs() < 1e-13);
+    }
+}
+
+#[test]
+fn hires_reaches_the_published_solution() {
+    for tol in TOLERANCES {
+        let sol = Hires::default()
+            .simulate(0.0, 321.8122, &radau(tol, tol))
+            .unwrap();
+        let e = mixed_error(&last_state(&sol), &HIRES_AT_END, 1.0);
+        assert!(e <= 10.0 * tol, "tol {tol:e}: mixed error {e:e}");
+    }
+}
+
+/// x'' = -x, x(0) = 1: x = cos t, also for t < 0. (Stiff test problems are
+/// unstable backwards, so the direction is checked on an exact solution.)
+#[dae_model]
+fn oscillator() {
+    let x = state(1.0);
+    der(der(x)) == -x;
+}
+
+#[test]
+fn radau5_integrates_backwards() {
+    for tol in [1e-6, 1e-9] {
+        let back = Oscillator::default()
+            .simulate(0.0, -3.0, &radau(tol, tol))
+            .unwrap();
+        assert_eq!(*back.times().last().unwrap(), -3.0);
+        let e = (back.last("x").unwrap() - 3f64.cos()).abs();
+        assert!(e <= 10.0 * tol, "tol {tol:e}: error {e:e}");
+    }
+}
