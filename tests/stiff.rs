@@ -164,3 +164,35 @@ fn radau5_integrates_backwards() {
         assert!(e <= 10.0 * tol, "tol {tol:e}: error {e:e}");
     }
 }
+
+/// Prothero–Robinson: y' = λ(y − sin t) + cos t, y(0) = 0, exact y = sin t,
+/// with λ = −1e6. Backward Euler is L-stable: any step works and the error
+/// is O(h/|λ|); explicit Euler with h|λ| ≫ 2 explodes and must say so.
+#[dae_model]
+fn prothero_robinson() {
+    let t = time();
+    let lambda = param(-1e6);
+    let y = state(0.0);
+    der(y) == lambda * (y - sin(t)) + cos(t);
+}
+
+#[test]
+fn backward_euler_is_stable_where_explicit_euler_explodes() {
+    let model = ProtheroRobinson::default();
+    let sol = model
+        .simulate(
+            0.0,
+            2.0,
+            &Options::new().method(Method::BackwardEuler).step(0.01),
+        )
+        .unwrap();
+    let e = (sol.last("y").unwrap() - 2f64.sin()).abs();
+    // Local error h²|y''|/2 damped by 1/(1 − hλ): about h|y''|/|λ| = 1e-8.
+    assert!(e < 1e-7, "error {e:e}");
+    assert_eq!(sol.stats().jacobian_evals, 200);
+    let explicit = model.simulate(0.0, 2.0, &Options::new().method(Method::Euler).step(0.01));
+    assert!(
+        matches!(explicit, Err(Error::NonFinite { .. })),
+        "{explicit:?}"
+    );
+}

@@ -31,6 +31,34 @@ pub const EULER: Tableau = Tableau {
     c: &[0.0],
 };
 
+/// The two-stage family of the course notes, eq. 1.19:
+/// `y + h(1−γ) f(x, y) + hγ f(x + h/(2γ), y + h/(2γ) f(x, y))`. γ = 1.
+pub const MIDPOINT: Tableau = Tableau {
+    name: "midpoint",
+    order: 2,
+    a: &[&[], &[0.5]],
+    b: &[0.0, 1.0],
+    c: &[0.0, 0.5],
+};
+
+/// Eq. 1.19 with γ = 1/2 (Heun's method, the explicit trapezoidal rule).
+pub const HEUN: Tableau = Tableau {
+    name: "Heun",
+    order: 2,
+    a: &[&[], &[1.0]],
+    b: &[0.5, 0.5],
+    c: &[0.0, 1.0],
+};
+
+/// Eq. 1.19 with γ = 3/4 (Ralston's method, smallest error constant).
+pub const RALSTON: Tableau = Tableau {
+    name: "Ralston",
+    order: 2,
+    a: &[&[], &[2.0 / 3.0]],
+    b: &[0.25, 0.75],
+    c: &[0.0, 2.0 / 3.0],
+};
+
 /// The classic fourth-order Runge–Kutta method.
 pub const RK4: Tableau = Tableau {
     name: "RK4",
@@ -163,7 +191,7 @@ mod tests {
 
     #[test]
     fn tableaux_satisfy_their_order_conditions() {
-        for t in [EULER, RK4, RK38] {
+        for t in [EULER, MIDPOINT, HEUN, RALSTON, RK4, RK38] {
             for (k, r) in order_conditions(&t).into_iter().enumerate() {
                 assert!(r.abs() < 1e-15, "{}: condition {k} off by {r}", t.name);
             }

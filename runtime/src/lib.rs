@@ -4,11 +4,13 @@
 //! generated code calls.
 
 mod adaptive;
+mod backward_euler;
 pub mod dense_lu;
 pub mod dop853;
 pub mod dopri5;
 mod error;
 pub mod explicit_rk;
+pub mod implicit_tableau;
 pub mod linalg;
 mod model;
 mod options;

@@ -18,12 +18,18 @@ pub enum Method {
     },
     /// Explicit Euler, fixed step (order 1).
     Euler,
-    /// Implicit Euler with Newton, fixed step (not available yet).
+    /// Implicit Euler with Newton and the model's Jacobian, fixed step (order 1).
     BackwardEuler,
     /// The classic Runge–Kutta method, fixed step (order 4).
     Rk4,
     /// Kutta's 3/8 rule, fixed step (order 4).
     Rk38,
+    /// The midpoint rule, eq. 1.19 with γ = 1, fixed step (order 2).
+    Midpoint,
+    /// Heun's method, eq. 1.19 with γ = 1/2, fixed step (order 2).
+    Heun,
+    /// Ralston's method, eq. 1.19 with γ = 3/4, fixed step (order 2).
+    Ralston,
     /// Dormand–Prince 5(4), adaptive, with 4th-order dense output.
     Dopri5,
     /// Hairer's DOP853, adaptive, with 7th-order dense output.

@@ -1,6 +1,7 @@
 //! Checks a run's request and hands it to the method.
 
 use crate::adaptive;
+use crate::backward_euler;
 use crate::dop853::Dop853;
 use crate::dopri5::Dopri5;
 use crate::error::Error;
@@ -75,6 +76,27 @@ pub fn simulate<M: Model + Clone + Send + Sync + 'static>(
         Method::Rk4 => &explicit_rk::RK4,
         Method::Rk38 => &explicit_rk::RK38,
         Method::Euler => &explicit_rk::EULER,
+        Method::Midpoint => &explicit_rk::MIDPOINT,
+        Method::Heun => &explicit_rk::HEUN,
+        Method::Ralston => &explicit_rk::RALSTON,
+        Method::BackwardEuler => {
+            let steps = ((t1 - t0).abs() / step).ceil().max(1.0);
+            if steps > options.max_steps as f64 {
+                return Err(Error::InvalidOptions {
+                    message: format!(
+                        "{steps} steps of {step} exceed Options::max_steps ({})",
+                        options.max_steps
+                    ),
+                });
+            }
+            return backward_euler::integrate(
+                model,
+                t0,
+                t1,
+                steps as usize,
+                Solution::new(model, steps as usize + 1),
+            );
+        }
         other => return Err(Error::MethodNotAvailable { method: other }),
     };
     let capacity = ((t1 - t0).abs() / step).ceil().min(1e6) as usize + 1;
