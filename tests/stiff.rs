@@ -1,6 +1,9 @@
 //! RADAU5 on the stiff reference problems of the IVP Test Set (Bari) and
 //! Hairer–Wanner (../shared/notes/reference-problems.md §5–§7).
 
+// Published reference values are kept digit for digit as printed.
+#![allow(clippy::excessive_precision)]
+
 use daegen::prelude::*;
 
 /// Van der Pol, ε = 1e-6 (test set `vdpol`).
@@ -195,4 +198,26 @@ fn backward_euler_is_stable_where_explicit_euler_explodes() {
         matches!(explicit, Err(Error::NonFinite { .. })),
         "{explicit:?}"
     );
+}
+
+/// `Method::Auto` starts explicit, detects stiffness (Hairer's test on the
+/// last two stages) and switches to RADAU5: Van der Pol still reaches the
+/// published value, with a dense output across both methods.
+#[test]
+fn auto_switches_to_radau5_when_the_problem_turns_stiff() {
+    for tol in [1e-6, 1e-8] {
+        let sol = VanDerPol::default()
+            .simulate(0.0, 2.0, &Options::new().rtol(tol).atol(tol))
+            .unwrap();
+        assert!(sol.stats().jacobian_evals > 0, "RADAU5 took over");
+        let e = mixed_error(&last_state(&sol), &VDP_AT_2, 1.0);
+        assert!(e <= 10.0 * tol, "tol {tol:e}: mixed error {e:e}");
+        assert!(sol.at(1.0, "y1").is_ok() && sol.at(1e-9, "y2").is_ok());
+    }
+    // A non-stiff problem never switches.
+    let osc = Oscillator::default()
+        .simulate(0.0, 10.0, &Options::new().rtol(1e-8).atol(1e-8))
+        .unwrap();
+    assert_eq!(osc.stats().jacobian_evals, 0);
+    assert!((osc.last("x").unwrap() - 10f64.cos()).abs() < 1e-6);
 }

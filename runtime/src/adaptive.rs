@@ -20,6 +20,11 @@ pub trait EmbeddedPair {
     const DENSE_WIDTH: usize;
     /// Extra stages evaluated after an accepted step for the dense output.
     const DENSE_STAGES: usize = 0;
+    /// Bound on h·ρ (ρ the spectral radius estimated from the last two
+    /// stages, both at t + h) beyond which a step counts as stiff: the edge
+    /// of the stability region on the negative axis (3.25 for DOPRI5, 6.1
+    /// for DOP853, as in Hairer's codes).
+    const STIFFNESS_BOUND: f64;
     /// Nodes c (of all stages, dense ones last).
     fn nodes() -> &'static [f64];
     /// Rows of A; row `STAGES - 1` holds the weights b of the new solution.
@@ -87,16 +92,100 @@ fn stages<M: Model, P: EmbeddedPair>(
     Ok(())
 }
 
+/// How a run of an explicit pair ended.
+pub(crate) enum Finish {
+    /// At t1.
+    Done,
+    /// Stopped early because the problem turned stiff at this time (only
+    /// when asked to detect stiffness).
+    StiffAt(f64),
+}
+
+/// Hairer's stiffness test: 15 stiff checks, not interrupted by 6 non-stiff
+/// ones in a row, mean stiffness (checks every 10th accepted step).
+#[derive(Default)]
+struct StiffnessDetector {
+    stiff: usize,
+    non_stiff: usize,
+}
+
+impl StiffnessDetector {
+    fn step_is_stiff(&mut self, h_rho: f64, bound: f64) -> bool {
+        if h_rho > bound {
+            self.non_stiff = 0;
+            self.stiff += 1;
+            self.stiff >= 15
+        } else {
+            self.non_stiff += 1;
+            if self.non_stiff == 6 {
+                self.stiff = 0;
+            }
+            false
+        }
+    }
+}
+
+/// Scratch for the spectral radius estimate.
+struct Jacobian {
+    values: Vec<f64>,
+    v: Vec<f64>,
+    w: Vec<f64>,
+}
+
+impl Jacobian {
+    fn new<M: Model>() -> Jacobian {
+        Jacobian {
+            values: vec![0.0; M::JACOBIAN_PATTERN.len()],
+            v: vec![0.0; M::STATES],
+            w: vec![0.0; M::STATES],
+        }
+    }
+}
+
+/// ρ(J) at (t, y) by 30 steps of the power iteration on the sparse
+/// generated Jacobian (`None` if the model has none). A lower bound that is
+/// close for the well-separated stiff eigenvalues that matter here.
+fn spectral_radius<M: Model>(model: &M, t: f64, y: &[f64], j: &mut Jacobian) -> Option<f64> {
+    model.jacobian(t, y, &mut j.values).ok()?;
+    let n = y.len();
+    for (i, v) in j.v.iter_mut().enumerate() {
+        *v = 1.0 + (i as f64) * 0.618_033_988_749_895 % 1.0;
+    }
+    let mut rho = 0.0;
+    for _ in 0..30 {
+        j.w.iter_mut().for_each(|x| *x = 0.0);
+        for (&(r, c), &value) in M::JACOBIAN_PATTERN.iter().zip(&j.values) {
+            j.w[r] += value * j.v[c];
+        }
+        let (norm_w, norm_v) = (
+            j.w.iter().map(|x| x * x).sum::<f64>().sqrt(),
+            j.v.iter().map(|x| x * x).sum::<f64>().sqrt(),
+        );
+        if norm_w == 0.0 || !norm_w.is_finite() {
+            return Some(0.0);
+        }
+        rho = norm_w / norm_v;
+        for i in 0..n {
+            j.v[i] = j.w[i] / norm_w;
+        }
+    }
+    Some(rho)
+}
+
 /// Integrates `model` from `t0` to `t1` (either direction) with pair `P`.
 pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
     model: &M,
     t0: f64,
     t1: f64,
+    y0: &[f64],
     options: &Options,
+    detect_stiffness: bool,
     mut solution: Solution,
-) -> Result<Solution, Error> {
+) -> Result<(Solution, Finish), Error> {
     let n = M::STATES;
     let (rtol, atol) = (options.rtol, options.atol);
+    let mut detector = StiffnessDetector::default();
+    let mut jacobian = Jacobian::new::<M>();
     let direction = if t1 >= t0 { 1.0 } else { -1.0 };
     let (a, c) = (P::coefficients(), P::nodes());
     let controller = P::controller();
@@ -107,15 +196,7 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
     let mut rhs = Rhs { model, evals: 0 };
     solution.set_interpolant(P::DENSE_WIDTH, P::interpolate);
 
-    model.initial_state(&mut y);
-    if let Some(i) = y.iter().position(|v| !v.is_finite()) {
-        return Err(Error::NonFinite {
-            t: t0,
-            variable: M::INFO.states[i],
-            partial: Box::new(solution),
-        });
-    }
-    solution.push(t0, &y);
+    y.copy_from_slice(y0);
     if let Err(cause) = rhs.call(t0, &y, &mut k[..n]) {
         return Err(Error::Evaluation {
             t: t0,
@@ -131,7 +212,7 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
         });
     }
     if t0 == t1 {
-        return Ok(solution);
+        return Ok((solution, Finish::Done));
     }
     let hmax = options
         .max_step
@@ -225,6 +306,26 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
                 }
             }
             P::dense_coefficients(h, &y, &y_new, &k, n, &mut dense);
+            let mut turned_stiff = false;
+            if detect_stiffness && accepted % 10 == 0 {
+                // h·ρ(J) against the stability boundary. ρ from the generated
+                // Jacobian by power iteration; without one, Hairer's quotient
+                // of the last two stages (both at t + h).
+                let rho = match spectral_radius(model, t + h, &y_new, &mut jacobian) {
+                    Some(rho) => rho,
+                    None => {
+                        let (last, before) = ((P::STAGES - 1) * n, (P::STAGES - 2) * n);
+                        let num: f64 = (0..n).map(|i| (k[last + i] - k[before + i]).powi(2)).sum();
+                        let den: f64 = (0..n).map(|i| (y_new[i] - stage[i]).powi(2)).sum();
+                        if den > 0.0 {
+                            (num / den).sqrt()
+                        } else {
+                            0.0
+                        }
+                    }
+                };
+                turned_stiff = detector.step_is_stiff(h.abs() * rho, P::STIFFNESS_BOUND);
+            }
             // Compensated summation: long runs keep t exact to rounding.
             let step = h - compensation;
             let t_next = t + step;
@@ -237,6 +338,10 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
             solution.push_dense(t, &y, &dense);
             if last {
                 break;
+            }
+            if turned_stiff {
+                finish_stats(&mut solution, accepted, rejected, rhs.evals);
+                return Ok((solution, Finish::StiffAt(t)));
             }
             let mut h_new = h * factor;
             if last_rejected {
@@ -251,14 +356,14 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
         }
     }
     finish_stats(&mut solution, accepted, rejected, rhs.evals);
-    Ok(solution)
+    Ok((solution, Finish::Done))
 }
 
 fn finish_stats(solution: &mut Solution, steps: usize, rejected: usize, evals: usize) {
     let stats = solution.stats_mut();
-    stats.steps = steps;
-    stats.rejected = rejected;
-    stats.rhs_evals = evals;
+    stats.steps += steps;
+    stats.rejected += rejected;
+    stats.rhs_evals += evals;
 }
 
 #[cfg(test)]

@@ -15,6 +15,7 @@ pub(crate) fn integrate<M: Model>(
     model: &M,
     t0: f64,
     t1: f64,
+    y0: &[f64],
     steps: usize,
     mut solution: Solution,
 ) -> Result<Solution, Error> {
@@ -26,15 +27,7 @@ pub(crate) fn integrate<M: Model>(
     let mut values = vec![0.0; M::JACOBIAN_PATTERN.len()];
     let mut lu = RealLu::new(n);
     let (mut evals, mut jacobian_evals) = (0usize, 0usize);
-    model.initial_state(&mut y);
-    if let Some(i) = y.iter().position(|v| !v.is_finite()) {
-        return Err(Error::NonFinite {
-            t: t0,
-            variable: M::INFO.states[i],
-            partial: Box::new(solution),
-        });
-    }
-    solution.push(t0, &y);
+    y.copy_from_slice(y0);
     for step in 0..steps {
         let t_next = if step + 1 == steps {
             t1

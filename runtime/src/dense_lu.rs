@@ -72,17 +72,12 @@ impl RealLu {
             b.swap(col, self.pivots[col]);
         }
         for row in 0..n {
-            let mut v = b[row];
-            for k in 0..row {
-                v -= self.a[row * n + k] * b[k];
-            }
-            b[row] = v;
+            let l = &self.a[row * n..row * n + row];
+            b[row] -= l.iter().zip(&b[..row]).map(|(l, x)| l * x).sum::<f64>();
         }
         for row in (0..n).rev() {
-            let mut v = b[row];
-            for k in row + 1..n {
-                v -= self.a[row * n + k] * b[k];
-            }
+            let u = &self.a[row * n + row + 1..(row + 1) * n];
+            let v = b[row] - u.iter().zip(&b[row + 1..]).map(|(u, x)| u * x).sum::<f64>();
             b[row] = v / self.a[row * n + row];
         }
     }

@@ -3,6 +3,9 @@
 //! order 7 (Hairer, Nørsett, Wanner, *Solving ODEs I*, §II.10, code
 //! `dop853.f`; coefficients of Dormand & Prince as published there).
 
+// Published coefficients are kept digit for digit as printed.
+#![allow(clippy::excessive_precision)]
+
 use crate::adaptive::EmbeddedPair;
 use crate::step_control::Controller;
 
@@ -270,6 +273,7 @@ impl EmbeddedPair for Dop853 {
     const ORDER: usize = 8;
     /// Twelve stages and f at the new point.
     const STAGES: usize = 13;
+    const STIFFNESS_BOUND: f64 = 6.1;
     const DENSE_WIDTH: usize = 8;
     const DENSE_STAGES: usize = 3;
 

@@ -61,6 +61,7 @@ const D: [f64; 7] = [
 impl EmbeddedPair for Dopri5 {
     const ORDER: usize = 5;
     const STAGES: usize = 7;
+    const STIFFNESS_BOUND: f64 = 3.25;
     const DENSE_WIDTH: usize = 5;
 
     fn nodes() -> &'static [f64] {

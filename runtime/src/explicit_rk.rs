@@ -77,39 +77,22 @@ pub const RK38: Tableau = Tableau {
     c: &[0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0],
 };
 
-/// Integrates `model` from `t0` to `t1` with steps of at most `h`, landing
+/// Integrates `model` from `t0` to `t1` in `steps` equal steps, landing
 /// exactly on `t1`. Stage buffers are allocated once, before the loop.
 pub(crate) fn integrate<M: Model>(
     model: &M,
     tableau: &Tableau,
     t0: f64,
     t1: f64,
-    h: f64,
-    max_steps: usize,
+    y0: &[f64],
+    steps: usize,
     mut solution: Solution,
 ) -> Result<Solution, Error> {
     let n = M::STATES;
     let s = tableau.b.len();
     let mut y = vec![0.0; n];
-    model.initial_state(&mut y);
-    if let Some(i) = y.iter().position(|v| !v.is_finite()) {
-        return Err(Error::NonFinite {
-            t: t0,
-            variable: M::INFO.states[i],
-            partial: Box::new(solution),
-        });
-    }
-    solution.push(t0, &y);
+    y.copy_from_slice(y0);
     let span = t1 - t0;
-    let steps = (span.abs() / h).ceil().max(1.0);
-    if steps > max_steps as f64 {
-        return Err(Error::MaxSteps {
-            t: t0,
-            max_steps,
-            partial: Box::new(solution),
-        });
-    }
-    let steps = steps as usize;
     let h = span / steps as f64;
     let mut k = vec![0.0; s * n];
     let mut stage = vec![0.0; n];

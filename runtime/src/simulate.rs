@@ -36,70 +36,80 @@ pub fn simulate<M: Model + Clone + Send + Sync + 'static>(
             ),
         });
     }
-    let method = match options.method {
-        Method::Auto if options.rtol >= 1e-7 => Method::Dopri5,
-        Method::Auto => Method::Dop853,
-        m => m,
-    };
-    let capacity = 1024;
-    match method {
-        Method::Dopri5 => {
-            return adaptive::integrate::<M, Dopri5>(
-                model,
-                t0,
-                t1,
-                options,
-                Solution::new(model, capacity),
-            )
-        }
-        Method::Radau5 => {
-            return radau5::integrate(model, t0, t1, options, Solution::new(model, capacity))
-        }
-        Method::Dop853 => {
-            return adaptive::integrate::<M, Dop853>(
-                model,
-                t0,
-                t1,
-                options,
-                Solution::new(model, capacity),
-            )
-        }
-        _ => {}
+    if let Some(unknown) = [Method::Taylor].into_iter().find(|m| *m == options.method) {
+        return Err(Error::MethodNotAvailable { method: unknown });
     }
-    let step = options.step.unwrap_or((t1 - t0).abs() / 1000.0);
-    if !(step.is_finite() && step > 0.0) && t1 != t0 {
-        return Err(Error::InvalidOptions {
-            message: format!("the step must be positive and finite, not {step}"),
+    if let Method::TaylorFixed { .. } = options.method {
+        return Err(Error::MethodNotAvailable {
+            method: options.method,
         });
     }
-    let tableau = match method {
-        Method::Rk4 => &explicit_rk::RK4,
-        Method::Rk38 => &explicit_rk::RK38,
-        Method::Euler => &explicit_rk::EULER,
-        Method::Midpoint => &explicit_rk::MIDPOINT,
-        Method::Heun => &explicit_rk::HEUN,
-        Method::Ralston => &explicit_rk::RALSTON,
-        Method::BackwardEuler => {
-            let steps = ((t1 - t0).abs() / step).ceil().max(1.0);
-            if steps > options.max_steps as f64 {
+    // The initial state, checked once for every method.
+    let mut solution = Solution::new(model, 1024);
+    let mut y0 = vec![0.0; M::STATES];
+    model.initial_state(&mut y0);
+    if let Some(i) = y0.iter().position(|v| !v.is_finite()) {
+        return Err(Error::NonFinite {
+            t: t0,
+            variable: M::INFO.states[i],
+            partial: Box::new(solution),
+        });
+    }
+    solution.push(t0, &y0);
+    match options.method {
+        Method::Auto => {
+            // An explicit pair watches for stiffness (Hairer's test) and hands
+            // over to RADAU5 from the point where the problem turned stiff.
+            let explicit = if options.rtol >= 1e-7 {
+                adaptive::integrate::<M, Dopri5>(model, t0, t1, &y0, options, true, solution)
+            } else {
+                adaptive::integrate::<M, Dop853>(model, t0, t1, &y0, options, true, solution)
+            };
+            match explicit? {
+                (solution, adaptive::Finish::Done) => Ok(solution),
+                (solution, adaptive::Finish::StiffAt(t)) => {
+                    let y = solution.last_state().map(<[f64]>::to_vec).unwrap_or(y0);
+                    radau5::integrate(model, t, t1, &y, options, solution)
+                }
+            }
+        }
+        Method::Dopri5 => {
+            adaptive::integrate::<M, Dopri5>(model, t0, t1, &y0, options, false, solution)
+                .map(|r| r.0)
+        }
+        Method::Dop853 => {
+            adaptive::integrate::<M, Dop853>(model, t0, t1, &y0, options, false, solution)
+                .map(|r| r.0)
+        }
+        Method::Radau5 => radau5::integrate(model, t0, t1, &y0, options, solution),
+        fixed => {
+            let step = options.step.unwrap_or((t1 - t0).abs() / 1000.0);
+            if !(step.is_finite() && step > 0.0) && t1 != t0 {
                 return Err(Error::InvalidOptions {
-                    message: format!(
-                        "{steps} steps of {step} exceed Options::max_steps ({})",
-                        options.max_steps
-                    ),
+                    message: format!("the step must be positive and finite, not {step}"),
                 });
             }
-            return backward_euler::integrate(
-                model,
-                t0,
-                t1,
-                steps as usize,
-                Solution::new(model, steps as usize + 1),
-            );
+            let steps = ((t1 - t0).abs() / step).ceil().max(1.0);
+            if steps > options.max_steps as f64 {
+                return Err(Error::MaxSteps {
+                    t: t0,
+                    max_steps: options.max_steps,
+                    partial: Box::new(solution),
+                });
+            }
+            let tableau = match fixed {
+                Method::Rk4 => &explicit_rk::RK4,
+                Method::Rk38 => &explicit_rk::RK38,
+                Method::Euler => &explicit_rk::EULER,
+                Method::Midpoint => &explicit_rk::MIDPOINT,
+                Method::Heun => &explicit_rk::HEUN,
+                Method::Ralston => &explicit_rk::RALSTON,
+                Method::BackwardEuler => {
+                    return backward_euler::integrate(model, t0, t1, &y0, steps as usize, solution)
+                }
+                other => return Err(Error::MethodNotAvailable { method: other }),
+            };
+            explicit_rk::integrate(model, tableau, t0, t1, &y0, steps as usize, solution)
         }
-        other => return Err(Error::MethodNotAvailable { method: other }),
-    };
-    let capacity = ((t1 - t0).abs() / step).ceil().min(1e6) as usize + 1;
-    let solution = Solution::new(model, capacity);
-    explicit_rk::integrate(model, tableau, t0, t1, step, options.max_steps, solution)
+    }
 }

@@ -42,11 +42,21 @@ pub struct Solution {
     output_names: &'static [&'static str],
     observables: Arc<dyn Observables>,
     stats: Stats,
-    /// Dense-output coefficients: `dense_width` vectors of length n per step
-    /// (the step ending at `times[k]` at block `k - 1`), read by `interpolant`.
+    /// Dense-output coefficients of the steps of each segment, read by the
+    /// segment's interpolant.
     dense: Vec<f64>,
-    dense_width: usize,
-    interpolant: Option<Interpolant>,
+    /// One per method that ran (Method::Auto may switch), in step order.
+    segments: Vec<Segment>,
+}
+
+/// Steps from `first` on use `interpolant` on `width` vectors per step,
+/// stored from `offset` in `dense`.
+#[derive(Clone, Copy)]
+struct Segment {
+    first: usize,
+    offset: usize,
+    width: usize,
+    interpolant: Interpolant,
 }
 
 /// Component `i` at `s = (t - t_old)/h` from one step's coefficients.
@@ -77,15 +87,23 @@ impl Solution {
             observables: Arc::new(ModelObservables(model.clone())),
             stats: Stats::default(),
             dense: Vec::new(),
-            dense_width: 0,
-            interpolant: None,
+            segments: Vec::new(),
         }
     }
 
-    /// Dense output of `width` coefficient vectors per step, read by `f`.
+    /// The steps pushed from now on carry `width` dense-output vectors, read by `f`.
     pub(crate) fn set_interpolant(&mut self, width: usize, f: Interpolant) {
-        self.dense_width = width;
-        self.interpolant = Some(f);
+        self.segments.push(Segment {
+            first: self.times.len(),
+            offset: self.dense.len(),
+            width,
+            interpolant: f,
+        });
+    }
+
+    /// The last state, if any step was stored.
+    pub(crate) fn last_state(&self) -> Option<&[f64]> {
+        self.times.len().checked_sub(1).and_then(|k| self.state(k))
     }
 
     /// An accepted step with its dense-output coefficients.
@@ -184,11 +202,13 @@ impl Solution {
             .clamp(1, self.times.len() - 1);
         let (t0, t1) = (self.times[k - 1], self.times[k]);
         let s = if t1 == t0 { 0.0 } else { (t - t0) / (t1 - t0) };
+        let segment = self.segments.iter().rev().find(|seg| seg.first <= k);
         let state = |i: usize| -> f64 {
-            match self.interpolant {
-                Some(f) => {
-                    let width = self.dense_width * self.n;
-                    f(&self.dense[(k - 1) * width..k * width], self.n, i, s)
+            match segment {
+                Some(seg) => {
+                    let width = seg.width * self.n;
+                    let start = seg.offset + (k - seg.first) * width;
+                    (seg.interpolant)(&self.dense[start..start + width], self.n, i, s)
                 }
                 None => {
                     let (a, b) = (

@@ -67,12 +67,15 @@ pub fn rms_norm(e: &[f64], sk: &[f64]) -> f64 {
     (sum / e.len().max(1) as f64).sqrt()
 }
 
+/// Evaluates f(t, y) into the last argument; `false` if f failed.
+pub type RhsProbe<'a> = dyn FnMut(f64, &[f64], &mut [f64]) -> bool + 'a;
+
 /// Hairer's initial step (`hinit` of `dopri5.f`): a guess from ‖y‖/‖f‖,
 /// refined by one explicit Euler step that estimates the second derivative.
 /// `f1` is scratch for f at the Euler point; returns |h| (the caller adds the sign).
 #[allow(clippy::too_many_arguments)]
 pub fn initial_step(
-    f: &mut dyn FnMut(f64, &[f64], &mut [f64]) -> bool,
+    f: &mut RhsProbe<'_>,
     t: f64,
     y: &[f64],
     f0: &[f64],
