@@ -1,0 +1,358 @@
+//! Work-precision benchmarks: daegen's methods against peer solvers in one
+//! run, as time ratios at equal error.
+//!
+//! Run: `cargo run --release --manifest-path bench/Cargo.toml`
+//! (add `--no-python` to skip SciPy and heyoka).
+//!
+//! Non-stiff (Kepler e = 0.9 over ten orbits, Arenstorf over one period):
+//! our DOPRI5 and DOP853 against the `ode_solvers` crate's and SciPy's.
+//! Stiff (Van der Pol ε = 1e-6, Robertson to 1e11, HIRES): our RADAU5
+//! against SciPy's Radau and BDF (through ../shared/peers/peer.py).
+//! Errors are max |y − ref| / max(1, |ref|) at the end, against exact or
+//! published references (../shared/notes/reference-problems.md).
+//! `ode_solvers` 0.6.2 runs the same algorithms with the same controller,
+//! but its final value (read from its dense output) is unreliable, so it is
+//! also compared at equal tolerance. A missing peer is reported as missing.
+
+use daegen::prelude::*;
+use std::process::Command;
+use std::time::{Duration, Instant};
+
+#[dae_model]
+fn kepler() {
+    let e = param(0.9);
+    let q1 = state(1.0 - e);
+    let q2 = state(0.0);
+    let p1 = state(0.0);
+    let p2 = state(sqrt((1.0 + e) / (1.0 - e)));
+    let r3 = (q1 * q1 + q2 * q2).powf(-1.5);
+    der(q1) == p1;
+    der(q2) == p2;
+    der(p1) == -q1 * r3;
+    der(p2) == -q2 * r3;
+}
+
+#[dae_model]
+fn arenstorf() {
+    let mu = param(0.012277471);
+    let y1 = state(0.994);
+    let y2 = state(0.0);
+    let v1 = state(0.0);
+    let v2 = state(-2.00158510637908252240537862224);
+    let mup = 1.0 - mu;
+    let d1 = ((y1 + mu).powi(2) + y2 * y2).powf(1.5);
+    let d2 = ((y1 - mup).powi(2) + y2 * y2).powf(1.5);
+    der(y1) == v1;
+    der(y2) == v2;
+    der(v1) == y1 + 2.0 * v2 - mup * (y1 + mu) / d1 - mu * (y1 - mup) / d2;
+    der(v2) == y2 - 2.0 * v1 - mup * y2 / d1 - mu * y2 / d2;
+}
+
+#[dae_model]
+fn vdpol() {
+    let eps = param(1e-6);
+    let y1 = state(2.0);
+    let y2 = state(0.0);
+    der(y1) == y2;
+    der(y2) == ((1.0 - y1 * y1) * y2 - y1) / eps;
+}
+
+#[dae_model]
+fn robertson() {
+    let y1 = state(1.0);
+    let y2 = state(0.0);
+    let y3 = state(0.0);
+    der(y1) == -0.04 * y1 + 1e4 * y2 * y3;
+    der(y2) == 0.04 * y1 - 1e4 * y2 * y3 - 3e7 * y2 * y2;
+    der(y3) == 3e7 * y2 * y2;
+}
+
+#[dae_model]
+fn hires() {
+    let y = state_array([1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0057]);
+    der(y[0]) == -1.71 * y[0] + 0.43 * y[1] + 8.32 * y[2] + 0.0007;
+    der(y[1]) == 1.71 * y[0] - 8.75 * y[1];
+    der(y[2]) == -10.03 * y[2] + 0.43 * y[3] + 0.035 * y[4];
+    der(y[3]) == 8.32 * y[1] + 1.71 * y[2] - 1.12 * y[3];
+    der(y[4]) == -1.745 * y[4] + 0.43 * y[5] + 0.43 * y[6];
+    der(y[5]) == -280.0 * y[5] * y[7] + 0.69 * y[3] + 1.71 * y[4] - 0.43 * y[5] + 0.69 * y[6];
+    der(y[6]) == 280.0 * y[5] * y[7] - 1.81 * y[6];
+    der(y[7]) == -280.0 * y[5] * y[7] + 1.81 * y[6];
+}
+
+/// Exact Kepler state (e = 0.9, perihelion at t = 0).
+fn kepler_exact(t: f64) -> [f64; 4] {
+    let e = 0.9;
+    let mut big_e = t + e * t.sin();
+    for _ in 0..100 {
+        big_e -= (big_e - e * big_e.sin() - t) / (1.0 - e * big_e.cos());
+    }
+    let (s, c) = big_e.sin_cos();
+    let w = (1.0 - e * e).sqrt();
+    [c - e, w * s, -s / (1.0 - e * c), w * c / (1.0 - e * c)]
+}
+
+const ARENSTORF_T: f64 = 17.0652165601579625588917206249;
+const ARENSTORF_Y0: [f64; 4] = [0.994, 0.0, 0.0, -2.00158510637908252240537862224];
+
+fn mixed_error(got: &[f64], reference: &[f64]) -> f64 {
+    got.iter().zip(reference).map(|(g, r)| (g - r).abs() / r.abs().max(1.0)).fold(0.0, f64::max)
+}
+
+/// Median wall time of `run` over repeats (after one warm-up), and its result.
+fn time<T>(mut run: impl FnMut() -> T) -> (Duration, T) {
+    let mut result = run();
+    let mut times = Vec::new();
+    let start = Instant::now();
+    while times.len() < 25 && (times.len() < 3 || start.elapsed() < Duration::from_millis(300)) {
+        let t = Instant::now();
+        result = run();
+        times.push(t.elapsed());
+    }
+    times.sort();
+    (times[times.len() / 2], result)
+}
+
+/// One point of a work-precision curve.
+#[derive(Clone, Debug)]
+struct Point {
+    tol: f64,
+    error: f64,
+    seconds: f64,
+}
+
+/// A peer's time at `error`, by log–log interpolation on its curve (None
+/// outside the range it covers).
+fn time_at_error(curve: &[Point], error: f64) -> Option<f64> {
+    let mut pts: Vec<&Point> = curve.iter().filter(|p| p.error > 0.0 && p.error.is_finite()).collect();
+    pts.sort_by(|a, b| b.error.total_cmp(&a.error));
+    pts.windows(2).find_map(|w| {
+        let (a, b) = (w[0], w[1]);
+        if error <= a.error && error >= b.error {
+            let s = (error.ln() - a.error.ln()) / (b.error.ln() - a.error.ln());
+            Some((a.seconds.ln() + s * (b.seconds.ln() - a.seconds.ln())).exp())
+        } else {
+            None
+        }
+    })
+}
+
+fn ours<M: Model + Clone + Send + Sync + 'static>(model: &M, t1: f64, method: Method, tol: f64, atol: f64, reference: &[f64]) -> Point {
+    let options = Options::new().method(method).rtol(tol).atol(atol);
+    let (d, sol) = time(|| model.simulate(0.0, t1, &options));
+    let error = match sol {
+        Ok(sol) => mixed_error(sol.state(sol.times().len() - 1).unwrap_or(&[]), reference),
+        Err(_) => f64::INFINITY,
+    };
+    Point { tol, error, seconds: d.as_secs_f64() }
+}
+
+mod peers {
+    use super::{mixed_error, time, Point};
+    use ode_solvers::{Dop853, Dopri5, System, Vector4};
+
+    struct Kepler;
+    impl System<f64, Vector4<f64>> for Kepler {
+        fn system(&self, _t: f64, y: &Vector4<f64>, dy: &mut Vector4<f64>) {
+            let r3 = (y[0] * y[0] + y[1] * y[1]).powf(1.5);
+            dy[0] = y[2];
+            dy[1] = y[3];
+            dy[2] = -y[0] / r3;
+            dy[3] = -y[1] / r3;
+        }
+    }
+
+    struct Arenstorf;
+    impl System<f64, Vector4<f64>> for Arenstorf {
+        fn system(&self, _t: f64, y: &Vector4<f64>, dy: &mut Vector4<f64>) {
+            let mu = 0.012277471;
+            let mup = 1.0 - mu;
+            let d1 = ((y[0] + mu).powi(2) + y[1] * y[1]).powf(1.5);
+            let d2 = ((y[0] - mup).powi(2) + y[1] * y[1]).powf(1.5);
+            dy[0] = y[2];
+            dy[1] = y[3];
+            dy[2] = y[0] + 2.0 * y[3] - mup * (y[0] + mu) / d1 - mu * (y[0] - mup) / d2;
+            dy[3] = y[1] - 2.0 * y[2] - mup * y[1] / d1 - mu * y[1] / d2;
+        }
+    }
+
+    /// `ode_solvers` on "kepler" or "arenstorf": (`dop853`, tol) → point.
+    /// Its dense output is sampled every t1/1000: with one sample spanning
+    /// many steps (dx = t1) its final value is wrong (seen with 0.6.2), and
+    /// dx = 0 does not terminate.
+    pub fn ode_solvers(problem: &str, dop853: bool, y0: [f64; 4], t1: f64, tol: f64, reference: &[f64]) -> Point {
+        let y0 = Vector4::new(y0[0], y0[1], y0[2], y0[3]);
+        let run = || -> Option<Vec<f64>> {
+            macro_rules! go {
+                ($system:expr) => {{
+                    if dop853 {
+                        let mut s = Dop853::new($system, 0.0, t1, t1 / 1000.0, y0, tol, tol);
+                        s.integrate().ok()?;
+                        s.y_out().last().map(|v| v.iter().copied().collect())
+                    } else {
+                        let mut s = Dopri5::new($system, 0.0, t1, t1 / 1000.0, y0, tol, tol);
+                        s.integrate().ok()?;
+                        s.y_out().last().map(|v| v.iter().copied().collect())
+                    }
+                }};
+            }
+            if problem == "kepler" { go!(Kepler) } else { go!(Arenstorf) }
+        };
+        let (d, y) = time(run);
+        let error = y.map_or(f64::INFINITY, |y| mixed_error(&y, reference));
+        Point { tol, error, seconds: d.as_secs_f64() }
+    }
+}
+
+/// SciPy or heyoka through peer.py: `None` when Python or the package is missing.
+fn python_peer(problem: &str, solver: &str, tol: f64, atol: Option<f64>) -> Option<Point> {
+    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/peers/peer.py");
+    let mut cmd = Command::new("python3");
+    cmd.arg(script).arg(problem).arg("--solver").arg(solver).arg("--tol").arg(format!("{tol:e}")).arg("--repeat").arg("5");
+    if let Some(a) = atol {
+        cmd.arg("--atol").arg(format!("{a:e}"));
+    }
+    let out = cmd.output().ok()?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    let field = |name: &str| -> Option<f64> {
+        let i = text.find(&format!("\"{name}\""))?;
+        let rest = &text[i + name.len() + 3..];
+        let end = rest.find([',', '}'])?;
+        rest[..end].trim().parse().ok()
+    };
+    Some(Point { tol, error: field("max_mixed_err")?, seconds: field("solve_s")? })
+}
+
+fn ratio(r: f64) -> String {
+    if r < 0.1 {
+        format!("{r:.1e}×")
+    } else {
+        format!("{r:.2}×")
+    }
+}
+
+/// Our time over the peer's at the same tolerance, for peers whose final
+/// values cannot be trusted for an equal-error comparison.
+fn report_equal_tolerance(problem: &str, ours: &[(&str, Vec<Point>)], peers: &[(&str, Vec<Point>)]) {
+    println!("\n{problem}, at equal tolerance (same algorithm and controller defaults):\n");
+    for ((name, curve), (peer, peer_curve)) in ours.iter().zip(peers) {
+        let cells: Vec<String> = curve
+            .iter()
+            .zip(peer_curve)
+            .map(|(p, q)| format!("{:.0e}: {}", p.tol, ratio(p.seconds / q.seconds)))
+            .collect();
+        println!("- {name} / {peer}: {}", cells.join(", "));
+    }
+}
+
+fn report(problem: &str, ours: &[(&str, Vec<Point>)], peers: &[(&str, Option<Vec<Point>>)]) {
+    println!("\n### {problem}\n");
+    println!("| method | tol | error | time (ms) | vs {} |", peers.iter().map(|p| p.0).collect::<Vec<_>>().join(" | vs "));
+    println!("|---|---|---|---|{}", "---|".repeat(peers.len()));
+    for (name, curve) in ours {
+        for p in curve {
+            let ratios: Vec<String> = peers
+                .iter()
+                .map(|(_, peer)| match peer {
+                    None => "missing".to_string(),
+                    Some(c) => time_at_error(c, p.error).map_or("–".to_string(), |t| ratio(p.seconds / t)),
+                })
+                .collect();
+            println!("| {name} | {:.0e} | {:.2e} | {:.3} | {} |", p.tol, p.error, p.seconds * 1e3, ratios.join(" | "));
+        }
+    }
+    for (name, peer) in peers {
+        match peer {
+            None => println!("\n{name}: missing (not installed)"),
+            Some(c) => {
+                let pts: Vec<String> = c.iter().map(|p| format!("{:.0e}: {:.2e} in {:.3} ms", p.tol, p.error, p.seconds * 1e3)).collect();
+                println!("\n{name}: {}", pts.join("; "));
+            }
+        }
+    }
+}
+
+fn main() {
+    let python = !std::env::args().any(|a| a == "--no-python");
+    let collect_python = |problem: &str, solver: &str, tols: &[f64], atol: &dyn Fn(f64) -> Option<f64>| -> Option<Vec<Point>> {
+        if !python {
+            return None;
+        }
+        tols.iter().map(|&t| python_peer(problem, solver, t, atol(t))).collect()
+    };
+    let nonstiff_tols: Vec<f64> = (4..=12).map(|k| 10f64.powi(-k)).collect();
+
+    // Non-stiff.
+    let kepler_t1 = 20.0 * std::f64::consts::PI;
+    let kepler_ref = kepler_exact(kepler_t1);
+    let k = Kepler::default();
+    let kepler_ours = vec![
+        ("daegen DOPRI5", nonstiff_tols.iter().map(|&t| ours(&k, kepler_t1, Method::Dopri5, t, t, &kepler_ref)).collect()),
+        ("daegen DOP853", nonstiff_tols.iter().map(|&t| ours(&k, kepler_t1, Method::Dop853, t, t, &kepler_ref)).collect()),
+    ];
+    eprintln!("kepler: ours done");
+    let k0 = kepler_exact(0.0);
+    let kepler_peers = vec![
+        ("ode_solvers Dopri5", Some(nonstiff_tols.iter().map(|&t| peers::ode_solvers("kepler", false, k0, kepler_t1, t, &kepler_ref)).collect())),
+        ("ode_solvers Dop853", Some(nonstiff_tols.iter().map(|&t| peers::ode_solvers("kepler", true, k0, kepler_t1, t, &kepler_ref)).collect())),
+        ("SciPy DOP853", collect_python("kepler", "DOP853", &nonstiff_tols, &|_| None)),
+        ("heyoka", collect_python("kepler", "heyoka", &nonstiff_tols, &|_| None)),
+    ];
+    report("Kepler e = 0.9, ten orbits (t = 20π), exact reference", &kepler_ours, &kepler_peers);
+    let equal = |i: usize| kepler_peers[i].1.clone().unwrap_or_default();
+    report_equal_tolerance("Kepler", &kepler_ours, &[("ode_solvers Dopri5", equal(0)), ("ode_solvers Dop853", equal(1))]);
+
+    let a = Arenstorf::default();
+    let aren_ours = vec![
+        ("daegen DOPRI5", nonstiff_tols.iter().map(|&t| ours(&a, ARENSTORF_T, Method::Dopri5, t, t, &ARENSTORF_Y0)).collect()),
+        ("daegen DOP853", nonstiff_tols.iter().map(|&t| ours(&a, ARENSTORF_T, Method::Dop853, t, t, &ARENSTORF_Y0)).collect()),
+    ];
+    let aren_peers = vec![
+        ("ode_solvers Dopri5", Some(nonstiff_tols.iter().map(|&t| peers::ode_solvers("arenstorf", false, ARENSTORF_Y0, ARENSTORF_T, t, &ARENSTORF_Y0)).collect())),
+        ("ode_solvers Dop853", Some(nonstiff_tols.iter().map(|&t| peers::ode_solvers("arenstorf", true, ARENSTORF_Y0, ARENSTORF_T, t, &ARENSTORF_Y0)).collect())),
+        ("SciPy DOP853", collect_python("arenstorf", "DOP853", &nonstiff_tols, &|_| None)),
+        ("heyoka", collect_python("arenstorf", "heyoka", &nonstiff_tols, &|_| None)),
+    ];
+    report("Arenstorf, one period, back to the start", &aren_ours, &aren_peers);
+    let equal = |i: usize| aren_peers[i].1.clone().unwrap_or_default();
+    report_equal_tolerance("Arenstorf", &aren_ours, &[("ode_solvers Dopri5", equal(0)), ("ode_solvers Dop853", equal(1))]);
+
+    // Stiff.
+    let stiff_tols: Vec<f64> = (4..=10).map(|k| 10f64.powi(-k)).collect();
+    let vdp_ref = [0.1706167732170483e1, -0.8928097010247975];
+    let v = Vdpol::default();
+    let vdp_ours = vec![("daegen RADAU5", stiff_tols.iter().map(|&t| ours(&v, 2.0, Method::Radau5, t, t, &vdp_ref)).collect())];
+    let vdp_peers = vec![
+        ("SciPy Radau", collect_python("vdpol", "Radau", &stiff_tols, &|_| None)),
+        ("SciPy BDF", collect_python("vdpol", "BDF", &stiff_tols, &|_| None)),
+    ];
+    report("Van der Pol ε = 1e-6 to t = 2 (test set vdpol)", &vdp_ours, &vdp_peers);
+
+    let rober_ref = [0.2083340149701255e-7, 0.8333360770334713e-13, 0.9999999791665050];
+    let r = Robertson::default();
+    let rober_ours =
+        vec![("daegen RADAU5", stiff_tols.iter().map(|&t| ours(&r, 1e11, Method::Radau5, t, 1e-6 * t, &rober_ref)).collect())];
+    let rober_peers = vec![
+        ("SciPy Radau", collect_python("robertson_1e11", "Radau", &stiff_tols, &|t| Some(1e-6 * t))),
+        ("SciPy BDF", collect_python("robertson_1e11", "BDF", &stiff_tols, &|t| Some(1e-6 * t))),
+    ];
+    report("Robertson to t = 1e11 (test set rober), atol = 1e-6·rtol", &rober_ours, &rober_peers);
+
+    let hires_ref = [
+        0.7371312573325668e-3,
+        0.1442485726316185e-3,
+        0.5888729740967575e-4,
+        0.1175651343283149e-2,
+        0.2386356198831331e-2,
+        0.6238968252742796e-2,
+        0.2849998395185769e-2,
+        0.2850001604814231e-2,
+    ];
+    let h = Hires::default();
+    let hires_ours = vec![("daegen RADAU5", stiff_tols.iter().map(|&t| ours(&h, 321.8122, Method::Radau5, t, t, &hires_ref)).collect())];
+    let hires_peers = vec![
+        ("SciPy Radau", collect_python("hires", "Radau", &stiff_tols, &|_| None)),
+        ("SciPy BDF", collect_python("hires", "BDF", &stiff_tols, &|_| None)),
+    ];
+    report("HIRES to t = 321.8122 (test set hires)", &hires_ours, &hires_peers);
+}
