@@ -52,16 +52,12 @@ impl<M: Model> Rhs<'_, M> {
     }
 }
 
-/// `out = y + h Σ_j a_j k_j`.
+/// `out = y + h Σ_j a_j k_j`, in one pass and in the order of Hairer's
+/// codes (the sum first, then one multiplication by h).
 fn combine(y: &[f64], h: f64, a: &[f64], k: &[f64], n: usize, out: &mut [f64]) {
-    out.copy_from_slice(y);
-    for (j, &aj) in a.iter().enumerate() {
-        if aj != 0.0 {
-            let ha = h * aj;
-            for (o, kj) in out.iter_mut().zip(&k[j * n..(j + 1) * n]) {
-                *o += ha * kj;
-            }
-        }
+    for (i, (o, yi)) in out.iter_mut().zip(y).enumerate() {
+        let sum: f64 = a.iter().enumerate().map(|(j, aj)| aj * k[j * n + i]).sum();
+        *o = yi + h * sum;
     }
 }
 
@@ -331,7 +327,7 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
             let t_next = t + step;
             compensation = (t_next - t) - step;
             t = if last { t1 } else { t_next };
-            y.copy_from_slice(&y_new);
+            std::mem::swap(&mut y, &mut y_new);
             k.copy_within((P::STAGES - 1) * n..P::STAGES * n, 0);
             accepted += 1;
             non_finite = None;

@@ -83,8 +83,15 @@ impl EmbeddedPair for Dopri5 {
     }
 
     fn error(h: f64, k: &[f64], n: usize, sk: &[f64], scratch: &mut [f64]) -> f64 {
+        // E[1] = 0: six terms.
         for (i, e) in scratch.iter_mut().enumerate().take(n) {
-            *e = h * (0..7).map(|j| E[j] * k[j * n + i]).sum::<f64>();
+            let sum = E[0] * k[i]
+                + E[2] * k[2 * n + i]
+                + E[3] * k[3 * n + i]
+                + E[4] * k[4 * n + i]
+                + E[5] * k[5 * n + i]
+                + E[6] * k[6 * n + i];
+            *e = h * sum;
         }
         rms_norm(&scratch[..n], sk)
     }
@@ -97,7 +104,14 @@ impl EmbeddedPair for Dopri5 {
             out[n + i] = dy;
             out[2 * n + i] = bspl;
             out[3 * n + i] = dy - h * k[6 * n + i] - bspl;
-            out[4 * n + i] = h * (0..7).map(|j| D[j] * k[j * n + i]).sum::<f64>();
+            // D[1] = 0: six terms.
+            out[4 * n + i] = h
+                * (D[0] * k[i]
+                    + D[2] * k[2 * n + i]
+                    + D[3] * k[3 * n + i]
+                    + D[4] * k[4 * n + i]
+                    + D[5] * k[5 * n + i]
+                    + D[6] * k[6 * n + i]);
         }
     }
 

@@ -1,5 +1,5 @@
 //! Profiling aid: Kepler e = 0.9 over ten orbits with DOPRI5 at tol 1e-12,
-//! repeated. Run: `cargo run --release --example profile_kepler`.
+//! repeated. Run: `cargo run --release --manifest-path bench/Cargo.toml --example profile_kepler`.
 
 use daegen::prelude::*;
 
