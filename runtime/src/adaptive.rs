@@ -4,7 +4,7 @@
 //! of a real run (Hairer, Nørsett, Wanner, *Solving ODEs I*, §II.4–§II.6).
 
 use crate::error::Error;
-use crate::model::{EvalError, Model};
+use crate::model::{EvalError, Model, StateVector};
 use crate::options::Options;
 use crate::solution::Solution;
 use crate::step_control::{initial_step, scale, Controller, PiState};
@@ -31,10 +31,11 @@ pub trait EmbeddedPair {
     fn coefficients() -> &'static [&'static [f64]];
     /// Controller constants.
     fn controller() -> Controller;
-    /// Scaled error of the step (≤ 1 accepts it).
-    fn error(h: f64, k: &[f64], n: usize, sk: &[f64], scratch: &mut [f64]) -> f64;
-    /// Dense-output coefficients of an accepted step.
-    fn dense_coefficients(h: f64, y: &[f64], y_new: &[f64], k: &[f64], n: usize, out: &mut [f64]);
+    /// Scaled error of the step (≤ 1 accepts it); `k` holds the stages.
+    fn error<S: StateVector>(h: f64, k: &[S], sk: &S) -> f64;
+    /// Dense-output coefficients of an accepted step, `DENSE_WIDTH` vectors
+    /// of length n one after the other in `out`.
+    fn dense_coefficients<S: StateVector>(h: f64, y: &S, y_new: &S, k: &[S], out: &mut [f64]);
     /// Component `i` of the dense output at `s = (t - t_old) / h`.
     fn interpolate(coefficients: &[f64], n: usize, i: usize, s: f64) -> f64;
 }
@@ -54,10 +55,11 @@ impl<M: Model> Rhs<'_, M> {
 
 /// `out = y + h Σ_j a_j k_j`, in one pass and in the order of Hairer's
 /// codes (the sum first, then one multiplication by h).
-fn combine(y: &[f64], h: f64, a: &[f64], k: &[f64], n: usize, out: &mut [f64]) {
-    for (i, (o, yi)) in out.iter_mut().zip(y).enumerate() {
-        let sum: f64 = a.iter().enumerate().map(|(j, aj)| aj * k[j * n + i]).sum();
-        *o = yi + h * sum;
+fn combine<S: StateVector>(y: &S, h: f64, a: &[f64], k: &[S], out: &mut S) {
+    let (y, out) = (y.as_ref(), out.as_mut());
+    for i in 0..out.len() {
+        let sum: f64 = a.iter().zip(k).map(|(aj, kj)| aj * kj.as_ref()[i]).sum();
+        out[i] = y[i] + h * sum;
     }
 }
 
@@ -68,22 +70,24 @@ fn stages<M: Model, P: EmbeddedPair>(
     rhs: &mut Rhs<'_, M>,
     t: f64,
     h: f64,
-    y: &[f64],
-    k: &mut [f64],
-    stage: &mut [f64],
-    y_new: &mut [f64],
+    y: &M::State,
+    k: &mut [M::State],
+    stage: &mut M::State,
+    y_new: &mut M::State,
 ) -> Result<(), (f64, EvalError)> {
-    let n = y.len();
     let (a, c) = (P::coefficients(), P::nodes());
     for s in 1..P::STAGES {
-        let last = s + 1 == P::STAGES;
-        let target: &mut [f64] = if last { &mut *y_new } else { &mut *stage };
-        combine(y, h, a[s], k, n, target);
-        let ts = if last { t + h } else { t + c[s] * h };
-        let (_, rest) = k.split_at_mut(s * n);
-        let input: &[f64] = if last { &*y_new } else { &*stage };
-        rhs.call(ts, input, &mut rest[..n])
-            .map_err(|cause| (ts, cause))?;
+        let (done, rest) = k.split_at_mut(s);
+        if s + 1 == P::STAGES {
+            combine(y, h, a[s], done, y_new);
+            rhs.call(t + h, y_new.as_ref(), rest[0].as_mut())
+                .map_err(|cause| (t + h, cause))?;
+        } else {
+            combine(y, h, a[s], done, stage);
+            let ts = t + c[s] * h;
+            rhs.call(ts, stage.as_ref(), rest[0].as_mut())
+                .map_err(|cause| (ts, cause))?;
+        }
     }
     Ok(())
 }
@@ -185,22 +189,22 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
     let direction = if t1 >= t0 { 1.0 } else { -1.0 };
     let (a, c) = (P::coefficients(), P::nodes());
     let controller = P::controller();
-    let mut k = vec![0.0; (P::STAGES + P::DENSE_STAGES) * n];
-    let (mut y, mut y_new, mut stage) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let (mut sk, mut scratch) = (vec![0.0; n], vec![0.0; n]);
+    let mut k = vec![M::State::zeros(); P::STAGES + P::DENSE_STAGES];
+    let (mut y, mut y_new, mut stage) = (M::State::zeros(), M::State::zeros(), M::State::zeros());
+    let mut sk = M::State::zeros();
     let mut dense = vec![0.0; P::DENSE_WIDTH * n];
     let mut rhs = Rhs { model, evals: 0 };
     solution.set_interpolant(P::DENSE_WIDTH, P::interpolate);
 
-    y.copy_from_slice(y0);
-    if let Err(cause) = rhs.call(t0, &y, &mut k[..n]) {
+    y.as_mut().copy_from_slice(y0);
+    if let Err(cause) = rhs.call(t0, y.as_ref(), k[0].as_mut()) {
         return Err(Error::Evaluation {
             t: t0,
             cause,
             partial: Box::new(solution),
         });
     }
-    if let Some(i) = k[..n].iter().position(|v| !v.is_finite()) {
+    if let Some(i) = k[0].as_ref().iter().position(|v| !v.is_finite()) {
         return Err(Error::NonFinite {
             t: t0,
             variable: M::INFO.states[i],
@@ -217,20 +221,20 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
     let mut h = match options.initial_step {
         Some(h0) => h0.abs().min(hmax),
         None => {
-            let (f0, rest) = k.split_at_mut(n);
+            let (f0, rest) = k.split_at_mut(1);
             let mut f = |t: f64, y: &[f64], out: &mut [f64]| rhs.call(t, y, out).is_ok();
             initial_step(
                 &mut f,
                 t0,
-                &y,
-                f0,
+                y.as_ref(),
+                f0[0].as_ref(),
                 direction,
                 P::ORDER,
                 hmax,
                 atol,
                 rtol,
-                &mut stage,
-                &mut rest[..n],
+                stage.as_mut(),
+                rest[0].as_mut(),
             )
         }
     } * direction;
@@ -273,13 +277,14 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
                 partial: Box::new(solution),
             });
         }
-        scale(atol, rtol, &y, &y_new, &mut sk);
-        let err = P::error(h, &k[..P::STAGES * n], n, &sk, &mut scratch);
+        scale(atol, rtol, y.as_ref(), y_new.as_ref(), sk.as_mut());
+        let err = P::error(h, &k[..P::STAGES], &sk);
         if !err.is_finite() {
             // A stage left the domain of f: retry with a much smaller step,
             // and name the variable if the step underflows.
             non_finite = (0..n).find(|&i| {
-                !y_new[i].is_finite() || (0..P::STAGES).any(|s| !k[s * n + i].is_finite())
+                !y_new.as_ref()[i].is_finite()
+                    || k[..P::STAGES].iter().any(|ks| !ks.as_ref()[i].is_finite())
             });
             h *= 0.1;
             rejected += 1;
@@ -290,9 +295,9 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
             let (factor, state) = controller.factor(err, pi);
             pi = state;
             for s in P::STAGES..P::STAGES + P::DENSE_STAGES {
-                combine(&y, h, a[s], &k, n, &mut stage);
-                let (_, rest) = k.split_at_mut(s * n);
-                if let Err(cause) = rhs.call(t + c[s] * h, &stage, &mut rest[..n]) {
+                let (done, rest) = k.split_at_mut(s);
+                combine(&y, h, a[s], done, &mut stage);
+                if let Err(cause) = rhs.call(t + c[s] * h, stage.as_ref(), rest[0].as_mut()) {
                     finish_stats(&mut solution, accepted, rejected, rhs.evals);
                     return Err(Error::Evaluation {
                         t: t + c[s] * h,
@@ -301,18 +306,23 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
                     });
                 }
             }
-            P::dense_coefficients(h, &y, &y_new, &k, n, &mut dense);
+            P::dense_coefficients(h, &y, &y_new, &k, &mut dense);
             let mut turned_stiff = false;
             if detect_stiffness && accepted % 10 == 0 {
                 // h·ρ(J) against the stability boundary. ρ from the generated
                 // Jacobian by power iteration; without one, Hairer's quotient
                 // of the last two stages (both at t + h).
-                let rho = match spectral_radius(model, t + h, &y_new, &mut jacobian) {
+                let rho = match spectral_radius(model, t + h, y_new.as_ref(), &mut jacobian) {
                     Some(rho) => rho,
                     None => {
-                        let (last, before) = ((P::STAGES - 1) * n, (P::STAGES - 2) * n);
-                        let num: f64 = (0..n).map(|i| (k[last + i] - k[before + i]).powi(2)).sum();
-                        let den: f64 = (0..n).map(|i| (y_new[i] - stage[i]).powi(2)).sum();
+                        let (last, before) = (k[P::STAGES - 1].as_ref(), k[P::STAGES - 2].as_ref());
+                        let num: f64 = last.iter().zip(before).map(|(a, b)| (a - b).powi(2)).sum();
+                        let den: f64 = y_new
+                            .as_ref()
+                            .iter()
+                            .zip(stage.as_ref())
+                            .map(|(a, b)| (a - b).powi(2))
+                            .sum();
                         if den > 0.0 {
                             (num / den).sqrt()
                         } else {
@@ -328,10 +338,10 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
             compensation = (t_next - t) - step;
             t = if last { t1 } else { t_next };
             std::mem::swap(&mut y, &mut y_new);
-            k.copy_within((P::STAGES - 1) * n..P::STAGES * n, 0);
+            k[0] = k[P::STAGES - 1];
             accepted += 1;
             non_finite = None;
-            solution.push_dense(t, &y, &dense);
+            solution.push_dense(t, y.as_ref(), &dense);
             if last {
                 break;
             }
@@ -376,6 +386,7 @@ mod tests {
 
     impl Model for Kepler {
         const STATES: usize = 4;
+        type State = [f64; 4];
         const INDEX: usize = 0;
         const INFO: ModelInfo = ModelInfo {
             name: "Kepler",
@@ -428,9 +439,9 @@ mod tests {
             evals: 0,
         };
         let y = exact(t);
-        let mut k = vec![0.0; (P::STAGES + P::DENSE_STAGES) * 4];
-        let (mut stage, mut y_new) = (vec![0.0; 4], vec![0.0; 4]);
-        rhs.call(t, &y, &mut k[..4]).unwrap();
+        let mut k = vec![[0.0; 4]; P::STAGES + P::DENSE_STAGES];
+        let (mut stage, mut y_new) = ([0.0; 4], [0.0; 4]);
+        rhs.call(t, &y, &mut k[0]).unwrap();
         stages::<Kepler, P>(&mut rhs, t, h, &y, &mut k, &mut stage, &mut y_new).unwrap();
         let want = exact(t + h);
         y_new
@@ -470,18 +481,18 @@ mod tests {
         };
         let y = exact(t);
         let n = 4;
-        let mut k = vec![0.0; (P::STAGES + P::DENSE_STAGES) * n];
-        let (mut stage, mut y_new) = (vec![0.0; n], vec![0.0; n]);
-        rhs.call(t, &y, &mut k[..n]).unwrap();
+        let mut k = vec![[0.0; 4]; P::STAGES + P::DENSE_STAGES];
+        let (mut stage, mut y_new) = ([0.0; 4], [0.0; 4]);
+        rhs.call(t, &y, &mut k[0]).unwrap();
         stages::<Kepler, P>(&mut rhs, t, h, &y, &mut k, &mut stage, &mut y_new).unwrap();
         let (a, c) = (P::coefficients(), P::nodes());
         for s in P::STAGES..P::STAGES + P::DENSE_STAGES {
-            combine(&y, h, a[s], &k, n, &mut stage);
-            let (_, rest) = k.split_at_mut(s * n);
-            rhs.call(t + c[s] * h, &stage, &mut rest[..n]).unwrap();
+            let (done, rest) = k.split_at_mut(s);
+            combine(&y, h, a[s], done, &mut stage);
+            rhs.call(t + c[s] * h, &stage, &mut rest[0]).unwrap();
         }
         let mut dense = vec![0.0; P::DENSE_WIDTH * n];
-        P::dense_coefficients(h, &y, &y_new, &k, n, &mut dense);
+        P::dense_coefficients(h, &y, &y_new, &k, &mut dense);
         let want = exact(t + 0.37 * h);
         (0..n)
             .map(|i| (P::interpolate(&dense, n, i, 0.37) - want[i]).abs())

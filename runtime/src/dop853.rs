@@ -7,6 +7,7 @@
 #![allow(clippy::excessive_precision)]
 
 use crate::adaptive::EmbeddedPair;
+use crate::model::StateVector;
 use crate::step_control::Controller;
 
 /// The DOP853 method.
@@ -297,12 +298,21 @@ impl EmbeddedPair for Dop853 {
 
     /// Hairer's combination of the 5th- and 3rd-order estimates: the 3rd
     /// guards against the 5th being accidentally small.
-    fn error(h: f64, k: &[f64], n: usize, sk: &[f64], _scratch: &mut [f64]) -> f64 {
+    fn error<S: StateVector>(h: f64, k: &[S], sk: &S) -> f64 {
+        let sk = sk.as_ref();
+        let n = sk.len();
         let (mut err5, mut err3) = (0.0, 0.0);
         for i in 0..n {
-            let e5: f64 = (0..12).map(|j| E5[j] * k[j * n + i]).sum();
-            let b: f64 = (0..12).map(|j| A[12][j] * k[j * n + i]).sum();
-            let e3 = b - BHH[0] * k[i] - BHH[1] * k[8 * n + i] - BHH[2] * k[11 * n + i];
+            let (mut e5, mut b) = (0.0, 0.0);
+            for j in 0..12 {
+                let kj = k[j].as_ref()[i];
+                e5 += E5[j] * kj;
+                b += A[12][j] * kj;
+            }
+            let e3 = b
+                - BHH[0] * k[0].as_ref()[i]
+                - BHH[1] * k[8].as_ref()[i]
+                - BHH[2] * k[11].as_ref()[i];
             err5 += (e5 / sk[i]).powi(2);
             err3 += (e3 / sk[i]).powi(2);
         }
@@ -312,16 +322,19 @@ impl EmbeddedPair for Dop853 {
         h.abs() * err5 / ((err5 + 0.01 * err3) * n as f64).sqrt()
     }
 
-    fn dense_coefficients(h: f64, y: &[f64], y_new: &[f64], k: &[f64], n: usize, out: &mut [f64]) {
+    fn dense_coefficients<S: StateVector>(h: f64, y: &S, y_new: &S, k: &[S], out: &mut [f64]) {
+        let (y, y_new) = (y.as_ref(), y_new.as_ref());
+        let n = y.len();
         for i in 0..n {
             let dy = y_new[i] - y[i];
-            let bspl = h * k[i] - dy;
+            let bspl = h * k[0].as_ref()[i] - dy;
             out[i] = y[i];
             out[n + i] = dy;
             out[2 * n + i] = bspl;
-            out[3 * n + i] = dy - h * k[12 * n + i] - bspl;
+            out[3 * n + i] = dy - h * k[12].as_ref()[i] - bspl;
             for (m, d) in D.iter().enumerate() {
-                out[(4 + m) * n + i] = h * (0..16).map(|j| d[j] * k[j * n + i]).sum::<f64>();
+                let sum: f64 = d.iter().zip(k).map(|(dj, kj)| dj * kj.as_ref()[i]).sum();
+                out[(4 + m) * n + i] = h * sum;
             }
         }
     }

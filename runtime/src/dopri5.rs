@@ -4,7 +4,8 @@
 //! and reused as the first of the next step (FSAL).
 
 use crate::adaptive::EmbeddedPair;
-use crate::step_control::{rms_norm, Controller};
+use crate::model::StateVector;
+use crate::step_control::Controller;
 
 /// The DOPRI5 pair.
 pub struct Dopri5;
@@ -82,36 +83,56 @@ impl EmbeddedPair for Dopri5 {
         }
     }
 
-    fn error(h: f64, k: &[f64], n: usize, sk: &[f64], scratch: &mut [f64]) -> f64 {
+    fn error<S: StateVector>(h: f64, k: &[S], sk: &S) -> f64 {
         // E[1] = 0: six terms.
-        for (i, e) in scratch.iter_mut().enumerate().take(n) {
-            let sum = E[0] * k[i]
-                + E[2] * k[2 * n + i]
-                + E[3] * k[3 * n + i]
-                + E[4] * k[4 * n + i]
-                + E[5] * k[5 * n + i]
-                + E[6] * k[6 * n + i];
-            *e = h * sum;
+        let sk = sk.as_ref();
+        let (k0, k2, k3, k4, k5, k6) = (
+            k[0].as_ref(),
+            k[2].as_ref(),
+            k[3].as_ref(),
+            k[4].as_ref(),
+            k[5].as_ref(),
+            k[6].as_ref(),
+        );
+        let mut sum = 0.0;
+        for i in 0..sk.len() {
+            let e = E[0] * k0[i]
+                + E[2] * k2[i]
+                + E[3] * k3[i]
+                + E[4] * k4[i]
+                + E[5] * k5[i]
+                + E[6] * k6[i];
+            sum += (h * e / sk[i]).powi(2);
         }
-        rms_norm(&scratch[..n], sk)
+        (sum / sk.len().max(1) as f64).sqrt()
     }
 
-    fn dense_coefficients(h: f64, y: &[f64], y_new: &[f64], k: &[f64], n: usize, out: &mut [f64]) {
+    fn dense_coefficients<S: StateVector>(h: f64, y: &S, y_new: &S, k: &[S], out: &mut [f64]) {
+        let (y, y_new) = (y.as_ref(), y_new.as_ref());
+        let n = y.len();
+        let (k0, k2, k3, k4, k5, k6) = (
+            k[0].as_ref(),
+            k[2].as_ref(),
+            k[3].as_ref(),
+            k[4].as_ref(),
+            k[5].as_ref(),
+            k[6].as_ref(),
+        );
         for i in 0..n {
             let dy = y_new[i] - y[i];
-            let bspl = h * k[i] - dy;
+            let bspl = h * k0[i] - dy;
             out[i] = y[i];
             out[n + i] = dy;
             out[2 * n + i] = bspl;
-            out[3 * n + i] = dy - h * k[6 * n + i] - bspl;
+            out[3 * n + i] = dy - h * k6[i] - bspl;
             // D[1] = 0: six terms.
             out[4 * n + i] = h
-                * (D[0] * k[i]
-                    + D[2] * k[2 * n + i]
-                    + D[3] * k[3 * n + i]
-                    + D[4] * k[4 * n + i]
-                    + D[5] * k[5 * n + i]
-                    + D[6] * k[6 * n + i]);
+                * (D[0] * k0[i]
+                    + D[2] * k2[i]
+                    + D[3] * k3[i]
+                    + D[4] * k4[i]
+                    + D[5] * k5[i]
+                    + D[6] * k6[i]);
         }
     }
 

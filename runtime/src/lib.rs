@@ -21,7 +21,7 @@ pub mod step_control;
 pub mod taylor_series;
 
 pub use error::Error;
-pub use model::{EvalError, Model, ModelInfo};
+pub use model::{EvalError, Model, ModelInfo, StateVector};
 pub use options::{Method, Options};
 pub use simulate::simulate;
 pub use solution::{Solution, Stats};

@@ -35,6 +35,20 @@ pub struct ModelInfo {
     pub equations: usize,
 }
 
+/// A state vector of compile-time length: `[f64; N]`. Integrators keep
+/// their working vectors in it, so loops over a state unroll and need no
+/// bounds checks.
+pub trait StateVector: Copy + AsRef<[f64]> + AsMut<[f64]> + Send + Sync + 'static {
+    /// The zero vector.
+    fn zeros() -> Self;
+}
+
+impl<const N: usize> StateVector for [f64; N] {
+    fn zeros() -> Self {
+        [0.0; N]
+    }
+}
+
 /// A model compiled by `#[dae_model]`: `y' = f(t, y)` with `y` the states
 /// after reduction to first order.
 ///
@@ -43,6 +57,8 @@ pub struct ModelInfo {
 pub trait Model {
     /// Number of first-order states.
     const STATES: usize;
+    /// `[f64; STATES]`.
+    type State: StateVector;
     /// Differentiation index found at compile time (0 for an ODE).
     const INDEX: usize;
     /// Names and documentation.

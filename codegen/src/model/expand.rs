@@ -266,6 +266,7 @@ pub fn expand(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenStream> 
         #[allow(unused_variables, unused_mut, clippy::all, clippy::pedantic)]
         impl ::daegen::Model for #name {
             const STATES: usize = #n_lit;
+            type State = [f64; #n_lit];
             const INDEX: usize = 0;
             const INFO: ::daegen::ModelInfo = #info;
             const JACOBIAN_PATTERN: &'static [(usize, usize)] = #pattern;
@@ -337,6 +338,7 @@ pub fn stub(ir: &ModelIr) -> TokenStream {
         #[allow(unused_variables)]
         impl ::daegen::Model for #name {
             const STATES: usize = 0;
+            type State = [f64; 0];
             const INDEX: usize = 0;
             const INFO: ::daegen::ModelInfo = ::daegen::ModelInfo {
                 name: #name_str, doc: "", states: &[], parameters: &[], parameter_docs: &[],
