@@ -264,14 +264,7 @@ pub(crate) fn integrate<M: Model>(
                         partial: Box::new(solution),
                     });
                 }
-                h *= 0.5;
-                reject = true;
-                last = false;
-                refresh = if caljac {
-                    Refresh::Factorisation
-                } else {
-                    Refresh::Jacobian
-                };
+                refresh = retry(&mut h, 0.5, &mut reject, &mut last, caljac);
                 continue 'steps;
             }
         }
@@ -321,14 +314,7 @@ pub(crate) fn integrate<M: Model>(
         loop {
             if newt >= NIT {
                 newton_failures += 1;
-                h *= 0.5;
-                reject = true;
-                last = false;
-                refresh = if caljac {
-                    Refresh::Factorisation
-                } else {
-                    Refresh::Jacobian
-                };
+                refresh = retry(&mut h, 0.5, &mut reject, &mut last, caljac);
                 continue 'steps;
             }
             for (z, c) in [(&mut z1, C1), (&mut z2, C2), (&mut z3, 1.0)] {
@@ -358,14 +344,7 @@ pub(crate) fn integrate<M: Model>(
             let dyno = rms([&z1, &z2, &z3], &scal);
             if !dyno.is_finite() {
                 newton_failures += 1;
-                h *= 0.5;
-                reject = true;
-                last = false;
-                refresh = if caljac {
-                    Refresh::Factorisation
-                } else {
-                    Refresh::Jacobian
-                };
+                refresh = retry(&mut h, 0.5, &mut reject, &mut last, caljac);
                 continue 'steps;
             }
             if newt > 1 && newt < NIT {
@@ -382,26 +361,18 @@ pub(crate) fn integrate<M: Model>(
                     if dyth >= 1.0 {
                         // Convergence too slow for the remaining iterations: shrink h.
                         let qnewt = dyth.clamp(1e-4, 20.0);
-                        h *= 0.8 * qnewt.powf(-1.0 / (4.0 + (NIT - 1 - newt) as f64));
-                        reject = true;
-                        last = false;
-                        refresh = if caljac {
-                            Refresh::Factorisation
-                        } else {
-                            Refresh::Jacobian
-                        };
+                        refresh = retry(
+                            &mut h,
+                            0.8 * qnewt.powf(-1.0 / (4.0 + (NIT - 1 - newt) as f64)),
+                            &mut reject,
+                            &mut last,
+                            caljac,
+                        );
                         continue 'steps;
                     }
                 } else {
                     newton_failures += 1;
-                    h *= 0.5;
-                    reject = true;
-                    last = false;
-                    refresh = if caljac {
-                        Refresh::Factorisation
-                    } else {
-                        Refresh::Jacobian
-                    };
+                    refresh = retry(&mut h, 0.5, &mut reject, &mut last, caljac);
                     continue 'steps;
                 }
             }
@@ -457,14 +428,7 @@ pub(crate) fn integrate<M: Model>(
                 .max(1e-10);
         }
         if !err.is_finite() {
-            h *= 0.5;
-            reject = true;
-            last = false;
-            refresh = if caljac {
-                Refresh::Factorisation
-            } else {
-                Refresh::Jacobian
-            };
+            refresh = retry(&mut h, 0.5, &mut reject, &mut last, caljac);
             continue 'steps;
         }
         let fac = SAFE.min(cfac / (newt + 2 * NIT) as f64);
@@ -552,6 +516,20 @@ pub(crate) fn integrate<M: Model>(
     }
     finish(&mut solution, accepted, rejected, &w);
     Ok(solution)
+}
+
+/// After a failed Newton iteration or step: shrink h by `factor`, mark the
+/// step rejected, and refactor with the same Jacobian if it was just
+/// computed, else get a new one (the JAC/DECOMP decision of radau5.f).
+fn retry(h: &mut f64, factor: f64, reject: &mut bool, last: &mut bool, caljac: bool) -> Refresh {
+    *h *= factor;
+    *reject = true;
+    *last = false;
+    if caljac {
+        Refresh::Factorisation
+    } else {
+        Refresh::Jacobian
+    }
 }
 
 fn finish<M: Model>(solution: &mut Solution, steps: usize, rejected: usize, w: &Work<'_, M>) {
