@@ -18,14 +18,20 @@ fn kepler() {
 }
 
 fn main() -> Result<(), daegen::Error> {
-    let options = Options::new().method(Method::Dopri5).rtol(1e-12).atol(1e-12);
+    let options = Options::new()
+        .method(Method::Dopri5)
+        .rtol(1e-12)
+        .atol(1e-12);
     let start = std::time::Instant::now();
     let mut steps = 0;
     for _ in 0..300 {
         let sol = Kepler::default().simulate(0.0, 20.0 * std::f64::consts::PI, &options)?;
         steps = sol.stats().steps;
     }
-    println!("daegen: {steps} steps per run, {:.3} ms per run", start.elapsed().as_secs_f64() / 300.0 * 1e3);
+    println!(
+        "daegen: {steps} steps per run, {:.3} ms per run",
+        start.elapsed().as_secs_f64() / 300.0 * 1e3
+    );
     peer::run();
     Ok(())
 }
@@ -55,6 +61,9 @@ mod peer {
             let mut s = Dopri5::new(Kepler, 0.0, t1, t1 / 1000.0, y0, 1e-12, 1e-12);
             stats = s.integrate().ok();
         }
-        println!("ode_solvers: {stats:?}, {:.3} ms per run", start.elapsed().as_secs_f64() / 300.0 * 1e3);
+        println!(
+            "ode_solvers: {stats:?}, {:.3} ms per run",
+            start.elapsed().as_secs_f64() / 300.0 * 1e3
+        );
     }
 }
