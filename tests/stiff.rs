@@ -221,3 +221,53 @@ fn auto_switches_to_radau5_when_the_problem_turns_stiff() {
     assert_eq!(osc.stats().jacobian_evals, 0);
     assert!((osc.last("x").unwrap() - 10f64.cos()).abs() < 1e-6);
 }
+
+/// y' = y², y(0) = 1: one backward Euler step of h = 1 asks for
+/// y₁ = 1 + y₁², which has no real root, so Newton cannot converge.
+#[dae_model]
+fn quadratic() {
+    let y = state(1.0);
+    der(y) == y * y;
+}
+
+#[test]
+fn newton_failures_are_reported_with_the_time_and_the_partial_solution() {
+    let err = Quadratic::default()
+        .simulate(
+            0.0,
+            1.0,
+            &Options::new().method(Method::BackwardEuler).step(1.0),
+        )
+        .unwrap_err();
+    assert!(
+        matches!(err, Error::NewtonFailure { t, .. } if t == 1.0),
+        "{err}"
+    );
+    assert_eq!(err.partial_solution().map(|p| p.times().len()), Some(1));
+    // RADAU5 runs into the pole at t = 1 and stops there with an error.
+    let err = Quadratic::default()
+        .simulate(0.0, 2.0, &Options::new().method(Method::Radau5))
+        .unwrap_err();
+    let t = match &err {
+        Error::NewtonFailure { t, .. }
+        | Error::StepSizeUnderflow { t, .. }
+        | Error::NonFinite { t, .. } => *t,
+        other => panic!("unexpected {other}"),
+    };
+    assert!((t - 1.0).abs() < 1e-2, "stopped at t = {t}: {err}");
+}
+
+#[test]
+fn a_minimum_step_stops_the_run_early() {
+    let err = Quadratic::default()
+        .simulate(
+            0.0,
+            2.0,
+            &Options::new().method(Method::Dopri5).min_step(1e-6),
+        )
+        .unwrap_err();
+    match err {
+        Error::StepSizeUnderflow { t, h, .. } => assert!(t < 1.0 && h.abs() < 1e-6),
+        other => panic!("expected a step-size underflow, got {other}"),
+    }
+}

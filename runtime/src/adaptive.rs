@@ -252,7 +252,7 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
                 partial: Box::new(solution),
             });
         }
-        if 0.1 * h.abs() <= t.abs().max(1e-300) * f64::EPSILON {
+        if 0.1 * h.abs() <= t.abs().max(1e-300) * f64::EPSILON || h.abs() < options.min_step {
             finish_stats(&mut solution, accepted, rejected, rhs.evals);
             let partial = Box::new(solution);
             return Err(match non_finite {

@@ -48,6 +48,7 @@ pub struct Options {
     pub(crate) step: Option<f64>,
     pub(crate) initial_step: Option<f64>,
     pub(crate) max_step: Option<f64>,
+    pub(crate) min_step: f64,
     pub(crate) max_steps: usize,
 }
 
@@ -60,6 +61,7 @@ impl Default for Options {
             step: None,
             initial_step: None,
             max_step: None,
+            min_step: 0.0,
             max_steps: 10_000_000,
         }
     }
@@ -107,6 +109,15 @@ impl Options {
     pub fn max_step(self, h: f64) -> Options {
         Options {
             max_step: Some(h),
+            ..self
+        }
+    }
+
+    /// Smallest step adaptive methods may take before stopping with
+    /// [`crate::Error::StepSizeUnderflow`] (default 0: only the precision of t limits it).
+    pub fn min_step(self, h: f64) -> Options {
+        Options {
+            min_step: h,
             ..self
         }
     }

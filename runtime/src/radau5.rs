@@ -276,7 +276,7 @@ pub(crate) fn integrate<M: Model>(
                 partial: Box::new(solution),
             });
         }
-        if 0.1 * h.abs() <= t.abs().max(1e-300) * f64::EPSILON {
+        if 0.1 * h.abs() <= t.abs().max(1e-300) * f64::EPSILON || h.abs() < options.min_step {
             finish(&mut solution, accepted, rejected, &w);
             let partial = Box::new(solution);
             return Err(if newton_failures > 0 {
