@@ -5,7 +5,11 @@ use daegen::codegen::expand_dae_model;
 use quote::quote;
 
 fn expand(item: proc_macro2::TokenStream) -> String {
-    let tokens = expand_dae_model(proc_macro2::TokenStream::new(), item);
+    expand_with(proc_macro2::TokenStream::new(), item)
+}
+
+fn expand_with(attr: proc_macro2::TokenStream, item: proc_macro2::TokenStream) -> String {
+    let tokens = expand_dae_model(attr, item);
     match syn::parse2::<syn::File>(tokens.clone()) {
         Ok(file) => prettyplease::unparse(&file),
         Err(e) => panic!("expansion does not parse: {e}\n{tokens}"),
@@ -102,4 +106,19 @@ fn double_pendulum_with_a_runtime_mass_matrix() {
             c * der(der(a)) + der(der(b)) == s * der(a) * der(a) - g * sin(b);
         }
     }));
+}
+
+/// Course notes Example 1.4 with the economic Taylor derivatives of order 4.
+#[test]
+fn example_1_4_with_taylor_derivatives_of_order_4() {
+    insta::assert_snapshot!(expand_with(
+        quote!(taylor = 4),
+        quote! {
+            fn example_1_4() {
+                let x = time();
+                let y = state(1.0);
+                der(y) == x * y + x;
+            }
+        }
+    ));
 }

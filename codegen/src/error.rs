@@ -17,6 +17,11 @@ pub enum Error {
         /// The name.
         name: String,
     },
+    /// The model asks for something its form does not allow.
+    Unsupported {
+        /// What and why.
+        message: String,
+    },
     /// The text syntax could not be read.
     Parse {
         /// Byte offset of the problem in the input.
@@ -36,6 +41,7 @@ impl fmt::Display for Error {
                 write!(f, "the name `{name}` is already used by another symbol")
             }
             Error::Parse { position, message } => write!(f, "at byte {position}: {message}"),
+            Error::Unsupported { message } => f.write_str(message),
         }
     }
 }

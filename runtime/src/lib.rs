@@ -18,6 +18,7 @@ mod radau5;
 mod simulate;
 mod solution;
 pub mod step_control;
+mod taylor_fixed;
 pub mod taylor_series;
 
 pub use error::Error;

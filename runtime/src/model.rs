@@ -11,6 +11,12 @@ pub enum EvalError {
     },
     /// The model has no analytic Jacobian (its mass matrix is solved at run time).
     JacobianUnavailable,
+    /// The model has no Taylor derivatives of this order: expand it with
+    /// `#[dae_model(taylor = p)]`, p ≥ the order asked for.
+    TaylorUnavailable {
+        /// The order asked for.
+        order: usize,
+    },
 }
 
 /// Names and documentation of a model, known at compile time.
@@ -79,6 +85,23 @@ pub trait Model {
 
     /// Writes `∂f/∂t`.
     fn time_derivative(&self, t: f64, y: &[f64], dfdt: &mut [f64]) -> Result<(), EvalError>;
+
+    /// Highest order of [`Model::taylor_derivatives`] (0: none generated).
+    const TAYLOR_ORDER: usize = 0;
+
+    /// Writes y', y'', …, y⁽ᵒʳᵈᵉʳ⁾ at (t, y) into `out` (order blocks of
+    /// STATES values), from the derivatives the macro derived symbolically
+    /// (the economic Taylor scheme, course notes §1.3.1).
+    fn taylor_derivatives(
+        &self,
+        t: f64,
+        y: &[f64],
+        order: usize,
+        out: &mut [f64],
+    ) -> Result<(), EvalError> {
+        let _ = (t, y, out);
+        Err(EvalError::TaylorUnavailable { order })
+    }
 
     /// The output number `index` (see [`ModelInfo::outputs`]) at `(t, y)`.
     fn output(&self, index: usize, t: f64, y: &[f64]) -> f64;

@@ -9,7 +9,9 @@ pub enum Method {
     Auto,
     /// Taylor series with adaptive order and step (not available yet).
     Taylor,
-    /// The economic Taylor scheme of the given order with a fixed step (not available yet).
+    /// The economic Taylor scheme of the given order with a fixed step
+    /// (course notes §1.3.1); the model must be expanded with
+    /// `#[dae_model(taylor = p)]`, p ≥ order.
     TaylorFixed {
         /// Order p of the series.
         order: usize,

@@ -10,6 +10,7 @@ use crate::model::Model;
 use crate::options::{Method, Options};
 use crate::radau5;
 use crate::solution::Solution;
+use crate::taylor_fixed;
 
 /// Integrates `model` from `t0` to `t1` with `options`.
 pub fn simulate<M: Model + Clone + Send + Sync + 'static>(
@@ -36,13 +37,25 @@ pub fn simulate<M: Model + Clone + Send + Sync + 'static>(
             ),
         });
     }
-    if let Some(unknown) = [Method::Taylor].into_iter().find(|m| *m == options.method) {
-        return Err(Error::MethodNotAvailable { method: unknown });
-    }
-    if let Method::TaylorFixed { .. } = options.method {
+    if options.method == Method::Taylor {
         return Err(Error::MethodNotAvailable {
-            method: options.method,
+            method: Method::Taylor,
         });
+    }
+    if let Method::TaylorFixed { order, step } = options.method {
+        if order == 0 || order > M::TAYLOR_ORDER {
+            return Err(Error::InvalidOptions {
+                message: format!(
+                    "TaylorFixed of order {order} needs the model expanded with #[dae_model(taylor = {order})] or higher; it has {}",
+                    M::TAYLOR_ORDER
+                ),
+            });
+        }
+        if !(step.is_finite() && step > 0.0) {
+            return Err(Error::InvalidOptions {
+                message: format!("the step must be positive and finite, not {step}"),
+            });
+        }
     }
     // The initial state, checked once for every method.
     let mut solution = Solution::new(model, 1024);
@@ -82,6 +95,17 @@ pub fn simulate<M: Model + Clone + Send + Sync + 'static>(
                 .map(|r| r.0)
         }
         Method::Radau5 => radau5::integrate(model, t0, t1, &y0, options, solution),
+        Method::TaylorFixed { order, step } => {
+            let steps = ((t1 - t0).abs() / step).ceil().max(1.0);
+            if steps > options.max_steps as f64 {
+                return Err(Error::MaxSteps {
+                    t: t0,
+                    max_steps: options.max_steps,
+                    partial: Box::new(solution),
+                });
+            }
+            taylor_fixed::integrate(model, t0, t1, &y0, order, steps as usize, solution)
+        }
         fixed => {
             let step = options.step.unwrap_or((t1 - t0).abs() / 1000.0);
             if !(step.is_finite() && step > 0.0) && t1 != t0 {

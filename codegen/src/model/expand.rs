@@ -12,6 +12,8 @@ use quote::{format_ident, quote, quote_spanned};
 /// `self`, time from `t`.
 struct Layout {
     slot_of: crate::FxHashMap<SymbolId, usize>,
+    /// Taylor coefficients read by higher orders: symbol -> index in `out`.
+    taylor_of: crate::FxHashMap<SymbolId, usize>,
 }
 
 impl Layout {
@@ -19,6 +21,10 @@ impl Layout {
         if let Some(&i) = self.slot_of.get(&s) {
             let i = Literal::usize_unsuffixed(i);
             return quote!(y[#i]);
+        }
+        if let Some(&i) = self.taylor_of.get(&s) {
+            let i = Literal::usize_unsuffixed(i);
+            return quote!(out[#i]);
         }
         match g.symbol(s).kind {
             SymbolKind::Parameter => {
@@ -30,6 +36,83 @@ impl Layout {
             _ => quote!(f64::NAN),
         }
     }
+}
+
+/// `TAYLOR_ORDER` and `taylor_derivatives`: D_1 = f and D_{k+1} the total
+/// time derivative of D_k (course notes §1.3.1), where the k-th derivative
+/// of slot i is a fresh symbol read from `out` (`der` of a slot would alias
+/// the other slots of a reduced higher-order state). One program per order,
+/// each reading the lower orders already written.
+fn taylor_method(
+    g: &mut Graph,
+    layout: &mut Layout,
+    sys: &FirstOrder,
+    time: SymbolId,
+    order: usize,
+) -> crate::Result<TokenStream> {
+    let n = sys.slots.len();
+    let mut f = Vec::with_capacity(n);
+    for d in &sys.derivatives {
+        match d {
+            SlotDerivative::Explicit(e) => f.push(*e),
+            SlotDerivative::Block { .. } => {
+                return Err(crate::Error::Unsupported {
+                    message: "`taylor = p` needs an explicit ODE; this model solves a mass matrix at run time".into(),
+                })
+            }
+        }
+    }
+    let mut field = crate::VectorField::new();
+    let one = g.one();
+    field.set(time, one);
+    let mut symbols: Vec<Vec<SymbolId>> = vec![Vec::with_capacity(order); n];
+    for (i, slot) in sys.slots.iter().enumerate() {
+        for j in 1..=order {
+            let id = g.add_symbol(&format!("__taylor{j}_{i}"), SymbolKind::Algebraic)?;
+            let s = g.as_symbol(id).unwrap_or(slot.symbol);
+            symbols[i].push(s);
+            layout.taylor_of.insert(s, (j - 1) * n + i);
+        }
+        let first = g.symbol_node(symbols[i][0]);
+        field.set(slot.symbol, first);
+        for j in 0..order.saturating_sub(1) {
+            let next = g.symbol_node(symbols[i][j + 1]);
+            field.set(symbols[i][j], next);
+        }
+    }
+    let mut levels = vec![f];
+    while levels.len() < order {
+        let last = levels[levels.len() - 1].clone();
+        let next = last
+            .iter()
+            .map(|&e| g.total_derivative(e, &mut field))
+            .collect::<crate::Result<Vec<_>>>()?;
+        levels.push(next);
+    }
+    let mut body = TokenStream::new();
+    for (k, level) in levels.iter().enumerate() {
+        let code = program(g, layout, level, &|i, v| {
+            let at = index(k * n + i);
+            quote!(out[#at] = #v;)
+        });
+        let k1 = index(k + 1);
+        body.extend(quote!(if order >= #k1 { #code }));
+    }
+    let (nn, np, p) = (index(n), index(n * order), index(order));
+    Ok(quote! {
+        const TAYLOR_ORDER: usize = #p;
+
+        #[inline]
+        fn taylor_derivatives(&self, t: f64, y: &[f64], order: usize, out: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
+            let (::core::result::Result::Ok(y), ::core::result::Result::Ok(out)) =
+                (<&[f64; #nn]>::try_from(y), <&mut [f64; #np]>::try_from(out))
+            else {
+                return ::core::result::Result::Ok(());
+            };
+            #body
+            ::core::result::Result::Ok(())
+        }
+    })
 }
 
 /// A doc comment as rustdoc writes `///` lines: each line after a space.
@@ -122,7 +205,11 @@ fn struct_and_default(ir: &ModelIr) -> TokenStream {
 }
 
 /// The full expansion of a model that lowered and reduced without error.
-pub fn expand(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenStream> {
+pub fn expand(
+    ir: &mut ModelIr,
+    sys: &FirstOrder,
+    taylor: Option<usize>,
+) -> crate::Result<TokenStream> {
     let name = type_name(ir);
     let n = sys.slots.len();
     let slot_of = sys
@@ -131,7 +218,10 @@ pub fn expand(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenStream> 
         .enumerate()
         .map(|(i, s)| (s.symbol, i))
         .collect();
-    let layout = Layout { slot_of };
+    let mut layout = Layout {
+        slot_of,
+        taylor_of: Default::default(),
+    };
     let g = &mut ir.graph;
 
     let inits: Vec<Id> = sys.slots.iter().map(|s| s.init).collect();
@@ -257,6 +347,10 @@ pub fn expand(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenStream> 
         &index(n),
         quote!(#block_setup #rhs_body #block_solve),
     );
+    let taylor_tokens = match taylor {
+        Some(order) => taylor_method(&mut ir.graph, &mut layout, sys, ir.time, order)?,
+        None => TokenStream::new(),
+    };
     let info = info(ir, sys);
     let struct_and_default = struct_and_default(ir);
     let n_lit = index(n);
@@ -289,6 +383,8 @@ pub fn expand(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenStream> 
             fn time_derivative(&self, t: f64, y: &[f64], dfdt: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
                 #time_body
             }
+
+            #taylor_tokens
 
             #[inline]
             fn output(&self, index: usize, t: f64, y: &[f64]) -> f64 {

@@ -18,9 +18,7 @@ use proc_macro2::TokenStream;
 /// Expands `#[dae_model(attr)] item`.
 pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
     let mut cx = ctxt::Ctxt::default();
-    if !attr.is_empty() {
-        cx.error_at(&attr, "`#[dae_model]` takes no arguments");
-    }
+    let taylor = taylor_order(&mut cx, attr);
     let item: syn::ItemFn = match syn::parse2(item) {
         Ok(item) => item,
         Err(e) => {
@@ -38,7 +36,7 @@ pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
         None
     };
     if let (Some(system), true) = (&system, cx.is_ok()) {
-        match expand::expand(&mut ir, system) {
+        match expand::expand(&mut ir, system, taylor) {
             Ok(tokens) => return tokens,
             Err(e) => cx.error_at(&item.sig.ident, e),
         }
@@ -46,6 +44,33 @@ pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
     let mut out = cx.to_compile_errors();
     out.extend(expand::stub(&ir));
     out
+}
+
+/// `#[dae_model]` or `#[dae_model(taylor = p)]`, 1 ≤ p ≤ 8: the order of the
+/// economic Taylor derivatives to generate (none by default: only what is asked for).
+fn taylor_order(cx: &mut ctxt::Ctxt, attr: TokenStream) -> Option<usize> {
+    if attr.is_empty() {
+        return None;
+    }
+    let fix = "`#[dae_model]` takes one optional argument: `taylor = p` with p from 1 to 8";
+    let Ok(arg) = syn::parse2::<syn::MetaNameValue>(attr.clone()) else {
+        cx.error_at(&attr, fix);
+        return None;
+    };
+    let order = match &arg.value {
+        syn::Expr::Lit(syn::ExprLit {
+            lit: syn::Lit::Int(i),
+            ..
+        }) => i.base10_parse::<usize>().ok(),
+        _ => None,
+    };
+    match order {
+        Some(p) if arg.path.is_ident("taylor") && (1..=8).contains(&p) => Some(p),
+        _ => {
+            cx.error_at(&attr, fix);
+            None
+        }
+    }
 }
 
 /// The errors `expand_dae_model` would report, as messages: for tests of
@@ -58,7 +83,7 @@ pub fn diagnostics(item: TokenStream) -> Vec<String> {
     let mut ir = lower::lower(&mut cx, &item);
     if cx.is_ok() {
         if let Some(system) = reduce::reduce(&mut cx, &mut ir) {
-            if let Err(e) = expand::expand(&mut ir, &system) {
+            if let Err(e) = expand::expand(&mut ir, &system, None) {
                 cx.error_at(&item.sig.ident, e);
             }
         }

@@ -1,0 +1,54 @@
+//! The economic Taylor scheme with a fixed step (course notes §1.3.1):
+//! y_{k+1} = y_k + h y'_k + h²/2 y''_k + … + hᵖ/p! y⁽ᵖ⁾_k, the derivatives
+//! from the model's generated `taylor_derivatives`.
+
+use crate::error::Error;
+use crate::model::Model;
+use crate::solution::Solution;
+use crate::taylor_series::taylor_step;
+
+/// Integrates with `steps` equal steps of the scheme of order `order`.
+pub(crate) fn integrate<M: Model>(
+    model: &M,
+    t0: f64,
+    t1: f64,
+    y0: &[f64],
+    order: usize,
+    steps: usize,
+    mut solution: Solution,
+) -> Result<Solution, Error> {
+    let n = M::STATES;
+    let (mut y, mut next) = (y0.to_vec(), vec![0.0; n]);
+    // The generated code writes all TAYLOR_ORDER blocks' room; only `order` are filled.
+    let mut derivatives = vec![0.0; M::TAYLOR_ORDER * n];
+    for step in 0..steps {
+        let t = t0 + (t1 - t0) * (step as f64 / steps as f64);
+        let t_next = if step + 1 == steps {
+            t1
+        } else {
+            t0 + (t1 - t0) * ((step + 1) as f64 / steps as f64)
+        };
+        if let Err(cause) = model.taylor_derivatives(t, &y, order, &mut derivatives) {
+            return Err(Error::Evaluation {
+                t,
+                cause,
+                partial: Box::new(solution),
+            });
+        }
+        let blocks: Vec<&[f64]> = derivatives.chunks(n).take(order).collect();
+        taylor_step(&y, &blocks, t_next - t, &mut next);
+        std::mem::swap(&mut y, &mut next);
+        if let Some(i) = y.iter().position(|v| !v.is_finite()) {
+            return Err(Error::NonFinite {
+                t: t_next,
+                variable: M::INFO.states[i],
+                partial: Box::new(solution),
+            });
+        }
+        solution.push(t_next, &y);
+        let stats = solution.stats_mut();
+        stats.steps += 1;
+        stats.rhs_evals += 1;
+    }
+    Ok(solution)
+}
