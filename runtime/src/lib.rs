@@ -18,8 +18,10 @@ mod radau5;
 mod simulate;
 mod solution;
 pub mod step_control;
+pub mod taylor;
 mod taylor_fixed;
 pub mod taylor_series;
+pub mod taylor_tape;
 
 pub use error::Error;
 pub use model::{EvalError, Model, ModelInfo, StateVector};

@@ -103,6 +103,19 @@ pub trait Model {
         Err(EvalError::TaylorUnavailable { order })
     }
 
+    /// The right-hand side as a tape of elementary operations and the
+    /// operand of each f_i, for the adaptive Taylor method (generated with
+    /// `#[dae_model(taylor = p)]`; `None` otherwise).
+    #[allow(clippy::type_complexity)]
+    fn taylor_tape(
+        &self,
+    ) -> Option<(
+        Vec<crate::taylor_tape::TapeOp>,
+        Vec<crate::taylor_tape::Operand>,
+    )> {
+        None
+    }
+
     /// The output number `index` (see [`ModelInfo::outputs`]) at `(t, y)`.
     fn output(&self, index: usize, t: f64, y: &[f64]) -> f64;
 

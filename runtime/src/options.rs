@@ -7,7 +7,8 @@ pub enum Method {
     /// tighter tolerances (where its higher order pays, Hairer–Nørsett–Wanner
     /// I §II.10). Stiff problems need `Radau5`.
     Auto,
-    /// Taylor series with adaptive order and step (not available yet).
+    /// Taylor series with adaptive order and step (Jorba–Zou; heyoka's
+    /// step rule) from the model's AD tape; needs `#[dae_model(taylor = p)]`.
     Taylor,
     /// The economic Taylor scheme of the given order with a fixed step
     /// (course notes §1.3.1); the model must be expanded with

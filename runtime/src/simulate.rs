@@ -10,6 +10,7 @@ use crate::model::Model;
 use crate::options::{Method, Options};
 use crate::radau5;
 use crate::solution::Solution;
+use crate::taylor;
 use crate::taylor_fixed;
 
 /// Integrates `model` from `t0` to `t1` with `options`.
@@ -35,11 +36,6 @@ pub fn simulate<M: Model + Clone + Send + Sync + 'static>(
                 "tolerances must be finite and non-negative, with rtol ≥ 1e-15 or atol > 0; got rtol = {}, atol = {}",
                 options.rtol, options.atol
             ),
-        });
-    }
-    if options.method == Method::Taylor {
-        return Err(Error::MethodNotAvailable {
-            method: Method::Taylor,
         });
     }
     if let Method::TaylorFixed { order, step } = options.method {
@@ -95,6 +91,7 @@ pub fn simulate<M: Model + Clone + Send + Sync + 'static>(
                 .map(|r| r.0)
         }
         Method::Radau5 => radau5::integrate(model, t0, t1, &y0, options, solution),
+        Method::Taylor => taylor::integrate(model, t0, t1, &y0, options, solution),
         Method::TaylorFixed { order, step } => {
             let steps = ((t1 - t0).abs() / step).ceil().max(1.0);
             if steps > options.max_steps as f64 {

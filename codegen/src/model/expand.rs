@@ -99,7 +99,31 @@ fn taylor_method(
         body.extend(quote!(if order >= #k1 { #code }));
     }
     let (nn, np, p) = (index(n), index(n * order), index(order));
+    // The AD tape for the adaptive Taylor method (compact layout).
+    let slot_of = layout.slot_of.clone();
+    let explicit: Vec<Id> = levels[0].clone();
+    let tape = super::taylor_tape::decompose(g, &explicit, &slot_of, time).map_err(|message| {
+        crate::Error::Unsupported {
+            message: format!("`taylor`: {message}"),
+        }
+    })?;
+    let one = g.one();
+    let consts: Vec<Id> = tape.constants.iter().map(|c| c.unwrap_or(one)).collect();
+    let const_code = program(g, layout, &consts, &|i, v| {
+        let name = quote::format_ident!("c{}", i);
+        quote!(let #name: f64 = #v;)
+    });
+    let (ops, outs) = (&tape.ops, &tape.outputs);
     Ok(quote! {
+        #[inline]
+        fn taylor_tape(&self) -> ::core::option::Option<(
+            ::std::vec::Vec<::daegen::runtime::taylor_tape::TapeOp>,
+            ::std::vec::Vec<::daegen::runtime::taylor_tape::Operand>,
+        )> {
+            #const_code
+            ::core::option::Option::Some((::std::vec![#(#ops),*], ::std::vec![#(#outs),*]))
+        }
+
         const TAYLOR_ORDER: usize = #p;
 
         #[inline]

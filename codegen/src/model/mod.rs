@@ -12,6 +12,7 @@ pub mod ir;
 pub mod lower;
 pub mod names;
 pub mod reduce;
+pub mod taylor_tape;
 
 use proc_macro2::TokenStream;
 

@@ -1,0 +1,258 @@
+//! Decomposition of the right-hand side into the Taylor tape of
+//! `daegen_runtime::taylor_tape`: one elementary operation per u-variable,
+//! shared subexpressions once (Jorba & Zou's decomposition; heyoka's
+//! u-variables). Subexpressions of parameters and numbers only are
+//! constants, computed once when the tape is built.
+
+use crate::{Func, FxHashMap, Graph, Id, Node, SymbolId, SymbolKind};
+use proc_macro2::TokenStream;
+use quote::quote;
+
+/// An operand, as tokens of `daegen::runtime::taylor_tape::Operand`.
+#[derive(Clone)]
+enum Operand {
+    Var(usize),
+    State(usize),
+    Time,
+    /// Index into the constants computed at the top of the method.
+    Const(usize),
+}
+
+impl Operand {
+    fn tokens(&self) -> TokenStream {
+        let path = quote!(::daegen::runtime::taylor_tape::Operand);
+        let lit = |i: usize| proc_macro2::Literal::usize_unsuffixed(i);
+        match self {
+            Operand::Var(i) => {
+                let i = lit(*i);
+                quote!(#path::Var(#i))
+            }
+            Operand::State(i) => {
+                let i = lit(*i);
+                quote!(#path::State(#i))
+            }
+            Operand::Time => quote!(#path::Time),
+            Operand::Const(i) => {
+                let c = quote::format_ident!("c{}", i);
+                quote!(#path::Const(#c))
+            }
+        }
+    }
+}
+
+/// The tape of `outputs`: (constant expressions, operations, output operands).
+pub struct Tape {
+    /// Constant expressions, in order (`c0`, `c1`, ...); `None` is 1.
+    pub constants: Vec<Option<Id>>,
+    /// One `TapeOp` per u-variable, as tokens.
+    pub ops: Vec<TokenStream>,
+    /// The operand of each output.
+    pub outputs: Vec<TokenStream>,
+}
+
+struct Builder<'g> {
+    g: &'g Graph,
+    slot_of: &'g FxHashMap<SymbolId, usize>,
+    time: SymbolId,
+    operand_of: FxHashMap<Id, Operand>,
+    constants: Vec<Option<Id>>,
+    ops: Vec<TokenStream>,
+    /// sin(a) → the u-variable of its pair, so cos(a) is reused.
+    sin_of: FxHashMap<Id, usize>,
+}
+
+impl Builder<'_> {
+    fn push(&mut self, op: TokenStream) -> Operand {
+        self.ops.push(op);
+        Operand::Var(self.ops.len() - 1)
+    }
+
+    fn constant(&mut self, id: Id) -> Operand {
+        self.constants.push(Some(id));
+        Operand::Const(self.constants.len() - 1)
+    }
+
+    fn binary(&mut self, name: &str, a: &Operand, b: &Operand) -> Operand {
+        let (a, b) = (a.tokens(), b.tokens());
+        let op = quote::format_ident!("{}", name);
+        self.push(quote!(::daegen::runtime::taylor_tape::TapeOp::#op(#a, #b)))
+    }
+
+    fn unary(&mut self, name: &str, a: &Operand) -> Operand {
+        let a = a.tokens();
+        let op = quote::format_ident!("{}", name);
+        self.push(quote!(::daegen::runtime::taylor_tape::TapeOp::#op(#a)))
+    }
+
+    /// `a^n` for an integer n ≥ 1 by binary powering (products only: safe
+    /// at a zero base, where the general power recurrence divides by it).
+    fn integer_power(&mut self, a: &Operand, n: u64) -> Operand {
+        if n == 1 {
+            return a.clone();
+        }
+        let half = self.integer_power(a, n / 2);
+        let square = self.binary("Mul", &half, &half);
+        if n % 2 == 1 {
+            self.binary("Mul", &square, a)
+        } else {
+            square
+        }
+    }
+
+    fn sin_cos(&mut self, arg: Id, a: &Operand) -> (Operand, Operand) {
+        if let Some(&v) = self.sin_of.get(&arg) {
+            return (Operand::Var(v), Operand::Var(v + 1));
+        }
+        let s = self.unary("Sin", a);
+        let c = self.push(quote!(
+            ::daegen::runtime::taylor_tape::TapeOp::CosOfPrevious
+        ));
+        if let Operand::Var(v) = s {
+            self.sin_of.insert(arg, v);
+        }
+        (s, c)
+    }
+
+    fn operand(&self, id: Id) -> Operand {
+        self.operand_of.get(&id).cloned().unwrap_or(Operand::Time)
+    }
+
+    /// The operand of `id`, its operands being done (ascending ids).
+    fn node(&mut self, id: Id, time_dependent: bool) -> Result<Operand, String> {
+        if !time_dependent {
+            return Ok(self.constant(id));
+        }
+        let g = self.g;
+        Ok(match g.node(id) {
+            Node::Number(_) => self.constant(id),
+            Node::Symbol(s) => match g.symbol(*s).kind {
+                _ if *s == self.time => Operand::Time,
+                SymbolKind::Parameter => self.constant(id),
+                _ => match self.slot_of.get(s) {
+                    Some(&i) => Operand::State(i),
+                    None => {
+                        return Err(format!(
+                            "`{}` has no place in the Taylor tape",
+                            g.symbol(*s).name
+                        ))
+                    }
+                },
+            },
+            Node::Add(terms) => {
+                let mut acc = self.operand(terms[0]);
+                for &t in &terms[1..] {
+                    let next = self.operand(t);
+                    acc = self.binary("Add", &acc, &next);
+                }
+                acc
+            }
+            Node::Mul(factors) => {
+                let mut acc = self.operand(factors[0]);
+                for &f in &factors[1..] {
+                    let next = self.operand(f);
+                    acc = self.binary("Mul", &acc, &next);
+                }
+                acc
+            }
+            Node::Pow([b, e]) => {
+                let base = self.operand(*b);
+                match g.as_number(*e) {
+                    Some(n) if n.as_integer().is_some_and(|k| k > 0) => {
+                        self.integer_power(&base, n.as_integer().unwrap_or(1).unsigned_abs())
+                    }
+                    Some(n) if n.as_integer().is_some() => {
+                        let k = n.as_integer().unwrap_or(-1).unsigned_abs();
+                        let p = self.integer_power(&base, k);
+                        self.constants.push(None);
+                        let one = Operand::Const(self.constants.len() - 1);
+                        self.binary("Div", &one, &p)
+                    }
+                    Some(n) => {
+                        let value = n.to_f64();
+                        let (b, e) = (base.tokens(), value);
+                        self.push(quote!(::daegen::runtime::taylor_tape::TapeOp::Pow(#b, #e)))
+                    }
+                    None => {
+                        // b^e = exp(e ln b)
+                        let exponent = self.operand(*e);
+                        let ln = self.unary("Ln", &base);
+                        let product = self.binary("Mul", &exponent, &ln);
+                        self.unary("Exp", &product)
+                    }
+                }
+            }
+            Node::Call(f, a) => {
+                let arg = self.operand(*a);
+                match f {
+                    Func::Exp => self.unary("Exp", &arg),
+                    Func::Ln => self.unary("Ln", &arg),
+                    Func::Sin => self.sin_cos(*a, &arg).0,
+                    Func::Cos => self.sin_cos(*a, &arg).1,
+                    Func::Tan => {
+                        let (s, c) = self.sin_cos(*a, &arg);
+                        self.binary("Div", &s, &c)
+                    }
+                    other => {
+                        return Err(format!("`{}` is not in the Taylor tape yet", other.name()))
+                    }
+                }
+            }
+            Node::Atan2(_) => return Err("`atan2` is not in the Taylor tape yet".into()),
+        })
+    }
+}
+
+/// Decomposes `outputs` (f of each slot) into a tape.
+pub fn decompose(
+    g: &Graph,
+    outputs: &[Id],
+    slot_of: &FxHashMap<SymbolId, usize>,
+    time: SymbolId,
+) -> Result<Tape, String> {
+    let order = g.reachable(outputs);
+    // A node depends on time when it reaches a state or the time symbol.
+    let mut time_dependent: FxHashMap<Id, bool> = FxHashMap::default();
+    for &id in &order {
+        let own = match g.node(id) {
+            Node::Symbol(s) => *s == time || slot_of.contains_key(s),
+            _ => false,
+        };
+        let dep = own
+            || g.operands(id)
+                .iter()
+                .any(|c| time_dependent.get(c).copied().unwrap_or(false));
+        time_dependent.insert(id, dep);
+    }
+    let mut b = Builder {
+        g,
+        slot_of,
+        time,
+        operand_of: FxHashMap::default(),
+        constants: Vec::new(),
+        ops: Vec::new(),
+        sin_of: FxHashMap::default(),
+    };
+    // Constant nodes get a slot only when a time-dependent node or an
+    // output uses them; their own constant operands are computed inside them.
+    let mut needed: std::collections::HashSet<Id> = outputs.iter().copied().collect();
+    for &id in &order {
+        if time_dependent[&id] {
+            needed.insert(id);
+            needed.extend(g.operands(id).iter().copied());
+        }
+    }
+    for &id in &order {
+        let dep = time_dependent[&id];
+        if !needed.contains(&id) {
+            continue;
+        }
+        let operand = b.node(id, dep)?;
+        b.operand_of.insert(id, operand);
+    }
+    let outputs = outputs.iter().map(|&o| b.operand(o).tokens()).collect();
+    Ok(Tape {
+        constants: b.constants,
+        ops: b.ops,
+        outputs,
+    })
+}

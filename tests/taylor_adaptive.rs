@@ -1,0 +1,159 @@
+//! The adaptive Taylor method on the non-stiff references
+//! (../shared/notes/reference-problems.md §9, §10).
+
+use daegen::prelude::*;
+
+#[dae_model(taylor = 1)]
+fn kepler() {
+    let e = param(0.9);
+    let q1 = state(1.0 - e);
+    let q2 = state(0.0);
+    let p1 = state(0.0);
+    let p2 = state(sqrt((1.0 + e) / (1.0 - e)));
+    let r3 = (q1 * q1 + q2 * q2).powf(-1.5);
+    der(q1) == p1;
+    der(q2) == p2;
+    der(p1) == -q1 * r3;
+    der(p2) == -q2 * r3;
+    let energy = output(0.5 * (p1 * p1 + p2 * p2) - (q1 * q1 + q2 * q2).powf(-0.5));
+}
+
+fn kepler_exact(t: f64) -> [f64; 4] {
+    let e = 0.9;
+    let mut big_e = t + e * t.sin();
+    for _ in 0..100 {
+        big_e -= (big_e - e * big_e.sin() - t) / (1.0 - e * big_e.cos());
+    }
+    let (s, c) = big_e.sin_cos();
+    let w = (1.0 - e * e).sqrt();
+    [c - e, w * s, -s / (1.0 - e * c), w * c / (1.0 - e * c)]
+}
+
+#[dae_model(taylor = 1)]
+fn arenstorf() {
+    let mu = param(0.012277471);
+    let y1 = state(0.994);
+    let y2 = state(0.0);
+    let v1 = state(0.0);
+    let v2 = state(-2.00158510637908252240537862224);
+    let mup = 1.0 - mu;
+    let d1 = ((y1 + mu).powi(2) + y2 * y2).powf(1.5);
+    let d2 = ((y1 - mup).powi(2) + y2 * y2).powf(1.5);
+    der(y1) == v1;
+    der(y2) == v2;
+    der(v1) == y1 + 2.0 * v2 - mup * (y1 + mu) / d1 - mu * (y1 - mup) / d2;
+    der(v2) == y2 - 2.0 * v1 - mup * y2 / d1 - mu * y2 / d2;
+}
+
+const ARENSTORF_T: f64 = 17.0652165601579625588917206249;
+const ARENSTORF_Y0: [f64; 4] = [0.994, 0.0, 0.0, -2.00158510637908252240537862224];
+
+fn max_error(got: &[f64], want: &[f64]) -> f64 {
+    got.iter()
+        .zip(want)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max)
+}
+
+fn final_state(sol: &Solution) -> Vec<f64> {
+    sol.state(sol.times().len() - 1).unwrap_or(&[]).to_vec()
+}
+
+#[test]
+fn errors_fall_with_the_tolerance_on_kepler_and_arenstorf() {
+    let t1 = 20.0 * std::f64::consts::PI;
+    let run = |tol: f64| {
+        let o = Options::new().method(Method::Taylor).rtol(tol).atol(tol);
+        let k = Kepler::default().simulate(0.0, t1, &o).unwrap();
+        let a = Arenstorf::default().simulate(0.0, ARENSTORF_T, &o).unwrap();
+        (
+            max_error(&final_state(&k), &kepler_exact(t1)),
+            max_error(&final_state(&a), &ARENSTORF_Y0),
+        )
+    };
+    let (k6, a6) = run(1e-6);
+    let (k15, a15) = run(1e-15);
+    // Nine decades of tolerance: at least five decades of global error
+    // (ten orbits of an e = 0.9 ellipse amplify the local error).
+    assert!(k6 / k15 > 1e5, "Kepler: {k6:e} → {k15:e}");
+    assert!(a6 / a15 > 1e5, "Arenstorf: {a6:e} → {a15:e}");
+    assert!(k15 < 1e-9 && a15 < 1e-9, "{k15:e}, {a15:e}");
+}
+
+#[test]
+fn dense_output_is_the_step_polynomial() {
+    let two_pi = 2.0 * std::f64::consts::PI;
+    let sol = Kepler::default()
+        .simulate(
+            0.0,
+            two_pi,
+            &Options::new()
+                .method(Method::Taylor)
+                .rtol(1e-14)
+                .atol(1e-14),
+        )
+        .unwrap();
+    let names = ["q1", "q2", "p1", "p2"];
+    let at_steps = (0..sol.times().len())
+        .map(|k| max_error(sol.state(k).unwrap(), &kepler_exact(sol.times()[k])))
+        .fold(0.0, f64::max);
+    let between = (0..=500)
+        .map(|j| {
+            let t = two_pi * j as f64 / 500.0;
+            let e = kepler_exact(t);
+            (0..4)
+                .map(|i| (sol.at(t, names[i]).unwrap() - e[i]).abs())
+                .fold(0.0, f64::max)
+        })
+        .fold(0.0, f64::max);
+    assert!(
+        between <= 2.0 * at_steps + 1e-14,
+        "{between:e} between steps, {at_steps:e} at steps"
+    );
+}
+
+/// y' = 2t: the solution t² is a polynomial, so the series has an infinite
+/// radius; the step is limited by the interval alone and the result is exact.
+#[dae_model(taylor = 1)]
+fn parabola() {
+    let t = time();
+    let y = state(0.0);
+    der(y) == 2.0 * t;
+}
+
+#[test]
+fn polynomial_solutions_are_one_exact_step() {
+    let sol = Parabola::default()
+        .simulate(0.0, 3.0, &Options::new().method(Method::Taylor))
+        .unwrap();
+    assert_eq!(sol.stats().steps, 1);
+    assert_eq!(sol.last("y").unwrap(), 9.0);
+}
+
+#[test]
+fn integrates_backwards_and_refuses_models_without_a_tape() {
+    let two_pi = 2.0 * std::f64::consts::PI;
+    let back = Kepler::default()
+        .simulate(
+            two_pi,
+            0.0,
+            &Options::new()
+                .method(Method::Taylor)
+                .rtol(1e-12)
+                .atol(1e-12),
+        )
+        .unwrap();
+    assert!(max_error(&final_state(&back), &kepler_exact(0.0)) < 1e-8);
+    #[dae_model]
+    fn no_tape() {
+        let x = state(1.0);
+        der(x) == -x;
+    }
+    let err = NoTape::default()
+        .simulate(0.0, 1.0, &Options::new().method(Method::Taylor))
+        .unwrap_err();
+    assert!(
+        err.to_string().contains("#[dae_model(taylor = p)]"),
+        "{err}"
+    );
+}
