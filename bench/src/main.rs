@@ -5,7 +5,8 @@
 //! (add `--no-python` to skip SciPy and heyoka).
 //!
 //! Non-stiff (Kepler e = 0.9 over ten orbits, Arenstorf over one period):
-//! our DOPRI5 and DOP853 against the `ode_solvers` crate's and SciPy's.
+//! our DOPRI5 and DOP853 against the `ode_solvers` crate's and SciPy's,
+//! and our Taylor method against heyoka's.
 //! Stiff (Van der Pol ε = 1e-6, Robertson to 1e11, HIRES): our RADAU5
 //! against the `diffsol` crate's BDF and TR-BDF2 (its SDIRK) and SciPy's
 //! Radau and BDF (through ../shared/peers/peer.py).
@@ -19,7 +20,7 @@ use daegen::prelude::*;
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-#[dae_model]
+#[dae_model(taylor = 1)]
 fn kepler() {
     let e = param(0.9);
     let q1 = state(1.0 - e);
@@ -33,7 +34,7 @@ fn kepler() {
     der(p2) == -q2 * r3;
 }
 
-#[dae_model]
+#[dae_model(taylor = 1)]
 fn arenstorf() {
     let mu = param(0.012277471);
     let y1 = state(0.994);
@@ -471,6 +472,8 @@ fn main() {
             .collect()
     };
     let nonstiff_tols: Vec<f64> = (4..=12).map(|k| 10f64.powi(-k)).collect();
+    let taylor_tols: Vec<f64> = (4..=15).map(|k| 10f64.powi(-k)).collect();
+    let taylor_tols: Vec<f64> = (4..=15).map(|k| 10f64.powi(-k)).collect();
 
     // Non-stiff.
     let kepler_t1 = 20.0 * std::f64::consts::PI;
@@ -489,6 +492,13 @@ fn main() {
             nonstiff_tols
                 .iter()
                 .map(|&t| ours(&k, kepler_t1, Method::Dop853, t, t, &kepler_ref))
+                .collect(),
+        ),
+        (
+            "daegen Taylor",
+            taylor_tols
+                .iter()
+                .map(|&t| ours(&k, kepler_t1, Method::Taylor, t, t, &kepler_ref))
                 .collect(),
         ),
     ];
@@ -519,7 +529,7 @@ fn main() {
         ),
         (
             "heyoka",
-            collect_python("kepler", "heyoka", &nonstiff_tols, &|_| None),
+            collect_python("kepler", "heyoka", &taylor_tols, &|_| None),
         ),
     ];
     report(
@@ -530,7 +540,7 @@ fn main() {
     let equal = |i: usize| kepler_peers[i].1.clone().unwrap_or_default();
     report_equal_tolerance(
         "Kepler",
-        &kepler_ours,
+        &kepler_ours[..2],
         &[
             ("ode_solvers Dopri5", equal(0)),
             ("ode_solvers Dop853", equal(1)),
@@ -551,6 +561,13 @@ fn main() {
             nonstiff_tols
                 .iter()
                 .map(|&t| ours(&a, ARENSTORF_T, Method::Dop853, t, t, &ARENSTORF_Y0))
+                .collect(),
+        ),
+        (
+            "daegen Taylor",
+            taylor_tols
+                .iter()
+                .map(|&t| ours(&a, ARENSTORF_T, Method::Taylor, t, t, &ARENSTORF_Y0))
                 .collect(),
         ),
     ];
@@ -597,7 +614,7 @@ fn main() {
         ),
         (
             "heyoka",
-            collect_python("arenstorf", "heyoka", &nonstiff_tols, &|_| None),
+            collect_python("arenstorf", "heyoka", &taylor_tols, &|_| None),
         ),
     ];
     report(
@@ -608,7 +625,7 @@ fn main() {
     let equal = |i: usize| aren_peers[i].1.clone().unwrap_or_default();
     report_equal_tolerance(
         "Arenstorf",
-        &aren_ours,
+        &aren_ours[..2],
         &[
             ("ode_solvers Dopri5", equal(0)),
             ("ode_solvers Dop853", equal(1)),

@@ -197,7 +197,7 @@ impl Builder<'_> {
                     }
                 }
             }
-            Node::Atan2(_) => return Err("`atan2` is not in the Taylor tape yet".into()),
+            Node::Atan2(_) => return Err("the Taylor methods do not support `atan2` yet".into()),
         })
     }
 }
