@@ -104,7 +104,7 @@ fn taylor_method(
     let explicit: Vec<Id> = levels[0].clone();
     let tape = super::taylor_tape::decompose(g, &explicit, &slot_of, time).map_err(|message| {
         crate::Error::Unsupported {
-            message: format!("`taylor`: {message}"),
+            message: format!("{message}: remove `taylor = ...` from `#[dae_model]`, or write the model without this function"),
         }
     })?;
     let one = g.one();

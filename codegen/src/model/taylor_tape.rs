@@ -193,7 +193,10 @@ impl Builder<'_> {
                         self.binary("Div", &s, &c)
                     }
                     other => {
-                        return Err(format!("`{}` is not in the Taylor tape yet", other.name()))
+                        return Err(format!(
+                            "the Taylor methods do not support `{}` yet",
+                            other.name()
+                        ))
                     }
                 }
             }
