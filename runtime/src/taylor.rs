@@ -10,7 +10,7 @@ use crate::error::Error;
 use crate::model::Model;
 use crate::options::Options;
 use crate::solution::Solution;
-use crate::taylor_tape::{taylor_coefficients, TaylorWork};
+use crate::taylor_tape::TaylorWork;
 
 /// The order the method uses for a tolerance.
 pub fn order_for(tol: f64) -> usize {
@@ -47,7 +47,7 @@ pub(crate) fn integrate<M: Model>(
         options.atol
     };
     let p = order_for(tol);
-    let mut work = TaylorWork::new(tape.len(), n, p);
+    let mut work = TaylorWork::new(&tape, &outputs, n, p);
     let mut y = y0.to_vec();
     let mut dense = vec![0.0; (p + 1) * n];
     solution.set_interpolant(p + 1, interpolate);
@@ -63,7 +63,7 @@ pub(crate) fn integrate<M: Model>(
                 partial: Box::new(solution),
             });
         }
-        taylor_coefficients(&tape, &outputs, t, &y, &mut work);
+        work.compute(t, &y);
         solution.stats_mut().rhs_evals += 1;
         let norm = |k: usize| (0..n).map(|i| work.state(i)[k].abs()).fold(0.0, f64::max);
         if let Some(i) = (0..n).find(|&i| work.state(i).iter().any(|c| !c.is_finite())) {

@@ -40,137 +40,199 @@ pub enum TapeOp {
     CosOfPrevious,
 }
 
-/// Coefficient storage: `u[var][k]` and `x[state][k]` for k ≤ order.
+/// An operation with its operands resolved to rows of the coefficient
+/// buffer, so the inner loops are plain slice arithmetic.
+#[derive(Clone, Copy, Debug)]
+enum Step {
+    Add(usize, usize),
+    /// Multiplication by a constant: one product per order, not a convolution.
+    Scale(usize, f64),
+    /// Division by a constant.
+    Quotient(usize, f64),
+    Mul(usize, usize),
+    Div(usize, usize),
+    Pow(usize, f64),
+    Exp(usize),
+    Ln(usize),
+    /// `sin(a)` into this row and `cos(a)` into the next, together.
+    SinCos(usize),
+}
+
+/// The tape compiled for one order, with its coefficient storage. Rows of
+/// `order + 1` coefficients: states, time, constants, then u-variables.
 pub struct TaylorWork {
     order: usize,
-    u: Vec<f64>,
-    x: Vec<f64>,
+    states: usize,
+    time_row: usize,
+    steps: Vec<(usize, Step)>,
+    outputs: Vec<usize>,
+    rows: Vec<f64>,
 }
 
 impl TaylorWork {
-    /// Room for `vars` u-variables and `states` states up to `order`.
-    pub fn new(vars: usize, states: usize, order: usize) -> TaylorWork {
+    /// Compiles `tape` (with `outputs[i]` the operand that is f_i) for
+    /// `states` states up to `order`. Allocates; call once per integration.
+    pub fn new(tape: &[TapeOp], outputs: &[Operand], states: usize, order: usize) -> TaylorWork {
+        let w = order + 1;
+        let time_row = states;
+        let mut constants: Vec<f64> = Vec::new();
+        let constant_row = |c: f64, constants: &mut Vec<f64>| {
+            let i = constants
+                .iter()
+                .position(|&d| d.to_bits() == c.to_bits())
+                .unwrap_or_else(|| {
+                    constants.push(c);
+                    constants.len() - 1
+                });
+            time_row + 1 + i
+        };
+        // Constants are numbered in a first pass so that u-variable rows
+        // follow them.
+        let operands = tape
+            .iter()
+            .flat_map(|op| match *op {
+                TapeOp::Add(a, b) | TapeOp::Mul(a, b) | TapeOp::Div(a, b) => vec![a, b],
+                TapeOp::Pow(a, _) | TapeOp::Exp(a) | TapeOp::Ln(a) | TapeOp::Sin(a) => vec![a],
+                TapeOp::CosOfPrevious => vec![],
+            })
+            .chain(outputs.iter().copied());
+        for o in operands {
+            if let Operand::Const(c) = o {
+                constant_row(c, &mut constants);
+            }
+        }
+        let first_var = time_row + 1 + constants.len();
+        let row = |o: Operand, constants: &mut Vec<f64>| match o {
+            Operand::Var(i) => first_var + i,
+            Operand::State(i) => i,
+            Operand::Time => time_row,
+            Operand::Const(c) => constant_row(c, constants),
+        };
+        let mut steps = Vec::with_capacity(tape.len());
+        for (v, op) in tape.iter().enumerate() {
+            let mut r = |o| row(o, &mut constants);
+            let step = match *op {
+                TapeOp::Add(a, b) => Step::Add(r(a), r(b)),
+                TapeOp::Mul(a, Operand::Const(c)) | TapeOp::Mul(Operand::Const(c), a) => {
+                    Step::Scale(r(a), c)
+                }
+                TapeOp::Div(a, Operand::Const(c)) => Step::Quotient(r(a), c),
+                TapeOp::Mul(a, b) => Step::Mul(r(a), r(b)),
+                TapeOp::Div(a, b) => Step::Div(r(a), r(b)),
+                TapeOp::Pow(a, e) => Step::Pow(r(a), e),
+                TapeOp::Exp(a) => Step::Exp(r(a)),
+                TapeOp::Ln(a) => Step::Ln(r(a)),
+                TapeOp::Sin(a) => Step::SinCos(r(a)),
+                // Computed together with its sine.
+                TapeOp::CosOfPrevious => continue,
+            };
+            steps.push((first_var + v, step));
+        }
+        let outputs = outputs.iter().map(|&o| row(o, &mut constants)).collect();
+        let mut rows = vec![0.0; (first_var + tape.len()) * w];
+        for (i, c) in constants.iter().enumerate() {
+            rows[(time_row + 1 + i) * w] = *c;
+        }
+        if order > 0 {
+            rows[time_row * w + 1] = 1.0;
+        }
         TaylorWork {
             order,
-            u: vec![0.0; vars * (order + 1)],
-            x: vec![0.0; states * (order + 1)],
+            states,
+            time_row,
+            steps,
+            outputs,
+            rows,
         }
     }
 
     /// The normalised coefficients x_i^[k] = x_i^(k)/k! of state `i`.
     pub fn state(&self, i: usize) -> &[f64] {
         let w = self.order + 1;
-        &self.x[i * w..(i + 1) * w]
+        &self.rows[i * w..(i + 1) * w]
     }
-}
 
-fn coefficient(op: Operand, k: usize, u: &[f64], x: &[f64], w: usize, t: f64) -> f64 {
-    match op {
-        Operand::Var(i) => u[i * w + k],
-        Operand::State(i) => x[i * w + k],
-        Operand::Time => match k {
-            0 => t,
-            1 => 1.0,
-            _ => 0.0,
-        },
-        Operand::Const(c) => {
-            if k == 0 {
-                c
-            } else {
-                0.0
+    /// Fills the normalised Taylor coefficients of the solution through
+    /// (t, y): `self.state(i)[k]` for k = 0..=order.
+    pub fn compute(&mut self, t: f64, y: &[f64]) {
+        let w = self.order + 1;
+        let rows = &mut self.rows;
+        for (i, &yi) in y.iter().enumerate().take(self.states) {
+            rows[i * w] = yi;
+        }
+        rows[self.time_row * w] = t;
+        for k in 0..self.order {
+            for &(v, step) in &self.steps {
+                let at = |r: usize, j: usize| rows[r * w + j];
+                let row = |r: usize| &rows[r * w..r * w + k + 1];
+                let own = &rows[v * w..v * w + k];
+                let kf = k as f64;
+                let (value, second) = match step {
+                    Step::Add(a, b) => (at(a, k) + at(b, k), 0.0),
+                    Step::Scale(a, c) => (at(a, k) * c, 0.0),
+                    Step::Quotient(a, c) => (at(a, k) / c, 0.0),
+                    Step::Mul(a, b) => (convolution(row(a), row(b)), 0.0),
+                    Step::Div(a, b) => {
+                        // u = a/b: u^[k] = (a^[k] − Σ_{j<k} u^[j] b^[k−j]) / b^[0].
+                        let s = convolution(own, &row(b)[1..]);
+                        ((at(a, k) - s) / at(b, 0), 0.0)
+                    }
+                    Step::Pow(a, e) if k == 0 => (at(a, 0).powf(e), 0.0),
+                    Step::Pow(a, e) => {
+                        let a = row(a);
+                        let s: f64 = (0..k)
+                            .map(|j| (kf * e - j as f64 * (e + 1.0)) * a[k - j] * own[j])
+                            .sum();
+                        (s / (kf * a[0]), 0.0)
+                    }
+                    Step::Exp(a) if k == 0 => (at(a, 0).exp(), 0.0),
+                    Step::Exp(a) => (weighted_convolution(row(a), own) / kf, 0.0),
+                    Step::Ln(a) if k == 0 => (at(a, 0).ln(), 0.0),
+                    Step::Ln(a) => {
+                        let a = row(a);
+                        let s: f64 = (1..k).map(|j| j as f64 * own[j] * a[k - j]).sum();
+                        ((kf * a[k] - s) / (kf * a[0]), 0.0)
+                    }
+                    Step::SinCos(a) if k == 0 => at(a, 0).sin_cos(),
+                    Step::SinCos(a) => {
+                        // s' = a' c and c' = −a' s, both from the previous orders.
+                        let a = row(a);
+                        let s = &rows[v * w..v * w + k];
+                        let c = &rows[(v + 1) * w..(v + 1) * w + k];
+                        (
+                            weighted_convolution(a, c) / kf,
+                            -weighted_convolution(a, s) / kf,
+                        )
+                    }
+                };
+                rows[v * w + k] = value;
+                if let Step::SinCos(_) = step {
+                    rows[(v + 1) * w + k] = second;
+                }
+            }
+            // x^[k+1] = f^[k] / (k + 1).
+            for (i, &out) in self.outputs.iter().enumerate() {
+                rows[i * w + k + 1] = rows[out * w + k] / (k + 1) as f64;
             }
         }
     }
 }
 
-/// Fills the normalised Taylor coefficients of the solution through
-/// (t, y): `work.state(i)[k]` for k = 0..=order. `outputs[i]` is the
-/// operand that is f_i.
-pub fn taylor_coefficients(
-    tape: &[TapeOp],
-    outputs: &[Operand],
-    t: f64,
-    y: &[f64],
-    work: &mut TaylorWork,
-) {
-    let w = work.order + 1;
-    for (i, &yi) in y.iter().enumerate() {
-        work.x[i * w] = yi;
-    }
-    for k in 0..work.order {
-        for (v, op) in tape.iter().enumerate() {
-            let (u, x) = (&work.u, &work.x);
-            let c = |o: Operand, j: usize| coefficient(o, j, u, x, w, t);
-            let value = match *op {
-                TapeOp::Add(a, b) => c(a, k) + c(b, k),
-                TapeOp::Mul(a, b) => (0..=k).map(|j| c(a, j) * c(b, k - j)).sum(),
-                TapeOp::Div(a, b) => {
-                    let s: f64 = (0..k).map(|j| u[v * w + j] * c(b, k - j)).sum();
-                    (c(a, k) - s) / c(b, 0)
-                }
-                TapeOp::Pow(a, e) => {
-                    if k == 0 {
-                        c(a, 0).powf(e)
-                    } else {
-                        let kf = k as f64;
-                        let s: f64 = (0..k)
-                            .map(|j| (kf * e - j as f64 * (e + 1.0)) * c(a, k - j) * u[v * w + j])
-                            .sum();
-                        s / (kf * c(a, 0))
-                    }
-                }
-                TapeOp::Exp(a) => {
-                    if k == 0 {
-                        c(a, 0).exp()
-                    } else {
-                        (1..=k)
-                            .map(|j| j as f64 * c(a, j) * u[v * w + k - j])
-                            .sum::<f64>()
-                            / k as f64
-                    }
-                }
-                TapeOp::Ln(a) => {
-                    if k == 0 {
-                        c(a, 0).ln()
-                    } else {
-                        let s: f64 = (1..k).map(|j| j as f64 * u[v * w + j] * c(a, k - j)).sum();
-                        (k as f64 * c(a, k) - s) / (k as f64 * c(a, 0))
-                    }
-                }
-                TapeOp::Sin(a) => {
-                    if k == 0 {
-                        c(a, 0).sin()
-                    } else {
-                        // s' = a' cos: the cos is the next u-variable.
-                        (1..=k)
-                            .map(|j| j as f64 * c(a, j) * u[(v + 1) * w + k - j])
-                            .sum::<f64>()
-                            / k as f64
-                    }
-                }
-                TapeOp::CosOfPrevious => {
-                    let a = match tape[v - 1] {
-                        TapeOp::Sin(a) => a,
-                        _ => Operand::Const(0.0),
-                    };
-                    if k == 0 {
-                        c(a, 0).cos()
-                    } else {
-                        -(1..=k)
-                            .map(|j| j as f64 * c(a, j) * u[(v - 1) * w + k - j])
-                            .sum::<f64>()
-                            / k as f64
-                    }
-                }
-            };
-            work.u[v * w + k] = value;
-        }
-        // x^[k+1] = f^[k] / (k + 1).
-        for (i, &out) in outputs.iter().enumerate() {
-            let f = coefficient(out, k, &work.u, &work.x, w, t);
-            work.x[i * w + k + 1] = f / (k + 1) as f64;
-        }
-    }
+/// Σ_j a[j]·b[n−1−j] over the common length n: the Cauchy product term.
+fn convolution(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    a[..n]
+        .iter()
+        .zip(b[..n].iter().rev())
+        .map(|(x, y)| x * y)
+        .sum()
+}
+
+/// Σ_{j=1..k} j·a[j]·b[k−j] for `a` of length k+1 and `b` of length k: the
+/// term of the derivative recurrences u' = a'·g.
+fn weighted_convolution(a: &[f64], b: &[f64]) -> f64 {
+    let k = b.len();
+    (1..=k).map(|j| j as f64 * a[j] * b[k - j]).sum()
 }
 
 #[cfg(test)]
@@ -181,8 +243,8 @@ mod tests {
     #[test]
     fn products_give_the_geometric_series() {
         let tape = [TapeOp::Mul(Operand::State(0), Operand::State(0))];
-        let mut work = TaylorWork::new(1, 1, 10);
-        taylor_coefficients(&tape, &[Operand::Var(0)], 0.0, &[0.5], &mut work);
+        let mut work = TaylorWork::new(&tape, &[Operand::Var(0)], 1, 10);
+        work.compute(0.0, &[0.5]);
         for (k, c) in work.state(0).iter().enumerate() {
             assert!((c - 0.5f64.powi(k as i32 + 1)).abs() < 1e-15);
         }
@@ -199,9 +261,9 @@ mod tests {
             TapeOp::Mul(Operand::State(0), Operand::Var(1)),
         ];
         let order = 20;
-        let mut work = TaylorWork::new(3, 1, order);
+        let mut work = TaylorWork::new(&tape, &[Operand::Var(2)], 1, order);
         let t0 = 0.3;
-        taylor_coefficients(&tape, &[Operand::Var(2)], t0, &[t0.sin().exp()], &mut work);
+        work.compute(t0, &[t0.sin().exp()]);
         let h = 0.1;
         let sum: f64 = work.state(0).iter().rev().fold(0.0, |acc, c| acc * h + c);
         assert!((sum - (t0 + h).sin().exp()).abs() < 1e-15);
@@ -221,15 +283,15 @@ mod tests {
             TapeOp::Pow(Operand::State(0), 0.5),
             TapeOp::Div(Operand::Const(1.0), Operand::Var(0)),
         ];
-        let run = |tape: &[TapeOp], out: Operand, vars: usize| {
-            let mut work = TaylorWork::new(vars, 1, 12);
-            taylor_coefficients(tape, &[out], 0.0, &[2.0], &mut work);
+        let run = |tape: &[TapeOp], out: Operand| {
+            let mut work = TaylorWork::new(tape, &[out], 1, 12);
+            work.compute(0.0, &[2.0]);
             work.state(0).to_vec()
         };
         let (ca, cb, cc) = (
-            run(&a, Operand::Var(0), 1),
-            run(&b, Operand::Var(2), 3),
-            run(&c, Operand::Var(1), 2),
+            run(&a, Operand::Var(0)),
+            run(&b, Operand::Var(2)),
+            run(&c, Operand::Var(1)),
         );
         // Exact: y = (y0^(3/2) + 3t/2)^(2/3); check the first coefficients and mutual agreement.
         assert!((ca[1] - 2f64.powf(-0.5)).abs() < 1e-15);
