@@ -147,6 +147,7 @@ impl TaylorWork {
     }
 
     /// The normalised coefficients x_i^[k] = x_i^(k)/k! of state `i`.
+    #[inline]
     pub fn state(&self, i: usize) -> &[f64] {
         let w = self.order + 1;
         &self.rows[i * w..(i + 1) * w]
@@ -179,18 +180,18 @@ impl TaylorWork {
                     }
                     Step::Pow(a, e) if k == 0 => (at(a, 0).powf(e), 0.0),
                     Step::Pow(a, e) => {
+                        // Σ_{j<k} (k·e − j·(e+1)) a^[k−j] u^[j].
                         let a = row(a);
-                        let s: f64 = (0..k)
-                            .map(|j| (kf * e - j as f64 * (e + 1.0)) * a[k - j] * own[j])
-                            .sum();
-                        (s / (kf * a[0]), 0.0)
+                        let (plain, weighted) = convolutions(own, &a[1..]);
+                        ((kf * e * plain - (e + 1.0) * weighted) / (kf * a[0]), 0.0)
                     }
                     Step::Exp(a) if k == 0 => (at(a, 0).exp(), 0.0),
                     Step::Exp(a) => (weighted_convolution(row(a), own) / kf, 0.0),
                     Step::Ln(a) if k == 0 => (at(a, 0).ln(), 0.0),
                     Step::Ln(a) => {
+                        // Σ_{0<j<k} j u^[j] a^[k−j].
                         let a = row(a);
-                        let s: f64 = (1..k).map(|j| j as f64 * own[j] * a[k - j]).sum();
+                        let (_, s) = convolutions(own, &a[1..]);
                         ((kf * a[k] - s) / (kf * a[0]), 0.0)
                     }
                     Step::SinCos(a) if k == 0 => at(a, 0).sin_cos(),
@@ -218,7 +219,8 @@ impl TaylorWork {
     }
 }
 
-/// Σ_j a[j]·b[n−1−j] over the common length n: the Cauchy product term.
+/// Σ_i a[i]·b[n−1−i] over the common length n: the Cauchy product term.
+#[inline]
 fn convolution(a: &[f64], b: &[f64]) -> f64 {
     let n = a.len().min(b.len());
     a[..n]
@@ -228,11 +230,27 @@ fn convolution(a: &[f64], b: &[f64]) -> f64 {
         .sum()
 }
 
+/// (Σ_i a[i]·b[n−1−i], Σ_i i·a[i]·b[n−1−i]) over the common length n, in
+/// one pass.
+#[inline]
+fn convolutions(a: &[f64], b: &[f64]) -> (f64, f64) {
+    let n = a.len().min(b.len());
+    let (mut plain, mut weighted, mut index) = (0.0, 0.0, 0.0);
+    for (x, y) in a[..n].iter().zip(b[..n].iter().rev()) {
+        let term = x * y;
+        plain += term;
+        weighted += index * term;
+        index += 1.0;
+    }
+    (plain, weighted)
+}
+
 /// Σ_{j=1..k} j·a[j]·b[k−j] for `a` of length k+1 and `b` of length k: the
 /// term of the derivative recurrences u' = a'·g.
+#[inline]
 fn weighted_convolution(a: &[f64], b: &[f64]) -> f64 {
-    let k = b.len();
-    (1..=k).map(|j| j as f64 * a[j] * b[k - j]).sum()
+    let (plain, weighted) = convolutions(&a[1..], b);
+    plain + weighted
 }
 
 #[cfg(test)]
