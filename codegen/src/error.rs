@@ -22,6 +22,14 @@ pub enum Error {
         /// What and why.
         message: String,
     },
+    /// A non-smooth function where the Taylor methods need a smooth
+    /// right-hand side.
+    NotSmooth {
+        /// The call node, to find where the user wrote it.
+        node: crate::Id,
+        /// The function's name in the model language.
+        function: &'static str,
+    },
     /// The text syntax could not be read.
     Parse {
         /// Byte offset of the problem in the input.
@@ -42,6 +50,11 @@ impl fmt::Display for Error {
             }
             Error::Parse { position, message } => write!(f, "at byte {position}: {message}"),
             Error::Unsupported { message } => f.write_str(message),
+            Error::NotSmooth { function, .. } => write!(
+                f,
+                "`{function}` is not smooth and the Taylor methods need a smooth right-hand side: \
+                 remove `taylor = ...` from `#[dae_model]`, or write the model without `{function}`"
+            ),
         }
     }
 }

@@ -38,6 +38,43 @@ pub enum TapeOp {
     Sin(Operand),
     /// The `cos` of the argument of the preceding `Sin`.
     CosOfPrevious,
+    /// `sinh(a)`; its `cosh` is the next u-variable.
+    Sinh(Operand),
+    /// The `cosh` of the argument of the preceding `Sinh`.
+    CoshOfPrevious,
+    /// `f(a)` for an inverse function f whose derivative is ±a'/d; `d` is
+    /// √(1 − a²) for asin and acos, 1 + a² for atan (earlier u-variables).
+    Inverse(Inverse, Operand, Operand),
+    /// `atan2(y, x)` with `d = x² + y²`: u' = (x·y' − y·x')/d.
+    Atan2(Operand, Operand, Operand),
+}
+
+/// The inverse functions of [`TapeOp::Inverse`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Inverse {
+    /// u' = a'/√(1 − a²).
+    Asin,
+    /// u' = −a'/√(1 − a²).
+    Acos,
+    /// u' = a'/(1 + a²).
+    Atan,
+}
+
+impl Inverse {
+    fn value(self, a: f64) -> f64 {
+        match self {
+            Inverse::Asin => a.asin(),
+            Inverse::Acos => a.acos(),
+            Inverse::Atan => a.atan(),
+        }
+    }
+
+    fn sign(self) -> f64 {
+        match self {
+            Inverse::Acos => -1.0,
+            _ => 1.0,
+        }
+    }
 }
 
 /// An operation with its operands resolved to rows of the coefficient
@@ -56,6 +93,10 @@ enum Step {
     Ln(usize),
     /// `sin(a)` into this row and `cos(a)` into the next, together.
     SinCos(usize),
+    /// `sinh(a)` into this row and `cosh(a)` into the next.
+    SinhCosh(usize),
+    Inverse(Inverse, usize, usize),
+    Atan2(usize, usize, usize),
 }
 
 /// The tape compiled for one order, with its coefficient storage. Rows of
@@ -92,8 +133,14 @@ impl TaylorWork {
             .iter()
             .flat_map(|op| match *op {
                 TapeOp::Add(a, b) | TapeOp::Mul(a, b) | TapeOp::Div(a, b) => vec![a, b],
-                TapeOp::Pow(a, _) | TapeOp::Exp(a) | TapeOp::Ln(a) | TapeOp::Sin(a) => vec![a],
-                TapeOp::CosOfPrevious => vec![],
+                TapeOp::Pow(a, _)
+                | TapeOp::Exp(a)
+                | TapeOp::Ln(a)
+                | TapeOp::Sin(a)
+                | TapeOp::Sinh(a) => vec![a],
+                TapeOp::Inverse(_, a, d) => vec![a, d],
+                TapeOp::Atan2(y, x, d) => vec![y, x, d],
+                TapeOp::CosOfPrevious | TapeOp::CoshOfPrevious => vec![],
             })
             .chain(outputs.iter().copied());
         for o in operands {
@@ -123,8 +170,11 @@ impl TaylorWork {
                 TapeOp::Exp(a) => Step::Exp(r(a)),
                 TapeOp::Ln(a) => Step::Ln(r(a)),
                 TapeOp::Sin(a) => Step::SinCos(r(a)),
+                TapeOp::Sinh(a) => Step::SinhCosh(r(a)),
+                TapeOp::Inverse(f, a, d) => Step::Inverse(f, r(a), r(d)),
+                TapeOp::Atan2(y, x, d) => Step::Atan2(r(y), r(x), r(d)),
                 // Computed together with its sine.
-                TapeOp::CosOfPrevious => continue,
+                TapeOp::CosOfPrevious | TapeOp::CoshOfPrevious => continue,
             };
             steps.push((first_var + v, step));
         }
@@ -194,6 +244,33 @@ impl TaylorWork {
                         let (_, s) = convolutions(own, &a[1..]);
                         ((kf * a[k] - s) / (kf * a[0]), 0.0)
                     }
+                    Step::SinhCosh(a) if k == 0 => (at(a, 0).sinh(), at(a, 0).cosh()),
+                    Step::SinhCosh(a) => {
+                        // s' = a' c and c' = a' s.
+                        let a = row(a);
+                        let s = &rows[v * w..v * w + k];
+                        let c = &rows[(v + 1) * w..(v + 1) * w + k];
+                        (
+                            weighted_convolution(a, c) / kf,
+                            weighted_convolution(a, s) / kf,
+                        )
+                    }
+                    Step::Inverse(f, a, _) if k == 0 => (f.value(at(a, 0)), 0.0),
+                    Step::Inverse(f, a, d) => {
+                        // d·u' = ±a': k u^[k] d^[0] = ±k a^[k] − Σ_{0<j<k} j u^[j] d^[k−j].
+                        let d = row(d);
+                        let (_, s) = convolutions(own, &d[1..]);
+                        ((f.sign() * at(a, k) - s / kf) / d[0], 0.0)
+                    }
+                    Step::Atan2(y, x, _) if k == 0 => (at(y, 0).atan2(at(x, 0)), 0.0),
+                    Step::Atan2(y, x, d) => {
+                        // d·u' = x·y' − y·x'.
+                        let (y, x, d) = (row(y), row(x), row(d));
+                        let numerator =
+                            weighted_convolution(y, &x[..k]) - weighted_convolution(x, &y[..k]);
+                        let (_, s) = convolutions(own, &d[1..]);
+                        ((numerator - s) / (kf * d[0]), 0.0)
+                    }
                     Step::SinCos(a) if k == 0 => at(a, 0).sin_cos(),
                     Step::SinCos(a) => {
                         // s' = a' c and c' = −a' s, both from the previous orders.
@@ -207,7 +284,7 @@ impl TaylorWork {
                     }
                 };
                 rows[v * w + k] = value;
-                if let Step::SinCos(_) = step {
+                if let Step::SinCos(_) | Step::SinhCosh(_) = step {
                     rows[(v + 1) * w + k] = second;
                 }
             }

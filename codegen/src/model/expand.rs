@@ -102,13 +102,15 @@ fn taylor_method(
     // The AD tape for the adaptive Taylor method (compact layout).
     let slot_of = layout.slot_of.clone();
     let explicit: Vec<Id> = levels[0].clone();
-    let tape = super::taylor_tape::decompose(g, &explicit, &slot_of, time).map_err(|message| {
-        crate::Error::Unsupported {
-            message: format!("{message}: remove `taylor = ...` from `#[dae_model]`, or write the model without this function"),
-        }
-    })?;
-    let one = g.one();
-    let consts: Vec<Id> = tape.constants.iter().map(|c| c.unwrap_or(one)).collect();
+    let tape = super::taylor_tape::decompose(g, &explicit, &slot_of, time)?;
+    let consts: Vec<Id> = tape
+        .constants
+        .iter()
+        .map(|c| match c {
+            super::taylor_tape::Constant::Expr(id) => *id,
+            super::taylor_tape::Constant::Integer(n) => g.int(*n),
+        })
+        .collect();
     let const_code = program(g, layout, &consts, &|i, v| {
         let name = quote::format_ident!("c{}", i);
         quote!(let #name: f64 = #v;)

@@ -92,4 +92,7 @@ pub struct ModelIr {
     pub equations: Vec<Equation>,
     /// Initial values of derivatives.
     pub inits: Vec<Init>,
+    /// Calls of non-smooth functions (`abs`) and their tokens, for errors
+    /// found after lowering (the Taylor methods refuse them).
+    pub non_smooth_calls: Vec<(Id, proc_macro2::TokenStream)>,
 }

@@ -87,6 +87,7 @@ struct Lower<'c> {
     equations: Vec<Equation>,
     inits: Vec<Init>,
     unrolled: usize,
+    non_smooth_calls: Vec<(Id, proc_macro2::TokenStream)>,
 }
 
 /// Lowers the body of `item`. Errors go to `cx`; the IR is returned even
@@ -104,6 +105,7 @@ pub fn lower(cx: &mut Ctxt, item: &syn::ItemFn) -> ModelIr {
         equations: Vec::new(),
         inits: Vec::new(),
         unrolled: 0,
+        non_smooth_calls: Vec::new(),
     };
     if !item.sig.inputs.is_empty() {
         l.cx.error_at(
@@ -142,6 +144,7 @@ pub fn lower(cx: &mut Ctxt, item: &syn::ItemFn) -> ModelIr {
         outputs: l.outputs,
         equations: l.equations,
         inits: l.inits,
+        non_smooth_calls: l.non_smooth_calls,
     }
 }
 
@@ -950,6 +953,9 @@ impl Lower<'_> {
             (_, Some(f)) => self.g.call(f, args[0]),
             _ => return None,
         };
+        if let (Ok(id), Some(Func::Abs)) = (&r, func) {
+            self.non_smooth_calls.push((*id, e.to_token_stream()));
+        }
         self.graph_result(r, e)
     }
 

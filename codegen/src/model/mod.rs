@@ -39,6 +39,19 @@ pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
     if let (Some(system), true) = (&system, cx.is_ok()) {
         match expand::expand(&mut ir, system, taylor) {
             Ok(tokens) => return tokens,
+            Err(e @ crate::Error::NotSmooth { node, .. }) => {
+                // The call itself when the right-hand side kept the node the
+                // user wrote; else the first such call.
+                let call = ir
+                    .non_smooth_calls
+                    .iter()
+                    .find(|(id, _)| *id == node)
+                    .or(ir.non_smooth_calls.first());
+                match call {
+                    Some((_, tokens)) => cx.error_at(tokens, e),
+                    None => cx.error_at(&item.sig.ident, e),
+                }
+            }
             Err(e) => cx.error_at(&item.sig.ident, e),
         }
     }

@@ -40,10 +40,18 @@ impl Operand {
     }
 }
 
+/// A constant of the tape, computed once when the tape is built.
+pub enum Constant {
+    /// The value of a parameter expression.
+    Expr(Id),
+    /// An integer the decomposition needs (the 1 of `1 − a²`, ...).
+    Integer(i64),
+}
+
 /// The tape of `outputs`: (constant expressions, operations, output operands).
 pub struct Tape {
-    /// Constant expressions, in order (`c0`, `c1`, ...); `None` is 1.
-    pub constants: Vec<Option<Id>>,
+    /// Constants, in order (`c0`, `c1`, ...).
+    pub constants: Vec<Constant>,
     /// One `TapeOp` per u-variable, as tokens.
     pub ops: Vec<TokenStream>,
     /// The operand of each output.
@@ -55,10 +63,12 @@ struct Builder<'g> {
     slot_of: &'g FxHashMap<SymbolId, usize>,
     time: SymbolId,
     operand_of: FxHashMap<Id, Operand>,
-    constants: Vec<Option<Id>>,
+    constants: Vec<Constant>,
     ops: Vec<TokenStream>,
     /// sin(a) → the u-variable of its pair, so cos(a) is reused.
     sin_of: FxHashMap<Id, usize>,
+    /// sinh(a) → the u-variable of its pair with cosh(a).
+    sinh_of: FxHashMap<Id, usize>,
 }
 
 impl Builder<'_> {
@@ -68,8 +78,50 @@ impl Builder<'_> {
     }
 
     fn constant(&mut self, id: Id) -> Operand {
-        self.constants.push(Some(id));
+        self.constants.push(Constant::Expr(id));
         Operand::Const(self.constants.len() - 1)
+    }
+
+    fn integer(&mut self, n: i64) -> Operand {
+        self.constants.push(Constant::Integer(n));
+        Operand::Const(self.constants.len() - 1)
+    }
+
+    /// The u-variable of `f(a)` with d·u' = ±a' (asin, acos, atan); `d` is
+    /// built from products, sums and a square root of earlier u-variables.
+    fn inverse(&mut self, f: &str, a: &Operand) -> Operand {
+        let square = self.binary("Mul", a, a);
+        let one = self.integer(1);
+        let d = if f == "Atan" {
+            self.binary("Add", &one, &square)
+        } else {
+            let minus_one = self.integer(-1);
+            let negated = self.binary("Mul", &minus_one, &square);
+            let difference = self.binary("Add", &one, &negated);
+            let b = difference.tokens();
+            self.push(quote!(::daegen::runtime::taylor_tape::TapeOp::Pow(#b, 0.5)))
+        };
+        let (a, d) = (a.tokens(), d.tokens());
+        let f = quote::format_ident!("{}", f);
+        self.push(quote!(::daegen::runtime::taylor_tape::TapeOp::Inverse(
+            ::daegen::runtime::taylor_tape::Inverse::#f,
+            #a,
+            #d
+        )))
+    }
+
+    fn sinh_cosh(&mut self, arg: Id, a: &Operand) -> (Operand, Operand) {
+        if let Some(&v) = self.sinh_of.get(&arg) {
+            return (Operand::Var(v), Operand::Var(v + 1));
+        }
+        let s = self.unary("Sinh", a);
+        let c = self.push(quote!(
+            ::daegen::runtime::taylor_tape::TapeOp::CoshOfPrevious
+        ));
+        if let Operand::Var(v) = s {
+            self.sinh_of.insert(arg, v);
+        }
+        (s, c)
     }
 
     fn binary(&mut self, name: &str, a: &Operand, b: &Operand) -> Operand {
@@ -118,7 +170,7 @@ impl Builder<'_> {
     }
 
     /// The operand of `id`, its operands being done (ascending ids).
-    fn node(&mut self, id: Id, time_dependent: bool) -> Result<Operand, String> {
+    fn node(&mut self, id: Id, time_dependent: bool) -> crate::Result<Operand> {
         if !time_dependent {
             return Ok(self.constant(id));
         }
@@ -130,11 +182,13 @@ impl Builder<'_> {
                 SymbolKind::Parameter => self.constant(id),
                 _ => match self.slot_of.get(s) {
                     Some(&i) => Operand::State(i),
-                    None => {
-                        return Err(format!(
-                            "`{}` has no place in the Taylor tape",
-                            g.symbol(*s).name
-                        ))
+                                        None => {
+                        return Err(crate::Error::Unsupported {
+                            message: format!(
+                                "`{}` has no place in the Taylor tape: remove `taylor = ...` from `#[dae_model]`",
+                                g.symbol(*s).name
+                            ),
+                        })
                     }
                 },
             },
@@ -163,8 +217,7 @@ impl Builder<'_> {
                     Some(n) if n.as_integer().is_some() => {
                         let k = n.as_integer().unwrap_or(-1).unsigned_abs();
                         let p = self.integer_power(&base, k);
-                        self.constants.push(None);
-                        let one = Operand::Const(self.constants.len() - 1);
+                        let one = self.integer(1);
                         self.binary("Div", &one, &p)
                     }
                     Some(n) => {
@@ -192,15 +245,31 @@ impl Builder<'_> {
                         let (s, c) = self.sin_cos(*a, &arg);
                         self.binary("Div", &s, &c)
                     }
-                    other => {
-                        return Err(format!(
-                            "the Taylor methods do not support `{}` yet",
-                            other.name()
-                        ))
+                    Func::Sinh => self.sinh_cosh(*a, &arg).0,
+                    Func::Cosh => self.sinh_cosh(*a, &arg).1,
+                    Func::Tanh => {
+                        let (s, c) = self.sinh_cosh(*a, &arg);
+                        self.binary("Div", &s, &c)
+                    }
+                    Func::Asin => self.inverse("Asin", &arg),
+                    Func::Acos => self.inverse("Acos", &arg),
+                    Func::Atan => self.inverse("Atan", &arg),
+                                        Func::Abs | Func::Sign => {
+                        return Err(crate::Error::NotSmooth {
+                            node: id,
+                            function: f.name(),
+                        })
                     }
                 }
             }
-            Node::Atan2(_) => return Err("the Taylor methods do not support `atan2` yet".into()),
+            Node::Atan2([y, x]) => {
+                let (y, x) = (self.operand(*y), self.operand(*x));
+                let xx = self.binary("Mul", &x, &x);
+                let yy = self.binary("Mul", &y, &y);
+                let d = self.binary("Add", &xx, &yy);
+                let (y, x, d) = (y.tokens(), x.tokens(), d.tokens());
+                self.push(quote!(::daegen::runtime::taylor_tape::TapeOp::Atan2(#y, #x, #d)))
+            }
         })
     }
 }
@@ -211,7 +280,7 @@ pub fn decompose(
     outputs: &[Id],
     slot_of: &FxHashMap<SymbolId, usize>,
     time: SymbolId,
-) -> Result<Tape, String> {
+) -> crate::Result<Tape> {
     let order = g.reachable(outputs);
     // A node depends on time when it reaches a state or the time symbol.
     let mut time_dependent: FxHashMap<Id, bool> = FxHashMap::default();
@@ -234,6 +303,7 @@ pub fn decompose(
         constants: Vec::new(),
         ops: Vec::new(),
         sin_of: FxHashMap::default(),
+        sinh_of: FxHashMap::default(),
     };
     // Constant nodes get a slot only when a time-dependent node or an
     // output uses them; their own constant operands are computed inside them.

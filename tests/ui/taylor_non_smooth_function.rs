@@ -1,9 +1,9 @@
 use daegen::prelude::*;
 
 #[dae_model(taylor = 2)]
-fn angle() {
+fn bounce() {
     let x = state(0.5);
-    der(x) == asin(x);
+    der(x) == -abs(x);
 }
 
 fn main() {}
