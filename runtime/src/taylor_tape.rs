@@ -87,6 +87,8 @@ enum Step {
     /// Division by a constant.
     Quotient(usize, f64),
     Mul(usize, usize),
+    /// `a·a`: the symmetric convolution, half the products.
+    Square(usize),
     Div(usize, usize),
     Pow(usize, f64),
     Exp(usize),
@@ -164,6 +166,7 @@ impl TaylorWork {
                     Step::Scale(r(a), c)
                 }
                 TapeOp::Div(a, Operand::Const(c)) => Step::Quotient(r(a), c),
+                TapeOp::Mul(a, b) if a == b => Step::Square(r(a)),
                 TapeOp::Mul(a, b) => Step::Mul(r(a), r(b)),
                 TapeOp::Div(a, b) => Step::Div(r(a), r(b)),
                 TapeOp::Pow(a, e) => Step::Pow(r(a), e),
@@ -223,6 +226,14 @@ impl TaylorWork {
                     Step::Scale(a, c) => (at(a, k) * c, 0.0),
                     Step::Quotient(a, c) => (at(a, k) / c, 0.0),
                     Step::Mul(a, b) => (convolution(row(a), row(b)), 0.0),
+                    Step::Square(a) => {
+                        // Σ_j a_j a_{k−j} = 2 Σ_{j<k−j} a_j a_{k−j} + a_{k/2}² (k even).
+                        let a = row(a);
+                        let half = (k + 1) / 2;
+                        let twice = 2.0 * convolution(&a[..half], &a[k + 1 - half..]);
+                        let middle = if k % 2 == 0 { a[k / 2] * a[k / 2] } else { 0.0 };
+                        (twice + middle, 0.0)
+                    }
                     Step::Div(a, b) => {
                         // u = a/b: u^[k] = (a^[k] − Σ_{j<k} u^[j] b^[k−j]) / b^[0].
                         let s = convolution(own, &row(b)[1..]);

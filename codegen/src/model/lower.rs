@@ -19,7 +19,7 @@ const MAX_UNROLLED: usize = 100_000;
 enum Binding {
     Param(Id),
     State(SymbolId),
-        StateArray(Vec<SymbolId>),
+    StateArray(Vec<SymbolId>),
     /// `let m = [a, b, ...];`: constant-indexed values (masses, lengths).
     ValueArray(Vec<Id>),
     Algebraic(Id),
@@ -38,7 +38,7 @@ impl Binding {
         match self {
             Binding::Param(_) => "a parameter",
             Binding::State(_) => "a state",
-                        Binding::StateArray(_) => "an array of states",
+            Binding::StateArray(_) => "an array of states",
             Binding::ValueArray(_) => "an array of values",
             Binding::Algebraic(_) => "an algebraic variable",
             Binding::Time(_) => "the time",
@@ -275,7 +275,7 @@ impl Lower<'_> {
                 return self.declaration(&ident, &name, call, doc, local);
             }
         }
-                if let (Expr::Array(array), false) = (e, mutable) {
+        if let (Expr::Array(array), false) = (e, mutable) {
             let values: Vec<Option<Id>> = array.elems.iter().map(|v| self.value(v)).collect();
             if let Some(values) = values.into_iter().collect::<Option<Vec<Id>>>() {
                 self.bind(&ident, Binding::ValueArray(values));
@@ -813,9 +813,10 @@ impl Lower<'_> {
                     ) => Some(id),
                     Some(Binding::Value { id, .. }) => Some(id),
                     Some(Binding::State(s)) => Some(self.g.symbol_node(s)),
-                                        Some(b @ (Binding::StateArray(_) | Binding::ValueArray(_))) => {
+                    Some(b @ (Binding::StateArray(_) | Binding::ValueArray(_))) => {
                         let what = b.describe();
-                        self.cx.error_at(e, format!("`{name}` is {what}: index it, `{name}[0]`"));
+                        self.cx
+                            .error_at(e, format!("`{name}` is {what}: index it, `{name}[0]`"));
                         None
                     }
                     None => {
@@ -827,7 +828,7 @@ impl Lower<'_> {
             Expr::Index(ix) => {
                 let Expr::Path(p) = &*ix.expr else {
                     self.cx
-                                                .error_at(&ix.expr, "only arrays declared in the model can be indexed");
+                        .error_at(&ix.expr, "only arrays declared in the model can be indexed");
                     return None;
                 };
                 let name = p
@@ -835,17 +836,15 @@ impl Lower<'_> {
                     .get_ident()
                     .map(|i| i.to_string())
                     .unwrap_or_default();
-                                let elements = match self.lookup(&name).cloned() {
+                let elements = match self.lookup(&name).cloned() {
                     Some(Binding::StateArray(s)) => {
                         s.into_iter().map(|s| self.g.symbol_node(s)).collect()
                     }
                     Some(Binding::ValueArray(v)) => v,
                     Some(b) => {
                         let what = b.describe();
-                        self.cx.error_at(
-                            &ix.expr,
-                                                        format!("`{name}` is {what}, not an array"),
-                        );
+                        self.cx
+                            .error_at(&ix.expr, format!("`{name}` is {what}, not an array"));
                         return None;
                     }
                     None => {
@@ -855,7 +854,7 @@ impl Lower<'_> {
                 };
                 let i = self.index_constant(&ix.index)?;
                 match elements.get(i) {
-                                        Some(&id) => Some(id),
+                    Some(&id) => Some(id),
                     None => {
                         self.cx.error_at(
                             &ix.index,
