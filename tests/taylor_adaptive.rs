@@ -335,3 +335,43 @@ fn outer_solar_system_reaches_the_reference_positions() {
         }
     }
 }
+
+/// y' = y², y(0) = 1: y = 1/(1 − t) blows up at t = 1.
+#[dae_model(taylor = 1)]
+fn blow_up() {
+    let y = state(1.0);
+    der(y) == y * y;
+}
+
+/// The radius of convergence is 1 − t, so the steps shrink geometrically
+/// towards the pole: the run must stop there with an error that says where,
+/// and a partial solution that follows 1/(1 − t). The numerical pole moves
+/// by about the tolerance δ, so the relative error of y is δ/(1 − t): at
+/// most 1e-9 while 1 − t ≥ 1e-3.
+#[test]
+fn a_finite_time_blow_up_is_an_error_at_the_pole() {
+    let options = Options::new()
+        .method(Method::Taylor)
+        .rtol(1e-12)
+        .atol(1e-12);
+    let err = BlowUp::default().simulate(0.0, 2.0, &options).unwrap_err();
+    let t = match &err {
+        daegen::Error::StepSizeUnderflow { t, .. } | daegen::Error::NonFinite { t, .. } => *t,
+        other => panic!("unexpected error {other}"),
+    };
+    assert!((t - 1.0).abs() < 1e-10, "stopped at t = {t}");
+    let partial = err.partial_solution().unwrap();
+    let mut checked = 0;
+    for (k, &tk) in partial.times().iter().enumerate() {
+        if 1.0 - tk >= 1e-3 {
+            let yk = partial.state(k).unwrap()[0];
+            assert!(
+                (yk * (1.0 - tk) - 1.0).abs() <= 1e-9,
+                "y({tk}) = {yk}, exact {}",
+                1.0 / (1.0 - tk)
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 10, "only {checked} steps before 1 - t = 1e-3");
+}
