@@ -19,8 +19,12 @@ fn kepler() {
 }
 
 fn main() -> Result<(), daegen::Error> {
-    for tol in [1e-9, 1e-15] {
-        let options = Options::new().method(Method::Taylor).rtol(tol).atol(tol);
+    for (tol, compact) in [(1e-9, false), (1e-9, true), (1e-15, false), (1e-15, true)] {
+        let options = Options::new()
+            .method(Method::Taylor)
+            .rtol(tol)
+            .atol(tol)
+            .taylor_compact(compact);
         let runs = 1000;
         let start = std::time::Instant::now();
         let mut steps = 0;
@@ -30,7 +34,8 @@ fn main() -> Result<(), daegen::Error> {
         }
         let seconds = start.elapsed().as_secs_f64() / runs as f64;
         println!(
-            "tol {tol:e}: {steps} steps per run, {:.3} ms per run, {:.0} ns per step",
+            "tol {tol:e}, {}: {steps} steps per run, {:.3} ms per run, {:.0} ns per step",
+            if compact { "compact" } else { "emitted" },
             seconds * 1e3,
             seconds / steps as f64 * 1e9
         );

@@ -515,7 +515,7 @@ fn python_peer(problem: &str, solver: &str, tol: f64, atol: Option<f64>) -> Opti
     };
     Some(Point {
         tol,
-                // Problems without a reference (Lorenz) report no error.
+        // Problems without a reference (Lorenz) report no error.
         error: field("max_mixed_err").unwrap_or(f64::NAN),
         seconds: field("solve_s")?,
     })

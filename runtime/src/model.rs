@@ -103,6 +103,19 @@ pub trait Model {
         Err(EvalError::TaylorUnavailable { order })
     }
 
+    /// Rows of the buffer [`Model::taylor_jet`] works in (0: the model has
+    /// no emitted Taylor recurrences).
+    const TAYLOR_ROWS: usize = 0;
+
+    /// The normalised Taylor coefficients of the solution through (t, y) by
+    /// the recurrences the macro emitted for this model (the emitted layout
+    /// of `taylor_tape::advance` calls): state i's coefficient k at
+    /// `rows[i·(order+1) + k]`. `rows` has `TAYLOR_ROWS·(order+1)` zeros
+    /// the first time; a shorter buffer leaves it untouched.
+    fn taylor_jet(&self, t: f64, y: &[f64], order: usize, rows: &mut [f64]) {
+        let _ = (t, y, order, rows);
+    }
+
     /// The right-hand side as a tape of elementary operations and the
     /// operand of each f_i, for the adaptive Taylor method (generated with
     /// `#[dae_model(taylor = p)]`; `None` otherwise).

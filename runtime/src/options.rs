@@ -53,6 +53,7 @@ pub struct Options {
     pub(crate) max_step: Option<f64>,
     pub(crate) min_step: f64,
     pub(crate) max_steps: usize,
+    pub(crate) taylor_compact: bool,
 }
 
 impl Default for Options {
@@ -66,6 +67,7 @@ impl Default for Options {
             max_step: None,
             min_step: 0.0,
             max_steps: 10_000_000,
+            taylor_compact: false,
         }
     }
 }
@@ -128,6 +130,15 @@ impl Options {
     /// Most steps a run may take before it stops with [`crate::Error::MaxSteps`].
     pub fn max_steps(self, max_steps: usize) -> Options {
         Options { max_steps, ..self }
+    }
+
+    /// `Method::Taylor` interprets the model's tape (the compact layout)
+    /// instead of calling its emitted recurrences; for comparing the two.
+    pub fn taylor_compact(self, compact: bool) -> Options {
+        Options {
+            taylor_compact: compact,
+            ..self
+        }
     }
 
     /// The method chosen.

@@ -47,7 +47,10 @@ pub(crate) fn integrate<M: Model>(
         options.atol
     };
     let p = order_for(tol);
+    // The emitted recurrences unless the compact layout is asked for.
     let mut work = TaylorWork::new(&tape, &outputs, n, p);
+    let emitted = M::TAYLOR_ROWS > 0 && !options.taylor_compact;
+    let mut rows = vec![0.0; if emitted { M::TAYLOR_ROWS * (p + 1) } else { 0 }];
     let mut y = y0.to_vec();
     let mut dense = vec![0.0; (p + 1) * n];
     solution.set_interpolant(p + 1, interpolate);
@@ -63,10 +66,17 @@ pub(crate) fn integrate<M: Model>(
                 partial: Box::new(solution),
             });
         }
-        work.compute(t, &y);
+        let coefficients: &[f64] = if emitted {
+            model.taylor_jet(t, &y, p, &mut rows);
+            &rows
+        } else {
+            work.compute(t, &y);
+            work.rows()
+        };
+        let state = |i: usize| &coefficients[i * (p + 1)..(i + 1) * (p + 1)];
         solution.stats_mut().rhs_evals += 1;
-        let norm = |k: usize| (0..n).map(|i| work.state(i)[k].abs()).fold(0.0, f64::max);
-        if let Some(i) = (0..n).find(|&i| work.state(i).iter().any(|c| !c.is_finite())) {
+        let norm = |k: usize| (0..n).map(|i| state(i)[k].abs()).fold(0.0, f64::max);
+        if let Some(i) = (0..n).find(|&i| state(i).iter().any(|c| !c.is_finite())) {
             return Err(Error::NonFinite {
                 t,
                 variable: M::INFO.states[i],
@@ -99,7 +109,7 @@ pub(crate) fn integrate<M: Model>(
         }
         let h = direction * h;
         for i in 0..n {
-            let c = work.state(i);
+            let c = state(i);
             let mut power = 1.0;
             for (k, ck) in c.iter().enumerate() {
                 dense[k * n + i] = ck * power;

@@ -78,26 +78,36 @@ impl Inverse {
 }
 
 /// An operation with its operands resolved to rows of the coefficient
-/// buffer, so the inner loops are plain slice arithmetic.
+/// buffer (row r holds coefficients 0..=order at r·w). The compact layout
+/// interprets a list of these; the emitted layout calls [`advance`] with
+/// literal ones, which the compiler specialises.
 #[derive(Clone, Copy, Debug)]
-enum Step {
+pub enum Step {
+    /// `a + b`.
     Add(usize, usize),
     /// Multiplication by a constant: one product per order, not a convolution.
     Scale(usize, f64),
     /// Division by a constant.
     Quotient(usize, f64),
+    /// `a·b`, the Cauchy convolution.
     Mul(usize, usize),
     /// `a·a`: the symmetric convolution, half the products.
     Square(usize),
+    /// `a/b`.
     Div(usize, usize),
+    /// `a^e`, constant real e.
     Pow(usize, f64),
+    /// `exp(a)`.
     Exp(usize),
+    /// `ln(a)`.
     Ln(usize),
     /// `sin(a)` into this row and `cos(a)` into the next, together.
     SinCos(usize),
     /// `sinh(a)` into this row and `cosh(a)` into the next.
     SinhCosh(usize),
+    /// An inverse function `f(a)` with d·u' = ±a' (`d` the second row).
     Inverse(Inverse, usize, usize),
+    /// `atan2(y, x)` with d = x² + y² (rows y, x, d).
     Atan2(usize, usize, usize),
 }
 
@@ -199,6 +209,11 @@ impl TaylorWork {
         }
     }
 
+    /// All rows; state i's coefficients are row i.
+    pub fn rows(&self) -> &[f64] {
+        &self.rows
+    }
+
     /// The normalised coefficients x_i^[k] = x_i^(k)/k! of state `i`.
     #[inline]
     pub fn state(&self, i: usize) -> &[f64] {
@@ -217,93 +232,102 @@ impl TaylorWork {
         rows[self.time_row * w] = t;
         for k in 0..self.order {
             for &(v, step) in &self.steps {
-                let at = |r: usize, j: usize| rows[r * w + j];
-                let row = |r: usize| &rows[r * w..r * w + k + 1];
-                let own = &rows[v * w..v * w + k];
-                let kf = k as f64;
-                let (value, second) = match step {
-                    Step::Add(a, b) => (at(a, k) + at(b, k), 0.0),
-                    Step::Scale(a, c) => (at(a, k) * c, 0.0),
-                    Step::Quotient(a, c) => (at(a, k) / c, 0.0),
-                    Step::Mul(a, b) => (convolution(row(a), row(b)), 0.0),
-                    Step::Square(a) => {
-                        // Σ_j a_j a_{k−j} = 2 Σ_{j<k−j} a_j a_{k−j} + a_{k/2}² (k even).
-                        let a = row(a);
-                        let half = (k + 1) / 2;
-                        let twice = 2.0 * convolution(&a[..half], &a[k + 1 - half..]);
-                        let middle = if k % 2 == 0 { a[k / 2] * a[k / 2] } else { 0.0 };
-                        (twice + middle, 0.0)
-                    }
-                    Step::Div(a, b) => {
-                        // u = a/b: u^[k] = (a^[k] − Σ_{j<k} u^[j] b^[k−j]) / b^[0].
-                        let s = convolution(own, &row(b)[1..]);
-                        ((at(a, k) - s) / at(b, 0), 0.0)
-                    }
-                    Step::Pow(a, e) if k == 0 => (at(a, 0).powf(e), 0.0),
-                    Step::Pow(a, e) => {
-                        // Σ_{j<k} (k·e − j·(e+1)) a^[k−j] u^[j].
-                        let a = row(a);
-                        let (plain, weighted) = convolutions(own, &a[1..]);
-                        ((kf * e * plain - (e + 1.0) * weighted) / (kf * a[0]), 0.0)
-                    }
-                    Step::Exp(a) if k == 0 => (at(a, 0).exp(), 0.0),
-                    Step::Exp(a) => (weighted_convolution(row(a), own) / kf, 0.0),
-                    Step::Ln(a) if k == 0 => (at(a, 0).ln(), 0.0),
-                    Step::Ln(a) => {
-                        // Σ_{0<j<k} j u^[j] a^[k−j].
-                        let a = row(a);
-                        let (_, s) = convolutions(own, &a[1..]);
-                        ((kf * a[k] - s) / (kf * a[0]), 0.0)
-                    }
-                    Step::SinhCosh(a) if k == 0 => (at(a, 0).sinh(), at(a, 0).cosh()),
-                    Step::SinhCosh(a) => {
-                        // s' = a' c and c' = a' s.
-                        let a = row(a);
-                        let s = &rows[v * w..v * w + k];
-                        let c = &rows[(v + 1) * w..(v + 1) * w + k];
-                        (
-                            weighted_convolution(a, c) / kf,
-                            weighted_convolution(a, s) / kf,
-                        )
-                    }
-                    Step::Inverse(f, a, _) if k == 0 => (f.value(at(a, 0)), 0.0),
-                    Step::Inverse(f, a, d) => {
-                        // d·u' = ±a': k u^[k] d^[0] = ±k a^[k] − Σ_{0<j<k} j u^[j] d^[k−j].
-                        let d = row(d);
-                        let (_, s) = convolutions(own, &d[1..]);
-                        ((f.sign() * at(a, k) - s / kf) / d[0], 0.0)
-                    }
-                    Step::Atan2(y, x, _) if k == 0 => (at(y, 0).atan2(at(x, 0)), 0.0),
-                    Step::Atan2(y, x, d) => {
-                        // d·u' = x·y' − y·x'.
-                        let (y, x, d) = (row(y), row(x), row(d));
-                        let numerator =
-                            weighted_convolution(y, &x[..k]) - weighted_convolution(x, &y[..k]);
-                        let (_, s) = convolutions(own, &d[1..]);
-                        ((numerator - s) / (kf * d[0]), 0.0)
-                    }
-                    Step::SinCos(a) if k == 0 => at(a, 0).sin_cos(),
-                    Step::SinCos(a) => {
-                        // s' = a' c and c' = −a' s, both from the previous orders.
-                        let a = row(a);
-                        let s = &rows[v * w..v * w + k];
-                        let c = &rows[(v + 1) * w..(v + 1) * w + k];
-                        (
-                            weighted_convolution(a, c) / kf,
-                            -weighted_convolution(a, s) / kf,
-                        )
-                    }
-                };
-                rows[v * w + k] = value;
-                if let Step::SinCos(_) | Step::SinhCosh(_) = step {
-                    rows[(v + 1) * w + k] = second;
-                }
+                advance(rows, w, k, v, step);
             }
             // x^[k+1] = f^[k] / (k + 1).
             for (i, &out) in self.outputs.iter().enumerate() {
                 rows[i * w + k + 1] = rows[out * w + k] / (k + 1) as f64;
             }
         }
+    }
+}
+
+/// Computes coefficient k of row `v` (and of row v + 1 for the sin/cos and
+/// sinh/cosh pairs) by the recurrence of `step`, from coefficients 0..k of
+/// its operands and 0..k−1 of its own row(s). `rows` holds rows of `w`
+/// coefficients; rows of constants are zero beyond coefficient 0, the time
+/// row is (t, 1, 0, …).
+#[inline(always)]
+pub fn advance(rows: &mut [f64], w: usize, k: usize, v: usize, step: Step) {
+    let at = |r: usize, j: usize| rows[r * w + j];
+    let row = |r: usize| &rows[r * w..r * w + k + 1];
+    let own = &rows[v * w..v * w + k];
+    let kf = k as f64;
+    let (value, second) = match step {
+        Step::Add(a, b) => (at(a, k) + at(b, k), 0.0),
+        Step::Scale(a, c) => (at(a, k) * c, 0.0),
+        Step::Quotient(a, c) => (at(a, k) / c, 0.0),
+        Step::Mul(a, b) => (convolution(row(a), row(b)), 0.0),
+        Step::Square(a) => {
+            // Σ_j a_j a_{k−j} = 2 Σ_{j<k−j} a_j a_{k−j} + a_{k/2}² (k even).
+            let a = row(a);
+            let half = (k + 1) / 2;
+            let twice = 2.0 * convolution(&a[..half], &a[k + 1 - half..]);
+            let middle = if k % 2 == 0 { a[k / 2] * a[k / 2] } else { 0.0 };
+            (twice + middle, 0.0)
+        }
+        Step::Div(a, b) => {
+            // u = a/b: u^[k] = (a^[k] − Σ_{j<k} u^[j] b^[k−j]) / b^[0].
+            let s = convolution(own, &row(b)[1..]);
+            ((at(a, k) - s) / at(b, 0), 0.0)
+        }
+        Step::Pow(a, e) if k == 0 => (at(a, 0).powf(e), 0.0),
+        Step::Pow(a, e) => {
+            // Σ_{j<k} (k·e − j·(e+1)) a^[k−j] u^[j].
+            let a = row(a);
+            let (plain, weighted) = convolutions(own, &a[1..]);
+            ((kf * e * plain - (e + 1.0) * weighted) / (kf * a[0]), 0.0)
+        }
+        Step::Exp(a) if k == 0 => (at(a, 0).exp(), 0.0),
+        Step::Exp(a) => (weighted_convolution(row(a), own) / kf, 0.0),
+        Step::Ln(a) if k == 0 => (at(a, 0).ln(), 0.0),
+        Step::Ln(a) => {
+            // Σ_{0<j<k} j u^[j] a^[k−j].
+            let a = row(a);
+            let (_, s) = convolutions(own, &a[1..]);
+            ((kf * a[k] - s) / (kf * a[0]), 0.0)
+        }
+        Step::SinhCosh(a) if k == 0 => (at(a, 0).sinh(), at(a, 0).cosh()),
+        Step::SinhCosh(a) => {
+            // s' = a' c and c' = a' s.
+            let a = row(a);
+            let s = &rows[v * w..v * w + k];
+            let c = &rows[(v + 1) * w..(v + 1) * w + k];
+            (
+                weighted_convolution(a, c) / kf,
+                weighted_convolution(a, s) / kf,
+            )
+        }
+        Step::Inverse(f, a, _) if k == 0 => (f.value(at(a, 0)), 0.0),
+        Step::Inverse(f, a, d) => {
+            // d·u' = ±a': k u^[k] d^[0] = ±k a^[k] − Σ_{0<j<k} j u^[j] d^[k−j].
+            let d = row(d);
+            let (_, s) = convolutions(own, &d[1..]);
+            ((f.sign() * at(a, k) - s / kf) / d[0], 0.0)
+        }
+        Step::Atan2(y, x, _) if k == 0 => (at(y, 0).atan2(at(x, 0)), 0.0),
+        Step::Atan2(y, x, d) => {
+            // d·u' = x·y' − y·x'.
+            let (y, x, d) = (row(y), row(x), row(d));
+            let numerator = weighted_convolution(y, &x[..k]) - weighted_convolution(x, &y[..k]);
+            let (_, s) = convolutions(own, &d[1..]);
+            ((numerator - s) / (kf * d[0]), 0.0)
+        }
+        Step::SinCos(a) if k == 0 => at(a, 0).sin_cos(),
+        Step::SinCos(a) => {
+            // s' = a' c and c' = −a' s, both from the previous orders.
+            let a = row(a);
+            let s = &rows[v * w..v * w + k];
+            let c = &rows[(v + 1) * w..(v + 1) * w + k];
+            (
+                weighted_convolution(a, c) / kf,
+                -weighted_convolution(a, s) / kf,
+            )
+        }
+    };
+    rows[v * w + k] = value;
+    if let Step::SinCos(_) | Step::SinhCosh(_) = step {
+        rows[(v + 1) * w + k] = second;
     }
 }
 

@@ -116,7 +116,48 @@ fn taylor_method(
         quote!(let #name: f64 = #v;)
     });
     let (ops, outs) = (&tape.ops, &tape.outputs);
+    // The emitted layout: one `advance` call per recurrence with literal
+    // rows, inside a runtime loop over the orders.
+    let time_row = index(n);
+    let first_var = index(n + 1 + consts.len());
+    let rows = index(n + 1 + consts.len() + tape.ops.len());
+    let constant_rows = (0..consts.len()).map(|i| {
+        let (c, i) = (quote::format_ident!("c{}", i), index(i));
+        quote!(rows[(T + 1 + #i) * w] = #c;)
+    });
+    let advances = tape.steps.iter().map(|(v, step)| {
+        let v = index(*v);
+        quote!(::daegen::runtime::taylor_tape::advance(rows, w, k, U + #v, #step);)
+    });
+    let next_coefficients = tape.output_rows.iter().enumerate().map(|(i, row)| {
+        let i = index(i);
+        quote!(rows[#i * w + k + 1] = rows[(#row) * w + k] / (k + 1) as f64;)
+    });
     Ok(quote! {
+        const TAYLOR_ROWS: usize = #rows;
+
+        #[allow(clippy::identity_op, clippy::erasing_op)]
+        fn taylor_jet(&self, t: f64, y: &[f64], order: usize, rows: &mut [f64]) {
+                        #[allow(dead_code)]
+            const T: usize = #time_row;
+            #[allow(dead_code)]
+            const U: usize = #first_var;
+            let w = order + 1;
+            if y.len() < #nn || rows.len() < #rows * w {
+                return;
+            }
+            #const_code
+            #(#constant_rows)*
+            rows[..#nn * w].iter_mut().step_by(w).zip(y).for_each(|(r, v)| *r = *v);
+            rows[T * w] = t;
+            if order > 0 {
+                rows[T * w + 1] = 1.0;
+            }
+            for k in 0..order {
+                #(#advances)*
+                #(#next_coefficients)*
+            }
+        }
         #[inline]
         fn taylor_tape(&self) -> ::core::option::Option<(
             ::std::vec::Vec<::daegen::runtime::taylor_tape::TapeOp>,

@@ -9,7 +9,7 @@ use proc_macro2::TokenStream;
 use quote::quote;
 
 /// An operand, as tokens of `daegen::runtime::taylor_tape::Operand`.
-#[derive(Clone)]
+#[derive(Clone, PartialEq)]
 enum Operand {
     Var(usize),
     State(usize),
@@ -19,6 +19,27 @@ enum Operand {
 }
 
 impl Operand {
+    /// The operand's row in the emitted layout: states, the time `T`,
+    /// constants from `T + 1`, u-variables from `U`.
+    fn row(&self) -> TokenStream {
+        let lit = |i: usize| proc_macro2::Literal::usize_unsuffixed(i);
+        match self {
+            Operand::Var(i) => {
+                let i = lit(*i);
+                quote!(U + #i)
+            }
+            Operand::State(i) => {
+                let i = lit(*i);
+                quote!(#i)
+            }
+            Operand::Time => quote!(T),
+            Operand::Const(i) => {
+                let i = lit(*i);
+                quote!(T + 1 + #i)
+            }
+        }
+    }
+
     fn tokens(&self) -> TokenStream {
         let path = quote!(::daegen::runtime::taylor_tape::Operand);
         let lit = |i: usize| proc_macro2::Literal::usize_unsuffixed(i);
@@ -56,6 +77,11 @@ pub struct Tape {
     pub ops: Vec<TokenStream>,
     /// The operand of each output.
     pub outputs: Vec<TokenStream>,
+    /// The emitted layout: per u-variable with a recurrence of its own, the
+    /// `taylor_tape::Step` as tokens and the u-variable's index.
+    pub steps: Vec<(usize, TokenStream)>,
+    /// The row of each output in the emitted layout.
+    pub output_rows: Vec<TokenStream>,
 }
 
 struct Builder<'g> {
@@ -65,6 +91,7 @@ struct Builder<'g> {
     operand_of: FxHashMap<Id, Operand>,
     constants: Vec<Constant>,
     ops: Vec<TokenStream>,
+    steps: Vec<(usize, TokenStream)>,
     /// sin(a) → the u-variable of its pair, so cos(a) is reused.
     sin_of: FxHashMap<Id, usize>,
     /// sinh(a) → the u-variable of its pair with cosh(a).
@@ -72,7 +99,13 @@ struct Builder<'g> {
 }
 
 impl Builder<'_> {
-    fn push(&mut self, op: TokenStream) -> Operand {
+    /// Appends a tape operation and, unless its value comes with the
+    /// previous one (cos, cosh), its step for the emitted layout.
+    fn push(&mut self, op: TokenStream, step: Option<TokenStream>) -> Operand {
+        if let Some(step) = step {
+            let step = quote!(::daegen::runtime::taylor_tape::Step::#step);
+            self.steps.push((self.ops.len(), step));
+        }
         self.ops.push(op);
         Operand::Var(self.ops.len() - 1)
     }
@@ -99,15 +132,23 @@ impl Builder<'_> {
             let negated = self.binary("Mul", &minus_one, &square);
             let difference = self.binary("Add", &one, &negated);
             let b = difference.tokens();
-            self.push(quote!(::daegen::runtime::taylor_tape::TapeOp::Pow(#b, 0.5)))
+            let r = difference.row();
+            self.push(
+                quote!(::daegen::runtime::taylor_tape::TapeOp::Pow(#b, 0.5)),
+                Some(quote!(Pow(#r, 0.5))),
+            )
         };
+        let (ra, rd) = (a.row(), d.row());
         let (a, d) = (a.tokens(), d.tokens());
         let f = quote::format_ident!("{}", f);
-        self.push(quote!(::daegen::runtime::taylor_tape::TapeOp::Inverse(
-            ::daegen::runtime::taylor_tape::Inverse::#f,
-            #a,
-            #d
-        )))
+        self.push(
+            quote!(::daegen::runtime::taylor_tape::TapeOp::Inverse(
+                ::daegen::runtime::taylor_tape::Inverse::#f,
+                #a,
+                #d
+            )),
+            Some(quote!(Inverse(::daegen::runtime::taylor_tape::Inverse::#f, #ra, #rd))),
+        )
     }
 
     fn sinh_cosh(&mut self, arg: Id, a: &Operand) -> (Operand, Operand) {
@@ -115,9 +156,10 @@ impl Builder<'_> {
             return (Operand::Var(v), Operand::Var(v + 1));
         }
         let s = self.unary("Sinh", a);
-        let c = self.push(quote!(
-            ::daegen::runtime::taylor_tape::TapeOp::CoshOfPrevious
-        ));
+        let c = self.push(
+            quote!(::daegen::runtime::taylor_tape::TapeOp::CoshOfPrevious),
+            None,
+        );
         if let Operand::Var(v) = s {
             self.sinh_of.insert(arg, v);
         }
@@ -125,15 +167,45 @@ impl Builder<'_> {
     }
 
     fn binary(&mut self, name: &str, a: &Operand, b: &Operand) -> Operand {
+        let (ra, rb) = (a.row(), b.row());
+        let constant = |o: &Operand| match o {
+            Operand::Const(i) => Some(quote::format_ident!("c{}", i)),
+            _ => None,
+        };
+        let step = match (name, constant(a), constant(b)) {
+            ("Mul", _, _) if a == b => quote!(Square(#ra)),
+            ("Mul", Some(c), None) => quote!(Scale(#rb, #c)),
+            ("Mul", None, Some(c)) => quote!(Scale(#ra, #c)),
+            ("Div", _, Some(c)) => quote!(Quotient(#ra, #c)),
+            _ => {
+                let op = quote::format_ident!("{}", name);
+                quote!(#op(#ra, #rb))
+            }
+        };
         let (a, b) = (a.tokens(), b.tokens());
         let op = quote::format_ident!("{}", name);
-        self.push(quote!(::daegen::runtime::taylor_tape::TapeOp::#op(#a, #b)))
+        self.push(
+            quote!(::daegen::runtime::taylor_tape::TapeOp::#op(#a, #b)),
+            Some(step),
+        )
     }
 
     fn unary(&mut self, name: &str, a: &Operand) -> Operand {
+        let r = a.row();
+        let step = match name {
+            "Sin" => quote!(SinCos(#r)),
+            "Sinh" => quote!(SinhCosh(#r)),
+            _ => {
+                let op = quote::format_ident!("{}", name);
+                quote!(#op(#r))
+            }
+        };
         let a = a.tokens();
         let op = quote::format_ident!("{}", name);
-        self.push(quote!(::daegen::runtime::taylor_tape::TapeOp::#op(#a)))
+        self.push(
+            quote!(::daegen::runtime::taylor_tape::TapeOp::#op(#a)),
+            Some(step),
+        )
     }
 
     /// `a^n` for an integer n ≥ 1 by binary powering (products only: safe
@@ -156,9 +228,10 @@ impl Builder<'_> {
             return (Operand::Var(v), Operand::Var(v + 1));
         }
         let s = self.unary("Sin", a);
-        let c = self.push(quote!(
-            ::daegen::runtime::taylor_tape::TapeOp::CosOfPrevious
-        ));
+        let c = self.push(
+            quote!(::daegen::runtime::taylor_tape::TapeOp::CosOfPrevious),
+            None,
+        );
         if let Operand::Var(v) = s {
             self.sin_of.insert(arg, v);
         }
@@ -223,7 +296,11 @@ impl Builder<'_> {
                     Some(n) => {
                         let value = n.to_f64();
                         let (b, e) = (base.tokens(), value);
-                        self.push(quote!(::daegen::runtime::taylor_tape::TapeOp::Pow(#b, #e)))
+                        let r = base.row();
+                        self.push(
+                            quote!(::daegen::runtime::taylor_tape::TapeOp::Pow(#b, #e)),
+                            Some(quote!(Pow(#r, #e))),
+                        )
                     }
                     None => {
                         // b^e = exp(e ln b)
@@ -267,8 +344,15 @@ impl Builder<'_> {
                 let xx = self.binary("Mul", &x, &x);
                 let yy = self.binary("Mul", &y, &y);
                 let d = self.binary("Add", &xx, &yy);
+                let step = {
+                    let (y, x, d) = (y.row(), x.row(), d.row());
+                    quote!(Atan2(#y, #x, #d))
+                };
                 let (y, x, d) = (y.tokens(), x.tokens(), d.tokens());
-                self.push(quote!(::daegen::runtime::taylor_tape::TapeOp::Atan2(#y, #x, #d)))
+                self.push(
+                    quote!(::daegen::runtime::taylor_tape::TapeOp::Atan2(#y, #x, #d)),
+                    Some(step),
+                )
             }
         })
     }
@@ -302,6 +386,7 @@ pub fn decompose(
         operand_of: FxHashMap::default(),
         constants: Vec::new(),
         ops: Vec::new(),
+        steps: Vec::new(),
         sin_of: FxHashMap::default(),
         sinh_of: FxHashMap::default(),
     };
@@ -322,10 +407,13 @@ pub fn decompose(
         let operand = b.node(id, dep)?;
         b.operand_of.insert(id, operand);
     }
+    let output_rows = outputs.iter().map(|&o| b.operand(o).row()).collect();
     let outputs = outputs.iter().map(|&o| b.operand(o).tokens()).collect();
     Ok(Tape {
         constants: b.constants,
         ops: b.ops,
         outputs,
+        steps: b.steps,
+        output_rows,
     })
 }
