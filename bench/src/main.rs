@@ -292,7 +292,32 @@ fn ours<M: Model + Clone + Send + Sync + 'static>(
     reference: &[f64],
 ) -> Point {
     let options = Options::new().method(method).rtol(tol).atol(atol);
-    let (d, sol) = time(|| model.simulate(0.0, t1, &options));
+    ours_with(model, t1, &options, tol, reference)
+}
+
+/// The Taylor method in the compact layout (the tape interpreted).
+fn ours_compact<M: Model + Clone + Send + Sync + 'static>(
+    model: &M,
+    t1: f64,
+    tol: f64,
+    reference: &[f64],
+) -> Point {
+    let options = Options::new()
+        .method(Method::Taylor)
+        .rtol(tol)
+        .atol(tol)
+        .taylor_compact(true);
+    ours_with(model, t1, &options, tol, reference)
+}
+
+fn ours_with<M: Model + Clone + Send + Sync + 'static>(
+    model: &M,
+    t1: f64,
+    options: &Options,
+    tol: f64,
+    reference: &[f64],
+) -> Point {
+    let (d, sol) = time(|| model.simulate(0.0, t1, options));
     let error = match sol {
         Ok(sol) => mixed_error(sol.state(sol.times().len() - 1).unwrap_or(&[]), reference),
         Err(_) => f64::INFINITY,
@@ -637,6 +662,13 @@ fn main() {
                 .map(|&t| ours(&k, kepler_t1, Method::Taylor, t, t, &kepler_ref))
                 .collect(),
         ),
+        (
+            "daegen Taylor (compact)",
+            taylor_tols
+                .iter()
+                .map(|&t| ours_compact(&k, kepler_t1, t, &kepler_ref))
+                .collect(),
+        ),
     ];
     eprintln!("kepler: ours done");
     let k0 = kepler_exact(0.0);
@@ -704,6 +736,13 @@ fn main() {
             taylor_tols
                 .iter()
                 .map(|&t| ours(&a, ARENSTORF_T, Method::Taylor, t, t, &ARENSTORF_Y0))
+                .collect(),
+        ),
+        (
+            "daegen Taylor (compact)",
+            taylor_tols
+                .iter()
+                .map(|&t| ours_compact(&a, ARENSTORF_T, t, &ARENSTORF_Y0))
                 .collect(),
         ),
     ];
@@ -784,6 +823,13 @@ fn main() {
             oss_tols
                 .iter()
                 .map(|&t| ours(&oss, 20000.0, Method::Taylor, t, t, &OSS_REFERENCE))
+                .collect(),
+        ),
+        (
+            "daegen Taylor (compact)",
+            oss_tols
+                .iter()
+                .map(|&t| ours_compact(&oss, 20000.0, t, &OSS_REFERENCE))
                 .collect(),
         ),
     ];

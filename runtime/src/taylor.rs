@@ -47,7 +47,7 @@ pub(crate) fn integrate<M: Model>(
         options.atol
     };
     let p = order_for(tol);
-    // The emitted recurrences unless the compact layout is asked for.
+    // The interpreted tape unless the emitted recurrences are asked for.
     let mut work = TaylorWork::new(&tape, &outputs, n, p);
     let emitted = M::TAYLOR_ROWS > 0 && !options.taylor_compact;
     let mut rows = vec![0.0; if emitted { M::TAYLOR_ROWS * (p + 1) } else { 0 }];

@@ -247,7 +247,7 @@ impl TaylorWork {
 /// its operands and 0..k−1 of its own row(s). `rows` holds rows of `w`
 /// coefficients; rows of constants are zero beyond coefficient 0, the time
 /// row is (t, 1, 0, …).
-#[inline(always)]
+#[inline]
 pub fn advance(rows: &mut [f64], w: usize, k: usize, v: usize, step: Step) {
     let at = |r: usize, j: usize| rows[r * w + j];
     let row = |r: usize| &rows[r * w..r * w + k + 1];
