@@ -1,0 +1,85 @@
+// The model shared by tests/taylor_adaptive.rs and the benchmark
+// (`include!`d: bench/ is a separate workspace).
+
+/// The outer solar system of Hairer, Lubich & Wanner (GNI, Ch. I): the Sun
+/// with the inner planets, Jupiter, Saturn, Uranus, Neptune and Pluto, in
+/// AU and days (reference-problems.md §11a).
+#[dae_model(taylor = 1)]
+fn outer_solar_system() {
+    const N: usize = 6;
+    /// Gravitational constant in AU³/(solar mass · day²).
+    let g = param(2.95912208286e-4);
+    let m = [
+        1.00000597682,
+        0.000954786104043,
+        0.000285583733151,
+        0.0000437273164546,
+        0.0000517759138449,
+        1.0 / 1.3e8,
+    ];
+    let x = state_array([
+        0.0,
+        -3.5023653,
+        9.0755314,
+        8.3101420,
+        11.4707666,
+        -15.5387357,
+    ]);
+    let y = state_array([
+        0.0,
+        -3.8169847,
+        -3.0458353,
+        -16.2901086,
+        -25.7294829,
+        -25.2225594,
+    ]);
+    let z = state_array([
+        0.0,
+        -1.5507963,
+        -1.6483708,
+        -7.2521278,
+        -10.8169456,
+        -3.1902382,
+    ]);
+    let u = state_array([
+        0.0, 0.00565429, 0.00168318, 0.00354178, 0.00288930, 0.00276725,
+    ]);
+    let v = state_array([
+        0.0,
+        -0.00412490,
+        0.00483525,
+        0.00137102,
+        0.00114527,
+        -0.00170702,
+    ]);
+    let w = state_array([
+        0.0,
+        -0.00190589,
+        0.00192462,
+        0.00055029,
+        0.00039677,
+        -0.00136504,
+    ]);
+    for i in 0..N {
+        der(x[i]) == u[i];
+        der(y[i]) == v[i];
+        der(z[i]) == w[i];
+        let mut ax = 0.0;
+        let mut ay = 0.0;
+        let mut az = 0.0;
+        for j in 0..N {
+            if j != i {
+                let dx = x[j] - x[i];
+                let dy = y[j] - y[i];
+                let dz = z[j] - z[i];
+                let r3 = (dx * dx + dy * dy + dz * dz).powf(-1.5);
+                ax += g * m[j] * dx * r3;
+                ay += g * m[j] * dy * r3;
+                az += g * m[j] * dz * r3;
+            }
+        }
+        der(u[i]) == ax;
+        der(v[i]) == ay;
+        der(w[i]) == az;
+    }
+}
