@@ -122,3 +122,19 @@ fn example_1_4_with_taylor_derivatives_of_order_4() {
         }
     ));
 }
+
+#[test]
+fn bouncing_ball_with_a_terminal_event() {
+    // The event function and its rate along the solution (for crossings
+    // hidden between two samples), each emitted once for all events.
+    insta::assert_snapshot!(expand(quote! {
+        fn bouncing_ball() {
+            let g = param(9.81);
+            let height = state(10.0);
+            der(der(height)) == -g;
+            /// The ball reaches the ground.
+            let impact = event(height).falling().terminal();
+            let apex = event(der(height) * height);
+        }
+    }));
+}

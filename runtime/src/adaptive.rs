@@ -4,6 +4,7 @@
 //! of a real run (Hairer, Nørsett, Wanner, *Solving ODEs I*, §II.4–§II.6).
 
 use crate::error::Error;
+use crate::events::{EventWatch, Next};
 use crate::model::{EvalError, Model, StateVector};
 use crate::options::Options;
 use crate::solution::Solution;
@@ -195,6 +196,7 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
     let mut dense = vec![0.0; P::DENSE_WIDTH * n];
     let mut rhs = Rhs { model, evals: 0 };
     solution.set_interpolant(P::DENSE_WIDTH, P::interpolate);
+    let mut events = EventWatch::new(model, t0, y0, 1);
 
     y.as_mut().copy_from_slice(y0);
     if let Err(cause) = rhs.call(t0, y.as_ref(), k[0].as_mut()) {
@@ -342,6 +344,13 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
             accepted += 1;
             non_finite = None;
             solution.push_dense(t, y.as_ref(), &dense);
+            if let Some(watch) = events.as_mut() {
+                let next;
+                (solution, next) = watch.after_step(solution)?;
+                if let Next::Stop = next {
+                    break;
+                }
+            }
             if last {
                 break;
             }
@@ -397,6 +406,7 @@ mod tests {
             outputs: &[],
             output_docs: &[],
             equations: 4,
+            events: &[],
         };
         const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[];
         fn initial_state(&self, y: &mut [f64]) {

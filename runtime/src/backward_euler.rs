@@ -4,6 +4,7 @@
 
 use crate::dense_lu::RealLu;
 use crate::error::Error;
+use crate::events::{EventWatch, Next};
 use crate::model::{EvalError, Model};
 use crate::solution::Solution;
 
@@ -28,6 +29,7 @@ pub(crate) fn integrate<M: Model>(
     let mut lu = RealLu::new(n);
     let (mut evals, mut jacobian_evals) = (0usize, 0usize);
     y.copy_from_slice(y0);
+    let mut events = EventWatch::new(model, t0, y0, 1);
     for step in 0..steps {
         let t_next = if step + 1 == steps {
             t1
@@ -121,6 +123,13 @@ pub(crate) fn integrate<M: Model>(
         stats.steps += 1;
         stats.rhs_evals = evals;
         stats.jacobian_evals = jacobian_evals;
+        if let Some(watch) = events.as_mut() {
+            let next;
+            (solution, next) = watch.after_step(solution)?;
+            if let Next::Stop = next {
+                break;
+            }
+        }
     }
     Ok(solution)
 }

@@ -3,6 +3,7 @@
 //! §II.1). The tableaux are data; one stepping routine serves them all.
 
 use crate::error::Error;
+use crate::events::{EventWatch, Next};
 use crate::model::Model;
 use crate::solution::Solution;
 
@@ -96,6 +97,7 @@ pub(crate) fn integrate<M: Model>(
     let h = span / steps as f64;
     let mut k = vec![0.0; s * n];
     let mut stage = vec![0.0; n];
+    let mut events = EventWatch::new(model, t0, y0, 1);
     for step in 0..steps {
         // t from the step count, not by accumulation: no drift over long runs.
         let t = t0 + span * (step as f64 / steps as f64);
@@ -138,6 +140,13 @@ pub(crate) fn integrate<M: Model>(
         }
         solution.push(t_next, &y);
         solution.stats_mut().steps += 1;
+        if let Some(watch) = events.as_mut() {
+            let next;
+            (solution, next) = watch.after_step(solution)?;
+            if let Next::Stop = next {
+                break;
+            }
+        }
     }
     Ok(solution)
 }

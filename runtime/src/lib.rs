@@ -9,6 +9,7 @@ pub mod dense_lu;
 pub mod dop853;
 pub mod dopri5;
 mod error;
+mod events;
 pub mod explicit_rk;
 pub mod implicit_tableau;
 pub mod linalg;
@@ -24,7 +25,7 @@ pub mod taylor_series;
 pub mod taylor_tape;
 
 pub use error::Error;
-pub use model::{EvalError, Model, ModelInfo, StateVector};
+pub use model::{EvalError, EventDirection, EventInfo, Model, ModelInfo, StateVector};
 pub use options::{Method, Options};
-pub use simulate::simulate;
-pub use solution::{Solution, Stats};
+pub use simulate::{simulate, simulate_from};
+pub use solution::{EventHit, Solution, Stats};

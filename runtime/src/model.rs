@@ -19,6 +19,31 @@ pub enum EvalError {
     },
 }
 
+/// Which zero crossings of an event function fire the event.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EventDirection {
+    /// Every crossing.
+    Any,
+    /// From negative to positive (`event(g).rising()`).
+    Rising,
+    /// From positive to negative (`event(g).falling()`).
+    Falling,
+}
+
+/// An event declared with `let name = event(g)`: the run notes the times
+/// where `g(t, y)` crosses zero (and stops at the first if it is terminal).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EventInfo {
+    /// The `let` name.
+    pub name: &'static str,
+    /// Which crossings count.
+    pub direction: EventDirection,
+    /// The run stops at the first crossing.
+    pub terminal: bool,
+    /// The event's doc comment.
+    pub doc: &'static str,
+}
+
 /// Names and documentation of a model, known at compile time.
 #[derive(Clone, Copy, Debug)]
 pub struct ModelInfo {
@@ -39,6 +64,8 @@ pub struct ModelInfo {
     pub output_docs: &'static [&'static str],
     /// Number of equations the user wrote (after unrolling loops).
     pub equations: usize,
+    /// Events (`let e = event(g)`), in declaration order.
+    pub events: &'static [EventInfo],
 }
 
 /// A state vector of compile-time length: `[f64; N]`. Integrators keep
@@ -129,6 +156,20 @@ pub trait Model {
         None
     }
 
+    /// Writes the value of every event function (see [`ModelInfo::events`])
+    /// at `(t, y)` into `g`.
+    fn events(&self, t: f64, y: &[f64], g: &mut [f64]) {
+        let _ = (t, y, g);
+    }
+
+    /// Writes the time derivative of every event function along the
+    /// solution, `dg/dt = ∂g/∂t + ∇g·f`, at `(t, y)` into `dg`; `false` if
+    /// the model does not have them (its mass matrix is solved at run time).
+    fn event_rates(&self, t: f64, y: &[f64], dg: &mut [f64]) -> bool {
+        let _ = (t, y, dg);
+        false
+    }
+
     /// The output number `index` (see [`ModelInfo::outputs`]) at `(t, y)`.
     fn output(&self, index: usize, t: f64, y: &[f64]) -> f64;
 
@@ -143,5 +184,20 @@ pub trait Model {
         Self: Sized + Clone + Send + Sync + 'static,
     {
         crate::simulate::simulate(self, t0, t1, options)
+    }
+
+    /// Integrates from the state `y0` (ordered as [`ModelInfo::states`]) at
+    /// `t0` to `t1`: to continue after a terminal event from a changed state.
+    fn simulate_from(
+        &self,
+        t0: f64,
+        y0: &[f64],
+        t1: f64,
+        options: &crate::Options,
+    ) -> Result<crate::Solution, crate::Error>
+    where
+        Self: Sized + Clone + Send + Sync + 'static,
+    {
+        crate::simulate::simulate_from(self, t0, y0, t1, options)
     }
 }

@@ -11,6 +11,7 @@
 
 use crate::dense_lu::{ComplexLu, RealLu};
 use crate::error::Error;
+use crate::events::{EventWatch, Next};
 use crate::model::{EvalError, Model};
 use crate::options::Options;
 use crate::solution::Solution;
@@ -197,6 +198,7 @@ pub(crate) fn integrate<M: Model>(
     let mut scal = vec![0.0; n];
     let mut scratch = vec![0.0; n];
     solution.set_interpolant(4, interpolate);
+    let mut events = EventWatch::new(model, t0, start, 1);
 
     y.copy_from_slice(start);
     if t0 == t1 {
@@ -469,6 +471,13 @@ pub(crate) fn integrate<M: Model>(
             }
             set_scale(&mut scal, &y);
             solution.push_dense(t, &y, &cont);
+            if let Some(watch) = events.as_mut() {
+                let next;
+                (solution, next) = watch.after_step(solution)?;
+                if let Next::Stop = next {
+                    break;
+                }
+            }
             if last {
                 break;
             }

@@ -13,13 +13,39 @@ use crate::solution::Solution;
 use crate::taylor;
 use crate::taylor_fixed;
 
-/// Integrates `model` from `t0` to `t1` with `options`.
+/// Integrates `model` from its initial state at `t0` to `t1` with `options`.
 pub fn simulate<M: Model + Clone + Send + Sync + 'static>(
     model: &M,
     t0: f64,
     t1: f64,
     options: &Options,
 ) -> Result<Solution, Error> {
+    let mut y0 = vec![0.0; M::STATES];
+    model.initial_state(&mut y0);
+    simulate_from(model, t0, &y0, t1, options)
+}
+
+/// Integrates `model` from the state `y0` (in the order of
+/// [`crate::ModelInfo::states`]) at `t0` to `t1` with `options`: to restart
+/// after a terminal event, say, from a changed state.
+pub fn simulate_from<M: Model + Clone + Send + Sync + 'static>(
+    model: &M,
+    t0: f64,
+    y0: &[f64],
+    t1: f64,
+    options: &Options,
+) -> Result<Solution, Error> {
+    if y0.len() != M::STATES {
+        return Err(Error::InvalidOptions {
+            message: format!(
+                "the initial state has {} values but {} has {} states ({})",
+                y0.len(),
+                M::INFO.name,
+                M::STATES,
+                M::INFO.states.join(", ")
+            ),
+        });
+    }
     if !t0.is_finite() || !t1.is_finite() {
         return Err(Error::InvalidOptions {
             message: format!("the interval [{t0}, {t1}] must be finite"),
@@ -55,8 +81,7 @@ pub fn simulate<M: Model + Clone + Send + Sync + 'static>(
     }
     // The initial state, checked once for every method.
     let mut solution = Solution::new(model, 1024);
-    let mut y0 = vec![0.0; M::STATES];
-    model.initial_state(&mut y0);
+    let y0 = y0.to_vec();
     if let Some(i) = y0.iter().position(|v| !v.is_finite()) {
         return Err(Error::NonFinite {
             t: t0,

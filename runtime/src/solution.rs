@@ -17,6 +17,21 @@ pub struct Stats {
     pub jacobian_evals: usize,
 }
 
+/// A crossing of an event function, located to machine precision.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EventHit {
+    /// The event's `let` name.
+    pub name: &'static str,
+    /// Its position in [`crate::ModelInfo::events`].
+    pub index: usize,
+    /// The time of the crossing: the first floating-point time past the zero.
+    pub t: f64,
+    /// The event function went from negative to positive (else the reverse).
+    pub rising: bool,
+    /// The state at `t`, from the step's continuous extension.
+    pub state: Vec<f64>,
+}
+
 /// Evaluates a model's outputs after the run, so a `Solution` needs no type
 /// parameter.
 trait Observables: Send + Sync {
@@ -47,6 +62,14 @@ pub struct Solution {
     dense: Vec<f64>,
     /// One per method that ran (Method::Auto may switch), in step order.
     segments: Vec<Segment>,
+    /// Event crossings in time order.
+    events: Vec<EventHit>,
+    /// The end the last step was computed for, when a terminal event cut it
+    /// short (its interpolant is scaled to that end).
+    cut_from: Option<f64>,
+    /// The last step's computed end state, when cut short.
+    uncut_end: Vec<f64>,
+    event_info: &'static [crate::model::EventInfo],
 }
 
 /// Steps from `first` on use `interpolant` on `width` vectors per step,
@@ -88,6 +111,10 @@ impl Solution {
             stats: Stats::default(),
             dense: Vec::new(),
             segments: Vec::new(),
+            events: Vec::new(),
+            cut_from: None,
+            uncut_end: Vec::new(),
+            event_info: M::INFO.events,
         }
     }
 
@@ -112,6 +139,29 @@ impl Solution {
         self.dense.extend_from_slice(coefficients);
     }
 
+    /// State at `t` within the last step, from its continuous extension.
+    pub(crate) fn interpolate_last_step(&self, t: f64, y: &mut [f64]) {
+        let k = self.times.len().saturating_sub(1);
+        for (i, yi) in y.iter_mut().enumerate() {
+            *yi = self.interpolate(k, t, i);
+        }
+    }
+
+    /// Ends the run at `t` inside the last step, with state `y` there.
+    pub(crate) fn end_last_step_at(&mut self, t: f64, y: &[f64]) {
+        let k = self.times.len().saturating_sub(1);
+        if self.times.len() >= 2 {
+            self.cut_from = Some(self.times[k]);
+            self.uncut_end = self.states[k * self.n..(k + 1) * self.n].to_vec();
+            self.times[k] = t;
+            self.states[k * self.n..(k + 1) * self.n].copy_from_slice(y);
+        }
+    }
+
+    pub(crate) fn push_event(&mut self, hit: EventHit) {
+        self.events.push(hit);
+    }
+
     pub(crate) fn push(&mut self, t: f64, y: &[f64]) {
         self.times.push(t);
         self.states.extend_from_slice(y);
@@ -131,6 +181,37 @@ impl Solution {
         self.states.get(k * self.n..(k + 1) * self.n)
     }
 
+    /// The state at the end of the run (at a terminal event, if one fired).
+    pub fn final_state(&self) -> &[f64] {
+        self.last_state().unwrap_or(&[])
+    }
+
+    /// Every event crossing, in time order.
+    pub fn events(&self) -> &[EventHit] {
+        &self.events
+    }
+
+    /// The times of the crossings of the event called `name`.
+    pub fn event_times(&self, name: &str) -> Result<Vec<f64>, Error> {
+        let Some(info) = self.event_info.iter().position(|e| e.name == name) else {
+            return Err(Error::UnknownName {
+                name: name.to_string(),
+                known: self.event_info.iter().map(|e| e.name).collect(),
+            });
+        };
+        Ok(self
+            .events
+            .iter()
+            .filter(|e| e.index == info)
+            .map(|e| e.t)
+            .collect())
+    }
+
+    /// The terminal event the run stopped at, if it did.
+    pub fn stopped_by(&self) -> Option<&EventHit> {
+        self.cut_from.and(self.events.last())
+    }
+
     /// Counters of the run.
     pub fn stats(&self) -> Stats {
         self.stats
@@ -140,6 +221,35 @@ impl Solution {
     /// no constraints.
     pub fn max_constraint_residual(&self) -> f64 {
         0.0
+    }
+
+    /// Component `i` at `t` within step `k` (from `times[k - 1]` to `times[k]`).
+    fn interpolate(&self, k: usize, t: f64, i: usize) -> f64 {
+        if k == 0 || k >= self.times.len() {
+            return self.states.get(i).copied().unwrap_or(f64::NAN);
+        }
+        let t0 = self.times[k - 1];
+        let t1 = match self.cut_from {
+            Some(end) if k == self.times.len() - 1 => end,
+            _ => self.times[k],
+        };
+        let s = if t1 == t0 { 0.0 } else { (t - t0) / (t1 - t0) };
+        match self.segments.iter().rev().find(|seg| seg.first <= k) {
+            Some(seg) => {
+                let width = seg.width * self.n;
+                let start = seg.offset + (k - seg.first) * width;
+                (seg.interpolant)(&self.dense[start..start + width], self.n, i, s)
+            }
+            None => {
+                // Linear, on the step as computed (before any cut).
+                let a = self.states[(k - 1) * self.n + i];
+                let b = match self.cut_from {
+                    Some(_) if k == self.times.len() - 1 => return a + s * (self.uncut_end[i] - a),
+                    _ => self.states[k * self.n + i],
+                };
+                a + s * (b - a)
+            }
+        }
     }
 
     fn value_at_step(&self, k: usize, name: &str) -> Result<f64, Error> {
@@ -200,25 +310,7 @@ impl Solution {
             .times
             .partition_point(|&s| if forward { s < t } else { s > t })
             .clamp(1, self.times.len() - 1);
-        let (t0, t1) = (self.times[k - 1], self.times[k]);
-        let s = if t1 == t0 { 0.0 } else { (t - t0) / (t1 - t0) };
-        let segment = self.segments.iter().rev().find(|seg| seg.first <= k);
-        let state = |i: usize| -> f64 {
-            match segment {
-                Some(seg) => {
-                    let width = seg.width * self.n;
-                    let start = seg.offset + (k - seg.first) * width;
-                    (seg.interpolant)(&self.dense[start..start + width], self.n, i, s)
-                }
-                None => {
-                    let (a, b) = (
-                        self.states[(k - 1) * self.n + i],
-                        self.states[k * self.n + i],
-                    );
-                    a + s * (b - a)
-                }
-            }
-        };
+        let state = |i: usize| self.interpolate(k, t, i);
         if let Some(i) = self.state_names.iter().position(|n| *n == name) {
             return Ok(state(i));
         }

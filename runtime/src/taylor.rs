@@ -7,10 +7,15 @@
 //! step's polynomial is the dense output.
 
 use crate::error::Error;
+use crate::events::{EventWatch, Next};
 use crate::model::Model;
 use crate::options::Options;
 use crate::solution::Solution;
 use crate::taylor_tape::TaylorWork;
+
+/// Sub-intervals of each step on which event functions are checked for a
+/// sign change.
+const EVENT_SAMPLES: usize = 8;
 
 /// The order the method uses for a tolerance.
 pub fn order_for(tol: f64) -> usize {
@@ -54,6 +59,9 @@ pub(crate) fn integrate<M: Model>(
     let mut y = y0.to_vec();
     let mut dense = vec![0.0; (p + 1) * n];
     solution.set_interpolant(p + 1, interpolate);
+    // Taylor steps are long (a good part of an orbit): the event functions
+    // are sampled inside them, so two crossings in one step are both found.
+    let mut events = EventWatch::new(model, t0, y0, EVENT_SAMPLES);
     let direction = if t1 >= t0 { 1.0 } else { -1.0 };
     let hmax = options.max_step.unwrap_or(f64::INFINITY);
     let safety = (-2.0f64).exp() * (-0.7 / (p as f64 - 1.0)).exp();
@@ -131,6 +139,13 @@ pub(crate) fn integrate<M: Model>(
         solution.push_dense(t, &y, &dense);
         solution.stats_mut().steps += 1;
         steps += 1;
+        if let Some(watch) = events.as_mut() {
+            let next;
+            (solution, next) = watch.after_step(solution)?;
+            if let Next::Stop = next {
+                break;
+            }
+        }
     }
     Ok(solution)
 }

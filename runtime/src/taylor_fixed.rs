@@ -3,6 +3,7 @@
 //! from the model's generated `taylor_derivatives`.
 
 use crate::error::Error;
+use crate::events::{EventWatch, Next};
 use crate::model::Model;
 use crate::solution::Solution;
 use crate::taylor_series::taylor_step;
@@ -21,6 +22,7 @@ pub(crate) fn integrate<M: Model>(
     let (mut y, mut next) = (y0.to_vec(), vec![0.0; n]);
     // The generated code writes all TAYLOR_ORDER blocks' room; only `order` are filled.
     let mut derivatives = vec![0.0; M::TAYLOR_ORDER * n];
+    let mut events = EventWatch::new(model, t0, y0, 1);
     for step in 0..steps {
         let t = t0 + (t1 - t0) * (step as f64 / steps as f64);
         let t_next = if step + 1 == steps {
@@ -49,6 +51,13 @@ pub(crate) fn integrate<M: Model>(
         let stats = solution.stats_mut();
         stats.steps += 1;
         stats.rhs_evals += 1;
+        if let Some(watch) = events.as_mut() {
+            let next;
+            (solution, next) = watch.after_step(solution)?;
+            if let Next::Stop = next {
+                break;
+            }
+        }
     }
     Ok(solution)
 }

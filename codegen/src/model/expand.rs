@@ -1,7 +1,7 @@
 //! Expansion: the generated struct, its `Default`, and its `daegen::Model`
 //! implementation. The last step; everything it needs was decided before.
 
-use super::ir::ModelIr;
+use super::ir::{EventDirection, ModelIr};
 use super::names::upper_camel_case;
 use super::reduce::{FirstOrder, SlotDerivative};
 use crate::{emit_program, Graph, Id, SymbolId, SymbolKind};
@@ -354,6 +354,38 @@ pub fn expand(
             SlotDerivative::Block { .. } => None,
         })
         .collect();
+    // The event functions' rates along the solution, dg/dt = ∂g/∂t + ∇g·f,
+    // let the runtime find two crossings between neighbouring samples.
+    let event_rates_method = match (&explicit, sys.events.is_empty()) {
+        (Some(f), false) => {
+            let mut field = crate::VectorField::new();
+            let one = g.one();
+            field.set(ir.time, one);
+            for (slot, &fi) in sys.slots.iter().zip(f) {
+                field.set(slot.symbol, fi);
+            }
+            let rates = sys
+                .events
+                .iter()
+                .map(|&e| g.total_derivative(e, &mut field))
+                .collect::<crate::error::Result<Vec<Id>>>()?;
+            let (m, n_lit) = (index(rates.len()), index(n));
+            let body = program(g, &layout, &rates, &|i, v| {
+                let i = index(i);
+                quote!(dg[#i] = #v;)
+            });
+            quote! {
+                #[inline]
+                fn event_rates(&self, t: f64, y: &[f64], dg: &mut [f64]) -> bool {
+                    let (::core::result::Result::Ok(y), ::core::result::Result::Ok(dg)) =
+                        (<&[f64; #n_lit]>::try_from(y), <&mut [f64; #m]>::try_from(dg)) else { return false };
+                    #body
+                    true
+                }
+            }
+        }
+        _ => TokenStream::new(),
+    };
     let (pattern, jacobian_body, time_body) = match explicit {
         Some(f) => {
             let wrt: Vec<SymbolId> = sys.slots.iter().map(|s| s.symbol).collect();
@@ -408,6 +440,26 @@ pub fn expand(
         })
         .collect();
 
+    // All event functions at once, sharing their subexpressions; nothing
+    // is emitted for a model without events.
+    let events_method = if sys.events.is_empty() {
+        TokenStream::new()
+    } else {
+        let (m, n_lit) = (index(sys.events.len()), index(n));
+        let body = program(g, &layout, &sys.events, &|i, v| {
+            let i = index(i);
+            quote!(g[#i] = #v;)
+        });
+        quote! {
+            #[inline]
+            fn events(&self, t: f64, y: &[f64], g: &mut [f64]) {
+                let (::core::result::Result::Ok(y), ::core::result::Result::Ok(g)) =
+                    (<&[f64; #n_lit]>::try_from(y), <&mut [f64; #m]>::try_from(g)) else { return };
+                #body
+            }
+        }
+    };
+
     let rhs_method_body = fixed_size_body(
         &index(n),
         "dy",
@@ -451,7 +503,11 @@ pub fn expand(
                 #time_body
             }
 
-            #taylor_tokens
+                        #taylor_tokens
+
+                        #events_method
+
+            #event_rates_method
 
             #[inline]
             fn output(&self, index: usize, t: f64, y: &[f64]) -> f64 {
@@ -474,6 +530,24 @@ fn info(ir: &ModelIr, sys: &FirstOrder) -> TokenStream {
     let outputs: Vec<&str> = ir.outputs.iter().map(|o| o.name.as_str()).collect();
     let output_docs: Vec<&str> = ir.outputs.iter().map(|o| o.doc.as_str()).collect();
     let equations = index(ir.equations.len());
+    let events = ir.events.iter().map(|e| {
+        let name = &e.name;
+        let doc = &e.doc;
+        let terminal = e.terminal;
+        let direction = match e.direction {
+            EventDirection::Any => quote!(Any),
+            EventDirection::Rising => quote!(Rising),
+            EventDirection::Falling => quote!(Falling),
+        };
+        quote! {
+            ::daegen::EventInfo {
+                name: #name,
+                direction: ::daegen::EventDirection::#direction,
+                terminal: #terminal,
+                doc: #doc,
+            }
+        }
+    });
     quote! {
         ::daegen::ModelInfo {
             name: #name,
@@ -482,8 +556,9 @@ fn info(ir: &ModelIr, sys: &FirstOrder) -> TokenStream {
             parameters: &[#(#params),*],
             parameter_docs: &[#(#param_docs),*],
             outputs: &[#(#outputs),*],
-            output_docs: &[#(#output_docs),*],
+                        output_docs: &[#(#output_docs),*],
             equations: #equations,
+            events: &[#(#events),*],
         }
     }
 }
@@ -505,7 +580,7 @@ pub fn stub(ir: &ModelIr) -> TokenStream {
             const INDEX: usize = 0;
             const INFO: ::daegen::ModelInfo = ::daegen::ModelInfo {
                 name: #name_str, doc: "", states: &[], parameters: &[], parameter_docs: &[],
-                outputs: &[], output_docs: &[], equations: 0,
+                                outputs: &[], output_docs: &[], equations: 0, events: &[],
             };
             const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[];
             fn initial_state(&self, y: &mut [f64]) {}

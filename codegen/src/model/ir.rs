@@ -46,6 +46,33 @@ pub struct Output {
     pub origin: TokenStream,
 }
 
+/// Which sign changes of an event function fire it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EventDirection {
+    /// Both.
+    Any,
+    /// From negative to positive (`.rising()`).
+    Rising,
+    /// From positive to negative (`.falling()`).
+    Falling,
+}
+
+/// `let e = event(g).falling().terminal();`
+pub struct Event {
+    /// Its name.
+    pub name: String,
+    /// The function whose zeros are the event.
+    pub value: Id,
+    /// Which crossings count.
+    pub direction: EventDirection,
+    /// Whether the run stops at the first one.
+    pub terminal: bool,
+    /// Its doc comment.
+    pub doc: String,
+    /// The declaration, for errors.
+    pub origin: TokenStream,
+}
+
 /// `lhs == rhs;` or `constraint(phi);` (as `phi == 0`).
 pub struct Equation {
     /// Left side.
@@ -88,6 +115,8 @@ pub struct ModelIr {
     pub algebraics: Vec<AlgebraicDecl>,
     /// Outputs.
     pub outputs: Vec<Output>,
+    /// Events.
+    pub events: Vec<Event>,
     /// Equations and constraints in order.
     pub equations: Vec<Equation>,
     /// Initial values of derivatives.

@@ -4,7 +4,9 @@
 //! and lowering goes on, so all mistakes are reported together.
 
 use super::ctxt::Ctxt;
-use super::ir::{AlgebraicDecl, Equation, Init, ModelIr, Output, Param, StateDecl};
+use super::ir::{
+    AlgebraicDecl, Equation, Event, EventDirection, Init, ModelIr, Output, Param, StateDecl,
+};
 use super::names::did_you_mean;
 use crate::{Func, Graph, Id, Node, SymbolId, SymbolKind};
 use quote::ToTokens;
@@ -48,7 +50,8 @@ impl Binding {
     }
 }
 
-const DECLARATIONS: [&str; 6] = [
+const DECLARATIONS: [&str; 7] = [
+    "event",
     "param",
     "state",
     "state_array",
@@ -87,6 +90,7 @@ struct Lower<'c> {
     states: Vec<StateDecl>,
     algebraics: Vec<AlgebraicDecl>,
     outputs: Vec<Output>,
+    events: Vec<Event>,
     equations: Vec<Equation>,
     inits: Vec<Init>,
     unrolled: usize,
@@ -105,6 +109,7 @@ pub fn lower(cx: &mut Ctxt, item: &syn::ItemFn) -> ModelIr {
         states: Vec::new(),
         algebraics: Vec::new(),
         outputs: Vec::new(),
+        events: Vec::new(),
         equations: Vec::new(),
         inits: Vec::new(),
         unrolled: 0,
@@ -145,6 +150,7 @@ pub fn lower(cx: &mut Ctxt, item: &syn::ItemFn) -> ModelIr {
         states: l.states,
         algebraics: l.algebraics,
         outputs: l.outputs,
+        events: l.events,
         equations: l.equations,
         inits: l.inits,
         non_smooth_calls: l.non_smooth_calls,
@@ -168,6 +174,22 @@ pub fn doc_comment(attrs: &[syn::Attribute]) -> String {
         .map(|l| l.strip_prefix(' ').unwrap_or(&l).to_string())
         .collect();
     lines.join("\n")
+}
+
+/// `event(g)` and the settings chained after it (`.falling().terminal()`),
+/// innermost first.
+fn event_call(e: &Expr) -> Option<(&syn::ExprCall, Vec<&syn::ExprMethodCall>)> {
+    let mut settings = Vec::new();
+    let mut e = e;
+    while let Expr::MethodCall(m) = e {
+        settings.push(m);
+        e = &m.receiver;
+    }
+    settings.reverse();
+    match call_name(e) {
+        Some((name, call)) if name == "event" => Some((call, settings)),
+        _ => None,
+    }
 }
 
 fn call_name(e: &Expr) -> Option<(String, &syn::ExprCall)> {
@@ -261,6 +283,15 @@ impl Lower<'_> {
         }
         let e = &*init.expr;
         let doc = doc_comment(&local.attrs);
+        if let Some((call, settings)) = event_call(e) {
+            if self.in_loop() {
+                return self.cx.error_at(
+                    e,
+                    format!("declare `event(...)` outside loops: each iteration would declare `{ident}` again"),
+                );
+            }
+            return self.event(&ident, call, &settings, doc, local);
+        }
         if let Some((name, call)) = call_name(e) {
             if DECLARATIONS.contains(&name.as_str()) {
                 if self.in_loop() {
@@ -285,6 +316,77 @@ impl Lower<'_> {
         if let Some(id) = self.value(e) {
             self.bind(&ident, Binding::Value { id, mutable });
         }
+    }
+
+    /// `let e = event(g).rising().terminal();`
+    fn event(
+        &mut self,
+        ident: &syn::Ident,
+        call: &syn::ExprCall,
+        settings: &[&syn::ExprMethodCall],
+        doc: String,
+        local: &syn::Local,
+    ) {
+        let name = ident.to_string();
+        if let Some(old) = self.lookup(&name) {
+            let what = old.describe();
+            return self.cx.error_at(
+                ident,
+                format!("`{name}` is already declared as {what}: choose another name"),
+            );
+        }
+        if !self.arity(call, "event", 1) {
+            return;
+        }
+        let (mut direction, mut terminal) = (EventDirection::Any, false);
+        for m in settings {
+            let setting = m.method.to_string();
+            if !m.args.is_empty() {
+                self.cx
+                    .error_at(&m.args, format!("`.{setting}()` takes no argument"));
+                continue;
+            }
+            let wanted = match setting.as_str() {
+                "rising" => EventDirection::Rising,
+                "falling" => EventDirection::Falling,
+                "terminal" => {
+                    terminal = true;
+                    continue;
+                }
+                _ => {
+                    self.cx.error_at(
+                        &m.method,
+                        format!("unknown event setting `.{setting}()`: use `.rising()`, `.falling()` or `.terminal()`"),
+                    );
+                    continue;
+                }
+            };
+            if direction != EventDirection::Any && direction != wanted {
+                self.cx.error_at(
+                    &m.method,
+                    "an event is `.rising()` or `.falling()`, not both: leave both out to catch every crossing",
+                );
+            }
+            direction = wanted;
+        }
+        let Some(value) = self.value(&call.args[0]) else {
+            return;
+        };
+        self.events.push(Event {
+            name,
+            value,
+            direction,
+            terminal,
+            doc,
+            origin: local.to_token_stream(),
+        });
+        self.bind(
+            ident,
+            Binding::Value {
+                id: value,
+                mutable: false,
+            },
+        );
     }
 
     fn arity(&mut self, call: &syn::ExprCall, name: &str, n: usize) -> bool {
@@ -553,6 +655,10 @@ impl Lower<'_> {
                 }
                 self.scopes.pop();
             }
+                        _ if event_call(e).is_some() => self.cx.error_at(
+                e,
+                "an event needs a name to be looked up by: write `let hit = event(...);`",
+            ),
             _ => match call_name(e) {
                 Some((name, call)) if name == "constraint" => {
                     if self.arity(call, "constraint", 1) {

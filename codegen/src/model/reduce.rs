@@ -53,6 +53,8 @@ pub struct FirstOrder {
     pub blocks: Vec<MassBlock>,
     /// Output values, with highest derivatives replaced by their solutions.
     pub outputs: Vec<Id>,
+    /// Event functions, likewise.
+    pub events: Vec<Id>,
 }
 
 struct Equation {
@@ -273,25 +275,33 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         .enumerate()
         .filter_map(|(j, &s)| solution[j].map(|z| (s, z)))
         .collect();
-    let mut outputs = Vec::with_capacity(ir.outputs.len());
-    for o in &ir.outputs {
-        let v = g.substitute(o.value, &replace).ok()?;
+    let mut observe = |value: Id, origin: &TokenStream, what: &str| -> Option<Id> {
+        let v = g.substitute(value, &replace).ok()?;
         if let Some(s) = g
             .free_symbols(v)
             .into_iter()
             .find(|s| z_index.contains_key(s))
         {
             let name = g.symbol(s).name.clone();
-            cx.error_at(&o.origin, format!("this output reads `{name}`, which is only known after a numerical solve; compute it from the states instead"));
+            cx.error_at(origin, format!("this {what} reads `{name}`, which is only known after a numerical solve; compute it from the states instead"));
             ok = false;
         }
-        outputs.push(v);
+        Some(v)
+    };
+    let mut outputs = Vec::with_capacity(ir.outputs.len());
+    for o in &ir.outputs {
+        outputs.push(observe(o.value, &o.origin, "output")?);
+    }
+    let mut events = Vec::with_capacity(ir.events.len());
+    for e in &ir.events {
+        events.push(observe(e.value, &e.origin, "event")?);
     }
     ok.then_some(FirstOrder {
         slots,
         derivatives,
         blocks: mass_blocks,
         outputs,
+        events,
     })
 }
 

@@ -1,0 +1,250 @@
+//! Events: zero crossings of `event(...)` functions located on each method's
+//! continuous extension, against times known in closed form.
+
+use daegen::prelude::*;
+
+/// A ball dropped from `h` that bounces with restitution `e`.
+#[dae_model(taylor = 1)]
+fn bouncing_ball() {
+    let g = param(9.81);
+    let h = param(10.0);
+    let height = state(h);
+    der(der(height)) == -g;
+    /// The ball reaches the ground.
+    let impact = event(height).falling().terminal();
+}
+
+/// Kepler's problem with e = 0.9 from perihelion; the sections are where the
+/// orbit crosses the axes and where it passes an apsis.
+#[dae_model(taylor = 1)]
+fn kepler_sections() {
+    let e = param(0.9);
+    let q1 = state(1.0 - e);
+    let q2 = state(0.0);
+    let p1 = state(0.0);
+    let p2 = state(sqrt((1.0 + e) / (1.0 - e)));
+    let r3 = (q1 * q1 + q2 * q2).powf(-1.5);
+    der(q1) == p1;
+    der(q2) == p2;
+    der(p1) == -q1 * r3;
+    der(p2) == -q2 * r3;
+    let perihelion = event(q2).rising();
+    let y_axis = event(q1);
+    let apsis = event(q1 * p1 + q2 * p2);
+}
+
+const ADAPTIVE: [Method; 4] = [
+    Method::Taylor,
+    Method::Dop853,
+    Method::Dopri5,
+    Method::Radau5,
+];
+
+/// The impact times of the bouncing ball: a drop of sqrt(2h/g), then flights
+/// of 2·eᵏ·v₁/g with v₁ = sqrt(2gh).
+fn impact_times(h: f64, g: f64, e: f64, bounces: usize) -> Vec<f64> {
+    let mut t = (2.0 * h / g).sqrt();
+    let mut v = (2.0 * g * h).sqrt();
+    let mut times = vec![t];
+    for _ in 1..bounces {
+        v *= e;
+        t += 2.0 * v / g;
+        times.push(t);
+    }
+    times
+}
+
+/// Bounces the ball `bounces` times, restarting after each terminal impact
+/// with the velocity reversed and scaled by `restitution`.
+fn bounce(method: Method, restitution: f64, bounces: usize) -> Vec<(f64, Vec<f64>)> {
+    let ball = BouncingBall::default();
+    let opts = Options::new().method(method).rtol(1e-12).atol(1e-12);
+    let (mut t, mut y) = (0.0, vec![ball.h, 0.0]);
+    let mut impacts = Vec::new();
+    for _ in 0..bounces {
+        let sol = ball
+            .simulate_from(t, &y, 100.0, &opts)
+            .unwrap_or_else(|e| panic!("{method:?}: {e}"));
+        let hit = sol
+            .stopped_by()
+            .unwrap_or_else(|| panic!("{method:?}: the ball never landed"));
+        assert_eq!(hit.name, "impact");
+        assert!(!hit.rising);
+        assert_eq!(sol.times().last(), Some(&hit.t));
+        assert_eq!(sol.final_state(), &hit.state[..]);
+        t = hit.t;
+        y = vec![hit.state[0], -restitution * hit.state[1]];
+        impacts.push((t, hit.state.clone()));
+    }
+    impacts
+}
+
+#[test]
+fn bouncing_ball_lands_when_the_parabola_says_for_every_adaptive_method() {
+    let exact = impact_times(10.0, 9.81, 0.8, 6);
+    for method in ADAPTIVE {
+        let impacts = bounce(method, 0.8, 6);
+        for ((t, y), want) in impacts.iter().zip(&exact) {
+            // The parabola is reproduced by every continuous extension
+            // (all are exact for quadratics), so the impact is found to
+            // rounding: the restarts add a few ulps each.
+            assert!(
+                (t - want).abs() <= 1e-13 * want,
+                "{method:?}: impact at {t}, exact {want}"
+            );
+            assert!(y[0].abs() <= 1e-12, "{method:?}: height {} at impact", y[0]);
+        }
+    }
+}
+
+#[test]
+fn fixed_step_methods_fire_events_from_their_interpolation() {
+    // RK4 reproduces the parabola at its steps; between them the linear
+    // interpolation misses the ground by at most g·h²/8, so the impact time
+    // is off by at most that over the impact speed.
+    let (g, h0, step) = (9.81f64, 10.0f64, 0.01f64);
+    let ball = BouncingBall::default();
+    let opts = Options::new().method(Method::Rk4).step(step);
+    let sol = ball.simulate(0.0, 3.0, &opts).expect("runs");
+    let hit = sol.stopped_by().expect("lands");
+    let exact = (2.0 * h0 / g).sqrt();
+    let bound = g * step * step / 8.0 / (g * exact);
+    assert!((hit.t - exact).abs() <= bound, "{} vs {exact}", hit.t);
+}
+
+/// Kepler's equation: E − e sin E = t.
+fn eccentric_anomaly(t: f64, e: f64) -> f64 {
+    let mut big_e = t + e * t.sin();
+    for _ in 0..100 {
+        big_e -= (big_e - e * big_e.sin() - t) / (1.0 - e * big_e.cos());
+    }
+    big_e
+}
+
+#[test]
+fn poincare_sections_of_the_kepler_orbit_fall_where_keplers_equation_puts_them() {
+    let e = 0.9f64;
+    let periods = 20;
+    let t_end = periods as f64 * std::f64::consts::TAU + 1.0;
+    let two_pi = std::f64::consts::TAU;
+    // The orbit crosses the y axis (q1 = cos E − e = 0) at E = ±acos(e).
+    let m_axis = {
+        let big_e = e.acos();
+        big_e - e * big_e.sin()
+    };
+    for method in [Method::Taylor, Method::Dop853] {
+        let opts = Options::new().method(method).rtol(1e-13).atol(1e-13);
+        let sol = KeplerSections::default()
+            .simulate(0.0, t_end, &opts)
+            .expect("runs");
+        // Perihelion passages at 2πk (the start itself, on the section, does not count).
+        let perihelia = sol.event_times("perihelion").expect("declared");
+        assert_eq!(perihelia.len(), periods, "{method:?}");
+        for (k, t) in perihelia.iter().enumerate() {
+            let want = two_pi * (k + 1) as f64;
+            assert!(
+                (t - want).abs() <= 1e-9,
+                "{method:?}: perihelion {k} at {t}, exact {want}"
+            );
+        }
+        // Apsides at πk: both directions of r·v.
+        let apsides = sol.event_times("apsis").expect("declared");
+        assert_eq!(apsides.len(), 2 * periods, "{method:?}");
+        for (k, t) in apsides.iter().enumerate() {
+            let want = std::f64::consts::PI * (k + 1) as f64;
+            assert!(
+                (t - want).abs() <= 1e-9,
+                "{method:?}: apsis {k} at {t}, exact {want}"
+            );
+        }
+        // Crossings of the y axis, alternately leaving and entering q1 > 0.
+        let crossings: Vec<_> = sol.events().iter().filter(|h| h.name == "y_axis").collect();
+        // 20 periods and 1 time unit: the first crossing of period 21 too.
+        assert!(m_axis < 1.0);
+        assert_eq!(crossings.len(), 2 * periods + 1, "{method:?}");
+        for (k, hit) in crossings.iter().enumerate() {
+            let period = (k / 2) as f64 * two_pi;
+            let (want, rising) = if k % 2 == 0 {
+                (period + m_axis, false)
+            } else {
+                (period + two_pi - m_axis, true)
+            };
+            assert_eq!(hit.rising, rising, "{method:?}: crossing {k}");
+            assert!(
+                (hit.t - want).abs() <= 1e-9,
+                "{method:?}: crossing {k} at {}, exact {want}",
+                hit.t
+            );
+            // On the section the state is the exact one there.
+            let big_e = eccentric_anomaly(hit.t, e);
+            let q2 = (1.0 - e * e).sqrt() * big_e.sin();
+            assert!(
+                hit.state[0].abs() <= 1e-9 && (hit.state[1] - q2).abs() <= 1e-8,
+                "{method:?}: {:?}",
+                hit.state
+            );
+        }
+        // Non-terminal events do not stop the run.
+        assert!(sol.stopped_by().is_none());
+        assert_eq!(sol.times().last(), Some(&t_end));
+        // All hits in time order.
+        assert!(sol.events().windows(2).all(|w| w[0].t <= w[1].t));
+    }
+}
+
+#[test]
+fn event_metadata_and_names() {
+    let info = <KeplerSections as Model>::INFO.events;
+    let names: Vec<_> = info.iter().map(|e| e.name).collect();
+    assert_eq!(names, ["perihelion", "y_axis", "apsis"]);
+    assert_eq!(info[0].direction, daegen::EventDirection::Rising);
+    assert_eq!(info[1].direction, daegen::EventDirection::Any);
+    assert!(!info[0].terminal);
+    let ball = <BouncingBall as Model>::INFO.events[0];
+    assert!(ball.terminal && ball.direction == daegen::EventDirection::Falling);
+    assert_eq!(ball.doc, "The ball reaches the ground.");
+    let sol = BouncingBall::default()
+        .simulate(0.0, 0.1, &Options::new())
+        .expect("runs");
+    assert!(sol.event_times("impact").expect("declared").is_empty());
+    let err = sol.event_times("impakt").unwrap_err().to_string();
+    assert!(err.contains("impakt") && err.contains("impact"), "{err}");
+}
+
+/// The event function is √x − 2, which stops being finite when x < 0.
+#[dae_model]
+fn draining() {
+    let x = state(1.0);
+    der(x) == -1.0;
+    let low = event(sqrt(x) - 2.0);
+}
+
+#[test]
+fn a_non_finite_event_function_is_an_error_naming_the_event() {
+    for method in [Method::Dopri5, Method::Rk4] {
+        let err = Draining::default()
+            .simulate(0.0, 3.0, &Options::new().method(method).step(0.25))
+            .unwrap_err();
+        match &err {
+            daegen::Error::NonFinite {
+                t,
+                variable,
+                partial,
+            } => {
+                assert_eq!(*variable, "low");
+                assert!(*t >= 1.0 - 1e-9 && *t <= 3.0, "{t}");
+                assert!(partial.times().last().is_some_and(|&tp| tp <= *t));
+            }
+            other => panic!("{method:?}: {other}"),
+        }
+    }
+}
+
+#[test]
+fn restarting_with_a_state_of_the_wrong_length_is_an_error() {
+    let err = BouncingBall::default()
+        .simulate_from(0.0, &[1.0], 1.0, &Options::new())
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("height, der(height)"), "{err}");
+}
