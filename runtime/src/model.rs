@@ -130,17 +130,18 @@ pub trait Model {
         Err(EvalError::TaylorUnavailable { order })
     }
 
-    /// Rows of the buffer [`Model::taylor_jet`] works in (0: the model has
-    /// no emitted Taylor recurrences).
-    const TAYLOR_ROWS: usize = 0;
+    /// Orders of the adaptive Taylor method emitted as straight-line code
+    /// (`#[dae_model(unroll = [..])]`); empty: the tape is interpreted.
+    const TAYLOR_UNROLLED: &'static [usize] = &[];
 
-    /// The normalised Taylor coefficients of the solution through (t, y) by
-    /// the recurrences the macro emitted for this model (the emitted layout
-    /// of `taylor_tape::advance` calls): state i's coefficient k at
-    /// `rows[i·(order+1) + k]`. `rows` has `TAYLOR_ROWS·(order+1)` zeros
-    /// the first time; a shorter buffer leaves it untouched.
-    fn taylor_jet(&self, t: f64, y: &[f64], order: usize, rows: &mut [f64]) {
-        let _ = (t, y, order, rows);
+    /// The normalised Taylor coefficients of the solution through (t, y)
+    /// up to `order`, by the straight-line recurrences emitted for that
+    /// order: state i's coefficient k at `out[i·(order+1) + k]`. `false`
+    /// (and nothing written) when `order` is not in
+    /// [`Model::TAYLOR_UNROLLED`] or `out` is shorter than STATES·(order+1).
+    fn taylor_jet_unrolled(&self, t: f64, y: &[f64], order: usize, out: &mut [f64]) -> bool {
+        let _ = (t, y, order, out);
+        false
     }
 
     /// The right-hand side as a tape of elementary operations and the

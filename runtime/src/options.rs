@@ -67,7 +67,7 @@ impl Default for Options {
             max_step: None,
             min_step: 0.0,
             max_steps: 10_000_000,
-            taylor_compact: true,
+            taylor_compact: false,
         }
     }
 }
@@ -132,12 +132,10 @@ impl Options {
         Options { max_steps, ..self }
     }
 
-    /// `Method::Taylor` interprets the model's tape (the compact layout,
-    /// the default) or, with `false`, calls the recurrences the macro
-    /// emitted (`Model::taylor_jet`). The emitted layout is only faster when
-    /// `taylor_tape::advance` is force-inlined, which made release builds
-    /// of 36-state models take minutes; until the emission is specialised
-    /// per operation the interpreter is the default.
+    /// `Method::Taylor` interprets the model's tape (the compact layout)
+    /// even where the macro emitted straight-line recurrences for the order
+    /// in use (`#[dae_model(unroll = [..])]`, used by default): to compare
+    /// the two layouts.
     pub fn taylor_compact(self, compact: bool) -> Options {
         Options {
             taylor_compact: compact,

@@ -17,6 +17,27 @@ use crate::taylor_tape::TaylorWork;
 /// sign change.
 const EVENT_SAMPLES: usize = 8;
 
+/// The position of the first NaN or infinity in `c`, if any. The common
+/// case, all finite, is one pass of four independent sums of `x − x`
+/// (zero for finite x, NaN otherwise).
+fn first_non_finite(c: &[f64]) -> Option<usize> {
+    let mut lanes = [0.0f64; 4];
+    let chunks = c.chunks_exact(4);
+    let tail = chunks.remainder();
+    for x in chunks {
+        for l in 0..4 {
+            lanes[l] += x[l] - x[l];
+        }
+    }
+    let total = tail
+        .iter()
+        .fold(lanes.iter().sum::<f64>(), |s, x| s + (x - x));
+    if total == 0.0 {
+        return None;
+    }
+    c.iter().position(|x| !x.is_finite())
+}
+
 /// The order the method uses for a tolerance.
 pub fn order_for(tol: f64) -> usize {
     ((-tol.ln() / 2.0 + 1.0).ceil() as usize).max(2)
@@ -52,12 +73,14 @@ pub(crate) fn integrate<M: Model>(
         options.atol
     };
     let p = order_for(tol);
-    // The interpreted tape unless the emitted recurrences are asked for.
-    let mut work = TaylorWork::new(&tape, &outputs, n, p);
-    let emitted = M::TAYLOR_ROWS > 0 && !options.taylor_compact;
-    let mut rows = vec![0.0; if emitted { M::TAYLOR_ROWS * (p + 1) } else { 0 }];
+    // The straight-line recurrences when the macro emitted this order,
+    // else the interpreted tape.
+    let unrolled = M::TAYLOR_UNROLLED.contains(&p) && !options.taylor_compact;
+    let mut work = (!unrolled).then(|| TaylorWork::new(&tape, &outputs, n, p));
+    let mut jet = vec![0.0; if unrolled { n * (p + 1) } else { 0 }];
     let mut y = y0.to_vec();
     let mut dense = vec![0.0; (p + 1) * n];
+    let mut powers = vec![0.0; p + 1];
     solution.set_interpolant(p + 1, interpolate);
     // Taylor steps are long (a good part of an orbit): the event functions
     // are sampled inside them, so two crossings in one step are both found.
@@ -74,20 +97,23 @@ pub(crate) fn integrate<M: Model>(
                 partial: Box::new(solution),
             });
         }
-        let coefficients: &[f64] = if emitted {
-            model.taylor_jet(t, &y, p, &mut rows);
-            &rows
-        } else {
-            work.compute(t, &y);
-            work.rows()
+        let coefficients: &[f64] = match work.as_mut() {
+            Some(work) => {
+                work.compute(t, &y);
+                work.rows()
+            }
+            None => {
+                model.taylor_jet_unrolled(t, &y, p, &mut jet);
+                &jet
+            }
         };
         let state = |i: usize| &coefficients[i * (p + 1)..(i + 1) * (p + 1)];
         solution.stats_mut().rhs_evals += 1;
         let norm = |k: usize| (0..n).map(|i| state(i)[k].abs()).fold(0.0, f64::max);
-        if let Some(i) = (0..n).find(|&i| state(i).iter().any(|c| !c.is_finite())) {
+        if let Some(at) = first_non_finite(&coefficients[..n * (p + 1)]) {
             return Err(Error::NonFinite {
                 t,
-                variable: M::INFO.states[i],
+                variable: M::INFO.states[at / (p + 1)],
                 partial: Box::new(solution),
             });
         }
@@ -116,14 +142,35 @@ pub(crate) fn integrate<M: Model>(
             });
         }
         let h = direction * h;
+        // The coefficients scaled by hᵏ are the step's dense output.
+        // (h^(2j) = (h^j)², h^(2j+1) = h^(2j)·h: a chain of depth log p.)
+        powers[0] = 1.0;
+        for k in 1..=p {
+            powers[k] = if k % 2 == 0 {
+                powers[k / 2] * powers[k / 2]
+            } else {
+                powers[k - 1] * h
+            };
+        }
         for i in 0..n {
-            let c = state(i);
-            let mut power = 1.0;
-            for (k, ck) in c.iter().enumerate() {
-                dense[k * n + i] = ck * power;
-                power *= h;
+            for (k, (c, power)) in state(i).iter().zip(&powers).enumerate() {
+                dense[k * n + i] = c * power;
             }
-            y[i] = (0..=p).rev().fold(0.0, |acc, k| acc * h + c[k]);
+        }
+        // Horner, four states at a time in registers: the chains are
+        // independent, so they overlap instead of waiting on one another.
+        for (block, ys) in y.chunks_mut(4).enumerate() {
+            let mut acc = [0.0f64; 4];
+            let lanes = ys.len();
+            for (l, a) in acc.iter_mut().enumerate().take(lanes) {
+                *a = state(4 * block + l)[p];
+            }
+            for k in (0..p).rev() {
+                for (l, a) in acc.iter_mut().enumerate().take(lanes) {
+                    *a = *a * h + coefficients[(4 * block + l) * (p + 1) + k];
+                }
+            }
+            ys.copy_from_slice(&acc[..lanes]);
         }
         let step = h - compensation;
         let t_next = t + step;
@@ -153,6 +200,17 @@ pub(crate) fn integrate<M: Model>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn non_finite_coefficients_are_found_wherever_they_are() {
+        let mut c = vec![1.0; 23];
+        assert_eq!(first_non_finite(&c), None);
+        for (at, bad) in [(0, f64::NAN), (5, f64::INFINITY), (22, f64::NEG_INFINITY)] {
+            c[at] = bad;
+            assert_eq!(first_non_finite(&c), Some(at));
+            c[at] = 1.0;
+        }
+    }
 
     #[test]
     fn order_follows_heyoka() {

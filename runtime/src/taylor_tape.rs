@@ -332,29 +332,58 @@ pub fn advance(rows: &mut [f64], w: usize, k: usize, v: usize, step: Step) {
 }
 
 /// Σ_i a[i]·b[n−1−i] over the common length n: the Cauchy product term.
+/// Four partial sums: a single running sum is bound by the latency of one
+/// addition per term, which dominated the whole method; the result differs
+/// from the sequential sum only by rounding.
 #[inline]
 fn convolution(a: &[f64], b: &[f64]) -> f64 {
     let n = a.len().min(b.len());
-    a[..n]
-        .iter()
-        .zip(b[..n].iter().rev())
-        .map(|(x, y)| x * y)
-        .sum()
+    let (a, b) = (&a[..n], &b[..n]);
+    let mut acc = [0.0f64; 4];
+    let (a4, b4) = (a.chunks_exact(4), b.rchunks_exact(4));
+    let (a_tail, b_head) = (a4.remainder(), b4.remainder());
+    for (x, y) in a4.zip(b4) {
+        acc[0] += x[0] * y[3];
+        acc[1] += x[1] * y[2];
+        acc[2] += x[2] * y[1];
+        acc[3] += x[3] * y[0];
+    }
+    // a's last elements meet b's first ones, in reverse.
+    for (x, y) in a_tail.iter().zip(b_head.iter().rev()) {
+        acc[0] += x * y;
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3])
 }
 
 /// (Σ_i a[i]·b[n−1−i], Σ_i i·a[i]·b[n−1−i]) over the common length n, in
-/// one pass.
+/// one pass, with four partial sums each (see [`convolution`]).
 #[inline]
 fn convolutions(a: &[f64], b: &[f64]) -> (f64, f64) {
     let n = a.len().min(b.len());
-    let (mut plain, mut weighted, mut index) = (0.0, 0.0, 0.0);
-    for (x, y) in a[..n].iter().zip(b[..n].iter().rev()) {
-        let term = x * y;
-        plain += term;
-        weighted += index * term;
-        index += 1.0;
+    let (a, b) = (&a[..n], &b[..n]);
+    let (mut plain, mut weighted) = ([0.0f64; 4], [0.0f64; 4]);
+    let mut index = [0.0, 1.0, 2.0, 3.0];
+    let (a4, b4) = (a.chunks_exact(4), b.rchunks_exact(4));
+    let (a_tail, b_head) = (a4.remainder(), b4.remainder());
+    for (x, y) in a4.zip(b4) {
+        for l in 0..4 {
+            let term = x[l] * y[3 - l];
+            plain[l] += term;
+            weighted[l] += index[l] * term;
+            index[l] += 4.0;
+        }
     }
-    (plain, weighted)
+    let mut i = index[0];
+    for (x, y) in a_tail.iter().zip(b_head.iter().rev()) {
+        let term = x * y;
+        plain[0] += term;
+        weighted[0] += i * term;
+        i += 1.0;
+    }
+    (
+        (plain[0] + plain[1]) + (plain[2] + plain[3]),
+        (weighted[0] + weighted[1]) + (weighted[2] + weighted[3]),
+    )
 }
 
 /// Σ_{j=1..k} j·a[j]·b[k−j] for `a` of length k+1 and `b` of length k: the

@@ -49,6 +49,7 @@ fn taylor_method(
     sys: &FirstOrder,
     time: SymbolId,
     order: usize,
+    unroll: &[usize],
 ) -> crate::Result<TokenStream> {
     let n = sys.slots.len();
     let mut f = Vec::with_capacity(n);
@@ -116,48 +117,40 @@ fn taylor_method(
         quote!(let #name: f64 = #v;)
     });
     let (ops, outs) = (&tape.ops, &tape.outputs);
-    // The emitted layout: one `advance` call per recurrence with literal
-    // rows, inside a runtime loop over the orders.
-    let time_row = index(n);
-    let first_var = index(n + 1 + consts.len());
-    let rows = index(n + 1 + consts.len() + tape.ops.len());
-    let constant_rows = (0..consts.len()).map(|i| {
-        let (c, i) = (quote::format_ident!("c{}", i), index(i));
-        quote!(rows[(T + 1 + #i) * w] = #c;)
-    });
-    let advances = tape.steps.iter().map(|(v, step)| {
-        let v = index(*v);
-        quote!(::daegen::runtime::taylor_tape::advance(rows, w, k, U + #v, #step);)
-    });
-    let next_coefficients = tape.output_rows.iter().enumerate().map(|(i, row)| {
-        let i = index(i);
-        quote!(rows[#i * w + k + 1] = rows[(#row) * w + k] / (k + 1) as f64;)
-    });
-    Ok(quote! {
-        const TAYLOR_ROWS: usize = #rows;
-
-        #[allow(clippy::identity_op, clippy::erasing_op)]
-        fn taylor_jet(&self, t: f64, y: &[f64], order: usize, rows: &mut [f64]) {
-                        #[allow(dead_code)]
-            const T: usize = #time_row;
-            #[allow(dead_code)]
-            const U: usize = #first_var;
-            let w = order + 1;
-            if y.len() < #nn || rows.len() < #rows * w {
-                return;
-            }
-            #const_code
-            #(#constant_rows)*
-            rows[..#nn * w].iter_mut().step_by(w).zip(y).for_each(|(r, v)| *r = *v);
-            rows[T * w] = t;
-            if order > 0 {
-                rows[T * w + 1] = 1.0;
-            }
-            for k in 0..order {
-                #(#advances)*
-                #(#next_coefficients)*
+    // The unrolled layout, for the orders the user asked for.
+    let unrolled_arms = unroll.iter().map(|&order| {
+        let body = super::taylor_unrolled::unrolled_jet(&tape, n, order);
+        let (order_lit, len) = (index(order), index(n * (order + 1)));
+        quote! {
+            #order_lit => {
+                let ::core::option::Option::Some(out) = out.get_mut(..#len) else { return false };
+                let (::core::result::Result::Ok(y), ::core::result::Result::Ok(out)) =
+                    (<&[f64; #nn]>::try_from(y), <&mut [f64; #len]>::try_from(out)) else { return false };
+                #const_code
+                #body
+                true
             }
         }
+    });
+    let unrolled_orders = unroll.iter().map(|&o| index(o));
+    let unrolled = if unroll.is_empty() {
+        TokenStream::new()
+    } else {
+        quote! {
+            const TAYLOR_UNROLLED: &'static [usize] = &[#(#unrolled_orders),*];
+
+            #[allow(clippy::all)]
+            fn taylor_jet_unrolled(&self, t: f64, y: &[f64], order: usize, out: &mut [f64]) -> bool {
+                match order {
+                    #(#unrolled_arms)*
+                    _ => false,
+                }
+            }
+        }
+    };
+    Ok(quote! {
+        #unrolled
+
         #[inline]
         fn taylor_tape(&self) -> ::core::option::Option<(
             ::std::vec::Vec<::daegen::runtime::taylor_tape::TapeOp>,
@@ -275,8 +268,13 @@ fn struct_and_default(ir: &ModelIr) -> TokenStream {
 pub fn expand(
     ir: &mut ModelIr,
     sys: &FirstOrder,
-    taylor: Option<usize>,
+    attributes: &super::Attributes,
 ) -> crate::Result<TokenStream> {
+    // `unroll` alone implies the Taylor tape (and the first-order scheme).
+    let taylor = match (attributes.taylor, attributes.unroll.is_empty()) {
+        (None, false) => Some(1),
+        (t, _) => t,
+    };
     let name = type_name(ir);
     let n = sys.slots.len();
     let slot_of = sys
@@ -467,7 +465,14 @@ pub fn expand(
         quote!(#block_setup #rhs_body #block_solve),
     );
     let taylor_tokens = match taylor {
-        Some(order) => taylor_method(&mut ir.graph, &mut layout, sys, ir.time, order)?,
+        Some(order) => taylor_method(
+            &mut ir.graph,
+            &mut layout,
+            sys,
+            ir.time,
+            order,
+            &attributes.unroll,
+        )?,
         None => TokenStream::new(),
     };
     let info = info(ir, sys);

@@ -13,13 +13,14 @@ pub mod lower;
 pub mod names;
 pub mod reduce;
 pub mod taylor_tape;
+pub mod taylor_unrolled;
 
 use proc_macro2::TokenStream;
 
 /// Expands `#[dae_model(attr)] item`.
 pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
     let mut cx = ctxt::Ctxt::default();
-    let taylor = taylor_order(&mut cx, attr);
+    let attributes = attributes(&mut cx, attr);
     let item: syn::ItemFn = match syn::parse2(item) {
         Ok(item) => item,
         Err(e) => {
@@ -37,7 +38,7 @@ pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
         None
     };
     if let (Some(system), true) = (&system, cx.is_ok()) {
-        match expand::expand(&mut ir, system, taylor) {
+        match expand::expand(&mut ir, system, &attributes) {
             Ok(tokens) => return tokens,
             Err(e @ crate::Error::NotSmooth { node, .. }) => {
                 // The call itself when the right-hand side kept the node the
@@ -60,31 +61,69 @@ pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
     out
 }
 
-/// `#[dae_model]` or `#[dae_model(taylor = p)]`, 1 ≤ p ≤ 8: the order of the
-/// economic Taylor derivatives to generate (none by default: only what is asked for).
-fn taylor_order(cx: &mut ctxt::Ctxt, attr: TokenStream) -> Option<usize> {
+/// What `#[dae_model(...)]` asks for besides the model.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Attributes {
+    /// `taylor = p`, 1 ≤ p ≤ 8: the economic Taylor derivatives up to order
+    /// p and the AD tape of the adaptive Taylor method.
+    pub taylor: Option<usize>,
+    /// `unroll = [p, ...]`, 2 ≤ p ≤ 40: orders of the adaptive Taylor method
+    /// to emit as straight-line code (see `taylor_unrolled`).
+    pub unroll: Vec<usize>,
+}
+
+/// Reads `#[dae_model]`, `#[dae_model(taylor = p)]`, `#[dae_model(unroll = [15, 19])]`
+/// or both (only what is asked for is generated).
+fn attributes(cx: &mut ctxt::Ctxt, attr: TokenStream) -> Attributes {
+    let mut out = Attributes::default();
     if attr.is_empty() {
-        return None;
+        return out;
     }
-    let fix = "`#[dae_model]` takes one optional argument: `taylor = p` with p from 1 to 8";
-    let Ok(arg) = syn::parse2::<syn::MetaNameValue>(attr.clone()) else {
+    let fix = "`#[dae_model]` takes `taylor = p` (p from 1 to 8) and `unroll = [p, ...]` (orders from 2 to 40)";
+    let parser =
+        syn::punctuated::Punctuated::<syn::MetaNameValue, syn::Token![,]>::parse_terminated;
+    let Ok(args) = syn::parse::Parser::parse2(parser, attr.clone()) else {
         cx.error_at(&attr, fix);
-        return None;
+        return out;
     };
-    let order = match &arg.value {
+    let integer = |e: &syn::Expr| match e {
         syn::Expr::Lit(syn::ExprLit {
             lit: syn::Lit::Int(i),
             ..
         }) => i.base10_parse::<usize>().ok(),
         _ => None,
     };
-    match order {
-        Some(p) if arg.path.is_ident("taylor") && (1..=8).contains(&p) => Some(p),
-        _ => {
-            cx.error_at(&attr, fix);
-            None
+    for arg in &args {
+        if arg.path.is_ident("taylor") && out.taylor.is_none() {
+            match integer(&arg.value) {
+                Some(p) if (1..=8).contains(&p) => out.taylor = Some(p),
+                _ => cx.error_at(&arg.value, "`taylor = p` takes an order p from 1 to 8"),
+            }
+        } else if arg.path.is_ident("unroll") && out.unroll.is_empty() {
+            let orders: Option<Vec<usize>> = match &arg.value {
+                syn::Expr::Array(a) if !a.elems.is_empty() => a
+                    .elems
+                    .iter()
+                    .map(|e| integer(e).filter(|p| (2..=40).contains(p)))
+                    .collect(),
+                _ => None,
+            };
+            match orders {
+                Some(mut orders) => {
+                    orders.sort_unstable();
+                    orders.dedup();
+                    out.unroll = orders;
+                }
+                None => cx.error_at(
+                    &arg.value,
+                    "`unroll` takes a list of Taylor orders from 2 to 40, e.g. `unroll = [15, 19]` (tolerance 1e-12 uses 15, 1e-15 uses 19)",
+                ),
+            }
+        } else {
+            cx.error_at(arg, fix);
         }
     }
+    out
 }
 
 /// The errors `expand_dae_model` would report, as messages: for tests of
@@ -97,7 +136,7 @@ pub fn diagnostics(item: TokenStream) -> Vec<String> {
     let mut ir = lower::lower(&mut cx, &item);
     if cx.is_ok() {
         if let Some(system) = reduce::reduce(&mut cx, &mut ir) {
-            if let Err(e) = expand::expand(&mut ir, &system, None) {
+            if let Err(e) = expand::expand(&mut ir, &system, &Attributes::default()) {
                 cx.error_at(&item.sig.ident, e);
             }
         }

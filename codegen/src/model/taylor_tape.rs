@@ -8,38 +8,21 @@ use crate::{Func, FxHashMap, Graph, Id, Node, SymbolId, SymbolKind};
 use proc_macro2::TokenStream;
 use quote::quote;
 
-/// An operand, as tokens of `daegen::runtime::taylor_tape::Operand`.
-#[derive(Clone, PartialEq)]
-enum Operand {
+/// An operand of a tape operation (the model's side of
+/// `daegen::runtime::taylor_tape::Operand`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Operand {
+    /// u-variable `i`.
     Var(usize),
+    /// State `i`.
     State(usize),
+    /// The independent variable.
     Time,
     /// Index into the constants computed at the top of the method.
     Const(usize),
 }
 
 impl Operand {
-    /// The operand's row in the emitted layout: states, the time `T`,
-    /// constants from `T + 1`, u-variables from `U`.
-    fn row(&self) -> TokenStream {
-        let lit = |i: usize| proc_macro2::Literal::usize_unsuffixed(i);
-        match self {
-            Operand::Var(i) => {
-                let i = lit(*i);
-                quote!(U + #i)
-            }
-            Operand::State(i) => {
-                let i = lit(*i);
-                quote!(#i)
-            }
-            Operand::Time => quote!(T),
-            Operand::Const(i) => {
-                let i = lit(*i);
-                quote!(T + 1 + #i)
-            }
-        }
-    }
-
     fn tokens(&self) -> TokenStream {
         let path = quote!(::daegen::runtime::taylor_tape::Operand);
         let lit = |i: usize| proc_macro2::Literal::usize_unsuffixed(i);
@@ -69,19 +52,63 @@ pub enum Constant {
     Integer(i64),
 }
 
+/// How a u-variable's Taylor coefficients follow from its operands' (the
+/// recurrences of `daegen::runtime::taylor_tape::Step`, for the unrolled
+/// layout). Constants are indices into [`Tape::constants`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Recurrence {
+    /// `a + b`.
+    Add(Operand, Operand),
+    /// `a·c`, c a constant.
+    Scale(Operand, usize),
+    /// `a/c`, c a constant.
+    Quotient(Operand, usize),
+    /// `a·b`.
+    Mul(Operand, Operand),
+    /// `a·a`.
+    Square(Operand),
+    /// `a/b`.
+    Div(Operand, Operand),
+    /// `a^e`, e a real constant.
+    Pow(Operand, f64),
+    /// `exp(a)`.
+    Exp(Operand),
+    /// `ln(a)`.
+    Ln(Operand),
+    /// `sin(a)` and, in the next u-variable, `cos(a)`.
+    SinCos(Operand),
+    /// `sinh(a)` and, in the next u-variable, `cosh(a)`.
+    SinhCosh(Operand),
+    /// `asin`, `acos` or `atan` of `a`, with d·u' = ±a'.
+    Inverse(InverseFunction, Operand, Operand),
+    /// `atan2(y, x)` with `d = x² + y²`.
+    Atan2(Operand, Operand, Operand),
+}
+
+/// The inverse functions of [`Recurrence::Inverse`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InverseFunction {
+    /// d = √(1 − a²), u' = a'/d.
+    Asin,
+    /// d = √(1 − a²), u' = −a'/d.
+    Acos,
+    /// d = 1 + a², u' = a'/d.
+    Atan,
+}
+
 /// The tape of `outputs`: (constant expressions, operations, output operands).
 pub struct Tape {
     /// Constants, in order (`c0`, `c1`, ...).
     pub constants: Vec<Constant>,
     /// One `TapeOp` per u-variable, as tokens.
     pub ops: Vec<TokenStream>,
-    /// The operand of each output.
+    /// The operand of each output, as tokens.
     pub outputs: Vec<TokenStream>,
-    /// The emitted layout: per u-variable with a recurrence of its own, the
-    /// `taylor_tape::Step` as tokens and the u-variable's index.
-    pub steps: Vec<(usize, TokenStream)>,
-    /// The row of each output in the emitted layout.
-    pub output_rows: Vec<TokenStream>,
+    /// Per u-variable with a recurrence of its own (cos and cosh come with
+    /// sin and sinh), its index and recurrence.
+    pub recurrences: Vec<(usize, Recurrence)>,
+    /// The operand of each output.
+    pub output_operands: Vec<Operand>,
 }
 
 struct Builder<'g> {
@@ -91,7 +118,7 @@ struct Builder<'g> {
     operand_of: FxHashMap<Id, Operand>,
     constants: Vec<Constant>,
     ops: Vec<TokenStream>,
-    steps: Vec<(usize, TokenStream)>,
+    recurrences: Vec<(usize, Recurrence)>,
     /// sin(a) → the u-variable of its pair, so cos(a) is reused.
     sin_of: FxHashMap<Id, usize>,
     /// sinh(a) → the u-variable of its pair with cosh(a).
@@ -101,10 +128,9 @@ struct Builder<'g> {
 impl Builder<'_> {
     /// Appends a tape operation and, unless its value comes with the
     /// previous one (cos, cosh), its step for the emitted layout.
-    fn push(&mut self, op: TokenStream, step: Option<TokenStream>) -> Operand {
-        if let Some(step) = step {
-            let step = quote!(::daegen::runtime::taylor_tape::Step::#step);
-            self.steps.push((self.ops.len(), step));
+    fn push(&mut self, op: TokenStream, recurrence: Option<Recurrence>) -> Operand {
+        if let Some(r) = recurrence {
+            self.recurrences.push((self.ops.len(), r));
         }
         self.ops.push(op);
         Operand::Var(self.ops.len() - 1)
@@ -132,13 +158,17 @@ impl Builder<'_> {
             let negated = self.binary("Mul", &minus_one, &square);
             let difference = self.binary("Add", &one, &negated);
             let b = difference.tokens();
-            let r = difference.row();
             self.push(
                 quote!(::daegen::runtime::taylor_tape::TapeOp::Pow(#b, 0.5)),
-                Some(quote!(Pow(#r, 0.5))),
+                Some(Recurrence::Pow(difference, 0.5)),
             )
         };
-        let (ra, rd) = (a.row(), d.row());
+        let function = match f {
+            "Asin" => InverseFunction::Asin,
+            "Acos" => InverseFunction::Acos,
+            _ => InverseFunction::Atan,
+        };
+        let recurrence = Recurrence::Inverse(function, *a, d);
         let (a, d) = (a.tokens(), d.tokens());
         let f = quote::format_ident!("{}", f);
         self.push(
@@ -147,7 +177,7 @@ impl Builder<'_> {
                 #a,
                 #d
             )),
-            Some(quote!(Inverse(::daegen::runtime::taylor_tape::Inverse::#f, #ra, #rd))),
+            Some(recurrence),
         )
     }
 
@@ -167,20 +197,18 @@ impl Builder<'_> {
     }
 
     fn binary(&mut self, name: &str, a: &Operand, b: &Operand) -> Operand {
-        let (ra, rb) = (a.row(), b.row());
         let constant = |o: &Operand| match o {
-            Operand::Const(i) => Some(quote::format_ident!("c{}", i)),
+            Operand::Const(i) => Some(*i),
             _ => None,
         };
         let step = match (name, constant(a), constant(b)) {
-            ("Mul", _, _) if a == b => quote!(Square(#ra)),
-            ("Mul", Some(c), None) => quote!(Scale(#rb, #c)),
-            ("Mul", None, Some(c)) => quote!(Scale(#ra, #c)),
-            ("Div", _, Some(c)) => quote!(Quotient(#ra, #c)),
-            _ => {
-                let op = quote::format_ident!("{}", name);
-                quote!(#op(#ra, #rb))
-            }
+            ("Mul", _, _) if a == b => Recurrence::Square(*a),
+            ("Mul", Some(c), None) => Recurrence::Scale(*b, c),
+            ("Mul", None, Some(c)) => Recurrence::Scale(*a, c),
+            ("Mul", _, _) => Recurrence::Mul(*a, *b),
+            ("Div", _, Some(c)) => Recurrence::Quotient(*a, c),
+            ("Div", _, _) => Recurrence::Div(*a, *b),
+            _ => Recurrence::Add(*a, *b),
         };
         let (a, b) = (a.tokens(), b.tokens());
         let op = quote::format_ident!("{}", name);
@@ -191,14 +219,11 @@ impl Builder<'_> {
     }
 
     fn unary(&mut self, name: &str, a: &Operand) -> Operand {
-        let r = a.row();
         let step = match name {
-            "Sin" => quote!(SinCos(#r)),
-            "Sinh" => quote!(SinhCosh(#r)),
-            _ => {
-                let op = quote::format_ident!("{}", name);
-                quote!(#op(#r))
-            }
+            "Sin" => Recurrence::SinCos(*a),
+            "Sinh" => Recurrence::SinhCosh(*a),
+            "Exp" => Recurrence::Exp(*a),
+            _ => Recurrence::Ln(*a),
         };
         let a = a.tokens();
         let op = quote::format_ident!("{}", name);
@@ -296,10 +321,9 @@ impl Builder<'_> {
                     Some(n) => {
                         let value = n.to_f64();
                         let (b, e) = (base.tokens(), value);
-                        let r = base.row();
                         self.push(
                             quote!(::daegen::runtime::taylor_tape::TapeOp::Pow(#b, #e)),
-                            Some(quote!(Pow(#r, #e))),
+                            Some(Recurrence::Pow(base, value)),
                         )
                     }
                     None => {
@@ -344,10 +368,7 @@ impl Builder<'_> {
                 let xx = self.binary("Mul", &x, &x);
                 let yy = self.binary("Mul", &y, &y);
                 let d = self.binary("Add", &xx, &yy);
-                let step = {
-                    let (y, x, d) = (y.row(), x.row(), d.row());
-                    quote!(Atan2(#y, #x, #d))
-                };
+                let step = Recurrence::Atan2(y, x, d);
                 let (y, x, d) = (y.tokens(), x.tokens(), d.tokens());
                 self.push(
                     quote!(::daegen::runtime::taylor_tape::TapeOp::Atan2(#y, #x, #d)),
@@ -386,7 +407,7 @@ pub fn decompose(
         operand_of: FxHashMap::default(),
         constants: Vec::new(),
         ops: Vec::new(),
-        steps: Vec::new(),
+        recurrences: Vec::new(),
         sin_of: FxHashMap::default(),
         sinh_of: FxHashMap::default(),
     };
@@ -407,13 +428,13 @@ pub fn decompose(
         let operand = b.node(id, dep)?;
         b.operand_of.insert(id, operand);
     }
-    let output_rows = outputs.iter().map(|&o| b.operand(o).row()).collect();
-    let outputs = outputs.iter().map(|&o| b.operand(o).tokens()).collect();
+    let output_operands: Vec<Operand> = outputs.iter().map(|&o| b.operand(o)).collect();
+    let outputs = output_operands.iter().map(Operand::tokens).collect();
     Ok(Tape {
         constants: b.constants,
         ops: b.ops,
         outputs,
-        steps: b.steps,
-        output_rows,
+        recurrences: b.recurrences,
+        output_operands,
     })
 }
