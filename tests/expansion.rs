@@ -138,3 +138,21 @@ fn bouncing_ball_with_a_terminal_event() {
         }
     }));
 }
+
+/// The unrolled Taylor recurrences of order 3 for a forced logistic
+/// equation: a product, a square, a sine/cosine pair of the time and a
+/// constant, each coefficient one slot of `r`, one function per order.
+#[test]
+fn logistic_with_unrolled_taylor_recurrences_of_order_3() {
+    insta::assert_snapshot!(expand_with(
+        quote!(unroll = [3]),
+        quote! {
+            fn forced_logistic() {
+                let t = time();
+                let k = param(2.0);
+                let x = state(0.5);
+                der(x) == k * x * (1.0 - x) + sin(t);
+            }
+        }
+    ));
+}

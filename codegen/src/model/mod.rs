@@ -97,7 +97,10 @@ fn attributes(cx: &mut ctxt::Ctxt, attr: TokenStream) -> Attributes {
         if arg.path.is_ident("taylor") && out.taylor.is_none() {
             match integer(&arg.value) {
                 Some(p) if (1..=8).contains(&p) => out.taylor = Some(p),
-                _ => cx.error_at(&arg.value, "`taylor = p` takes an order p from 1 to 8"),
+                _ => cx.error_at(
+                    &arg.value,
+                    "`taylor = p` takes an order p from 1 to 8 (the economic scheme's derivatives); `Method::Taylor` picks its own order, and `unroll = [p]` emits order p as code",
+                ),
             }
         } else if arg.path.is_ident("unroll") && out.unroll.is_empty() {
             let orders: Option<Vec<usize>> = match &arg.value {

@@ -17,26 +17,46 @@ use super::taylor_tape::{InverseFunction, Operand, Recurrence, Tape};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
-/// Coefficient `k` of an operand: `None` when it is zero.
-fn coefficient(o: Operand, k: usize) -> Option<TokenStream> {
-    match o {
-        Operand::State(i) => {
-            let name = format_ident!("s{}_{}", i, k);
-            Some(quote!(#name))
+/// Where the coefficients live: one array `r` of rows of `order + 1`
+/// coefficients, states first, then u-variables, then one reciprocal 1/x₀
+/// per u-variable; constants in `c`, the time in `t`.
+struct Layout {
+    order: usize,
+    states: usize,
+    vars: usize,
+}
+
+impl Layout {
+    fn len(&self) -> usize {
+        (self.states + self.vars) * (self.order + 1) + self.vars
+    }
+
+    fn slot(&self, row: usize, k: usize) -> TokenStream {
+        let at = Literal::usize_unsuffixed(row * (self.order + 1) + k);
+        quote!(r[#at])
+    }
+
+    /// Coefficient `k` of an operand: `None` when it is zero.
+    fn coefficient(&self, o: Operand, k: usize) -> Option<TokenStream> {
+        match o {
+            Operand::State(i) => Some(self.slot(i, k)),
+            Operand::Var(v) => Some(self.slot(self.states + v, k)),
+            Operand::Time => match k {
+                0 => Some(quote!(t)),
+                1 => Some(quote!(1.0)),
+                _ => None,
+            },
+            Operand::Const(i) => (k == 0).then(|| {
+                let i = Literal::usize_unsuffixed(i);
+                quote!(c[#i])
+            }),
         }
-        Operand::Var(v) => {
-            let name = format_ident!("u{}_{}", v, k);
-            Some(quote!(#name))
-        }
-        Operand::Time => match k {
-            0 => Some(quote!(t)),
-            1 => Some(quote!(1.0)),
-            _ => None,
-        },
-        Operand::Const(c) => (k == 0).then(|| {
-            let name = format_ident!("c{}", c);
-            quote!(#name)
-        }),
+    }
+
+    /// The slot of 1/x₀ for u-variable `v`'s recurrence.
+    fn reciprocal(&self, v: usize) -> TokenStream {
+        let at = Literal::usize_unsuffixed((self.states + self.vars) * (self.order + 1) + v);
+        quote!(r[#at])
     }
 }
 
@@ -96,19 +116,13 @@ fn pairwise(mut terms: Vec<TokenStream>) -> TokenStream {
     terms.pop().unwrap_or_default()
 }
 
-/// The local holding 1/x₀ for u-variable `v`'s recurrence.
-fn reciprocal(v: usize) -> TokenStream {
-    let name = format_ident!("inv{}", v);
-    quote!(#name)
-}
-
 /// `let` statements for coefficient `k` of u-variable `v` (and of `v + 1`
 /// for the sin/cos and sinh/cosh pairs).
-fn recurrence_at(v: usize, r: Recurrence, k: usize) -> TokenStream {
-    let u = |k: usize| coefficient(Operand::Var(v), k);
-    let pair = |k: usize| coefficient(Operand::Var(v + 1), k);
-    let c = coefficient;
-    let name = format_ident!("u{}_{}", v, k);
+fn recurrence_at(l: &Layout, v: usize, r: Recurrence, k: usize) -> TokenStream {
+    let u = |k: usize| l.coefficient(Operand::Var(v), k);
+    let pair = |k: usize| l.coefficient(Operand::Var(v + 1), k);
+    let c = |o: Operand, k: usize| l.coefficient(o, k);
+    let name = l.slot(l.states + v, k);
     let kf = k as f64;
     if k == 0 {
         let zero = |o: Operand| c(o, 0).unwrap_or(quote!(0.0f64));
@@ -135,12 +149,12 @@ fn recurrence_at(v: usize, r: Recurrence, k: usize) -> TokenStream {
             }
             Recurrence::Div(b_over, d) => {
                 let (a, d) = (zero(b_over), zero(d));
-                let inv = reciprocal(v);
-                return quote!(let #inv = 1.0 / #d; let #name = #a * #inv;);
+                let inv = l.reciprocal(v);
+                return quote!(#inv = 1.0 / #d; #name = #a * #inv;);
             }
             Recurrence::Pow(a, e) => {
                 let a0 = zero(a);
-                let inv = reciprocal(v);
+                let inv = l.reciprocal(v);
                 // Half-integer powers (gravity's r^(-3/2)) by a square root.
                 let value = if e == 0.5 {
                     quote!(#a0.sqrt())
@@ -154,7 +168,7 @@ fn recurrence_at(v: usize, r: Recurrence, k: usize) -> TokenStream {
                     let e = float(e);
                     quote!(#a0.powf(#e))
                 };
-                return quote!(let #inv = 1.0 / #a0; let #name = #value;);
+                return quote!(#inv = 1.0 / #a0; #name = #value;);
             }
             Recurrence::Exp(a) => {
                 let a = zero(a);
@@ -162,35 +176,35 @@ fn recurrence_at(v: usize, r: Recurrence, k: usize) -> TokenStream {
             }
             Recurrence::Ln(a) => {
                 let a = zero(a);
-                let inv = reciprocal(v);
-                return quote!(let #inv = 1.0 / #a; let #name = #a.ln(););
+                let inv = l.reciprocal(v);
+                return quote!(#inv = 1.0 / #a; #name = #a.ln(););
             }
             Recurrence::SinCos(a) | Recurrence::SinhCosh(a) => {
                 let a = zero(a);
-                let second = format_ident!("u{}_0", v + 1);
+                let second = l.slot(l.states + v + 1, 0);
                 return if let Recurrence::SinCos(_) = r {
-                    quote!(let (#name, #second) = #a.sin_cos();)
+                    quote!(let (sin, cos) = #a.sin_cos(); #name = sin; #second = cos;)
                 } else {
-                    quote!(let #name = #a.sinh(); let #second = #a.cosh();)
+                    quote!(#name = #a.sinh(); #second = #a.cosh();)
                 };
             }
             Recurrence::Inverse(f, a, d) => {
                 let (a, d) = (zero(a), zero(d));
-                let inv = reciprocal(v);
+                let inv = l.reciprocal(v);
                 let value = match f {
                     InverseFunction::Asin => quote!(#a.asin()),
                     InverseFunction::Acos => quote!(#a.acos()),
                     InverseFunction::Atan => quote!(#a.atan()),
                 };
-                return quote!(let #inv = 1.0 / #d; let #name = #value;);
+                return quote!(#inv = 1.0 / #d; #name = #value;);
             }
             Recurrence::Atan2(y, x, d) => {
                 let (y, x, d) = (zero(y), zero(x), zero(d));
-                let inv = reciprocal(v);
-                return quote!(let #inv = 1.0 / #d; let #name = #y.atan2(#x););
+                let inv = l.reciprocal(v);
+                return quote!(#inv = 1.0 / #d; #name = #y.atan2(#x););
             }
         };
-        return quote!(let #name = #value;);
+        return quote!(#name = #value;);
     }
     let value = match r {
         Recurrence::Add(a, b) => sum(vec![
@@ -222,7 +236,7 @@ fn recurrence_at(v: usize, r: Recurrence, k: usize) -> TokenStream {
             // u = a/d: u^[k] = (a^[k] − Σ_{j<k} u^[j] d^[k−j]) / d^[0].
             let a = c(a, k).unwrap_or(quote!(0.0f64));
             let s = sum((0..k).map(|j| (1.0, u(j), c(d, k - j))).collect());
-            let inv = reciprocal(v);
+            let inv = l.reciprocal(v);
             quote!((#a - (#s)) * #inv)
         }
         Recurrence::Pow(a, e) => {
@@ -230,7 +244,7 @@ fn recurrence_at(v: usize, r: Recurrence, k: usize) -> TokenStream {
             let s = sum((0..k)
                 .map(|j| ((kf * e - j as f64 * (e + 1.0)) / kf, u(j), c(a, k - j)))
                 .collect());
-            let inv = reciprocal(v);
+            let inv = l.reciprocal(v);
             quote!((#s) * #inv)
         }
         Recurrence::Exp(a) => sum((1..=k)
@@ -239,7 +253,7 @@ fn recurrence_at(v: usize, r: Recurrence, k: usize) -> TokenStream {
         Recurrence::Ln(a) => {
             let ak = c(a, k).unwrap_or(quote!(0.0f64));
             let s = sum((1..k).map(|j| (j as f64 / kf, u(j), c(a, k - j))).collect());
-            let inv = reciprocal(v);
+            let inv = l.reciprocal(v);
             quote!((#ak - (#s)) * #inv)
         }
         Recurrence::SinCos(a) | Recurrence::SinhCosh(a) => {
@@ -249,11 +263,11 @@ fn recurrence_at(v: usize, r: Recurrence, k: usize) -> TokenStream {
             let co = sum((1..=k)
                 .map(|j| (j as f64 / kf, c(a, j), u(k - j)))
                 .collect());
-            let second = format_ident!("u{}_{}", v + 1, k);
+            let second = l.slot(l.states + v + 1, k);
             return if let Recurrence::SinCos(_) = r {
-                quote!(let #name = #s; let #second = -(#co);)
+                quote!(#name = #s; #second = -(#co);)
             } else {
-                quote!(let #name = #s; let #second = #co;)
+                quote!(#name = #s; #second = #co;)
             };
         }
         Recurrence::Inverse(f, a, d) => {
@@ -264,7 +278,7 @@ fn recurrence_at(v: usize, r: Recurrence, k: usize) -> TokenStream {
                 _ => ak,
             };
             let s = sum((1..k).map(|j| (j as f64 / kf, u(j), c(d, k - j))).collect());
-            let inv = reciprocal(v);
+            let inv = l.reciprocal(v);
             quote!((#ak - (#s)) * #inv)
         }
         Recurrence::Atan2(y, x, d) => {
@@ -276,43 +290,69 @@ fn recurrence_at(v: usize, r: Recurrence, k: usize) -> TokenStream {
                 .map(|j| (j as f64 / kf, c(x, j), c(y, k - j)))
                 .collect());
             let s = sum((1..k).map(|j| (j as f64 / kf, u(j), c(d, k - j))).collect());
-            let inv = reciprocal(v);
+            let inv = l.reciprocal(v);
             quote!(((#plus) - (#minus) - (#s)) * #inv)
         }
     };
-    quote!(let #name = #value;)
+    quote!(#name = #value;)
 }
 
 /// The body of `taylor_jet_unrolled` for `order`: reads `t`, `y` (an array
-/// of `n` states), the constants `c0`, `c1`, … and writes state i's
-/// normalised coefficient k to `out[i·(order+1) + k]` (an array).
+/// of `n` states) and the constants `c` (an array) and writes state i's
+/// normalised coefficient k to `out[i·(order+1) + k]` (an array). One
+/// function per order, not inlined: rustc's time on one function of
+/// thousands of live values grows much faster than linearly (the outer
+/// solar system at three orders took over five minutes as one function).
 pub fn unrolled_jet(tape: &Tape, n: usize, order: usize) -> TokenStream {
+    let l = Layout {
+        order,
+        states: n,
+        vars: tape.ops.len(),
+    };
+    let len = Literal::usize_unsuffixed(l.len());
+    let constants: Vec<_> = (0..tape.constants.len())
+        .map(|i| format_ident!("c{}", i))
+        .collect();
+    let nc = Literal::usize_unsuffixed(constants.len());
     let mut code = TokenStream::new();
+    code.extend(quote! {
+        let c: [f64; #nc] = [#(#constants),*];
+        let mut r = [0.0f64; #len];
+    });
     for i in 0..n {
-        let (s, i) = (format_ident!("s{}_0", i), Literal::usize_unsuffixed(i));
-        code.extend(quote!(let #s = y[#i];));
+        let (slot, i) = (l.slot(i, 0), Literal::usize_unsuffixed(i));
+        code.extend(quote!(#slot = y[#i];));
     }
     for k in 0..order {
-        for &(v, r) in &tape.recurrences {
-            code.extend(recurrence_at(v, r, k));
+        let mut step = TokenStream::new();
+        for &(v, rec) in &tape.recurrences {
+            step.extend(recurrence_at(&l, v, rec, k));
         }
         // x^[k+1] = f^[k] / (k + 1).
         let scale = float(1.0 / (k + 1) as f64);
         for (i, &o) in tape.output_operands.iter().enumerate() {
-            let s = format_ident!("s{}_{}", i, k + 1);
-            let value = match coefficient(o, k) {
+            let slot = l.slot(i, k + 1);
+            let value = match l.coefficient(o, k) {
                 Some(f) if k == 0 => f,
                 Some(f) => quote!(#f * #scale),
                 None => quote!(0.0f64),
             };
-            code.extend(quote!(let #s = #value;));
+            step.extend(quote!(#slot = #value;));
         }
+        let name = format_ident!("order_{}", k);
+        code.extend(quote! {
+            #[inline(never)]
+                        fn #name(r: &mut [f64; #len], t: f64, c: &[f64; #nc]) {
+                #step
+            }
+            #name(&mut r, t, &c);
+        });
     }
     for i in 0..n {
         for k in 0..=order {
-            let s = format_ident!("s{}_{}", i, k);
+            let slot = l.slot(i, k);
             let at = Literal::usize_unsuffixed(i * (order + 1) + k);
-            code.extend(quote!(out[#at] = #s;));
+            code.extend(quote!(out[#at] = #slot;));
         }
     }
     code
