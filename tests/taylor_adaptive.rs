@@ -3,7 +3,8 @@
 
 use daegen::prelude::*;
 
-#[dae_model(taylor = 1)]
+/// Orders 8 and 19 (tolerances 1e-6 and 1e-15) are also emitted unrolled.
+#[dae_model(taylor = 1, unroll = [8, 19])]
 fn kepler() {
     let e = param(0.9);
     let q1 = state(1.0 - e);
@@ -64,6 +65,30 @@ fn errors_fall_with_the_tolerance_on_kepler_and_arenstorf() {
     let t1 = 20.0 * std::f64::consts::PI;
     let run = |tol: f64| {
         let o = Options::new().method(Method::Taylor).rtol(tol).atol(tol);
+        // Kepler's orders 8 and 19 are emitted unrolled: both layouts must
+        // follow the exact orbit equally well.
+        let compact = o.taylor_compact(true);
+        let kc = Kepler::default().simulate(0.0, t1, &compact).unwrap();
+        let k = Kepler::default().simulate(0.0, t1, &o).unwrap();
+        let (ec, eu) = (
+            max_error(&final_state(&kc), &kepler_exact(t1)),
+            max_error(&final_state(&k), &kepler_exact(t1)),
+        );
+        assert_eq!(kc.stats().steps, k.stats().steps);
+        // Where truncation dominates the two agree closely; at 1e-15 both
+        // are at the rounding floor (checked below), which differs by a
+        // factor of a few between any two summation orders.
+        if tol >= 1e-9 {
+            assert!(
+                (eu - ec).abs() <= 0.1 * ec,
+                "tol {tol:e}: unrolled {eu:e}, compact {ec:e}"
+            );
+        } else {
+            assert!(
+                eu < 1e-9 && ec < 1e-9,
+                "tol {tol:e}: unrolled {eu:e}, compact {ec:e}"
+            );
+        }
         let k = Kepler::default().simulate(0.0, t1, &o).unwrap();
         let a = Arenstorf::default().simulate(0.0, ARENSTORF_T, &o).unwrap();
         (
@@ -161,7 +186,7 @@ fn integrates_backwards_and_refuses_models_without_a_tape() {
 /// The pendulum x'' = −sin x from heyoka's accuracy tutorial (x0 = 0.05,
 /// v0 = 0.025), written with its start as parameters so a run can begin
 /// where another ended.
-#[dae_model(taylor = 1)]
+#[dae_model(taylor = 1, unroll = [20])]
 fn swinging() {
     let x0 = param(0.05);
     let v0 = param(0.025);
@@ -184,18 +209,23 @@ fn at_machine_precision() -> Options {
 #[test]
 fn forward_then_backward_returns_to_the_start() {
     let t1 = 100.0;
-    let forward = Swinging::default()
-        .simulate(0.0, t1, &at_machine_precision())
-        .unwrap();
-    let end = Swinging {
-        x0: forward.last("x").unwrap(),
-        v0: forward.last("v").unwrap(),
-    };
-    let back = end.simulate(t1, 0.0, &at_machine_precision()).unwrap();
-    let error = (back.last("x").unwrap() - 0.05)
-        .abs()
-        .max((back.last("v").unwrap() - 0.025).abs());
-    assert!(error <= 3.8e-15, "returned to within {error:e}");
+    // Order 20 is emitted unrolled; the interpreted tape must do as well.
+    for compact in [false, true] {
+        let options = at_machine_precision().taylor_compact(compact);
+        let forward = Swinging::default().simulate(0.0, t1, &options).unwrap();
+        let end = Swinging {
+            x0: forward.last("x").unwrap(),
+            v0: forward.last("v").unwrap(),
+        };
+        let back = end.simulate(t1, 0.0, &options).unwrap();
+        let error = (back.last("x").unwrap() - 0.05)
+            .abs()
+            .max((back.last("v").unwrap() - 0.025).abs());
+        assert!(
+            error <= 3.8e-15,
+            "compact {compact}: returned to within {error:e}"
+        );
+    }
 }
 
 /// Over 10⁴ periods (about 10⁵ steps) truncation is below ε, so the energy
@@ -222,6 +252,7 @@ fn pendulum_energy_over_ten_thousand_periods() {
 }
 
 include!("models/outer_solar_system.rs");
+outer_solar_system_model!(taylor = 1);
 
 /// Positions at t = 20 000 days against the recomputed 38-digit reference
 /// of reference-problems.md §11a: at machine-precision tolerance at least

@@ -20,7 +20,8 @@ use daegen::prelude::*;
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-#[dae_model(taylor = 1)]
+/// The orders unrolled are those of the tolerances 1e-4 … 1e-15.
+#[dae_model(taylor = 1, unroll = [6, 7, 8, 10, 11, 12, 13, 14, 15, 16, 18, 19])]
 fn kepler() {
     let e = param(0.9);
     let q1 = state(1.0 - e);
@@ -35,7 +36,7 @@ fn kepler() {
 }
 
 /// Lorenz, σ = 10, ρ = 28, β = 8/3 (peer.py's `lorenz`).
-#[dae_model(taylor = 1)]
+#[dae_model(taylor = 1, unroll = [12, 15, 19])]
 fn lorenz() {
     let x = state(1.0);
     let y = state(0.0);
@@ -46,8 +47,10 @@ fn lorenz() {
 }
 
 include!("../../tests/models/outer_solar_system.rs");
+// Orders 12, 15 and 19 are those of tolerances 1e-9, 1e-12 and 1e-15.
+outer_solar_system_model!(taylor = 1, unroll = [12, 15, 19]);
 
-#[dae_model(taylor = 1)]
+#[dae_model(taylor = 1, unroll = [6, 7, 8, 10, 11, 12, 13, 14, 15, 16, 18, 19])]
 fn arenstorf() {
     let mu = param(0.012277471);
     let y1 = state(0.994);

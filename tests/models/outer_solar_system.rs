@@ -1,10 +1,13 @@
 // The model shared by tests/taylor_adaptive.rs and the benchmark
-// (`include!`d: bench/ is a separate workspace).
+// (`include!`d: bench/ is a separate workspace), as a macro so each can
+// choose the `#[dae_model]` arguments (the benchmark unrolls its orders).
 
+macro_rules! outer_solar_system_model {
+    ($($arguments:tt)*) => {
 /// The outer solar system of Hairer, Lubich & Wanner (GNI, Ch. I): the Sun
 /// with the inner planets, Jupiter, Saturn, Uranus, Neptune and Pluto, in
 /// AU and days (reference-problems.md §11a).
-#[dae_model(taylor = 1)]
+#[dae_model($($arguments)*)]
 fn outer_solar_system() {
     const N: usize = 6;
     /// Gravitational constant in AU³/(solar mass · day²).
@@ -82,4 +85,6 @@ fn outer_solar_system() {
         der(v[i]) == ay;
         der(w[i]) == az;
     }
+}
+    };
 }
