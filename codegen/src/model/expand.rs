@@ -108,10 +108,12 @@ fn taylor_method(
         .constants
         .iter()
         .map(|c| match c {
-            super::taylor_tape::Constant::Expr(id) => *id,
-            super::taylor_tape::Constant::Integer(n) => g.int(*n),
+            super::taylor_tape::Constant::Expr(id) => Ok(*id),
+            super::taylor_tape::Constant::Integer(n) => Ok(g.int(*n)),
+            super::taylor_tape::Constant::Product(factors) => g.product(factors),
+            super::taylor_tape::Constant::Sum(terms) => g.sum(terms),
         })
-        .collect();
+        .collect::<crate::Result<_>>()?;
     let const_code = program(g, layout, &consts, &|i, v| {
         let name = quote::format_ident!("c{}", i);
         quote!(let #name: f64 = #v;)

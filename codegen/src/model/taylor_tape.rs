@@ -50,6 +50,10 @@ pub enum Constant {
     Expr(Id),
     /// An integer the decomposition needs (the 1 of `1 − a²`, ...).
     Integer(i64),
+    /// The product of the constant factors of one product.
+    Product(Vec<Id>),
+    /// The sum of the constant terms of one sum.
+    Sum(Vec<Id>),
 }
 
 /// How a u-variable's Taylor coefficients follow from its operands' (the
@@ -263,6 +267,19 @@ impl Builder<'_> {
         (s, c)
     }
 
+    /// The operands of a sum or product of a time-dependent node, split
+    /// into constants and the others (never empty: the node depends on time).
+    fn split_constants(&self, operands: &[Id]) -> (Vec<Id>, Vec<Id>) {
+        let (constant, varying): (Vec<Id>, Vec<Id>) = operands
+            .iter()
+            .partition(|&&o| matches!(self.operand(o), Operand::Const(_)));
+        if varying.is_empty() {
+            (Vec::new(), constant)
+        } else {
+            (constant, varying)
+        }
+    }
+
     fn operand(&self, id: Id) -> Operand {
         self.operand_of.get(&id).cloned().unwrap_or(Operand::Time)
     }
@@ -290,21 +307,44 @@ impl Builder<'_> {
                     }
                 },
             },
+                        // Constant terms and factors become one constant, so that the
+            // tape holds no u-variable that is a constant (whose zero
+            // higher coefficients would cost a full convolution in every
+            // product it enters), and the constant enters last, as an O(1)
+            // shift or scaling per order.
             Node::Add(terms) => {
-                let mut acc = self.operand(terms[0]);
-                for &t in &terms[1..] {
+                let (constant, varying) = self.split_constants(terms);
+                let mut acc = self.operand(varying[0]);
+                for &t in &varying[1..] {
                     let next = self.operand(t);
                     acc = self.binary("Add", &acc, &next);
                 }
-                acc
+                match constant.len() {
+                    0 => acc,
+                    1 => self.binary("Add", &acc, &self.operand(constant[0])),
+                    _ => {
+                        self.constants.push(Constant::Sum(constant));
+                        let c = Operand::Const(self.constants.len() - 1);
+                        self.binary("Add", &acc, &c)
+                    }
+                }
             }
             Node::Mul(factors) => {
-                let mut acc = self.operand(factors[0]);
-                for &f in &factors[1..] {
+                let (constant, varying) = self.split_constants(factors);
+                let mut acc = self.operand(varying[0]);
+                for &f in &varying[1..] {
                     let next = self.operand(f);
                     acc = self.binary("Mul", &acc, &next);
                 }
-                acc
+                match constant.len() {
+                    0 => acc,
+                    1 => self.binary("Mul", &acc, &self.operand(constant[0])),
+                    _ => {
+                        self.constants.push(Constant::Product(constant));
+                        let c = Operand::Const(self.constants.len() - 1);
+                        self.binary("Mul", &acc, &c)
+                    }
+                }
             }
             Node::Pow([b, e]) => {
                 let base = self.operand(*b);
