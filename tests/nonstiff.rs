@@ -271,3 +271,39 @@ fn a_stiff_problem_hits_the_step_limit_with_a_clear_error() {
     );
     assert!(err.partial_solution().is_some_and(|p| p.times().len() > 1));
 }
+
+/// Without dense output a run takes the same steps to the same end (the
+/// continuous extension never feeds back into the steps), DOP853 saves its
+/// three extra stages per accepted step, and `at` interpolates linearly
+/// between the kept steps.
+#[test]
+fn runs_without_dense_output_take_the_same_steps_for_less_work() {
+    let t1 = 2.0 * std::f64::consts::PI;
+    for method in [Method::Dop853, Method::Dopri5, Method::Radau5] {
+        let with = Options::new().method(method).rtol(1e-10).atol(1e-10);
+        let without = with.dense_output(false);
+        let a = Kepler::default().simulate(0.0, t1, &with).unwrap();
+        let b = Kepler::default().simulate(0.0, t1, &without).unwrap();
+        assert_eq!(a.times(), b.times(), "{method:?}");
+        assert_eq!(final_state(&a), final_state(&b), "{method:?}");
+        let extra = if method == Method::Dop853 { 3 } else { 0 };
+        assert_eq!(
+            a.stats().rhs_evals - b.stats().rhs_evals,
+            extra * a.stats().steps,
+            "{method:?}"
+        );
+        // Linear between the two steps around t = 1.
+        let k = b.times().partition_point(|&s| s < 1.0);
+        let (t0, t1) = (b.times()[k - 1], b.times()[k]);
+        let (y0, y1) = (b.state(k - 1).unwrap()[0], b.state(k).unwrap()[0]);
+        let linear = y0 + (1.0 - t0) / (t1 - t0) * (y1 - y0);
+        assert!(
+            (b.at(1.0, "q1").unwrap() - linear).abs() <= 1e-15,
+            "{method:?}"
+        );
+        assert!(
+            (a.at(1.0, "q1").unwrap() - kepler_exact(1.0, 0.9)[0]).abs() < 1e-7,
+            "{method:?}"
+        );
+    }
+}

@@ -325,3 +325,27 @@ fn a_finite_time_blow_up_is_an_error_at_the_pole() {
     }
     assert!(checked > 10, "only {checked} steps before 1 - t = 1e-3");
 }
+
+/// Without dense output the Taylor method takes the same steps to the same
+/// end; `at` is then linear between steps.
+#[test]
+fn taylor_without_dense_output_takes_the_same_steps() {
+    let t1 = 4.0 * std::f64::consts::PI;
+    let with = Options::new()
+        .method(Method::Taylor)
+        .rtol(1e-15)
+        .atol(1e-15);
+    let a = Kepler::default().simulate(0.0, t1, &with).unwrap();
+    let b = Kepler::default()
+        .simulate(0.0, t1, &with.dense_output(false))
+        .unwrap();
+    assert_eq!(a.times(), b.times());
+    assert_eq!(final_state(&a), final_state(&b));
+    let t = 1.0;
+    assert!((a.at(t, "q1").unwrap() - kepler_exact(t)[0]).abs() < 1e-12);
+    let k = b.times().partition_point(|&s| s < t);
+    let (t0, t1) = (b.times()[k - 1], b.times()[k]);
+    let (y0, y1) = (b.state(k - 1).unwrap()[0], b.state(k).unwrap()[0]);
+    let linear = y0 + (t - t0) / (t1 - t0) * (y1 - y0);
+    assert!((b.at(t, "q1").unwrap() - linear).abs() <= 1e-15);
+}

@@ -213,7 +213,14 @@ fn ours<M: Model + Clone + Send + Sync + 'static>(
     atol: f64,
     reference: &[f64],
 ) -> Point {
-    let options = Options::new().method(method).rtol(tol).atol(atol);
+    // The Taylor method keeps no dense output here, like heyoka's
+    // `propagate_until` it is compared with; the explicit pairs keep theirs,
+    // like `ode_solvers` (which samples it) and SciPy.
+    let options = Options::new()
+        .method(method)
+        .rtol(tol)
+        .atol(atol)
+        .dense_output(method != Method::Taylor);
     ours_with(model, t1, &options, tol, reference)
 }
 
@@ -228,6 +235,7 @@ fn ours_compact<M: Model + Clone + Send + Sync + 'static>(
         .method(Method::Taylor)
         .rtol(tol)
         .atol(tol)
+        .dense_output(false)
         .taylor_compact(true);
     ours_with(model, t1, &options, tol, reference)
 }

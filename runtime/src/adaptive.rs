@@ -195,8 +195,11 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
     let mut sk = M::State::zeros();
     let mut dense = vec![0.0; P::DENSE_WIDTH * n];
     let mut rhs = Rhs { model, evals: 0 };
-    solution.set_interpolant(P::DENSE_WIDTH, P::interpolate);
     let mut events = EventWatch::new(model, t0, y0, 1);
+    let keep_dense = options.dense_output || events.is_some();
+    if keep_dense {
+        solution.set_interpolant(P::DENSE_WIDTH, P::interpolate);
+    }
 
     y.as_mut().copy_from_slice(y0);
     if let Err(cause) = rhs.call(t0, y.as_ref(), k[0].as_mut()) {
@@ -296,7 +299,8 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
         if err <= 1.0 {
             let (factor, state) = controller.factor(err, pi);
             pi = state;
-            for s in P::STAGES..P::STAGES + P::DENSE_STAGES {
+            let dense_stages = if keep_dense { P::DENSE_STAGES } else { 0 };
+            for s in P::STAGES..P::STAGES + dense_stages {
                 let (done, rest) = k.split_at_mut(s);
                 combine(&y, h, a[s], done, &mut stage);
                 if let Err(cause) = rhs.call(t + c[s] * h, stage.as_ref(), rest[0].as_mut()) {
@@ -308,7 +312,9 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
                     });
                 }
             }
-            P::dense_coefficients(h, &y, &y_new, &k, &mut dense);
+            if keep_dense {
+                P::dense_coefficients(h, &y, &y_new, &k, &mut dense);
+            }
             let mut turned_stiff = false;
             if detect_stiffness && accepted % 10 == 0 {
                 // h·ρ(J) against the stability boundary. ρ from the generated
@@ -343,7 +349,11 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
             k[0] = k[P::STAGES - 1];
             accepted += 1;
             non_finite = None;
-            solution.push_dense(t, y.as_ref(), &dense);
+            if keep_dense {
+                solution.push_dense(t, y.as_ref(), &dense);
+            } else {
+                solution.push(t, y.as_ref());
+            }
             if let Some(watch) = events.as_mut() {
                 let next;
                 (solution, next) = watch.after_step(solution)?;

@@ -54,6 +54,7 @@ pub struct Options {
     pub(crate) min_step: f64,
     pub(crate) max_steps: usize,
     pub(crate) taylor_compact: bool,
+    pub(crate) dense_output: bool,
 }
 
 impl Default for Options {
@@ -68,6 +69,7 @@ impl Default for Options {
             min_step: 0.0,
             max_steps: 10_000_000,
             taylor_compact: false,
+            dense_output: true,
         }
     }
 }
@@ -139,6 +141,19 @@ impl Options {
     pub fn taylor_compact(self, compact: bool) -> Options {
         Options {
             taylor_compact: compact,
+            ..self
+        }
+    }
+
+    /// Whether adaptive methods keep each step's continuous extension for
+    /// [`crate::Solution::at`] (default `true`). With `false` only the
+    /// accepted steps are kept and `at` interpolates linearly between them,
+    /// as for fixed-step methods: less memory on long runs, and DOP853
+    /// saves the three extra stages of its dense output per step. A model
+    /// with events keeps it anyway (events are located on it).
+    pub fn dense_output(self, dense_output: bool) -> Options {
+        Options {
+            dense_output,
             ..self
         }
     }

@@ -197,8 +197,11 @@ pub(crate) fn integrate<M: Model>(
     let mut stage = vec![0.0; n];
     let mut scal = vec![0.0; n];
     let mut scratch = vec![0.0; n];
-    solution.set_interpolant(4, interpolate);
     let mut events = EventWatch::new(model, t0, start, 1);
+    let keep_dense = options.dense_output || events.is_some();
+    if keep_dense {
+        solution.set_interpolant(4, interpolate);
+    }
 
     y.copy_from_slice(start);
     if t0 == t1 {
@@ -470,7 +473,11 @@ pub(crate) fn integrate<M: Model>(
                 });
             }
             set_scale(&mut scal, &y);
-            solution.push_dense(t, &y, &cont);
+            if keep_dense {
+                solution.push_dense(t, &y, &cont);
+            } else {
+                solution.push(t, &y);
+            }
             if let Some(watch) = events.as_mut() {
                 let next;
                 (solution, next) = watch.after_step(solution)?;

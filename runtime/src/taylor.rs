@@ -44,10 +44,13 @@ pub fn order_for(tol: f64) -> usize {
 }
 
 /// Component `i` of the step polynomial at `s = (t − t_old)/h`; the
-/// coefficients are stored already multiplied by hᵏ.
+/// coefficients are stored state by state, already multiplied by hᵏ.
 pub(crate) fn interpolate(c: &[f64], n: usize, i: usize, s: f64) -> f64 {
-    let order = c.len() / n - 1;
-    (0..=order).rev().fold(0.0, |acc, k| acc * s + c[k * n + i])
+    let w = c.len() / n;
+    c[i * w..(i + 1) * w]
+        .iter()
+        .rev()
+        .fold(0.0, |acc, ck| acc * s + ck)
 }
 
 /// Integrates `model` from `t0` to `t1` with the adaptive Taylor method.
@@ -81,10 +84,13 @@ pub(crate) fn integrate<M: Model>(
     let mut y = y0.to_vec();
     let mut dense = vec![0.0; (p + 1) * n];
     let mut powers = vec![0.0; p + 1];
-    solution.set_interpolant(p + 1, interpolate);
     // Taylor steps are long (a good part of an orbit): the event functions
     // are sampled inside them, so two crossings in one step are both found.
     let mut events = EventWatch::new(model, t0, y0, EVENT_SAMPLES);
+    let keep_dense = options.dense_output || events.is_some();
+    if keep_dense {
+        solution.set_interpolant(p + 1, interpolate);
+    }
     let direction = if t1 >= t0 { 1.0 } else { -1.0 };
     let hmax = options.max_step.unwrap_or(f64::INFINITY);
     let safety = (-2.0f64).exp() * (-0.7 / (p as f64 - 1.0)).exp();
@@ -107,34 +113,39 @@ pub(crate) fn integrate<M: Model>(
                 &jet
             }
         };
-        let state = |i: usize| &coefficients[i * (p + 1)..(i + 1) * (p + 1)];
+        let w = p + 1;
+        let state = |i: usize| &coefficients[i * w..(i + 1) * w];
         solution.stats_mut().rhs_evals += 1;
         let norm = |k: usize| (0..n).map(|i| state(i)[k].abs()).fold(0.0, f64::max);
-        if let Some(at) = first_non_finite(&coefficients[..n * (p + 1)]) {
-            return Err(Error::NonFinite {
-                t,
-                variable: M::INFO.states[at / (p + 1)],
-                partial: Box::new(solution),
-            });
-        }
         let big_n = norm(0).max(1.0);
-        let rho = |k: usize| {
-            let nk = norm(k);
+        // ρ_k = (N/‖x^[k]‖)^(1/k); of ρ_{p−1} and ρ_p the smaller, compared
+        // through logarithms so that only one power is taken.
+        let (norm_pm1, norm_p) = (norm(p - 1), norm(p));
+        let log_rho = |nk: f64, k: usize| {
             if nk == 0.0 {
                 f64::INFINITY
             } else {
-                (big_n / nk).powf(1.0 / k as f64)
+                (big_n / nk).ln() / k as f64
             }
         };
+        let rho = log_rho(norm_pm1, p - 1).min(log_rho(norm_p, p)).exp();
         let remaining = (t1 - t).abs();
         // A polynomial solution has an infinite radius: the step is then
         // limited by the interval and max_step only.
-        let mut h = (rho(p - 1).min(rho(p)) * safety).min(hmax);
+        let mut h = (rho * safety).min(hmax);
         let last = !(h < remaining);
         if last {
             h = remaining;
         }
-        if h <= t.abs().max(1e-300) * f64::EPSILON {
+        if !(h > t.abs().max(1e-300) * f64::EPSILON) {
+            // Non-finite coefficients make the step collapse: say which.
+            if let Some(at) = first_non_finite(&coefficients[..n * w]) {
+                return Err(Error::NonFinite {
+                    t,
+                    variable: M::INFO.states[at / w],
+                    partial: Box::new(solution),
+                });
+            }
             return Err(Error::StepSizeUnderflow {
                 t,
                 h,
@@ -142,23 +153,27 @@ pub(crate) fn integrate<M: Model>(
             });
         }
         let h = direction * h;
-        // The coefficients scaled by hᵏ are the step's dense output.
-        // (h^(2j) = (h^j)², h^(2j+1) = h^(2j)·h: a chain of depth log p.)
-        powers[0] = 1.0;
-        for k in 1..=p {
-            powers[k] = if k % 2 == 0 {
-                powers[k / 2] * powers[k / 2]
-            } else {
-                powers[k - 1] * h
-            };
+        // The coefficients scaled by hᵏ are the step's dense output (the
+        // powers as four interleaved chains of h⁴ products).
+        let (h2, h3) = (h * h, h * h * h);
+        let h4 = h2 * h2;
+        for (k, power) in powers.iter_mut().enumerate().take(4) {
+            *power = [1.0, h, h2, h3][k];
         }
-        for i in 0..n {
-            for (k, (c, power)) in state(i).iter().zip(&powers).enumerate() {
-                dense[k * n + i] = c * power;
+        for k in 4..=p {
+            powers[k] = powers[k - 4] * h4;
+        }
+        if keep_dense {
+            for (d, c) in dense.chunks_exact_mut(w).zip(coefficients.chunks_exact(w)) {
+                for ((d, c), power) in d.iter_mut().zip(c).zip(&powers) {
+                    *d = c * power;
+                }
             }
         }
         // Horner, four states at a time in registers: the chains are
         // independent, so they overlap instead of waiting on one another.
+        // A non-finite coefficient makes its state non-finite (h is finite
+        // and non-zero), which the check after the step reports.
         for (block, ys) in y.chunks_mut(4).enumerate() {
             let mut acc = [0.0f64; 4];
             let lanes = ys.len();
@@ -167,7 +182,7 @@ pub(crate) fn integrate<M: Model>(
             }
             for k in (0..p).rev() {
                 for (l, a) in acc.iter_mut().enumerate().take(lanes) {
-                    *a = *a * h + coefficients[(4 * block + l) * (p + 1) + k];
+                    *a = *a * h + coefficients[(4 * block + l) * w + k];
                 }
             }
             ys.copy_from_slice(&acc[..lanes]);
@@ -183,7 +198,11 @@ pub(crate) fn integrate<M: Model>(
                 partial: Box::new(solution),
             });
         }
-        solution.push_dense(t, &y, &dense);
+        if keep_dense {
+            solution.push_dense(t, &y, &dense);
+        } else {
+            solution.push(t, &y);
+        }
         solution.stats_mut().steps += 1;
         steps += 1;
         if let Some(watch) = events.as_mut() {

@@ -6,6 +6,19 @@
 //! sin/cos as a pair. This is the compact layout: one loop over the tape
 //! per order, the same code for every model.
 
+/// `a·b + c`, fused (one rounding, one instruction) where the target has
+/// FMA, as the straight-line recurrences emitted by `#[dae_model(unroll =
+/// [..])]` are compiled with `-C target-cpu=native`; plain otherwise (a
+/// software `fma` would be slower than both).
+#[inline(always)]
+pub fn mul_add(a: f64, b: f64, c: f64) -> f64 {
+    if cfg!(target_feature = "fma") {
+        a.mul_add(b, c)
+    } else {
+        a * b + c
+    }
+}
+
 /// An operand of a tape operation.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Operand {

@@ -70,29 +70,72 @@ fn float(x: f64) -> TokenStream {
     }
 }
 
+/// One term of a sum: a product of two factors (a candidate for a fused
+/// multiply-add) or a single value.
+enum Term {
+    Product(TokenStream, TokenStream),
+    Single(TokenStream),
+}
+
+impl Term {
+    fn tokens(&self) -> TokenStream {
+        match self {
+            Term::Product(a, b) => quote!(#a * #b),
+            Term::Single(v) => v.clone(),
+        }
+    }
+}
+
 /// `Σ weight·a·b` over the non-zero terms, or `0.0`.
 fn sum(terms: Vec<(f64, Option<TokenStream>, Option<TokenStream>)>) -> TokenStream {
-    let mut out: Vec<TokenStream> = Vec::new();
+    let mut out: Vec<Term> = Vec::new();
     for (weight, a, b) in terms {
         let (Some(a), Some(b)) = (a, b) else { continue };
-        let term = match (a.to_string().as_str(), b.to_string().as_str()) {
-            ("1.0", _) => b,
-            (_, "1.0") => a,
-            _ => quote!(#a * #b),
-        };
-        out.push(if weight == 1.0 {
-            term
-        } else if weight == -1.0 {
-            quote!(-(#term))
-        } else if weight < 0.0 {
-            let w = float(-weight);
-            quote!(-(#w * #term))
-        } else {
-            let w = float(weight);
-            quote!(#w * #term)
+        let mut factors: Vec<TokenStream> = [a, b]
+            .into_iter()
+            .filter(|f| f.to_string() != "1.0")
+            .collect();
+        if weight.abs() != 1.0 {
+            factors.insert(0, float(weight.abs()));
+        }
+        if factors.is_empty() {
+            factors.push(quote!(1.0f64));
+        }
+        if weight < 0.0 {
+            let first = &factors[0];
+            factors[0] = quote!((-#first));
+        }
+        let last = factors.pop().unwrap_or_default();
+        out.push(match factors.len() {
+            0 => Term::Single(last),
+            1 => Term::Product(factors.pop().unwrap_or_default(), last),
+            _ => {
+                let first = factors.remove(0);
+                let product = factors.into_iter().fold(first, |acc, f| quote!(#acc * #f));
+                Term::Product(quote!((#product)), last)
+            }
         });
     }
-    pairwise(out)
+    // Leaves of the tree in pairs, a·b + c fused where the target has FMA.
+    let mut leaves = Vec::with_capacity(out.len().div_ceil(2));
+    let mut it = out.into_iter();
+    while let Some(first) = it.next() {
+        leaves.push(match (first, it.next()) {
+            (Term::Product(a, b), Some(second)) => {
+                let c = second.tokens();
+                quote!(::daegen::runtime::taylor_tape::mul_add(#a, #b, #c))
+            }
+            (Term::Single(v), Some(Term::Product(a, b))) => {
+                quote!(::daegen::runtime::taylor_tape::mul_add(#a, #b, #v))
+            }
+            (first, Some(second)) => {
+                let (a, b) = (first.tokens(), second.tokens());
+                quote!((#a + #b))
+            }
+            (only, None) => only.tokens(),
+        });
+    }
+    pairwise(leaves)
 }
 
 /// The sum of `terms` as a balanced tree, `(a + b) + (c + d)`: its
