@@ -281,18 +281,42 @@ fn report_models() {
             init(der(q[0]), 1.0);
         }
     };
+    let kepler = quote! {
+        fn kepler() {
+            let q1 = state(0.1);
+            let q2 = state(0.0);
+            let p1 = state(0.0);
+            let p2 = state(4.358898943540674);
+            let r3 = (q1 * q1 + q2 * q2).powf(-1.5);
+            der(q1) == p1;
+            der(q2) == p2;
+            der(p1) == -q1 * r3;
+            der(p2) == -q2 * r3;
+        }
+    };
+    let none = proc_macro2::TokenStream::new();
     let models = [
-        ("3-body, 3D (18 states)", n_body(3)),
-        ("10-body, 3D (60 states)", n_body(10)),
-        ("30-equation spring chain (60 states)", chain),
+        ("3-body, 3D (18 states)", none.clone(), n_body(3)),
+        ("10-body, 3D (60 states)", none.clone(), n_body(10)),
+        ("30-equation spring chain (60 states)", none, chain),
+        (
+            "Kepler with the Taylor tape and order 19 unrolled",
+            quote!(taylor = 1, unroll = [19]),
+            kepler,
+        ),
+        (
+            "6-body, 3D (36 states) with the Taylor tape and orders 12, 15, 19 unrolled",
+            quote!(taylor = 1, unroll = [12, 15, 19]),
+            n_body(6),
+        ),
     ];
-    println!("## #[dae_model] expansion (f, Jacobian, ∂f/∂t, outputs)");
-    for (name, item) in models {
+    println!("## #[dae_model] expansion (f, Jacobian, ∂f/∂t, outputs; Taylor code when asked)");
+    for (name, attr, item) in models {
         let mut times = Vec::new();
         let mut tokens = 0;
         for _ in 0..7 {
             let start = Instant::now();
-            let out = expand_dae_model(proc_macro2::TokenStream::new(), item.clone());
+            let out = expand_dae_model(attr.clone(), item.clone());
             times.push(start.elapsed());
             tokens = token_count(&out);
         }
