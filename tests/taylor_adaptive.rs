@@ -3,51 +3,11 @@
 
 use daegen::prelude::*;
 
-/// Orders 8 and 19 (tolerances 1e-6 and 1e-15) are also emitted unrolled.
-#[dae_model(taylor = 1, unroll = [8, 19])]
-fn kepler() {
-    let e = param(0.9);
-    let q1 = state(1.0 - e);
-    let q2 = state(0.0);
-    let p1 = state(0.0);
-    let p2 = state(sqrt((1.0 + e) / (1.0 - e)));
-    let r3 = (q1 * q1 + q2 * q2).powf(-1.5);
-    der(q1) == p1;
-    der(q2) == p2;
-    der(p1) == -q1 * r3;
-    der(p2) == -q2 * r3;
-    let energy = output(0.5 * (p1 * p1 + p2 * p2) - (q1 * q1 + q2 * q2).powf(-0.5));
-}
-
-fn kepler_exact(t: f64) -> [f64; 4] {
-    let e = 0.9;
-    let mut big_e = t + e * t.sin();
-    for _ in 0..100 {
-        big_e -= (big_e - e * big_e.sin() - t) / (1.0 - e * big_e.cos());
-    }
-    let (s, c) = big_e.sin_cos();
-    let w = (1.0 - e * e).sqrt();
-    [c - e, w * s, -s / (1.0 - e * c), w * c / (1.0 - e * c)]
-}
-
-#[dae_model(taylor = 1)]
-fn arenstorf() {
-    let mu = param(0.012277471);
-    let y1 = state(0.994);
-    let y2 = state(0.0);
-    let v1 = state(0.0);
-    let v2 = state(-2.00158510637908252240537862224);
-    let mup = 1.0 - mu;
-    let d1 = ((y1 + mu).powi(2) + y2 * y2).powf(1.5);
-    let d2 = ((y1 - mup).powi(2) + y2 * y2).powf(1.5);
-    der(y1) == v1;
-    der(y2) == v2;
-    der(v1) == y1 + 2.0 * v2 - mup * (y1 + mu) / d1 - mu * (y1 - mup) / d2;
-    der(v2) == y2 - 2.0 * v1 - mup * y2 / d1 - mu * y2 / d2;
-}
-
-const ARENSTORF_T: f64 = 17.0652165601579625588917206249;
-const ARENSTORF_Y0: [f64; 4] = [0.994, 0.0, 0.0, -2.00158510637908252240537862224];
+include!("models/kepler.rs");
+include!("models/arenstorf.rs");
+// Orders 8 and 19 (tolerances 1e-6 and 1e-15) are also emitted unrolled.
+kepler_model!(taylor = 1, unroll = [8, 19]);
+arenstorf_model!(taylor = 1);
 
 fn max_error(got: &[f64], want: &[f64]) -> f64 {
     got.iter()

@@ -20,20 +20,17 @@ use daegen::prelude::*;
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-/// The orders unrolled are those of the tolerances 1e-4 … 1e-15.
-#[dae_model(taylor = 1, unroll = [6, 7, 8, 10, 11, 12, 13, 14, 15, 16, 18, 19])]
-fn kepler() {
-    let e = param(0.9);
-    let q1 = state(1.0 - e);
-    let q2 = state(0.0);
-    let p1 = state(0.0);
-    let p2 = state(sqrt((1.0 + e) / (1.0 - e)));
-    let r3 = (q1 * q1 + q2 * q2).powf(-1.5);
-    der(q1) == p1;
-    der(q2) == p2;
-    der(p1) == -q1 * r3;
-    der(p2) == -q2 * r3;
-}
+include!("../../tests/models/kepler.rs");
+include!("../../tests/models/arenstorf.rs");
+// The orders unrolled are those of the tolerances 1e-4 … 1e-15.
+kepler_model!(
+    taylor = 1,
+    unroll = [6, 7, 8, 10, 11, 12, 13, 14, 15, 16, 18, 19]
+);
+arenstorf_model!(
+    taylor = 1,
+    unroll = [6, 7, 8, 10, 11, 12, 13, 14, 15, 16, 18, 19]
+);
 
 /// Lorenz, σ = 10, ρ = 28, β = 8/3 (peer.py's `lorenz`).
 #[dae_model(taylor = 1, unroll = [12, 15, 19])]
@@ -49,22 +46,6 @@ fn lorenz() {
 include!("../../tests/models/outer_solar_system.rs");
 // Orders 12, 15 and 19 are those of tolerances 1e-9, 1e-12 and 1e-15.
 outer_solar_system_model!(taylor = 1, unroll = [12, 15, 19]);
-
-#[dae_model(taylor = 1, unroll = [6, 7, 8, 10, 11, 12, 13, 14, 15, 16, 18, 19])]
-fn arenstorf() {
-    let mu = param(0.012277471);
-    let y1 = state(0.994);
-    let y2 = state(0.0);
-    let v1 = state(0.0);
-    let v2 = state(-2.00158510637908252240537862224);
-    let mup = 1.0 - mu;
-    let d1 = ((y1 + mu).powi(2) + y2 * y2).powf(1.5);
-    let d2 = ((y1 - mup).powi(2) + y2 * y2).powf(1.5);
-    der(y1) == v1;
-    der(y2) == v2;
-    der(v1) == y1 + 2.0 * v2 - mup * (y1 + mu) / d1 - mu * (y1 - mup) / d2;
-    der(v2) == y2 - 2.0 * v1 - mup * y2 / d1 - mu * y2 / d2;
-}
 
 #[dae_model]
 fn vdpol() {
@@ -97,21 +78,6 @@ fn hires() {
     der(y[6]) == 280.0 * y[5] * y[7] - 1.81 * y[6];
     der(y[7]) == -280.0 * y[5] * y[7] + 1.81 * y[6];
 }
-
-/// Exact Kepler state (e = 0.9, perihelion at t = 0).
-fn kepler_exact(t: f64) -> [f64; 4] {
-    let e = 0.9;
-    let mut big_e = t + e * t.sin();
-    for _ in 0..100 {
-        big_e -= (big_e - e * big_e.sin() - t) / (1.0 - e * big_e.cos());
-    }
-    let (s, c) = big_e.sin_cos();
-    let w = (1.0 - e * e).sqrt();
-    [c - e, w * s, -s / (1.0 - e * c), w * c / (1.0 - e * c)]
-}
-
-const ARENSTORF_T: f64 = 17.0652165601579625588917206249;
-const ARENSTORF_Y0: [f64; 4] = [0.994, 0.0, 0.0, -2.00158510637908252240537862224];
 
 /// The outer solar system at t = 20 000 days in the model's state order
 /// (x, y, z of the six bodies, then u, v, w): the recomputed 38-digit

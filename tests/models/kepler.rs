@@ -1,0 +1,39 @@
+// Kepler's problem with e = 0.9 and its exact solution, shared by
+// tests/taylor_adaptive.rs and the benchmark (`include!`d: bench/ is a
+// separate workspace), as a macro so each chooses the `#[dae_model]`
+// arguments (reference-problems.md §10).
+
+macro_rules! kepler_model {
+    ($($arguments:tt)*) => {
+/// Kepler's problem q'' = −q/|q|³ with e = 0.9 from perihelion (semi-major
+/// axis 1, period 2π).
+#[dae_model($($arguments)*)]
+fn kepler() {
+    let e = param(0.9);
+    let q1 = state(1.0 - e);
+    let q2 = state(0.0);
+    let p1 = state(0.0);
+    let p2 = state(sqrt((1.0 + e) / (1.0 - e)));
+    let r3 = (q1 * q1 + q2 * q2).powf(-1.5);
+    der(q1) == p1;
+    der(q2) == p2;
+    der(p1) == -q1 * r3;
+    der(p2) == -q2 * r3;
+    let energy = output(0.5 * (p1 * p1 + p2 * p2) - (q1 * q1 + q2 * q2).powf(-0.5));
+}
+    };
+}
+
+/// The exact state at t for e = 0.9: Newton on Kepler's equation
+/// E − e sin E = t, then q = (cos E − e, √(1−e²) sin E).
+#[allow(dead_code)]
+fn kepler_exact(t: f64) -> [f64; 4] {
+    let e = 0.9;
+    let mut big_e = t + e * t.sin();
+    for _ in 0..100 {
+        big_e -= (big_e - e * big_e.sin() - t) / (1.0 - e * big_e.cos());
+    }
+    let (s, c) = big_e.sin_cos();
+    let w = (1.0 - e * e).sqrt();
+    [c - e, w * s, -s / (1.0 - e * c), w * c / (1.0 - e * c)]
+}
