@@ -9,7 +9,11 @@ include!("../../tests/models/kepler.rs");
 kepler_model!(taylor = 1, unroll = [12, 19]);
 
 fn main() -> Result<(), daegen::Error> {
+    let only_unrolled = std::env::args().any(|a| a == "--unrolled");
     for (tol, compact) in [(1e-9, false), (1e-9, true), (1e-15, false), (1e-15, true)] {
+        if only_unrolled && compact {
+            continue;
+        }
         let options = Options::new()
             .method(Method::Taylor)
             .rtol(tol)
