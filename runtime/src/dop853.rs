@@ -332,9 +332,20 @@ impl EmbeddedPair for Dop853 {
             out[n + i] = dy;
             out[2 * n + i] = bspl;
             out[3 * n + i] = dy - h * k[12].as_ref()[i] - bspl;
-            for (m, d) in D.iter().enumerate() {
-                let sum: f64 = d.iter().zip(k).map(|(dj, kj)| dj * kj.as_ref()[i]).sum();
-                out[(4 + m) * n + i] = h * sum;
+        }
+        // Σ_j d_mj k_j stage by stage over all components (contiguous, so
+        // it vectorises), skipping the stages whose weight is zero: each
+        // component's sum is still taken in stage order, as in dop853.f.
+        for (m, d) in D.iter().enumerate() {
+            let row = &mut out[(4 + m) * n..(5 + m) * n];
+            row.fill(0.0);
+            for (dj, kj) in d.iter().zip(k).filter(|(dj, _)| **dj != 0.0) {
+                for (o, kv) in row.iter_mut().zip(kj.as_ref()) {
+                    *o += dj * kv;
+                }
+            }
+            for o in row.iter_mut() {
+                *o *= h;
             }
         }
     }
