@@ -9,6 +9,7 @@
 // Published coefficients are kept digit for digit as printed.
 #![allow(clippy::excessive_precision)]
 
+use crate::band_lu::{BandNewton, BandOrdering};
 use crate::dense_lu::{ComplexLu, RealLu};
 use crate::error::Error;
 use crate::events::{EventWatch, Next};
@@ -90,6 +91,52 @@ enum Refresh {
     Jacobian,
     Factorisation,
     Nothing,
+}
+
+/// The Newton matrices `γ/h·I − J` and `(α + iβ)/h·I − J`: banded after a
+/// reverse Cuthill–McKee renumbering when the generated Jacobian's pattern
+/// makes that pay, dense otherwise (and always for finite differences).
+enum Newton {
+    Dense(RealLu, ComplexLu),
+    Band(Box<BandNewton>),
+}
+
+impl Newton {
+    fn for_pattern(n: usize, pattern: &[(usize, usize)]) -> Newton {
+        if !pattern.is_empty() {
+            let ordering = BandOrdering::reverse_cuthill_mckee(n, pattern);
+            if ordering.pays() {
+                return Newton::Band(Box::new(BandNewton::new(ordering)));
+            }
+        }
+        Newton::Dense(RealLu::new(n), ComplexLu::new(n))
+    }
+
+    fn factor(&mut self, gamma: f64, alpha: f64, beta: f64, jacobian: &[f64]) -> bool {
+        match self {
+            Newton::Dense(real, complex) => {
+                real.factor_shifted(gamma, jacobian)
+                    && complex.factor_shifted(alpha, beta, jacobian)
+            }
+            Newton::Band(band) => {
+                band.factor_real(gamma, jacobian) && band.factor_complex(alpha, beta, jacobian)
+            }
+        }
+    }
+
+    fn solve_real(&mut self, b: &mut [f64]) {
+        match self {
+            Newton::Dense(real, _) => real.solve(b),
+            Newton::Band(band) => band.solve_real(b),
+        }
+    }
+
+    fn solve_complex(&mut self, re: &mut [f64], im: &mut [f64]) {
+        match self {
+            Newton::Dense(_, complex) => complex.solve(re, im),
+            Newton::Band(band) => band.solve_complex(re, im),
+        }
+    }
 }
 
 struct Work<'m, M> {
@@ -188,7 +235,7 @@ pub(crate) fn integrate<M: Model>(
         jacobian: vec![0.0; n * n],
         values: vec![0.0; M::JACOBIAN_PATTERN.len()],
     };
-    let (mut e1, mut e2) = (RealLu::new(n), ComplexLu::new(n));
+    let mut newton = Newton::for_pattern(n, M::JACOBIAN_PATTERN);
     let mut y = vec![0.0; n];
     let mut y0 = vec![0.0; n];
     let (mut z1, mut z2, mut z3) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
@@ -258,8 +305,7 @@ pub(crate) fn integrate<M: Model>(
             caljac = false;
         }
         if refresh != Refresh::Nothing {
-            let ok = e1.factor_shifted(gamma / h, &w.jacobian)
-                && e2.factor_shifted(alpha / h, beta / h, &w.jacobian);
+            let ok = newton.factor(gamma / h, alpha / h, beta / h, &w.jacobian);
             if !ok {
                 singular += 1;
                 if singular >= 5 {
@@ -343,8 +389,8 @@ pub(crate) fn integrate<M: Model>(
                 z2[i] += s2 * alphn - s3 * betan;
                 z3[i] += s3 * alphn + s2 * betan;
             }
-            e1.solve(&mut z1);
-            e2.solve(&mut z2, &mut z3);
+            newton.solve_real(&mut z1);
+            newton.solve_complex(&mut z2, &mut z3);
             newt += 1;
             let dyno = rms([&z1, &z2, &z3], &scal);
             if !dyno.is_finite() {
@@ -403,7 +449,7 @@ pub(crate) fn integrate<M: Model>(
             f2[i] = hee1 * z1[i] + hee2 * z2[i] + hee3 * z3[i];
             scratch[i] = f2[i] + y0[i];
         }
-        e1.solve(&mut scratch);
+        newton.solve_real(&mut scratch);
         let mut err = (scratch
             .iter()
             .zip(&scal)
@@ -422,7 +468,7 @@ pub(crate) fn integrate<M: Model>(
             for i in 0..n {
                 scratch[i] = f1[i] + f2[i];
             }
-            e1.solve(&mut scratch);
+            newton.solve_real(&mut scratch);
             err = (scratch
                 .iter()
                 .zip(&scal)
