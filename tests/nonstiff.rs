@@ -307,3 +307,41 @@ fn runs_without_dense_output_take_the_same_steps_for_less_work() {
         );
     }
 }
+
+/// What a local-error controller promises: each accepted step, taken from
+/// the exact solution, lands within a small multiple of the tolerance of
+/// the exact solution (the global error after many steps is a different
+/// matter: see the proportionality test). Every accepted step of one
+/// Kepler orbit (e = 0.9, exact solution by Kepler's equation) is redone
+/// from the exact state with the same step size; its error, per component
+/// scaled by atol + rtol·|y|, must stay within 10 across tol 1e-4 … 1e-12.
+#[test]
+fn every_accepted_step_is_within_ten_times_the_tolerance_of_the_exact_step() {
+    let two_pi = 2.0 * std::f64::consts::PI;
+    for method in [Method::Dopri5, Method::Dop853] {
+        for k in [4, 6, 8, 10, 12] {
+            let tol = 10f64.powi(-k);
+            let o = Options::new().method(method).rtol(tol).atol(tol);
+            let sol = Kepler::default().simulate(0.0, two_pi, &o).unwrap();
+            let times = sol.times();
+            let mut worst = 0.0f64;
+            for w in times.windows(2) {
+                let (t0, t1) = (w[0], w[1]);
+                let start = kepler_exact(t0, 0.9);
+                let one = o.initial_step(t1 - t0).max_step(t1 - t0);
+                let step = Kepler::default()
+                    .simulate_from(t0, &start, t1, &one)
+                    .unwrap();
+                let exact = kepler_exact(t1, 0.9);
+                for (got, want) in final_state(&step).iter().zip(&exact) {
+                    worst = worst.max((got - want).abs() / (tol + tol * want.abs()));
+                }
+            }
+            assert!(
+                worst <= 10.0,
+                "{method:?}, tol {tol:e}: a step's error is {worst:.1} × tol ({} steps)",
+                times.len() - 1
+            );
+        }
+    }
+}
