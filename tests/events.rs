@@ -248,3 +248,48 @@ fn restarting_with_a_state_of_the_wrong_length_is_an_error() {
         .to_string();
     assert!(err.contains("height, der(height)"), "{err}");
 }
+
+/// Backwards in time the crossings come in reverse order, and rising and
+/// falling still refer to time.
+#[test]
+fn a_backward_run_finds_the_crossings_in_reverse_with_their_directions_in_time() {
+    let e = 0.9f64;
+    let two_pi = std::f64::consts::TAU;
+    let m_axis = {
+        let big_e = e.acos();
+        big_e - e * big_e.sin()
+    };
+    let start = {
+        // The exact state at 2π is the perihelion again.
+        let p2 = ((1.0 + e) / (1.0 - e)).sqrt();
+        [1.0 - e, 0.0, 0.0, p2]
+    };
+    for method in [Method::Taylor, Method::Dop853] {
+        let opts = Options::new().method(method).rtol(1e-13).atol(1e-13);
+        let sol = KeplerSections::default()
+            .simulate_from(two_pi, &start, 0.0, &opts)
+            .expect("runs");
+        let axis: Vec<_> = sol.events().iter().filter(|h| h.name == "y_axis").collect();
+        assert_eq!(axis.len(), 2, "{method:?}");
+        // First met going back: the rising crossing at 2π − m, then the
+        // falling one at m.
+        assert!(
+            axis[0].rising && (axis[0].t - (two_pi - m_axis)).abs() < 1e-9,
+            "{method:?}: {:?}",
+            axis[0].t
+        );
+        assert!(
+            !axis[1].rising && (axis[1].t - m_axis).abs() < 1e-9,
+            "{method:?}: {:?}",
+            axis[1].t
+        );
+        // Only rising (in time) perihelion passages count: none inside (0, 2π).
+        assert!(
+            sol.event_times("perihelion")
+                .expect("declared")
+                .iter()
+                .all(|&t| t.abs() < 1e-9),
+            "{method:?}"
+        );
+    }
+}

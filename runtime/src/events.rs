@@ -11,6 +11,8 @@
 //! samples cancel and are missed; a root where `g` only touches zero is not
 //! a crossing. A run that starts exactly on a zero of `g` does not fire
 //! there (restarting a bouncing ball from the ground does not bounce again).
+//! Rising and falling refer to time: in a backward run a rising crossing is
+//! one where g decreases along the integration.
 
 use crate::error::Error;
 use crate::model::{EventDirection, Model};
@@ -172,8 +174,11 @@ impl<'m, M: Model> EventWatch<'m, M> {
         }
         for k in 1..count {
             let ((lo, g_lo), (hi, g_hi)) = (pieces[k - 1], pieces[k]);
-            let rising = g_lo < 0.0 && g_hi >= 0.0;
-            let falling = g_lo > 0.0 && g_hi <= 0.0;
+            // Up or down along the integration; rising and falling are in
+            // time, so a backward run swaps them.
+            let up = g_lo < 0.0 && g_hi >= 0.0;
+            let down = g_lo > 0.0 && g_hi <= 0.0;
+            let (rising, falling) = if hi >= lo { (up, down) } else { (down, up) };
             let fires = match M::INFO.events[i].direction {
                 EventDirection::Any => rising || falling,
                 EventDirection::Rising => rising,
