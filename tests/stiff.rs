@@ -6,62 +6,7 @@
 
 use daegen::prelude::*;
 
-/// Van der Pol, ε = 1e-6 (test set `vdpol`).
-#[dae_model]
-fn van_der_pol() {
-    let eps = param(1e-6);
-    let y1 = state(2.0);
-    let y2 = state(0.0);
-    der(y1) == y2;
-    der(y2) == ((1.0 - y1 * y1) * y2 - y1) / eps;
-}
-
-/// Published at t = 2 (test set vdpol.f, RADAU in extended precision).
-const VDP_AT_2: [f64; 2] = [0.1706167732170483e1, -0.8928097010247975];
-
-/// Robertson's chemical kinetics (test set `rober`).
-#[dae_model]
-fn robertson() {
-    let y1 = state(1.0);
-    let y2 = state(0.0);
-    let y3 = state(0.0);
-    der(y1) == -0.04 * y1 + 1e4 * y2 * y3;
-    der(y2) == 0.04 * y1 - 1e4 * y2 * y3 - 3e7 * y2 * y2;
-    der(y3) == 3e7 * y2 * y2;
-}
-
-/// Published at t = 1e11 (test set rober.f).
-const ROBER_AT_1E11: [f64; 3] = [
-    0.2083340149701255e-7,
-    0.8333360770334713e-13,
-    0.9999999791665050,
-];
-
-/// HIRES (test set `hires`).
-#[dae_model]
-fn hires() {
-    let y = state_array([1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0057]);
-    der(y[0]) == -1.71 * y[0] + 0.43 * y[1] + 8.32 * y[2] + 0.0007;
-    der(y[1]) == 1.71 * y[0] - 8.75 * y[1];
-    der(y[2]) == -10.03 * y[2] + 0.43 * y[3] + 0.035 * y[4];
-    der(y[3]) == 8.32 * y[1] + 1.71 * y[2] - 1.12 * y[3];
-    der(y[4]) == -1.745 * y[4] + 0.43 * y[5] + 0.43 * y[6];
-    der(y[5]) == -280.0 * y[5] * y[7] + 0.69 * y[3] + 1.71 * y[4] - 0.43 * y[5] + 0.69 * y[6];
-    der(y[6]) == 280.0 * y[5] * y[7] - 1.81 * y[6];
-    der(y[7]) == -280.0 * y[5] * y[7] + 1.81 * y[6];
-}
-
-/// Published at t = 321.8122 (test set hires.f; Hairer's hir_exact.txt agrees).
-const HIRES_AT_END: [f64; 8] = [
-    0.7371312573325668e-3,
-    0.1442485726316185e-3,
-    0.5888729740967575e-4,
-    0.1175651343283149e-2,
-    0.2386356198831331e-2,
-    0.6238968252742796e-2,
-    0.2849998395185769e-2,
-    0.2850001604814231e-2,
-];
+include!("models/stiff.rs");
 
 fn last_state(sol: &Solution) -> Vec<f64> {
     sol.state(sol.times().len() - 1).unwrap_or(&[]).to_vec()

@@ -3,19 +3,8 @@
 
 use daegen::prelude::*;
 
-#[dae_model]
-fn kepler() {
-    let e = param(0.9);
-    let q1 = state(1.0 - e);
-    let q2 = state(0.0);
-    let p1 = state(0.0);
-    let p2 = state(sqrt((1.0 + e) / (1.0 - e)));
-    let r3 = (q1 * q1 + q2 * q2).powf(-1.5);
-    der(q1) == p1;
-    der(q2) == p2;
-    der(p1) == -q1 * r3;
-    der(p2) == -q2 * r3;
-}
+include!("../../tests/models/kepler.rs");
+kepler_model!();
 
 fn main() -> Result<(), daegen::Error> {
     let options = Options::new()

@@ -47,37 +47,7 @@ include!("../../tests/models/outer_solar_system.rs");
 // Orders 12, 15 and 19 are those of tolerances 1e-9, 1e-12 and 1e-15.
 outer_solar_system_model!(taylor = 1, unroll = [12, 15, 19]);
 
-#[dae_model]
-fn vdpol() {
-    let eps = param(1e-6);
-    let y1 = state(2.0);
-    let y2 = state(0.0);
-    der(y1) == y2;
-    der(y2) == ((1.0 - y1 * y1) * y2 - y1) / eps;
-}
-
-#[dae_model]
-fn robertson() {
-    let y1 = state(1.0);
-    let y2 = state(0.0);
-    let y3 = state(0.0);
-    der(y1) == -0.04 * y1 + 1e4 * y2 * y3;
-    der(y2) == 0.04 * y1 - 1e4 * y2 * y3 - 3e7 * y2 * y2;
-    der(y3) == 3e7 * y2 * y2;
-}
-
-#[dae_model]
-fn hires() {
-    let y = state_array([1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0057]);
-    der(y[0]) == -1.71 * y[0] + 0.43 * y[1] + 8.32 * y[2] + 0.0007;
-    der(y[1]) == 1.71 * y[0] - 8.75 * y[1];
-    der(y[2]) == -10.03 * y[2] + 0.43 * y[3] + 0.035 * y[4];
-    der(y[3]) == 8.32 * y[1] + 1.71 * y[2] - 1.12 * y[3];
-    der(y[4]) == -1.745 * y[4] + 0.43 * y[5] + 0.43 * y[6];
-    der(y[5]) == -280.0 * y[5] * y[7] + 0.69 * y[3] + 1.71 * y[4] - 0.43 * y[5] + 0.69 * y[6];
-    der(y[6]) == 280.0 * y[5] * y[7] - 1.81 * y[6];
-    der(y[7]) == -280.0 * y[5] * y[7] + 1.81 * y[6];
-}
+include!("../../tests/models/stiff.rs");
 
 /// The outer solar system at t = 20 000 days in the model's state order
 /// (x, y, z of the six bodies, then u, v, w): the recomputed 38-digit
@@ -761,13 +731,12 @@ fn main() {
 
     // Stiff.
     let stiff_tols: Vec<f64> = (4..=10).map(|k| 10f64.powi(-k)).collect();
-    let vdp_ref = [0.1706167732170483e1, -0.8928097010247975];
-    let v = Vdpol::default();
+    let v = VanDerPol::default();
     let vdp_ours = vec![(
         "daegen RADAU5",
         stiff_tols
             .iter()
-            .map(|&t| ours(&v, 2.0, Method::Radau5, t, t, &vdp_ref))
+            .map(|&t| ours(&v, 2.0, Method::Radau5, t, t, &VDP_AT_2))
             .collect(),
     )];
     let vdp_peers = vec![
@@ -776,7 +745,7 @@ fn main() {
             Some(
                 stiff_tols
                     .iter()
-                    .map(|&t| diffsol_peer::run("vdpol", false, 2.0, t, t, &vdp_ref))
+                    .map(|&t| diffsol_peer::run("vdpol", false, 2.0, t, t, &VDP_AT_2))
                     .collect(),
             ),
         ),
@@ -785,7 +754,7 @@ fn main() {
             Some(
                 stiff_tols
                     .iter()
-                    .map(|&t| diffsol_peer::run("vdpol", true, 2.0, t, t, &vdp_ref))
+                    .map(|&t| diffsol_peer::run("vdpol", true, 2.0, t, t, &VDP_AT_2))
                     .collect(),
             ),
         ),
@@ -804,17 +773,12 @@ fn main() {
         &vdp_peers,
     );
 
-    let rober_ref = [
-        0.2083340149701255e-7,
-        0.8333360770334713e-13,
-        0.9999999791665050,
-    ];
     let r = Robertson::default();
     let rober_ours = vec![(
         "daegen RADAU5",
         stiff_tols
             .iter()
-            .map(|&t| ours(&r, 1e11, Method::Radau5, t, 1e-6 * t, &rober_ref))
+            .map(|&t| ours(&r, 1e11, Method::Radau5, t, 1e-6 * t, &ROBER_AT_1E11))
             .collect(),
     )];
     let rober_peers = vec![
@@ -823,7 +787,9 @@ fn main() {
             Some(
                 stiff_tols
                     .iter()
-                    .map(|&t| diffsol_peer::run("robertson", false, 1e11, t, 1e-6 * t, &rober_ref))
+                    .map(|&t| {
+                        diffsol_peer::run("robertson", false, 1e11, t, 1e-6 * t, &ROBER_AT_1E11)
+                    })
                     .collect(),
             ),
         ),
@@ -832,7 +798,9 @@ fn main() {
             Some(
                 stiff_tols
                     .iter()
-                    .map(|&t| diffsol_peer::run("robertson", true, 1e11, t, 1e-6 * t, &rober_ref))
+                    .map(|&t| {
+                        diffsol_peer::run("robertson", true, 1e11, t, 1e-6 * t, &ROBER_AT_1E11)
+                    })
                     .collect(),
             ),
         ),
@@ -851,22 +819,12 @@ fn main() {
         &rober_peers,
     );
 
-    let hires_ref = [
-        0.7371312573325668e-3,
-        0.1442485726316185e-3,
-        0.5888729740967575e-4,
-        0.1175651343283149e-2,
-        0.2386356198831331e-2,
-        0.6238968252742796e-2,
-        0.2849998395185769e-2,
-        0.2850001604814231e-2,
-    ];
     let h = Hires::default();
     let hires_ours = vec![(
         "daegen RADAU5",
         stiff_tols
             .iter()
-            .map(|&t| ours(&h, 321.8122, Method::Radau5, t, t, &hires_ref))
+            .map(|&t| ours(&h, 321.8122, Method::Radau5, t, t, &HIRES_AT_END))
             .collect(),
     )];
     let hires_peers = vec![
@@ -875,7 +833,7 @@ fn main() {
             Some(
                 stiff_tols
                     .iter()
-                    .map(|&t| diffsol_peer::run("hires", false, 321.8122, t, t, &hires_ref))
+                    .map(|&t| diffsol_peer::run("hires", false, 321.8122, t, t, &HIRES_AT_END))
                     .collect(),
             ),
         ),
@@ -884,7 +842,7 @@ fn main() {
             Some(
                 stiff_tols
                     .iter()
-                    .map(|&t| diffsol_peer::run("hires", true, 321.8122, t, t, &hires_ref))
+                    .map(|&t| diffsol_peer::run("hires", true, 321.8122, t, t, &HIRES_AT_END))
                     .collect(),
             ),
         ),
