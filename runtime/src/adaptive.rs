@@ -4,7 +4,7 @@
 //! of a real run (Hairer, Nørsett, Wanner, *Solving ODEs I*, §II.4–§II.6).
 
 use crate::error::Error;
-use crate::events::{EventWatch, Next};
+use crate::events::{stop_after_step, EventWatch};
 use crate::model::{EvalError, Model, StateVector};
 use crate::options::Options;
 use crate::solution::Solution;
@@ -354,12 +354,10 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
             } else {
                 solution.push(t, y.as_ref());
             }
-            if let Some(watch) = events.as_mut() {
-                let next;
-                (solution, next) = watch.after_step(solution)?;
-                if let Next::Stop = next {
-                    break;
-                }
+            let stop;
+            (solution, stop) = stop_after_step(&mut events, solution)?;
+            if stop {
+                break;
             }
             if last {
                 break;

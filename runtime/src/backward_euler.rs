@@ -4,7 +4,7 @@
 
 use crate::dense_lu::RealLu;
 use crate::error::Error;
-use crate::events::{EventWatch, Next};
+use crate::events::{stop_after_step, EventWatch};
 use crate::model::{EvalError, Model};
 use crate::solution::Solution;
 
@@ -123,12 +123,10 @@ pub(crate) fn integrate<M: Model>(
         stats.steps += 1;
         stats.rhs_evals = evals;
         stats.jacobian_evals = jacobian_evals;
-        if let Some(watch) = events.as_mut() {
-            let next;
-            (solution, next) = watch.after_step(solution)?;
-            if let Next::Stop = next {
-                break;
-            }
+        let stop;
+        (solution, stop) = stop_after_step(&mut events, solution)?;
+        if stop {
+            break;
         }
     }
     Ok(solution)

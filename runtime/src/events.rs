@@ -36,12 +36,16 @@ pub(crate) struct EventWatch<'m, M: Model> {
     t_start: f64,
 }
 
-/// What the run does after a step.
-pub(crate) enum Next {
-    /// Go on.
-    Continue,
-    /// A terminal event fired; the solution ends at it.
-    Stop,
+/// Checks the step just pushed to `solution` for events, if the model has
+/// any: `true` when a terminal one ended the run there.
+pub(crate) fn stop_after_step<M: Model>(
+    watch: &mut Option<EventWatch<'_, M>>,
+    solution: Solution,
+) -> Result<(Solution, bool), Error> {
+    match watch {
+        Some(watch) => watch.after_step(solution),
+        None => Ok((solution, false)),
+    }
 }
 
 impl<'m, M: Model> EventWatch<'m, M> {
@@ -75,11 +79,11 @@ impl<'m, M: Model> EventWatch<'m, M> {
     }
 
     /// Checks the last step of `solution` for events, records them in it and,
-    /// at a terminal one, cuts the solution there.
-    pub(crate) fn after_step(&mut self, mut solution: Solution) -> Result<(Solution, Next), Error> {
+    /// at a terminal one, cuts the solution there (and says so with `true`).
+    pub(crate) fn after_step(&mut self, mut solution: Solution) -> Result<(Solution, bool), Error> {
         let times = solution.times();
         let Some(&[t_old, t_new]) = times.get(times.len().wrapping_sub(2)..) else {
-            return Ok((solution, Next::Continue));
+            return Ok((solution, false));
         };
         let mut hits: Vec<EventHit> = Vec::new();
         let mut a = t_old;
@@ -141,10 +145,7 @@ impl<'m, M: Model> EventWatch<'m, M> {
         for hit in hits {
             solution.push_event(hit);
         }
-        if stop.is_some() {
-            return Ok((solution, Next::Stop));
-        }
-        Ok((solution, Next::Continue))
+        Ok((solution, stop.is_some()))
     }
 
     /// The crossings of event `i` between samples `a` and `b`: one where g

@@ -3,7 +3,7 @@
 //! §II.1). The tableaux are data; one stepping routine serves them all.
 
 use crate::error::Error;
-use crate::events::{EventWatch, Next};
+use crate::events::{stop_after_step, EventWatch};
 use crate::model::Model;
 use crate::solution::Solution;
 
@@ -140,12 +140,10 @@ pub(crate) fn integrate<M: Model>(
         }
         solution.push(t_next, &y);
         solution.stats_mut().steps += 1;
-        if let Some(watch) = events.as_mut() {
-            let next;
-            (solution, next) = watch.after_step(solution)?;
-            if let Next::Stop = next {
-                break;
-            }
+        let stop;
+        (solution, stop) = stop_after_step(&mut events, solution)?;
+        if stop {
+            break;
         }
     }
     Ok(solution)

@@ -12,7 +12,7 @@
 use crate::band_lu::{BandNewton, BandOrdering};
 use crate::dense_lu::{ComplexLu, RealLu};
 use crate::error::Error;
-use crate::events::{EventWatch, Next};
+use crate::events::{stop_after_step, EventWatch};
 use crate::model::{EvalError, Model};
 use crate::options::Options;
 use crate::solution::Solution;
@@ -524,12 +524,10 @@ pub(crate) fn integrate<M: Model>(
             } else {
                 solution.push(t, &y);
             }
-            if let Some(watch) = events.as_mut() {
-                let next;
-                (solution, next) = watch.after_step(solution)?;
-                if let Next::Stop = next {
-                    break;
-                }
+            let stop;
+            (solution, stop) = stop_after_step(&mut events, solution)?;
+            if stop {
+                break;
             }
             if last {
                 break;

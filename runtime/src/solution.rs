@@ -252,6 +252,19 @@ impl Solution {
         }
     }
 
+    /// The error for a name that is neither a state nor an output.
+    fn unknown_name(&self, name: &str) -> Error {
+        Error::UnknownName {
+            name: name.to_string(),
+            known: self
+                .state_names
+                .iter()
+                .chain(self.output_names)
+                .copied()
+                .collect(),
+        }
+    }
+
     fn value_at_step(&self, k: usize, name: &str) -> Result<f64, Error> {
         let y = self.state(k).unwrap_or(&[]);
         if let Some(i) = self.state_names.iter().position(|n| *n == name) {
@@ -260,15 +273,7 @@ impl Solution {
         if let Some(i) = self.output_names.iter().position(|n| *n == name) {
             return Ok(self.observables.output(i, self.times[k], y));
         }
-        Err(Error::UnknownName {
-            name: name.to_string(),
-            known: self
-                .state_names
-                .iter()
-                .chain(self.output_names)
-                .copied()
-                .collect(),
-        })
+        Err(self.unknown_name(name))
     }
 
     /// A state or output at the last accepted step.
@@ -318,14 +323,6 @@ impl Solution {
             let y: Vec<f64> = (0..self.n).map(state).collect();
             return Ok(self.observables.output(o, t, &y));
         }
-        Err(Error::UnknownName {
-            name: name.to_string(),
-            known: self
-                .state_names
-                .iter()
-                .chain(self.output_names)
-                .copied()
-                .collect(),
-        })
+        Err(self.unknown_name(name))
     }
 }

@@ -7,7 +7,7 @@
 //! step's polynomial is the dense output.
 
 use crate::error::Error;
-use crate::events::{EventWatch, Next};
+use crate::events::{stop_after_step, EventWatch};
 use crate::model::Model;
 use crate::options::Options;
 use crate::solution::Solution;
@@ -229,12 +229,10 @@ pub(crate) fn integrate<M: Model>(
         }
         solution.stats_mut().steps += 1;
         steps += 1;
-        if let Some(watch) = events.as_mut() {
-            let next;
-            (solution, next) = watch.after_step(solution)?;
-            if let Next::Stop = next {
-                break;
-            }
+        let stop;
+        (solution, stop) = stop_after_step(&mut events, solution)?;
+        if stop {
+            break;
         }
     }
     Ok(solution)

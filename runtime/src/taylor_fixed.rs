@@ -3,7 +3,7 @@
 //! from the model's generated `taylor_derivatives`.
 
 use crate::error::Error;
-use crate::events::{EventWatch, Next};
+use crate::events::{stop_after_step, EventWatch};
 use crate::model::Model;
 use crate::solution::Solution;
 use crate::taylor_series::taylor_step;
@@ -51,12 +51,10 @@ pub(crate) fn integrate<M: Model>(
         let stats = solution.stats_mut();
         stats.steps += 1;
         stats.rhs_evals += 1;
-        if let Some(watch) = events.as_mut() {
-            let next;
-            (solution, next) = watch.after_step(solution)?;
-            if let Next::Stop = next {
-                break;
-            }
+        let stop;
+        (solution, stop) = stop_after_step(&mut events, solution)?;
+        if stop {
+            break;
         }
     }
     Ok(solution)

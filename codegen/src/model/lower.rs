@@ -318,6 +318,19 @@ impl Lower<'_> {
         }
     }
 
+    /// Reports a second declaration of `ident`'s name.
+    fn already_declared(&mut self, ident: &syn::Ident) -> bool {
+        let name = ident.to_string();
+        let Some(what) = self.lookup(&name).map(Binding::describe) else {
+            return false;
+        };
+        self.cx.error_at(
+            ident,
+            format!("`{name}` is already declared as {what}: choose another name"),
+        );
+        true
+    }
+
     /// `let e = event(g).rising().terminal();`
     fn event(
         &mut self,
@@ -328,12 +341,8 @@ impl Lower<'_> {
         local: &syn::Local,
     ) {
         let name = ident.to_string();
-        if let Some(old) = self.lookup(&name) {
-            let what = old.describe();
-            return self.cx.error_at(
-                ident,
-                format!("`{name}` is already declared as {what}: choose another name"),
-            );
+        if self.already_declared(ident) {
+            return;
         }
         if !self.arity(call, "event", 1) {
             return;
@@ -414,12 +423,8 @@ impl Lower<'_> {
         local: &syn::Local,
     ) {
         let name = ident.to_string();
-        if let Some(old) = self.lookup(&name) {
-            let what = old.describe();
-            return self.cx.error_at(
-                ident,
-                format!("`{name}` is already declared as {what}: choose another name"),
-            );
+        if self.already_declared(ident) {
+            return;
         }
         let origin = local.to_token_stream();
         match kind {
