@@ -354,10 +354,13 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
             } else {
                 solution.push(t, y.as_ref());
             }
-            let stop;
-            (solution, stop) = stop_after_step(&mut events, solution)?;
-            if stop {
-                break;
+            // (Only with events: moving the solution in and out costs a copy.)
+            if events.is_some() {
+                let stop;
+                (solution, stop) = stop_after_step(&mut events, solution)?;
+                if stop {
+                    break;
+                }
             }
             if last {
                 break;

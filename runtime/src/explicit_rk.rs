@@ -140,10 +140,13 @@ pub(crate) fn integrate<M: Model>(
         }
         solution.push(t_next, &y);
         solution.stats_mut().steps += 1;
-        let stop;
-        (solution, stop) = stop_after_step(&mut events, solution)?;
-        if stop {
-            break;
+        // (Only with events: moving the solution in and out costs a copy.)
+        if events.is_some() {
+            let stop;
+            (solution, stop) = stop_after_step(&mut events, solution)?;
+            if stop {
+                break;
+            }
         }
     }
     Ok(solution)

@@ -229,10 +229,13 @@ pub(crate) fn integrate<M: Model>(
         }
         solution.stats_mut().steps += 1;
         steps += 1;
-        let stop;
-        (solution, stop) = stop_after_step(&mut events, solution)?;
-        if stop {
-            break;
+        // (Only with events: moving the solution in and out costs a copy.)
+        if events.is_some() {
+            let stop;
+            (solution, stop) = stop_after_step(&mut events, solution)?;
+            if stop {
+                break;
+            }
         }
     }
     Ok(solution)

@@ -51,10 +51,13 @@ pub(crate) fn integrate<M: Model>(
         let stats = solution.stats_mut();
         stats.steps += 1;
         stats.rhs_evals += 1;
-        let stop;
-        (solution, stop) = stop_after_step(&mut events, solution)?;
-        if stop {
-            break;
+        // (Only with events: moving the solution in and out costs a copy.)
+        if events.is_some() {
+            let stop;
+            (solution, stop) = stop_after_step(&mut events, solution)?;
+            if stop {
+                break;
+            }
         }
     }
     Ok(solution)
