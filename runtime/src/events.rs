@@ -7,9 +7,12 @@
 //! brackets a crossing, which is then located by the Illinois variant of
 //! regula falsi with a bisection safeguard (Dowell & Jarratt 1971) on
 //! `φ(t) = g(t, y(t))`, `y(t)` the step's interpolant, until the bracket is
-//! two adjacent floating-point numbers. Two crossings between neighbouring
-//! samples cancel and are missed; a root where `g` only touches zero is not
-//! a crossing. A run that starts exactly on a zero of `g` does not fire
+//! two adjacent floating-point numbers. Where g keeps its sign between two
+//! samples but its generated rate dg/dt turns back towards zero, the
+//! extremum is located and each side bracketed, so a pair of crossings
+//! between samples is found too (models with a mass matrix solved at run
+//! time have no rates: there such a pair is missed). A root where `g` only
+//! touches zero is not a crossing. A run that starts exactly on a zero of `g` does not fire
 //! there (restarting a bouncing ball from the ground does not bounce again).
 //! Rising and falling refer to time: in a backward run a rising crossing is
 //! one where g decreases along the integration.
