@@ -156,3 +156,26 @@ fn logistic_with_unrolled_taylor_recurrences_of_order_3() {
         }
     ));
 }
+
+/// Products that differ only by constant factors share one convolution on
+/// the Taylor tape: x·y once, then scaled by 2 and by −3.
+#[test]
+fn taylor_tape_shares_products_that_differ_by_constants() {
+    let code = expand_with(
+        quote!(taylor = 1),
+        quote! {
+            fn shared() {
+                let x = state(1.0);
+                let y = state(2.0);
+                der(x) == 2.0 * x * y;
+                der(y) == -3.0 * x * y;
+            }
+        },
+    );
+    let tape = &code[code.find("fn taylor_tape").expect("a tape")..];
+    let products = tape.matches("TapeOp::Mul(").count();
+    let convolutions = tape
+        .matches("TapeOp::Mul(::daegen::runtime::taylor_tape::Operand::State(0)")
+        .count();
+    assert_eq!((products, convolutions), (3, 1), "{tape}");
+}

@@ -10,7 +10,7 @@ use quote::quote;
 
 /// An operand of a tape operation (the model's side of
 /// `daegen::runtime::taylor_tape::Operand`).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Operand {
     /// u-variable `i`.
     Var(usize),
@@ -127,6 +127,10 @@ struct Builder<'g> {
     sin_of: FxHashMap<Id, usize>,
     /// sinh(a) → the u-variable of its pair with cosh(a).
     sinh_of: FxHashMap<Id, usize>,
+    /// Each sum, product and quotient of two operands once: products that
+    /// differ only by their constant factors (m_j·dx·r³ and −m_i·dx·r³ of
+    /// an N-body model) share the convolution dx·r³.
+    binary_of: FxHashMap<(&'static str, Operand, Operand), Operand>,
 }
 
 impl Builder<'_> {
@@ -200,7 +204,21 @@ impl Builder<'_> {
         (s, c)
     }
 
-    fn binary(&mut self, name: &str, a: &Operand, b: &Operand) -> Operand {
+    fn binary(&mut self, name: &'static str, a: &Operand, b: &Operand) -> Operand {
+        // Sums and products commute: one key for both orders.
+        let key = match name {
+            "Div" => (name, *a, *b),
+            _ => (name, *a.min(b), *a.max(b)),
+        };
+        if let Some(&done) = self.binary_of.get(&key) {
+            return done;
+        }
+        let result = self.new_binary(name, a, b);
+        self.binary_of.insert(key, result);
+        result
+    }
+
+    fn new_binary(&mut self, name: &'static str, a: &Operand, b: &Operand) -> Operand {
         let constant = |o: &Operand| match o {
             Operand::Const(i) => Some(*i),
             _ => None,
@@ -450,6 +468,7 @@ pub fn decompose(
         recurrences: Vec::new(),
         sin_of: FxHashMap::default(),
         sinh_of: FxHashMap::default(),
+        binary_of: FxHashMap::default(),
     };
     // Constant nodes get a slot only when a time-dependent node or an
     // output uses them; their own constant operands are computed inside them.
