@@ -179,3 +179,34 @@ fn taylor_tape_shares_products_that_differ_by_constants() {
         .count();
     assert_eq!((products, convolutions), (3, 1), "{tape}");
 }
+
+/// The two bodies' forces use x2 − x1 and x1 − x2: the tape knows the second
+/// is the negation of the first, so the product with r⁻³ is one convolution.
+#[test]
+fn taylor_tape_shares_a_product_with_a_negated_difference() {
+    let code = expand_with(
+        quote!(taylor = 1),
+        quote! {
+            fn two_bodies() {
+                let x1 = state(0.0);
+                let x2 = state(1.0);
+                let v1 = state(0.0);
+                let v2 = state(0.0);
+                let r3 = ((x2 - x1) * (x2 - x1)).powf(-1.5);
+                der(x1) == v1;
+                der(x2) == v2;
+                der(v1) == (x2 - x1) * r3;
+                der(v2) == (x1 - x2) * r3;
+            }
+        },
+    );
+    let tape = &code[code.find("fn taylor_tape").expect("a tape")..];
+    let ops: Vec<&str> = tape.split("TapeOp::").skip(1).collect();
+    // Products of two time-dependent operands (not scalings by a constant).
+    let convolutions = ops
+        .iter()
+        .filter(|op| op.starts_with("Mul(") && !op.split(')').take(2).any(|s| s.contains("Const")))
+        .count();
+    // (x2 − x1)², and (x2 − x1)·r⁻³ once.
+    assert_eq!(convolutions, 2, "{tape}");
+}

@@ -103,7 +103,8 @@ fn taylor_method(
     // The AD tape for the adaptive Taylor method (compact layout).
     let slot_of = layout.slot_of.clone();
     let explicit: Vec<Id> = levels[0].clone();
-    let tape = super::taylor_tape::decompose(g, &explicit, &slot_of, time)?;
+    let negations = super::taylor_tape::negated_sums(g, &explicit)?;
+    let tape = super::taylor_tape::decompose(g, &explicit, &slot_of, time, &negations)?;
     let consts: Vec<Id> = tape
         .constants
         .iter()

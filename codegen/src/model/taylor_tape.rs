@@ -131,6 +131,10 @@ struct Builder<'g> {
     /// differ only by their constant factors (m_j·dx·r³ and −m_i·dx·r³ of
     /// an N-body model) share the convolution dx·r³.
     binary_of: FxHashMap<(&'static str, Operand, Operand), Operand>,
+    /// Sums whose negation is also a node (x_j − x_i and x_i − x_j).
+    negation_of: &'g FxHashMap<Id, Id>,
+    /// u-variables that are the negation of another operand.
+    negative_of: FxHashMap<Operand, Operand>,
 }
 
 impl Builder<'_> {
@@ -330,6 +334,14 @@ impl Builder<'_> {
             // higher coefficients would cost a full convolution in every
             // product it enters), and the constant enters last, as an O(1)
             // shift or scaling per order.
+                        Node::Add(_) if self.negation_of.get(&id).is_some_and(|n| self.operand_of.contains_key(n)) => {
+                // The negation of a sum already on the tape: one scaling.
+                let positive = self.operand(self.negation_of[&id]);
+                let minus_one = self.integer(-1);
+                let negated = self.binary("Mul", &positive, &minus_one);
+                self.negative_of.insert(negated, positive);
+                negated
+            }
             Node::Add(terms) => {
                 let (constant, varying) = self.split_constants(terms);
                 let mut acc = self.operand(varying[0]);
@@ -347,12 +359,33 @@ impl Builder<'_> {
                     }
                 }
             }
-            Node::Mul(factors) => {
+                        Node::Mul(factors) => {
                 let (constant, varying) = self.split_constants(factors);
-                let mut acc = self.operand(varying[0]);
-                for &f in &varying[1..] {
-                    let next = self.operand(f);
-                    acc = self.binary("Mul", &acc, &next);
+                // A factor that is the negation of another operand enters
+                // as that operand with a sign, so −dx·r³ and dx·r³ share
+                // their convolution.
+                let mut negative = false;
+                let mut varying: Vec<Operand> = varying
+                    .iter()
+                    .map(|&f| {
+                        let o = self.operand(f);
+                        match self.negative_of.get(&o) {
+                            Some(&positive) => {
+                                negative = !negative;
+                                positive
+                            }
+                            None => o,
+                        }
+                    })
+                    .collect();
+                varying.sort();
+                let mut acc = varying[0];
+                for next in &varying[1..] {
+                    acc = self.binary("Mul", &acc, next);
+                }
+                if negative {
+                    let minus_one = self.integer(-1);
+                    acc = self.binary("Mul", &acc, &minus_one);
                 }
                 match constant.len() {
                     0 => acc,
@@ -437,12 +470,32 @@ impl Builder<'_> {
     }
 }
 
-/// Decomposes `outputs` (f of each slot) into a tape.
+/// The sums reachable from `outputs` whose term-by-term negation is also
+/// reachable (x_j − x_i and x_i − x_j of an N-body model), both ways: the
+/// symbolic core keeps them as two nodes.
+pub fn negated_sums(g: &mut Graph, outputs: &[Id]) -> crate::Result<FxHashMap<Id, Id>> {
+    let reachable = g.reachable(outputs);
+    let known: std::collections::HashSet<Id> = reachable.iter().copied().collect();
+    let mut pairs = FxHashMap::default();
+    for id in reachable {
+        if let Node::Add(_) = g.node(id) {
+            let negation = g.negate_terms(id)?;
+            if negation != id && known.contains(&negation) {
+                pairs.insert(id, negation);
+            }
+        }
+    }
+    Ok(pairs)
+}
+
+/// Decomposes `outputs` (f of each slot) into a tape; `negations` from
+/// [`negated_sums`].
 pub fn decompose(
     g: &Graph,
     outputs: &[Id],
     slot_of: &FxHashMap<SymbolId, usize>,
     time: SymbolId,
+    negations: &FxHashMap<Id, Id>,
 ) -> crate::Result<Tape> {
     let order = g.reachable(outputs);
     // A node depends on time when it reaches a state or the time symbol.
@@ -469,6 +522,8 @@ pub fn decompose(
         sin_of: FxHashMap::default(),
         sinh_of: FxHashMap::default(),
         binary_of: FxHashMap::default(),
+        negation_of: negations,
+        negative_of: FxHashMap::default(),
     };
     // Constant nodes get a slot only when a time-dependent node or an
     // output uses them; their own constant operands are computed inside them.
