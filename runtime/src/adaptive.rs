@@ -4,7 +4,7 @@
 //! of a real run (Hairer, Nørsett, Wanner, *Solving ODEs I*, §II.4–§II.6).
 
 use crate::error::Error;
-use crate::events::{stop_after_step, EventWatch};
+use crate::events::{stop_at_terminal_event, EventWatch};
 use crate::model::{EvalError, Model, StateVector};
 use crate::options::Options;
 use crate::solution::Solution;
@@ -354,14 +354,7 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
             } else {
                 solution.push(t, y.as_ref());
             }
-            // (Only with events: moving the solution in and out costs a copy.)
-            if events.is_some() {
-                let stop;
-                (solution, stop) = stop_after_step(&mut events, solution)?;
-                if stop {
-                    break;
-                }
-            }
+            stop_at_terminal_event!(events, solution);
             if last {
                 break;
             }

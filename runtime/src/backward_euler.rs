@@ -4,7 +4,7 @@
 
 use crate::dense_lu::RealLu;
 use crate::error::Error;
-use crate::events::{stop_after_step, EventWatch};
+use crate::events::{stop_at_terminal_event, EventWatch};
 use crate::model::{EvalError, Model};
 use crate::solution::Solution;
 
@@ -123,14 +123,7 @@ pub(crate) fn integrate<M: Model>(
         stats.steps += 1;
         stats.rhs_evals = evals;
         stats.jacobian_evals = jacobian_evals;
-        // (Only with events: moving the solution in and out costs a copy.)
-        if events.is_some() {
-            let stop;
-            (solution, stop) = stop_after_step(&mut events, solution)?;
-            if stop {
-                break;
-            }
-        }
+        stop_at_terminal_event!(events, solution);
     }
     Ok(solution)
 }

@@ -51,6 +51,22 @@ pub(crate) fn stop_after_step<M: Model>(
     }
 }
 
+/// In an integrator's step loop, after an accepted step was pushed: checks
+/// it for events if the model has any (only then: moving the solution in
+/// and out costs a copy) and breaks out of the loop at a terminal one.
+macro_rules! stop_at_terminal_event {
+    ($events:ident, $solution:ident) => {
+        if $events.is_some() {
+            let stop;
+            ($solution, stop) = $crate::events::stop_after_step(&mut $events, $solution)?;
+            if stop {
+                break;
+            }
+        }
+    };
+}
+pub(crate) use stop_at_terminal_event;
+
 impl<'m, M: Model> EventWatch<'m, M> {
     /// A watch for `model`'s events from `(t0, y0)`, or `None` if it has none.
     /// `subdivisions` ≥ 1 sub-intervals of each step are checked for a sign change.

@@ -3,7 +3,7 @@
 //! §II.1). The tableaux are data; one stepping routine serves them all.
 
 use crate::error::Error;
-use crate::events::{stop_after_step, EventWatch};
+use crate::events::{stop_at_terminal_event, EventWatch};
 use crate::model::Model;
 use crate::solution::Solution;
 
@@ -140,14 +140,7 @@ pub(crate) fn integrate<M: Model>(
         }
         solution.push(t_next, &y);
         solution.stats_mut().steps += 1;
-        // (Only with events: moving the solution in and out costs a copy.)
-        if events.is_some() {
-            let stop;
-            (solution, stop) = stop_after_step(&mut events, solution)?;
-            if stop {
-                break;
-            }
-        }
+        stop_at_terminal_event!(events, solution);
     }
     Ok(solution)
 }

@@ -12,7 +12,7 @@
 use crate::band_lu::{BandNewton, BandOrdering};
 use crate::dense_lu::{ComplexLu, RealLu};
 use crate::error::Error;
-use crate::events::{stop_after_step, EventWatch};
+use crate::events::{stop_at_terminal_event, EventWatch};
 use crate::model::{EvalError, Model};
 use crate::options::Options;
 use crate::solution::Solution;
@@ -524,14 +524,7 @@ pub(crate) fn integrate<M: Model>(
             } else {
                 solution.push(t, &y);
             }
-            // (Only with events: moving the solution in and out costs a copy.)
-            if events.is_some() {
-                let stop;
-                (solution, stop) = stop_after_step(&mut events, solution)?;
-                if stop {
-                    break;
-                }
-            }
+            stop_at_terminal_event!(events, solution);
             if last {
                 break;
             }

@@ -7,7 +7,7 @@
 //! step's polynomial is the dense output.
 
 use crate::error::Error;
-use crate::events::{stop_after_step, EventWatch};
+use crate::events::{stop_at_terminal_event, EventWatch};
 use crate::model::Model;
 use crate::options::Options;
 use crate::solution::Solution;
@@ -229,14 +229,7 @@ pub(crate) fn integrate<M: Model>(
         }
         solution.stats_mut().steps += 1;
         steps += 1;
-        // (Only with events: moving the solution in and out costs a copy.)
-        if events.is_some() {
-            let stop;
-            (solution, stop) = stop_after_step(&mut events, solution)?;
-            if stop {
-                break;
-            }
-        }
+        stop_at_terminal_event!(events, solution);
     }
     Ok(solution)
 }

@@ -3,7 +3,7 @@
 //! from the model's generated `taylor_derivatives`.
 
 use crate::error::Error;
-use crate::events::{stop_after_step, EventWatch};
+use crate::events::{stop_at_terminal_event, EventWatch};
 use crate::model::Model;
 use crate::solution::Solution;
 use crate::taylor_series::taylor_step;
@@ -51,14 +51,7 @@ pub(crate) fn integrate<M: Model>(
         let stats = solution.stats_mut();
         stats.steps += 1;
         stats.rhs_evals += 1;
-        // (Only with events: moving the solution in and out costs a copy.)
-        if events.is_some() {
-            let stop;
-            (solution, stop) = stop_after_step(&mut events, solution)?;
-            if stop {
-                break;
-            }
-        }
+        stop_at_terminal_event!(events, solution);
     }
     Ok(solution)
 }
