@@ -212,16 +212,9 @@ fn a_singularity_stops_the_run_with_an_error_and_the_partial_solution() {
     }
 }
 
-/// Van der Pol with ε = 1e-6 (reference-problems.md §5a): far too stiff for
-/// an explicit method, which must stop at the step limit, not hang.
-#[dae_model]
-fn van_der_pol() {
-    let eps = param(1e-6);
-    let y1 = state(2.0);
-    let y2 = state(0.0);
-    der(y1) == y2;
-    der(y2) == ((1.0 - y1 * y1) * y2 - y1) / eps;
-}
+// Van der Pol with ε = 1e-6 (reference-problems.md §5a): far too stiff for
+// an explicit method, which must stop at the step limit, not hang.
+include!("models/stiff.rs");
 
 #[test]
 fn a_stiff_problem_hits_the_step_limit_with_a_clear_error() {
