@@ -33,7 +33,8 @@ pub use daegen_codegen as codegen;
 pub use daegen_macros::dae_model;
 pub use daegen_runtime as runtime;
 pub use daegen_runtime::{
-    Error, EvalError, EventDirection, EventInfo, Method, Model, ModelInfo, Options, Solution, Stats,
+    ConstraintInfo, Error, EvalError, EventDirection, EventInfo, Method, Model, ModelInfo, Options,
+    ProjectionLevel, Solution, Stats,
 };
 
 /// Everything a model file needs: `use daegen::prelude::*;`.

@@ -7,6 +7,7 @@ use crate::error::Error;
 use crate::events::{stop_at_terminal_event, EventWatch};
 use crate::model::{EvalError, Model, StateVector};
 use crate::options::Options;
+use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
 use crate::step_control::{initial_step, scale, Controller, PiState};
 
@@ -196,6 +197,7 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
     let mut dense = vec![0.0; P::DENSE_WIDTH * n];
     let mut rhs = Rhs { model, evals: 0 };
     let mut events = EventWatch::new(model, t0, y0, 1);
+    let mut projector = Projector::new(model);
     let keep_dense = options.dense_output || events.is_some();
     if keep_dense {
         solution.set_interpolant(P::DENSE_WIDTH, P::interpolate);
@@ -346,7 +348,19 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
             compensation = (t_next - t) - step;
             t = if last { t1 } else { t_next };
             std::mem::swap(&mut y, &mut y_new);
-            k[0] = k[P::STAGES - 1];
+            if project_onto_constraints!(projector, t, y.as_mut(), solution) {
+                // The last stage was evaluated before the projection.
+                if let Err(cause) = rhs.call(t, y.as_ref(), k[0].as_mut()) {
+                    finish_stats(&mut solution, accepted, rejected, rhs.evals);
+                    return Err(Error::Evaluation {
+                        t,
+                        cause,
+                        partial: Box::new(solution),
+                    });
+                }
+            } else {
+                k[0] = k[P::STAGES - 1];
+            }
             accepted += 1;
             non_finite = None;
             if keep_dense {
@@ -411,6 +425,7 @@ mod tests {
             output_docs: &[],
             equations: 4,
             events: &[],
+            algebraics: &[],
         };
         const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[];
         fn initial_state(&self, y: &mut [f64]) {

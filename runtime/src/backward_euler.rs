@@ -6,6 +6,7 @@ use crate::dense_lu::RealLu;
 use crate::error::Error;
 use crate::events::{stop_at_terminal_event, EventWatch};
 use crate::model::{EvalError, Model};
+use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
 
 /// Newton iterations per step before the run stops with an error.
@@ -30,6 +31,7 @@ pub(crate) fn integrate<M: Model>(
     let (mut evals, mut jacobian_evals) = (0usize, 0usize);
     y.copy_from_slice(y0);
     let mut events = EventWatch::new(model, t0, y0, 1);
+    let mut projector = Projector::new(model);
     for step in 0..steps {
         let t_next = if step + 1 == steps {
             t1
@@ -118,6 +120,7 @@ pub(crate) fn integrate<M: Model>(
             });
         }
         y.copy_from_slice(&next);
+        project_onto_constraints!(projector, t_next, &mut y, solution);
         solution.push(t_next, &y);
         let stats = solution.stats_mut();
         stats.steps += 1;

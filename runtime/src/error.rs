@@ -61,6 +61,21 @@ pub enum Error {
         /// The accepted steps.
         partial: Box<Solution>,
     },
+    /// A constraint could not be satisfied: inconsistent initial values that
+    /// projection cannot repair, redundant constraints (a rank-deficient
+    /// constraint Jacobian), or a projection that diverged after a step.
+    Constraint {
+        /// Time of the failure.
+        t: f64,
+        /// The constraint, as the model wrote it.
+        constraint: &'static str,
+        /// 0 for the constraint, 1 for its velocity level, ...
+        level: usize,
+        /// What went wrong and what to do.
+        message: String,
+        /// The accepted steps before it.
+        partial: Box<Solution>,
+    },
     /// The options or the interval are unusable (a non-positive step, say).
     InvalidOptions {
         /// What is wrong and how to fix it.
@@ -96,7 +111,8 @@ impl Error {
             | Error::MaxSteps { partial, .. }
             | Error::StepSizeUnderflow { partial, .. }
             | Error::NewtonFailure { partial, .. }
-            | Error::SingularMatrix { partial, .. } => Some(partial),
+            | Error::SingularMatrix { partial, .. }
+            | Error::Constraint { partial, .. } => Some(partial),
             _ => None,
         }
     }
@@ -124,6 +140,21 @@ impl fmt::Display for Error {
             }
             Error::MaxSteps { t, max_steps, .. } => {
                 write!(f, "stopped at t = {t} after {max_steps} steps; raise Options::max_steps or the step size")
+            }
+            Error::Constraint {
+                t,
+                constraint,
+                level,
+                message,
+                ..
+            } => {
+                let which = match level {
+                    0 => String::new(),
+                    1 => " (its velocity level)".to_string(),
+                    2 => " (its acceleration level)".to_string(),
+                    k => format!(" (its derivative of order {k})"),
+                };
+                write!(f, "constraint `{constraint}`{which} at t = {t}: {message}")
             }
             Error::InvalidOptions { message } => write!(f, "invalid options: {message}"),
             Error::MethodNotAvailable { method } => {

@@ -5,6 +5,7 @@
 use crate::error::Error;
 use crate::events::{stop_at_terminal_event, EventWatch};
 use crate::model::Model;
+use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
 
 /// An explicit Butcher tableau: `a` strictly lower triangular (row i has i
@@ -98,6 +99,7 @@ pub(crate) fn integrate<M: Model>(
     let mut k = vec![0.0; s * n];
     let mut stage = vec![0.0; n];
     let mut events = EventWatch::new(model, t0, y0, 1);
+    let mut projector = Projector::new(model);
     for step in 0..steps {
         // t from the step count, not by accumulation: no drift over long runs.
         let t = t0 + span * (step as f64 / steps as f64);
@@ -138,6 +140,7 @@ pub(crate) fn integrate<M: Model>(
                 partial: Box::new(solution),
             });
         }
+        project_onto_constraints!(projector, t_next, &mut y, solution);
         solution.push(t_next, &y);
         solution.stats_mut().steps += 1;
         stop_at_terminal_event!(events, solution);

@@ -16,6 +16,7 @@ pub mod implicit_tableau;
 pub mod linalg;
 mod model;
 mod options;
+mod projection;
 mod radau5;
 mod simulate;
 mod solution;
@@ -26,7 +27,10 @@ pub mod taylor_series;
 pub mod taylor_tape;
 
 pub use error::Error;
-pub use model::{EvalError, EventDirection, EventInfo, Model, ModelInfo, StateVector};
+pub use model::{
+    ConstraintInfo, EvalError, EventDirection, EventInfo, Model, ModelInfo, ProjectionLevel,
+    StateVector,
+};
 pub use options::{Method, Options};
 pub use simulate::{simulate, simulate_from};
 pub use solution::{EventHit, Solution, Stats};

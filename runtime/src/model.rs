@@ -66,6 +66,30 @@ pub struct ModelInfo {
     pub equations: usize,
     /// Events (`let e = event(g)`), in declaration order.
     pub events: &'static [EventInfo],
+    /// Algebraic variables (`let z = algebraic(guess)`), computed from the
+    /// states at each point; read them by name like outputs.
+    pub algebraics: &'static [&'static str],
+}
+
+/// A constraint, or a derivative of one, that the integrated index-1 form
+/// no longer enforces and that the runtime projects onto after each step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ConstraintInfo {
+    /// The user's equation, as written.
+    pub equation: &'static str,
+    /// How often it was differentiated (0: the constraint itself; 1: the
+    /// velocity level of a position constraint).
+    pub level: usize,
+}
+
+/// The invariants of one differentiation level and the states a projection
+/// onto them corrects (positions for level 0, velocities for level 1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ProjectionLevel {
+    /// Indices into [`Model::CONSTRAINTS`].
+    pub rows: &'static [usize],
+    /// Indices of the corrected states, ascending.
+    pub slots: &'static [usize],
 }
 
 /// A state vector of compile-time length: `[f64; N]`. Integrators keep
@@ -171,7 +195,28 @@ pub trait Model {
         false
     }
 
-    /// The output number `index` (see [`ModelInfo::outputs`]) at `(t, y)`.
+    /// Constraints and hidden constraints the solution must satisfy
+    /// (empty for an ODE): the runtime projects onto them after each step.
+    const CONSTRAINTS: &'static [ConstraintInfo] = &[];
+
+    /// [`Model::CONSTRAINTS`] by level, each with the states it corrects.
+    const PROJECTION: &'static [ProjectionLevel] = &[];
+
+    /// Writes the residual of every constraint in [`Model::CONSTRAINTS`].
+    fn constraints(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        let _ = (t, y, out);
+    }
+
+    /// Writes the Jacobian of the rows of projection level `level` with
+    /// respect to its states, dense and row-major (`rows × slots`).
+    fn constraint_jacobian(&self, level: usize, t: f64, y: &[f64], out: &mut [f64]) {
+        let _ = (level, t, y, out);
+    }
+
+    /// The output number `index` at `(t, y)`: the outputs of
+    /// [`ModelInfo::outputs`], then the algebraic variables of
+    /// [`ModelInfo::algebraics`]. NaN where the model cannot be evaluated
+    /// (a singular block), which cannot happen at a point the run accepted.
     fn output(&self, index: usize, t: f64, y: &[f64]) -> f64;
 
     /// Integrates from `t0` to `t1`; see [`crate::Options`] and [`crate::Solution`].

@@ -15,6 +15,7 @@ use crate::error::Error;
 use crate::events::{stop_at_terminal_event, EventWatch};
 use crate::model::{EvalError, Model};
 use crate::options::Options;
+use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
 
 const SQ6: f64 = 2.449_489_742_783_178;
@@ -245,6 +246,7 @@ pub(crate) fn integrate<M: Model>(
     let mut scal = vec![0.0; n];
     let mut scratch = vec![0.0; n];
     let mut events = EventWatch::new(model, t0, start, 1);
+    let mut projector = Projector::new(model);
     let keep_dense = options.dense_output || events.is_some();
     if keep_dense {
         solution.set_interpolant(4, interpolate);
@@ -518,6 +520,7 @@ pub(crate) fn integrate<M: Model>(
                     partial: Box::new(solution),
                 });
             }
+            project_onto_constraints!(projector, t, &mut y, solution);
             set_scale(&mut scal, &y);
             if keep_dense {
                 solution.push_dense(t, &y, &cont);

@@ -79,15 +79,22 @@ pub fn simulate_from<M: Model + Clone + Send + Sync + 'static>(
             });
         }
     }
-    // The initial state, checked once for every method.
-    let mut solution = Solution::new(model, 1024);
-    let y0 = y0.to_vec();
+    // The initial state, checked once for every method, then made
+    // consistent with the constraints of a DAE.
+    let solution = Solution::new(model, 1024);
+    let mut y0 = y0.to_vec();
     if let Some(i) = y0.iter().position(|v| !v.is_finite()) {
         return Err(Error::NonFinite {
             t: t0,
             variable: M::INFO.states[i],
             partial: Box::new(solution),
         });
+    }
+    let mut solution = crate::projection::consistent_initial_values(model, t0, &mut y0, solution)?;
+    if let Some(mut p) = crate::projection::Projector::new(model) {
+        if let Ok(r) = p.project(t0, &mut y0, 0, None) {
+            solution.note_constraint_residual(r);
+        }
     }
     solution.push(t0, &y0);
     match options.method {

@@ -55,7 +55,10 @@ pub struct Solution {
     n: usize,
     state_names: &'static [&'static str],
     output_names: &'static [&'static str],
+    algebraic_names: &'static [&'static str],
     observables: Arc<dyn Observables>,
+    /// Largest |Φ| of the level-0 constraints at the accepted steps.
+    constraint_residual: f64,
     stats: Stats,
     /// Dense-output coefficients of the steps of each segment, read by the
     /// segment's interpolant.
@@ -107,6 +110,8 @@ impl Solution {
             n: M::STATES,
             state_names: M::INFO.states,
             output_names: M::INFO.outputs,
+            algebraic_names: M::INFO.algebraics,
+            constraint_residual: 0.0,
             observables: Arc::new(ModelObservables(model.clone())),
             stats: Stats::default(),
             dense: Vec::new(),
@@ -217,10 +222,24 @@ impl Solution {
         self.stats
     }
 
-    /// Largest |constraint| over the accepted steps; 0 for an ODE, which has
-    /// no constraints.
+    /// Largest |Φ| of the user's constraints (not their derivatives) over
+    /// the accepted steps, after projection; 0 for an ODE, which has none.
     pub fn max_constraint_residual(&self) -> f64 {
-        0.0
+        self.constraint_residual
+    }
+
+    /// Records the constraint residual at an accepted step.
+    pub(crate) fn note_constraint_residual(&mut self, r: f64) {
+        self.constraint_residual = self.constraint_residual.max(r);
+    }
+
+    /// The index of a name among the model's observables: outputs, then
+    /// algebraic variables.
+    fn observable(&self, name: &str) -> Option<usize> {
+        self.output_names
+            .iter()
+            .chain(self.algebraic_names)
+            .position(|n| *n == name)
     }
 
     /// Component `i` at `t` within step `k` (from `times[k - 1]` to `times[k]`).
@@ -260,6 +279,7 @@ impl Solution {
                 .state_names
                 .iter()
                 .chain(self.output_names)
+                .chain(self.algebraic_names)
                 .copied()
                 .collect(),
         }
@@ -270,7 +290,7 @@ impl Solution {
         if let Some(i) = self.state_names.iter().position(|n| *n == name) {
             return Ok(y[i]);
         }
-        if let Some(i) = self.output_names.iter().position(|n| *n == name) {
+        if let Some(i) = self.observable(name) {
             return Ok(self.observables.output(i, self.times[k], y));
         }
         Err(self.unknown_name(name))
@@ -319,7 +339,7 @@ impl Solution {
         if let Some(i) = self.state_names.iter().position(|n| *n == name) {
             return Ok(state(i));
         }
-        if let Some(o) = self.output_names.iter().position(|n| *n == name) {
+        if let Some(o) = self.observable(name) {
             let y: Vec<f64> = (0..self.n).map(state).collect();
             return Ok(self.observables.output(o, t, &y));
         }

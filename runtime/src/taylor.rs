@@ -10,6 +10,7 @@ use crate::error::Error;
 use crate::events::{stop_at_terminal_event, EventWatch};
 use crate::model::Model;
 use crate::options::Options;
+use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
 use crate::taylor_tape::{mul_add, TaylorWork};
 
@@ -125,6 +126,7 @@ pub(crate) fn integrate<M: Model>(
     // Taylor steps are long (a good part of an orbit): the event functions
     // are sampled inside them, so two crossings in one step are both found.
     let mut events = EventWatch::new(model, t0, y0, EVENT_SAMPLES);
+    let mut projector = Projector::new(model);
     let keep_dense = options.dense_output || events.is_some();
     if keep_dense {
         solution.set_interpolant(p + 1, interpolate);
@@ -222,6 +224,7 @@ pub(crate) fn integrate<M: Model>(
                 partial: Box::new(solution),
             });
         }
+        project_onto_constraints!(projector, t, &mut y, solution);
         if keep_dense {
             solution.push_dense(t, &y, &dense);
         } else {

@@ -5,6 +5,7 @@
 use crate::error::Error;
 use crate::events::{stop_at_terminal_event, EventWatch};
 use crate::model::Model;
+use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
 use crate::taylor_series::taylor_step;
 
@@ -23,6 +24,7 @@ pub(crate) fn integrate<M: Model>(
     // The generated code writes all TAYLOR_ORDER blocks' room; only `order` are filled.
     let mut derivatives = vec![0.0; M::TAYLOR_ORDER * n];
     let mut events = EventWatch::new(model, t0, y0, 1);
+    let mut projector = Projector::new(model);
     for step in 0..steps {
         let t = t0 + (t1 - t0) * (step as f64 / steps as f64);
         let t_next = if step + 1 == steps {
@@ -47,6 +49,7 @@ pub(crate) fn integrate<M: Model>(
                 partial: Box::new(solution),
             });
         }
+        project_onto_constraints!(projector, t_next, &mut y, solution);
         solution.push(t_next, &y);
         let stats = solution.stats_mut();
         stats.steps += 1;

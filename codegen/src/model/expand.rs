@@ -12,6 +12,8 @@ use quote::{format_ident, quote, quote_spanned};
 /// `self`, time from `t`.
 struct Layout {
     slot_of: crate::FxHashMap<SymbolId, usize>,
+    /// Unknowns solved at run time, read after the solve: symbol -> (block, row).
+    block_of: crate::FxHashMap<SymbolId, (usize, usize)>,
     /// Taylor coefficients read by higher orders: symbol -> index in `out`.
     taylor_of: crate::FxHashMap<SymbolId, usize>,
 }
@@ -25,6 +27,10 @@ impl Layout {
         if let Some(&i) = self.taylor_of.get(&s) {
             let i = Literal::usize_unsuffixed(i);
             return quote!(out[#i]);
+        }
+        if let Some(&(b, row)) = self.block_of.get(&s) {
+            let (gv, row) = (format_ident!("rhs{}", b), Literal::usize_unsuffixed(row));
+            return quote!(#gv[#row]);
         }
         match g.symbol(s).kind {
             SymbolKind::Parameter => {
@@ -219,6 +225,49 @@ fn program(
     emit_program(g, &program, &|s| layout.tokens(g, s), assign)
 }
 
+/// Assembles and solves every run-time block into `rhs{b}` arrays, running
+/// `on_singular` when one is singular.
+fn block_solve_code(
+    g: &mut Graph,
+    layout: &Layout,
+    sys: &FirstOrder,
+    on_singular: TokenStream,
+) -> TokenStream {
+    let mut entries = Vec::new();
+    let mut targets: Vec<TokenStream> = Vec::new();
+    let mut setup = TokenStream::new();
+    let mut solve = TokenStream::new();
+    for (b, block) in sys.blocks.iter().enumerate() {
+        let k = block.rhs.len();
+        let (m, gv, kk) = (
+            format_ident!("mass{}", b),
+            format_ident!("rhs{}", b),
+            index(k),
+        );
+        setup.extend(quote!(let mut #m = [[0.0f64; #kk]; #kk]; let mut #gv = [0.0f64; #kk];));
+        for (r, &e) in block.rhs.iter().enumerate() {
+            let rl = index(r);
+            entries.push(e);
+            targets.push(quote!(#gv[#rl]));
+            for c in 0..k {
+                entries.push(block.matrix[r * k + c]);
+                let cl = index(c);
+                targets.push(quote!(#m[#rl][#cl]));
+            }
+        }
+        solve.extend(quote! {
+            if !::daegen::runtime::linalg::solve_in_place(&mut #m, &mut #gv) {
+                #on_singular;
+            }
+        });
+    }
+    let code = program(g, layout, &entries, &|i, v| {
+        let target = &targets[i];
+        quote!(#target = #v;)
+    });
+    quote!(#setup #code #solve)
+}
+
 /// The generated type's name.
 pub fn type_name(ir: &ModelIr) -> syn::Ident {
     syn::Ident::new(
@@ -288,6 +337,7 @@ pub fn expand(
         .collect();
     let mut layout = Layout {
         slot_of,
+        block_of: Default::default(),
         taylor_of: Default::default(),
     };
     let g = &mut ir.graph;
@@ -430,16 +480,59 @@ pub fn expand(
         ),
     };
 
-    let output_arms: Vec<TokenStream> = sys
-        .outputs
+    // Outputs, then the algebraic variables; a value that reads an unknown
+    // solved at run time solves its blocks first.
+    let mut observables = sys.outputs.clone();
+    for a in &sys.algebraics {
+        match a {
+            SlotDerivative::Explicit(e) => observables.push(*e),
+            SlotDerivative::Block { block, row } => {
+                let (_, symbol) = sys
+                    .block_unknowns
+                    .iter()
+                    .map(|&(s, b, r)| ((b, r), s))
+                    .find(|&(at, _)| at == (*block, *row))
+                    .ok_or_else(|| crate::Error::Unsupported {
+                        message: "an algebraic variable lost its block".into(),
+                    })?;
+                observables.push(g.symbol_node(symbol));
+            }
+        }
+    }
+    let block_solve_for_outputs = block_solve_code(g, &layout, sys, quote!(return f64::NAN));
+    layout.block_of = sys
+        .block_unknowns
+        .iter()
+        .map(|&(s, b, r)| (s, (b, r)))
+        .collect();
+    let output_arms: Vec<TokenStream> = observables
         .iter()
         .enumerate()
         .map(|(k, &o)| {
+            let reads_block = g
+                .free_symbols(o)
+                .iter()
+                .any(|s| layout.block_of.contains_key(s));
+            let solve = if reads_block {
+                block_solve_for_outputs.clone()
+            } else {
+                TokenStream::new()
+            };
             let body = program(g, &layout, &[o], &|_, v| v);
             let k = index(k);
-            quote!(#k => { #body })
+            quote!(#k => { #solve #body })
         })
         .collect();
+    layout.block_of.clear();
+    let slot_symbols: Vec<SymbolId> = sys.slots.iter().map(|s| s.symbol).collect();
+    let constraint_methods = super::constraints::constraint_methods(
+        g,
+        &|g, ids, assign| program(g, &layout, ids, assign),
+        &layout.slot_of,
+        &slot_symbols,
+        sys,
+        &ir.equations,
+    )?;
 
     // All event functions at once, sharing their subexpressions; nothing
     // is emitted for a model without events.
@@ -479,6 +572,7 @@ pub fn expand(
         None => TokenStream::new(),
     };
     let info = info(ir, sys);
+    let model_index = index(sys.index);
     let struct_and_default = struct_and_default(ir);
     let n_lit = index(n);
     Ok(quote! {
@@ -488,7 +582,7 @@ pub fn expand(
         impl ::daegen::Model for #name {
             const STATES: usize = #n_lit;
             type State = [f64; #n_lit];
-            const INDEX: usize = 0;
+            const INDEX: usize = #model_index;
             const INFO: ::daegen::ModelInfo = #info;
             const JACOBIAN_PATTERN: &'static [(usize, usize)] = #pattern;
 
@@ -517,6 +611,8 @@ pub fn expand(
 
             #event_rates_method
 
+            #constraint_methods
+
             #[inline]
             fn output(&self, index: usize, t: f64, y: &[f64]) -> f64 {
                 let ::core::result::Result::Ok(y) = <&[f64; #n_lit]>::try_from(y) else { return f64::NAN };
@@ -538,6 +634,7 @@ fn info(ir: &ModelIr, sys: &FirstOrder) -> TokenStream {
     let outputs: Vec<&str> = ir.outputs.iter().map(|o| o.name.as_str()).collect();
     let output_docs: Vec<&str> = ir.outputs.iter().map(|o| o.doc.as_str()).collect();
     let equations = index(ir.equations.len());
+    let algebraics: Vec<&str> = ir.algebraics.iter().map(|a| a.name.as_str()).collect();
     let events = ir.events.iter().map(|e| {
         let name = &e.name;
         let doc = &e.doc;
@@ -567,6 +664,7 @@ fn info(ir: &ModelIr, sys: &FirstOrder) -> TokenStream {
                         output_docs: &[#(#output_docs),*],
             equations: #equations,
             events: &[#(#events),*],
+            algebraics: &[#(#algebraics),*],
         }
     }
 }
@@ -588,7 +686,7 @@ pub fn stub(ir: &ModelIr) -> TokenStream {
             const INDEX: usize = 0;
             const INFO: ::daegen::ModelInfo = ::daegen::ModelInfo {
                 name: #name_str, doc: "", states: &[], parameters: &[], parameter_docs: &[],
-                                outputs: &[], output_docs: &[], equations: 0, events: &[],
+                                outputs: &[], output_docs: &[], equations: 0, events: &[], algebraics: &[],
             };
             const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[];
             fn initial_state(&self, y: &mut [f64]) {}

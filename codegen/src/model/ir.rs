@@ -30,6 +30,8 @@ pub struct StateDecl {
 pub struct AlgebraicDecl {
     /// Its name.
     pub name: String,
+    /// Its symbol.
+    pub symbol: SymbolId,
     /// The declaration, for errors.
     pub origin: TokenStream,
 }

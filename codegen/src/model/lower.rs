@@ -517,7 +517,12 @@ impl Lower<'_> {
                 };
                 match self.g.algebraic(&name) {
                     Ok(id) => {
-                        self.algebraics.push(AlgebraicDecl { name, origin });
+                        let symbol = self.g.as_symbol(id).unwrap_or(SymbolId(0));
+                        self.algebraics.push(AlgebraicDecl {
+                            name,
+                            symbol,
+                            origin,
+                        });
                         self.bind(ident, Binding::Algebraic(id));
                     }
                     Err(e) => self.cx.error_at(ident, e),

@@ -6,8 +6,10 @@
 //! [`ctxt::Ctxt`] with the user's tokens; on error the expansion is the
 //! errors plus a stub of the type, so the user sees one error per mistake.
 
+pub mod constraints;
 pub mod ctxt;
 pub mod expand;
+pub mod index_reduction;
 pub mod ir;
 pub mod lower;
 pub mod names;

@@ -61,3 +61,24 @@ mod tests {
         assert_eq!(did_you_mean("y", ["k", "x"].into_iter()), None);
     }
 }
+
+/// The user's tokens as compact source text for messages and docs:
+/// `der (x) == u` becomes `der(x) == u`.
+pub fn source_text(tokens: &proc_macro2::TokenStream) -> String {
+    let mut s = tokens.to_string();
+    for (from, to) in [
+        (" (", "("),
+        ("( ", "("),
+        (" )", ")"),
+        (" . ", "."),
+        (" [", "["),
+        ("[ ", "["),
+        (" ]", "]"),
+        (" ,", ","),
+    ] {
+        s = s.replace(from, to);
+    }
+    // Keep binary operators readable after a call: `f(x)- 1` cannot occur,
+    // but `-(x)` must stay as written.
+    s.trim_end_matches(';').trim().to_string()
+}

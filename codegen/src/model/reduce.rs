@@ -1,9 +1,11 @@
 //! Reduction to a first-order explicit system `y' = f(t, y)` (course notes
 //! Example 1.1): each state of order k becomes k states `x, der(x), …,
-//! der^(k-1)(x)`; the equations, linear in the highest derivatives `z`
-//! (`E(t, y) z = g(t, y)`), are solved for `z` block by block —
+//! der^(k-1)(x)`. The unknowns at a point are the highest derivatives `z`
+//! and the algebraic variables `λ`; constraints are differentiated until
+//! they involve one (`index_reduction`). The equations, then linear in the
+//! unknowns (`E(t, y) (z, λ) = g(t, y)`), are solved block by block —
 //! symbolically when a block is one equation or has constant coefficients,
-//! by a dense solve at run time otherwise.
+//! by a dense solve at run time otherwise (the KKT system of a mechanism).
 
 use super::ctxt::Ctxt;
 use super::ir::ModelIr;
@@ -43,8 +45,19 @@ pub struct MassBlock {
     pub rhs: Vec<Id>,
 }
 
+/// How an algebraic variable's value is computed.
+pub type AlgebraicValue = SlotDerivative;
+
 /// The reduced system.
 pub struct FirstOrder {
+    /// Each algebraic variable's value at `(t, y)`, in declaration order.
+    pub algebraics: Vec<AlgebraicValue>,
+    /// Constraints and hidden constraints to project onto.
+    pub invariants: Vec<super::index_reduction::Invariant>,
+    /// The differentiation index.
+    pub index: usize,
+    /// Unknowns solved at run time: symbol, block, row.
+    pub block_unknowns: Vec<(SymbolId, usize, usize)>,
     /// States in solution order.
     pub slots: Vec<Slot>,
     /// `dy_i` for each slot.
@@ -65,9 +78,6 @@ struct Equation {
 
 /// Reduces the model, or reports why it cannot.
 pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
-    if dae_refused(cx, ir) {
-        return None;
-    }
     let g = &mut ir.graph;
     // Order of each state: the highest derivative any equation uses.
     let mut order = vec![0u32; ir.states.len()];
@@ -112,31 +122,50 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         return None;
     }
     // The unknowns z: highest derivatives, one per state.
-    let mut z_symbols = Vec::with_capacity(ir.states.len());
+    let mut z_symbols = Vec::with_capacity(ir.states.len() + ir.algebraics.len());
     for (i, s) in ir.states.iter().enumerate() {
         let id = g.derivative(s.symbol, order[i]).ok()?;
         z_symbols.push(g.as_symbol(id)?);
     }
+    let n_states = z_symbols.len();
+    let algebraic_symbols: Vec<SymbolId> = ir.algebraics.iter().map(|a| a.symbol).collect();
+    let state_orders: Vec<(SymbolId, u32)> = ir
+        .states
+        .iter()
+        .zip(&order)
+        .map(|(s, &k)| (s.symbol, k))
+        .collect();
+    let origins: Vec<TokenStream> = ir.equations.iter().map(|e| e.origin.clone()).collect();
+    let reduction = super::index_reduction::reduce_index(
+        cx,
+        g,
+        &super::index_reduction::Unknowns {
+            time: ir.time,
+            states: &state_orders,
+            z: &z_symbols,
+            algebraics: &algebraic_symbols,
+        },
+        &residuals,
+        &origins,
+    )?;
+    // The unknowns: z, then λ.
+    z_symbols.extend(&algebraic_symbols);
     let z_index: FxHashMap<SymbolId, usize> =
         z_symbols.iter().enumerate().map(|(j, &s)| (s, j)).collect();
     let mut equations = Vec::with_capacity(residuals.len());
-    for (eq, &r) in ir.equations.iter().zip(&residuals) {
+    for (eq, &r) in ir.equations.iter().zip(&reduction.residuals) {
         let unknowns: Vec<usize> = g
             .free_symbols(r)
             .into_iter()
             .filter_map(|s| z_index.get(&s).copied())
             .collect();
-        if unknowns.is_empty() {
-            cx.error_at(&eq.origin, "this equation has no highest derivative of any state, so it is algebraic; DAE support is not there yet: write the model as an ODE");
-            ok = false;
-        }
         equations.push(Equation {
             residual: r,
             unknowns,
             origin: eq.origin.clone(),
         });
     }
-    if !ok || !matched(cx, g, &ir.states, &equations, &z_symbols) {
+    if !matched(cx, g, &ir.states, &ir.algebraics, &equations, &z_symbols) {
         return None;
     }
     // Linear in z: E_ij = ∂r_i/∂z_j must not contain z; g = -r|_{z=0}.
@@ -155,7 +184,12 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
                 .find(|s| z_index.contains_key(s))
             {
                 let name = g.symbol(bad).name.clone();
-                cx.error_at(&eq.origin, format!("this equation is not linear in `{name}`: daegen needs the form `E(t, y) * der(..) == g(t, y)`"));
+                let message = if ir.algebraics.iter().any(|a| a.symbol == bad) {
+                    format!("this equation is not linear in the algebraic variable `{name}`: daegen needs the algebraic variables to enter linearly (Newton on a nonlinear algebraic equation is not there yet); solve the equation for `{name}` by hand or make `{name}` an output")
+                } else {
+                    format!("this equation is not linear in `{name}`: daegen needs the form `E(t, y) * der(..) == g(t, y)`")
+                };
+                cx.error_at(&eq.origin, message);
                 return None;
             }
             if c != zero {
@@ -277,6 +311,10 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         .collect();
     let mut observe = |value: Id, origin: &TokenStream, what: &str| -> Option<Id> {
         let v = g.substitute(value, &replace).ok()?;
+        if what == "output" {
+            // Outputs may solve the blocks they read (λ of a mechanism).
+            return Some(v);
+        }
         if let Some(s) = g
             .free_symbols(v)
             .into_iter()
@@ -296,40 +334,45 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
     for e in &ir.events {
         events.push(observe(e.value, &e.origin, "event")?);
     }
+    let algebraics = (n_states..z_symbols.len())
+        .map(|j| match (solution[j], block_of[j]) {
+            (Some(v), _) => Some(SlotDerivative::Explicit(v)),
+            (None, Some((block, row))) => Some(SlotDerivative::Block { block, row }),
+            (None, None) => None,
+        })
+        .collect::<Option<Vec<_>>>()?;
+    let block_unknowns = z_symbols
+        .iter()
+        .enumerate()
+        .filter_map(|(j, &s)| block_of[j].map(|(b, r)| (s, b, r)))
+        .collect();
     ok.then_some(FirstOrder {
         slots,
         derivatives,
         blocks: mass_blocks,
         outputs,
         events,
+        algebraics,
+        invariants: reduction.invariants,
+        index: reduction.index,
+        block_unknowns,
     })
 }
 
-/// Algebraic variables and constraints need the DAE pipeline.
-fn dae_refused(cx: &mut Ctxt, ir: &ModelIr) -> bool {
-    let mut refused = false;
-    for a in &ir.algebraics {
-        cx.error_at(&a.origin, format!("algebraic variable `{}`: DAE support is not there yet; write the model as an ODE (for a pendulum, in its angle)", a.name));
-        refused = true;
-    }
-    for eq in ir.equations.iter().filter(|e| e.is_constraint) {
-        cx.error_at(&eq.origin, "constraints need DAE support, which is not there yet; write the model as an ODE (for a pendulum, in its angle)");
-        refused = true;
-    }
-    refused
-}
-
-/// A perfect matching of equations to highest derivatives (Kuhn's
-/// augmenting paths); reports two equations for one derivative and
-/// derivatives without an equation.
+/// A perfect matching of equations to unknowns (highest derivatives, then
+/// algebraic variables; Kuhn's augmenting paths). An equation left over is
+/// reported with the structurally singular subsystem it belongs to (the
+/// equations reached by alternating paths, which share fewer unknowns than
+/// they number); an unknown left over has no equation.
 fn matched(
     cx: &mut Ctxt,
     g: &crate::Graph,
     states: &[super::ir::StateDecl],
+    algebraics: &[super::ir::AlgebraicDecl],
     equations: &[Equation],
-    z: &[SymbolId],
+    unknowns: &[SymbolId],
 ) -> bool {
-    let n = z.len();
+    let n = unknowns.len();
     let mut owner: Vec<Option<usize>> = vec![None; n];
     fn augment(e: usize, eqs: &[Equation], owner: &mut [Option<usize>], seen: &mut [bool]) -> bool {
         for &j in &eqs[e].unknowns {
@@ -343,30 +386,58 @@ fn matched(
         }
         false
     }
+    let name = |j: usize| format!("`{}`", g.symbol(unknowns[j]).name);
+    let text = |e: usize| format!("`{}`", super::names::source_text(&equations[e].origin));
     let mut ok = true;
     for e in 0..equations.len() {
         let mut seen = vec![false; n];
-        if !augment(e, equations, &mut owner, &mut seen) {
-            let j = equations[e].unknowns[0];
-            let name = g.symbol(z[j]).name.clone();
-
-            cx.error_at(&equations[e].origin, format!("`{name}` already has an equation: remove one of the two (or there are more equations than states)"));
-            if let Some(o) = owner[j] {
-                cx.error_at(
-                    &equations[o].origin,
-                    format!("the other equation that determines `{name}`"),
-                );
-            }
-            ok = false;
+        if augment(e, equations, &mut owner, &mut seen) {
+            continue;
         }
+        ok = false;
+        let reached: Vec<usize> = (0..n).filter(|&j| seen[j]).collect();
+        let mut subsystem: Vec<usize> = reached.iter().filter_map(|&j| owner[j]).collect();
+        subsystem.sort_unstable();
+        if let ([j], [other]) = (&reached[..], &subsystem[..]) {
+            let name = name(*j);
+            cx.error_at(&equations[e].origin, format!("{name} already has an equation: remove one of the two (or there are more equations than unknowns)"));
+            cx.error_at(
+                &equations[*other].origin,
+                format!("the other equation that determines {name}"),
+            );
+            continue;
+        }
+        let listed: Vec<String> = subsystem.iter().map(|&k| text(k)).collect();
+        let unknown_names: Vec<String> = reached.iter().map(|&j| name(j)).collect();
+        let message = if reached.is_empty() {
+            "this equation determines no unknown: it involves no highest derivative and no algebraic variable, and differentiating it does not help".to_string()
+        } else {
+            format!(
+                "the system is structurally singular: this equation and {} determine only {} ({} equations for {} unknowns); remove an equation or add an algebraic variable",
+                listed.join(", "),
+                unknown_names.join(", "),
+                subsystem.len() + 1,
+                reached.len()
+            )
+        };
+        cx.error_at(&equations[e].origin, message);
     }
     for (j, o) in owner.iter().enumerate() {
-        if o.is_none() {
-            let name = g.symbol(z[j]).name.clone();
-            // z[j] is the highest derivative of state j.
-            let message = format!("no equation determines `{name}`: add `{name} == ...;` (there are fewer equations than states)");
-            cx.error_at(&states[j].origin, message);
-            ok = false;
+        if o.is_some() {
+            continue;
+        }
+        ok = false;
+        let name = name(j);
+        match states.get(j) {
+            Some(state) => {
+                // unknowns[j] is the highest derivative of state j.
+                let message = format!("no equation determines {name}: add `{} == ...;` (there are fewer equations than unknowns)", &name[1..name.len() - 1]);
+                cx.error_at(&state.origin, message);
+            }
+            None => {
+                let a = &algebraics[j - states.len()];
+                cx.error_at(&a.origin, format!("no equation determines the algebraic variable {name}: add an equation or a constraint that involves it (there are fewer equations than unknowns)"));
+            }
         }
     }
     ok

@@ -1,0 +1,269 @@
+//! Projection onto the constraints: after each accepted step, and to make
+//! the initial values consistent.
+//!
+//! The integrated system is the index-1 form, which keeps the constraints
+//! and their derivatives below the acceleration level only up to the
+//! integration error; left alone they drift. After each step the state is
+//! projected level by level (positions onto `Φ = 0`, then velocities onto
+//! `Φ_q v + Φ_t = 0`) by Gauss–Newton with the minimal-norm correction
+//! `Δ = −Gᵀ (G Gᵀ)⁻¹ Φ` on the states the level corrects (Hairer, Lubich,
+//! Wanner, *Geometric Numerical Integration* §IV.4; Hairer & Wanner II
+//! §VII.2; Simbody projects every step the same way). Velocity constraints
+//! are linear in the velocities, so one iteration solves them exactly; the
+//! position level converges quadratically from the O(tol) error of a step.
+
+use crate::error::Error;
+use crate::model::{Model, ProjectionLevel};
+use crate::solution::Solution;
+
+/// Gauss–Newton iterations per level after a step (design notes: ≤ 3).
+pub(crate) const STEP_ITERATIONS: usize = 3;
+/// Iterations for the initial values, which may be rough guesses.
+pub(crate) const INITIAL_ITERATIONS: usize = 50;
+
+/// Why a projection failed.
+#[derive(Debug)]
+pub(crate) struct Failure {
+    /// Index into [`Model::CONSTRAINTS`].
+    pub row: usize,
+    /// What went wrong.
+    pub message: String,
+}
+
+/// Workspace for projecting one model's states, allocated once per run.
+pub(crate) struct Projector<'m, M: Model> {
+    model: &'m M,
+    residuals: Vec<f64>,
+    jacobian: Vec<f64>,
+    normal: Vec<f64>,
+    multipliers: Vec<f64>,
+}
+
+impl<'m, M: Model> Projector<'m, M> {
+    /// A projector for `model`, or `None` if it has no constraints.
+    pub(crate) fn new(model: &'m M) -> Option<Projector<'m, M>> {
+        if M::CONSTRAINTS.is_empty() {
+            return None;
+        }
+        let widest = M::PROJECTION
+            .iter()
+            .map(|l| l.rows.len() * l.slots.len())
+            .max()
+            .unwrap_or(0);
+        let rows = M::PROJECTION
+            .iter()
+            .map(|l| l.rows.len())
+            .max()
+            .unwrap_or(0);
+        Some(Projector {
+            model,
+            residuals: vec![0.0; M::CONSTRAINTS.len()],
+            jacobian: vec![0.0; widest],
+            normal: vec![0.0; rows * rows],
+            multipliers: vec![0.0; rows],
+        })
+    }
+
+    /// Projects `y` onto every level in turn, holding the states marked in
+    /// `hold` (if given), with at most `iterations` Gauss–Newton steps per
+    /// level; returns the largest |Φ| of the level-0 constraints after it.
+    pub(crate) fn project(
+        &mut self,
+        t: f64,
+        y: &mut [f64],
+        iterations: usize,
+        hold: Option<&[bool]>,
+    ) -> Result<f64, Failure> {
+        for (k, level) in M::PROJECTION.iter().enumerate() {
+            self.project_level(k, level, t, y, iterations, hold)?;
+        }
+        self.model.constraints(t, y, &mut self.residuals);
+        let mut worst = 0.0f64;
+        for (r, info) in M::CONSTRAINTS.iter().enumerate() {
+            let v = self.residuals[r].abs();
+            if !v.is_finite() {
+                return Err(Failure {
+                    row: r,
+                    message: "its residual is not finite".into(),
+                });
+            }
+            if info.level == 0 {
+                worst = worst.max(v);
+            }
+        }
+        Ok(worst)
+    }
+
+    fn project_level(
+        &mut self,
+        k: usize,
+        level: &ProjectionLevel,
+        t: f64,
+        y: &mut [f64],
+        iterations: usize,
+        hold: Option<&[bool]>,
+    ) -> Result<(), Failure> {
+        let (m, cols) = (level.rows.len(), level.slots.len());
+        let free = |c: usize| hold.is_none_or(|h| !h[level.slots[c]]);
+        let mut last_step = f64::INFINITY;
+        for _ in 0..iterations {
+            self.model.constraints(t, y, &mut self.residuals);
+            if level.rows.iter().all(|&r| self.residuals[r] == 0.0) {
+                return Ok(());
+            }
+            let jacobian = &mut self.jacobian[..m * cols];
+            self.model.constraint_jacobian(k, t, y, jacobian);
+            for c in (0..cols).filter(|&c| !free(c)) {
+                for r in 0..m {
+                    jacobian[r * cols + c] = 0.0;
+                }
+            }
+            // G Gᵀ μ = Φ, then Δ = −Gᵀ μ.
+            let normal = &mut self.normal[..m * m];
+            for a in 0..m {
+                for b in 0..=a {
+                    let ga = &jacobian[a * cols..(a + 1) * cols];
+                    let gb = &jacobian[b * cols..(b + 1) * cols];
+                    let v: f64 = ga.iter().zip(gb).map(|(x, y)| x * y).sum();
+                    normal[a * m + b] = v;
+                    normal[b * m + a] = v;
+                }
+            }
+            let mu = &mut self.multipliers[..m];
+            for (a, &r) in level.rows.iter().enumerate() {
+                mu[a] = self.residuals[r];
+            }
+            if let Err(a) = solve_symmetric(normal, m, mu) {
+                return Err(Failure {
+                    row: level.rows[a],
+                    message: "the constraint Jacobian is rank-deficient here: this constraint repeats the others (a redundant constraint) or the configuration is singular".into(),
+                });
+            }
+            let mut step = 0.0f64;
+            let mut size = 1.0f64;
+            for c in 0..cols {
+                let d: f64 = (0..m).map(|a| jacobian[a * cols + c] * mu[a]).sum();
+                let slot = level.slots[c];
+                y[slot] -= d;
+                step = step.max(d.abs());
+                size = size.max(y[slot].abs());
+            }
+            if !step.is_finite() {
+                return Err(Failure {
+                    row: level.rows[0],
+                    message: "the correction is not finite".into(),
+                });
+            }
+            if step <= 4.0 * f64::EPSILON * size || step >= last_step {
+                return Ok(());
+            }
+            last_step = step;
+        }
+        Ok(())
+    }
+}
+
+/// Solves `a x = b` (`a` symmetric positive semi-definite, `n × n`,
+/// destroyed) by Gaussian elimination with partial pivoting; `Err(row)`
+/// names the first row whose pivot vanished relative to the matrix.
+fn solve_symmetric(a: &mut [f64], n: usize, b: &mut [f64]) -> Result<(), usize> {
+    let scale = (0..n).map(|i| a[i * n + i].abs()).fold(0.0, f64::max);
+    let mut order: Vec<usize> = (0..n).collect();
+    for col in 0..n {
+        let pivot = (col..n)
+            .max_by(|&p, &q| a[p * n + col].abs().total_cmp(&a[q * n + col].abs()))
+            .unwrap_or(col);
+        let p = a[pivot * n + col];
+        if !(p.abs() > 1e-13 * scale) || !p.is_finite() {
+            return Err(order[col]);
+        }
+        if pivot != col {
+            for c in 0..n {
+                a.swap(col * n + c, pivot * n + c);
+            }
+            b.swap(col, pivot);
+            order.swap(col, pivot);
+        }
+        for row in col + 1..n {
+            let f = a[row * n + col] / p;
+            if f != 0.0 {
+                for c in col..n {
+                    a[row * n + c] -= f * a[col * n + c];
+                }
+                b[row] -= f * b[col];
+            }
+        }
+    }
+    for col in (0..n).rev() {
+        let mut v = b[col];
+        for c in col + 1..n {
+            v -= a[col * n + c] * b[c];
+        }
+        b[col] = v / a[col * n + col];
+    }
+    Ok(())
+}
+
+/// Makes the initial values consistent: projects them onto every
+/// constraint level, then checks that the constraints hold.
+pub(crate) fn consistent_initial_values<M: Model>(
+    model: &M,
+    t0: f64,
+    y: &mut [f64],
+    solution: Solution,
+) -> Result<Solution, Error> {
+    let Some(mut projector) = Projector::new(model) else {
+        return Ok(solution);
+    };
+    let failed = |row: usize, message: String, solution: Solution| Error::Constraint {
+        t: t0,
+        constraint: M::CONSTRAINTS[row].equation,
+        level: M::CONSTRAINTS[row].level,
+        message,
+        partial: Box::new(solution),
+    };
+    match projector.project(t0, y, INITIAL_ITERATIONS, None) {
+        Ok(_) => {}
+        Err(f) => return Err(failed(f.row, f.message, solution)),
+    }
+    // Every level, not just positions, must hold to rounding.
+    model.constraints(t0, y, &mut projector.residuals);
+    let size = y.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+    for (r, &v) in projector.residuals.iter().enumerate() {
+        if !(v.abs() <= 1e-10 * size) {
+            return Err(failed(
+                r,
+                format!("the initial values cannot be made consistent: its residual is {v:e} after {INITIAL_ITERATIONS} Gauss–Newton iterations; start nearer a configuration that satisfies it"),
+                solution,
+            ));
+        }
+    }
+    Ok(solution)
+}
+
+/// In an integrator's step loop, after an accepted step and before it is
+/// stored: projects the new state onto the constraints (models without
+/// constraints skip this) and evaluates to `true` when the state changed.
+macro_rules! project_onto_constraints {
+    ($projector:ident, $t:expr, $y:expr, $solution:ident) => {
+        match $projector.as_mut() {
+            None => false,
+            Some(p) => match p.project($t, $y, $crate::projection::STEP_ITERATIONS, None) {
+                Ok(residual) => {
+                    $solution.note_constraint_residual(residual);
+                    true
+                }
+                Err(f) => {
+                    return Err($crate::error::Error::Constraint {
+                        t: $t,
+                        constraint: M::CONSTRAINTS[f.row].equation,
+                        level: M::CONSTRAINTS[f.row].level,
+                        message: f.message,
+                        partial: Box::new($solution),
+                    })
+                }
+            },
+        }
+    };
+}
+pub(crate) use project_onto_constraints;
