@@ -145,3 +145,54 @@ fn over_a_hundred_seconds_the_dae_drifts_in_energy_like_the_angle_form() {
         }
     }
 }
+
+/// Robertson's kinetics as a semi-explicit index-1 DAE: the third equation
+/// replaced by the conservation law it implies (Hairer–Wanner II §IV.10;
+/// test set `rober`).
+#[dae_model]
+fn robertson_dae() {
+    let y1 = state(1.0);
+    let y2 = state(0.0);
+    let y3 = algebraic(0.0);
+    der(y1) == -0.04 * y1 + 1e4 * y2 * y3;
+    der(y2) == 0.04 * y1 - 1e4 * y2 * y3 - 3e7 * y2 * y2;
+    0.0 == y1 + y2 + y3 - 1.0;
+}
+
+/// Published at t = 1e11 (test set rober.f, ../shared/notes/reference-problems.md §6).
+#[allow(clippy::excessive_precision)]
+const ROBER_AT_1E11: [f64; 3] = [
+    0.2083340149701255e-7,
+    0.8333360770334713e-13,
+    0.9999999791665050,
+];
+
+#[test]
+fn robertson_as_an_index_1_dae_reaches_the_published_solution() {
+    assert_eq!(<RobertsonDae as Model>::INDEX, 1);
+    assert_eq!(RobertsonDae::STATES, 2);
+    // The algebraic equation is solved for y3 symbolically: an explicit ODE
+    // with an analytic Jacobian, nothing left to project.
+    assert!(RobertsonDae::CONSTRAINTS.is_empty());
+    assert!(!RobertsonDae::JACOBIAN_PATTERN.is_empty());
+    for tol in [1e-6, 1e-8, 1e-10] {
+        let opts = Options::new()
+            .method(Method::Radau5)
+            .rtol(tol)
+            .atol(1e-6 * tol);
+        let sol = RobertsonDae::default().simulate(0.0, 1e11, &opts).unwrap();
+        let got = [
+            sol.last("y1").unwrap(),
+            sol.last("y2").unwrap(),
+            sol.last("y3").unwrap(),
+        ];
+        for (k, (g, r)) in got.iter().zip(ROBER_AT_1E11).enumerate() {
+            let e = (g - r).abs() / r.abs();
+            assert!(
+                e <= 10.0 * tol,
+                "tol {tol:e}: y{} relative error {e:e}",
+                k + 1
+            );
+        }
+    }
+}

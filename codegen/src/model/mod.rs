@@ -14,6 +14,7 @@ pub mod ir;
 pub mod lower;
 pub mod names;
 pub mod reduce;
+pub mod solve_unknowns;
 pub mod taylor_tape;
 pub mod taylor_unrolled;
 

@@ -9,7 +9,7 @@
 
 use super::ctxt::Ctxt;
 use super::ir::ModelIr;
-use crate::{FxHashMap, Id, Number, SymbolId, SymbolKind};
+use crate::{FxHashMap, Id, SymbolId, SymbolKind};
 use proc_macro2::TokenStream;
 
 /// One first-order state of the reduced system.
@@ -165,9 +165,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
             origin: eq.origin.clone(),
         });
     }
-    if !matched(cx, g, &ir.states, &ir.algebraics, &equations, &z_symbols) {
-        return None;
-    }
+    let owner = matched(cx, g, &ir.states, &ir.algebraics, &equations, &z_symbols)?;
     // Linear in z: E_ij = ∂r_i/∂z_j must not contain z; g = -r|_{z=0}.
     let n = z_symbols.len();
     let zero = g.zero();
@@ -200,71 +198,32 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         g_vec.push(g.negate_terms(r0).ok()?);
         e_matrix.push(row);
     }
-    let blocks = connected_blocks(&e_matrix, n);
-    let mut solution: Vec<Option<Id>> = vec![None; n];
-    let mut mass_blocks = Vec::new();
-    let mut block_of: Vec<Option<(usize, usize)>> = vec![None; n];
-    for (rows, cols) in blocks {
-        let entry = |i: usize, j: usize| e_matrix[i].iter().find(|(c, _)| *c == j).map(|e| e.1);
-        if rows.len() == 1 {
-            let (i, j) = (rows[0], cols[0]);
-            let e = entry(i, j).unwrap_or(zero);
-            solution[j] = Some(g.div(g_vec[i], e).ok()?);
-            continue;
-        }
-        let constant = rows
-            .iter()
-            .all(|&i| e_matrix[i].iter().all(|&(_, c)| g.as_number(c).is_some()));
-        if constant {
-            let m: Vec<Vec<Number>> = rows
+    let names: Vec<String> = z_symbols
+        .iter()
+        .map(|&s| g.symbol(s).name.clone())
+        .collect();
+    let solved = match super::solve_unknowns::solve_unknowns(g, &e_matrix, &g_vec, &owner, &names) {
+        Ok(solved) => solved,
+        Err(super::solve_unknowns::Unsolvable::Dependent { equation, unknowns }) => {
+            let names: Vec<String> = unknowns
                 .iter()
-                .map(|&i| {
-                    cols.iter()
-                        .map(|&j| {
-                            entry(i, j)
-                                .and_then(|c| g.as_number(c))
-                                .unwrap_or(Number::ZERO)
-                        })
-                        .collect()
-                })
+                .map(|&j| format!("`{}`", names[j]))
                 .collect();
-            let rhs: Vec<Id> = rows.iter().map(|&i| g_vec[i]).collect();
-            match solve_constant(g, m, rhs) {
-                Some(z) => {
-                    for (k, &j) in cols.iter().enumerate() {
-                        solution[j] = Some(z[k]);
-                    }
-                }
-                None => {
-                    let names: Vec<String> = cols
-                        .iter()
-                        .map(|&j| format!("`{}`", g.symbol(z_symbols[j]).name))
-                        .collect();
-                    cx.error_at(&equations[rows[0]].origin, format!("the equations for {} are linearly dependent: one of them repeats the others", names.join(", ")));
-                    return None;
-                }
-            }
-            continue;
+            cx.error_at(
+                &equations[equation].origin,
+                format!(
+                    "the equations for {} are linearly dependent: one of them repeats the others",
+                    names.join(", ")
+                ),
+            );
+            return None;
         }
-        let b = mass_blocks.len();
-        let mut matrix = Vec::with_capacity(rows.len() * cols.len());
-        for &i in &rows {
-            for &j in &cols {
-                matrix.push(entry(i, j).unwrap_or(zero));
-            }
+        Err(super::solve_unknowns::Unsolvable::Graph(e)) => {
+            cx.error_at(&equations[0].origin, e);
+            return None;
         }
-        for (k, &j) in cols.iter().enumerate() {
-            block_of[j] = Some((b, k));
-        }
-        mass_blocks.push(MassBlock {
-            unknowns: cols
-                .iter()
-                .map(|&j| g.symbol(z_symbols[j]).name.clone())
-                .collect(),
-            matrix,
-            rhs: rows.iter().map(|&i| g_vec[i]).collect(),
-        });
-    }
+    };
+    let (solution, block_of, mass_blocks) = (solved.symbolic, solved.block_of, solved.blocks);
     // Slots: x, der(x), ..., der^(k-1)(x) per state; dy of the last is z.
     let mut slots = Vec::new();
     let mut derivatives = Vec::new();
@@ -371,7 +330,7 @@ fn matched(
     algebraics: &[super::ir::AlgebraicDecl],
     equations: &[Equation],
     unknowns: &[SymbolId],
-) -> bool {
+) -> Option<Vec<usize>> {
     let n = unknowns.len();
     let mut owner: Vec<Option<usize>> = vec![None; n];
     fn augment(e: usize, eqs: &[Equation], owner: &mut [Option<usize>], seen: &mut [bool]) -> bool {
@@ -440,90 +399,9 @@ fn matched(
             }
         }
     }
-    ok
-}
-
-/// Groups equations and unknowns that share non-zero coefficients.
-fn connected_blocks(e: &[Vec<(usize, Id)>], n: usize) -> Vec<(Vec<usize>, Vec<usize>)> {
-    // Union-find over unknowns; an equation joins all its unknowns.
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn find(p: &mut [usize], mut x: usize) -> usize {
-        while p[x] != x {
-            p[x] = p[p[x]];
-            x = p[x];
-        }
-        x
+    if ok {
+        owner.into_iter().collect()
+    } else {
+        None
     }
-    for row in e {
-        if let Some(&(first, _)) = row.first() {
-            for &(j, _) in row {
-                let (a, b) = (find(&mut parent, first), find(&mut parent, j));
-                parent[a] = b;
-            }
-        }
-    }
-    let mut blocks: std::collections::BTreeMap<usize, (Vec<usize>, Vec<usize>)> =
-        Default::default();
-    for j in 0..n {
-        let r = find(&mut parent, j);
-        blocks.entry(r).or_default().1.push(j);
-    }
-    for (i, row) in e.iter().enumerate() {
-        if let Some(&(j, _)) = row.first() {
-            let r = find(&mut parent, j);
-            blocks.entry(r).or_default().0.push(i);
-        }
-    }
-    blocks.into_values().collect()
-}
-
-/// `z = M⁻¹ g` for a constant matrix, by Gaussian elimination with exact
-/// rational pivots (largest magnitude for floats); `None` if singular.
-fn solve_constant(
-    g: &mut crate::Graph,
-    mut m: Vec<Vec<Number>>,
-    mut rhs: Vec<Id>,
-) -> Option<Vec<Id>> {
-    let k = m.len();
-    for col in 0..k {
-        let pivot = (col..k)
-            .filter(|&r| !m[r][col].is_zero())
-            .max_by(|&a, &b| {
-                m[a][col]
-                    .abs()
-                    .to_f64()
-                    .total_cmp(&m[b][col].abs().to_f64())
-            })?;
-        m.swap(col, pivot);
-        rhs.swap(col, pivot);
-        for row in col + 1..k {
-            if m[row][col].is_zero() {
-                continue;
-            }
-            let factor = m[row][col].checked_mul(reciprocal(m[col][col])?)?;
-            let (above, below) = m.split_at_mut(row);
-            for (target, &p) in below[0][col..].iter_mut().zip(&above[col][col..]) {
-                *target = target.checked_add(factor.checked_mul(p)?.negated())?;
-            }
-            let f = g.num(factor.negated());
-            let scaled = g.mul(f, rhs[col]).ok()?;
-            rhs[row] = g.add(rhs[row], scaled).ok()?;
-        }
-    }
-    let mut z = vec![g.zero(); k];
-    for row in (0..k).rev() {
-        let mut acc = rhs[row];
-        for c in row + 1..k {
-            let coefficient = g.num(m[row][c].negated());
-            let t = g.mul(coefficient, z[c]).ok()?;
-            acc = g.add(acc, t).ok()?;
-        }
-        let inv = g.num(reciprocal(m[row][row])?);
-        z[row] = g.mul(inv, acc).ok()?;
-    }
-    Some(z)
-}
-
-fn reciprocal(n: Number) -> Option<Number> {
-    n.pow(Number::MINUS_ONE)
 }

@@ -1,0 +1,284 @@
+//! Solving the reduced equations `E(t, y) w = g(t, y)` for the unknowns
+//! `w` (highest derivatives and algebraic variables), block by block in
+//! block-lower-triangular order (Tarjan's strongly connected components on
+//! the matching; Duff & Reid 1978): a block of one equation or with
+//! constant coefficients is solved symbolically and substituted into the
+//! blocks after it; any other block is left to a dense solve at run time
+//! (the KKT system of a mechanism), merged with the later blocks that read
+//! its unknowns so each run-time block is solved once per evaluation.
+
+use super::reduce::MassBlock;
+use crate::{Graph, Id, Number};
+
+/// The solution: each unknown symbolic, or row `r` of run-time block `b`.
+pub struct Solved {
+    /// Symbolic solutions.
+    pub symbolic: Vec<Option<Id>>,
+    /// `(block, row)` of the unknowns solved at run time.
+    pub block_of: Vec<Option<(usize, usize)>>,
+    /// The run-time blocks.
+    pub blocks: Vec<MassBlock>,
+}
+
+/// Why the system could not be solved.
+pub enum Unsolvable {
+    /// A constant block is singular: its equations repeat each other.
+    Dependent {
+        /// An equation of the block.
+        equation: usize,
+        /// The block's unknowns.
+        unknowns: Vec<usize>,
+    },
+    /// An expression could not be built (overflow of an exact constant).
+    Graph(crate::Error),
+}
+
+impl From<crate::Error> for Unsolvable {
+    fn from(e: crate::Error) -> Unsolvable {
+        Unsolvable::Graph(e)
+    }
+}
+
+/// Solves `E w = g`, `e[i]` the non-zero `(column, coefficient)` of row i,
+/// `owner[j]` the equation matched to unknown j, `names[j]` its name.
+pub fn solve_unknowns(
+    g: &mut Graph,
+    e: &[Vec<(usize, Id)>],
+    rhs: &[Id],
+    owner: &[usize],
+    names: &[String],
+) -> Result<Solved, Unsolvable> {
+    let n = owner.len();
+    let mut unknown_of = vec![0; n];
+    for (j, &i) in owner.iter().enumerate() {
+        unknown_of[i] = j;
+    }
+    let entry = |i: usize, j: usize| e[i].iter().find(|(c, _)| *c == j).map(|x| x.1);
+    let mut symbolic: Vec<Option<Id>> = vec![None; n];
+    let mut group_of: Vec<Option<usize>> = vec![None; n];
+    // Run-time groups: rows and columns; `None` once merged into another.
+    let mut groups: Vec<Option<(Vec<usize>, Vec<usize>)>> = Vec::new();
+    for rows in blt_order(e, owner) {
+        let cols: Vec<usize> = rows.iter().map(|&i| unknown_of[i]).collect();
+        let mut deps: Vec<usize> = rows
+            .iter()
+            .flat_map(|&i| e[i].iter().map(|&(j, _)| j))
+            .filter(|j| !cols.contains(j))
+            .filter_map(|j| group_of[j])
+            .collect();
+        deps.sort_unstable();
+        deps.dedup();
+        if !deps.is_empty() {
+            let (mut all_rows, mut all_cols) = (rows, cols);
+            for d in deps {
+                if let Some((r, c)) = groups[d].take() {
+                    all_rows.extend(r);
+                    all_cols.extend(c);
+                }
+            }
+            let id = groups.len();
+            for &j in &all_cols {
+                group_of[j] = Some(id);
+            }
+            groups.push(Some((all_rows, all_cols)));
+            continue;
+        }
+        // g_B − Σ E_BC w_C over the unknowns solved before.
+        let mut b = Vec::with_capacity(rows.len());
+        for &i in &rows {
+            let mut terms = vec![rhs[i]];
+            for &(j, c) in &e[i] {
+                if !cols.contains(&j) {
+                    let w = symbolic[j].ok_or_else(|| crate::Error::Unsupported {
+                        message: "an unknown is read before it is solved".into(),
+                    })?;
+                    let t = g.mul(c, w)?;
+                    terms.push(g.negate_terms(t)?);
+                }
+            }
+            b.push(g.sum(&terms)?);
+        }
+        if rows.len() == 1 {
+            let c = entry(rows[0], cols[0]).unwrap_or(g.zero());
+            symbolic[cols[0]] = Some(g.div(b[0], c)?);
+            continue;
+        }
+        let constant: Option<Vec<Vec<Number>>> = rows
+            .iter()
+            .map(|&i| {
+                cols.iter()
+                    .map(|&j| match entry(i, j) {
+                        Some(c) => g.as_number(c),
+                        None => Some(Number::ZERO),
+                    })
+                    .collect()
+            })
+            .collect();
+        match constant {
+            Some(m) => match solve_constant(g, m, b) {
+                Some(w) => {
+                    for (k, &j) in cols.iter().enumerate() {
+                        symbolic[j] = Some(w[k]);
+                    }
+                }
+                None => {
+                    return Err(Unsolvable::Dependent {
+                        equation: rows[0],
+                        unknowns: cols,
+                    })
+                }
+            },
+            None => {
+                let id = groups.len();
+                for &j in &cols {
+                    group_of[j] = Some(id);
+                }
+                groups.push(Some((rows, cols)));
+            }
+        }
+    }
+    let mut blocks = Vec::new();
+    let mut block_of = vec![None; n];
+    let zero = g.zero();
+    for (mut rows, mut cols) in groups.into_iter().flatten() {
+        // Declaration order reads best; the solve pivots anyway.
+        rows.sort_unstable();
+        cols.sort_unstable();
+        let b = blocks.len();
+        for (k, &j) in cols.iter().enumerate() {
+            block_of[j] = Some((b, k));
+        }
+        let mut matrix = Vec::with_capacity(rows.len() * cols.len());
+        let mut rhs_block = Vec::with_capacity(rows.len());
+        for &i in &rows {
+            for &j in &cols {
+                matrix.push(entry(i, j).unwrap_or(zero));
+            }
+            let mut terms = vec![rhs[i]];
+            for &(j, c) in &e[i] {
+                if !cols.contains(&j) {
+                    let w = symbolic[j].ok_or_else(|| crate::Error::Unsupported {
+                        message: "a run-time block reads an unknown of another".into(),
+                    })?;
+                    let t = g.mul(c, w)?;
+                    terms.push(g.negate_terms(t)?);
+                }
+            }
+            rhs_block.push(g.sum(&terms)?);
+        }
+        blocks.push(MassBlock {
+            unknowns: cols.iter().map(|&j| names[j].clone()).collect(),
+            matrix,
+            rhs: rhs_block,
+        });
+    }
+    Ok(Solved {
+        symbolic,
+        block_of,
+        blocks,
+    })
+}
+
+/// The equations grouped into strongly connected components of "equation
+/// i reads the unknown matched to equation k", each component after the
+/// ones it reads (Tarjan 1972, iterative).
+fn blt_order(e: &[Vec<(usize, Id)>], owner: &[usize]) -> Vec<Vec<usize>> {
+    let m = e.len();
+    let successors = |i: usize| e[i].iter().map(|&(j, _)| owner[j]).filter(move |&k| k != i);
+    let (mut index, mut low) = (vec![usize::MAX; m], vec![0; m]);
+    let mut on_stack = vec![false; m];
+    let (mut stack, mut out) = (Vec::new(), Vec::new());
+    let mut next = 0;
+    for root in 0..m {
+        if index[root] != usize::MAX {
+            continue;
+        }
+        // (node, position in its successor list)
+        let mut call: Vec<(usize, usize)> = vec![(root, 0)];
+        index[root] = next;
+        low[root] = next;
+        next += 1;
+        stack.push(root);
+        on_stack[root] = true;
+        while let Some(&mut (v, ref mut pos)) = call.last_mut() {
+            if let Some(w) = successors(v).nth(*pos) {
+                *pos += 1;
+                if index[w] == usize::MAX {
+                    index[w] = next;
+                    low[w] = next;
+                    next += 1;
+                    stack.push(w);
+                    on_stack[w] = true;
+                    call.push((w, 0));
+                } else if on_stack[w] {
+                    low[v] = low[v].min(index[w]);
+                }
+                continue;
+            }
+            call.pop();
+            if let Some(&(parent, _)) = call.last() {
+                low[parent] = low[parent].min(low[v]);
+            }
+            if low[v] == index[v] {
+                let mut component = Vec::new();
+                while let Some(w) = stack.pop() {
+                    on_stack[w] = false;
+                    component.push(w);
+                    if w == v {
+                        break;
+                    }
+                }
+                component.sort_unstable();
+                out.push(component);
+            }
+        }
+    }
+    out
+}
+
+/// `w = M⁻¹ g` for a constant matrix, by Gaussian elimination with exact
+/// rational pivots (largest magnitude for floats); `None` if singular.
+pub fn solve_constant(g: &mut Graph, mut m: Vec<Vec<Number>>, mut rhs: Vec<Id>) -> Option<Vec<Id>> {
+    let k = m.len();
+    for col in 0..k {
+        let pivot = (col..k)
+            .filter(|&r| !m[r][col].is_zero())
+            .max_by(|&a, &b| {
+                m[a][col]
+                    .abs()
+                    .to_f64()
+                    .total_cmp(&m[b][col].abs().to_f64())
+            })?;
+        m.swap(col, pivot);
+        rhs.swap(col, pivot);
+        for row in col + 1..k {
+            if m[row][col].is_zero() {
+                continue;
+            }
+            let factor = m[row][col].checked_mul(reciprocal(m[col][col])?)?;
+            let (above, below) = m.split_at_mut(row);
+            for (target, &p) in below[0][col..].iter_mut().zip(&above[col][col..]) {
+                *target = target.checked_add(factor.checked_mul(p)?.negated())?;
+            }
+            let f = g.num(factor.negated());
+            let scaled = g.mul(f, rhs[col]).ok()?;
+            rhs[row] = g.add(rhs[row], scaled).ok()?;
+        }
+    }
+    let mut z = vec![g.zero(); k];
+    for row in (0..k).rev() {
+        let mut acc = rhs[row];
+        for c in row + 1..k {
+            let coefficient = g.num(m[row][c].negated());
+            let t = g.mul(coefficient, z[c]).ok()?;
+            acc = g.add(acc, t).ok()?;
+        }
+        let inv = g.num(reciprocal(m[row][row])?);
+        z[row] = g.mul(inv, acc).ok()?;
+    }
+    Some(z)
+}
+
+fn reciprocal(n: Number) -> Option<Number> {
+    n.pow(Number::MINUS_ONE)
+}
