@@ -196,3 +196,218 @@ fn robertson_as_an_index_1_dae_reaches_the_published_solution() {
         }
     }
 }
+
+/// Cash's index-3 pendulum (`pendul3.f`; ../shared/notes/reference-problems.md §4):
+/// g = 1, released from (1, 0) moving up at unit speed. References are the
+/// recomputed 30-digit values (the printed ones hold only 9–12 digits).
+const PENDUL3: [(f64, [f64; 5]); 3] = [
+    (
+        1.0,
+        [
+            0.867348640600439321734308116640,
+            0.497701050479672929353712765065,
+            -0.0337480180609545196091412779116,
+            0.0588130114652500075408496027315,
+            -0.493103151439018788061138295195,
+        ],
+    ),
+    (
+        10.0,
+        [
+            0.884392383092720254000816,
+            0.466744161964109775211094,
+            0.1203726552417017963052549,
+            -0.2280835372003925465259898,
+            -0.400232485892329325633282,
+        ],
+    ),
+    (
+        100.0,
+        [
+            -0.8823175139579278783335183,
+            0.4706546553080100402898502,
+            0.1140215562043221987485429,
+            0.2137516645659736454845227,
+            -0.4119639659240301208695506,
+        ],
+    ),
+];
+
+/// Largest error over x, y, u, v, λ at the reference times up to `t_end`.
+fn pendul3_errors(sol: &Solution, t_end: f64) -> Vec<f64> {
+    PENDUL3
+        .iter()
+        .filter(|(t, _)| *t <= t_end)
+        .map(|(t, reference)| {
+            ["x", "y", "u", "v", "lambda"]
+                .iter()
+                .zip(reference)
+                .map(|(name, r)| (sol.at(*t, name).expect("in range") - r).abs())
+                .fold(0.0, f64::max)
+        })
+        .collect()
+}
+
+fn pendul3_run(method: Method, tol: f64, step: f64, t_end: f64) -> Solution {
+    let model = Pendulum {
+        g: 1.0,
+        ..Pendulum::default()
+    };
+    let opts = Options::new().method(method).rtol(tol).atol(tol).step(step);
+    model
+        .simulate_from(0.0, &[1.0, 0.0, 0.0, 1.0], t_end, &opts)
+        .expect("the pendulum runs")
+}
+
+#[test]
+fn cash_index_3_pendulum_matches_the_reference_including_lambda() {
+    // At t = 1 (before the first turning point): within 20 × tol (RADAU5's
+    // global error per tolerance is the largest: 17 × at 1e-10).
+    for method in [Method::Dop853, Method::Dopri5, Method::Radau5] {
+        for tol in [1e-6, 1e-8, 1e-10] {
+            let e = pendul3_errors(&pendul3_run(method, tol, 0.0, 1.0), 1.0)[0];
+            assert!(
+                e <= 20.0 * tol,
+                "{method:?} tol {tol:e}: error {e:e} at t = 1"
+            );
+        }
+    }
+    // Twelve periods: the phase error grows, the constraints do not.
+    let sol = pendul3_run(Method::Dop853, 1e-12, 0.0, 100.0);
+    let e = pendul3_errors(&sol, 100.0);
+    assert!(
+        e[2] <= 1000.0 * 1e-12,
+        "DOP853 at 1e-12: error {:e} at t = 100",
+        e[2]
+    );
+    assert!(sol.max_constraint_residual() <= 1e-14);
+}
+
+#[test]
+fn rk4_on_the_index_1_form_with_projection_converges_with_order_four() {
+    let errors: Vec<f64> = [0.02, 0.01, 0.005]
+        .iter()
+        .map(|&h| pendul3_errors(&pendul3_run(Method::Rk4, 1e-6, h, 1.0), 1.0)[0])
+        .collect();
+    for pair in errors.windows(2) {
+        let order = (pair[0] / pair[1]).log2();
+        assert!(
+            (3.7..4.4).contains(&order),
+            "observed order {order} from {errors:?}"
+        );
+    }
+}
+
+/// Slider-crank (course notes Figure 4.7, rigid): a crank (uniform rod of
+/// mass m1, length r) turning about the origin, a massless connecting rod
+/// of length l from the crank pin A to the slider (mass m2) on the x axis,
+/// gravity in −y. Global coordinates: the crank's centre (x1, y1) and angle
+/// θ1, the slider (xs, ys); joint forces as algebraic variables: the pivot
+/// force (fx, fy), the rod's multiplier and the slider's normal force.
+#[dae_model]
+fn slider_crank() {
+    let r = param(0.15);
+    let l = param(0.4);
+    let m1 = param(1.0);
+    let m2 = param(0.5);
+    let g = param(9.81);
+    // Rough guesses: consistent initialization moves them onto the joints.
+    let x1 = state(0.04);
+    let y1 = state(0.06);
+    let theta1 = state(1.0);
+    let xs = state(0.45);
+    let ys = state(0.0);
+    let fx = algebraic(0.0);
+    let fy = algebraic(0.0);
+    let rod = algebraic(0.0);
+    let normal = algebraic(0.0);
+    let xa = x1 + 0.5 * r * cos(theta1);
+    let ya = y1 + 0.5 * r * sin(theta1);
+    let i1 = m1 * r * r / 12.0;
+    // The rod pulls A towards the slider by 2·rod·(S − A), and the slider back.
+    let ax = 2.0 * rod * (xs - xa);
+    let ay = 2.0 * rod * (ys - ya);
+    m1 * der(der(x1)) == fx + ax;
+    m1 * der(der(y1)) == fy + ay - m1 * g;
+    // Torques about the centre: the pivot force at −r/2, the rod's at +r/2.
+    i1 * der(der(theta1))
+        == 0.5 * r * (-cos(theta1) * fy + sin(theta1) * fx)
+            + 0.5 * r * (cos(theta1) * ay - sin(theta1) * ax);
+    m2 * der(der(xs)) == -ax;
+    m2 * der(der(ys)) == -ay + normal - m2 * g;
+    constraint(x1 - 0.5 * r * cos(theta1));
+    constraint(y1 - 0.5 * r * sin(theta1));
+    constraint((xs - xa) * (xs - xa) + (ys - ya) * (ys - ya) - l * l);
+    constraint(ys);
+}
+
+/// The same mechanism in its crank angle φ (Lagrange): with the slider at
+/// x_s(φ) = r cos φ + w, w = √(l² − r² sin² φ), f = dx_s/dφ and
+/// f' = d²x_s/dφ², the kinetic energy is ½ (m1 r²/3 + m2 f²) φ'² and the
+/// potential m1 g (r/2) sin φ, so
+/// (m1 r²/3 + m2 f²) φ'' + m2 f f' φ'² + m1 g (r/2) cos φ = 0.
+#[dae_model]
+fn slider_crank_angle() {
+    let r = param(0.15);
+    let l = param(0.4);
+    let m1 = param(1.0);
+    let m2 = param(0.5);
+    let g = param(9.81);
+    let phi0 = param(1.0);
+    let phi = state(phi0);
+    init(der(phi), 0.0);
+    let s = sin(phi);
+    let c = cos(phi);
+    let w = sqrt(l * l - r * r * s * s);
+    let f = -r * s - r * r * s * c / w;
+    let fp = -r * c - r * r * (c * c - s * s) / w - r * r * r * r * s * s * c * c / (w * w * w);
+    (m1 * r * r / 3.0 + m2 * f * f) * der(der(phi))
+        == -m2 * f * fp * der(phi) * der(phi) - m1 * g * 0.5 * r * c;
+}
+
+#[test]
+fn slider_crank_in_global_coordinates_follows_its_crank_angle_ode() {
+    assert_eq!(<SliderCrank as Model>::INDEX, 3);
+    let tol = 1e-10;
+    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let sol = SliderCrank::default()
+        .simulate(0.0, 5.0, &opts)
+        .expect("runs");
+    // Consistent initialization put the guesses on the joints.
+    let s0 = sol.state(0).expect("the initial state");
+    let (r, l) = (0.15, 0.4);
+    let phi0 = s0[4];
+    assert!((s0[0] - 0.5 * r * phi0.cos()).abs() < 1e-12);
+    assert!((s0[2] - 0.5 * r * phi0.sin()).abs() < 1e-12);
+    assert!(s0[8].abs() < 1e-12, "ys = {}", s0[8]);
+    assert!(sol.max_constraint_residual() <= 1e-12);
+    let reference = SliderCrankAngle {
+        phi0,
+        ..SliderCrankAngle::default()
+    }
+    .simulate(
+        0.0,
+        5.0,
+        &Options::new()
+            .method(Method::Dop853)
+            .rtol(1e-13)
+            .atol(1e-13),
+    )
+    .expect("the angle form runs");
+    for t in [0.5, 1.0, 2.0, 5.0] {
+        let phi = reference.at(t, "phi").unwrap();
+        let theta = sol.at(t, "theta1").unwrap();
+        let xs_ref = r * phi.cos() + (l * l - (r * phi.sin()).powi(2)).sqrt();
+        let xs = sol.at(t, "xs").unwrap();
+        // 100 × tol: the global error of about two crank revolutions
+        // (measured 2.5e-9 at t = 5).
+        assert!(
+            (theta - phi).abs() <= 100.0 * tol,
+            "t = {t}: θ1 = {theta}, φ = {phi}"
+        );
+        assert!(
+            (xs - xs_ref).abs() <= 100.0 * tol,
+            "t = {t}: xs = {xs}, from φ {xs_ref}"
+        );
+    }
+}
