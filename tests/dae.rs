@@ -411,3 +411,140 @@ fn slider_crank_in_global_coordinates_follows_its_crank_angle_ode() {
         );
     }
 }
+
+// Linear DAEs `E y' + A y = c(t)` of known Kronecker index (course notes
+// §2.1): built from the canonical form `N α' + α = d`, `β' + J β = e` with
+// d = (sin t, cos t, t²), e = 1, J = 1/2 and N nilpotent of order 1, 2, 3,
+// then mixed by P⁻¹ = [1 0 1 0; 1 1 0 0; 0 1 1 1; 0 0 1 1] and
+// Q⁻¹ = [1 1 0 0; 0 1 1 0; 0 0 1 0; 1 1 1 1] (both unimodular):
+// E = P⁻¹ diag(N, 1) Q⁻¹, A = P⁻¹ diag(I, J) Q⁻¹, c = P⁻¹ (d, e), y = Q (α, β).
+// The closed form (2.9): α = Σ (−1)^j N^j d^(j), β = 2 + (β0 − 2) e^(−t/2).
+
+/// Kronecker index 1.
+#[dae_model]
+fn linear_index_1() {
+    let t = time();
+    let y = state_array([0.0, 0.0, 0.0, 0.0]);
+    y[0] + y[1] + y[2] == sin(t) + t * t;
+    y[0] + 2.0 * y[1] + y[2] == sin(t) + cos(t);
+    der(y[0])
+        + der(y[1])
+        + der(y[2])
+        + der(y[3])
+        + 0.5 * y[0]
+        + 1.5 * y[1]
+        + 2.5 * y[2]
+        + 0.5 * y[3]
+        == cos(t) + t * t + 1.0;
+    der(y[0])
+        + der(y[1])
+        + der(y[2])
+        + der(y[3])
+        + 0.5 * y[0]
+        + 0.5 * y[1]
+        + 1.5 * y[2]
+        + 0.5 * y[3]
+        == t * t + 1.0;
+}
+
+/// Kronecker index 2.
+#[dae_model]
+fn linear_index_2() {
+    let t = time();
+    let y = state_array([0.0, 0.0, 0.0, 0.0]);
+    der(y[1]) + der(y[2]) + y[0] + y[1] + y[2] == sin(t) + t * t;
+    der(y[1]) + der(y[2]) + y[0] + 2.0 * y[1] + y[2] == sin(t) + cos(t);
+    der(y[0])
+        + der(y[1])
+        + der(y[2])
+        + der(y[3])
+        + 0.5 * y[0]
+        + 1.5 * y[1]
+        + 2.5 * y[2]
+        + 0.5 * y[3]
+        == cos(t) + t * t + 1.0;
+    der(y[0])
+        + der(y[1])
+        + der(y[2])
+        + der(y[3])
+        + 0.5 * y[0]
+        + 0.5 * y[1]
+        + 1.5 * y[2]
+        + 0.5 * y[3]
+        == t * t + 1.0;
+}
+
+/// Kronecker index 3.
+#[dae_model]
+fn linear_index_3() {
+    let t = time();
+    let y = state_array([0.0, 0.0, 0.0, 0.0]);
+    der(y[1]) + der(y[2]) + y[0] + y[1] + y[2] == sin(t) + t * t;
+    der(y[1]) + 2.0 * der(y[2]) + y[0] + 2.0 * y[1] + y[2] == sin(t) + cos(t);
+    der(y[0])
+        + der(y[1])
+        + 2.0 * der(y[2])
+        + der(y[3])
+        + 0.5 * y[0]
+        + 1.5 * y[1]
+        + 2.5 * y[2]
+        + 0.5 * y[3]
+        == cos(t) + t * t + 1.0;
+    der(y[0])
+        + der(y[1])
+        + der(y[2])
+        + der(y[3])
+        + 0.5 * y[0]
+        + 0.5 * y[1]
+        + 1.5 * y[2]
+        + 0.5 * y[3]
+        == t * t + 1.0;
+}
+
+/// y(t) from the closed form, β0 = (Q⁻¹ y(0))₄ = y1 + y2 + y3 + y4 at t = 0.
+fn linear_closed_form(alpha: [f64; 3], beta0: f64, t: f64) -> [f64; 4] {
+    let beta = 2.0 + (beta0 - 2.0) * (-t / 2.0).exp();
+    let [a1, a2, a3] = alpha;
+    // Q = [1 -1 1 0; 0 1 -1 0; 0 0 1 0; -1 0 -1 1]
+    [a1 - a2 + a3, a2 - a3, a3, -a1 - a3 + beta]
+}
+
+fn check_linear_dae(sol: &Solution, alpha: &dyn Fn(f64) -> [f64; 3], tol: f64) {
+    let y0 = sol.state(0).expect("initial state");
+    let beta0: f64 = y0.iter().sum();
+    for t in [0.0, 1.0, 2.0, 5.0] {
+        let want = linear_closed_form(alpha(t), beta0, t);
+        for (i, w) in want.iter().enumerate() {
+            let got = sol.at(t, &format!("y[{i}]")).expect("in range");
+            assert!(
+                (got - w).abs() <= 100.0 * tol,
+                "t = {t}: y[{i}] = {got}, closed form {w}"
+            );
+        }
+    }
+}
+
+#[test]
+fn linear_daes_of_kronecker_index_1_2_3_match_the_closed_form() {
+    assert_eq!(<LinearIndex1 as Model>::INDEX, 1);
+    assert_eq!(<LinearIndex2 as Model>::INDEX, 2);
+    assert_eq!(<LinearIndex3 as Model>::INDEX, 3);
+    let tol = 1e-10;
+    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let sol = LinearIndex1::default()
+        .simulate(0.0, 5.0, &opts)
+        .expect("index 1 runs");
+    check_linear_dae(&sol, &|t: f64| [t.sin(), t.cos(), t * t], tol);
+    let sol = LinearIndex2::default()
+        .simulate(0.0, 5.0, &opts)
+        .expect("index 2 runs");
+    check_linear_dae(&sol, &|t: f64| [2.0 * t.sin(), t.cos(), t * t], tol);
+    let sol = LinearIndex3::default()
+        .simulate(0.0, 5.0, &opts)
+        .expect("index 3 runs");
+    check_linear_dae(
+        &sol,
+        &|t: f64| [2.0 * t.sin() + 2.0, t.cos() - 2.0 * t, t * t],
+        tol,
+    );
+}

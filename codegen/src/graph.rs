@@ -46,7 +46,7 @@ pub type FxHashMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
 /// Nodes are only created by the smart constructors (`sum`, `product`, `pow`,
 /// `call`, ... in `build.rs`), which fold constants and apply value-preserving
 /// identities, so structurally equal expressions are the same [`Id`].
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub struct Graph {
     nodes: Vec<Node>,
     smooth: Vec<bool>,

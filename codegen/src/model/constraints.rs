@@ -56,13 +56,23 @@ pub fn projection_levels(
             .copied()
             .filter(|s| !lower.contains(s))
             .collect();
-        let slots = if new.is_empty() {
-            involved.clone()
-        } else {
-            new
-        };
         lower.extend(&involved);
-        levels.push(ProjectionLevel { rows, slots });
+        match levels.last_mut() {
+            // Nothing of its own to correct (the hidden constraints of a
+            // linear DAE involve every state): projected jointly with the
+            // level below, which a correction of its own would undo.
+            Some(below) if new.is_empty() => {
+                let below: &mut ProjectionLevel = below;
+                below.rows.extend(rows);
+                below.slots.extend(&involved);
+                below.slots.sort_unstable();
+                below.slots.dedup();
+            }
+            _ => {
+                let slots = if new.is_empty() { involved } else { new };
+                levels.push(ProjectionLevel { rows, slots });
+            }
+        }
     }
     levels
 }

@@ -22,7 +22,8 @@
 //! (they need one more differentiation to have an equation of their own).
 
 use super::ctxt::Ctxt;
-use crate::{FxHashMap, Graph, Id, SymbolId, VectorField};
+use super::linear_pencil;
+use crate::{FxHashMap, Graph, Id, Number, SymbolId, VectorField};
 use proc_macro2::TokenStream;
 
 /// A constraint or one of its derivatives that must hold along solutions
@@ -97,59 +98,205 @@ pub fn reduce_index(
             field.set(slot, next);
         }
     }
-    let mut out = IndexReduction {
-        residuals: Vec::with_capacity(residuals.len()),
-        differentiations: Vec::with_capacity(residuals.len()),
-        invariants: Vec::new(),
-        index: 0,
-    };
-    let mut ok = true;
-    for (e, (&r, origin)) in residuals.iter().zip(origins).enumerate() {
-        let mut current = r;
-        let mut level = 0;
-        while !involves_unknown(g, current) {
-            if let Some(c) = g.as_number(current) {
-                let message = if level == 0 {
-                    "this equation involves no variable: remove it".to_string()
-                } else if c.is_zero() {
-                    let which = if level == 1 {
-                        "derivative".to_string()
-                    } else {
-                        format!("derivative of order {level}")
-                    };
-                    format!("this constraint determines nothing: its {which} along the other equations is identically zero, so the other equations decide whether it holds; remove it, or make a variable algebraic")
-                } else {
-                    format!("this constraint contradicts the other equations: its derivative of order {level} along them is the constant {}", c.to_f64())
-                };
-                cx.error_at(origin, message);
-                ok = false;
-                break;
-            }
-            if level == MAX_DIFFERENTIATIONS {
-                cx.error_at(origin, format!("this constraint never involves an algebraic variable or a highest derivative, even after {MAX_DIFFERENTIATIONS} differentiations: no unknown is left for it to determine; remove it or make a variable algebraic"));
-                ok = false;
-                break;
-            }
-            out.invariants.push(Invariant {
-                equation: e,
-                level,
-                residual: current,
-            });
-            current = match g.total_derivative(current, &mut field) {
-                Ok(d) => d,
-                Err(err) => {
-                    cx.error_at(origin, err);
-                    return None;
-                }
-            };
-            level += 1;
-        }
-        out.residuals.push(current);
-        out.differentiations.push(level);
+    if singular_linear_pencil(cx, g, unknowns, residuals, origins) {
+        return None;
     }
-    let deepest = out.differentiations.iter().copied().max().unwrap_or(0);
-    out.index = deepest + usize::from(!unknowns.algebraics.is_empty());
-    ok.then_some(out)
+    let unknown_symbols: Vec<SymbolId> = unknowns
+        .z
+        .iter()
+        .chain(unknowns.algebraics)
+        .copied()
+        .collect();
+    let m = residuals.len();
+    let mut current = residuals.to_vec();
+    let mut level = vec![0usize; m];
+    let mut invariants = Vec::new();
+    let mut combined = vec![false; m];
+    // Differentiate what determines nothing; where the coefficients of the
+    // unknowns are constant, combine the equations whose coefficient rows
+    // are dependent into one that involves no unknown and differentiate
+    // it too (Luenberger's shuffle); repeat until the coefficients are
+    // regular or no longer constant.
+    for _ in 0..=m + 1 {
+        let mut ok = true;
+        for e in 0..m {
+            while !involves_unknown(g, current[e]) {
+                if let Some(c) = g.as_number(current[e]) {
+                    let message = if combined[e] {
+                        format!("these equations are linearly dependent in their unknowns, and a combination of them reads 0 = {}: the DAE is inconsistent or under-determined (its pencil is singular, course notes Example 2.2)", c.to_f64())
+                    } else if level[e] == 0 {
+                        "this equation involves no variable: remove it".to_string()
+                    } else if c.is_zero() {
+                        let which = if level[e] == 1 {
+                            "derivative".to_string()
+                        } else {
+                            format!("derivative of order {}", level[e])
+                        };
+                        format!("this constraint determines nothing: its {which} along the other equations is identically zero, so the other equations decide whether it holds; remove it, or make a variable algebraic")
+                    } else {
+                        format!("this constraint contradicts the other equations: its derivative of order {} along them is the constant {}", level[e], c.to_f64())
+                    };
+                    cx.error_at(&origins[e], message);
+                    ok = false;
+                    break;
+                }
+                if level[e] == MAX_DIFFERENTIATIONS {
+                    cx.error_at(&origins[e], format!("this constraint never involves an algebraic variable or a highest derivative, even after {MAX_DIFFERENTIATIONS} differentiations: no unknown is left for it to determine; remove it or make a variable algebraic"));
+                    ok = false;
+                    break;
+                }
+                invariants.push(Invariant {
+                    equation: e,
+                    level: level[e],
+                    residual: current[e],
+                });
+                current[e] = match g.total_derivative(current[e], &mut field) {
+                    Ok(d) => d,
+                    Err(err) => {
+                        cx.error_at(&origins[e], err);
+                        return None;
+                    }
+                };
+                level[e] += 1;
+            }
+        }
+        if !ok {
+            return None;
+        }
+        let Some(null) = constant_coefficients(g, &current, &unknown_symbols)
+            .and_then(|c| linear_pencil::left_null_space(&c))
+        else {
+            break;
+        };
+        if null.is_empty() {
+            break;
+        }
+        for (pivot, alpha) in null {
+            let mut terms = Vec::new();
+            let mut deepest = 0;
+            for (i, a) in alpha.iter().enumerate() {
+                if !a.is_zero() {
+                    let a = g.num(*a);
+                    terms.push(g.mul(a, current[i]).ok()?);
+                    deepest = deepest.max(level[i]);
+                }
+            }
+            current[pivot] = g.sum(&terms).ok()?;
+            level[pivot] = deepest;
+            combined[pivot] = true;
+        }
+    }
+    let deepest = level.iter().copied().max().unwrap_or(0);
+    Some(IndexReduction {
+        residuals: current,
+        differentiations: level,
+        invariants,
+        index: deepest + usize::from(!unknowns.algebraics.is_empty()),
+    })
+}
+
+/// `∂r_i/∂w_j` for every equation and unknown, if all are numbers and the
+/// matrix is not trivially regular (one unknown per row, each once: an
+/// explicit ODE, which needs no elimination).
+fn constant_coefficients(
+    g: &mut Graph,
+    residuals: &[Id],
+    unknowns: &[SymbolId],
+) -> Option<Vec<Vec<Number>>> {
+    if unknowns.len() > 200 {
+        return None;
+    }
+    // Structurally one distinct unknown per equation: regular, and no
+    // partial derivative needs to be built.
+    let mut owner = vec![false; unknowns.len()];
+    let one_each = residuals.len() == unknowns.len()
+        && residuals.iter().all(|&r| {
+            let involved: Vec<usize> = g
+                .free_symbols(r)
+                .iter()
+                .filter_map(|s| unknowns.iter().position(|u| u == s))
+                .collect();
+            match involved[..] {
+                [j] if !owner[j] => {
+                    owner[j] = true;
+                    true
+                }
+                _ => false,
+            }
+        });
+    if one_each {
+        return None;
+    }
+    let mut rows = Vec::with_capacity(residuals.len());
+    let mut seen = vec![0usize; unknowns.len()];
+    let mut trivially_regular = residuals.len() == unknowns.len();
+    for &r in residuals {
+        let row = unknowns
+            .iter()
+            .map(|&s| g.partial(r, s).ok().and_then(|d| g.as_number(d)))
+            .collect::<Option<Vec<Number>>>()?;
+        let nonzero: Vec<usize> = (0..row.len()).filter(|&j| !row[j].is_zero()).collect();
+        match nonzero[..] {
+            [j] => seen[j] += 1,
+            _ => trivially_regular = false,
+        }
+        rows.push(row);
+    }
+    if trivially_regular && seen.iter().all(|&k| k == 1) {
+        return None;
+    }
+    Some(rows)
+}
+
+/// A linear DAE with constant coefficients `E y' + A y = c(t)` whose pencil
+/// is singular (det(E·s + A) ≡ 0) is inconsistent or under-determined
+/// (course notes §2.1, Example 2.2): reported on its equations.
+fn singular_linear_pencil(
+    cx: &mut Ctxt,
+    g: &mut Graph,
+    unknowns: &Unknowns<'_>,
+    residuals: &[Id],
+    origins: &[TokenStream],
+) -> bool {
+    let n = unknowns.states.len() + unknowns.algebraics.len();
+    if residuals.len() != n || n > 60 || unknowns.states.iter().any(|&(_, order)| order != 1) {
+        return false;
+    }
+    // On a copy: most models are not linear, and the partial derivatives
+    // tried here must not change the graph the emitted code comes from.
+    let g = &mut g.clone();
+    let mut e = Vec::with_capacity(n);
+    let mut a = Vec::with_capacity(n);
+    for &r in residuals {
+        let mut coefficient = |s: SymbolId| g.partial(r, s).ok().and_then(|d| g.as_number(d));
+        let mut e_row = Vec::with_capacity(n);
+        let mut a_row = Vec::with_capacity(n);
+        for (&(y, _), &z) in unknowns.states.iter().zip(unknowns.z) {
+            let (Some(ez), Some(ay)) = (coefficient(z), coefficient(y)) else {
+                return false;
+            };
+            e_row.push(ez);
+            a_row.push(ay);
+        }
+        for &l in unknowns.algebraics {
+            let Some(al) = coefficient(l) else {
+                return false;
+            };
+            e_row.push(Number::ZERO);
+            a_row.push(al);
+        }
+        e.push(e_row);
+        a.push(a_row);
+    }
+    if linear_pencil::pencil_is_singular(&e, &a) != Some(true) {
+        return false;
+    }
+    let listed: Vec<String> = origins
+        .iter()
+        .map(|o| format!("`{}`", super::names::source_text(o)))
+        .collect();
+    cx.error_at(&origins[0], format!("this linear DAE is inconsistent or under-determined: det(E·s + A) is identically zero, a singular pencil (course notes §2.1, Example 2.2); its equations {} do not determine the variables: change one of them", listed.join(", ")));
+    true
 }
 
 /// `z_j = h_j(t, y)` for each highest derivative that an equation gives

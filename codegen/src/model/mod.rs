@@ -11,6 +11,7 @@ pub mod ctxt;
 pub mod expand;
 pub mod index_reduction;
 pub mod ir;
+pub mod linear_pencil;
 pub mod lower;
 pub mod names;
 pub mod reduce;
