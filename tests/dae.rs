@@ -548,3 +548,137 @@ fn linear_daes_of_kronecker_index_1_2_3_match_the_closed_form() {
         tol,
     );
 }
+
+/// The pendulum with its abscissa fixed at 0.6 and a rough guess for the
+/// ordinate: initialization must move only y, onto the nearer root −0.8.
+#[dae_model]
+fn pendulum_fixed_abscissa() {
+    let l = param(1.0);
+    let g = param(9.81);
+    let x = state(0.6).fixed();
+    let y = state(-0.7);
+    let u = state(0.3);
+    let v = state(0.0);
+    let lambda = algebraic(0.0);
+    der(x) == u;
+    der(y) == v;
+    der(u) == -lambda * x;
+    der(v) == -lambda * y - g;
+    constraint(x * x + y * y - l * l);
+}
+
+#[test]
+fn initialization_keeps_fixed_values_and_reports_the_degrees_of_freedom() {
+    let opts = Options::new()
+        .method(Method::Dop853)
+        .rtol(1e-10)
+        .atol(1e-10);
+    let sol = PendulumFixedAbscissa::default()
+        .simulate(0.0, 1.0, &opts)
+        .unwrap();
+    let s = sol.state(0).unwrap();
+    assert_eq!(s[0], 0.6);
+    assert!((s[1] + 0.8).abs() <= 1e-14, "y0 = {}", s[1]);
+    // Velocities: the minimal-norm correction of (0.3, 0) onto x u + y v = 0
+    // removes the radial part: (u, v) = 0.3 (1 − x²) , −0.3 x y... exactly
+    // the tangential projection of (0.3, 0) onto (−y, x)/l = (0.8, 0.6).
+    let (u, v) = (0.3 * 0.8 * 0.8, 0.3 * 0.8 * 0.6);
+    assert!(
+        (s[2] - u).abs() <= 1e-14 && (s[3] - v).abs() <= 1e-14,
+        "{s:?}"
+    );
+    assert_eq!(sol.degrees_of_freedom(), Some(1));
+    assert_eq!(
+        SliderCrank::default()
+            .simulate(0.0, 0.1, &opts)
+            .unwrap()
+            .degrees_of_freedom(),
+        Some(1)
+    );
+    assert_eq!(
+        PendulumAngle::default()
+            .simulate(0.0, 0.1, &opts)
+            .unwrap()
+            .degrees_of_freedom(),
+        None
+    );
+    let stats = sol.stats();
+    assert_eq!(stats.method, "Dop853");
+    assert!(
+        stats.formulation.contains("projected"),
+        "{}",
+        stats.formulation
+    );
+    let auto = Pendulum::default()
+        .simulate(0.0, 1.0, &Options::new().rtol(1e-6).atol(1e-6))
+        .unwrap();
+    assert_eq!(auto.stats().method, "Auto: Dopri5");
+}
+
+/// A constraint no real configuration satisfies.
+#[dae_model]
+fn impossible_circle() {
+    let x = state(1.0);
+    let y = state(0.0);
+    let u = state(0.0);
+    let v = state(0.0);
+    let lambda = algebraic(0.0);
+    der(x) == u;
+    der(y) == v;
+    der(u) == -lambda * x;
+    der(v) == -lambda * y;
+    constraint(x * x + y * y + 1.0);
+}
+
+/// The same circle twice, each with its own multiplier: Φ_q has rank 1.
+#[dae_model]
+fn doubled_constraint() {
+    let x = state(1.0);
+    let y = state(0.0);
+    let u = state(0.0);
+    let v = state(1.0);
+    let a = algebraic(0.0);
+    let b = algebraic(0.0);
+    der(x) == u;
+    der(y) == v;
+    der(u) == -(a + 2.0 * b) * x;
+    der(v) == -(a + 2.0 * b) * y;
+    constraint(x * x + y * y - 1.0);
+    constraint(2.0 * x * x + 2.0 * y * y - 2.0);
+}
+
+#[test]
+fn unrepairable_or_redundant_constraints_are_errors_that_name_the_constraint() {
+    let opts = Options::new().method(Method::Dop853);
+    let err = ImpossibleCircle::default()
+        .simulate(0.0, 1.0, &opts)
+        .unwrap_err();
+    let message = err.to_string();
+    assert!(
+        message.contains("constraint(x * x + y * y + 1.0)"),
+        "{message}"
+    );
+    assert!(
+        message.contains("cannot be made consistent") || message.contains("rank-deficient"),
+        "{message}"
+    );
+    assert!(matches!(err, Error::Constraint { t, .. } if t == 0.0));
+    assert!(err.partial_solution().is_some());
+    let err = DoubledConstraint::default()
+        .simulate(0.0, 1.0, &opts)
+        .unwrap_err();
+    let message = err.to_string();
+    assert!(message.contains("redundant"), "{message}");
+    assert!(
+        message.contains("constraint(2.0 * x * x + 2.0 * y * y - 2.0)"),
+        "{message}"
+    );
+    // Both fixed: nothing left to correct.
+    let err = PendulumFixedAbscissa::default()
+        .simulate_from(0.0, &[2.0, 0.0, 0.0, 0.0], 1.0, &opts)
+        .unwrap_err();
+    assert!(
+        err.to_string().contains("cannot be made consistent"),
+        "{err}"
+    );
+}

@@ -103,6 +103,20 @@ pub enum Error {
 }
 
 impl Error {
+    /// The partial solution, to label it.
+    pub(crate) fn partial_solution_mut(&mut self) -> Option<&mut Solution> {
+        match self {
+            Error::NonFinite { partial, .. }
+            | Error::Evaluation { partial, .. }
+            | Error::MaxSteps { partial, .. }
+            | Error::StepSizeUnderflow { partial, .. }
+            | Error::NewtonFailure { partial, .. }
+            | Error::SingularMatrix { partial, .. }
+            | Error::Constraint { partial, .. } => Some(partial),
+            _ => None,
+        }
+    }
+
     /// The solution computed before the failure, if the run got that far.
     pub fn partial_solution(&self) -> Option<&Solution> {
         match self {

@@ -199,6 +199,10 @@ pub trait Model {
     /// (empty for an ODE): the runtime projects onto them after each step.
     const CONSTRAINTS: &'static [ConstraintInfo] = &[];
 
+    /// States whose initial values consistent initialization keeps
+    /// (`state(x0).fixed()`); the others are guesses.
+    const FIXED_STATES: &'static [usize] = &[];
+
     /// [`Model::CONSTRAINTS`] by level, each with the states it corrects.
     const PROJECTION: &'static [ProjectionLevel] = &[];
 

@@ -134,9 +134,14 @@ impl<'m, M: Model> Projector<'m, M> {
                 mu[a] = self.residuals[r];
             }
             if let Err(a) = solve_symmetric(normal, m, mu) {
+                let held = (0..cols).any(|c| !free(c));
                 return Err(Failure {
                     row: level.rows[a],
-                    message: "the constraint Jacobian is rank-deficient here: this constraint repeats the others (a redundant constraint) or the configuration is singular".into(),
+                    message: if held {
+                        "the initial values cannot be made consistent with the fixed states: the constraint does not depend on the free ones here; fix fewer states or change the guesses".into()
+                    } else {
+                        REDUNDANT.into()
+                    },
                 });
             }
             let mut step = 0.0f64;
@@ -161,6 +166,80 @@ impl<'m, M: Model> Projector<'m, M> {
         }
         Ok(())
     }
+}
+
+const REDUNDANT: &str = "the constraint Jacobian is rank-deficient here: this constraint repeats the others (a redundant constraint) or the configuration is singular; remove it or move away from the singular configuration";
+
+impl<M: Model> Projector<'_, M> {
+    /// The first constraint whose gradient depends on those before it at
+    /// `(t, y)`, level by level.
+    pub(crate) fn redundant_row(&mut self, t: f64, y: &[f64]) -> Option<usize> {
+        for (k, level) in M::PROJECTION.iter().enumerate() {
+            let (m, cols) = (level.rows.len(), level.slots.len());
+            let jacobian = &mut self.jacobian[..m * cols];
+            self.model.constraint_jacobian(k, t, y, jacobian);
+            let scale = jacobian.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            // Each row reduced against the rows kept before it.
+            let mut basis: Vec<(usize, Vec<f64>)> = Vec::new();
+            for r in 0..m {
+                let mut row = jacobian[r * cols..(r + 1) * cols].to_vec();
+                for (pivot, b) in &basis {
+                    let f = row[*pivot] / b[*pivot];
+                    for (x, bv) in row.iter_mut().zip(b) {
+                        *x -= f * bv;
+                    }
+                }
+                let pivot = (0..cols).max_by(|&p, &q| row[p].abs().total_cmp(&row[q].abs()));
+                match pivot {
+                    Some(p) if row[p].abs() > 1e-10 * scale => basis.push((p, row)),
+                    _ => return Some(level.rows[r]),
+                }
+            }
+        }
+        None
+    }
+
+    /// Degrees of freedom at `(t, y)`: the states of the first level minus
+    /// the rank of its Jacobian (n − rank Φ_q for a mechanism).
+    pub(crate) fn degrees_of_freedom(&mut self, t: f64, y: &[f64]) -> usize {
+        let Some(level) = M::PROJECTION.first() else {
+            return M::STATES;
+        };
+        let (m, cols) = (level.rows.len(), level.slots.len());
+        let jacobian = &mut self.jacobian[..m * cols];
+        self.model.constraint_jacobian(0, t, y, jacobian);
+        cols - rank(jacobian, m, cols)
+    }
+}
+
+/// Rank by Gaussian elimination with partial pivoting, pivots below
+/// 1e-10 of the largest entry counted as zero.
+fn rank(a: &mut [f64], rows: usize, cols: usize) -> usize {
+    let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut rank = 0;
+    for col in 0..cols {
+        if rank == rows {
+            break;
+        }
+        let pivot = (rank..rows)
+            .max_by(|&p, &q| a[p * cols + col].abs().total_cmp(&a[q * cols + col].abs()))
+            .unwrap_or(rank);
+        let p = a[pivot * cols + col];
+        if !(p.abs() > 1e-10 * scale) {
+            continue;
+        }
+        for c in 0..cols {
+            a.swap(rank * cols + c, pivot * cols + c);
+        }
+        for row in rank + 1..rows {
+            let f = a[row * cols + col] / p;
+            for c in col..cols {
+                a[row * cols + c] -= f * a[rank * cols + c];
+            }
+        }
+        rank += 1;
+    }
+    rank
 }
 
 /// Solves `a x = b` (`a` symmetric positive semi-definite, `n × n`,
@@ -222,9 +301,32 @@ pub(crate) fn consistent_initial_values<M: Model>(
         message,
         partial: Box::new(solution),
     };
-    match projector.project(t0, y, INITIAL_ITERATIONS, None) {
-        Ok(_) => {}
-        Err(f) => return Err(failed(f.row, f.message, solution)),
+    let mut hold = vec![false; M::STATES];
+    for &i in M::FIXED_STATES {
+        hold[i] = true;
+    }
+    for level in M::PROJECTION {
+        if level.slots.iter().all(|&s| hold[s]) {
+            return Err(failed(
+                level.rows[0],
+                format!(
+                    "every state it corrects is fixed ({}): remove `.fixed()` from one of them",
+                    level
+                        .slots
+                        .iter()
+                        .map(|&s| M::INFO.states[s])
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                solution,
+            ));
+        }
+    }
+    if let Some(row) = projector.redundant_row(t0, y) {
+        return Err(failed(row, REDUNDANT.into(), solution));
+    }
+    if let Err(f) = projector.project(t0, y, INITIAL_ITERATIONS, Some(&hold)) {
+        return Err(failed(f.row, f.message, solution));
     }
     // Every level, not just positions, must hold to rounding.
     model.constraints(t0, y, &mut projector.residuals);
@@ -233,11 +335,13 @@ pub(crate) fn consistent_initial_values<M: Model>(
         if !(v.abs() <= 1e-10 * size) {
             return Err(failed(
                 r,
-                format!("the initial values cannot be made consistent: its residual is {v:e} after {INITIAL_ITERATIONS} Gauss–Newton iterations; start nearer a configuration that satisfies it"),
+                format!("the initial values cannot be made consistent: its residual is {v:e} after {INITIAL_ITERATIONS} Gauss–Newton iterations; start nearer a configuration that satisfies it, or fix fewer states"),
                 solution,
             ));
         }
     }
+    let mut solution = solution;
+    solution.set_degrees_of_freedom(projector.degrees_of_freedom(t0, y));
     Ok(solution)
 }
 

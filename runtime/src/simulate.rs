@@ -25,10 +25,77 @@ pub fn simulate<M: Model + Clone + Send + Sync + 'static>(
     simulate_from(model, t0, &y0, t1, options)
 }
 
+/// How a model of this type is integrated, for [`crate::Stats::formulation`].
+fn formulation<M: Model>() -> &'static str {
+    match (M::INDEX, M::CONSTRAINTS.is_empty()) {
+        (0, true) => "ODE",
+        (_, true) => "DAE solved for its algebraic variables at each evaluation (index 1)",
+        _ => "DAE: index-1 form (constraints differentiated until they determine the unknowns), projected onto the constraints and their hidden levels after every step",
+    }
+}
+
+fn method_name(method: Method) -> &'static str {
+    match method {
+        Method::Auto => "Auto",
+        Method::Taylor => "Taylor",
+        Method::TaylorFixed { .. } => "TaylorFixed",
+        Method::Euler => "Euler",
+        Method::BackwardEuler => "BackwardEuler",
+        Method::Rk4 => "Rk4",
+        Method::Rk38 => "Rk38",
+        Method::Midpoint => "Midpoint",
+        Method::Heun => "Heun",
+        Method::Ralston => "Ralston",
+        Method::Dopri5 => "Dopri5",
+        Method::Dop853 => "Dop853",
+        Method::Radau5 => "Radau5",
+    }
+}
+
+/// Notes the method and formulation in the solution's statistics, on
+/// success and on failure alike.
+fn labelled<M: Model>(
+    result: Result<Solution, Error>,
+    method: &'static str,
+) -> Result<Solution, Error> {
+    let label = |s: &mut Solution| {
+        let stats = s.stats_mut();
+        if stats.method.is_empty() {
+            stats.method = method;
+        }
+        stats.formulation = formulation::<M>();
+    };
+    match result {
+        Ok(mut s) => {
+            label(&mut s);
+            Ok(s)
+        }
+        Err(mut e) => {
+            if let Some(s) = e.partial_solution_mut() {
+                label(s);
+            }
+            Err(e)
+        }
+    }
+}
+
 /// Integrates `model` from the state `y0` (in the order of
 /// [`crate::ModelInfo::states`]) at `t0` to `t1` with `options`: to restart
 /// after a terminal event, say, from a changed state.
 pub fn simulate_from<M: Model + Clone + Send + Sync + 'static>(
+    model: &M,
+    t0: f64,
+    y0: &[f64],
+    t1: f64,
+    options: &Options,
+) -> Result<Solution, Error> {
+    labelled::<M>(
+        checked_run(model, t0, y0, t1, options),
+        method_name(options.method),
+    )
+}
+
+fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     model: &M,
     t0: f64,
     y0: &[f64],
@@ -101,14 +168,23 @@ pub fn simulate_from<M: Model + Clone + Send + Sync + 'static>(
         Method::Auto => {
             // An explicit pair watches for stiffness (Hairer's test) and hands
             // over to RADAU5 from the point where the problem turned stiff.
+            let mut solution = solution;
             let explicit = if options.rtol >= 1e-7 {
+                solution.stats_mut().method = "Auto: Dopri5";
                 adaptive::integrate::<M, Dopri5>(model, t0, t1, &y0, options, true, solution)
             } else {
+                solution.stats_mut().method = "Auto: Dop853";
                 adaptive::integrate::<M, Dop853>(model, t0, t1, &y0, options, true, solution)
             };
             match explicit? {
                 (solution, adaptive::Finish::Done) => Ok(solution),
-                (solution, adaptive::Finish::StiffAt(t)) => {
+                (mut solution, adaptive::Finish::StiffAt(t)) => {
+                    let stats = solution.stats_mut();
+                    stats.method = if stats.method == "Auto: Dopri5" {
+                        "Auto: Dopri5, then Radau5 where the problem turned stiff"
+                    } else {
+                        "Auto: Dop853, then Radau5 where the problem turned stiff"
+                    };
                     let y = solution.last_state().map(<[f64]>::to_vec).unwrap_or(y0);
                     radau5::integrate(model, t, t1, &y, options, solution)
                 }

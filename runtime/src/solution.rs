@@ -15,6 +15,10 @@ pub struct Stats {
     pub rhs_evals: usize,
     /// Evaluations of the Jacobian.
     pub jacobian_evals: usize,
+    /// The method that ran (`Method::Auto` says which it picked).
+    pub method: &'static str,
+    /// How the model was integrated: an ODE, or which DAE formulation.
+    pub formulation: &'static str,
 }
 
 /// A crossing of an event function, located to machine precision.
@@ -59,6 +63,8 @@ pub struct Solution {
     observables: Arc<dyn Observables>,
     /// Largest |Φ| of the level-0 constraints at the accepted steps.
     constraint_residual: f64,
+    /// n − rank Φ_q at the start, for a model with constraints.
+    degrees_of_freedom: Option<usize>,
     stats: Stats,
     /// Dense-output coefficients of the steps of each segment, read by the
     /// segment's interpolant.
@@ -112,6 +118,7 @@ impl Solution {
             output_names: M::INFO.outputs,
             algebraic_names: M::INFO.algebraics,
             constraint_residual: 0.0,
+            degrees_of_freedom: None,
             observables: Arc::new(ModelObservables(model.clone())),
             stats: Stats::default(),
             dense: Vec::new(),
@@ -226,6 +233,17 @@ impl Solution {
     /// the accepted steps, after projection; 0 for an ODE, which has none.
     pub fn max_constraint_residual(&self) -> f64 {
         self.constraint_residual
+    }
+
+    /// Degrees of freedom of a constrained model at the start of the run:
+    /// the coordinates its position-level constraints involve minus the
+    /// rank of their Jacobian (n − rank Φ_q); `None` for an ODE.
+    pub fn degrees_of_freedom(&self) -> Option<usize> {
+        self.degrees_of_freedom
+    }
+
+    pub(crate) fn set_degrees_of_freedom(&mut self, dof: usize) {
+        self.degrees_of_freedom = Some(dof);
     }
 
     /// Records the constraint residual at an accepted step.

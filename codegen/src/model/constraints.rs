@@ -137,7 +137,14 @@ pub fn constraint_methods(
             }
         });
     }
+    let fixed = sys
+        .slots
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.fixed)
+        .map(|(i, _)| index(i));
     Ok(quote! {
+        const FIXED_STATES: &'static [usize] = &[#(#fixed),*];
         const CONSTRAINTS: &'static [::daegen::ConstraintInfo] = &[#(#infos),*];
         const PROJECTION: &'static [::daegen::ProjectionLevel] = &[#(#level_infos),*];
 

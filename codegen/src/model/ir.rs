@@ -24,6 +24,8 @@ pub struct StateDecl {
     pub init: Id,
     /// The declaration, for errors.
     pub origin: TokenStream,
+    /// `state(x0).fixed()`: consistent initialization keeps the value.
+    pub fixed: bool,
 }
 
 /// `let z = algebraic(guess);`

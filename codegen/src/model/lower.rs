@@ -292,6 +292,17 @@ impl Lower<'_> {
             }
             return self.event(&ident, call, &settings, doc, local);
         }
+        // `state(x0).fixed()`: a value consistent initialization keeps.
+        let (e, fixed) = match e {
+            Expr::MethodCall(m)
+                if m.method == "fixed"
+                    && m.args.is_empty()
+                    && matches!(call_name(&m.receiver), Some((n, _)) if n == "state" || n == "state_array") =>
+            {
+                (&*m.receiver, true)
+            }
+            _ => (e, false),
+        };
         if let Some((name, call)) = call_name(e) {
             if DECLARATIONS.contains(&name.as_str()) {
                 if self.in_loop() {
@@ -303,7 +314,12 @@ impl Lower<'_> {
                         format!("a {name} cannot be `mut`: remove `mut`"),
                     );
                 }
-                return self.declaration(&ident, &name, call, doc, local);
+                let first = self.states.len();
+                self.declaration(&ident, &name, call, doc, local);
+                for state in &mut self.states[first..] {
+                    state.fixed = fixed;
+                }
+                return;
             }
         }
         if let (Expr::Array(array), false) = (e, mutable) {
@@ -463,6 +479,7 @@ impl Lower<'_> {
                             symbol,
                             init,
                             origin,
+                            fixed: false,
                         });
                         self.bind(ident, Binding::State(symbol));
                     }
@@ -503,6 +520,7 @@ impl Lower<'_> {
                         symbol,
                         init,
                         origin: origin.clone(),
+                        fixed: false,
                     });
                     symbols.push(symbol);
                 }

@@ -20,6 +20,8 @@ pub struct Slot {
     pub symbol: SymbolId,
     /// Its initial value (constants and parameters).
     pub init: Id,
+    /// Kept by consistent initialization (`state(x0).fixed()`).
+    pub fixed: bool,
 }
 
 /// How a slot's derivative is computed.
@@ -241,6 +243,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
                 name: g.symbol(symbol).name.clone(),
                 symbol,
                 init,
+                fixed: k == 0 && s.fixed,
             });
             derivatives.push(if k + 1 < order[i] {
                 SlotDerivative::Explicit(g.derivative(s.symbol, k + 1).ok()?)
