@@ -163,6 +163,10 @@ pub fn reduce_index(
         if !ok {
             return None;
         }
+        // Only a square system can be regular; the matching reports the others.
+        if m != unknown_symbols.len() {
+            break;
+        }
         let Some(null) = constant_coefficients(g, &current, &unknown_symbols)
             .and_then(|c| linear_pencil::left_null_space(&c))
         else {
