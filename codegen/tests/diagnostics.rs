@@ -58,8 +58,9 @@ fn structural_mistakes_name_the_derivative() {
             "not linear in `der(x)`",
         ),
         (
-            quote! { fn m() { let x = state(1.0); let y = state(1.0); der(x) + der(y) == x; 2.0 * der(x) + 2.0 * der(y) == y; } },
-            "linearly dependent",
+            // Twice the same equation: det(E s + A) vanishes identically.
+            quote! { fn m() { let x = state(1.0); let y = state(1.0); der(x) + der(y) == x; 2.0 * der(x) + 2.0 * der(y) == 2.0 * x; } },
+            "singular pencil",
         ),
         (
             quote! { fn m() { let x = state(1.0); init(der(x), 1.0); der(x) == x; } },
@@ -152,6 +153,16 @@ fn good_models_have_no_diagnostics() {
             }
             init(der(q[0]), 1.0);
         }
+    });
+    assert!(m.is_empty(), "{m:#?}");
+}
+
+/// `x' + y' = x, 2x' + 2y' = y` has dependent derivative rows but a regular
+/// pencil (det(E s + A) = 1 − 3s): an index-1 DAE, not a mistake.
+#[test]
+fn dependent_derivative_rows_with_a_regular_pencil_are_a_dae() {
+    let m = messages(quote! {
+        fn m() { let x = state(1.0); let y = state(1.0); der(x) + der(y) == x; 2.0 * der(x) + 2.0 * der(y) == y; }
     });
     assert!(m.is_empty(), "{m:#?}");
 }
