@@ -682,3 +682,125 @@ fn unrepairable_or_redundant_constraints_are_errors_that_name_the_constraint() {
         "{err}"
     );
 }
+
+/// A rheonomic constraint (course notes §4.2): a pendulum whose support
+/// moves as s(t) = a sin(ω t).
+#[dae_model]
+fn pendulum_on_a_shaking_support() {
+    let t = time();
+    let a = param(0.1);
+    let w = param(3.0);
+    let l = param(1.0);
+    let g = param(9.81);
+    let x = state(0.5);
+    let y = state(-0.85);
+    let u = state(0.0);
+    let v = state(0.0);
+    let lambda = algebraic(0.0);
+    let s = a * sin(w * t);
+    der(x) == u;
+    der(y) == v;
+    der(u) == -lambda * (x - s);
+    der(v) == -lambda * y - g;
+    constraint((x - s) * (x - s) + y * y - l * l);
+}
+
+/// Its angle form: θ'' = −(g/l) sin θ − (s''(t)/l) cos θ.
+#[dae_model]
+fn shaken_pendulum_angle() {
+    let t = time();
+    let a = param(0.1);
+    let w = param(3.0);
+    let l = param(1.0);
+    let g = param(9.81);
+    let theta0 = param(0.0);
+    let omega0 = param(0.0);
+    let theta = state(theta0);
+    init(der(theta), omega0);
+    der(der(theta)) == -g / l * sin(theta) + a * w * w / l * sin(w * t) * cos(theta);
+}
+
+#[test]
+fn a_pendulum_on_a_moving_support_follows_its_angle_form() {
+    assert_eq!(<PendulumOnAShakingSupport as Model>::INDEX, 3);
+    let tol = 1e-10;
+    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let sol = PendulumOnAShakingSupport::default()
+        .simulate(0.0, 5.0, &opts)
+        .unwrap();
+    let (a, w, l) = (0.1, 3.0, 1.0);
+    // The consistent start (the velocity constraint involves s'(0) = a ω).
+    let s0 = sol.state(0).unwrap();
+    // States in order x, y, u, v; s(0) = 0, s'(0) = a ω.
+    let theta0 = s0[0].atan2(-s0[1]);
+    let omega0 = (s0[2] - a * w) / (l * theta0.cos());
+    let reference = ShakenPendulumAngle {
+        theta0,
+        omega0,
+        ..ShakenPendulumAngle::default()
+    }
+    .simulate(
+        0.0,
+        5.0,
+        &Options::new()
+            .method(Method::Dop853)
+            .rtol(1e-13)
+            .atol(1e-13),
+    )
+    .unwrap();
+    for t in [1.0, 3.0, 5.0] {
+        let theta = reference.at(t, "theta").unwrap();
+        let (x, y) = (a * (w * t).sin() + l * theta.sin(), -l * theta.cos());
+        let e = (sol.at(t, "x").unwrap() - x)
+            .abs()
+            .max((sol.at(t, "y").unwrap() - y).abs());
+        assert!(e <= 100.0 * tol, "t = {t}: error {e:e}");
+    }
+    assert!(sol.max_constraint_residual() <= 1e-12);
+}
+
+/// A non-holonomic constraint (course notes §4.2): a knife edge on a plane
+/// inclined in x (gravity component g sin α along −x), free to turn at the
+/// constant rate ω; the blade cannot move sideways: −sin φ ẋ + cos φ ẏ = 0.
+#[dae_model]
+fn knife_edge() {
+    let m = param(1.0);
+    let inertia = param(0.2);
+    let gs = param(1.0);
+    let x = state(0.0);
+    let y = state(0.0);
+    let phi = state(0.0);
+    let u = state(1.0);
+    let v = state(0.0);
+    let w = state(1.0);
+    let lambda = algebraic(0.0);
+    der(x) == u;
+    der(y) == v;
+    der(phi) == w;
+    m * der(u) == -m * gs + lambda * sin(phi);
+    m * der(v) == -lambda * cos(phi);
+    inertia * der(w) == 0.0;
+    constraint(-sin(phi) * u + cos(phi) * v);
+}
+
+#[test]
+fn a_knife_edge_follows_its_closed_form() {
+    // Index 2: the velocity-level constraint is differentiated once.
+    assert_eq!(<KnifeEdge as Model>::INDEX, 2);
+    // It corrects the velocities, not the heading.
+    assert_eq!(KnifeEdge::PROJECTION[0].slots, &[3, 4]);
+    let tol = 1e-10;
+    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let sol = KnifeEdge::default().simulate(0.0, 10.0, &opts).unwrap();
+    // φ = ω t and the speed along the blade V − (g sin α/ω) sin ω t give
+    // x = (V/ω) sin ωt − g sin α/(2ω²) sin² ωt,
+    // y = (V/ω)(1 − cos ωt) − (g sin α/ω)(t/2 − sin 2ωt/(4ω)) (V = ω = g sin α = 1).
+    for t in [1.0f64, 5.0, 10.0] {
+        let x = t.sin() - 0.5 * t.sin().powi(2);
+        let y = (1.0 - t.cos()) - (t / 2.0 - (2.0 * t).sin() / 4.0);
+        let e = (sol.at(t, "x").unwrap() - x)
+            .abs()
+            .max((sol.at(t, "y").unwrap() - y).abs());
+        assert!(e <= 100.0 * tol, "t = {t}: error {e:e}");
+    }
+}

@@ -57,6 +57,18 @@ pub fn projection_levels(
             .filter(|s| !lower.contains(s))
             .collect();
         lower.extend(&involved);
+        // A velocity-level constraint (non-holonomic, A(q) v = 0) corrects
+        // the velocities it is linear in, not the positions it reads.
+        let velocities: Vec<usize> = new
+            .iter()
+            .copied()
+            .filter(|&s| sys.slots[s].velocity_like)
+            .collect();
+        let new = if !velocities.is_empty() && velocities.len() < new.len() {
+            velocities
+        } else {
+            new
+        };
         match levels.last_mut() {
             // Nothing of its own to correct (the hidden constraints of a
             // linear DAE involve every state): projected jointly with the

@@ -48,6 +48,10 @@ pub struct IndexReduction {
     pub invariants: Vec<Invariant>,
     /// The differentiation index.
     pub index: usize,
+    /// Per state: its highest derivative is given explicitly by the states
+    /// (`der(x) == u`), so its last slot is position-like; otherwise the
+    /// dynamics determine it and the slot is velocity-like.
+    pub explicit_highest: Vec<bool>,
 }
 
 /// What the pass needs to know about the unknowns.
@@ -196,6 +200,7 @@ pub fn reduce_index(
         differentiations: level,
         invariants,
         index: deepest + usize::from(!unknowns.algebraics.is_empty()),
+        explicit_highest: explicit.iter().map(Option::is_some).collect(),
     })
 }
 

@@ -22,6 +22,9 @@ pub struct Slot {
     pub init: Id,
     /// Kept by consistent initialization (`state(x0).fixed()`).
     pub fixed: bool,
+    /// The slot's derivative is determined by the dynamics (a velocity),
+    /// not by another slot or an explicit `der(x) == u` (a position).
+    pub velocity_like: bool,
 }
 
 /// How a slot's derivative is computed.
@@ -244,6 +247,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
                 symbol,
                 init,
                 fixed: k == 0 && s.fixed,
+                velocity_like: k + 1 == order[i] && !reduction.explicit_highest[i],
             });
             derivatives.push(if k + 1 < order[i] {
                 SlotDerivative::Explicit(g.derivative(s.symbol, k + 1).ok()?)
