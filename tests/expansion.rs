@@ -94,7 +94,7 @@ fn three_body_with_state_arrays_and_loops() {
 }
 
 #[test]
-fn double_pendulum_with_a_runtime_mass_matrix() {
+fn double_pendulum_with_a_mass_matrix_solved_symbolically() {
     insta::assert_snapshot!(expand(quote! {
         fn double_pendulum() {
             let g = param(9.81);
@@ -231,6 +231,29 @@ fn cartesian_pendulum_as_an_index_3_dae() {
             m * der(v) == -lambda * y - m * g;
             constraint(x * x + y * y - l * l);
             let energy = output(0.5 * m * (u * u + v * v) + m * g * y);
+        }
+    }));
+}
+
+#[test]
+fn cartesian_double_pendulum_solves_its_kkt_system_at_run_time() {
+    insta::assert_snapshot!(expand(quote! {
+        /// Two point masses on massless rods: a 6 × 6 KKT system (four
+        /// accelerations, two multipliers), too large to solve symbolically.
+        fn double_pendulum_cartesian() {
+            let g = param(9.81);
+            let x1 = state(1.0);
+            let y1 = state(0.0);
+            let x2 = state(2.0);
+            let y2 = state(0.0);
+            let l1 = algebraic(0.0);
+            let l2 = algebraic(0.0);
+            der(der(x1)) == -l1 * x1 + l2 * (x2 - x1);
+            der(der(y1)) == -l1 * y1 + l2 * (y2 - y1) - g;
+            der(der(x2)) == -l2 * (x2 - x1);
+            der(der(y2)) == -l2 * (y2 - y1) - g;
+            constraint(x1 * x1 + y1 * y1 - 1.0);
+            constraint((x2 - x1) * (x2 - x1) + (y2 - y1) * (y2 - y1) - 1.0);
         }
     }));
 }

@@ -188,6 +188,8 @@ impl Emitter<'_> {
             let n = r.numer();
             if r.is_integer() {
                 return match n {
+                    // Only as the denominator of x^(-1).
+                    1 => (b, Prec::Postfix),
                     2 => (format!("{b} * {b}"), Prec::Product),
                     3 => (format!("{b} * {b} * {b}"), Prec::Product),
                     _ => (format!("{b}.powi({n})"), Prec::Postfix),

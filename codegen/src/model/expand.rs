@@ -247,10 +247,16 @@ fn block_solve_code(
         setup.extend(quote!(let mut #m = [[0.0f64; #kk]; #kk]; let mut #gv = [0.0f64; #kk];));
         for (r, &e) in block.rhs.iter().enumerate() {
             let rl = index(r);
-            entries.push(e);
-            targets.push(quote!(#gv[#rl]));
+            if !g.as_number(e).is_some_and(|v| v.is_zero()) {
+                entries.push(e);
+                targets.push(quote!(#gv[#rl]));
+            }
             for c in 0..k {
-                entries.push(block.matrix[r * k + c]);
+                let entry = block.matrix[r * k + c];
+                if g.as_number(entry).is_some_and(|v| v.is_zero()) {
+                    continue;
+                }
+                entries.push(entry);
                 let cl = index(c);
                 targets.push(quote!(#m[#rl][#cl]));
             }
@@ -365,12 +371,20 @@ pub fn expand(
         let (m, gv) = (format_ident!("mass{}", b), format_ident!("rhs{}", b));
         let kk = index(k);
         block_setup.extend(quote!(let mut #m = [[0.0f64; #kk]; #kk]; let mut #gv = [0.0f64; #kk];));
+        // The arrays start at zero: zero entries are not written.
+        let is_zero = |g: &Graph, e: Id| g.as_number(e).is_some_and(|v| v.is_zero());
         for (r, &e) in block.rhs.iter().enumerate() {
-            outputs.push(e);
             let rl = index(r);
-            targets.push(quote!(#gv[#rl]));
+            if !is_zero(g, e) {
+                outputs.push(e);
+                targets.push(quote!(#gv[#rl]));
+            }
             for c in 0..k {
-                outputs.push(block.matrix[r * k + c]);
+                let entry = block.matrix[r * k + c];
+                if is_zero(g, entry) {
+                    continue;
+                }
+                outputs.push(entry);
                 let cl = index(c);
                 targets.push(quote!(#m[#rl][#cl]));
             }

@@ -144,6 +144,19 @@ pub fn solve_unknowns(
         // Declaration order reads best; the solve pivots anyway.
         rows.sort_unstable();
         cols.sort_unstable();
+        if rows.len() <= SYMBOLIC_BLOCK {
+            let matrix: Vec<Vec<Id>> = rows
+                .iter()
+                .map(|&i| cols.iter().map(|&j| entry(i, j).unwrap_or(zero)).collect())
+                .collect();
+            let b: Vec<Id> = rows.iter().map(|&i| rhs[i]).collect();
+            if let Some(w) = solve_symbolic(g, matrix, b)? {
+                for (k, &j) in cols.iter().enumerate() {
+                    symbolic[j] = Some(w[k]);
+                }
+                continue;
+            }
+        }
         let b = blocks.len();
         for (k, &j) in cols.iter().enumerate() {
             block_of[j] = Some((b, k));
@@ -177,6 +190,70 @@ pub fn solve_unknowns(
         block_of,
         blocks,
     })
+}
+
+/// Blocks up to this size are solved symbolically: no run-time LU, an
+/// analytic Jacobian, and Taylor recurrences for the index-1 form of a
+/// small mechanism (the pendulum's KKT system is 3 × 3).
+const SYMBOLIC_BLOCK: usize = 3;
+
+/// How safe an expression is as a pivot: a non-zero number, then an
+/// expression of parameters only, then one that depends on the state.
+fn pivot_class(g: &Graph, e: Id) -> Option<u8> {
+    if let Some(n) = g.as_number(e) {
+        return (!n.is_zero()).then_some(0);
+    }
+    let state_free = g
+        .free_symbols(e)
+        .iter()
+        .all(|&s| matches!(g.symbol(s).kind, crate::SymbolKind::Parameter));
+    Some(if state_free { 1 } else { 2 })
+}
+
+/// Gaussian elimination on expressions, each column's pivot the safest
+/// entry (constants, then parameters, then the rest; a state-dependent
+/// pivot is the Schur complement G M⁻¹ Gᵀ of a mechanism, regular where
+/// the constraints are independent). `None` when a column has no
+/// structurally non-zero pivot left.
+fn solve_symbolic(
+    g: &mut Graph,
+    mut a: Vec<Vec<Id>>,
+    mut b: Vec<Id>,
+) -> crate::Result<Option<Vec<Id>>> {
+    let n = a.len();
+    for col in 0..n {
+        let best = (col..n)
+            .filter_map(|r| pivot_class(g, a[r][col]).map(|c| (c, r)))
+            .min();
+        let Some((_, pivot)) = best else {
+            return Ok(None);
+        };
+        a.swap(col, pivot);
+        b.swap(col, pivot);
+        for row in col + 1..n {
+            if g.as_number(a[row][col]).is_some_and(|v| v.is_zero()) {
+                continue;
+            }
+            let factor = g.div(a[row][col], a[col][col])?;
+            for c in col + 1..n {
+                let t = g.mul(factor, a[col][c])?;
+                a[row][c] = g.sub(a[row][c], t)?;
+            }
+            let t = g.mul(factor, b[col])?;
+            b[row] = g.sub(b[row], t)?;
+            a[row][col] = g.zero();
+        }
+    }
+    let mut w = vec![g.zero(); n];
+    for row in (0..n).rev() {
+        let mut acc = b[row];
+        for c in row + 1..n {
+            let t = g.mul(a[row][c], w[c])?;
+            acc = g.sub(acc, t)?;
+        }
+        w[row] = g.div(acc, a[row][row])?;
+    }
+    Ok(Some(w))
 }
 
 /// The equations grouped into strongly connected components of "equation
