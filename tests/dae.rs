@@ -805,22 +805,10 @@ fn a_knife_edge_follows_its_closed_form() {
     }
 }
 
-/// The pendulum with the Taylor method's tape: its 3 × 3 KKT system is
-/// solved symbolically, so the index-1 form has Taylor recurrences.
-#[dae_model(taylor = 1, unroll = [12, 16])]
-fn pendulum_for_taylor() {
-    let g = param(1.0);
-    let x = state(1.0);
-    let y = state(0.0);
-    let u = state(0.0);
-    let v = state(1.0);
-    let lambda = algebraic(1.0);
-    der(x) == u;
-    der(y) == v;
-    der(u) == -lambda * x;
-    der(v) == -lambda * y - g;
-    constraint(x * x + y * y - 1.0);
-}
+include!("models/pendulum.rs");
+// With the Taylor method's tape: the 3 × 3 KKT system is solved
+// symbolically, so the index-1 form has Taylor recurrences.
+cash_pendulum_model!(taylor = 1, unroll = [12, 16]);
 
 #[test]
 fn the_taylor_method_integrates_the_index_1_form_with_projection() {
@@ -831,7 +819,7 @@ fn the_taylor_method_integrates_the_index_1_form_with_projection() {
                 .rtol(tol)
                 .atol(tol)
                 .taylor_compact(compact);
-            let sol = PendulumForTaylor::default()
+            let sol = CashPendulum::default()
                 .simulate(0.0, 10.0, &opts)
                 .unwrap();
             let e = pendul3_errors(&sol, 10.0);

@@ -48,6 +48,23 @@ include!("../../tests/models/outer_solar_system.rs");
 outer_solar_system_model!(taylor = 1, unroll = [12, 15, 19]);
 
 include!("../../tests/models/stiff.rs");
+include!("../../tests/models/pendulum.rs");
+cash_pendulum_model!(
+    taylor = 1,
+    unroll = [6, 7, 8, 10, 11, 12, 13, 14, 15, 16, 18, 19]
+);
+
+/// Robertson as a semi-explicit index-1 DAE (the third equation replaced
+/// by the conservation law): the algebraic equation is solved for y3.
+#[dae_model]
+fn robertson_dae() {
+    let y1 = state(1.0);
+    let y2 = state(0.0);
+    let y3 = algebraic(0.0);
+    der(y1) == -0.04 * y1 + 1e4 * y2 * y3;
+    der(y2) == 0.04 * y1 - 1e4 * y2 * y3 - 3e7 * y2 * y2;
+    0.0 == y1 + y2 + y3 - 1.0;
+}
 
 /// The outer solar system at t = 20 000 days in the model's state order
 /// (x, y, z of the six bodies, then u, v, w): the recomputed 38-digit
@@ -381,6 +398,126 @@ mod diffsol_peer {
     }
 }
 
+/// One run of a pendulum form: the error in (x, y, u, v) at t = 10 against
+/// Cash's recomputed reference, the time, and the steps taken.
+fn pendulum_run<M: Model + Clone + Send + Sync + 'static>(
+    model: &M,
+    method: Method,
+    tol: f64,
+    cartesian: &dyn Fn(&[f64]) -> [f64; 4],
+) -> (Point, usize) {
+    let options = Options::new()
+        .method(method)
+        .rtol(tol)
+        .atol(tol)
+        .dense_output(false);
+    let (d, sol) = time(|| model.simulate(0.0, 10.0, &options));
+    let (error, steps) = match sol {
+        Ok(sol) => {
+            let got = cartesian(sol.state(sol.times().len() - 1).unwrap_or(&[0.0; 4]));
+            (
+                mixed_error(&got, &CASH_PENDULUM_AT_10[..4]),
+                sol.stats().steps,
+            )
+        }
+        Err(_) => (f64::INFINITY, 0),
+    };
+    (
+        Point {
+            tol,
+            error,
+            seconds: d.as_secs_f64(),
+        },
+        steps,
+    )
+}
+
+/// The index-3 pendulum as a DAE (index-1 form with projection) against
+/// its angle ODE, same method and tolerance: the price of the DAE form.
+fn dae_against_ode() {
+    println!("\n### Cash's index-3 pendulum to t = 10: the DAE form against the angle ODE\n");
+    println!("| method | tol | DAE error | DAE time (ms) | DAE steps | DAE µs/step | ODE error | ODE time (ms) | ODE steps | ODE µs/step | time ratio |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    let dae = CashPendulum::default();
+    let ode = CashPendulumAngle::default();
+    for (name, method) in [
+        ("DOP853", Method::Dop853),
+        ("Taylor", Method::Taylor),
+        ("RADAU5", Method::Radau5),
+    ] {
+        for tol in [1e-6, 1e-9, 1e-12] {
+            let (a, sa) = pendulum_run(&dae, method, tol, &|s| [s[0], s[1], s[2], s[3]]);
+            let (b, sb) = pendulum_run(&ode, method, tol, &|s| {
+                let (theta, omega) = (s[0], s[1]);
+                [
+                    theta.cos(),
+                    theta.sin(),
+                    -omega * theta.sin(),
+                    omega * theta.cos(),
+                ]
+            });
+            let per_step = |p: &Point, n: usize| p.seconds * 1e6 / n.max(1) as f64;
+            println!(
+                "| {name} | {tol:.0e} | {:.2e} | {:.3} | {sa} | {:.2} | {:.2e} | {:.3} | {sb} | {:.2} | {} |",
+                a.error,
+                a.seconds * 1e3,
+                per_step(&a, sa),
+                b.error,
+                b.seconds * 1e3,
+                per_step(&b, sb),
+                ratio(a.seconds / b.seconds)
+            );
+        }
+    }
+}
+
+/// diffsol's BDF on Robertson as an index-1 DAE with the singular mass
+/// matrix diag(1, 1, 0), its documented way of solving DAEs.
+fn diffsol_robertson_dae(tol: f64, atol: f64) -> Point {
+    use diffsol::{NalgebraLU, NalgebraMat, OdeBuilder, OdeSolverMethod};
+    let run = || -> Option<Vec<f64>> {
+        let p = OdeBuilder::<NalgebraMat<f64>>::new()
+            .rtol(tol)
+            .atol([atol])
+            .rhs_implicit(
+                |x, _p, _t, y| {
+                    y[0] = -0.04 * x[0] + 1e4 * x[1] * x[2];
+                    y[1] = 0.04 * x[0] - 1e4 * x[1] * x[2] - 3e7 * x[1] * x[1];
+                    y[2] = x[0] + x[1] + x[2] - 1.0;
+                },
+                |x, _p, _t, v, y| {
+                    y[0] = -0.04 * v[0] + 1e4 * v[1] * x[2] + 1e4 * x[1] * v[2];
+                    y[1] = 0.04 * v[0] - 1e4 * v[1] * x[2] - 1e4 * x[1] * v[2] - 6e7 * x[1] * v[1];
+                    y[2] = v[0] + v[1] + v[2];
+                },
+            )
+            .mass(|v, _p, _t, beta, y| {
+                y[0] = v[0] + beta * y[0];
+                y[1] = v[1] + beta * y[1];
+                y[2] = beta * y[2];
+            })
+            .init(
+                |_p, _t, y| {
+                    y[0] = 1.0;
+                    y[1] = 0.0;
+                    y[2] = 0.0;
+                },
+                3,
+            )
+            .build()
+            .ok()?;
+        let mut s = p.bdf::<NalgebraLU<f64>>().ok()?;
+        s.solve(1e11).ok()?;
+        Some((0..3).map(|i| s.state().y[i]).collect())
+    };
+    let (d, y) = time(run);
+    Point {
+        tol,
+        error: y.map_or(f64::INFINITY, |y| mixed_error(&y, &ROBER_AT_1E11)),
+        seconds: d.as_secs_f64(),
+    }
+}
+
 /// SciPy or heyoka through peer.py: `None` when Python or the package is missing.
 fn python_peer(problem: &str, solver: &str, tol: f64, atol: Option<f64>) -> Option<Point> {
     let script = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/peers/peer.py");
@@ -487,6 +624,10 @@ fn report(problem: &str, ours: &[(&str, Vec<Point>)], peers: &[(&str, Option<Vec
 
 fn main() {
     let python = !std::env::args().any(|a| a == "--no-python");
+    if std::env::args().any(|a| a == "--dae-only") {
+        dae_section(&(4..=10).map(|k| 10f64.powi(-k)).collect::<Vec<_>>());
+        return;
+    }
     let collect_python = |problem: &str,
                           solver: &str,
                           tols: &[f64],
@@ -859,5 +1000,53 @@ fn main() {
         "HIRES to t = 321.8122 (test set hires)",
         &hires_ours,
         &hires_peers,
+    );
+
+    dae_section(&stiff_tols);
+}
+
+/// The DAE forms: the pendulum against its ODE, Robertson's index-1 DAE
+/// against diffsol's mass-matrix BDF. `--dae-only` runs just this.
+fn dae_section(stiff_tols: &[f64]) {
+    dae_against_ode();
+    let rd = RobertsonDae::default();
+    let rober_dae_ours = vec![(
+        "daegen RADAU5 (index-1 DAE, y3 solved symbolically)",
+        stiff_tols
+            .iter()
+            .map(|&t| {
+                let options = Options::new().method(Method::Radau5).rtol(t).atol(1e-6 * t);
+                let (d, sol) = time(|| rd.simulate(0.0, 1e11, &options));
+                let error = match sol {
+                    Ok(sol) => {
+                        let got: Vec<f64> = ["y1", "y2", "y3"]
+                            .iter()
+                            .map(|n| sol.last(n).unwrap_or(f64::NAN))
+                            .collect();
+                        mixed_error(&got, &ROBER_AT_1E11)
+                    }
+                    Err(_) => f64::INFINITY,
+                };
+                Point {
+                    tol: t,
+                    error,
+                    seconds: d.as_secs_f64(),
+                }
+            })
+            .collect(),
+    )];
+    let rober_dae_peers = vec![(
+        "diffsol BDF (mass matrix)",
+        Some(
+            stiff_tols
+                .iter()
+                .map(|&t| diffsol_robertson_dae(t, 1e-6 * t))
+                .collect(),
+        ),
+    )];
+    report(
+        "Robertson as an index-1 DAE to t = 1e11, atol = 1e-6·rtol",
+        &rober_dae_ours,
+        &rober_dae_peers,
     );
 }
