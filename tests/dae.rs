@@ -819,9 +819,7 @@ fn the_taylor_method_integrates_the_index_1_form_with_projection() {
                 .rtol(tol)
                 .atol(tol)
                 .taylor_compact(compact);
-            let sol = CashPendulum::default()
-                .simulate(0.0, 10.0, &opts)
-                .unwrap();
+            let sol = CashPendulum::default().simulate(0.0, 10.0, &opts).unwrap();
             let e = pendul3_errors(&sol, 10.0);
             // 10 × tol at t = 1, and the global error of a period at t = 10.
             assert!(e[0] <= 10.0 * tol, "tol {tol:e}: error {:e} at t = 1", e[0]);
