@@ -22,12 +22,17 @@ impl RealLu {
 
     /// Factors `shift·I − J` (J row-major). `false` when a pivot is zero.
     pub fn factor_shifted(&mut self, shift: f64, jacobian: &[f64]) -> bool {
+        self.factor_shifted_mass(shift, &[], jacobian)
+    }
+
+    /// Factors `shift·M − J` for a diagonal mass matrix `M` (empty: I).
+    pub fn factor_shifted_mass(&mut self, shift: f64, mass: &[f64], jacobian: &[f64]) -> bool {
         let n = self.n;
         for (dst, src) in self.a.iter_mut().zip(jacobian) {
             *dst = -src;
         }
         for i in 0..n {
-            self.a[i * n + i] += shift;
+            self.a[i * n + i] += shift * mass.get(i).copied().unwrap_or(1.0);
         }
         self.factor()
     }
@@ -104,14 +109,26 @@ impl ComplexLu {
 
     /// Factors `(α + iβ)·I − J`. `false` when a pivot is zero.
     pub fn factor_shifted(&mut self, alpha: f64, beta: f64, jacobian: &[f64]) -> bool {
+        self.factor_shifted_mass(alpha, beta, &[], jacobian)
+    }
+
+    /// Factors `(α + iβ)·M − J` for a diagonal mass matrix `M` (empty: I).
+    pub fn factor_shifted_mass(
+        &mut self,
+        alpha: f64,
+        beta: f64,
+        mass: &[f64],
+        jacobian: &[f64],
+    ) -> bool {
         let n = self.n;
         for (dst, src) in self.re.iter_mut().zip(jacobian) {
             *dst = -src;
         }
         self.im.iter_mut().for_each(|v| *v = 0.0);
         for i in 0..n {
-            self.re[i * n + i] += alpha;
-            self.im[i * n + i] = beta;
+            let m = mass.get(i).copied().unwrap_or(1.0);
+            self.re[i * n + i] += alpha * m;
+            self.im[i * n + i] = beta * m;
         }
         for col in 0..n {
             let magnitude = |k: usize| self.re[k * n + col].hypot(self.im[k * n + col]);

@@ -199,6 +199,16 @@ pub trait Model {
     /// (empty for an ODE): the runtime projects onto them after each step.
     const CONSTRAINTS: &'static [ConstraintInfo] = &[];
 
+    /// The diagonal of a singular mass matrix `M` in `M y' = f(t, y)`: 1 for
+    /// a differential component, 0 for an algebraic one; empty for `M = I`.
+    /// Only RADAU5 integrates such a model (the Gear–Gupta–Leimkuhler form
+    /// of a mechanism, a semi-explicit index-1 DAE).
+    const MASS: &'static [f64] = &[];
+
+    /// Components that are index-2 variables of a mass-matrix model (their
+    /// error is measured relative to the step, as in `radau5.f`).
+    const INDEX2_COMPONENTS: &'static [usize] = &[];
+
     /// States whose initial values consistent initialization keeps
     /// (`state(x0).fixed()`); the others are guesses.
     const FIXED_STATES: &'static [usize] = &[];

@@ -148,6 +148,20 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     }
     // The initial state, checked once for every method, then made
     // consistent with the constraints of a DAE.
+    // A singular mass matrix: only RADAU5 integrates it (Auto picks it).
+    if !M::MASS.is_empty() && !matches!(options.method, Method::Radau5 | Method::Auto) {
+        return Err(Error::InvalidOptions {
+            message: format!(
+                "{} has a singular mass matrix (algebraic components {}): integrate it with Method::Radau5 (or Method::Auto)",
+                M::INFO.name,
+                (0..M::STATES)
+                    .filter(|&i| M::MASS.get(i) == Some(&0.0))
+                    .map(|i| M::INFO.states[i])
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        });
+    }
     let solution = Solution::new(model, 1024);
     let mut y0 = y0.to_vec();
     if let Some(i) = y0.iter().position(|v| !v.is_finite()) {
@@ -165,6 +179,11 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     }
     solution.push(t0, &y0);
     match options.method {
+        Method::Auto if !M::MASS.is_empty() => {
+            let mut solution = solution;
+            solution.stats_mut().method = "Auto: Radau5 (singular mass matrix)";
+            radau5::integrate(model, t0, t1, &y0, options, solution)
+        }
         Method::Auto => {
             // An explicit pair watches for stiffness (Hairer's test) and hands
             // over to RADAU5 from the point where the problem turned stiff.
