@@ -832,3 +832,76 @@ fn the_taylor_method_integrates_the_index_1_form_with_projection() {
         }
     }
 }
+
+#[test]
+fn the_gear_gupta_leimkuhler_form_with_radau5_matches_the_references() {
+    // Cash's pendulum: w = (x, y, u, v, λ, μ), index 2, no projection.
+    let names = CashPendulumMassForm::INFO.states;
+    assert_eq!(names, &["x", "y", "u", "v", "lambda", "mu[0]"]);
+    assert_eq!(CashPendulumMassForm::MASS, &[1.0, 1.0, 1.0, 1.0, 0.0, 0.0]);
+    for tol in [1e-6, 1e-8, 1e-10] {
+        let opts = Options::new()
+            .method(Method::Radau5)
+            .rtol(tol)
+            .atol(tol)
+            .formulation(Formulation::MassMatrix);
+        let sol = CashPendulum::default().simulate(0.0, 10.0, &opts).unwrap();
+        for (t, reference) in &PENDUL3[..2] {
+            let e = ["x", "y", "u", "v"]
+                .iter()
+                .zip(reference)
+                .map(|(n, r)| (sol.at(*t, n).unwrap() - r).abs())
+                .fold(0.0, f64::max);
+            let bound = if *t == 1.0 { 20.0 } else { 1000.0 } * tol;
+            assert!(e <= bound, "tol {tol:e}, t = {t}: error {e:e}");
+        }
+        let mu = (0..sol.times().len())
+            .map(|k| sol.state(k).unwrap()[5].abs())
+            .fold(0.0, f64::max);
+        let h_mean = 10.0 / sol.stats().steps as f64;
+        assert!(mu <= 1000.0 * tol / h_mean, "max |μ| = {mu:e}");
+    }
+    // The slider-crank: four joint forces, four multipliers.
+    assert_eq!(SliderCrankMassForm::STATES, 18);
+    let opts = Options::new()
+        .method(Method::Radau5)
+        .rtol(1e-9)
+        .atol(1e-9)
+        .formulation(Formulation::MassMatrix);
+    let sol = SliderCrank::default().simulate(0.0, 2.0, &opts).unwrap();
+    let s0 = sol.state(0).unwrap();
+    let reference = SliderCrankAngle {
+        phi0: s0[4],
+        ..SliderCrankAngle::default()
+    }
+    .simulate(
+        0.0,
+        2.0,
+        &Options::new()
+            .method(Method::Dop853)
+            .rtol(1e-13)
+            .atol(1e-13),
+    )
+    .unwrap();
+    for t in [0.5, 1.0, 2.0] {
+        let (phi, theta) = (
+            reference.at(t, "phi").unwrap(),
+            sol.at(t, "theta1").unwrap(),
+        );
+        assert!(
+            (theta - phi).abs() <= 1e-6,
+            "t = {t}: θ1 = {theta}, φ = {phi}"
+        );
+    }
+    // Other methods are refused with a message that says what to do.
+    let err = CashPendulum::default()
+        .simulate(
+            0.0,
+            1.0,
+            &Options::new()
+                .method(Method::Dop853)
+                .formulation(Formulation::MassMatrix),
+        )
+        .unwrap_err();
+    assert!(err.to_string().contains("Method::Radau5"), "{err}");
+}

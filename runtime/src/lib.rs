@@ -31,6 +31,6 @@ pub use model::{
     ConstraintInfo, EvalError, EventDirection, EventInfo, Model, ModelInfo, ProjectionLevel,
     StateVector,
 };
-pub use options::{Method, Options};
+pub use options::{Formulation, Method, Options};
 pub use simulate::{simulate, simulate_from};
 pub use solution::{EventHit, Solution, Stats};

@@ -233,6 +233,20 @@ pub trait Model {
     /// (a singular block), which cannot happen at a point the run accepted.
     fn output(&self, index: usize, t: f64, y: &[f64]) -> f64;
 
+    /// Integrates the model's mass-matrix form (generated for DAEs whose
+    /// differential equations solve symbolically) from the consistent
+    /// state `y0` with RADAU5; `None` when the model has none.
+    fn simulate_mass_form(
+        &self,
+        t0: f64,
+        y0: &[f64],
+        t1: f64,
+        options: &crate::Options,
+    ) -> Option<Result<crate::Solution, crate::Error>> {
+        let _ = (t0, y0, t1, options);
+        None
+    }
+
     /// Integrates from `t0` to `t1`; see [`crate::Options`] and [`crate::Solution`].
     fn simulate(
         &self,

@@ -55,6 +55,22 @@ pub struct Options {
     pub(crate) max_steps: usize,
     pub(crate) taylor_compact: bool,
     pub(crate) dense_output: bool,
+    pub(crate) formulation: Formulation,
+}
+
+/// How a DAE is integrated.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Formulation {
+    /// The index-1 form (constraints differentiated until they determine
+    /// the unknowns) with any method, projected onto the constraints after
+    /// every step. The default.
+    #[default]
+    IndexOneProjected,
+    /// The mass-matrix form with RADAU5: the Gear–Gupta–Leimkuhler index-2
+    /// form of a mechanism (no projection; for stiff mechanisms), or a
+    /// semi-explicit index-1 DAE as written. The solution's states are the
+    /// model's, then the algebraic variables, then the multipliers `mu[k]`.
+    MassMatrix,
 }
 
 impl Default for Options {
@@ -70,6 +86,7 @@ impl Default for Options {
             max_steps: 10_000_000,
             taylor_compact: false,
             dense_output: true,
+            formulation: Formulation::IndexOneProjected,
         }
     }
 }
@@ -154,6 +171,14 @@ impl Options {
     pub fn dense_output(self, dense_output: bool) -> Options {
         Options {
             dense_output,
+            ..self
+        }
+    }
+
+    /// How a DAE is integrated (see [`Formulation`]); ODEs ignore it.
+    pub fn formulation(self, formulation: Formulation) -> Options {
+        Options {
+            formulation,
             ..self
         }
     }

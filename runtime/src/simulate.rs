@@ -172,6 +172,24 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
         });
     }
     let mut solution = crate::projection::consistent_initial_values(model, t0, &mut y0, solution)?;
+    if options.formulation == crate::options::Formulation::MassMatrix && M::MASS.is_empty() {
+        if M::INFO.algebraics.is_empty() {
+            // An ODE has no other form: the option does not apply.
+        } else {
+            let mass_options = options
+                .clone()
+                .formulation(crate::options::Formulation::IndexOneProjected);
+            return match model.simulate_mass_form(t0, &y0, t1, &mass_options) {
+                Some(result) => result,
+                None => Err(Error::InvalidOptions {
+                    message: format!(
+                        "{} has no mass-matrix form (its differential equations do not solve symbolically for the highest derivatives, or a constraint needs more than two differentiations): use Formulation::IndexOneProjected",
+                        M::INFO.name
+                    ),
+                }),
+            };
+        }
+    }
     if let Some(mut p) = crate::projection::Projector::new(model) {
         if let Ok(r) = p.project(t0, &mut y0, 0, None) {
             solution.note_constraint_residual(r);

@@ -585,12 +585,40 @@ pub fn expand(
         )?,
         None => TokenStream::new(),
     };
+    // Last, so its partial derivatives cannot change the code above.
+    let (mass_form_type, mass_form_method) = match super::mass_form::mass_form(&mut ir.graph, sys)?
+    {
+        Some(form) => {
+            let form_layout = Layout {
+                slot_of: form
+                    .components
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &s)| (s, i))
+                    .collect(),
+                block_of: Default::default(),
+                taylor_of: Default::default(),
+            };
+            let params: Vec<syn::Ident> = ir.params.iter().map(|p| p.ident.clone()).collect();
+            super::mass_form::emit_mass_form(
+                &mut ir.graph,
+                &form,
+                &name,
+                &ir.vis,
+                &params,
+                &|g, ids, assign| program(g, &form_layout, ids, assign),
+            )?
+        }
+        None => (TokenStream::new(), TokenStream::new()),
+    };
     let info = info(ir, sys);
     let model_index = index(sys.index);
     let struct_and_default = struct_and_default(ir);
     let n_lit = index(n);
     Ok(quote! {
         #struct_and_default
+
+        #mass_form_type
 
         #[allow(unused_variables, unused_mut, clippy::all, clippy::pedantic)]
         impl ::daegen::Model for #name {
@@ -626,6 +654,8 @@ pub fn expand(
             #event_rates_method
 
             #constraint_methods
+
+            #mass_form_method
 
             #[inline]
             fn output(&self, index: usize, t: f64, y: &[f64]) -> f64 {

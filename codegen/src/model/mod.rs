@@ -13,6 +13,7 @@ pub mod index_reduction;
 pub mod ir;
 pub mod linear_pencil;
 pub mod lower;
+pub mod mass_form;
 pub mod names;
 pub mod reduce;
 pub mod solve_unknowns;

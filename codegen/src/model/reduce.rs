@@ -63,6 +63,14 @@ pub struct FirstOrder {
     pub index: usize,
     /// Unknowns solved at run time: symbol, block, row.
     pub block_unknowns: Vec<(SymbolId, usize, usize)>,
+    /// The user's equations as residuals `lhs − rhs`, before index reduction.
+    pub residuals: Vec<Id>,
+    /// How often index reduction differentiated each equation.
+    pub differentiations: Vec<usize>,
+    /// The highest derivative of each state.
+    pub highest: Vec<SymbolId>,
+    /// The algebraic variables.
+    pub algebraic_symbols: Vec<SymbolId>,
     /// States in solution order.
     pub slots: Vec<Slot>,
     /// `dy_i` for each slot.
@@ -322,6 +330,10 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         invariants: reduction.invariants,
         index: reduction.index,
         block_unknowns,
+        residuals,
+        differentiations: reduction.differentiations,
+        highest: z_symbols[..n_states].to_vec(),
+        algebraic_symbols,
     })
 }
 
