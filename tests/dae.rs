@@ -905,3 +905,47 @@ fn the_gear_gupta_leimkuhler_form_with_radau5_matches_the_references() {
         .unwrap_err();
     assert!(err.to_string().contains("Method::Radau5"), "{err}");
 }
+
+/// An index-1 DAE whose algebraic equation is nonlinear in its variable:
+/// y' = −z, 0 = z² − y, z > 0, so y = (1 − t/2)², z = 1 − t/2. It has no
+/// index-1 form here; the model is its own mass-matrix form (RADAU5).
+#[dae_model]
+fn square_root_decay() {
+    let y = state(1.0);
+    let z = algebraic(0.9);
+    der(y) == -z;
+    z * z == y;
+    let rate = output(-z);
+}
+
+#[test]
+fn an_algebraic_equation_nonlinear_in_its_variable_runs_in_mass_matrix_form() {
+    assert_eq!(<SquareRootDecay as Model>::INDEX, 1);
+    assert_eq!(SquareRootDecay::INFO.states, &["y", "z"]);
+    assert_eq!(SquareRootDecay::MASS, &[1.0, 0.0]);
+    for tol in [1e-6, 1e-9] {
+        let opts = Options::new().rtol(tol).atol(tol);
+        let sol = SquareRootDecay::default()
+            .simulate(0.0, 1.5, &opts)
+            .unwrap();
+        assert!(
+            sol.stats().method.contains("Radau5"),
+            "{}",
+            sol.stats().method
+        );
+        // The guess 0.9 was corrected to the consistent z(0) = 1.
+        assert!((sol.state(0).unwrap()[1] - 1.0).abs() <= 1e-15);
+        for t in [0.5, 1.0, 1.5] {
+            let (y, z) = ((1.0 - t / 2.0) * (1.0 - t / 2.0), 1.0 - t / 2.0);
+            let e = (sol.at(t, "y").unwrap() - y)
+                .abs()
+                .max((sol.at(t, "z").unwrap() - z).abs());
+            assert!(e <= 10.0 * tol, "tol {tol:e}, t = {t}: error {e:e}");
+            assert!((sol.at(t, "rate").unwrap() + sol.at(t, "z").unwrap()).abs() <= 1e-15);
+        }
+    }
+    let err = SquareRootDecay::default()
+        .simulate(0.0, 1.0, &Options::new().method(Method::Dop853))
+        .unwrap_err();
+    assert!(err.to_string().contains("Method::Radau5"), "{err}");
+}

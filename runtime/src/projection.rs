@@ -242,8 +242,9 @@ fn rank(a: &mut [f64], rows: usize, cols: usize) -> usize {
     rank
 }
 
-/// Solves `a x = b` (`a` symmetric positive semi-definite, `n × n`,
-/// destroyed) by Gaussian elimination with partial pivoting; `Err(row)`
+/// Solves `a x = b` (`n × n`, destroyed; the normal matrices of the
+/// projection are symmetric, but nothing here needs it) by Gaussian
+/// elimination with partial pivoting; `Err(row)`
 /// names the first row whose pivot vanished relative to the matrix.
 fn solve_symmetric(a: &mut [f64], n: usize, b: &mut [f64]) -> Result<(), usize> {
     let scale = (0..n).map(|i| a[i * n + i].abs()).fold(0.0, f64::max);
@@ -371,3 +372,91 @@ macro_rules! project_onto_constraints {
     };
 }
 pub(crate) use project_onto_constraints;
+
+/// Makes the algebraic components of a mass-matrix model consistent at
+/// `t0`: Newton on its algebraic rows `0 = F_a(t0, w)` in the algebraic
+/// components, from the model's guesses (the generated Jacobian, or
+/// forward differences).
+pub(crate) fn consistent_algebraic_components<M: Model>(
+    model: &M,
+    t0: f64,
+    w: &mut [f64],
+    solution: Solution,
+) -> Result<Solution, Error> {
+    let algebraic: Vec<usize> = (0..M::STATES)
+        .filter(|&i| M::MASS.get(i) == Some(&0.0))
+        .collect();
+    let m = algebraic.len();
+    if m == 0 {
+        return Ok(solution);
+    }
+    let n = M::STATES;
+    let (mut f, mut scratch) = (vec![0.0; n], vec![0.0; n]);
+    let mut values = vec![0.0; M::JACOBIAN_PATTERN.len()];
+    let mut jaa = vec![0.0; m * m];
+    let fail = |i: usize, message: String, solution: Solution| Error::Constraint {
+        t: t0,
+        constraint: M::INFO.states[i],
+        level: 0,
+        message,
+        partial: Box::new(solution),
+    };
+    for _ in 0..INITIAL_ITERATIONS {
+        if let Err(cause) = model.rhs(t0, w, &mut f) {
+            return Err(Error::Evaluation {
+                t: t0,
+                cause,
+                partial: Box::new(solution),
+            });
+        }
+        let size = algebraic.iter().fold(1.0f64, |a, &i| a.max(w[i].abs()));
+        let residual = algebraic.iter().fold(0.0f64, |a, &i| a.max(f[i].abs()));
+        if residual <= 4.0 * f64::EPSILON * size {
+            return Ok(solution);
+        }
+        jaa.iter_mut().for_each(|v| *v = 0.0);
+        if model.jacobian(t0, w, &mut values).is_ok() {
+            for (&(r, c), &v) in M::JACOBIAN_PATTERN.iter().zip(&values) {
+                let a = algebraic.iter().position(|&i| i == r);
+                let b = algebraic.iter().position(|&i| i == c);
+                if let (Some(a), Some(b)) = (a, b) {
+                    jaa[a * m + b] = v;
+                }
+            }
+        } else {
+            for (b, &c) in algebraic.iter().enumerate() {
+                let saved = w[c];
+                let delta = (f64::EPSILON * saved.abs().max(1e-5)).sqrt();
+                w[c] = saved + delta;
+                let r = model.rhs(t0, w, &mut scratch);
+                w[c] = saved;
+                if let Err(cause) = r {
+                    return Err(Error::Evaluation {
+                        t: t0,
+                        cause,
+                        partial: Box::new(solution),
+                    });
+                }
+                for (a, &r) in algebraic.iter().enumerate() {
+                    jaa[a * m + b] = (scratch[r] - f[r]) / delta;
+                }
+            }
+        }
+        let mut step: Vec<f64> = algebraic.iter().map(|&i| f[i]).collect();
+        if let Err(a) = solve_symmetric(&mut jaa, m, &mut step) {
+            return Err(fail(
+                algebraic[a],
+                "the algebraic equations are singular in the algebraic variables at the start: the DAE is not of index 1 there".into(),
+                solution,
+            ));
+        }
+        for (k, &i) in algebraic.iter().enumerate() {
+            w[i] -= step[k];
+        }
+    }
+    Err(fail(
+        algebraic[0],
+        format!("the algebraic equations could not be solved for the algebraic variables at the start after {INITIAL_ITERATIONS} Newton iterations: give guesses nearer a solution"),
+        solution,
+    ))
+}

@@ -171,7 +171,9 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
             partial: Box::new(solution),
         });
     }
-    let mut solution = crate::projection::consistent_initial_values(model, t0, &mut y0, solution)?;
+    let solution = crate::projection::consistent_initial_values(model, t0, &mut y0, solution)?;
+    let mut solution =
+        crate::projection::consistent_algebraic_components(model, t0, &mut y0, solution)?;
     if options.formulation == crate::options::Formulation::MassMatrix && M::MASS.is_empty() {
         if M::INFO.algebraics.is_empty() {
             // An ODE has no other form: the option does not apply.

@@ -334,6 +334,9 @@ pub fn expand(
         (t, _) => t,
     };
     let name = type_name(ir);
+    if sys.mass_only {
+        return expand_mass_only(ir, sys);
+    }
     let n = sys.slots.len();
     let slot_of = sys
         .slots
@@ -665,6 +668,67 @@ pub fn expand(
                     _ => f64::NAN,
                 }
             }
+        }
+    })
+}
+
+/// A model whose algebraic equations are nonlinear in the algebraic
+/// variables: its own `Model` implementation is the mass-matrix form,
+/// integrated by RADAU5 (the algebraic variables are states).
+fn expand_mass_only(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenStream> {
+    let name = type_name(ir);
+    let g = &mut ir.graph;
+    let form = super::mass_form::mass_form(g, sys)?.ok_or_else(|| crate::Error::Unsupported {
+        message: "an algebraic equation is nonlinear in the algebraic variables, and the differential equations do not solve symbolically for the highest derivatives: daegen cannot integrate this model yet".into(),
+    })?;
+    let layout = Layout {
+        slot_of: form
+            .components
+            .iter()
+            .enumerate()
+            .map(|(i, &s)| (s, i))
+            .collect(),
+        block_of: Default::default(),
+        taylor_of: Default::default(),
+    };
+    let zero = g.zero();
+    let mut inits: Vec<Id> = sys.slots.iter().map(|s| s.init).collect();
+    inits.extend(ir.algebraics.iter().map(|a| a.init));
+    inits.resize(form.components.len(), zero);
+    let items =
+        super::mass_form::primary_items(g, &form, &inits, &sys.outputs, &|g, ids, assign| {
+            program(g, &layout, ids, assign)
+        })?;
+    let model_index = index(sys.index);
+    let states = &form.names;
+    let struct_and_default = struct_and_default(ir);
+    // The algebraic variables are states here.
+    let name_str = name.to_string();
+    let doc = &ir.doc;
+    let params: Vec<String> = ir.params.iter().map(|p| p.ident.to_string()).collect();
+    let param_docs: Vec<&str> = ir.params.iter().map(|p| p.doc.as_str()).collect();
+    let outputs: Vec<&str> = ir.outputs.iter().map(|o| o.name.as_str()).collect();
+    let output_docs: Vec<&str> = ir.outputs.iter().map(|o| o.doc.as_str()).collect();
+    let equations = index(ir.equations.len());
+    Ok(quote! {
+        #struct_and_default
+
+        #[allow(unused_variables, unused_mut, clippy::all, clippy::pedantic)]
+        impl ::daegen::Model for #name {
+            const INDEX: usize = #model_index;
+            const INFO: ::daegen::ModelInfo = ::daegen::ModelInfo {
+                name: #name_str,
+                doc: #doc,
+                states: &[#(#states),*],
+                parameters: &[#(#params),*],
+                parameter_docs: &[#(#param_docs),*],
+                outputs: &[#(#outputs),*],
+                output_docs: &[#(#output_docs),*],
+                equations: #equations,
+                events: &[],
+                algebraics: &[],
+            };
+            #items
         }
     })
 }

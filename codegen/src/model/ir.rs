@@ -34,6 +34,8 @@ pub struct AlgebraicDecl {
     pub name: String,
     /// Its symbol.
     pub symbol: SymbolId,
+    /// Its initial guess (constants and parameters).
+    pub init: Id,
     /// The declaration, for errors.
     pub origin: TokenStream,
 }

@@ -530,7 +530,7 @@ impl Lower<'_> {
                 if !self.arity(call, "algebraic", 1) {
                     return;
                 }
-                let Some(_) = self.initial_value(&call.args[0]) else {
+                let Some(init) = self.initial_value(&call.args[0]) else {
                     return;
                 };
                 match self.g.algebraic(&name) {
@@ -539,6 +539,7 @@ impl Lower<'_> {
                         self.algebraics.push(AlgebraicDecl {
                             name,
                             symbol,
+                            init,
                             origin,
                         });
                         self.bind(ident, Binding::Algebraic(id));

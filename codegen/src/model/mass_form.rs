@@ -200,17 +200,10 @@ fn perfect_matching(rows: &[Vec<(usize, Id)>], n: usize) -> Option<Vec<usize>> {
     owner.into_iter().collect()
 }
 
-/// The generated `{Name}MassForm` type and what the model needs to reach it.
-pub fn emit_mass_form(
-    g: &mut Graph,
-    form: &MassForm,
-    name: &syn::Ident,
-    vis: &syn::Visibility,
-    params: &[syn::Ident],
-    emit: Emit<'_>,
-) -> crate::Result<(TokenStream, TokenStream)> {
+/// The `Model` items both uses of the form share: sizes, mass, the
+/// right-hand side and its analytic Jacobian.
+fn model_items(g: &mut Graph, form: &MassForm, emit: Emit<'_>) -> crate::Result<TokenStream> {
     let index = Literal::usize_unsuffixed;
-    let form_name = format_ident!("{}MassForm", name);
     let n = index(form.components.len());
     let rhs = emit(g, &form.rows, &|i, v| {
         let i = index(i);
@@ -234,6 +227,90 @@ pub fn emit_mass_form(
         }
     });
     let index2 = form.index2.iter().map(|&i| index(i));
+    Ok(quote! {
+        const STATES: usize = #n;
+        type State = [f64; #n];
+        const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[#(#pattern),*];
+        const MASS: &'static [f64] = &[#(#mass),*];
+        const INDEX2_COMPONENTS: &'static [usize] = &[#(#index2),*];
+        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
+            let (::core::result::Result::Ok(y), ::core::result::Result::Ok(dy)) =
+                (<&[f64; #n]>::try_from(y), <&mut [f64; #n]>::try_from(dy)) else {
+                return ::core::result::Result::Ok(());
+            };
+            #rhs
+            ::core::result::Result::Ok(())
+        }
+        fn jacobian(&self, t: f64, y: &[f64], values: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
+            let (::core::result::Result::Ok(y), ::core::result::Result::Ok(values)) =
+                (<&[f64; #n]>::try_from(y), <&mut [f64; #nnz]>::try_from(values)) else {
+                return ::core::result::Result::Ok(());
+            };
+            #values
+            ::core::result::Result::Ok(())
+        }
+        fn time_derivative(&self, t: f64, y: &[f64], dfdt: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
+            ::core::result::Result::Err(::daegen::EvalError::JacobianUnavailable)
+        }
+    })
+}
+
+/// The items of the model's own `Model` implementation when only the
+/// mass-matrix form exists: initial values (states, then the algebraic
+/// variables' guesses, then μ = 0) and outputs read from the components.
+pub fn primary_items(
+    g: &mut Graph,
+    form: &MassForm,
+    inits: &[Id],
+    outputs: &[Id],
+    emit: Emit<'_>,
+) -> crate::Result<TokenStream> {
+    let index = Literal::usize_unsuffixed;
+    let n = index(form.components.len());
+    let items = model_items(g, form, emit)?;
+    let initial = emit(g, inits, &|i, v| {
+        let i = index(i);
+        quote!(y[#i] = #v;)
+    });
+    let arms: Vec<TokenStream> = outputs
+        .iter()
+        .enumerate()
+        .map(|(k, &o)| {
+            let body = emit(g, &[o], &|_, v| v);
+            let k = index(k);
+            quote!(#k => { #body })
+        })
+        .collect();
+    Ok(quote! {
+        #items
+        fn initial_state(&self, y: &mut [f64]) {
+            let ::core::result::Result::Ok(y) = <&mut [f64; #n]>::try_from(y) else { return };
+            *y = [0.0; #n];
+            #initial
+        }
+        fn output(&self, index: usize, t: f64, y: &[f64]) -> f64 {
+            let ::core::result::Result::Ok(y) = <&[f64; #n]>::try_from(y) else { return f64::NAN };
+            match index {
+                #(#arms)*
+                _ => f64::NAN,
+            }
+        }
+    })
+}
+
+/// The generated `{Name}MassForm` type and what the model needs to reach it.
+pub fn emit_mass_form(
+    g: &mut Graph,
+    form: &MassForm,
+    name: &syn::Ident,
+    vis: &syn::Visibility,
+    params: &[syn::Ident],
+    emit: Emit<'_>,
+) -> crate::Result<(TokenStream, TokenStream)> {
+    let index = Literal::usize_unsuffixed;
+    let form_name = format_ident!("{}MassForm", name);
+    let n = index(form.components.len());
+    let items = model_items(g, form, emit)?;
     let names = &form.names;
     let name_str = form_name.to_string();
     let doc = format!("The mass-matrix form of [`{name}`] for RADAU5 with a singular mass matrix: states, algebraic variables and (for constraints differentiated twice) the Gear–Gupta–Leimkuhler multipliers `mu[k]`, which vanish on the solution.");
@@ -244,37 +321,14 @@ pub fn emit_mass_form(
 
         #[allow(unused_variables, unused_mut, clippy::all, clippy::pedantic)]
         impl ::daegen::Model for #form_name {
-            const STATES: usize = #n;
-            type State = [f64; #n];
             const INDEX: usize = 2;
             const INFO: ::daegen::ModelInfo = ::daegen::ModelInfo {
                 name: #name_str, doc: #doc, states: &[#(#names),*], parameters: &[], parameter_docs: &[],
                 outputs: &[], output_docs: &[], equations: #n, events: &[], algebraics: &[],
             };
-            const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[#(#pattern),*];
-            const MASS: &'static [f64] = &[#(#mass),*];
-            const INDEX2_COMPONENTS: &'static [usize] = &[#(#index2),*];
+            #items
             fn initial_state(&self, y: &mut [f64]) {
                 y.iter_mut().for_each(|v| *v = 0.0);
-            }
-            fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
-                let (::core::result::Result::Ok(y), ::core::result::Result::Ok(dy)) =
-                    (<&[f64; #n]>::try_from(y), <&mut [f64; #n]>::try_from(dy)) else {
-                    return ::core::result::Result::Ok(());
-                };
-                #rhs
-                ::core::result::Result::Ok(())
-            }
-            fn jacobian(&self, t: f64, y: &[f64], values: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
-                let (::core::result::Result::Ok(y), ::core::result::Result::Ok(values)) =
-                    (<&[f64; #n]>::try_from(y), <&mut [f64; #nnz]>::try_from(values)) else {
-                    return ::core::result::Result::Ok(());
-                };
-                #values
-                ::core::result::Result::Ok(())
-            }
-            fn time_derivative(&self, t: f64, y: &[f64], dfdt: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
-                ::core::result::Result::Err(::daegen::EvalError::JacobianUnavailable)
             }
             fn output(&self, index: usize, t: f64, y: &[f64]) -> f64 {
                 f64::NAN

@@ -71,6 +71,9 @@ pub struct FirstOrder {
     pub highest: Vec<SymbolId>,
     /// The algebraic variables.
     pub algebraic_symbols: Vec<SymbolId>,
+    /// Only the mass-matrix form exists (an algebraic equation is
+    /// nonlinear in the algebraic variables): the model is emitted as it.
+    pub mass_only: bool,
     /// States in solution order.
     pub slots: Vec<Slot>,
     /// `dy_i` for each slot.
@@ -185,8 +188,14 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
     let mut e_matrix: Vec<Vec<(usize, Id)>> = Vec::with_capacity(n);
     let z_zero: FxHashMap<SymbolId, Id> = z_symbols.iter().map(|&s| (s, zero)).collect();
     let mut g_vec = Vec::with_capacity(n);
-    for eq in &equations {
+    // An algebraic equation (no derivative, not a differentiated
+    // constraint) nonlinear in the algebraic variables has no index-1 form
+    // here: the model is integrated in its mass-matrix form instead.
+    let mut mass_only = false;
+    for (e, eq) in equations.iter().enumerate() {
         let mut row = Vec::new();
+        let algebraic_equation =
+            reduction.differentiations[e] == 0 && eq.unknowns.iter().all(|&j| j >= n_states);
         for &j in &eq.unknowns {
             let c = g.partial(eq.residual, z_symbols[j]).ok()?;
             if let Some(bad) = g
@@ -194,6 +203,10 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
                 .into_iter()
                 .find(|s| z_index.contains_key(s))
             {
+                if algebraic_equation && ir.events.is_empty() {
+                    mass_only = true;
+                    continue;
+                }
                 let name = g.symbol(bad).name.clone();
                 let message = if ir.algebraics.iter().any(|a| a.symbol == bad) {
                     format!("this equation is not linear in the algebraic variable `{name}`: daegen needs the algebraic variables to enter linearly (Newton on a nonlinear algebraic equation is not there yet); solve the equation for `{name}` by hand or make `{name}` an output")
@@ -215,7 +228,16 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         .iter()
         .map(|&s| g.symbol(s).name.clone())
         .collect();
-    let solved = match super::solve_unknowns::solve_unknowns(g, &e_matrix, &g_vec, &owner, &names) {
+    let solved = if mass_only {
+        Ok(super::solve_unknowns::Solved {
+            symbolic: vec![None; n],
+            block_of: vec![None; n],
+            blocks: Vec::new(),
+        })
+    } else {
+        super::solve_unknowns::solve_unknowns(g, &e_matrix, &g_vec, &owner, &names)
+    };
+    let solved = match solved {
         Ok(solved) => solved,
         Err(super::solve_unknowns::Unsolvable::Dependent { equation, unknowns }) => {
             let names: Vec<String> = unknowns
@@ -263,6 +285,8 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
                 match (solution[i], block_of[i]) {
                     (Some(z), _) => SlotDerivative::Explicit(z),
                     (None, Some((block, row))) => SlotDerivative::Block { block, row },
+                    // The mass-matrix form computes it with λ as a component.
+                    (None, None) if mass_only => SlotDerivative::Explicit(zero),
                     (None, None) => return None,
                 }
             });
@@ -312,6 +336,9 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         .map(|j| match (solution[j], block_of[j]) {
             (Some(v), _) => Some(SlotDerivative::Explicit(v)),
             (None, Some((block, row))) => Some(SlotDerivative::Block { block, row }),
+            (None, None) if mass_only => {
+                Some(SlotDerivative::Explicit(g.symbol_node(z_symbols[j])))
+            }
             (None, None) => None,
         })
         .collect::<Option<Vec<_>>>()?;
@@ -334,6 +361,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         differentiations: reduction.differentiations,
         highest: z_symbols[..n_states].to_vec(),
         algebraic_symbols,
+        mass_only,
     })
 }
 
