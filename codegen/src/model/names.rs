@@ -63,22 +63,25 @@ mod tests {
 }
 
 /// The user's tokens as compact source text for messages and docs:
-/// `der (x) == u` becomes `der(x) == u`.
+/// `der (x) == u` becomes `der(x) == u`, `a * (b + c)` stays as it is.
 pub fn source_text(tokens: &proc_macro2::TokenStream) -> String {
-    let mut s = tokens.to_string();
-    for (from, to) in [
-        (" (", "("),
-        ("( ", "("),
-        (" )", ")"),
-        (" . ", "."),
-        (" [", "["),
-        ("[ ", "["),
-        (" ]", "]"),
-        (" ,", ","),
-    ] {
-        s = s.replace(from, to);
+    let text = tokens.to_string();
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = String::with_capacity(text.len());
+    for (i, &c) in chars.iter().enumerate() {
+        if c == ' ' {
+            let before = out.chars().last();
+            let after = chars.get(i + 1).copied();
+            let call_or_index = matches!(after, Some('(' | '['))
+                && before.is_some_and(|b| b.is_alphanumeric() || b == '_' || b == ')' || b == ']');
+            let drop = call_or_index
+                || matches!(before, Some('(' | '[' | '.'))
+                || matches!(after, Some(')' | ']' | ',' | '.' | ';'));
+            if drop {
+                continue;
+            }
+        }
+        out.push(c);
     }
-    // Keep binary operators readable after a call: `f(x)- 1` cannot occur,
-    // but `-(x)` must stay as written.
-    s.trim_end_matches(';').trim().to_string()
+    out.trim_end_matches(';').trim().to_string()
 }
