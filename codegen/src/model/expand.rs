@@ -62,7 +62,7 @@ fn taylor_method(
     for d in &sys.derivatives {
         match d {
             SlotDerivative::Explicit(e) => f.push(*e),
-            SlotDerivative::Block { .. } => {
+            SlotDerivative::Block { .. } | SlotDerivative::AfterSolve(_) => {
                 return Err(crate::Error::Unsupported {
                     message: "`taylor = p` needs an explicit ODE; this model solves a mass matrix at run time".into(),
                 })
@@ -449,6 +449,32 @@ pub fn expand(
             block_solve.extend(quote!(dy[#i] = #gv[#row];));
         }
     }
+    // Accelerations eliminated from a KKT block, from its multipliers.
+    let after: Vec<(usize, Id)> = sys
+        .derivatives
+        .iter()
+        .enumerate()
+        .filter_map(|(i, d)| match d {
+            SlotDerivative::AfterSolve(e) => Some((i, *e)),
+            _ => None,
+        })
+        .collect();
+    if !after.is_empty() {
+        let after_layout = Layout {
+            slot_of: layout.slot_of.clone(),
+            block_of: sys
+                .block_unknowns
+                .iter()
+                .map(|&(s, b, r)| (s, (b, r)))
+                .collect(),
+            taylor_of: Default::default(),
+        };
+        let ids: Vec<Id> = after.iter().map(|x| x.1).collect();
+        block_solve.extend(program(g, &after_layout, &ids, &|k, v| {
+            let i = index(after[k].0);
+            quote!(dy[#i] = #v;)
+        }));
+    }
     let targets_for_rhs = targets.clone();
     let rhs_body = program(g, &layout, &outputs, &move |i, v| {
         let target = &targets_for_rhs[i];
@@ -461,7 +487,7 @@ pub fn expand(
         .iter()
         .map(|d| match d {
             SlotDerivative::Explicit(e) => Some(*e),
-            SlotDerivative::Block { .. } => None,
+            SlotDerivative::Block { .. } | SlotDerivative::AfterSolve(_) => None,
         })
         .collect();
     // The event functions' rates along the solution, dg/dt = ∂g/∂t + ∇g·f,
@@ -544,7 +570,7 @@ pub fn expand(
     let mut observables = sys.outputs.clone();
     for a in &sys.algebraics {
         match a {
-            SlotDerivative::Explicit(e) => observables.push(*e),
+            SlotDerivative::Explicit(e) | SlotDerivative::AfterSolve(e) => observables.push(*e),
             SlotDerivative::Block { block, row } => {
                 let (_, symbol) = sys
                     .block_unknowns

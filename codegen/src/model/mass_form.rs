@@ -79,10 +79,11 @@ pub fn mass_form(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Option<MassFo
         return Ok(None);
     };
     let names: Vec<String> = z.iter().map(|&s| g.symbol(s).name.clone()).collect();
-    let Ok(solved) = super::solve_unknowns::solve_unknowns(g, &e_rows, &rhs, &owner, &names) else {
+    let Ok(solved) = super::solve_unknowns::solve_unknowns(g, &e_rows, &rhs, &owner, z, &names)
+    else {
         return Ok(None);
     };
-    if !solved.blocks.is_empty() {
+    if !solved.blocks.is_empty() || solved.after_solve.iter().any(Option::is_some) {
         return Ok(None);
     }
     // Slot rows: the next slot, or the solved highest derivative.
@@ -99,7 +100,9 @@ pub fn mass_form(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Option<MassFo
                 None => return Ok(None),
             },
             (None, SlotDerivative::Explicit(e)) => *e,
-            (None, SlotDerivative::Block { .. }) => return Ok(None),
+            (None, SlotDerivative::Block { .. } | SlotDerivative::AfterSolve(_)) => {
+                return Ok(None)
+            }
         };
         rows.push(row);
     }

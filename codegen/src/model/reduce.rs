@@ -31,6 +31,9 @@ pub struct Slot {
 pub enum SlotDerivative {
     /// `f_i` as an expression.
     Explicit(Id),
+    /// An expression of the state and of run-time block unknowns (an
+    /// acceleration eliminated from a KKT block), evaluated after the solve.
+    AfterSolve(Id),
     /// Unknown `row` of mass block `block`, solved at run time.
     Block {
         /// Which block.
@@ -233,9 +236,10 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
             symbolic: vec![None; n],
             block_of: vec![None; n],
             blocks: Vec::new(),
+            after_solve: vec![None; n],
         })
     } else {
-        super::solve_unknowns::solve_unknowns(g, &e_matrix, &g_vec, &owner, &names)
+        super::solve_unknowns::solve_unknowns(g, &e_matrix, &g_vec, &owner, &z_symbols, &names)
     };
     let solved = match solved {
         Ok(solved) => solved,
@@ -258,7 +262,12 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
             return None;
         }
     };
-    let (solution, block_of, mass_blocks) = (solved.symbolic, solved.block_of, solved.blocks);
+    let (solution, block_of, mass_blocks, after_solve) = (
+        solved.symbolic,
+        solved.block_of,
+        solved.blocks,
+        solved.after_solve,
+    );
     // Slots: x, der(x), ..., der^(k-1)(x) per state; dy of the last is z.
     let mut slots = Vec::new();
     let mut derivatives = Vec::new();
@@ -285,6 +294,9 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
                 match (solution[i], block_of[i]) {
                     (Some(z), _) => SlotDerivative::Explicit(z),
                     (None, Some((block, row))) => SlotDerivative::Block { block, row },
+                    (None, None) if after_solve[i].is_some() => {
+                        SlotDerivative::AfterSolve(after_solve[i]?)
+                    }
                     // The mass-matrix form computes it with λ as a component.
                     (None, None) if mass_only => SlotDerivative::Explicit(zero),
                     (None, None) => return None,
@@ -336,6 +348,9 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         .map(|j| match (solution[j], block_of[j]) {
             (Some(v), _) => Some(SlotDerivative::Explicit(v)),
             (None, Some((block, row))) => Some(SlotDerivative::Block { block, row }),
+            (None, None) if after_solve[j].is_some() => {
+                after_solve[j].map(SlotDerivative::AfterSolve)
+            }
             (None, None) if mass_only => {
                 Some(SlotDerivative::Explicit(g.symbol_node(z_symbols[j])))
             }

@@ -8,7 +8,7 @@
 //! its unknowns so each run-time block is solved once per evaluation.
 
 use super::reduce::MassBlock;
-use crate::{Graph, Id, Number};
+use crate::{Graph, Id, Number, SymbolId};
 
 /// The solution: each unknown symbolic, or row `r` of run-time block `b`.
 pub struct Solved {
@@ -18,6 +18,9 @@ pub struct Solved {
     pub block_of: Vec<Option<(usize, usize)>>,
     /// The run-time blocks.
     pub blocks: Vec<MassBlock>,
+    /// Unknowns eliminated from a run-time block: expressions of the state
+    /// and of that block's unknowns, evaluated after its solve.
+    pub after_solve: Vec<Option<Id>>,
 }
 
 /// Why the system could not be solved.
@@ -40,12 +43,14 @@ impl From<crate::Error> for Unsolvable {
 }
 
 /// Solves `E w = g`, `e[i]` the non-zero `(column, coefficient)` of row i,
-/// `owner[j]` the equation matched to unknown j, `names[j]` its name.
+/// `owner[j]` the equation matched to unknown j, `symbols[j]` and
+/// `names[j]` its symbol and name.
 pub fn solve_unknowns(
     g: &mut Graph,
     e: &[Vec<(usize, Id)>],
     rhs: &[Id],
     owner: &[usize],
+    symbols: &[SymbolId],
     names: &[String],
 ) -> Result<Solved, Unsolvable> {
     let n = owner.len();
@@ -139,34 +144,15 @@ pub fn solve_unknowns(
     }
     let mut blocks = Vec::new();
     let mut block_of = vec![None; n];
+    let mut after_solve = vec![None; n];
     let zero = g.zero();
     for (mut rows, mut cols) in groups.into_iter().flatten() {
-        // Declaration order reads best; the solve pivots anyway.
+        // Declaration order reads best; the solves pivot anyway.
         rows.sort_unstable();
         cols.sort_unstable();
-        if rows.len() <= SYMBOLIC_BLOCK {
-            let matrix: Vec<Vec<Id>> = rows
-                .iter()
-                .map(|&i| cols.iter().map(|&j| entry(i, j).unwrap_or(zero)).collect())
-                .collect();
-            let b: Vec<Id> = rows.iter().map(|&i| rhs[i]).collect();
-            if let Some(w) = solve_symbolic(g, matrix, b)? {
-                for (k, &j) in cols.iter().enumerate() {
-                    symbolic[j] = Some(w[k]);
-                }
-                continue;
-            }
-        }
-        let b = blocks.len();
-        for (k, &j) in cols.iter().enumerate() {
-            block_of[j] = Some((b, k));
-        }
-        let mut matrix = Vec::with_capacity(rows.len() * cols.len());
-        let mut rhs_block = Vec::with_capacity(rows.len());
+        // The block's right-hand side: g − Σ E w over the unknowns solved before.
+        let mut b = Vec::with_capacity(rows.len());
         for &i in &rows {
-            for &j in &cols {
-                matrix.push(entry(i, j).unwrap_or(zero));
-            }
             let mut terms = vec![rhs[i]];
             for &(j, c) in &e[i] {
                 if !cols.contains(&j) {
@@ -177,19 +163,134 @@ pub fn solve_unknowns(
                     terms.push(g.negate_terms(t)?);
                 }
             }
-            rhs_block.push(g.sum(&terms)?);
+            b.push(g.sum(&terms)?);
         }
-        blocks.push(MassBlock {
-            unknowns: cols.iter().map(|&j| names[j].clone()).collect(),
-            matrix,
-            rhs: rhs_block,
-        });
+        let mut a: Vec<Vec<Id>> = rows
+            .iter()
+            .map(|&i| cols.iter().map(|&j| entry(i, j).unwrap_or(zero)).collect())
+            .collect();
+        // Unknowns with a constant or parameter pivot (the accelerations of a
+        // mechanism with a constant mass matrix) are eliminated symbolically;
+        // what is left is the Schur complement G M⁻¹ Gᵀ in the multipliers.
+        let eliminated = eliminate_constant_pivots(g, &mut a, &mut b)?;
+        let rest_rows: Vec<usize> = (0..rows.len())
+            .filter(|r| !eliminated.iter().any(|e| e.1 == *r))
+            .collect();
+        let rest_cols: Vec<usize> = (0..cols.len())
+            .filter(|c| !eliminated.iter().any(|e| e.0 == *c))
+            .collect();
+        let mut value: Vec<Option<Id>> = vec![None; cols.len()];
+        let mut at_run_time = false;
+        if !rest_cols.is_empty() {
+            let sub: Vec<Vec<Id>> = rest_rows
+                .iter()
+                .map(|&r| rest_cols.iter().map(|&c| a[r][c]).collect())
+                .collect();
+            let sub_b: Vec<Id> = rest_rows.iter().map(|&r| b[r]).collect();
+            let symbolic_rest = if rest_cols.len() <= SYMBOLIC_BLOCK {
+                solve_symbolic(g, sub.clone(), sub_b.clone())?
+            } else {
+                None
+            };
+            match symbolic_rest {
+                Some(w) => {
+                    for (k, &c) in rest_cols.iter().enumerate() {
+                        value[c] = Some(w[k]);
+                    }
+                }
+                None => {
+                    at_run_time = true;
+                    let block = blocks.len();
+                    for (k, &c) in rest_cols.iter().enumerate() {
+                        block_of[cols[c]] = Some((block, k));
+                        value[c] = Some(g.symbol_node(symbols[cols[c]]));
+                    }
+                    blocks.push(MassBlock {
+                        unknowns: rest_cols.iter().map(|&c| names[cols[c]].clone()).collect(),
+                        matrix: sub.into_iter().flatten().collect(),
+                        rhs: sub_b,
+                    });
+                }
+            }
+        }
+        // Back substitution, last eliminated first.
+        for &(c, r) in eliminated.iter().rev() {
+            let mut terms = vec![b[r]];
+            for (j, &arj) in a[r].iter().enumerate() {
+                if j == c || g.as_number(arj).is_some_and(|v| v.is_zero()) {
+                    continue;
+                }
+                let w = value[j].ok_or_else(|| crate::Error::Unsupported {
+                    message: "back substitution reads an unknown not yet solved".into(),
+                })?;
+                let t = g.mul(arj, w)?;
+                terms.push(g.negate_terms(t)?);
+            }
+            let numerator = g.sum(&terms)?;
+            value[c] = Some(g.div(numerator, a[r][c])?);
+        }
+        for (c, &j) in cols.iter().enumerate() {
+            if block_of[j].is_some() {
+                continue;
+            }
+            if at_run_time {
+                after_solve[j] = value[c];
+            } else {
+                symbolic[j] = value[c];
+            }
+        }
     }
     Ok(Solved {
         symbolic,
         block_of,
         blocks,
+        after_solve,
     })
+}
+
+/// Eliminates, column by column, each unknown that has a pivot which is a
+/// non-zero number or depends on parameters only, from every other row;
+/// returns the eliminated `(column, pivot row)` pairs in order. The rows
+/// and columns left form the Schur complement.
+fn eliminate_constant_pivots(
+    g: &mut Graph,
+    a: &mut [Vec<Id>],
+    b: &mut [Id],
+) -> crate::Result<Vec<(usize, usize)>> {
+    let k = a.len();
+    let mut eliminated: Vec<(usize, usize)> = Vec::new();
+    for c in 0..k {
+        let best = (0..k)
+            .filter(|r| !eliminated.iter().any(|e| e.1 == *r))
+            .filter_map(|r| {
+                pivot_class(g, a[r][c])
+                    .filter(|&class| class <= 1)
+                    .map(|class| (class, r))
+            })
+            .min();
+        let Some((_, r)) = best else { continue };
+        for i in 0..k {
+            if i == r
+                || eliminated.iter().any(|e| e.1 == i)
+                || g.as_number(a[i][c]).is_some_and(|v| v.is_zero())
+            {
+                continue;
+            }
+            let f = g.div(a[i][c], a[r][c])?;
+            for j in 0..k {
+                if j == c || g.as_number(a[r][j]).is_some_and(|v| v.is_zero()) {
+                    continue;
+                }
+                let t = g.mul(f, a[r][j])?;
+                a[i][j] = g.sub(a[i][j], t)?;
+            }
+            let t = g.mul(f, b[r])?;
+            b[i] = g.sub(b[i], t)?;
+            a[i][c] = g.zero();
+        }
+        eliminated.push((c, r));
+    }
+    Ok(eliminated)
 }
 
 /// Blocks up to this size are solved symbolically: no run-time LU, an
