@@ -165,26 +165,7 @@ fn over_a_hundred_seconds_the_dae_drifts_in_energy_like_the_angle_form() {
     }
 }
 
-/// Robertson's kinetics as a semi-explicit index-1 DAE: the third equation
-/// replaced by the conservation law it implies (Hairer–Wanner II §IV.10;
-/// test set `rober`).
-#[dae_model]
-fn robertson_dae() {
-    let y1 = state(1.0);
-    let y2 = state(0.0);
-    let y3 = algebraic(0.0);
-    der(y1) == -0.04 * y1 + 1e4 * y2 * y3;
-    der(y2) == 0.04 * y1 - 1e4 * y2 * y3 - 3e7 * y2 * y2;
-    0.0 == y1 + y2 + y3 - 1.0;
-}
-
-/// Published at t = 1e11 (test set rober.f, ../shared/notes/reference-problems.md §6).
-#[allow(clippy::excessive_precision)]
-const ROBER_AT_1E11: [f64; 3] = [
-    0.2083340149701255e-7,
-    0.8333360770334713e-13,
-    0.9999999791665050,
-];
+include!("models/stiff.rs");
 
 #[test]
 fn robertson_as_an_index_1_dae_reaches_the_published_solution() {

@@ -55,18 +55,6 @@ cash_pendulum_model!(
     unroll = [6, 7, 8, 10, 11, 12, 13, 14, 15, 16, 18, 19]
 );
 
-/// Robertson as a semi-explicit index-1 DAE (the third equation replaced
-/// by the conservation law): the algebraic equation is solved for y3.
-#[dae_model]
-fn robertson_dae() {
-    let y1 = state(1.0);
-    let y2 = state(0.0);
-    let y3 = algebraic(0.0);
-    der(y1) == -0.04 * y1 + 1e4 * y2 * y3;
-    der(y2) == 0.04 * y1 - 1e4 * y2 * y3 - 3e7 * y2 * y2;
-    0.0 == y1 + y2 + y3 - 1.0;
-}
-
 /// The outer solar system at t = 20 000 days in the model's state order
 /// (x, y, z of the six bodies, then u, v, w): the recomputed 38-digit
 /// reference of reference-problems.md §11a.

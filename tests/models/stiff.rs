@@ -27,6 +27,19 @@ fn robertson() {
     der(y3) == 3e7 * y2 * y2;
 }
 
+/// Robertson's kinetics as a semi-explicit index-1 DAE: the third equation
+/// replaced by the conservation law it implies (Hairer–Wanner II §IV.10),
+/// which the macro solves for y3.
+#[dae_model]
+fn robertson_dae() {
+    let y1 = state(1.0);
+    let y2 = state(0.0);
+    let y3 = algebraic(0.0);
+    der(y1) == -0.04 * y1 + 1e4 * y2 * y3;
+    der(y2) == 0.04 * y1 - 1e4 * y2 * y3 - 3e7 * y2 * y2;
+    0.0 == y1 + y2 + y3 - 1.0;
+}
+
 /// Published at t = 1e11 (test set rober.f).
 #[allow(dead_code)]
 const ROBER_AT_1E11: [f64; 3] = [

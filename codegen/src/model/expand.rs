@@ -19,6 +19,19 @@ struct Layout {
 }
 
 impl Layout {
+    /// Component `i` of the state read as `y[i]`.
+    fn of_components(components: &[SymbolId]) -> Layout {
+        Layout {
+            slot_of: components
+                .iter()
+                .enumerate()
+                .map(|(i, &s)| (s, i))
+                .collect(),
+            block_of: Default::default(),
+            taylor_of: Default::default(),
+        }
+    }
+
     fn tokens(&self, g: &Graph, s: SymbolId) -> TokenStream {
         if let Some(&i) = self.slot_of.get(&s) {
             let i = Literal::usize_unsuffixed(i);
@@ -660,16 +673,7 @@ pub fn expand(
     let (mass_form_type, mass_form_method) = match super::mass_form::mass_form(&mut ir.graph, sys)?
     {
         Some(form) => {
-            let form_layout = Layout {
-                slot_of: form
-                    .components
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &s)| (s, i))
-                    .collect(),
-                block_of: Default::default(),
-                taylor_of: Default::default(),
-            };
+            let form_layout = Layout::of_components(&form.components);
             let params: Vec<syn::Ident> = ir.params.iter().map(|p| p.ident.clone()).collect();
             super::mass_form::emit_mass_form(
                 &mut ir.graph,
@@ -749,16 +753,7 @@ fn expand_mass_only(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenSt
     let form = super::mass_form::mass_form(g, sys)?.ok_or_else(|| crate::Error::Unsupported {
         message: "an algebraic equation is nonlinear in the algebraic variables, and the differential equations do not solve symbolically for the highest derivatives: daegen cannot integrate this model yet".into(),
     })?;
-    let layout = Layout {
-        slot_of: form
-            .components
-            .iter()
-            .enumerate()
-            .map(|(i, &s)| (s, i))
-            .collect(),
-        block_of: Default::default(),
-        taylor_of: Default::default(),
-    };
+    let layout = Layout::of_components(&form.components);
     let zero = g.zero();
     let mut inits: Vec<Id> = sys.slots.iter().map(|s| s.init).collect();
     inits.extend(ir.algebraics.iter().map(|a| a.init));
@@ -768,49 +763,37 @@ fn expand_mass_only(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenSt
             program(g, &layout, ids, assign)
         })?;
     let model_index = index(sys.index);
-    let states = &form.names;
     let struct_and_default = struct_and_default(ir, &dae_analysis(ir, sys));
     // The algebraic variables are states here.
-    let name_str = name.to_string();
-    let doc = &ir.doc;
-    let params: Vec<String> = ir.params.iter().map(|p| p.ident.to_string()).collect();
-    let param_docs: Vec<&str> = ir.params.iter().map(|p| p.doc.as_str()).collect();
-    let outputs: Vec<&str> = ir.outputs.iter().map(|o| o.name.as_str()).collect();
-    let output_docs: Vec<&str> = ir.outputs.iter().map(|o| o.doc.as_str()).collect();
-    let equations = index(ir.equations.len());
+    let states: Vec<&str> = form.names.iter().map(String::as_str).collect();
+    let info = info_with(ir, &states, &[]);
     Ok(quote! {
         #struct_and_default
 
         #[allow(unused_variables, unused_mut, clippy::all, clippy::pedantic)]
         impl ::daegen::Model for #name {
             const INDEX: usize = #model_index;
-            const INFO: ::daegen::ModelInfo = ::daegen::ModelInfo {
-                name: #name_str,
-                doc: #doc,
-                states: &[#(#states),*],
-                parameters: &[#(#params),*],
-                parameter_docs: &[#(#param_docs),*],
-                outputs: &[#(#outputs),*],
-                output_docs: &[#(#output_docs),*],
-                equations: #equations,
-                events: &[],
-                algebraics: &[],
-            };
+            const INFO: ::daegen::ModelInfo = #info;
             #items
         }
     })
 }
 
 fn info(ir: &ModelIr, sys: &FirstOrder) -> TokenStream {
+    let states: Vec<&str> = sys.slots.iter().map(|s| s.name.as_str()).collect();
+    let algebraics: Vec<&str> = ir.algebraics.iter().map(|a| a.name.as_str()).collect();
+    info_with(ir, &states, &algebraics)
+}
+
+/// `ModelInfo` with these state and algebraic-variable names.
+fn info_with(ir: &ModelIr, states: &[&str], algebraics: &[&str]) -> TokenStream {
     let name = type_name(ir).to_string();
     let doc = &ir.doc;
-    let states: Vec<&str> = sys.slots.iter().map(|s| s.name.as_str()).collect();
     let params: Vec<String> = ir.params.iter().map(|p| p.ident.to_string()).collect();
     let param_docs: Vec<&str> = ir.params.iter().map(|p| p.doc.as_str()).collect();
     let outputs: Vec<&str> = ir.outputs.iter().map(|o| o.name.as_str()).collect();
     let output_docs: Vec<&str> = ir.outputs.iter().map(|o| o.doc.as_str()).collect();
     let equations = index(ir.equations.len());
-    let algebraics: Vec<&str> = ir.algebraics.iter().map(|a| a.name.as_str()).collect();
     let events = ir.events.iter().map(|e| {
         let name = &e.name;
         let doc = &e.doc;

@@ -88,21 +88,7 @@ pub fn solve_unknowns(
             groups.push(Some((all_rows, all_cols)));
             continue;
         }
-        // g_B − Σ E_BC w_C over the unknowns solved before.
-        let mut b = Vec::with_capacity(rows.len());
-        for &i in &rows {
-            let mut terms = vec![rhs[i]];
-            for &(j, c) in &e[i] {
-                if !cols.contains(&j) {
-                    let w = symbolic[j].ok_or_else(|| crate::Error::Unsupported {
-                        message: "an unknown is read before it is solved".into(),
-                    })?;
-                    let t = g.mul(c, w)?;
-                    terms.push(g.negate_terms(t)?);
-                }
-            }
-            b.push(g.sum(&terms)?);
-        }
+        let b = block_rhs(g, e, rhs, &rows, &cols, &symbolic)?;
         if rows.len() == 1 {
             let c = entry(rows[0], cols[0]).unwrap_or(g.zero());
             symbolic[cols[0]] = Some(g.div(b[0], c)?);
@@ -150,21 +136,7 @@ pub fn solve_unknowns(
         // Declaration order reads best; the solves pivot anyway.
         rows.sort_unstable();
         cols.sort_unstable();
-        // The block's right-hand side: g − Σ E w over the unknowns solved before.
-        let mut b = Vec::with_capacity(rows.len());
-        for &i in &rows {
-            let mut terms = vec![rhs[i]];
-            for &(j, c) in &e[i] {
-                if !cols.contains(&j) {
-                    let w = symbolic[j].ok_or_else(|| crate::Error::Unsupported {
-                        message: "a run-time block reads an unknown of another".into(),
-                    })?;
-                    let t = g.mul(c, w)?;
-                    terms.push(g.negate_terms(t)?);
-                }
-            }
-            b.push(g.sum(&terms)?);
-        }
+        let mut b = block_rhs(g, e, rhs, &rows, &cols, &symbolic)?;
         let mut a: Vec<Vec<Id>> = rows
             .iter()
             .map(|&i| cols.iter().map(|&j| entry(i, j).unwrap_or(zero)).collect())
@@ -246,6 +218,34 @@ pub fn solve_unknowns(
         blocks,
         after_solve,
     })
+}
+
+/// A block's right-hand side `g_B − Σ E_BC w_C` over the unknowns `C`
+/// outside it, all solved symbolically before it (blocks that read a
+/// run-time block's unknowns were merged with it).
+fn block_rhs(
+    g: &mut Graph,
+    e: &[Vec<(usize, Id)>],
+    rhs: &[Id],
+    rows: &[usize],
+    cols: &[usize],
+    symbolic: &[Option<Id>],
+) -> crate::Result<Vec<Id>> {
+    let mut b = Vec::with_capacity(rows.len());
+    for &i in rows {
+        let mut terms = vec![rhs[i]];
+        for &(j, c) in &e[i] {
+            if !cols.contains(&j) {
+                let w = symbolic[j].ok_or_else(|| crate::Error::Unsupported {
+                    message: "an unknown is read before it is solved".into(),
+                })?;
+                let t = g.mul(c, w)?;
+                terms.push(g.negate_terms(t)?);
+            }
+        }
+        b.push(g.sum(&terms)?);
+    }
+    Ok(b)
 }
 
 /// Eliminates, column by column, each unknown that has a pivot which is a
