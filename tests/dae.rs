@@ -951,3 +951,36 @@ fn the_cartesian_double_pendulum_follows_its_angle_form() {
     assert!(sol.last("energy").unwrap().abs() <= 1e-8);
     assert!(sol.max_constraint_residual() <= 1e-12);
 }
+
+/// The pendulum in momentum form with the mass a parameter: `m der(x) = p`
+/// defines der(x) explicitly, so the constraint's derivatives go through it.
+#[dae_model]
+fn pendulum_momentum() {
+    let m = param(2.0);
+    let g = param(1.0);
+    let x = state(1.0);
+    let y = state(0.0);
+    let px = state(0.0);
+    let py = state(2.0);
+    let lambda = algebraic(0.0);
+    m * der(x) == px;
+    m * der(y) == py;
+    der(px) == -lambda * x;
+    der(py) == -lambda * y - m * g;
+    constraint(x * x + y * y - 1.0);
+}
+
+#[test]
+fn explicit_definitions_may_have_parameter_coefficients() {
+    assert_eq!(<PendulumMomentum as Model>::INDEX, 3);
+    // Cash's pendulum again (unit speed, g = 1), whatever the mass.
+    let tol = 1e-10;
+    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let sol = PendulumMomentum::default()
+        .simulate(0.0, 1.0, &opts)
+        .unwrap();
+    let e = (sol.last("x").unwrap() - PENDUL3[0].1[0])
+        .abs()
+        .max((sol.last("y").unwrap() - PENDUL3[0].1[1]).abs());
+    assert!(e <= 20.0 * tol, "error {e:e}");
+}

@@ -332,13 +332,18 @@ fn explicit_definitions(
         if explicit[j].is_some() {
             continue;
         }
+        // A coefficient of numbers and parameters (`m * der(x) == p`).
         let c = g.partial(r, s).ok()?;
-        let Some(c) = g.as_number(c).filter(|c| !c.is_zero()) else {
+        let constant = g
+            .free_symbols(c)
+            .iter()
+            .all(|&p| matches!(g.symbol(p).kind, crate::SymbolKind::Parameter));
+        if !constant || g.as_number(c).is_some_and(|v| v.is_zero()) {
             continue;
-        };
+        }
         let rest = g.substitute(r, &[(s, zero)].into_iter().collect()).ok()?;
-        let minus_inverse = g.num(c.pow(crate::Number::MINUS_ONE)?.negated());
-        explicit[j] = Some(g.mul(minus_inverse, rest).ok()?);
+        let minus_rest = g.negate_terms(rest).ok()?;
+        explicit[j] = Some(g.div(minus_rest, c).ok()?);
     }
     Some(explicit)
 }
