@@ -13,6 +13,7 @@ mod error;
 mod events;
 pub mod explicit_rk;
 pub mod implicit_tableau;
+pub mod kinematics;
 pub mod linalg;
 mod model;
 mod options;
