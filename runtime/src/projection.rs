@@ -225,7 +225,7 @@ fn rank(a: &mut [f64], rows: usize, cols: usize) -> usize {
             .max_by(|&p, &q| a[p * cols + col].abs().total_cmp(&a[q * cols + col].abs()))
             .unwrap_or(rank);
         let p = a[pivot * cols + col];
-        if !(p.abs() > 1e-10 * scale) {
+        if p.abs() <= 1e-10 * scale || p.is_nan() {
             continue;
         }
         for c in 0..cols {
@@ -254,7 +254,7 @@ fn solve_symmetric(a: &mut [f64], n: usize, b: &mut [f64]) -> Result<(), usize> 
             .max_by(|&p, &q| a[p * n + col].abs().total_cmp(&a[q * n + col].abs()))
             .unwrap_or(col);
         let p = a[pivot * n + col];
-        if !(p.abs() > 1e-13 * scale) || !p.is_finite() {
+        if p.abs() <= 1e-13 * scale || !p.is_finite() {
             return Err(order[col]);
         }
         if pivot != col {
@@ -333,7 +333,7 @@ pub(crate) fn consistent_initial_values<M: Model>(
     model.constraints(t0, y, &mut projector.residuals);
     let size = y.iter().fold(1.0f64, |m, v| m.max(v.abs()));
     for (r, &v) in projector.residuals.iter().enumerate() {
-        if !(v.abs() <= 1e-10 * size) {
+        if v.abs() > 1e-10 * size || v.is_nan() {
             return Err(failed(
                 r,
                 format!("the initial values cannot be made consistent: its residual is {v:e} after {INITIAL_ITERATIONS} Gauss–Newton iterations; start nearer a configuration that satisfies it, or fix fewer states"),

@@ -178,9 +178,7 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
         if M::INFO.algebraics.is_empty() {
             // An ODE has no other form: the option does not apply.
         } else {
-            let mass_options = options
-                .clone()
-                .formulation(crate::options::Formulation::IndexOneProjected);
+            let mass_options = options.formulation(crate::options::Formulation::IndexOneProjected);
             return match model.simulate_mass_form(t0, &y0, t1, &mass_options) {
                 Some(result) => result,
                 None => Err(Error::InvalidOptions {
