@@ -32,6 +32,9 @@ pub use model::{
     ConstraintInfo, EvalError, EventDirection, EventInfo, Model, ModelInfo, ProjectionLevel,
     StateVector,
 };
+/// The linear-algebra crate of [`kinematics`], re-exported so users get the
+/// same version.
+pub use nalgebra;
 pub use options::{Formulation, Method, Options};
 pub use simulate::{simulate, simulate_from};
 pub use solution::{EventHit, Solution, Stats};

@@ -8,10 +8,13 @@ use super::ir::{
     AlgebraicDecl, Equation, Event, EventDirection, Init, ModelIr, Output, Param, StateDecl,
 };
 use super::names::did_you_mean;
+
+mod tensor;
 use crate::{Func, Graph, Id, Node, SymbolId, SymbolKind};
 use quote::ToTokens;
 use std::collections::HashMap;
 use syn::{BinOp, Expr, Lit, Pat, Stmt, UnOp};
+use tensor::Tensor;
 
 /// Most loop iterations, over all loops, before unrolling is refused.
 const MAX_UNROLLED: usize = 100_000;
@@ -33,6 +36,8 @@ enum Binding {
     },
     /// A `const` or a loop index.
     Const(Id),
+    /// `let r = rot_z(theta);`: a vector or a matrix.
+    Tensor(Tensor),
 }
 
 impl Binding {
@@ -46,6 +51,7 @@ impl Binding {
             Binding::Time(_) => "the time",
             Binding::Value { .. } => "an intermediate value",
             Binding::Const(_) => "a constant",
+            Binding::Tensor(_) => "a vector or matrix value",
         }
     }
 }
@@ -321,6 +327,21 @@ impl Lower<'_> {
                 }
                 return;
             }
+        }
+        if self.mentions_tensor(e) {
+            let Some(t) = self.tensor(e) else { return };
+            match (t.as_scalar(), mutable) {
+                (Some(id), _) => self.bind(&ident, Binding::Value { id, mutable }),
+                (None, false) => self.bind(&ident, Binding::Tensor(t)),
+                (None, true) => self.cx.error_at(
+                    &local.pat,
+                    format!(
+                        "a {} cannot be `mut`: bind each new value with `let`",
+                        t.shape()
+                    ),
+                ),
+            }
+            return;
         }
         if let (Expr::Array(array), false) = (e, mutable) {
             let values: Vec<Option<Id>> = array.elems.iter().map(|v| self.value(v)).collect();
@@ -656,6 +677,17 @@ impl Lower<'_> {
 
     fn expr_stmt(&mut self, e: &Expr) {
         match e {
+            Expr::Binary(b) if matches!(b.op, BinOp::Eq(_)) && (self.mentions_tensor(&b.left) || self.mentions_tensor(&b.right)) => {
+                // One equation per component.
+                let (lhs, rhs) = (self.tensor(&b.left), self.tensor(&b.right));
+                let (Some(lhs), Some(rhs)) = (lhs, rhs) else { return };
+                if (lhs.rows, lhs.cols) != (rhs.rows, rhs.cols) {
+                    return self.cx.error_at(e, format!("the two sides differ in shape: a {} and a {}", lhs.shape(), rhs.shape()));
+                }
+                for (&l, &r) in lhs.data.iter().zip(&rhs.data) {
+                    self.equations.push(Equation { lhs: l, rhs: r, origin: e.to_token_stream(), is_constraint: false });
+                }
+            }
             Expr::Binary(b) if matches!(b.op, BinOp::Eq(_)) => {
                 let (lhs, rhs) = (self.value(&b.left), self.value(&b.right));
                 if let (Some(lhs), Some(rhs)) = (lhs, rhs) {
@@ -691,9 +723,12 @@ impl Lower<'_> {
             _ => match call_name(e) {
                 Some((name, call)) if name == "constraint" => {
                     if self.arity(call, "constraint", 1) {
-                        if let Some(phi) = self.value(&call.args[0]) {
+                        // A vector constraint is one per component.
+                        if let Some(phi) = self.tensor(&call.args[0]) {
                             let zero = self.g.zero();
-                            self.equations.push(Equation { lhs: phi, rhs: zero, origin: e.to_token_stream(), is_constraint: true });
+                            for &c in &phi.data {
+                                self.equations.push(Equation { lhs: c, rhs: zero, origin: e.to_token_stream(), is_constraint: true });
+                            }
                         }
                     }
                 }
@@ -948,6 +983,14 @@ impl Lower<'_> {
                     ) => Some(id),
                     Some(Binding::Value { id, .. }) => Some(id),
                     Some(Binding::State(s)) => Some(self.g.symbol_node(s)),
+                    Some(Binding::Tensor(t)) => match t.as_scalar() {
+                        Some(id) => Some(id),
+                        None => {
+                            let shape = t.shape();
+                            self.cx.error_at(e, format!("`{name}` is a {shape}: take a component (`{name}[0]`) or use `dot`/`norm`"));
+                            None
+                        }
+                    },
                     Some(b @ (Binding::StateArray(_) | Binding::ValueArray(_))) => {
                         let what = b.describe();
                         self.cx
@@ -960,6 +1003,7 @@ impl Lower<'_> {
                     }
                 }
             }
+            Expr::Index(ix) if self.mentions_tensor(&ix.expr) => self.scalar_of(e),
             Expr::Index(ix) => {
                 let Expr::Path(p) = &*ix.expr else {
                     self.cx
@@ -1002,6 +1046,7 @@ impl Lower<'_> {
                     }
                 }
             }
+            Expr::Call(_) if self.mentions_tensor(e) => self.scalar_of(e),
             Expr::Call(c) => self.call(c, e),
             Expr::MethodCall(m) => self.method_call(m, e),
             Expr::Closure(_) => self.unsupported(e, "closures"),

@@ -1,0 +1,526 @@
+//! Vectors and 3 × 3 matrices in the model language (course notes §4.1),
+//! expanded into scalar expressions as they are lowered: `vec3`, `mat3`,
+//! `identity3`, `rot_x`/`rot_y`/`rot_z` (eq. 4.9), `euler_313` (eq. 4.10),
+//! `bryan_123` (eq. 4.11), `axis_angle` (Rodrigues, eq. 4.18),
+//! `quat_to_rot` (eq. 4.19), `skew` (eq. 4.17), `cross`, `dot`, `norm`,
+//! `transpose`, `+ − *` (scalar, matrix–vector, matrix–matrix) and `/` by a
+//! scalar, indexing `p[0]`, `r[1][2]`; an equation or a constraint between
+//! vectors stands for one per component.
+
+use super::{Binding, Lower};
+use crate::Id;
+use quote::ToTokens;
+use syn::{BinOp, Expr, UnOp};
+
+/// A value of the model language: a scalar (1 × 1), a column vector
+/// (n × 1) or a matrix, row-major.
+#[derive(Clone, Debug)]
+pub(super) struct Tensor {
+    pub rows: usize,
+    pub cols: usize,
+    pub data: Vec<Id>,
+}
+
+impl Tensor {
+    fn scalar(id: Id) -> Tensor {
+        Tensor {
+            rows: 1,
+            cols: 1,
+            data: vec![id],
+        }
+    }
+
+    fn vector(data: Vec<Id>) -> Tensor {
+        Tensor {
+            rows: data.len(),
+            cols: 1,
+            data,
+        }
+    }
+
+    fn matrix(rows: usize, cols: usize, data: Vec<Id>) -> Tensor {
+        Tensor { rows, cols, data }
+    }
+
+    pub(super) fn as_scalar(&self) -> Option<Id> {
+        (self.rows == 1 && self.cols == 1).then(|| self.data[0])
+    }
+
+    fn at(&self, r: usize, c: usize) -> Id {
+        self.data[r * self.cols + c]
+    }
+
+    /// `3-vector`, `3×3 matrix`, for messages.
+    pub(super) fn shape(&self) -> String {
+        match (self.rows, self.cols) {
+            (1, 1) => "scalar".into(),
+            (n, 1) => format!("{n}-vector"),
+            (r, c) => format!("{r}×{c} matrix"),
+        }
+    }
+}
+
+/// Functions whose value is a vector or a matrix.
+pub(super) const TENSOR_FUNCTIONS: [&str; 13] = [
+    "vec3",
+    "mat3",
+    "identity3",
+    "rot_x",
+    "rot_y",
+    "rot_z",
+    "euler_313",
+    "bryan_123",
+    "axis_angle",
+    "quat_to_rot",
+    "skew",
+    "cross",
+    "transpose",
+];
+
+/// Functions of vectors whose value is a scalar.
+pub(super) const VECTOR_SCALARS: [&str; 2] = ["dot", "norm"];
+
+impl Lower<'_> {
+    /// Whether `e` involves a vector or a matrix (a tensor function or a
+    /// name bound to one): such expressions are lowered by [`Lower::tensor`].
+    pub(super) fn mentions_tensor(&self, e: &Expr) -> bool {
+        match e {
+            Expr::Paren(p) => self.mentions_tensor(&p.expr),
+            Expr::Group(g) => self.mentions_tensor(&g.expr),
+            Expr::Unary(u) => self.mentions_tensor(&u.expr),
+            Expr::Binary(b) => self.mentions_tensor(&b.left) || self.mentions_tensor(&b.right),
+            Expr::Index(ix) => self.mentions_tensor(&ix.expr),
+            Expr::MethodCall(m) => self.mentions_tensor(&m.receiver),
+            Expr::Path(p) => p
+                .path
+                .get_ident()
+                .and_then(|i| self.lookup(&i.to_string()))
+                .is_some_and(|b| matches!(b, Binding::Tensor(_))),
+            Expr::Call(c) => {
+                let name = match &*c.func {
+                    Expr::Path(p) => p.path.get_ident().map(|i| i.to_string()),
+                    _ => None,
+                };
+                name.is_some_and(|n| {
+                    TENSOR_FUNCTIONS.contains(&n.as_str()) || VECTOR_SCALARS.contains(&n.as_str())
+                }) || c.args.iter().any(|a| self.mentions_tensor(a))
+            }
+            _ => false,
+        }
+    }
+
+    /// A value that may be a vector or a matrix; scalars as 1 × 1.
+    pub(super) fn tensor(&mut self, e: &Expr) -> Option<Tensor> {
+        match e {
+            Expr::Paren(p) => self.tensor(&p.expr),
+            Expr::Group(g) => self.tensor(&g.expr),
+            Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => {
+                let t = self.tensor(&u.expr)?;
+                let data = t
+                    .data
+                    .iter()
+                    .map(|&x| self.g.neg(x))
+                    .collect::<Result<Vec<_>, _>>();
+                let data = self.graph_result_all(data, e)?;
+                Some(Tensor { data, ..t })
+            }
+            Expr::Binary(b)
+                if matches!(
+                    b.op,
+                    BinOp::Add(_) | BinOp::Sub(_) | BinOp::Mul(_) | BinOp::Div(_)
+                ) =>
+            {
+                let (l, r) = (self.tensor(&b.left), self.tensor(&b.right));
+                self.combine(&b.op, l?, r?, e)
+            }
+            Expr::Path(p) => {
+                let bound = p
+                    .path
+                    .get_ident()
+                    .and_then(|i| self.lookup(&i.to_string()).cloned());
+                match bound {
+                    Some(Binding::Tensor(t)) => Some(t),
+                    _ => self.value(e).map(Tensor::scalar),
+                }
+            }
+            Expr::Index(ix) if self.mentions_tensor(&ix.expr) => {
+                let base = self.tensor(&ix.expr)?;
+                let i = self.index_constant(&ix.index)?;
+                let bound = if base.cols == 1 || base.rows == 1 {
+                    base.data.len()
+                } else {
+                    base.rows
+                };
+                if i >= bound {
+                    self.cx.error_at(
+                        &ix.index,
+                        format!(
+                            "index {i} is out of bounds: `{}` is a {}",
+                            ix.expr.to_token_stream(),
+                            base.shape()
+                        ),
+                    );
+                    return None;
+                }
+                if base.cols == 1 || base.rows == 1 {
+                    Some(Tensor::scalar(base.data[i]))
+                } else {
+                    let row = base.data[i * base.cols..(i + 1) * base.cols].to_vec();
+                    Some(Tensor::vector(row))
+                }
+            }
+            Expr::Call(c) => {
+                let name = match &*c.func {
+                    Expr::Path(p) => p.path.get_ident().map(|i| i.to_string()),
+                    _ => None,
+                };
+                match name {
+                    Some(n)
+                        if TENSOR_FUNCTIONS.contains(&n.as_str())
+                            || VECTOR_SCALARS.contains(&n.as_str()) =>
+                    {
+                        self.tensor_call(c, &n, e)
+                    }
+                    _ => self.value(e).map(Tensor::scalar),
+                }
+            }
+            _ => self.value(e).map(Tensor::scalar),
+        }
+    }
+
+    /// `e` as a scalar, with a message when it is a vector or a matrix.
+    pub(super) fn scalar_of(&mut self, e: &Expr) -> Option<Id> {
+        let t = self.tensor(e)?;
+        match t.as_scalar() {
+            Some(id) => Some(id),
+            None => {
+                let shape = t.shape();
+                self.cx.error_at(e, format!("`{}` is a {shape} where a number is needed: take a component (`v[0]`, `m[1][2]`) or use `dot`/`norm`", e.to_token_stream()));
+                None
+            }
+        }
+    }
+
+    fn graph_result_all(&mut self, r: crate::Result<Vec<Id>>, at: &Expr) -> Option<Vec<Id>> {
+        match r {
+            Ok(v) => Some(v),
+            Err(err) => {
+                self.cx.error_at(at, err);
+                None
+            }
+        }
+    }
+
+    fn combine(&mut self, op: &BinOp, a: Tensor, b: Tensor, e: &Expr) -> Option<Tensor> {
+        if let (Some(x), Some(y)) = (a.as_scalar(), b.as_scalar()) {
+            return self.arith(op, x, y, e).map(Tensor::scalar);
+        }
+        let mismatch = |this: &mut Self, what: &str| {
+            this.cx.error_at(
+                e,
+                format!("cannot {what} a {} and a {}", a.shape(), b.shape()),
+            );
+            None
+        };
+        match op {
+            BinOp::Add(_) | BinOp::Sub(_) => {
+                if (a.rows, a.cols) != (b.rows, b.cols) {
+                    return mismatch(
+                        self,
+                        if matches!(op, BinOp::Add(_)) {
+                            "add"
+                        } else {
+                            "subtract"
+                        },
+                    );
+                }
+                let mut data = Vec::with_capacity(a.data.len());
+                for (&x, &y) in a.data.iter().zip(&b.data) {
+                    data.push(self.arith(op, x, y, e)?);
+                }
+                Some(Tensor { data, ..a })
+            }
+            BinOp::Mul(_) => match (a.as_scalar(), b.as_scalar()) {
+                (Some(s), None) => self.scale(&b, s, e),
+                (None, Some(s)) => self.scale(&a, s, e),
+                _ if a.cols == b.rows => self.product(&a, &b, e),
+                _ if a.cols == 1 && b.cols == 1 => {
+                    self.cx.error_at(
+                        e,
+                        format!(
+                            "cannot multiply a {} and a {}: use `dot(a, b)` or `cross(a, b)`",
+                            a.shape(),
+                            b.shape()
+                        ),
+                    );
+                    None
+                }
+                _ => mismatch(self, "multiply"),
+            },
+            BinOp::Div(_) => match b.as_scalar() {
+                Some(s) => {
+                    let mut data = Vec::with_capacity(a.data.len());
+                    for &x in &a.data {
+                        data.push(self.arith(op, x, s, e)?);
+                    }
+                    Some(Tensor { data, ..a })
+                }
+                None => mismatch(self, "divide"),
+            },
+            _ => mismatch(self, "combine"),
+        }
+    }
+
+    fn scale(&mut self, t: &Tensor, s: Id, e: &Expr) -> Option<Tensor> {
+        let data = t
+            .data
+            .iter()
+            .map(|&x| self.g.mul(s, x))
+            .collect::<Result<Vec<_>, _>>();
+        let data = self.graph_result_all(data, e)?;
+        Some(Tensor::matrix(t.rows, t.cols, data))
+    }
+
+    fn product(&mut self, a: &Tensor, b: &Tensor, e: &Expr) -> Option<Tensor> {
+        let mut data = Vec::with_capacity(a.rows * b.cols);
+        for r in 0..a.rows {
+            for c in 0..b.cols {
+                let terms = (0..a.cols)
+                    .map(|k| self.g.mul(a.at(r, k), b.at(k, c)))
+                    .collect::<Result<Vec<_>, _>>();
+                let terms = self.graph_result_all(terms, e)?;
+                let sum = self.g.sum(&terms);
+                data.push(self.graph_result(sum, e)?);
+            }
+        }
+        Some(Tensor::matrix(a.rows, b.cols, data))
+    }
+
+    /// The arguments of a tensor function: `shapes[k]` is 1 for a scalar
+    /// argument, 3 for a 3-vector.
+    fn tensor_args(
+        &mut self,
+        c: &syn::ExprCall,
+        name: &str,
+        shapes: &[usize],
+    ) -> Option<Vec<Tensor>> {
+        if c.args.len() != shapes.len() {
+            let what: Vec<&str> = shapes
+                .iter()
+                .map(|&s| if s == 1 { "a number" } else { "a 3-vector" })
+                .collect();
+            self.cx.error_at(
+                c,
+                format!(
+                    "`{name}` takes {} argument(s): {}",
+                    shapes.len(),
+                    what.join(", ")
+                ),
+            );
+            return None;
+        }
+        let mut out = Vec::with_capacity(shapes.len());
+        for (arg, &n) in c.args.iter().zip(shapes) {
+            let t = self.tensor(arg)?;
+            if (t.rows, t.cols) != (n, 1) {
+                let want = if n == 1 {
+                    "a number".to_string()
+                } else {
+                    format!("a {n}-vector")
+                };
+                self.cx.error_at(
+                    arg,
+                    format!("`{name}` needs {want} here, not a {}", t.shape()),
+                );
+                return None;
+            }
+            out.push(t);
+        }
+        Some(out)
+    }
+
+    fn tensor_call(&mut self, c: &syn::ExprCall, name: &str, e: &Expr) -> Option<Tensor> {
+        let g = |this: &mut Self, r: crate::Result<Id>| this.graph_result(r, e);
+        let zero = self.g.zero();
+        let one = self.g.one();
+        match name {
+            "vec3" => {
+                let a = self.tensor_args(c, name, &[1, 1, 1])?;
+                Some(Tensor::vector(a.iter().map(|t| t.data[0]).collect()))
+            }
+            "mat3" => {
+                let a = self.tensor_args(c, name, &[1; 9])?;
+                Some(Tensor::matrix(3, 3, a.iter().map(|t| t.data[0]).collect()))
+            }
+            "identity3" => {
+                self.tensor_args(c, name, &[])?;
+                Some(Tensor::matrix(
+                    3,
+                    3,
+                    vec![one, zero, zero, zero, one, zero, zero, zero, one],
+                ))
+            }
+            "rot_x" | "rot_y" | "rot_z" => {
+                let a = self.tensor_args(c, name, &[1])?;
+                self.primitive(name, a[0].data[0], e)
+            }
+            "euler_313" => {
+                let a = self.tensor_args(c, name, &[1, 1, 1])?;
+                let (psi, theta, phi) = (a[0].data[0], a[1].data[0], a[2].data[0]);
+                let r = self.primitive("rot_z", phi, e)?;
+                let m = self.primitive("rot_x", theta, e)?;
+                let l = self.primitive("rot_z", psi, e)?;
+                let rm = self.product(&r, &m, e)?;
+                self.product(&rm, &l, e)
+            }
+            "bryan_123" => {
+                let a = self.tensor_args(c, name, &[1, 1, 1])?;
+                let (p1, p2, p3) = (a[0].data[0], a[1].data[0], a[2].data[0]);
+                let r = self.primitive("rot_z", p3, e)?;
+                let m = self.primitive("rot_y", p2, e)?;
+                let l = self.primitive("rot_x", p1, e)?;
+                let rm = self.product(&r, &m, e)?;
+                self.product(&rm, &l, e)
+            }
+            "skew" => {
+                let a = self.tensor_args(c, name, &[3])?;
+                self.skew(&a[0], e)
+            }
+            "cross" => {
+                let a = self.tensor_args(c, name, &[3, 3])?;
+                let s = self.skew(&a[0], e)?;
+                self.product(&s, &a[1], e)
+            }
+            "dot" => {
+                let a = self.tensor_args(c, name, &[3, 3])?;
+                let t = Tensor::matrix(1, 3, a[0].data.clone());
+                self.product(&t, &a[1], e)
+            }
+            "norm" => {
+                let a = self.tensor_args(c, name, &[3])?;
+                let t = Tensor::matrix(1, 3, a[0].data.clone());
+                let d = self.product(&t, &a[0], e)?;
+                let r = self.g.sqrt(d.data[0]);
+                g(self, r).map(Tensor::scalar)
+            }
+            "transpose" => {
+                if c.args.len() != 1 {
+                    self.cx
+                        .error_at(c, "`transpose` takes one matrix or vector");
+                    return None;
+                }
+                let t = self.tensor(&c.args[0])?;
+                let mut data = Vec::with_capacity(t.data.len());
+                for col in 0..t.cols {
+                    for row in 0..t.rows {
+                        data.push(t.at(row, col));
+                    }
+                }
+                Some(Tensor::matrix(t.cols, t.rows, data))
+            }
+            "axis_angle" => {
+                // Rodrigues (eq. 4.18) with the axis normalised:
+                // I + sin θ N + (1 − cos θ) N², N = skew(n / |n|).
+                let a = self.tensor_args(c, name, &[3, 1])?;
+                let n = &a[0];
+                let theta = a[1].data[0];
+                let t = Tensor::matrix(1, 3, n.data.clone());
+                let nn = self.product(&t, n, e)?;
+                let len = self.g.sqrt(nn.data[0]);
+                let len = g(self, len)?;
+                let unit = {
+                    let data = n
+                        .data
+                        .iter()
+                        .map(|&x| self.g.div(x, len))
+                        .collect::<Result<Vec<_>, _>>();
+                    Tensor::vector(self.graph_result_all(data, e)?)
+                };
+                let big_n = self.skew(&unit, e)?;
+                let n2 = self.product(&big_n, &big_n, e)?;
+                let sin = self.g.call(crate::Func::Sin, theta);
+                let sin = g(self, sin)?;
+                let cos = self.g.call(crate::Func::Cos, theta);
+                let cos = g(self, cos)?;
+                let one_minus = self.g.sub(one, cos);
+                let one_minus = g(self, one_minus)?;
+                let identity = Tensor::matrix(
+                    3,
+                    3,
+                    vec![one, zero, zero, zero, one, zero, zero, zero, one],
+                );
+                let s_n = self.scale(&big_n, sin, e)?;
+                let c_n2 = self.scale(&n2, one_minus, e)?;
+                let plus = BinOp::Add(Default::default());
+                let first = self.combine(&plus, identity, s_n, e)?;
+                self.combine(&plus, first, c_n2, e)
+            }
+            "quat_to_rot" => {
+                // Eq. 4.19 for a unit quaternion (q0 = cos(θ/2)).
+                let a = self.tensor_args(c, name, &[1, 1, 1, 1])?;
+                let [q0, q1, q2, q3] = [a[0].data[0], a[1].data[0], a[2].data[0], a[3].data[0]];
+                let entry =
+                    |this: &mut Self, terms: &[(Id, Id, i64)], constant: i64| -> Option<Id> {
+                        let mut parts = Vec::new();
+                        for &(x, y, sign) in terms {
+                            let p = this.g.mul(x, y);
+                            let p = this.graph_result(p, e)?;
+                            let k = this.g.int(2 * sign);
+                            let p = this.g.mul(k, p);
+                            parts.push(this.graph_result(p, e)?);
+                        }
+                        parts.push(this.g.int(constant));
+                        let s = this.g.sum(&parts);
+                        this.graph_result(s, e)
+                    };
+                let data = vec![
+                    entry(self, &[(q0, q0, 1), (q1, q1, 1)], -1)?,
+                    entry(self, &[(q1, q2, 1), (q0, q3, -1)], 0)?,
+                    entry(self, &[(q0, q2, 1), (q1, q3, 1)], 0)?,
+                    entry(self, &[(q0, q3, 1), (q1, q2, 1)], 0)?,
+                    entry(self, &[(q0, q0, 1), (q2, q2, 1)], -1)?,
+                    entry(self, &[(q2, q3, 1), (q0, q1, -1)], 0)?,
+                    entry(self, &[(q1, q3, 1), (q0, q2, -1)], 0)?,
+                    entry(self, &[(q0, q1, 1), (q2, q3, 1)], 0)?,
+                    entry(self, &[(q1, q1, -1), (q2, q2, -1)], 1)?,
+                ];
+                Some(Tensor::matrix(3, 3, data))
+            }
+            _ => None,
+        }
+    }
+
+    /// `R_x`, `R_y`, `R_z` of eq. 4.9.
+    fn primitive(&mut self, name: &str, theta: Id, e: &Expr) -> Option<Tensor> {
+        let (zero, one) = (self.g.zero(), self.g.one());
+        let s = self.g.call(crate::Func::Sin, theta);
+        let s = self.graph_result(s, e)?;
+        let c = self.g.call(crate::Func::Cos, theta);
+        let c = self.graph_result(c, e)?;
+        let ms = self.g.neg(s);
+        let ms = self.graph_result(ms, e)?;
+        let data = match name {
+            "rot_x" => vec![one, zero, zero, zero, c, ms, zero, s, c],
+            "rot_y" => vec![c, zero, s, zero, one, zero, ms, zero, c],
+            _ => vec![c, ms, zero, s, c, zero, zero, zero, one],
+        };
+        Some(Tensor::matrix(3, 3, data))
+    }
+
+    /// The cross-product matrix of eq. 4.17.
+    fn skew(&mut self, w: &Tensor, e: &Expr) -> Option<Tensor> {
+        let zero = self.g.zero();
+        let negs = w
+            .data
+            .iter()
+            .map(|&x| self.g.neg(x))
+            .collect::<Result<Vec<_>, _>>();
+        let n = self.graph_result_all(negs, e)?;
+        let (x, y, z) = (w.data[0], w.data[1], w.data[2]);
+        Some(Tensor::matrix(
+            3,
+            3,
+            vec![zero, n[2], y, z, zero, n[0], n[1], x, zero],
+        ))
+    }
+}
