@@ -29,6 +29,7 @@ pub fn simulate<M: Model + Clone + Send + Sync + 'static>(
 fn formulation<M: Model>() -> &'static str {
     match (M::INDEX, M::CONSTRAINTS.is_empty()) {
         (0, true) => "ODE",
+        (0, false) => "ODE, projected onto its invariants after every step",
         (_, true) => "DAE solved for its algebraic variables at each evaluation (index 1)",
         _ => "DAE: index-1 form (constraints differentiated until they determine the unknowns), projected onto the constraints and their hidden levels after every step",
     }

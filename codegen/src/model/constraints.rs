@@ -8,8 +8,6 @@
 //! (Hairer–Wanner II §VII.2; Simbody's project-every-step policy), so a
 //! correction at one level leaves the levels below it satisfied.
 
-use super::ir::Equation;
-use super::names::source_text;
 use super::reduce::FirstOrder;
 use crate::{FxHashMap, Graph, Id, SymbolId};
 use proc_macro2::{Literal, TokenStream};
@@ -97,7 +95,6 @@ pub fn constraint_methods(
     slot_of: &FxHashMap<SymbolId, usize>,
     slot_symbols: &[SymbolId],
     sys: &FirstOrder,
-    equations: &[Equation],
 ) -> crate::Result<TokenStream> {
     if sys.invariants.is_empty() {
         return Ok(TokenStream::new());
@@ -105,7 +102,7 @@ pub fn constraint_methods(
     let index = Literal::usize_unsuffixed;
     let n = index(slot_symbols.len());
     let infos = sys.invariants.iter().map(|inv| {
-        let text = source_text(&equations[inv.equation].origin);
+        let text = &inv.text;
         let level = index(inv.level);
         quote!(::daegen::ConstraintInfo { equation: #text, level: #level })
     });

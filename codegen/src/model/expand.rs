@@ -629,7 +629,6 @@ pub fn expand(
         &layout.slot_of,
         &slot_symbols,
         sys,
-        &ir.equations,
     )?;
 
     // All event functions at once, sharing their subexpressions; nothing

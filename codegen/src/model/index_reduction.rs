@@ -36,6 +36,8 @@ pub struct Invariant {
     pub level: usize,
     /// `Φ^(level)(t, y)`, zero on the solution.
     pub residual: Id,
+    /// The user's statement, as source text.
+    pub text: String,
 }
 
 /// The equations after index reduction.
@@ -153,6 +155,7 @@ pub fn reduce_index(
                     equation: e,
                     level: level[e],
                     residual: current[e],
+                    text: super::names::source_text(&origins[e]),
                 });
                 current[e] = match g.total_derivative(current[e], &mut field) {
                     Ok(d) => d,

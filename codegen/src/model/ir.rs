@@ -91,6 +91,16 @@ pub struct Equation {
     pub is_constraint: bool,
 }
 
+/// `invariant(e);` (or the unit norm of a `quaternion_state`): a function of
+/// the states that the dynamics keep constant at zero and that the runtime
+/// projects onto after each step, without differentiating it.
+pub struct UserInvariant {
+    /// Its value, zero on the solution.
+    pub value: Id,
+    /// The statement, for errors and messages.
+    pub origin: TokenStream,
+}
+
 /// `init(der(x), v);`
 pub struct Init {
     /// The derivative symbol `der^k(x)`.
@@ -127,6 +137,8 @@ pub struct ModelIr {
     pub equations: Vec<Equation>,
     /// Initial values of derivatives.
     pub inits: Vec<Init>,
+    /// Invariants to project onto (`invariant(e)`, quaternion norms).
+    pub invariants: Vec<UserInvariant>,
     /// Calls of non-smooth functions (`abs`) and their tokens, for errors
     /// found after lowering (the Taylor methods refuse them).
     pub non_smooth_calls: Vec<(Id, proc_macro2::TokenStream)>,

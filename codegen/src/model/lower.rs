@@ -6,6 +6,7 @@
 use super::ctxt::Ctxt;
 use super::ir::{
     AlgebraicDecl, Equation, Event, EventDirection, Init, ModelIr, Output, Param, StateDecl,
+    UserInvariant,
 };
 use super::names::did_you_mean;
 
@@ -56,8 +57,9 @@ impl Binding {
     }
 }
 
-const DECLARATIONS: [&str; 7] = [
+const DECLARATIONS: [&str; 8] = [
     "event",
+    "quaternion_state",
     "param",
     "state",
     "state_array",
@@ -65,7 +67,7 @@ const DECLARATIONS: [&str; 7] = [
     "time",
     "output",
 ];
-const FUNCTIONS: [&str; 19] = [
+const FUNCTIONS: [&str; 20] = [
     "sin",
     "cos",
     "tan",
@@ -83,6 +85,7 @@ const FUNCTIONS: [&str; 19] = [
     "der",
     "init",
     "constraint",
+    "invariant",
     "powi",
     "powf",
 ];
@@ -99,6 +102,7 @@ struct Lower<'c> {
     events: Vec<Event>,
     equations: Vec<Equation>,
     inits: Vec<Init>,
+    invariants: Vec<UserInvariant>,
     unrolled: usize,
     non_smooth_calls: Vec<(Id, proc_macro2::TokenStream)>,
 }
@@ -118,6 +122,7 @@ pub fn lower(cx: &mut Ctxt, item: &syn::ItemFn) -> ModelIr {
         events: Vec::new(),
         equations: Vec::new(),
         inits: Vec::new(),
+        invariants: Vec::new(),
         unrolled: 0,
         non_smooth_calls: Vec::new(),
     };
@@ -159,6 +164,7 @@ pub fn lower(cx: &mut Ctxt, item: &syn::ItemFn) -> ModelIr {
         events: l.events,
         equations: l.equations,
         inits: l.inits,
+        invariants: l.invariants,
         non_smooth_calls: l.non_smooth_calls,
     }
 }
@@ -507,8 +513,8 @@ impl Lower<'_> {
                     Err(e) => self.cx.error_at(ident, e),
                 }
             }
-            "state_array" => {
-                if !self.arity(call, "state_array", 1) {
+            "state_array" | "quaternion_state" => {
+                if !self.arity(call, kind, 1) {
                     return;
                 }
                 let inits: Vec<Option<Id>> = match &call.args[0] {
@@ -529,6 +535,9 @@ impl Lower<'_> {
                         .cx
                         .error_at(&call.args[0], "a state array needs at least one element");
                 }
+                if kind == "quaternion_state" && inits.len() != 4 {
+                    return self.cx.error_at(&call.args[0], "a quaternion has four components: `quaternion_state([1.0, 0.0, 0.0, 0.0])` (q0 = cos(θ/2) first)");
+                }
                 let mut symbols = Vec::new();
                 for (i, init) in inits.into_iter().enumerate() {
                     let element = format!("{name}[{i}]");
@@ -544,6 +553,25 @@ impl Lower<'_> {
                         fixed: false,
                     });
                     symbols.push(symbol);
+                }
+                if kind == "quaternion_state" && symbols.len() == 4 {
+                    // |q|² − 1, kept at zero by projection (course notes §4.1.3).
+                    let mut terms = Vec::with_capacity(5);
+                    for &s in &symbols {
+                        let q = self.g.symbol_node(s);
+                        match self.g.mul(q, q) {
+                            Ok(t) => terms.push(t),
+                            Err(e) => return self.cx.error_at(ident, e),
+                        }
+                    }
+                    terms.push(self.g.int(-1));
+                    match self.g.sum(&terms) {
+                        Ok(value) => self.invariants.push(UserInvariant {
+                            value,
+                            origin: origin.clone(),
+                        }),
+                        Err(e) => return self.cx.error_at(ident, e),
+                    }
                 }
                 self.bind(ident, Binding::StateArray(symbols));
             }
@@ -728,6 +756,15 @@ impl Lower<'_> {
                             let zero = self.g.zero();
                             for &c in &phi.data {
                                 self.equations.push(Equation { lhs: c, rhs: zero, origin: e.to_token_stream(), is_constraint: true });
+                            }
+                        }
+                    }
+                }
+                Some((name, call)) if name == "invariant" => {
+                    if self.arity(call, "invariant", 1) {
+                        if let Some(value) = self.tensor(&call.args[0]) {
+                            for &v in &value.data {
+                                self.invariants.push(UserInvariant { value: v, origin: e.to_token_stream() });
                             }
                         }
                     }
@@ -1111,7 +1148,7 @@ impl Lower<'_> {
         if name == "der" {
             return self.der(c, e);
         }
-        if matches!(name.as_str(), "init" | "constraint") {
+        if matches!(name.as_str(), "init" | "constraint" | "invariant") {
             self.cx
                 .error_at(e, format!("`{name}(...)` is a statement, not a value"));
             return None;

@@ -357,6 +357,25 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
             (None, None) => None,
         })
         .collect::<Option<Vec<_>>>()?;
+    // The user's invariants: functions of the states, projected onto.
+    let mut invariants = reduction.invariants;
+    for inv in &ir.invariants {
+        if let Some(s) = g
+            .free_symbols(inv.value)
+            .into_iter()
+            .find(|s| z_index.contains_key(s))
+        {
+            let name = g.symbol(s).name.clone();
+            cx.error_at(&inv.origin, format!("an invariant is a function of the states, and this one reads `{name}`: write it without derivatives or algebraic variables"));
+            ok = false;
+        }
+        invariants.push(super::index_reduction::Invariant {
+            equation: usize::MAX,
+            level: 0,
+            residual: inv.value,
+            text: super::names::source_text(&inv.origin),
+        });
+    }
     let block_unknowns = z_symbols
         .iter()
         .enumerate()
@@ -369,7 +388,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         outputs,
         events,
         algebraics,
-        invariants: reduction.invariants,
+        invariants,
         index: reduction.index,
         block_unknowns,
         residuals,
