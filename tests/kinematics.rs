@@ -255,3 +255,61 @@ fn a_declared_invariant_is_kept_by_projection() {
     assert_eq!(<ProjectedOscillator as Model>::INDEX, 0);
     assert!(sol.stats().formulation.contains("invariants"));
 }
+
+/// Any axis sequence, its inverse, and the body angular velocity of angle
+/// and quaternion states (course notes §4.1.2, §4.1.4).
+#[dae_model]
+fn rates() {
+    let a = state(0.3);
+    let b = state(-0.8);
+    let c = state(1.9);
+    init(der(a), 0.7);
+    init(der(b), -1.3);
+    init(der(c), 0.4);
+    der(der(a)) == 0.0;
+    der(der(b)) == 0.0;
+    der(der(c)) == 0.0;
+    let q = quaternion_state([0.5, 0.5, -0.5, 0.5]);
+    der(q[0]) == 0.1 * q[1];
+    der(q[1]) == -0.1 * q[0];
+    der(q[2]) == 0.3 * q[3];
+    der(q[3]) == -0.3 * q[2];
+    let w = vec3(0.7, -0.2, 1.3);
+    let rotated = rot_seq("zyz", a, b, c) * w;
+    let back = inverse_rot_seq("zyz", a, b, c) * rotated;
+    let omega = omega_seq("yxz", a, b, c);
+    let omega_q = omega_quat(q[0], q[1], q[2], q[3]);
+    let r0 = output(rotated[0]);
+    let r1 = output(rotated[1]);
+    let r2 = output(rotated[2]);
+    let back_error = output(norm(back - w));
+    let w0 = output(omega[0]);
+    let w1 = output(omega[1]);
+    let w2 = output(omega[2]);
+    let v0 = output(omega_q[0]);
+    let v1 = output(omega_q[1]);
+    let v2 = output(omega_q[2]);
+}
+
+#[test]
+fn sequences_and_angular_velocities_in_the_language_match_the_runtime() {
+    use k::Axis::*;
+    let sol = Rates::default()
+        .simulate(0.0, 0.5, &Options::new().method(Method::Rk4).step(0.25))
+        .unwrap();
+    let (angles, rates) = ([0.3, -0.8, 1.9], [0.7, -1.3, 0.4]);
+    let at0 = |n: &str| sol.at(0.0, n).unwrap();
+    let w = Vector3::new(0.7, -0.2, 1.3);
+    let want = k::sequence([Z, Y, Z], angles) * w;
+    let got = Vector3::new(at0("r0"), at0("r1"), at0("r2"));
+    assert!((got - want).norm() <= 1e-15);
+    assert!(at0("back_error") <= 1e-15);
+    let want = k::angular_velocity([Y, X, Z], angles, rates);
+    let got = Vector3::new(at0("w0"), at0("w1"), at0("w2"));
+    assert!((got - want).norm() <= 1e-15, "{got} vs {want}");
+    let q = [0.5, 0.5, -0.5, 0.5];
+    let q_dot = [0.1 * q[1], -0.1 * q[0], 0.3 * q[3], -0.3 * q[2]];
+    let want = k::quaternion_angular_velocity(q, q_dot);
+    let got = Vector3::new(at0("v0"), at0("v1"), at0("v2"));
+    assert!((got - want).norm() <= 1e-15, "{got} vs {want}");
+}

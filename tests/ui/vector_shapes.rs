@@ -10,6 +10,8 @@ fn shapes() {
     der(x) == r;
     let bad_product = r * r;
     let bad_axis = axis_angle(theta, theta);
+    let bad_sequence = rot_seq("zzx", theta, theta, theta);
+    let bad_rates = omega_seq("zxz", theta, theta, theta);
 }
 
 fn main() {}

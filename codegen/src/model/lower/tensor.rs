@@ -3,7 +3,10 @@
 //! `identity3`, `rot_x`/`rot_y`/`rot_z` (eq. 4.9), `euler_313` (eq. 4.10),
 //! `bryan_123` (eq. 4.11), `axis_angle` (Rodrigues, eq. 4.18),
 //! `quat_to_rot` (eq. 4.19), `skew` (eq. 4.17), `cross`, `dot`, `norm`,
-//! `transpose`, `+ − *` (scalar, matrix–vector, matrix–matrix) and `/` by a
+//! `transpose`, any axis sequence `rot_seq("zxz", a, b, c)` and its inverse
+//! (eq. 4.12), body angular velocities from angle or quaternion states
+//! (`omega_seq`, `omega_quat`, §4.1.4),
+//! `+ − *` (scalar, matrix–vector, matrix–matrix) and `/` by a
 //! scalar, indexing `p[0]`, `r[1][2]`; an equation or a constraint between
 //! vectors stands for one per component.
 
@@ -61,7 +64,11 @@ impl Tensor {
 }
 
 /// Functions whose value is a vector or a matrix.
-pub(super) const TENSOR_FUNCTIONS: [&str; 13] = [
+pub(super) const TENSOR_FUNCTIONS: [&str; 17] = [
+    "rot_seq",
+    "inverse_rot_seq",
+    "omega_seq",
+    "omega_quat",
     "vec3",
     "mat3",
     "identity3",
@@ -344,6 +351,63 @@ impl Lower<'_> {
         let zero = self.g.zero();
         let one = self.g.one();
         match name {
+            "rot_seq" | "inverse_rot_seq" | "omega_seq" => {
+                let (axes, angles) = self.sequence_args(c, name)?;
+                let rotations = axes
+                    .iter()
+                    .zip(&angles)
+                    .map(|(&axis, &a)| self.primitive(["rot_x", "rot_y", "rot_z"][axis], a, e))
+                    .collect::<Option<Vec<Tensor>>>()?;
+                match name {
+                    "rot_seq" | "inverse_rot_seq" => {
+                        let first = self.product(&rotations[0], &rotations[1], e)?;
+                        let r = self.product(&first, &rotations[2], e)?;
+                        Some(if name == "rot_seq" { r } else { transposed(&r) })
+                    }
+                    _ => {
+                        // ω = R_kᵀ R_jᵀ e_i ȧ + R_kᵀ e_j ḃ + e_k ċ (body axes).
+                        let rates = c
+                            .args
+                            .iter()
+                            .skip(1)
+                            .map(|a| self.rate_of(a, name))
+                            .collect::<Option<Vec<Id>>>()?;
+                        let unit = |axis: usize, rate: Id| {
+                            let mut data = vec![zero; 3];
+                            data[axis] = rate;
+                            Tensor::vector(data)
+                        };
+                        let (rk, rj) = (transposed(&rotations[2]), transposed(&rotations[1]));
+                        let rkj = self.product(&rk, &rj, e)?;
+                        let first = self.product(&rkj, &unit(axes[0], rates[0]), e)?;
+                        let second = self.product(&rk, &unit(axes[1], rates[1]), e)?;
+                        let plus = BinOp::Add(Default::default());
+                        let sum = self.combine(&plus, first, second, e)?;
+                        self.combine(&plus, sum, unit(axes[2], rates[2]), e)
+                    }
+                }
+            }
+            "omega_quat" => {
+                // ω = 2 (q0 q̇v − q̇0 qv − qv × q̇v) in body axes.
+                let a = self.tensor_args(c, name, &[1, 1, 1, 1])?;
+                let q: Vec<Id> = a.iter().map(|t| t.data[0]).collect();
+                let rates = c
+                    .args
+                    .iter()
+                    .map(|a| self.rate_of(a, name))
+                    .collect::<Option<Vec<Id>>>()?;
+                let qv = Tensor::vector(q[1..].to_vec());
+                let dv = Tensor::vector(rates[1..].to_vec());
+                let a1 = self.scale(&dv, q[0], e)?;
+                let a2 = self.scale(&qv, rates[0], e)?;
+                let s = self.skew(&qv, e)?;
+                let a3 = self.product(&s, &dv, e)?;
+                let minus = BinOp::Sub(Default::default());
+                let d = self.combine(&minus, a1, a2, e)?;
+                let d = self.combine(&minus, d, a3, e)?;
+                let two = self.g.int(2);
+                self.scale(&d, two, e)
+            }
             "vec3" => {
                 let a = self.tensor_args(c, name, &[1, 1, 1])?;
                 Some(Tensor::vector(a.iter().map(|t| t.data[0]).collect()))
@@ -490,6 +554,75 @@ impl Lower<'_> {
         }
     }
 
+    /// `"zxz", a, b, c`: the axes (0, 1, 2 for x, y, z) and the angles.
+    fn sequence_args(&mut self, c: &syn::ExprCall, name: &str) -> Option<(Vec<usize>, Vec<Id>)> {
+        let usage = format!("`{name}` takes the axes as a string and three angles: `{name}(\"zxz\", psi, theta, phi)`");
+        if c.args.len() != 4 {
+            self.cx.error_at(c, usage);
+            return None;
+        }
+        let axes: Option<Vec<usize>> = match &c.args[0] {
+            Expr::Lit(syn::ExprLit {
+                lit: syn::Lit::Str(s),
+                ..
+            }) => {
+                let text = s.value();
+                let axes: Option<Vec<usize>> = text
+                    .chars()
+                    .map(|ch| match ch {
+                        'x' | 'X' | '1' => Some(0),
+                        'y' | 'Y' | '2' => Some(1),
+                        'z' | 'Z' | '3' => Some(2),
+                        _ => None,
+                    })
+                    .collect();
+                axes.filter(|a| a.len() == 3 && a[0] != a[1] && a[1] != a[2])
+            }
+            _ => None,
+        };
+        let Some(axes) = axes else {
+            self.cx.error_at(
+                &c.args[0],
+                format!(
+                    "{usage}; the axes are three of x, y, z (or 1, 2, 3), no two consecutive equal"
+                ),
+            );
+            return None;
+        };
+        let mut angles = Vec::with_capacity(3);
+        for arg in c.args.iter().skip(1) {
+            angles.push(self.scalar_of(arg)?);
+        }
+        Some((axes, angles))
+    }
+
+    /// `der(a)` of an angle or quaternion component that is a state.
+    fn rate_of(&mut self, a: &Expr, name: &str) -> Option<Id> {
+        let v = self.value(a)?;
+        let symbol = self.g.as_symbol(v).filter(|&s| {
+            matches!(
+                self.g.symbol(s).kind,
+                crate::SymbolKind::State | crate::SymbolKind::Derivative { .. }
+            )
+        });
+        match symbol {
+            Some(s) => {
+                let r = self.g.derivative(s, 1);
+                self.graph_result(r, a)
+            }
+            None => {
+                self.cx.error_at(
+                    a,
+                    format!(
+                        "`{name}` takes states (their rates are their `der`), and `{}` is not one",
+                        a.to_token_stream()
+                    ),
+                );
+                None
+            }
+        }
+    }
+
     /// `R_x`, `R_y`, `R_z` of eq. 4.9.
     fn primitive(&mut self, name: &str, theta: Id, e: &Expr) -> Option<Tensor> {
         let (zero, one) = (self.g.zero(), self.g.one());
@@ -523,4 +656,14 @@ impl Lower<'_> {
             vec![zero, n[2], y, z, zero, n[0], n[1], x, zero],
         ))
     }
+}
+
+fn transposed(t: &Tensor) -> Tensor {
+    let mut data = Vec::with_capacity(t.data.len());
+    for col in 0..t.cols {
+        for row in 0..t.rows {
+            data.push(t.at(row, col));
+        }
+    }
+    Tensor::matrix(t.cols, t.rows, data)
 }
