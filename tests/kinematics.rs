@@ -313,3 +313,45 @@ fn sequences_and_angular_velocities_in_the_language_match_the_runtime() {
     let got = Vector3::new(at0("v0"), at0("v1"), at0("v2"));
     assert!((got - want).norm() <= 1e-15, "{got} vs {want}");
 }
+
+/// Transforms and natural coordinates in the language.
+#[dae_model]
+fn frames() {
+    let alpha = param(0.4);
+    let s = state(0.0);
+    der(s) == 0.0;
+    let r = rot_seq("zxy", alpha, 0.3, -1.2);
+    let p = vec3(0.5, -0.1, 2.0);
+    let xb = homogeneous(vec3(0.3, -0.7, 1.1));
+    let xw = transform(r, p) * xb;
+    let back = inverse_transform(r, p) * xw;
+    let p1 = vec3(0.5, -0.2, 0.0);
+    let p2 = vec3(0.5 + 2.0 * cos(alpha), -0.2 + 2.0 * sin(alpha), 0.0);
+    let frame = planar_frame(p1, p2) * vec3(1.0, 2.0, 3.0);
+    let x0 = output(xw[0]);
+    let x1 = output(xw[1]);
+    let x2 = output(xw[2]);
+    let x3 = output(xw[3]);
+    let b = output(norm(vec3(back[0], back[1], back[2]) - vec3(0.3, -0.7, 1.1)));
+    let f0 = output(frame[0]);
+    let f1 = output(frame[1]);
+    let f2 = output(frame[2]);
+}
+
+#[test]
+fn transforms_and_natural_coordinates_in_the_language_match_the_runtime() {
+    use k::Axis::*;
+    let sol = Frames::default()
+        .simulate(0.0, 0.5, &Options::new().method(Method::Rk4).step(0.25))
+        .unwrap();
+    let at = |n: &str| sol.last(n).unwrap();
+    let r = k::sequence([Z, X, Y], [0.4, 0.3, -1.2]);
+    let p = Vector3::new(0.5, -0.1, 2.0);
+    let want = p + r * Vector3::new(0.3, -0.7, 1.1);
+    let got = Vector3::new(at("x0"), at("x1"), at("x2"));
+    assert!((got - want).norm() <= 1e-15 && at("x3") == 1.0);
+    assert!(at("b") <= 1e-15);
+    let want = k::rot_z(0.4) * Vector3::new(1.0, 2.0, 3.0);
+    let got = Vector3::new(at("f0"), at("f1"), at("f2"));
+    assert!((got - want).norm() <= 1e-15, "{got} vs {want}");
+}

@@ -11,7 +11,7 @@
 //! with `q0 = cos(θ/2)` (eq. 4.19). Angular velocities are in body axes,
 //! `Rᵀ Ṙ = skew(ω)` (eq. 4.20).
 
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, Matrix4, Vector3};
 
 /// A coordinate axis.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -346,4 +346,28 @@ pub fn point_acceleration(
             + omega_dot.cross(p)
             + omega.cross(p_dot) * 2.0
             + p_ddot)
+}
+
+/// The 4 × 4 transform `[R p; 0 1]` of a frame at `p` with orientation `R`
+/// (eq. 4.7): world coordinates of a point from its body coordinates.
+pub fn transform(r: &Matrix3<f64>, p: &Vector3<f64>) -> Matrix4<f64> {
+    let mut t = Matrix4::identity();
+    t.fixed_view_mut::<3, 3>(0, 0).copy_from(r);
+    t.fixed_view_mut::<3, 1>(0, 3).copy_from(p);
+    t
+}
+
+/// The inverse transform `[Rᵀ −Rᵀp; 0 1]` (eq. 4.8).
+pub fn inverse_transform(r: &Matrix3<f64>, p: &Vector3<f64>) -> Matrix4<f64> {
+    let rt = r.transpose();
+    transform(&rt, &(-(rt * p)))
+}
+
+/// The planar body frame of two points in natural coordinates (§4.1.5):
+/// origin at `p1`, x axis along `p1 → p2`, z axis out of the plane.
+pub fn planar_frame(p1: &Vector3<f64>, p2: &Vector3<f64>) -> Matrix3<f64> {
+    let d = p2 - p1;
+    let l = d.norm();
+    let (c, s) = (d.x / l, d.y / l);
+    Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0)
 }

@@ -293,3 +293,32 @@ fn point_velocity_and_acceleration_match_differences() {
     assert!((v - v_fd).norm() <= 1e-7, "{v} vs {v_fd}");
     assert!((a - a_fd).norm() <= 1e-5, "{a} vs {a_fd}");
 }
+
+#[test]
+fn transforms_compose_and_invert() {
+    use nalgebra::{Matrix4, Vector4};
+    // Pure rotations compose to the sum of the angles (notes §4.1.1).
+    let (alpha, beta) = (0.4, 1.1);
+    let t =
+        transform(&rot_z(alpha), &Vector3::zeros()) * transform(&rot_z(beta), &Vector3::zeros());
+    assert!(
+        (t - transform(&rot_z(alpha + beta), &Vector3::zeros()))
+            .abs()
+            .max()
+            <= 1e-15
+    );
+    for u in angles(10) {
+        let r = sequence([Axis::Z, Axis::X, Axis::Y], u);
+        let p = Vector3::new(u[2], u[0], -u[1]);
+        let (t, ti) = (transform(&r, &p), inverse_transform(&r, &p));
+        assert!((t * ti - Matrix4::identity()).abs().max() <= 1e-14);
+        // A body point goes to p + R x_b (eq. 4.1).
+        let xb = Vector3::new(0.3, -0.7, 1.1);
+        let xw = t * Vector4::new(xb.x, xb.y, xb.z, 1.0);
+        assert!((xw.xyz() - (p + r * xb)).norm() <= 1e-14 && xw.w == 1.0);
+    }
+    // Natural coordinates: two points at angle α give R_z(α).
+    let p1 = Vector3::new(0.5, -0.2, 0.0);
+    let p2 = p1 + Vector3::new(2.0 * alpha.cos(), 2.0 * alpha.sin(), 0.0);
+    assert!((planar_frame(&p1, &p2) - rot_z(alpha)).abs().max() <= 1e-15);
+}

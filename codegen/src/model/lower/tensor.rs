@@ -6,6 +6,9 @@
 //! `transpose`, any axis sequence `rot_seq("zxz", a, b, c)` and its inverse
 //! (eq. 4.12), body angular velocities from angle or quaternion states
 //! (`omega_seq`, `omega_quat`, §4.1.4),
+//! 4 × 4 transforms `transform(r, p)` (eq. 4.7), `inverse_transform` (4.8)
+//! and points `homogeneous(p)`, the planar frame of two points in natural
+//! coordinates `planar_frame(p1, p2)` (§4.1.5),
 //! `+ − *` (scalar, matrix–vector, matrix–matrix) and `/` by a
 //! scalar, indexing `p[0]`, `r[1][2]`; an equation or a constraint between
 //! vectors stands for one per component.
@@ -64,7 +67,11 @@ impl Tensor {
 }
 
 /// Functions whose value is a vector or a matrix.
-pub(super) const TENSOR_FUNCTIONS: [&str; 17] = [
+pub(super) const TENSOR_FUNCTIONS: [&str; 21] = [
+    "transform",
+    "inverse_transform",
+    "homogeneous",
+    "planar_frame",
     "rot_seq",
     "inverse_rot_seq",
     "omega_seq",
@@ -386,6 +393,73 @@ impl Lower<'_> {
                         self.combine(&plus, sum, unit(axes[2], rates[2]), e)
                     }
                 }
+            }
+            "transform" | "inverse_transform" => {
+                if c.args.len() != 2 {
+                    self.cx.error_at(
+                        c,
+                        format!("`{name}` takes a 3×3 rotation and a 3-vector: `{name}(r, p)`"),
+                    );
+                    return None;
+                }
+                let r = self.tensor(&c.args[0])?;
+                let p = self.tensor(&c.args[1])?;
+                if (r.rows, r.cols, p.rows, p.cols) != (3, 3, 3, 1) {
+                    self.cx.error_at(
+                        c,
+                        format!(
+                            "`{name}` takes a 3×3 rotation and a 3-vector, not a {} and a {}",
+                            r.shape(),
+                            p.shape()
+                        ),
+                    );
+                    return None;
+                }
+                // [R p; 0 1], or its inverse [Rᵀ −Rᵀp; 0 1].
+                let (r, p) = if name == "transform" {
+                    (r, p)
+                } else {
+                    let rt = transposed(&r);
+                    let rtp = self.product(&rt, &p, e)?;
+                    let minus = self.g.int(-1);
+                    let neg = self.scale(&rtp, minus, e)?;
+                    (rt, neg)
+                };
+                let mut data = Vec::with_capacity(16);
+                for row in 0..3 {
+                    data.extend_from_slice(&r.data[row * 3..row * 3 + 3]);
+                    data.push(p.data[row]);
+                }
+                data.extend_from_slice(&[zero, zero, zero, one]);
+                Some(Tensor::matrix(4, 4, data))
+            }
+            "homogeneous" => {
+                let a = self.tensor_args(c, name, &[3])?;
+                let mut data = a[0].data.clone();
+                data.push(one);
+                Some(Tensor::vector(data))
+            }
+            "planar_frame" => {
+                // The body frame with origin P1 and x axis along P1P2
+                // (natural coordinates, §4.1.5): [d −d⊥ 0; …] / L.
+                let a = self.tensor_args(c, name, &[3, 3])?;
+                let minus = BinOp::Sub(Default::default());
+                let d = self.combine(&minus, a[1].clone(), a[0].clone(), e)?;
+                let t = Tensor::matrix(1, 3, d.data.clone());
+                let dd = self.product(&t, &d, e)?;
+                let len = self.g.sqrt(dd.data[0]);
+                let len = g(self, len)?;
+                let cos = self.g.div(d.data[0], len);
+                let cos = g(self, cos)?;
+                let sin = self.g.div(d.data[1], len);
+                let sin = g(self, sin)?;
+                let msin = self.g.neg(sin);
+                let msin = g(self, msin)?;
+                Some(Tensor::matrix(
+                    3,
+                    3,
+                    vec![cos, msin, zero, sin, cos, zero, zero, zero, one],
+                ))
             }
             "omega_quat" => {
                 // ω = 2 (q0 q̇v − q̇0 qv − qv × q̇v) in body axes.
