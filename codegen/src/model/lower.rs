@@ -10,9 +10,11 @@ use super::ir::{
 };
 use super::names::did_you_mean;
 
+mod scene;
 mod tensor;
 use crate::{Func, Graph, Id, Node, SymbolId, SymbolKind};
 use quote::ToTokens;
+use scene::Scene;
 use std::collections::HashMap;
 use syn::{BinOp, Expr, Lit, Pat, Stmt, UnOp};
 use tensor::Tensor;
@@ -39,6 +41,10 @@ enum Binding {
     Const(Id),
     /// `let r = rot_z(theta);`: a vector or a matrix.
     Tensor(Tensor),
+    /// `let crank = body(m, j, [x, y, theta]);`: a planar rigid body.
+    Body(usize),
+    /// `let ground = ground();`
+    Ground,
 }
 
 impl Binding {
@@ -53,12 +59,16 @@ impl Binding {
             Binding::Value { .. } => "an intermediate value",
             Binding::Const(_) => "a constant",
             Binding::Tensor(_) => "a vector or matrix value",
+            Binding::Body(_) => "a body",
+            Binding::Ground => "the ground",
         }
     }
 }
 
-const DECLARATIONS: [&str; 8] = [
+const DECLARATIONS: [&str; 10] = [
     "event",
+    "body",
+    "ground",
     "quaternion_state",
     "param",
     "state",
@@ -103,6 +113,7 @@ struct Lower<'c> {
     equations: Vec<Equation>,
     inits: Vec<Init>,
     invariants: Vec<UserInvariant>,
+    scene: Scene,
     unrolled: usize,
     non_smooth_calls: Vec<(Id, proc_macro2::TokenStream)>,
 }
@@ -123,6 +134,7 @@ pub fn lower(cx: &mut Ctxt, item: &syn::ItemFn) -> ModelIr {
         equations: Vec::new(),
         inits: Vec::new(),
         invariants: Vec::new(),
+        scene: Scene::default(),
         unrolled: 0,
         non_smooth_calls: Vec::new(),
     };
@@ -148,6 +160,7 @@ pub fn lower(cx: &mut Ctxt, item: &syn::ItemFn) -> ModelIr {
             .and_then(|id| l.g.as_symbol(id))
     });
     let time = time.unwrap_or(SymbolId(0));
+    l.scene_equations(item);
     if l.states.is_empty() && l.cx.is_ok() {
         l.cx.error_at(&item.sig.ident, "the model declares no state: add one with `let x = state(0.0);` and an equation `der(x) == ...;`");
     }
@@ -316,6 +329,12 @@ impl Lower<'_> {
             _ => (e, false),
         };
         if let Some((name, call)) = call_name(e) {
+            if scene::JOINTS.contains(&name.as_str()) {
+                if self.already_declared(&ident) {
+                    return;
+                }
+                return self.joint(&name, Some(&ident), call, e);
+            }
             if DECLARATIONS.contains(&name.as_str()) {
                 if self.in_loop() {
                     return self.cx.error_at(e, format!("declare `{name}(...)` outside loops: each iteration would declare `{ident}` again"));
@@ -471,6 +490,7 @@ impl Lower<'_> {
         }
         let origin = local.to_token_stream();
         match kind {
+            "body" | "ground" => self.scene_declaration(ident, kind, call, local),
             "param" => {
                 if !self.arity(call, "param", 1) {
                     return;
@@ -760,6 +780,10 @@ impl Lower<'_> {
                         }
                     }
                 }
+                Some((name, call)) if scene::JOINTS.contains(&name.as_str()) => {
+                    self.joint(&name, None, call, e)
+                }
+                Some((name, call)) if scene::LOADS.contains(&name.as_str()) => self.load(&name, call, e),
                 Some((name, call)) if name == "invariant" => {
                     if self.arity(call, "invariant", 1) {
                         if let Some(value) = self.tensor(&call.args[0]) {
@@ -1020,6 +1044,11 @@ impl Lower<'_> {
                     ) => Some(id),
                     Some(Binding::Value { id, .. }) => Some(id),
                     Some(Binding::State(s)) => Some(self.g.symbol_node(s)),
+                    Some(b @ (Binding::Body(_) | Binding::Ground)) => {
+                        let what = b.describe();
+                        self.cx.error_at(e, format!("`{name}` is {what}: use `position({name}, p)` for a point of it, or its coordinates `{name}.x`… in the solution"));
+                        None
+                    }
                     Some(Binding::Tensor(t)) => match t.as_scalar() {
                         Some(id) => Some(id),
                         None => {

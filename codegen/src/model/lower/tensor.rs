@@ -36,6 +36,10 @@ impl Tensor {
         }
     }
 
+    pub(super) fn from_vector(data: Vec<Id>) -> Tensor {
+        Tensor::vector(data)
+    }
+
     fn vector(data: Vec<Id>) -> Tensor {
         Tensor {
             rows: data.len(),
@@ -67,7 +71,8 @@ impl Tensor {
 }
 
 /// Functions whose value is a vector or a matrix.
-pub(super) const TENSOR_FUNCTIONS: [&str; 21] = [
+pub(super) const TENSOR_FUNCTIONS: [&str; 22] = [
+    "position",
     "transform",
     "inverse_transform",
     "homogeneous",
@@ -358,6 +363,10 @@ impl Lower<'_> {
         let zero = self.g.zero();
         let one = self.g.one();
         match name {
+            "position" => {
+                let [x, y] = self.position(c, e)?;
+                Some(Tensor::vector(vec![x, y, zero]))
+            }
             "rot_seq" | "inverse_rot_seq" | "omega_seq" => {
                 let (axes, angles) = self.sequence_args(c, name)?;
                 let rotations = axes

@@ -1,0 +1,509 @@
+//! Planar multibody scenes in the global formulation (course notes
+//! §4.2.2): each body is free, `(x, y, θ)` of its centre of mass, and each
+//! joint is a set of constraints on those coordinates with its reaction as
+//! algebraic variables. At the end of the model the macro writes each
+//! body's Newton–Euler equations `M q'' = f − Φ_qᵀ λ`, with Φ_q the
+//! symbolic partial derivatives of the joints' constraints; the DAE
+//! pipeline does the rest (index 3, the KKT system, projection).
+//!
+//! ```text
+//! let ground = ground();
+//! let crank = body(m, j, [x0, y0, theta0]);      // optional 4th: [vx, vy, omega]
+//! let pin = revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5 * r, 0.0, 0.0));
+//! distance(crank, a, slider, b, l);               // a massless rod
+//! prismatic(ground, p, slider, q, vec3(1.0, 0.0, 0.0));
+//! gravity(vec3(0.0, -g, 0.0));
+//! force(body, point, f);  torque(body, tau);
+//! let p = position(crank, point);                 // world position of a body point
+//! ```
+
+use super::{Binding, Lower};
+use crate::{Id, SymbolId};
+use proc_macro2::TokenStream;
+use quote::ToTokens;
+use syn::Expr;
+
+/// A planar rigid body: its coordinates and inertia.
+#[derive(Clone)]
+pub(super) struct Body {
+    pub x: SymbolId,
+    pub y: SymbolId,
+    pub theta: SymbolId,
+    pub mass: Id,
+    pub inertia: Id,
+}
+
+/// What a scene has collected by the end of the model.
+#[derive(Default)]
+pub(super) struct Scene {
+    pub bodies: Vec<Body>,
+    pub ground: bool,
+    pub first_body: Option<TokenStream>,
+    /// Joint constraint rows and their multipliers.
+    pub rows: Vec<(Id, Id)>,
+    /// Applied forces: body, world force (x, y), torque.
+    pub loads: Vec<(usize, Id, Id, Id)>,
+    pub gravity: Option<(Id, Id)>,
+    pub joints: usize,
+}
+
+/// Joint statements, which may be named by a `let`.
+pub(super) const JOINTS: [&str; 3] = ["revolute", "distance", "prismatic"];
+/// Load statements.
+pub(super) const LOADS: [&str; 3] = ["gravity", "force", "torque"];
+
+/// A body or the ground, as a joint sees it.
+#[derive(Clone, Copy)]
+enum Frame {
+    Ground,
+    Body(usize),
+}
+
+impl Lower<'_> {
+    /// `let b = body(m, j, [x, y, θ])` or `let g = ground()`.
+    pub(super) fn scene_declaration(
+        &mut self,
+        ident: &syn::Ident,
+        kind: &str,
+        call: &syn::ExprCall,
+        local: &syn::Local,
+    ) {
+        if kind == "ground" {
+            if !self.arity(call, "ground", 0) {
+                return;
+            }
+            if self.scene.ground {
+                return self
+                    .cx
+                    .error_at(local, "a scene has one ground: remove this one");
+            }
+            self.scene.ground = true;
+            return self.bind(ident, Binding::Ground);
+        }
+        if !(3..=4).contains(&call.args.len()) {
+            return self.cx.error_at(call, "`body` takes a mass, an inertia about the centre of mass, the initial `[x, y, theta]` and optionally the initial `[vx, vy, omega]`");
+        }
+        let (Some(mass), Some(inertia)) = (self.value(&call.args[0]), self.value(&call.args[1]))
+        else {
+            return;
+        };
+        let triple = |this: &mut Self, e: &Expr| -> Option<Vec<Id>> {
+            match e {
+                Expr::Array(a) if a.elems.len() == 3 => {
+                    a.elems.iter().map(|v| this.initial_value(v)).collect()
+                }
+                other => {
+                    this.cx
+                        .error_at(other, "write three values: `[x, y, theta]`");
+                    None
+                }
+            }
+        };
+        let Some(position) = triple(self, &call.args[2]) else {
+            return;
+        };
+        let velocity = match call.args.get(3) {
+            Some(v) => match triple(self, v) {
+                Some(v) => Some(v),
+                None => return,
+            },
+            None => None,
+        };
+        let name = ident.to_string();
+        let origin = local.to_token_stream();
+        let mut symbols = Vec::with_capacity(3);
+        for (k, coordinate) in ["x", "y", "theta"].iter().enumerate() {
+            let state = format!("{name}.{coordinate}");
+            let id = match self.g.state(&state) {
+                Ok(id) => id,
+                Err(e) => return self.cx.error_at(ident, e),
+            };
+            let Some(symbol) = self.g.as_symbol(id) else {
+                return;
+            };
+            self.states.push(super::StateDecl {
+                name: state,
+                symbol,
+                init: position[k],
+                origin: origin.clone(),
+                fixed: false,
+            });
+            if let Some(v) = &velocity {
+                let Ok(d) = self.g.derivative(symbol, 1) else {
+                    return;
+                };
+                if let Some(target) = self.g.as_symbol(d) {
+                    self.inits.push(super::Init {
+                        target,
+                        value: v[k],
+                        origin: origin.clone(),
+                    });
+                }
+            }
+            symbols.push(symbol);
+        }
+        if self.scene.first_body.is_none() {
+            self.scene.first_body = Some(origin);
+        }
+        self.scene.bodies.push(Body {
+            x: symbols[0],
+            y: symbols[1],
+            theta: symbols[2],
+            mass,
+            inertia,
+        });
+        self.bind(ident, Binding::Body(self.scene.bodies.len() - 1));
+    }
+
+    fn frame(&mut self, e: &Expr) -> Option<Frame> {
+        let name = match e {
+            Expr::Path(p) => p.path.get_ident().map(|i| i.to_string()),
+            _ => None,
+        };
+        let Some(name) = name else {
+            self.cx.error_at(e, "name a body or the ground here");
+            return None;
+        };
+        match self.lookup(&name).cloned() {
+            Some(Binding::Body(b)) => Some(Frame::Body(b)),
+            Some(Binding::Ground) => Some(Frame::Ground),
+            Some(other) => {
+                let what = other.describe();
+                self.cx.error_at(e, format!("`{name}` is {what}, not a body: declare it with `let {name} = body(m, j, [x, y, theta]);`"));
+                None
+            }
+            None => {
+                self.unknown_name(e, &name);
+                None
+            }
+        }
+    }
+
+    /// A body-fixed point given in body coordinates, as (x, y) in the world.
+    fn world_point(&mut self, frame: Frame, p: &Expr, at: &Expr) -> Option<[Id; 2]> {
+        let t = self.tensor(p)?;
+        if (t.rows, t.cols) != (3, 1) {
+            self.cx.error_at(
+                p,
+                format!(
+                    "a point is a 3-vector in body coordinates (z ignored in the plane), not a {}",
+                    t.shape()
+                ),
+            );
+            return None;
+        }
+        let (px, py) = (t.data[0], t.data[1]);
+        match frame {
+            Frame::Ground => Some([px, py]),
+            Frame::Body(b) => {
+                let body = self.scene.bodies[b].clone();
+                let r = (|| -> crate::Result<[Id; 2]> {
+                    let g = &mut self.g;
+                    let theta = g.symbol_node(body.theta);
+                    let c = g.call(crate::Func::Cos, theta)?;
+                    let s = g.call(crate::Func::Sin, theta)?;
+                    let (x, y) = (g.symbol_node(body.x), g.symbol_node(body.y));
+                    let cx = g.mul(c, px)?;
+                    let sy = g.mul(s, py)?;
+                    let sx = g.mul(s, px)?;
+                    let cy = g.mul(c, py)?;
+                    let wx = g.add(x, cx)?;
+                    let wx = g.sub(wx, sy)?;
+                    let wy = g.add(y, sx)?;
+                    let wy = g.add(wy, cy)?;
+                    Ok([wx, wy])
+                })();
+                self.graph_result_pair(r, at)
+            }
+        }
+    }
+
+    fn graph_result_pair(&mut self, r: crate::Result<[Id; 2]>, at: &Expr) -> Option<[Id; 2]> {
+        match r {
+            Ok(v) => Some(v),
+            Err(e) => {
+                self.cx.error_at(at, e);
+                None
+            }
+        }
+    }
+
+    /// `position(body, p)`: the world position of a body point, a 3-vector.
+    pub(super) fn position(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<[Id; 2]> {
+        if c.args.len() != 2 {
+            self.cx.error_at(c, "`position` takes a body and a point in its coordinates: `position(crank, vec3(0.5, 0.0, 0.0))`");
+            return None;
+        }
+        let frame = self.frame(&c.args[0])?;
+        self.world_point(frame, &c.args[1], e)
+    }
+
+    fn angle(&mut self, frame: Frame) -> Id {
+        match frame {
+            Frame::Ground => self.g.zero(),
+            Frame::Body(b) => self.g.symbol_node(self.scene.bodies[b].theta),
+        }
+    }
+
+    /// A joint statement; `name` names its reactions (`name[0]`, ...).
+    pub(super) fn joint(
+        &mut self,
+        kind: &str,
+        name: Option<&syn::Ident>,
+        c: &syn::ExprCall,
+        e: &Expr,
+    ) {
+        let arity = match kind {
+            "revolute" => 4,
+            _ => 5,
+        };
+        if c.args.len() != arity {
+            let usage = match kind {
+                "revolute" => "`revolute(a, point_in_a, b, point_in_b)`",
+                "distance" => "`distance(a, point_in_a, b, point_in_b, length)`",
+                _ => "`prismatic(a, point_in_a, b, point_in_b, axis_in_a)`",
+            };
+            return self
+                .cx
+                .error_at(c, format!("`{kind}` takes {arity} arguments: {usage}"));
+        }
+        let (Some(a), Some(b)) = (self.frame(&c.args[0]), self.frame(&c.args[2])) else {
+            return;
+        };
+        let (Some(pa), Some(pb)) = (
+            self.world_point(a, &c.args[1], e),
+            self.world_point(b, &c.args[3], e),
+        ) else {
+            return;
+        };
+        let rows: crate::Result<Vec<Id>> = match kind {
+            "revolute" => (0..2).map(|k| self.g.sub(pa[k], pb[k])).collect(),
+            "distance" => {
+                let Some(l) = self.value(&c.args[4]) else {
+                    return;
+                };
+                (|| {
+                    let g = &mut self.g;
+                    let dx = g.sub(pb[0], pa[0])?;
+                    let dy = g.sub(pb[1], pa[1])?;
+                    let dx2 = g.mul(dx, dx)?;
+                    let dy2 = g.mul(dy, dy)?;
+                    let l2 = g.mul(l, l)?;
+                    let s = g.add(dx2, dy2)?;
+                    Ok(vec![g.sub(s, l2)?])
+                })()
+            }
+            _ => {
+                // B's point stays on the line through A's point along A's
+                // axis, and the relative angle keeps its initial value.
+                let Some(axis) = self.tensor(&c.args[4]) else {
+                    return;
+                };
+                if (axis.rows, axis.cols) != (3, 1) {
+                    return self
+                        .cx
+                        .error_at(&c.args[4], "the axis is a 3-vector in A's coordinates");
+                }
+                let (ta, tb) = (self.angle(a), self.angle(b));
+                let initial = |this: &Self, f: Frame| match f {
+                    Frame::Ground => None,
+                    Frame::Body(k) => this
+                        .states
+                        .iter()
+                        .find(|s| s.symbol == this.scene.bodies[k].theta)
+                        .map(|s| s.init),
+                };
+                let (ia, ib) = (initial(self, a), initial(self, b));
+                (|| {
+                    let g = &mut self.g;
+                    let (c_, s_) = (g.call(crate::Func::Cos, ta)?, g.call(crate::Func::Sin, ta)?);
+                    let (ax, ay) = (axis.data[0], axis.data[1]);
+                    // The axis in the world: R(θa) (ax, ay).
+                    let t1 = g.mul(c_, ax)?;
+                    let t2 = g.mul(s_, ay)?;
+                    let wx = g.sub(t1, t2)?;
+                    let t3 = g.mul(s_, ax)?;
+                    let t4 = g.mul(c_, ay)?;
+                    let wy = g.add(t3, t4)?;
+                    let dx = g.sub(pb[0], pa[0])?;
+                    let dy = g.sub(pb[1], pa[1])?;
+                    let cross1 = g.mul(dx, wy)?;
+                    let cross2 = g.mul(dy, wx)?;
+                    let along = g.sub(cross1, cross2)?;
+                    let zero = g.zero();
+                    let relative = g.sub(tb, ta)?;
+                    let start = g.sub(ib.unwrap_or(zero), ia.unwrap_or(zero))?;
+                    Ok(vec![along, g.sub(relative, start)?])
+                })()
+            }
+        };
+        let rows = match rows {
+            Ok(r) => r,
+            Err(err) => return self.cx.error_at(e, err),
+        };
+        self.scene.joints += 1;
+        let base = match name {
+            Some(n) => n.to_string(),
+            None => format!("{kind}{}", self.scene.joints),
+        };
+        let zero = self.g.zero();
+        let mut multipliers = Vec::with_capacity(rows.len());
+        for (k, &row) in rows.iter().enumerate() {
+            let lambda_name = format!("{base}[{k}]");
+            let lambda = match self.g.algebraic(&lambda_name) {
+                Ok(id) => id,
+                Err(err) => return self.cx.error_at(e, err),
+            };
+            let Some(symbol) = self.g.as_symbol(lambda) else {
+                return;
+            };
+            self.algebraics.push(super::AlgebraicDecl {
+                name: lambda_name,
+                symbol,
+                init: zero,
+                origin: e.to_token_stream(),
+            });
+            self.equations.push(super::Equation {
+                lhs: row,
+                rhs: zero,
+                origin: e.to_token_stream(),
+                is_constraint: true,
+            });
+            self.scene.rows.push((row, lambda));
+            multipliers.push(lambda);
+        }
+        if let Some(n) = name {
+            let t = super::tensor::Tensor::from_vector(multipliers);
+            self.bind(n, Binding::Tensor(t));
+        }
+    }
+
+    /// `gravity(g)`, `force(body, point, f)`, `torque(body, tau)`.
+    pub(super) fn load(&mut self, kind: &str, c: &syn::ExprCall, e: &Expr) {
+        let zero = self.g.zero();
+        match kind {
+            "gravity" => {
+                if c.args.len() != 1 {
+                    return self.cx.error_at(c, "`gravity` takes the acceleration of gravity as a 3-vector: `gravity(vec3(0.0, -g, 0.0))`");
+                }
+                let Some(t) = self.tensor(&c.args[0]) else {
+                    return;
+                };
+                if (t.rows, t.cols) != (3, 1) {
+                    return self.cx.error_at(&c.args[0], "gravity is a 3-vector");
+                }
+                self.scene.gravity = Some((t.data[0], t.data[1]));
+            }
+            "force" => {
+                if c.args.len() != 3 {
+                    return self.cx.error_at(c, "`force` takes a body, the point of application in its coordinates and the force in world axes");
+                }
+                let Some(Frame::Body(b)) = self.frame(&c.args[0]) else {
+                    return self
+                        .cx
+                        .error_at(&c.args[0], "a force acts on a body, not on the ground");
+                };
+                let Some(f) = self.tensor(&c.args[2]) else {
+                    return;
+                };
+                if (f.rows, f.cols) != (3, 1) {
+                    return self
+                        .cx
+                        .error_at(&c.args[2], "a force is a 3-vector in world axes");
+                }
+                let Some(p) = self.world_point(Frame::Body(b), &c.args[1], e) else {
+                    return;
+                };
+                // Its moment about the centre of mass: (P − c) × f.
+                let body = self.scene.bodies[b].clone();
+                let moment = (|| {
+                    let g = &mut self.g;
+                    let (x, y) = (g.symbol_node(body.x), g.symbol_node(body.y));
+                    let rx = g.sub(p[0], x)?;
+                    let ry = g.sub(p[1], y)?;
+                    let m1 = g.mul(rx, f.data[1])?;
+                    let m2 = g.mul(ry, f.data[0])?;
+                    g.sub(m1, m2)
+                })();
+                let Some(moment) = self.graph_result(moment, e) else {
+                    return;
+                };
+                self.scene.loads.push((b, f.data[0], f.data[1], moment));
+            }
+            _ => {
+                if c.args.len() != 2 {
+                    return self.cx.error_at(
+                        c,
+                        "`torque` takes a body and the torque about its centre of mass",
+                    );
+                }
+                let Some(Frame::Body(b)) = self.frame(&c.args[0]) else {
+                    return self
+                        .cx
+                        .error_at(&c.args[0], "a torque acts on a body, not on the ground");
+                };
+                let Some(tau) = self.value(&c.args[1]) else {
+                    return;
+                };
+                self.scene.loads.push((b, zero, zero, tau));
+            }
+        }
+    }
+
+    /// The Newton–Euler equations of every body, `M q'' = f − Φ_qᵀ λ`.
+    pub(super) fn scene_equations(&mut self, item: &syn::ItemFn) {
+        if self.scene.bodies.is_empty() {
+            return;
+        }
+        if !self.scene.ground {
+            let at = self
+                .scene
+                .first_body
+                .clone()
+                .unwrap_or_else(|| item.sig.ident.to_token_stream());
+            return self.cx.error_at(at, "a scene needs a ground to hold it: add `let ground = ground();` and attach a body to it with a joint");
+        }
+        let bodies = self.scene.bodies.clone();
+        let rows = self.scene.rows.clone();
+        let loads = self.scene.loads.clone();
+        let gravity = self.scene.gravity;
+        let origin = item.sig.ident.to_token_stream();
+        for (b, body) in bodies.iter().enumerate() {
+            for (k, coordinate) in [body.x, body.y, body.theta].into_iter().enumerate() {
+                let equation = (|| -> crate::Result<(Id, Id)> {
+                    let g = &mut self.g;
+                    let inertia = if k < 2 { body.mass } else { body.inertia };
+                    let acceleration = g.derivative(coordinate, 2)?;
+                    let lhs = g.mul(inertia, acceleration)?;
+                    let mut terms = Vec::new();
+                    if let (Some((gx, gy)), true) = (gravity, k < 2) {
+                        terms.push(g.mul(body.mass, if k == 0 { gx } else { gy })?);
+                    }
+                    for &(on, fx, fy, tau) in &loads {
+                        if on == b {
+                            terms.push([fx, fy, tau][k]);
+                        }
+                    }
+                    for &(row, lambda) in &rows {
+                        let d = g.partial(row, coordinate)?;
+                        if g.as_number(d).is_some_and(|v| v.is_zero()) {
+                            continue;
+                        }
+                        let t = g.mul(d, lambda)?;
+                        terms.push(g.neg(t)?);
+                    }
+                    Ok((lhs, g.sum(&terms)?))
+                })();
+                match equation {
+                    Ok((lhs, rhs)) => self.equations.push(super::Equation {
+                        lhs,
+                        rhs,
+                        origin: origin.clone(),
+                        is_constraint: false,
+                    }),
+                    Err(e) => self.cx.error_at(&origin, e),
+                }
+            }
+        }
+    }
+}
