@@ -122,3 +122,60 @@ fn a_four_bar_linkage_has_one_degree_of_freedom_and_keeps_its_energy() {
     // It moves: the crank turns.
     assert!((sol.last("crank.theta").unwrap() - sol.at(0.0, "crank.theta").unwrap()).abs() > 0.1);
 }
+
+/// A double pendulum of two uniform rods (mass 1, length 1) released
+/// horizontal, as a scene; each rod's body x axis points from its upper
+/// hinge down the rod, so its angle is θ − π/2 for θ from the vertical.
+#[dae_model]
+fn double_rod_scene() {
+    let g = param(9.81);
+    let ground = ground();
+    let upper = body(1.0, 1.0 / 12.0, [0.5, 0.0, 0.0]);
+    let lower = body(1.0, 1.0 / 12.0, [1.5, 0.0, 0.0]);
+    revolute(ground, vec3(0.0, 0.0, 0.0), upper, vec3(-0.5, 0.0, 0.0));
+    revolute(upper, vec3(0.5, 0.0, 0.0), lower, vec3(-0.5, 0.0, 0.0));
+    gravity(vec3(0.0, -g, 0.0));
+}
+
+/// Its Lagrange equations in the angles from the downward vertical:
+/// M = [[4/3, ½ cos Δ], [½ cos Δ, 1/3]], Δ = θ1 − θ2.
+#[dae_model]
+fn double_rod_angles() {
+    let g = param(9.81);
+    let a = state(1.5707963267948966);
+    let b = state(1.5707963267948966);
+    let c = cos(a - b);
+    let s = sin(a - b);
+    4.0 / 3.0 * der(der(a)) + 0.5 * c * der(der(b))
+        == -0.5 * s * der(b) * der(b) - 1.5 * g * sin(a);
+    0.5 * c * der(der(a)) + der(der(b)) / 3.0 == 0.5 * s * der(a) * der(a) - 0.5 * g * sin(b);
+}
+
+#[test]
+fn a_double_pendulum_scene_follows_its_lagrange_equations() {
+    let tol = 1e-11;
+    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let sol = DoubleRodScene::default().simulate(0.0, 2.0, &opts).unwrap();
+    let reference = DoubleRodAngles::default()
+        .simulate(
+            0.0,
+            2.0,
+            &Options::new()
+                .method(Method::Dop853)
+                .rtol(1e-13)
+                .atol(1e-13),
+        )
+        .unwrap();
+    assert_eq!(sol.degrees_of_freedom(), Some(2));
+    let half_pi = std::f64::consts::FRAC_PI_2;
+    for t in [0.5, 1.0, 2.0] {
+        for (body, angle) in [("upper", "a"), ("lower", "b")] {
+            let got = sol.at(t, &format!("{body}.theta")).unwrap() + half_pi;
+            let want = reference.at(t, angle).unwrap();
+            assert!(
+                (got - want).abs() <= 1000.0 * tol,
+                "t = {t}: {body} {got} vs {want}"
+            );
+        }
+    }
+}

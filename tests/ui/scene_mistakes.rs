@@ -24,4 +24,13 @@ fn body_as_number() {
     let e = output(2.0 * bob);
 }
 
+/// A body pinned at two points: a structure, not a mechanism.
+#[dae_model]
+fn structure() {
+    let ground = ground();
+    let beam = body(1.0, 0.1, [0.5, 0.0, 0.0]);
+    revolute(ground, vec3(0.0, 0.0, 0.0), beam, vec3(-0.5, 0.0, 0.0));
+    revolute(ground, vec3(1.0, 0.0, 0.0), beam, vec3(0.5, 0.0, 0.0));
+}
+
 fn main() {}

@@ -164,10 +164,18 @@ pub fn lower(cx: &mut Ctxt, item: &syn::ItemFn) -> ModelIr {
     if l.states.is_empty() && l.cx.is_ok() {
         l.cx.error_at(&item.sig.ident, "the model declares no state: add one with `let x = state(0.0);` and an equation `der(x) == ...;`");
     }
+    let mut doc = doc_comment(&item.attrs);
+    if !l.scene.summary.is_empty() {
+        doc = if doc.is_empty() {
+            l.scene.summary.clone()
+        } else {
+            format!("{doc}\n\n{}", l.scene.summary)
+        };
+    }
     ModelIr {
         fn_name: item.sig.ident.clone(),
         vis: item.vis.clone(),
-        doc: doc_comment(&item.attrs),
+        doc,
         graph: l.g,
         time,
         params: l.params,

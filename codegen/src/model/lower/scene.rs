@@ -45,6 +45,8 @@ pub(super) struct Scene {
     pub loads: Vec<(usize, Id, Id, Id)>,
     pub gravity: Option<(Id, Id)>,
     pub joints: usize,
+    /// A line for the generated type's documentation.
+    pub summary: String,
 }
 
 /// Joint statements, which may be named by a `let`.
@@ -463,6 +465,23 @@ impl Lower<'_> {
                 .unwrap_or_else(|| item.sig.ident.to_token_stream());
             return self.cx.error_at(at, "a scene needs a ground to hold it: add `let ground = ground();` and attach a body to it with a joint");
         }
+        // Grübler's count: 3 coordinates per body minus the joint rows.
+        let (n, m) = (self.scene.bodies.len(), self.scene.rows.len());
+        let dof = 3 * n as i64 - m as i64;
+        if dof <= 0 {
+            let at = self
+                .scene
+                .first_body
+                .clone()
+                .unwrap_or_else(|| item.sig.ident.to_token_stream());
+            return self.cx.error_at(at, format!("this scene cannot move: {n} bodies have {} coordinates and the joints impose {m} constraints, {dof} degrees of freedom by Grübler's count; it is a structure, not a mechanism: remove a joint", 3 * n));
+        }
+        let loops = self.scene.joints as i64 - n as i64;
+        self.scene.summary = format!(
+            "Planar scene (global formulation): {n} bodies, {} joints with {m} constraint rows, {} independent loop(s) (joints − bodies), {dof} degrees of freedom by Grübler's count (the run reports n − rank Φ_q).",
+            self.scene.joints,
+            loops.max(0)
+        );
         let bodies = self.scene.bodies.clone();
         let rows = self.scene.rows.clone();
         let loads = self.scene.loads.clone();
