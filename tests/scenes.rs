@@ -179,3 +179,50 @@ fn a_double_pendulum_scene_follows_its_lagrange_equations() {
         }
     }
 }
+
+/// A block hanging from the ground on a spring–damper (k = 40, c = 2,
+/// rest length 1, m = 2): y − y_eq = A e^(−σt) (cos ω t + σ/ω sin ω t).
+#[dae_model]
+fn hanging_block() {
+    let g = param(9.81);
+    let ground = ground();
+    let block = body(2.0, 0.1, [0.0, -1.8, 0.0]);
+    spring(
+        ground,
+        vec3(0.0, 0.0, 0.0),
+        block,
+        vec3(0.0, 0.0, 0.0),
+        40.0,
+        1.0,
+        2.0,
+    );
+    gravity(vec3(0.0, -g, 0.0));
+}
+
+#[test]
+fn a_spring_damper_in_a_scene_gives_the_damped_oscillation() {
+    assert_eq!(<HangingBlock as Model>::INDEX, 0);
+    let tol = 1e-11;
+    let sol = HangingBlock::default()
+        .simulate(
+            0.0,
+            3.0,
+            &Options::new().method(Method::Dop853).rtol(tol).atol(tol),
+        )
+        .unwrap();
+    let (m, k, c, l0, g) = (2.0f64, 40.0f64, 2.0f64, 1.0f64, 9.81f64);
+    let y_eq = -l0 - m * g / k;
+    let a0 = -1.8 - y_eq;
+    let sigma = c / (2.0 * m);
+    let omega = (k / m - sigma * sigma).sqrt();
+    for t in [0.5f64, 1.0, 3.0] {
+        let want = y_eq
+            + a0 * (-sigma * t).exp() * ((omega * t).cos() + sigma / omega * (omega * t).sin());
+        let got = sol.at(t, "block.y").unwrap();
+        assert!(
+            (got - want).abs() <= 100.0 * tol,
+            "t = {t}: {got} vs {want}"
+        );
+        assert!(sol.at(t, "block.x").unwrap().abs() <= 1e-15);
+    }
+}

@@ -14,6 +14,8 @@
 //! prismatic(ground, p, slider, q, vec3(1.0, 0.0, 0.0));
 //! gravity(vec3(0.0, -g, 0.0));
 //! force(body, point, f);  torque(body, tau);
+//! spring(a, pa, b, pb, k, rest_length, damping);  // along the line of the points
+//! spring(a, pa, b, pb, k, rest_length, damping);  // along the line of the points
 //! let p = position(crank, point);                 // world position of a body point
 //! ```
 
@@ -52,7 +54,7 @@ pub(super) struct Scene {
 /// Joint statements, which may be named by a `let`.
 pub(super) const JOINTS: [&str; 3] = ["revolute", "distance", "prismatic"];
 /// Load statements.
-pub(super) const LOADS: [&str; 3] = ["gravity", "force", "torque"];
+pub(super) const LOADS: [&str; 4] = ["gravity", "force", "torque", "spring"];
 
 /// A body or the ground, as a joint sees it.
 #[derive(Clone, Copy)]
@@ -432,6 +434,7 @@ impl Lower<'_> {
                 };
                 self.scene.loads.push((b, f.data[0], f.data[1], moment));
             }
+            "spring" => self.spring(c, e),
             _ => {
                 if c.args.len() != 2 {
                     return self.cx.error_at(
@@ -448,6 +451,81 @@ impl Lower<'_> {
                     return;
                 };
                 self.scene.loads.push((b, zero, zero, tau));
+            }
+        }
+    }
+
+    /// `spring(a, pa, b, pb, k, l0, c)`: a spring–damper between two points,
+    /// tension `k (d − l0) + c ḋ` along the line from one to the other.
+    fn spring(&mut self, c: &syn::ExprCall, e: &Expr) {
+        if c.args.len() != 7 {
+            return self.cx.error_at(c, "`spring` takes `spring(a, point_in_a, b, point_in_b, stiffness, rest_length, damping)`");
+        }
+        let (Some(a), Some(b)) = (self.frame(&c.args[0]), self.frame(&c.args[2])) else {
+            return;
+        };
+        let (Some(pa), Some(pb)) = (
+            self.world_point(a, &c.args[1], e),
+            self.world_point(b, &c.args[3], e),
+        ) else {
+            return;
+        };
+        let (Some(k), Some(l0), Some(damping)) = (
+            self.value(&c.args[4]),
+            self.value(&c.args[5]),
+            self.value(&c.args[6]),
+        ) else {
+            return;
+        };
+        // ḋ along the motion: each coordinate's derivative is its der().
+        let mut field = crate::VectorField::new();
+        for body in self.scene.bodies.clone() {
+            for s in [body.x, body.y, body.theta] {
+                if let Ok(d) = self.g.derivative(s, 1) {
+                    field.set(s, d);
+                }
+            }
+        }
+        let forces = (|| -> crate::Result<[Id; 4]> {
+            let g = &mut self.g;
+            let dx = g.sub(pb[0], pa[0])?;
+            let dy = g.sub(pb[1], pa[1])?;
+            let dx2 = g.mul(dx, dx)?;
+            let dy2 = g.mul(dy, dy)?;
+            let d2 = g.add(dx2, dy2)?;
+            let d = g.sqrt(d2)?;
+            let d_dot = g.total_derivative(d, &mut field)?;
+            let stretch = g.sub(d, l0)?;
+            let elastic = g.mul(k, stretch)?;
+            let viscous = g.mul(damping, d_dot)?;
+            let tension = g.add(elastic, viscous)?;
+            // On A towards B, on B towards A.
+            let ux = g.div(dx, d)?;
+            let uy = g.div(dy, d)?;
+            let fx = g.mul(tension, ux)?;
+            let fy = g.mul(tension, uy)?;
+            Ok([fx, fy, g.neg(fx)?, g.neg(fy)?])
+        })();
+        let forces = match forces {
+            Ok(f) => f,
+            Err(err) => return self.cx.error_at(e, err),
+        };
+        for (frame, p, fx, fy) in [(a, pa, forces[0], forces[1]), (b, pb, forces[2], forces[3])] {
+            if let Frame::Body(i) = frame {
+                let body = self.scene.bodies[i].clone();
+                let moment = (|| {
+                    let g = &mut self.g;
+                    let (x, y) = (g.symbol_node(body.x), g.symbol_node(body.y));
+                    let rx = g.sub(p[0], x)?;
+                    let ry = g.sub(p[1], y)?;
+                    let m1 = g.mul(rx, fy)?;
+                    let m2 = g.mul(ry, fx)?;
+                    g.sub(m1, m2)
+                })();
+                let Some(moment) = self.graph_result(moment, e) else {
+                    return;
+                };
+                self.scene.loads.push((i, fx, fy, moment));
             }
         }
     }
