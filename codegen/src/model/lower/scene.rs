@@ -419,20 +419,7 @@ impl Lower<'_> {
                     return;
                 };
                 // Its moment about the centre of mass: (P − c) × f.
-                let body = self.scene.bodies[b].clone();
-                let moment = (|| {
-                    let g = &mut self.g;
-                    let (x, y) = (g.symbol_node(body.x), g.symbol_node(body.y));
-                    let rx = g.sub(p[0], x)?;
-                    let ry = g.sub(p[1], y)?;
-                    let m1 = g.mul(rx, f.data[1])?;
-                    let m2 = g.mul(ry, f.data[0])?;
-                    g.sub(m1, m2)
-                })();
-                let Some(moment) = self.graph_result(moment, e) else {
-                    return;
-                };
-                self.scene.loads.push((b, f.data[0], f.data[1], moment));
+                self.apply(b, p, f.data[0], f.data[1], e);
             }
             "spring" => self.spring(c, e),
             _ => {
@@ -452,6 +439,24 @@ impl Lower<'_> {
                 };
                 self.scene.loads.push((b, zero, zero, tau));
             }
+        }
+    }
+
+    /// A world force `(fx, fy)` at the world point `p` of body `b`: the force
+    /// and its moment `(p − c) × f` about the centre of mass.
+    fn apply(&mut self, b: usize, p: [Id; 2], fx: Id, fy: Id, e: &Expr) {
+        let body = self.scene.bodies[b].clone();
+        let moment = (|| {
+            let g = &mut self.g;
+            let (x, y) = (g.symbol_node(body.x), g.symbol_node(body.y));
+            let rx = g.sub(p[0], x)?;
+            let ry = g.sub(p[1], y)?;
+            let m1 = g.mul(rx, fy)?;
+            let m2 = g.mul(ry, fx)?;
+            g.sub(m1, m2)
+        })();
+        if let Some(moment) = self.graph_result(moment, e) {
+            self.scene.loads.push((b, fx, fy, moment));
         }
     }
 
@@ -512,20 +517,7 @@ impl Lower<'_> {
         };
         for (frame, p, fx, fy) in [(a, pa, forces[0], forces[1]), (b, pb, forces[2], forces[3])] {
             if let Frame::Body(i) = frame {
-                let body = self.scene.bodies[i].clone();
-                let moment = (|| {
-                    let g = &mut self.g;
-                    let (x, y) = (g.symbol_node(body.x), g.symbol_node(body.y));
-                    let rx = g.sub(p[0], x)?;
-                    let ry = g.sub(p[1], y)?;
-                    let m1 = g.mul(rx, fy)?;
-                    let m2 = g.mul(ry, fx)?;
-                    g.sub(m1, m2)
-                })();
-                let Some(moment) = self.graph_result(moment, e) else {
-                    return;
-                };
-                self.scene.loads.push((i, fx, fy, moment));
+                self.apply(i, p, fx, fy, e);
             }
         }
     }
