@@ -73,13 +73,28 @@ fn a_slider_crank_scene_matches_the_hand_written_model() {
 
 /// A four-bar linkage: ground pivots 3 apart, crank 1, coupler 3, rocker 2.5,
 /// uniform rods swinging under gravity; one loop, one degree of freedom.
+/// Started at the crank angle π/3 with the loop closed exactly (the coupler
+/// and rocker poses from the circle intersection), so every formulation
+/// starts from the same configuration.
 #[dae_model]
 fn four_bar() {
     let g = param(9.81);
     let ground = ground();
-    let crank = body(1.0, 1.0 / 12.0, [0.25, 0.433, 1.047]);
-    let coupler = body(3.0, 27.0 / 12.0, [1.758, 1.683, 0.576]);
-    let rocker = body(2.5, 2.5 * 6.25 / 12.0, [3.008, 1.25, 1.564]);
+    let crank = body(
+        1.0,
+        1.0 / 12.0,
+        [0.25, 0.4330127018922193, 1.0471975511965976],
+    );
+    let coupler = body(
+        3.0,
+        27.0 / 12.0,
+        [1.758003825218467, 1.6829870771423172, 0.5759611339397936],
+    );
+    let rocker = body(
+        2.5,
+        2.5 * 6.25 / 12.0,
+        [3.0080038252184673, 1.2499743752500978, 1.5643932228659467],
+    );
     revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5, 0.0, 0.0));
     revolute(crank, vec3(0.5, 0.0, 0.0), coupler, vec3(-1.5, 0.0, 0.0));
     revolute(coupler, vec3(1.5, 0.0, 0.0), rocker, vec3(1.25, 0.0, 0.0));
@@ -277,4 +292,161 @@ fn a_ten_rod_chain_keeps_its_constraints_and_energy() {
     for t in [0.25, 0.5, 1.0] {
         assert!(energy(t).abs() <= 1e-6, "t = {t}: energy {}", energy(t));
     }
+}
+
+// The same scenes in the recursive formulation (relative joint coordinates).
+
+/// The double rod scene, recursive: two joint angles, no constraint.
+#[dae_model(scene = recursive)]
+fn double_rod_recursive() {
+    let g = param(9.81);
+    let ground = ground();
+    let upper = body(1.0, 1.0 / 12.0, [0.5, 0.0, 0.0]);
+    let lower = body(1.0, 1.0 / 12.0, [1.5, 0.0, 0.0]);
+    revolute(ground, vec3(0.0, 0.0, 0.0), upper, vec3(-0.5, 0.0, 0.0));
+    revolute(upper, vec3(0.5, 0.0, 0.0), lower, vec3(-0.5, 0.0, 0.0));
+    gravity(vec3(0.0, -g, 0.0));
+    let upper_angle = output(position(upper, vec3(0.5, 0.0, 0.0))[0]);
+}
+
+#[test]
+fn the_recursive_double_rod_is_an_ode_in_its_joint_angles() {
+    assert_eq!(<DoubleRodRecursive as Model>::INDEX, 0);
+    assert_eq!(DoubleRodRecursive::INFO.states.len(), 4);
+    let tol = 1e-11;
+    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let sol = DoubleRodRecursive::default()
+        .simulate(0.0, 2.0, &opts)
+        .unwrap();
+    let reference = DoubleRodAngles::default()
+        .simulate(
+            0.0,
+            2.0,
+            &Options::new()
+                .method(Method::Dop853)
+                .rtol(1e-13)
+                .atol(1e-13),
+        )
+        .unwrap();
+    for t in [0.5, 1.0, 2.0] {
+        // θ_upper − π/2 is the first joint angle; the second is relative.
+        let (q1, q2) = (
+            sol.at(t, "revolute1.q").unwrap(),
+            sol.at(t, "revolute2.q").unwrap(),
+        );
+        let (a, b) = (reference.at(t, "a").unwrap(), reference.at(t, "b").unwrap());
+        let half_pi = std::f64::consts::FRAC_PI_2;
+        assert!(
+            (q1 + half_pi - a).abs() <= 1000.0 * tol,
+            "t = {t}: {q1} vs {a}"
+        );
+        assert!(
+            (q1 + q2 + half_pi - b).abs() <= 1000.0 * tol,
+            "t = {t}: {} vs {b}",
+            q1 + q2
+        );
+        // Outputs read body coordinates, rewritten in joint angles.
+        assert!((sol.at(t, "upper_angle").unwrap() - a.sin()).abs() <= 1000.0 * tol);
+    }
+}
+
+/// The four-bar, recursive: three joint angles on the tree, the fourth
+/// joint cut (two constraint rows).
+#[dae_model(scene = recursive)]
+fn four_bar_recursive() {
+    let g = param(9.81);
+    let ground = ground();
+    let crank = body(
+        1.0,
+        1.0 / 12.0,
+        [0.25, 0.4330127018922193, 1.0471975511965976],
+    );
+    let coupler = body(
+        3.0,
+        27.0 / 12.0,
+        [1.758003825218467, 1.6829870771423172, 0.5759611339397936],
+    );
+    let rocker = body(
+        2.5,
+        2.5 * 6.25 / 12.0,
+        [3.0080038252184673, 1.2499743752500978, 1.5643932228659467],
+    );
+    revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5, 0.0, 0.0));
+    revolute(crank, vec3(0.5, 0.0, 0.0), coupler, vec3(-1.5, 0.0, 0.0));
+    revolute(coupler, vec3(1.5, 0.0, 0.0), rocker, vec3(1.25, 0.0, 0.0));
+    revolute(ground, vec3(3.0, 0.0, 0.0), rocker, vec3(-1.25, 0.0, 0.0));
+    gravity(vec3(0.0, -g, 0.0));
+    let crank_angle = output(atan2(
+        position(crank, vec3(0.5, 0.0, 0.0))[1],
+        position(crank, vec3(0.5, 0.0, 0.0))[0],
+    ));
+}
+
+#[test]
+fn the_recursive_four_bar_matches_the_global_one() {
+    assert_eq!(<FourBarRecursive as Model>::INDEX, 3);
+    let tol = 1e-10;
+    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let recursive = FourBarRecursive::default()
+        .simulate(0.0, 3.0, &opts)
+        .unwrap();
+    let global = FourBar::default().simulate(0.0, 3.0, &opts).unwrap();
+    assert_eq!(recursive.degrees_of_freedom(), Some(1));
+    for t in [0.0, 1.0, 2.0, 3.0] {
+        // The crank turns over: compare the angles modulo 2π.
+        let a = recursive.at(t, "crank_angle").unwrap();
+        let b = global.at(t, "crank.theta").unwrap();
+        let d = (a - b).rem_euclid(std::f64::consts::TAU);
+        let d = d.min(std::f64::consts::TAU - d);
+        assert!(d <= 1000.0 * tol, "t = {t}: recursive {a}, global {b}");
+    }
+}
+
+/// The slider-crank in both formulations from the same exact start
+/// (θ = 1): the recursive one has the crank angle and the slide as joint
+/// coordinates and the massless rod as its cut joint.
+macro_rules! slider_crank_from_rest {
+    ($name:ident, $($attr:tt)*) => {
+        #[dae_model($($attr)*)]
+        fn $name() {
+            let r = param(0.15);
+            let l = param(0.4);
+            let m1 = param(1.0);
+            let m2 = param(0.5);
+            let g = param(9.81);
+            let ground = ground();
+            let crank = body(m1, m1 * r * r / 12.0, [0.04052267294011048, 0.06311032386059223, 1.0]);
+            let slider = body(m2, 1.0, [0.4606087109312288, 0.0, 0.0]);
+            revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5 * r, 0.0, 0.0));
+            distance(crank, vec3(0.5 * r, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), l);
+            prismatic(ground, vec3(0.0, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0));
+            gravity(vec3(0.0, -g, 0.0));
+            let slider_x = output(position(slider, vec3(0.0, 0.0, 0.0))[0]);
+        }
+    };
+}
+slider_crank_from_rest!(slider_crank_global, scene = global);
+slider_crank_from_rest!(slider_crank_recursive, scene = recursive);
+
+#[test]
+fn the_slider_crank_agrees_in_both_formulations() {
+    // Recursive: two joint coordinates, one cut row; global: six, five rows.
+    assert_eq!(SliderCrankRecursive::INFO.states.len(), 4);
+    assert_eq!(SliderCrankGlobal::INFO.states.len(), 12);
+    let tol = 1e-10;
+    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let a = SliderCrankRecursive::default()
+        .simulate(0.0, 2.0, &opts)
+        .unwrap();
+    let b = SliderCrankGlobal::default()
+        .simulate(0.0, 2.0, &opts)
+        .unwrap();
+    for t in [0.0, 0.5, 1.0, 2.0] {
+        let (x, y) = (a.at(t, "slider_x").unwrap(), b.at(t, "slider_x").unwrap());
+        assert!(
+            (x - y).abs() <= 100.0 * tol,
+            "t = {t}: recursive {x}, global {y}"
+        );
+    }
+    assert_eq!(a.degrees_of_freedom(), Some(1));
 }

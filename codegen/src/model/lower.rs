@@ -10,6 +10,7 @@ use super::ir::{
 };
 use super::names::did_you_mean;
 
+mod recursive;
 mod scene;
 mod tensor;
 use crate::{Func, Graph, Id, Node, SymbolId, SymbolKind};
@@ -121,6 +122,12 @@ struct Lower<'c> {
 /// Lowers the body of `item`. Errors go to `cx`; the IR is returned even
 /// then (with the parts that could be read) so that a stub can be emitted.
 pub fn lower(cx: &mut Ctxt, item: &syn::ItemFn) -> ModelIr {
+    lower_with(cx, item, false)
+}
+
+/// Lowers `item`; a scene uses the recursive formulation when `recursive`
+/// (`#[dae_model(scene = recursive)]`), the global one otherwise.
+pub fn lower_with(cx: &mut Ctxt, item: &syn::ItemFn, recursive: bool) -> ModelIr {
     let mut l = Lower {
         cx,
         g: Graph::new(),
@@ -134,7 +141,10 @@ pub fn lower(cx: &mut Ctxt, item: &syn::ItemFn) -> ModelIr {
         equations: Vec::new(),
         inits: Vec::new(),
         invariants: Vec::new(),
-        scene: Scene::default(),
+        scene: Scene {
+            recursive,
+            ..Scene::default()
+        },
         unrolled: 0,
         non_smooth_calls: Vec::new(),
     };
@@ -1120,7 +1130,9 @@ impl Lower<'_> {
                     }
                 }
             }
-            Expr::Call(_) if self.mentions_tensor(e) => self.scalar_of(e),
+            // A tensor function's value (dot, norm, or an error for a vector);
+            // scalar functions of tensor components go the ordinary way.
+            Expr::Call(_) if tensor::is_tensor_call(e) => self.scalar_of(e),
             Expr::Call(c) => self.call(c, e),
             Expr::MethodCall(m) => self.method_call(m, e),
             Expr::Closure(_) => self.unsupported(e, "closures"),

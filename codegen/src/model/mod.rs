@@ -36,7 +36,7 @@ pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
             .to_compile_error()
         }
     };
-    let mut ir = lower::lower(&mut cx, &item);
+    let mut ir = lower::lower_with(&mut cx, &item, attributes.recursive);
     let system = if cx.is_ok() {
         reduce::reduce(&mut cx, &mut ir)
     } else {
@@ -75,6 +75,9 @@ pub struct Attributes {
     /// `unroll = [p, ...]`, 2 ≤ p ≤ 40: orders of the adaptive Taylor method
     /// to emit as straight-line code (see `taylor_unrolled`).
     pub unroll: Vec<usize>,
+    /// `scene = recursive`: a scene in relative joint coordinates (the
+    /// default, `scene = global`, keeps each body's coordinates).
+    pub recursive: bool,
 }
 
 /// Reads `#[dae_model]`, `#[dae_model(taylor = p)]`, `#[dae_model(unroll = [15, 19])]`
@@ -84,7 +87,7 @@ fn attributes(cx: &mut ctxt::Ctxt, attr: TokenStream) -> Attributes {
     if attr.is_empty() {
         return out;
     }
-    let fix = "`#[dae_model]` takes `taylor = p` (p from 1 to 8) and `unroll = [p, ...]` (orders from 2 to 40)";
+    let fix = "`#[dae_model]` takes `taylor = p` (p from 1 to 8), `unroll = [p, ...]` (orders from 2 to 40) and `scene = global` or `scene = recursive`";
     let parser =
         syn::punctuated::Punctuated::<syn::MetaNameValue, syn::Token![,]>::parse_terminated;
     let Ok(args) = syn::parse::Parser::parse2(parser, attr.clone()) else {
@@ -126,6 +129,12 @@ fn attributes(cx: &mut ctxt::Ctxt, attr: TokenStream) -> Attributes {
                     &arg.value,
                     "`unroll` takes a list of Taylor orders from 2 to 40, e.g. `unroll = [15, 19]` (tolerance 1e-12 uses 15, 1e-15 uses 19)",
                 ),
+            }
+        } else if arg.path.is_ident("scene") {
+            match &arg.value {
+                syn::Expr::Path(p) if p.path.is_ident("recursive") => out.recursive = true,
+                syn::Expr::Path(p) if p.path.is_ident("global") => out.recursive = false,
+                other => cx.error_at(other, "`scene` is `global` (each body free, joints as constraints; the default) or `recursive` (relative joint coordinates on a spanning tree)"),
             }
         } else {
             cx.error_at(arg, fix);

@@ -28,6 +28,7 @@ use syn::Expr;
 /// A planar rigid body: its coordinates and inertia.
 #[derive(Clone)]
 pub(super) struct Body {
+    pub name: String,
     pub x: SymbolId,
     pub y: SymbolId,
     pub theta: SymbolId,
@@ -49,6 +50,26 @@ pub(super) struct Scene {
     pub joints: usize,
     /// A line for the generated type's documentation.
     pub summary: String,
+    /// `#[dae_model(scene = recursive)]`: relative joint coordinates.
+    pub recursive: bool,
+    /// Every joint, for the recursive formulation.
+    pub records: Vec<JointRecord>,
+}
+
+/// A joint as declared: what the recursive formulation needs to place the
+/// child from the parent, and which equations and multipliers it added.
+#[derive(Clone)]
+pub(super) struct JointRecord {
+    pub kind: &'static str,
+    pub name: String,
+    pub a: Frame,
+    pub b: Frame,
+    pub local_a: [Id; 2],
+    pub local_b: [Id; 2],
+    pub axis: Option<[Id; 2]>,
+    pub equations: std::ops::Range<usize>,
+    pub algebraics: std::ops::Range<usize>,
+    pub rows: std::ops::Range<usize>,
 }
 
 /// Joint statements, which may be named by a `let`.
@@ -57,8 +78,8 @@ pub(super) const JOINTS: [&str; 3] = ["revolute", "distance", "prismatic"];
 pub(super) const LOADS: [&str; 4] = ["gravity", "force", "torque", "spring"];
 
 /// A body or the ground, as a joint sees it.
-#[derive(Clone, Copy)]
-enum Frame {
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum Frame {
     Ground,
     Body(usize),
 }
@@ -150,6 +171,7 @@ impl Lower<'_> {
             self.scene.first_body = Some(origin);
         }
         self.scene.bodies.push(Body {
+            name: name.clone(),
             x: symbols[0],
             y: symbols[1],
             theta: symbols[2],
@@ -345,6 +367,24 @@ impl Lower<'_> {
             Ok(r) => r,
             Err(err) => return self.cx.error_at(e, err),
         };
+        let local = |this: &mut Self, arg: &Expr| -> Option<[Id; 2]> {
+            let t = this.tensor(arg)?;
+            Some([t.data[0], t.data[1]])
+        };
+        let (Some(local_a), Some(local_b)) = (local(self, &c.args[1]), local(self, &c.args[3]))
+        else {
+            return;
+        };
+        let axis = if kind == "prismatic" {
+            local(self, &c.args[4])
+        } else {
+            None
+        };
+        let (equations_start, algebraics_start, rows_start) = (
+            self.equations.len(),
+            self.algebraics.len(),
+            self.scene.rows.len(),
+        );
         self.scene.joints += 1;
         let base = match name {
             Some(n) => n.to_string(),
@@ -376,6 +416,23 @@ impl Lower<'_> {
             self.scene.rows.push((row, lambda));
             multipliers.push(lambda);
         }
+        let kind = match kind {
+            "revolute" => "revolute",
+            "distance" => "distance",
+            _ => "prismatic",
+        };
+        self.scene.records.push(JointRecord {
+            kind,
+            name: base.clone(),
+            a,
+            b,
+            local_a,
+            local_b,
+            axis,
+            equations: equations_start..self.equations.len(),
+            algebraics: algebraics_start..self.algebraics.len(),
+            rows: rows_start..self.scene.rows.len(),
+        });
         if let Some(n) = name {
             let t = super::tensor::Tensor::from_vector(multipliers);
             self.bind(n, Binding::Tensor(t));
@@ -548,10 +605,14 @@ impl Lower<'_> {
         }
         let loops = self.scene.joints as i64 - n as i64;
         self.scene.summary = format!(
-            "Planar scene (global formulation): {n} bodies, {} joints with {m} constraint rows, {} independent loop(s) (joints − bodies), {dof} degrees of freedom by Grübler's count (the run reports n − rank Φ_q).",
+            "Planar scene ({} formulation): {n} bodies, {} joints with {m} constraint rows, {} independent loop(s) (joints − bodies), {dof} degrees of freedom by Grübler's count (the run reports n − rank Φ_q).",
+            if self.scene.recursive { "recursive" } else { "global" },
             self.scene.joints,
             loops.max(0)
         );
+        if self.scene.recursive {
+            return self.recursive_equations(item);
+        }
         let bodies = self.scene.bodies.clone();
         let rows = self.scene.rows.clone();
         let loads = self.scene.loads.clone();

@@ -96,6 +96,21 @@ pub(super) const TENSOR_FUNCTIONS: [&str; 22] = [
     "transpose",
 ];
 
+/// Whether `e` calls a function of this module (whose value may be a vector
+/// or a matrix, or a scalar of vectors).
+pub(super) fn is_tensor_call(e: &Expr) -> bool {
+    match e {
+        Expr::Call(c) => match &*c.func {
+            Expr::Path(p) => p.path.get_ident().is_some_and(|i| {
+                let n = i.to_string();
+                TENSOR_FUNCTIONS.contains(&n.as_str()) || VECTOR_SCALARS.contains(&n.as_str())
+            }),
+            _ => false,
+        },
+        _ => false,
+    }
+}
+
 /// Functions of vectors whose value is a scalar.
 pub(super) const VECTOR_SCALARS: [&str; 2] = ["dot", "norm"];
 
