@@ -242,34 +242,9 @@ fn a_spring_damper_in_a_scene_gives_the_damped_oscillation() {
     }
 }
 
-/// A chain of ten uniform rods (mass 1, length 1) hanging from the ground,
-/// released horizontal: 30 coordinates, 20 constraint rows.
-#[dae_model]
-fn ten_rod_chain() {
-    let g = param(9.81);
-    let ground = ground();
-    let rod0 = body(1.0, 1.0 / 12.0, [0.5, 0.0, 0.0]);
-    let rod1 = body(1.0, 1.0 / 12.0, [1.5, 0.0, 0.0]);
-    let rod2 = body(1.0, 1.0 / 12.0, [2.5, 0.0, 0.0]);
-    let rod3 = body(1.0, 1.0 / 12.0, [3.5, 0.0, 0.0]);
-    let rod4 = body(1.0, 1.0 / 12.0, [4.5, 0.0, 0.0]);
-    let rod5 = body(1.0, 1.0 / 12.0, [5.5, 0.0, 0.0]);
-    let rod6 = body(1.0, 1.0 / 12.0, [6.5, 0.0, 0.0]);
-    let rod7 = body(1.0, 1.0 / 12.0, [7.5, 0.0, 0.0]);
-    let rod8 = body(1.0, 1.0 / 12.0, [8.5, 0.0, 0.0]);
-    let rod9 = body(1.0, 1.0 / 12.0, [9.5, 0.0, 0.0]);
-    revolute(ground, vec3(0.0, 0.0, 0.0), rod0, vec3(-0.5, 0.0, 0.0));
-    revolute(rod0, vec3(0.5, 0.0, 0.0), rod1, vec3(-0.5, 0.0, 0.0));
-    revolute(rod1, vec3(0.5, 0.0, 0.0), rod2, vec3(-0.5, 0.0, 0.0));
-    revolute(rod2, vec3(0.5, 0.0, 0.0), rod3, vec3(-0.5, 0.0, 0.0));
-    revolute(rod3, vec3(0.5, 0.0, 0.0), rod4, vec3(-0.5, 0.0, 0.0));
-    revolute(rod4, vec3(0.5, 0.0, 0.0), rod5, vec3(-0.5, 0.0, 0.0));
-    revolute(rod5, vec3(0.5, 0.0, 0.0), rod6, vec3(-0.5, 0.0, 0.0));
-    revolute(rod6, vec3(0.5, 0.0, 0.0), rod7, vec3(-0.5, 0.0, 0.0));
-    revolute(rod7, vec3(0.5, 0.0, 0.0), rod8, vec3(-0.5, 0.0, 0.0));
-    revolute(rod8, vec3(0.5, 0.0, 0.0), rod9, vec3(-0.5, 0.0, 0.0));
-    gravity(vec3(0.0, -g, 0.0));
-}
+include!("models/rod_chain.rs");
+rod_chain_model!(ten_rod_chain, scene = global);
+rod_chain_model!(ten_rod_chain_recursive, scene = recursive);
 
 #[test]
 fn a_ten_rod_chain_keeps_its_constraints_and_energy() {
@@ -449,4 +424,24 @@ fn the_slider_crank_agrees_in_both_formulations() {
         );
     }
     assert_eq!(a.degrees_of_freedom(), Some(1));
+}
+
+#[test]
+fn the_ten_rod_chain_agrees_in_both_formulations() {
+    assert_eq!(TenRodChainRecursive::INFO.states.len(), 20);
+    let tol = 1e-10;
+    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let a = TenRodChain::default().simulate(0.0, 0.5, &opts).unwrap();
+    let b = TenRodChainRecursive::default()
+        .simulate(0.0, 0.5, &opts)
+        .unwrap();
+    for t in [0.1, 0.25, 0.5] {
+        for name in ["tip_x", "tip_y"] {
+            let (x, y) = (a.at(t, name).unwrap(), b.at(t, name).unwrap());
+            assert!(
+                (x - y).abs() <= 1e-6,
+                "t = {t}: {name} global {x}, recursive {y}"
+            );
+        }
+    }
 }

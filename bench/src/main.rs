@@ -50,6 +50,9 @@ outer_solar_system_model!(taylor = 1, unroll = [12, 15, 19]);
 include!("../../tests/models/stiff.rs");
 include!("../../tests/models/pendulum.rs");
 include!("../../tests/models/slider_crank.rs");
+include!("../../tests/models/rod_chain.rs");
+rod_chain_model!(rod_chain_global, scene = global);
+rod_chain_model!(rod_chain_recursive, scene = recursive);
 cash_pendulum_model!(
     taylor = 1,
     unroll = [6, 7, 8, 10, 11, 12, 13, 14, 15, 16, 18, 19]
@@ -472,6 +475,70 @@ fn slider_crank_against_ode() {
             db.as_secs_f64() * 1e3,
             db.as_secs_f64() * 1e6 / sb.max(1) as f64,
             ratio(da.as_secs_f64() / db.as_secs_f64())
+        );
+    }
+}
+
+/// The source of an n-rod chain scene, for timing the macro on it.
+fn rod_chain_source(n: usize) -> String {
+    let mut s = String::from("fn chain() { let g = param(9.81); let ground = ground();");
+    for i in 0..n {
+        s += &format!("let rod{i} = body(1.0, 1.0 / 12.0, [{}.5, 0.0, 0.0]);", i);
+    }
+    s += "revolute(ground, vec3(0.0, 0.0, 0.0), rod0, vec3(-0.5, 0.0, 0.0));";
+    for i in 1..n {
+        s += &format!(
+            "revolute(rod{}, vec3(0.5, 0.0, 0.0), rod{i}, vec3(-0.5, 0.0, 0.0));",
+            i - 1
+        );
+    }
+    s + "gravity(vec3(0.0, -g, 0.0)); }"
+}
+
+/// A ten-rod chain in the global and the recursive formulation: macro
+/// expansion time and generated size, and the run's cost per step.
+fn formulations() {
+    println!(
+        "\n### Ten-rod chain: global against recursive formulation (DOP853, tol 1e-8, t = 1)\n"
+    );
+    println!(
+        "| formulation | expansion (ms) | generated (kB) | states | run (ms) | steps | µs/step |"
+    );
+    println!("|---|---|---|---|---|---|---|");
+    let source: proc_macro2::TokenStream = rod_chain_source(10).parse().expect("the chain parses");
+    let options = Options::new()
+        .method(Method::Dop853)
+        .rtol(1e-8)
+        .atol(1e-8)
+        .dense_output(false);
+    for (name, attr) in [
+        ("global", "scene = global"),
+        ("recursive", "scene = recursive"),
+    ] {
+        let attr: proc_macro2::TokenStream = attr.parse().expect("the attribute parses");
+        let (expansion, tokens) =
+            time(|| daegen::codegen::expand_dae_model(attr.clone(), source.clone()));
+        let kb = tokens.to_string().len() as f64 / 1e3;
+        let (run, steps, states) = if name == "global" {
+            let (d, s) = time(|| RodChainGlobal::default().simulate(0.0, 1.0, &options));
+            (
+                d,
+                s.map(|s| s.stats().steps).unwrap_or(0),
+                RodChainGlobal::STATES,
+            )
+        } else {
+            let (d, s) = time(|| RodChainRecursive::default().simulate(0.0, 1.0, &options));
+            (
+                d,
+                s.map(|s| s.stats().steps).unwrap_or(0),
+                RodChainRecursive::STATES,
+            )
+        };
+        println!(
+            "| {name} | {:.1} | {kb:.0} | {states} | {:.2} | {steps} | {:.1} |",
+            expansion.as_secs_f64() * 1e3,
+            run.as_secs_f64() * 1e3,
+            run.as_secs_f64() * 1e6 / steps.max(1) as f64
         );
     }
 }
@@ -1057,6 +1124,7 @@ fn main() {
 fn dae_section(stiff_tols: &[f64]) {
     dae_against_ode();
     slider_crank_against_ode();
+    formulations();
     let rd = RobertsonDae::default();
     let rober_dae_ours = vec![(
         "daegen RADAU5 (index-1 DAE, y3 solved symbolically)",
