@@ -76,31 +76,38 @@ fn a_slider_crank_scene_matches_the_hand_written_model() {
 /// Started at the crank angle π/3 with the loop closed exactly (the coupler
 /// and rocker poses from the circle intersection), so every formulation
 /// starts from the same configuration.
-#[dae_model]
-fn four_bar() {
-    let g = param(9.81);
-    let ground = ground();
-    let crank = body(
-        1.0,
-        1.0 / 12.0,
-        [0.25, 0.4330127018922193, 1.0471975511965976],
-    );
-    let coupler = body(
-        3.0,
-        27.0 / 12.0,
-        [1.758003825218467, 1.6829870771423172, 0.5759611339397936],
-    );
-    let rocker = body(
-        2.5,
-        2.5 * 6.25 / 12.0,
-        [3.0080038252184673, 1.2499743752500978, 1.5643932228659467],
-    );
-    revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5, 0.0, 0.0));
-    revolute(crank, vec3(0.5, 0.0, 0.0), coupler, vec3(-1.5, 0.0, 0.0));
-    revolute(coupler, vec3(1.5, 0.0, 0.0), rocker, vec3(1.25, 0.0, 0.0));
-    revolute(ground, vec3(3.0, 0.0, 0.0), rocker, vec3(-1.25, 0.0, 0.0));
-    gravity(vec3(0.0, -g, 0.0));
+macro_rules! four_bar_model {
+    ($name:ident, $($attr:tt)*) => {
+        #[dae_model($($attr)*)]
+        fn $name() {
+            let g = param(9.81);
+            let ground = ground();
+            let crank = body(
+                1.0,
+                1.0 / 12.0,
+                [0.25, 0.4330127018922193, 1.0471975511965976],
+            );
+            let coupler = body(
+                3.0,
+                27.0 / 12.0,
+                [1.758003825218467, 1.6829870771423172, 0.5759611339397936],
+            );
+            let rocker = body(
+                2.5,
+                2.5 * 6.25 / 12.0,
+                [3.0080038252184673, 1.2499743752500978, 1.5643932228659467],
+            );
+            revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5, 0.0, 0.0));
+            revolute(crank, vec3(0.5, 0.0, 0.0), coupler, vec3(-1.5, 0.0, 0.0));
+            revolute(coupler, vec3(1.5, 0.0, 0.0), rocker, vec3(1.25, 0.0, 0.0));
+            revolute(ground, vec3(3.0, 0.0, 0.0), rocker, vec3(-1.25, 0.0, 0.0));
+            gravity(vec3(0.0, -g, 0.0));
+            let pin = position(crank, vec3(0.5, 0.0, 0.0));
+            let crank_angle = output(atan2(pin[1], pin[0]));
+        }
+    };
 }
+four_bar_model!(four_bar, scene = global);
 
 #[test]
 fn a_four_bar_linkage_has_one_degree_of_freedom_and_keeps_its_energy() {
@@ -141,16 +148,22 @@ fn a_four_bar_linkage_has_one_degree_of_freedom_and_keeps_its_energy() {
 /// A double pendulum of two uniform rods (mass 1, length 1) released
 /// horizontal, as a scene; each rod's body x axis points from its upper
 /// hinge down the rod, so its angle is θ − π/2 for θ from the vertical.
-#[dae_model]
-fn double_rod_scene() {
-    let g = param(9.81);
-    let ground = ground();
-    let upper = body(1.0, 1.0 / 12.0, [0.5, 0.0, 0.0]);
-    let lower = body(1.0, 1.0 / 12.0, [1.5, 0.0, 0.0]);
-    revolute(ground, vec3(0.0, 0.0, 0.0), upper, vec3(-0.5, 0.0, 0.0));
-    revolute(upper, vec3(0.5, 0.0, 0.0), lower, vec3(-0.5, 0.0, 0.0));
-    gravity(vec3(0.0, -g, 0.0));
+macro_rules! double_rod_model {
+    ($name:ident, $($attr:tt)*) => {
+        #[dae_model($($attr)*)]
+        fn $name() {
+            let g = param(9.81);
+            let ground = ground();
+            let upper = body(1.0, 1.0 / 12.0, [0.5, 0.0, 0.0]);
+            let lower = body(1.0, 1.0 / 12.0, [1.5, 0.0, 0.0]);
+            revolute(ground, vec3(0.0, 0.0, 0.0), upper, vec3(-0.5, 0.0, 0.0));
+            revolute(upper, vec3(0.5, 0.0, 0.0), lower, vec3(-0.5, 0.0, 0.0));
+            gravity(vec3(0.0, -g, 0.0));
+            let upper_angle = output(position(upper, vec3(0.5, 0.0, 0.0))[0]);
+        }
+    };
 }
+double_rod_model!(double_rod_scene, scene = global);
 
 /// Its Lagrange equations in the angles from the downward vertical:
 /// M = [[4/3, ½ cos Δ], [½ cos Δ, 1/3]], Δ = θ1 − θ2.
@@ -271,18 +284,8 @@ fn a_ten_rod_chain_keeps_its_constraints_and_energy() {
 
 // The same scenes in the recursive formulation (relative joint coordinates).
 
-/// The double rod scene, recursive: two joint angles, no constraint.
-#[dae_model(scene = recursive)]
-fn double_rod_recursive() {
-    let g = param(9.81);
-    let ground = ground();
-    let upper = body(1.0, 1.0 / 12.0, [0.5, 0.0, 0.0]);
-    let lower = body(1.0, 1.0 / 12.0, [1.5, 0.0, 0.0]);
-    revolute(ground, vec3(0.0, 0.0, 0.0), upper, vec3(-0.5, 0.0, 0.0));
-    revolute(upper, vec3(0.5, 0.0, 0.0), lower, vec3(-0.5, 0.0, 0.0));
-    gravity(vec3(0.0, -g, 0.0));
-    let upper_angle = output(position(upper, vec3(0.5, 0.0, 0.0))[0]);
-}
+// The double rod scene, recursive: two joint angles, no constraint.
+double_rod_model!(double_rod_recursive, scene = recursive);
 
 #[test]
 fn the_recursive_double_rod_is_an_ode_in_its_joint_angles() {
@@ -325,37 +328,9 @@ fn the_recursive_double_rod_is_an_ode_in_its_joint_angles() {
     }
 }
 
-/// The four-bar, recursive: three joint angles on the tree, the fourth
-/// joint cut (two constraint rows).
-#[dae_model(scene = recursive)]
-fn four_bar_recursive() {
-    let g = param(9.81);
-    let ground = ground();
-    let crank = body(
-        1.0,
-        1.0 / 12.0,
-        [0.25, 0.4330127018922193, 1.0471975511965976],
-    );
-    let coupler = body(
-        3.0,
-        27.0 / 12.0,
-        [1.758003825218467, 1.6829870771423172, 0.5759611339397936],
-    );
-    let rocker = body(
-        2.5,
-        2.5 * 6.25 / 12.0,
-        [3.0080038252184673, 1.2499743752500978, 1.5643932228659467],
-    );
-    revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5, 0.0, 0.0));
-    revolute(crank, vec3(0.5, 0.0, 0.0), coupler, vec3(-1.5, 0.0, 0.0));
-    revolute(coupler, vec3(1.5, 0.0, 0.0), rocker, vec3(1.25, 0.0, 0.0));
-    revolute(ground, vec3(3.0, 0.0, 0.0), rocker, vec3(-1.25, 0.0, 0.0));
-    gravity(vec3(0.0, -g, 0.0));
-    let crank_angle = output(atan2(
-        position(crank, vec3(0.5, 0.0, 0.0))[1],
-        position(crank, vec3(0.5, 0.0, 0.0))[0],
-    ));
-}
+// The four-bar, recursive: three joint angles on the tree, the fourth joint
+// cut (two constraint rows).
+four_bar_model!(four_bar_recursive, scene = recursive);
 
 #[test]
 fn the_recursive_four_bar_matches_the_global_one() {
