@@ -12,7 +12,9 @@ use super::names::did_you_mean;
 
 mod recursive;
 mod scene;
+mod spatial;
 mod tensor;
+mod topology;
 use crate::{Func, Graph, Id, Node, SymbolId, SymbolKind};
 use quote::ToTokens;
 use scene::Scene;
@@ -46,6 +48,9 @@ enum Binding {
     Body(usize),
     /// `let ground = ground();`
     Ground,
+    /// A body whose declaration has an error (already reported): its uses
+    /// stay quiet.
+    BrokenBody,
 }
 
 impl Binding {
@@ -62,13 +67,15 @@ impl Binding {
             Binding::Tensor(_) => "a vector or matrix value",
             Binding::Body(_) => "a body",
             Binding::Ground => "the ground",
+            Binding::BrokenBody => "a body",
         }
     }
 }
 
-const DECLARATIONS: [&str; 10] = [
+const DECLARATIONS: [&str; 11] = [
     "event",
     "body",
+    "spatial_body",
     "ground",
     "quaternion_state",
     "param",
@@ -259,6 +266,13 @@ impl Lower<'_> {
     }
 
     /// Binds `name`, refusing to redeclare a model variable.
+    /// Replaces a binding of the innermost scope (a body declared at last).
+    fn rebind(&mut self, ident: &syn::Ident, binding: Binding) {
+        if let Some(scope) = self.scopes.last_mut() {
+            scope.insert(ident.to_string(), binding);
+        }
+    }
+
     fn bind(&mut self, ident: &syn::Ident, binding: Binding) {
         let name = ident.to_string();
         if let Some(old) = self.lookup(&name) {
@@ -509,6 +523,7 @@ impl Lower<'_> {
         let origin = local.to_token_stream();
         match kind {
             "body" | "ground" => self.scene_declaration(ident, kind, call, local),
+            "spatial_body" => self.spatial_declaration(ident, call, local),
             "param" => {
                 if !self.arity(call, "param", 1) {
                     return;
@@ -1062,6 +1077,7 @@ impl Lower<'_> {
                     ) => Some(id),
                     Some(Binding::Value { id, .. }) => Some(id),
                     Some(Binding::State(s)) => Some(self.g.symbol_node(s)),
+                    Some(Binding::BrokenBody) => None,
                     Some(b @ (Binding::Body(_) | Binding::Ground)) => {
                         let what = b.describe();
                         self.cx.error_at(e, format!("`{name}` is {what}: use `position({name}, p)` for a point of it, or its coordinates `{name}.x`… in the solution"));
@@ -1145,7 +1161,7 @@ impl Lower<'_> {
             Expr::Assign(_) => self.unsupported(e, "assignments inside expressions"),
             Expr::Macro(_) => self.unsupported(e, "macros"),
             Expr::Reference(_) => self.unsupported(e, "references"),
-            Expr::Field(_) => self.unsupported(e, "field access"),
+            Expr::Field(f) => self.body_coordinate(f, e),
             _ => self.unsupported(e, "this syntax"),
         }
     }

@@ -54,6 +54,23 @@ pub(super) struct Scene {
     pub recursive: bool,
     /// Every joint, for the recursive formulation.
     pub records: Vec<JointRecord>,
+    /// The bodies of a spatial scene (then `bodies` is empty).
+    pub spatial: Vec<super::spatial::SpatialBody>,
+    /// Applied loads in a spatial scene: body, world force, body-axes torque.
+    pub spatial_loads: Vec<(usize, [Id; 3], [Id; 3])>,
+    /// Gravity of a spatial scene.
+    pub gravity_vector: Option<[Id; 3]>,
+    /// Every joint's name, rows and statement, for reporting redundancy.
+    pub joint_rows: Vec<(String, std::ops::Range<usize>, TokenStream)>,
+    /// A `spatial_body` was declared (even one with an error).
+    pub spatial_declared: bool,
+}
+
+impl Scene {
+    /// Whether joints and loads are spatial.
+    pub(super) fn is_spatial(&self) -> bool {
+        self.spatial_declared
+    }
 }
 
 /// A joint as declared: what the recursive formulation needs to place the
@@ -73,7 +90,7 @@ pub(super) struct JointRecord {
 }
 
 /// Joint statements, which may be named by a `let`.
-pub(super) const JOINTS: [&str; 3] = ["revolute", "distance", "prismatic"];
+pub(super) const JOINTS: [&str; 5] = ["revolute", "distance", "prismatic", "fixed", "spherical"];
 /// Load statements.
 pub(super) const LOADS: [&str; 4] = ["gravity", "force", "torque", "spring"];
 
@@ -104,6 +121,10 @@ impl Lower<'_> {
             }
             self.scene.ground = true;
             return self.bind(ident, Binding::Ground);
+        }
+        if self.scene.is_spatial() {
+            self.bind(ident, Binding::BrokenBody);
+            return self.cx.error_at(local, "a scene is planar (`body`) or spatial (`spatial_body`), not both: declare every body with `body(m, j, [x, y, theta])`");
         }
         if !(3..=4).contains(&call.args.len()) {
             return self.cx.error_at(call, "`body` takes a mass, an inertia about the centre of mass, the initial `[x, y, theta]` and optionally the initial `[vx, vy, omega]`");
@@ -181,7 +202,7 @@ impl Lower<'_> {
         self.bind(ident, Binding::Body(self.scene.bodies.len() - 1));
     }
 
-    fn frame(&mut self, e: &Expr) -> Option<Frame> {
+    pub(super) fn frame(&mut self, e: &Expr) -> Option<Frame> {
         let name = match e {
             Expr::Path(p) => p.path.get_ident().map(|i| i.to_string()),
             _ => None,
@@ -193,6 +214,7 @@ impl Lower<'_> {
         match self.lookup(&name).cloned() {
             Some(Binding::Body(b)) => Some(Frame::Body(b)),
             Some(Binding::Ground) => Some(Frame::Ground),
+            Some(Binding::BrokenBody) => None,
             Some(other) => {
                 let what = other.describe();
                 self.cx.error_at(e, format!("`{name}` is {what}, not a body: declare it with `let {name} = body(m, j, [x, y, theta]);`"));
@@ -244,6 +266,49 @@ impl Lower<'_> {
         }
     }
 
+    /// `crank.theta`, `top.q0`: a coordinate of a body, as a value.
+    pub(super) fn body_coordinate(&mut self, f: &syn::ExprField, e: &Expr) -> Option<Id> {
+        let base = match &*f.base {
+            Expr::Path(p) => p.path.get_ident().map(|i| i.to_string()),
+            _ => None,
+        };
+        let body = match base.as_deref().map(|n| self.lookup(n).cloned()) {
+            Some(Some(Binding::Body(b))) => b,
+            _ => {
+                self.cx.error_at(e, "fields are not part of the model language, except the coordinates of a body (`crank.theta`)");
+                return None;
+            }
+        };
+        let member = match &f.member {
+            syn::Member::Named(i) => i.to_string(),
+            syn::Member::Unnamed(i) => i.index.to_string(),
+        };
+        let (names, symbols): (&[&str], Vec<SymbolId>) = if self.scene.spatial.is_empty() {
+            let b = &self.scene.bodies[body];
+            (&["x", "y", "theta"], vec![b.x, b.y, b.theta])
+        } else {
+            let b = &self.scene.spatial[body];
+            let mut s = b.position.to_vec();
+            s.extend(b.quaternion);
+            s.extend(b.rates);
+            (
+                &["x", "y", "z", "q0", "q1", "q2", "q3", "wx", "wy", "wz"],
+                s,
+            )
+        };
+        match names.iter().position(|n| *n == member) {
+            Some(k) => Some(self.g.symbol_node(symbols[k])),
+            None => {
+                let list = names.join("`, `");
+                self.cx.error_at(
+                    &f.member,
+                    format!("a body's coordinates are `{list}`, not `{member}`"),
+                );
+                None
+            }
+        }
+    }
+
     fn graph_result_pair(&mut self, r: crate::Result<[Id; 2]>, at: &Expr) -> Option<[Id; 2]> {
         match r {
             Ok(v) => Some(v),
@@ -279,13 +344,20 @@ impl Lower<'_> {
         c: &syn::ExprCall,
         e: &Expr,
     ) {
+        if self.scene.is_spatial() {
+            return self.spatial_joint(kind, name, c, e);
+        }
+        if kind == "spherical" {
+            return self.cx.error_at(c, "a planar scene has no spherical joint: use `revolute`, or declare the bodies with `spatial_body`");
+        }
         let arity = match kind {
-            "revolute" => 4,
+            "revolute" | "fixed" => 4,
             _ => 5,
         };
         if c.args.len() != arity {
             let usage = match kind {
                 "revolute" => "`revolute(a, point_in_a, b, point_in_b)`",
+                "fixed" => "`fixed(a, point_in_a, b, point_in_b)`",
                 "distance" => "`distance(a, point_in_a, b, point_in_b, length)`",
                 _ => "`prismatic(a, point_in_a, b, point_in_b, axis_in_a)`",
             };
@@ -302,8 +374,33 @@ impl Lower<'_> {
         ) else {
             return;
         };
+        let initial = |this: &Self, f: Frame| match f {
+            Frame::Ground => None,
+            Frame::Body(k) => this
+                .states
+                .iter()
+                .find(|s| s.symbol == this.scene.bodies[k].theta)
+                .map(|s| s.init),
+        };
         let rows: crate::Result<Vec<Id>> = match kind {
             "revolute" => (0..2).map(|k| self.g.sub(pa[k], pb[k])).collect(),
+            "fixed" => {
+                // Welded: the points coincide and the relative angle keeps
+                // its initial value.
+                let (ta, tb) = (self.angle(a), self.angle(b));
+                let (ia, ib) = (initial(self, a), initial(self, b));
+                (|| {
+                    let g = &mut self.g;
+                    let zero = g.zero();
+                    let relative = g.sub(tb, ta)?;
+                    let start = g.sub(ib.unwrap_or(zero), ia.unwrap_or(zero))?;
+                    Ok(vec![
+                        g.sub(pa[0], pb[0])?,
+                        g.sub(pa[1], pb[1])?,
+                        g.sub(relative, start)?,
+                    ])
+                })()
+            }
             "distance" => {
                 let Some(l) = self.value(&c.args[4]) else {
                     return;
@@ -331,14 +428,6 @@ impl Lower<'_> {
                         .error_at(&c.args[4], "the axis is a 3-vector in A's coordinates");
                 }
                 let (ta, tb) = (self.angle(a), self.angle(b));
-                let initial = |this: &Self, f: Frame| match f {
-                    Frame::Ground => None,
-                    Frame::Body(k) => this
-                        .states
-                        .iter()
-                        .find(|s| s.symbol == this.scene.bodies[k].theta)
-                        .map(|s| s.init),
-                };
                 let (ia, ib) = (initial(self, a), initial(self, b));
                 (|| {
                     let g = &mut self.g;
@@ -380,6 +469,49 @@ impl Lower<'_> {
         } else {
             None
         };
+        let Some((equations, algebraics, rows)) = self.add_joint_rows(kind, name, rows, e) else {
+            return;
+        };
+        let kind = match kind {
+            "revolute" => "revolute",
+            "distance" => "distance",
+            "fixed" => "fixed",
+            _ => "prismatic",
+        };
+        let name = self
+            .scene
+            .joint_rows
+            .last()
+            .map(|j| j.0.clone())
+            .unwrap_or_default();
+        self.scene.records.push(JointRecord {
+            kind,
+            name,
+            a,
+            b,
+            local_a,
+            local_b,
+            axis,
+            equations,
+            algebraics,
+            rows,
+        });
+    }
+
+    /// A joint's constraint rows, each with its reaction `name[k]` as an
+    /// algebraic variable; returns the ranges of equations, algebraic
+    /// variables and scene rows it added.
+    pub(super) fn add_joint_rows(
+        &mut self,
+        kind: &str,
+        name: Option<&syn::Ident>,
+        rows: Vec<Id>,
+        e: &Expr,
+    ) -> Option<(
+        std::ops::Range<usize>,
+        std::ops::Range<usize>,
+        std::ops::Range<usize>,
+    )> {
         let (equations_start, algebraics_start, rows_start) = (
             self.equations.len(),
             self.algebraics.len(),
@@ -396,11 +528,12 @@ impl Lower<'_> {
             let lambda_name = format!("{base}[{k}]");
             let lambda = match self.g.algebraic(&lambda_name) {
                 Ok(id) => id,
-                Err(err) => return self.cx.error_at(e, err),
+                Err(err) => {
+                    self.cx.error_at(e, err);
+                    return None;
+                }
             };
-            let Some(symbol) = self.g.as_symbol(lambda) else {
-                return;
-            };
+            let symbol = self.g.as_symbol(lambda)?;
             self.algebraics.push(super::AlgebraicDecl {
                 name: lambda_name,
                 symbol,
@@ -416,31 +549,25 @@ impl Lower<'_> {
             self.scene.rows.push((row, lambda));
             multipliers.push(lambda);
         }
-        let kind = match kind {
-            "revolute" => "revolute",
-            "distance" => "distance",
-            _ => "prismatic",
-        };
-        self.scene.records.push(JointRecord {
-            kind,
-            name: base.clone(),
-            a,
-            b,
-            local_a,
-            local_b,
-            axis,
-            equations: equations_start..self.equations.len(),
-            algebraics: algebraics_start..self.algebraics.len(),
-            rows: rows_start..self.scene.rows.len(),
-        });
         if let Some(n) = name {
             let t = super::tensor::Tensor::from_vector(multipliers);
             self.bind(n, Binding::Tensor(t));
         }
+        self.scene
+            .joint_rows
+            .push((base, rows_start..self.scene.rows.len(), e.to_token_stream()));
+        Some((
+            equations_start..self.equations.len(),
+            algebraics_start..self.algebraics.len(),
+            rows_start..self.scene.rows.len(),
+        ))
     }
 
     /// `gravity(g)`, `force(body, point, f)`, `torque(body, tau)`.
     pub(super) fn load(&mut self, kind: &str, c: &syn::ExprCall, e: &Expr) {
+        if self.scene.is_spatial() {
+            return self.spatial_load(kind, c, e);
+        }
         let zero = self.g.zero();
         match kind {
             "gravity" => {
@@ -581,35 +708,66 @@ impl Lower<'_> {
 
     /// The Newton–Euler equations of every body, `M q'' = f − Φ_qᵀ λ`.
     pub(super) fn scene_equations(&mut self, item: &syn::ItemFn) {
-        if self.scene.bodies.is_empty() {
+        if self.scene.bodies.is_empty() && self.scene.spatial.is_empty() {
             return;
         }
+        let at = self
+            .scene
+            .first_body
+            .clone()
+            .unwrap_or_else(|| item.sig.ident.to_token_stream());
         if !self.scene.ground {
-            let at = self
-                .scene
-                .first_body
-                .clone()
-                .unwrap_or_else(|| item.sig.ident.to_token_stream());
             return self.cx.error_at(at, "a scene needs a ground to hold it: add `let ground = ground();` and attach a body to it with a joint");
         }
-        // Grübler's count: 3 coordinates per body minus the joint rows.
-        let (n, m) = (self.scene.bodies.len(), self.scene.rows.len());
-        let dof = 3 * n as i64 - m as i64;
+        let spatial = !self.scene.spatial.is_empty();
+        let n = self.scene.bodies.len() + self.scene.spatial.len();
+        let m = self.scene.rows.len();
+        let coordinates = if spatial { 6 * n } else { 3 * n };
+        // DOF = n − rank Φ_q at the start (eq. 4.23); Grübler's count when
+        // Φ_q cannot be evaluated there.
+        let mobility = self.mobility();
+        let (rank, how) = match &mobility {
+            Some(mob) => (mob.rank, "rank Φ_q at the initial configuration"),
+            None => (m, "Grübler's count"),
+        };
+        let dof = coordinates as i64 - rank as i64;
         if dof <= 0 {
-            let at = self
-                .scene
-                .first_body
-                .clone()
-                .unwrap_or_else(|| item.sig.ident.to_token_stream());
-            return self.cx.error_at(at, format!("this scene cannot move: {n} bodies have {} coordinates and the joints impose {m} constraints, {dof} degrees of freedom by Grübler's count; it is a structure, not a mechanism: remove a joint", 3 * n));
+            return self.cx.error_at(at, format!("this scene cannot move: {n} bodies have {coordinates} coordinates and the joints constrain {rank} of them ({how}, {m} rows), {dof} degrees of freedom; it is a structure, not a mechanism: remove a joint"));
+        }
+        if let Some(&row) = mobility.as_ref().and_then(|mob| mob.redundant.first()) {
+            if let Some((name, _, origin)) = self.joint_of_row(row) {
+                let rows: Vec<String> = mobility
+                    .iter()
+                    .flat_map(|mob| &mob.redundant)
+                    .filter_map(|&r| self.joint_of_row(r))
+                    .filter(|(n, _, _)| *n == name)
+                    .map(|(_, k, _)| k.to_string())
+                    .collect();
+                let which = match rows.as_slice() {
+                    [one] => format!("its row {one} follows"),
+                    [init @ .., last] => format!("its rows {} and {last} follow", init.join(", ")),
+                    [] => String::new(),
+                };
+                let remedy = if spatial {
+                    "remove it, or use a joint that constrains less (`spherical` for `revolute`, `distance` for `spherical`)"
+                } else {
+                    "remove it, or use a joint that constrains less (`distance` for `revolute`)"
+                };
+                return self.cx.error_at(origin, format!("joint `{name}` is redundant at the initial configuration: {which} from the joints declared before it (rank Φ_q = {rank} for {m} rows), so the reactions are undetermined; {remedy}"));
+            }
         }
         let loops = self.scene.joints as i64 - n as i64;
         self.scene.summary = format!(
-            "Planar scene ({} formulation): {n} bodies, {} joints with {m} constraint rows, {} independent loop(s) (joints − bodies), {dof} degrees of freedom by Grübler's count (the run reports n − rank Φ_q).",
+            "{} scene ({} formulation): {n} bodies, {} joints with {m} constraint rows, {} independent loop(s) (joints − bodies), {dof} degrees of freedom ({coordinates} coordinates − {how} {rank}).",
+            if spatial { "Spatial" } else { "Planar" },
             if self.scene.recursive { "recursive" } else { "global" },
             self.scene.joints,
             loops.max(0)
         );
+        if spatial {
+            let origin = item.sig.ident.to_token_stream();
+            return self.spatial_equations(&origin);
+        }
         if self.scene.recursive {
             return self.recursive_equations(item);
         }

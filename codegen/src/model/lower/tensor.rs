@@ -378,6 +378,10 @@ impl Lower<'_> {
         let zero = self.g.zero();
         let one = self.g.one();
         match name {
+            "position" if !self.scene.spatial.is_empty() && c.args.len() == 2 => {
+                let p = self.spatial_position(c, e)?;
+                Some(Tensor::vector(p.to_vec()))
+            }
             "position" => {
                 let [x, y] = self.position(c, e)?;
                 Some(Tensor::vector(vec![x, y, zero]))
