@@ -305,6 +305,17 @@ fn frames() {
     let p1 = vec3(0.5, -0.2, 0.0);
     let p2 = vec3(0.5 + 2.0 * cos(alpha), -0.2 + 2.0 * sin(alpha), 0.0);
     let frame = planar_frame(p1, p2) * vec3(1.0, 2.0, 3.0);
+    // Three points of a body turned by r, in natural coordinates: the
+    // second along its x axis, the third in its x–y plane.
+    let q1 = vec3(0.2, 0.1, -0.3);
+    let q2 = q1 + r * vec3(2.0, 0.0, 0.0);
+    let q3 = q1 + r * vec3(0.5, 3.0, 0.0);
+    let spatial = natural_frame(q1, q2, q3) - r;
+    let n = output(
+        norm(spatial * vec3(1.0, 0.0, 0.0))
+            + norm(spatial * vec3(0.0, 1.0, 0.0))
+            + norm(spatial * vec3(0.0, 0.0, 1.0)),
+    );
     let x0 = output(xw[0]);
     let x1 = output(xw[1]);
     let x2 = output(xw[2]);
@@ -331,4 +342,8 @@ fn transforms_and_natural_coordinates_in_the_language_match_the_runtime() {
     let want = k::rot_z(0.4) * Vector3::new(1.0, 2.0, 3.0);
     let got = Vector3::new(at("f0"), at("f1"), at("f2"));
     assert!((got - want).norm() <= 1e-15, "{got} vs {want}");
+    // The frame of three points is the body's rotation, to rounding.
+    assert!(at("n") <= 1e-14, "natural_frame − R: {:e}", at("n"));
+    // The frame of three points is the body's rotation, to rounding.
+    assert!(at("n") <= 1e-14, "natural_frame − R: {:e}", at("n"));
 }

@@ -129,6 +129,24 @@ fn quaternion_rates(g: &mut Graph, q: [Id; 4], w: Vec3) -> crate::Result<[Id; 4]
     Ok([g.neg(d)?, v[0], v[1], v[2]])
 }
 
+/// The frame of three points in natural coordinates (course notes §4.1.5,
+/// in space): origin P1, x axis along P1P2, z axis normal to the plane of
+/// the three points, y = z × x. Columns of the rotation matrix.
+pub(super) fn natural_frame(g: &mut Graph, p1: Vec3, p2: Vec3, p3: Vec3) -> crate::Result<Mat3> {
+    let unit = |g: &mut Graph, v: Vec3| -> crate::Result<Vec3> {
+        let n2 = dot3(g, v, v)?;
+        let n = g.sqrt(n2)?;
+        Ok([g.div(v[0], n)?, g.div(v[1], n)?, g.div(v[2], n)?])
+    };
+    let a = sub3(g, p2, p1)?;
+    let b = sub3(g, p3, p1)?;
+    let i = unit(g, a)?;
+    let normal = cross3(g, a, b)?;
+    let k = unit(g, normal)?;
+    let j = cross3(g, k, i)?;
+    Ok([i[0], j[0], k[0], i[1], j[1], k[1], i[2], j[2], k[2]])
+}
+
 /// Two vectors that span the plane normal to `u`: `u × e_k` for the axis
 /// `e_k` least aligned with `u` (by its value at the defaults), then `u × n1`.
 /// Polynomial in `u`, so exact for symbolic axes too.
@@ -308,6 +326,23 @@ impl Lower<'_> {
             inertia,
         });
         self.rebind(ident, Binding::Body(self.scene.spatial.len() - 1));
+    }
+
+    /// `orientation(body)`: R(q), body axes to world axes.
+    pub(super) fn orientation(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<Mat3> {
+        if c.args.len() != 1 {
+            self.cx
+                .error_at(c, "`orientation` takes a spatial body: `orientation(top)`");
+            return None;
+        }
+        let frame = self.frame(&c.args[0])?;
+        match self.pose(frame) {
+            Ok(pose) => Some(pose.rot),
+            Err(err) => {
+                self.cx.error_at(e, err);
+                None
+            }
+        }
     }
 
     /// The pose of a frame, with its initial attitude for joints that keep it.

@@ -8,7 +8,8 @@
 //! (`omega_seq`, `omega_quat`, §4.1.4),
 //! 4 × 4 transforms `transform(r, p)` (eq. 4.7), `inverse_transform` (4.8)
 //! and points `homogeneous(p)`, the planar frame of two points in natural
-//! coordinates `planar_frame(p1, p2)` (§4.1.5),
+//! coordinates `planar_frame(p1, p2)` and the spatial frame of three points
+//! `natural_frame(p1, p2, p3)` (§4.1.5), a spatial body's `orientation(b)`,
 //! `+ − *` (scalar, matrix–vector, matrix–matrix) and `/` by a
 //! scalar, indexing `p[0]`, `r[1][2]`; an equation or a constraint between
 //! vectors stands for one per component.
@@ -71,8 +72,10 @@ impl Tensor {
 }
 
 /// Functions whose value is a vector or a matrix.
-pub(super) const TENSOR_FUNCTIONS: [&str; 22] = [
+pub(super) const TENSOR_FUNCTIONS: [&str; 24] = [
     "position",
+    "orientation",
+    "natural_frame",
     "transform",
     "inverse_transform",
     "homogeneous",
@@ -378,6 +381,21 @@ impl Lower<'_> {
         let zero = self.g.zero();
         let one = self.g.one();
         match name {
+            "orientation" => {
+                if !self.scene.is_spatial() {
+                    self.cx.error_at(c, "`orientation` is the rotation matrix of a `spatial_body`; in a planar scene use `rot_z(body.theta)`");
+                    return None;
+                }
+                let r = self.orientation(c, e)?;
+                Some(Tensor::matrix(3, 3, r.to_vec()))
+            }
+            "natural_frame" => {
+                let a = self.tensor_args(c, name, &[3, 3, 3])?;
+                let p = |k: usize| [a[k].data[0], a[k].data[1], a[k].data[2]];
+                let r = super::spatial::natural_frame(&mut self.g, p(0), p(1), p(2));
+                let r = self.graph_result_all(r.map(|m| m.to_vec()), e)?;
+                Some(Tensor::matrix(3, 3, r))
+            }
             "position" if !self.scene.spatial.is_empty() && c.args.len() == 2 => {
                 let p = self.spatial_position(c, e)?;
                 Some(Tensor::vector(p.to_vec()))
