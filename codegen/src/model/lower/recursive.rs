@@ -3,7 +3,8 @@
 //! through revolute and prismatic joints, each body's pose an expression of
 //! them, Lagrange's equations `d/dt ∂T/∂q̇ − ∂T/∂q = Q − Φ_qᵀ λ` derived
 //! symbolically, and the joints off the tree (cut joints, closing the
-//! loops) kept as constraints with their multipliers. The user's body
+//! loops) kept as constraints with their multipliers. Initial body
+//! velocities become initial joint rates. The user's body
 //! coordinates (`crank.x`, …) become expressions, so outputs and the cut
 //! constraints read them unchanged.
 
@@ -54,16 +55,31 @@ impl Lower<'_> {
             let name = self.scene.bodies[i].name.clone();
             return self.cx.error_at(&origin, format!("the recursive formulation needs every body on a tree of revolute and prismatic joints from the ground, and `{name}` is not: join it, or use the global formulation"));
         }
-        if !self.inits.is_empty()
-            && self.inits.iter().any(|init| {
-                self.scene
-                    .bodies
-                    .iter()
-                    .any(|b| self.is_body_rate(b, init.target))
-            })
-        {
-            return self.cx.error_at(&origin, "initial body velocities are not supported by the recursive formulation yet: start at rest or use the global formulation");
+        // Initial body velocities become initial joint rates: a revolute
+        // joint's is the relative angular velocity, a prismatic joint's the
+        // relative speed of its points along its axis (a body without
+        // velocities starts at rest). Linear velocities that disagree with
+        // these are not used.
+        let mut rates: FxHashMap<SymbolId, Id> = FxHashMap::default();
+        let mut kept_inits = Vec::with_capacity(self.inits.len());
+        for init in std::mem::take(&mut self.inits) {
+            let of = self.scene.bodies.iter().find_map(|b| {
+                [b.x, b.y, b.theta].into_iter().find(|&s| {
+                    matches!(self.g.symbol(init.target).kind, crate::SymbolKind::Derivative { of, order: 1 } if of == s)
+                })
+            });
+            match of {
+                Some(s) => {
+                    rates.insert(s, init.value);
+                }
+                None => kept_inits.push(init),
+            }
         }
+        self.inits = kept_inits;
+        let rate_of = |this: &mut Self, s: SymbolId| -> Id {
+            rates.get(&s).copied().unwrap_or_else(|| this.g.zero())
+        };
+        let mut joint_rates: Vec<Id> = Vec::new();
         let init_of =
             |this: &Self, s: SymbolId| this.states.iter().find(|d| d.symbol == s).map(|d| d.init);
         // Poses [x, y, θ] of the bodies, in joint coordinates.
@@ -159,6 +175,68 @@ impl Lower<'_> {
                 Ok(v) => v,
                 Err(err) => return self.cx.error_at(&origin, err),
             };
+            let child_velocity = [
+                rate_of(self, body.x),
+                rate_of(self, body.y),
+                rate_of(self, body.theta),
+            ];
+            let parent_velocity = match parent {
+                Frame::Ground => [zero; 3],
+                Frame::Body(p) => {
+                    let b = self.scene.bodies[p].clone();
+                    [
+                        rate_of(self, b.x),
+                        rate_of(self, b.y),
+                        rate_of(self, b.theta),
+                    ]
+                }
+            };
+            let rate = (|| -> crate::Result<Id> {
+                let g = &mut self.g;
+                if rec.kind == "revolute" {
+                    return g.sub(child_velocity[2], parent_velocity[2]);
+                }
+                // v + ω k × (R(θ) p) of each joint point, along the axis.
+                let point_velocity = |g: &mut crate::Graph,
+                                      v: [Id; 3],
+                                      angle: Id,
+                                      p: [Id; 2]|
+                 -> crate::Result<[Id; 2]> {
+                    let (c, s) = (
+                        g.call(crate::Func::Cos, angle)?,
+                        g.call(crate::Func::Sin, angle)?,
+                    );
+                    let (a1, a2) = (g.mul(c, p[0])?, g.mul(s, p[1])?);
+                    let (b1, b2) = (g.mul(s, p[0])?, g.mul(c, p[1])?);
+                    let (rx, ry) = (g.sub(a1, a2)?, g.add(b1, b2)?);
+                    let wy = g.mul(v[2], ry)?;
+                    let wx = g.mul(v[2], rx)?;
+                    Ok([g.sub(v[0], wy)?, g.add(v[1], wx)?])
+                };
+                let vb = point_velocity(g, child_velocity, child_start[2], p_child)?;
+                let vj = point_velocity(g, parent_velocity, parent_start[2], p_parent)?;
+                let axis = rec.axis.unwrap_or([zero, zero]);
+                let (c, s) = (
+                    g.call(crate::Func::Cos, parent_start[2])?,
+                    g.call(crate::Func::Sin, parent_start[2])?,
+                );
+                let (a1, a2) = (g.mul(c, axis[0])?, g.mul(s, axis[1])?);
+                let (b1, b2) = (g.mul(s, axis[0])?, g.mul(c, axis[1])?);
+                let dir = [g.sub(a1, a2)?, g.add(b1, b2)?];
+                let (xx, yy) = (g.mul(axis[0], axis[0])?, g.mul(axis[1], axis[1])?);
+                let len2 = g.add(xx, yy)?;
+                let len = g.sqrt(len2)?;
+                let dx = g.sub(vb[0], vj[0])?;
+                let dy = g.sub(vb[1], vj[1])?;
+                let p1 = g.mul(dx, dir[0])?;
+                let p2 = g.mul(dy, dir[1])?;
+                let along = g.add(p1, p2)?;
+                g.div(along, len)
+            })();
+            match rate {
+                Ok(r) => joint_rates.push(r),
+                Err(err) => return self.cx.error_at(&origin, err),
+            }
             let Some(q) = self.g.as_symbol(q_node) else {
                 return;
             };
@@ -236,13 +314,29 @@ impl Lower<'_> {
             .map(|(_, a)| a)
             .collect();
         self.states.retain(|s| !body_symbols.contains(&s.symbol));
-        for (q, q0, name) in &coordinates {
+        for ((q, q0, name), &rate) in coordinates.iter().zip(&joint_rates) {
             self.states.push(super::StateDecl {
                 name: name.clone(),
                 symbol: *q,
                 init: *q0,
                 origin: origin.clone(),
                 fixed: false,
+            });
+            if self.g.as_number(rate).is_some_and(|v| v.is_zero()) {
+                continue;
+            }
+            let Some(target) = self
+                .g
+                .derivative(*q, 1)
+                .ok()
+                .and_then(|d| self.g.as_symbol(d))
+            else {
+                return;
+            };
+            self.inits.push(super::Init {
+                target,
+                value: rate,
+                origin: origin.clone(),
             });
         }
         // Everything that read the body coordinates reads the poses.
@@ -368,11 +462,5 @@ impl Lower<'_> {
             coordinates.len(),
             cut.len()
         ));
-    }
-
-    fn is_body_rate(&self, body: &super::scene::Body, target: SymbolId) -> bool {
-        [body.x, body.y, body.theta].iter().any(|&s| {
-            matches!(self.g.symbol(target).kind, crate::SymbolKind::Derivative { of, .. } if of == s)
-        })
     }
 }
