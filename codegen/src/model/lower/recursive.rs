@@ -1,6 +1,7 @@
 //! The recursive formulation of a planar scene (course notes §4.2.2):
 //! relative joint coordinates along a spanning tree grown from the ground
-//! through revolute and prismatic joints, each body's pose an expression of
+//! through revolute, prismatic and fixed joints (a welded body adds no
+//! coordinate), each body's pose an expression of
 //! them, Lagrange's equations `d/dt ∂T/∂q̇ − ∂T/∂q = Q − Φ_qᵀ λ` derived
 //! symbolically, and the joints off the tree (cut joints, closing the
 //! loops) kept as constraints with their multipliers. Initial body
@@ -53,7 +54,7 @@ impl Lower<'_> {
         }
         if let Some(i) = placed.iter().position(|p| !p) {
             let name = self.scene.bodies[i].name.clone();
-            return self.cx.error_at(&origin, format!("the recursive formulation needs every body on a tree of revolute and prismatic joints from the ground, and `{name}` is not: join it, or use the global formulation"));
+            return self.cx.error_at(&origin, format!("the recursive formulation needs every body on a tree of revolute, prismatic and fixed joints from the ground, and `{name}` is not: join it, or use the global formulation"));
         }
         // Initial body velocities become initial joint rates: a revolute
         // joint's is the relative angular velocity, a prismatic joint's the
@@ -109,6 +110,38 @@ impl Lower<'_> {
             ) else {
                 return;
             };
+            if rec.kind == "fixed" {
+                // Welded: the child moves with the parent and adds no
+                // coordinate, no state and no equation.
+                let welded = (|| -> crate::Result<[Id; 3]> {
+                    let g = &mut self.g;
+                    let relative0 = g.sub(ct0, parent_start[2])?;
+                    let theta = g.add(parent_pose[2], relative0)?;
+                    let rotate =
+                        |g: &mut crate::Graph, angle: Id, p: [Id; 2]| -> crate::Result<[Id; 2]> {
+                            let (c, s) = (
+                                g.call(crate::Func::Cos, angle)?,
+                                g.call(crate::Func::Sin, angle)?,
+                            );
+                            let (a1, a2) = (g.mul(c, p[0])?, g.mul(s, p[1])?);
+                            let (b1, b2) = (g.mul(s, p[0])?, g.mul(c, p[1])?);
+                            Ok([g.sub(a1, a2)?, g.add(b1, b2)?])
+                        };
+                    let arm = rotate(g, parent_pose[2], p_parent)?;
+                    let back = rotate(g, theta, p_child)?;
+                    let x = g.add(parent_pose[0], arm[0])?;
+                    let y = g.add(parent_pose[1], arm[1])?;
+                    Ok([g.sub(x, back[0])?, g.sub(y, back[1])?, theta])
+                })();
+                match welded {
+                    Ok(p) => {
+                        pose[child] = Some(p);
+                        start[child] = Some([cx0, cy0, ct0]);
+                    }
+                    Err(err) => return self.cx.error_at(&origin, err),
+                }
+                continue;
+            }
             let name = format!("{}.q", rec.name);
             let built = (|| -> crate::Result<(Id, [Id; 3], [Id; 3], Id)> {
                 let g = &mut self.g;
