@@ -6,6 +6,7 @@
 mod adaptive;
 mod backward_euler;
 pub mod band_lu;
+pub mod bench;
 pub mod dense_lu;
 pub mod dop853;
 pub mod dopri5;

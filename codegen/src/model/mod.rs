@@ -44,7 +44,10 @@ pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
     };
     if let (Some(system), true) = (&system, cx.is_ok()) {
         match expand::expand(&mut ir, system, &attributes) {
-            Ok(tokens) => return tokens,
+            Ok(mut tokens) => {
+                tokens.extend(benchmark_impl(&item, &ir, &attributes));
+                return tokens;
+            }
             Err(e @ crate::Error::NotSmooth { node, .. }) => {
                 // The call itself when the right-hand side kept the node the
                 // user wrote; else the first such call.
@@ -67,7 +70,7 @@ pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
 }
 
 /// What `#[dae_model(...)]` asks for besides the model.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Default)]
 pub struct Attributes {
     /// `taylor = p`, 1 ≤ p ≤ 8: the economic Taylor derivatives up to order
     /// p and the AD tape of the adaptive Taylor method.
@@ -78,6 +81,12 @@ pub struct Attributes {
     /// `scene = recursive`: a scene in relative joint coordinates (the
     /// default, `scene = global`, keeps each body's coordinates).
     pub recursive: bool,
+    /// `bench = Bench::until(t1)...`: the model's benchmark problem; the
+    /// model then implements `daegen::runtime::bench::Benchmark`.
+    pub bench: Option<syn::Expr>,
+    /// The other arguments, as written (for re-expanding the model when the
+    /// benchmark times its expansion).
+    pub written: String,
 }
 
 /// Reads `#[dae_model]`, `#[dae_model(taylor = p)]`, `#[dae_model(unroll = [15, 19])]`
@@ -87,7 +96,7 @@ fn attributes(cx: &mut ctxt::Ctxt, attr: TokenStream) -> Attributes {
     if attr.is_empty() {
         return out;
     }
-    let fix = "`#[dae_model]` takes `taylor = p` (p from 1 to 8), `unroll = [p, ...]` (orders from 2 to 40) and `scene = global` or `scene = recursive`";
+    let fix = "`#[dae_model]` takes `taylor = p` (p from 1 to 8), `unroll = [p, ...]` (orders from 2 to 40), `scene = global` or `scene = recursive`, and `bench = Bench::until(t1)...`";
     let parser =
         syn::punctuated::Punctuated::<syn::MetaNameValue, syn::Token![,]>::parse_terminated;
     let Ok(args) = syn::parse::Parser::parse2(parser, attr.clone()) else {
@@ -130,6 +139,9 @@ fn attributes(cx: &mut ctxt::Ctxt, attr: TokenStream) -> Attributes {
                     "`unroll` takes a list of Taylor orders from 2 to 40, e.g. `unroll = [15, 19]` (tolerance 1e-12 uses 15, 1e-15 uses 19)",
                 ),
             }
+        } else if arg.path.is_ident("bench") && out.bench.is_none() {
+            out.bench = Some(arg.value.clone());
+            continue;
         } else if arg.path.is_ident("scene") {
             match &arg.value {
                 syn::Expr::Path(p) if p.path.is_ident("recursive") => out.recursive = true,
@@ -139,8 +151,39 @@ fn attributes(cx: &mut ctxt::Ctxt, attr: TokenStream) -> Attributes {
         } else {
             cx.error_at(arg, fix);
         }
+        if !out.written.is_empty() {
+            out.written.push_str(", ");
+        }
+        out.written.push_str(&quote::ToTokens::to_token_stream(arg).to_string());
     }
     out
+}
+
+/// `impl Benchmark` for a model declared with `bench = ...`: its name, its
+/// source for timing the expansion, and the problem (the user's expression,
+/// with the benchmark types and the methods in scope).
+fn benchmark_impl(item: &syn::ItemFn, ir: &ir::ModelIr, attributes: &Attributes) -> TokenStream {
+    let Some(bench) = &attributes.bench else {
+        return TokenStream::new();
+    };
+    let ty = expand::type_name(ir);
+    let name = item.sig.ident.to_string();
+    let source = quote::ToTokens::to_token_stream(item).to_string();
+    let written = &attributes.written;
+    quote::quote! {
+        impl ::daegen::runtime::bench::Benchmark for #ty {
+            const NAME: &'static str = #name;
+            const SOURCE: &'static str = #source;
+            const ATTRIBUTES: &'static str = #written;
+            fn bench() -> ::daegen::runtime::bench::Bench {
+                #[allow(unused_imports)]
+                use ::daegen::runtime::bench::{Bench, Reference};
+                #[allow(unused_imports)]
+                use ::daegen::runtime::Method::*;
+                #bench
+            }
+        }
+    }
 }
 
 /// The errors `expand_dae_model` would report, as messages: for tests of
