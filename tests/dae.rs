@@ -166,6 +166,9 @@ fn over_a_hundred_seconds_the_dae_drifts_in_energy_like_the_angle_form() {
 }
 
 include!("models/stiff.rs");
+van_der_pol_model!();
+robertson_model!();
+hires_model!();
 
 #[test]
 fn robertson_as_an_index_1_dae_reaches_the_published_solution() {

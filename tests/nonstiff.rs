@@ -215,6 +215,9 @@ fn a_singularity_stops_the_run_with_an_error_and_the_partial_solution() {
 // Van der Pol with ε = 1e-6 (reference-problems.md §5a): far too stiff for
 // an explicit method, which must stop at the step limit, not hang.
 include!("models/stiff.rs");
+van_der_pol_model!();
+robertson_model!();
+hires_model!();
 
 #[test]
 fn a_stiff_problem_hits_the_step_limit_with_a_clear_error() {

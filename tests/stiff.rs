@@ -7,6 +7,9 @@
 use daegen::prelude::*;
 
 include!("models/stiff.rs");
+van_der_pol_model!();
+robertson_model!();
+hires_model!();
 
 fn last_state(sol: &Solution) -> Vec<f64> {
     sol.state(sol.times().len() - 1).unwrap_or(&[]).to_vec()

@@ -57,11 +57,36 @@ impl<M: Model> Rhs<'_, M> {
 
 /// `out = y + h Σ_j a_j k_j`, in one pass and in the order of Hairer's
 /// codes (the sum first, then one multiplication by h).
+///
+/// Stage by stage over whole vectors (skipping the tableau's zeros, as
+/// Hairer's codes do), so each pass is a vectorizable loop over slices of a
+/// known length; per component the terms are added in the same order.
 fn combine<S: StateVector>(y: &S, h: f64, a: &[f64], k: &[S], out: &mut S) {
-    let (y, out) = (y.as_ref(), out.as_mut());
-    for i in 0..out.len() {
-        let sum: f64 = a.iter().zip(k).map(|(aj, kj)| aj * kj.as_ref()[i]).sum();
-        out[i] = y[i] + h * sum;
+    let out = out.as_mut();
+    let n = out.len();
+    let y = &y.as_ref()[..n];
+    let mut first = true;
+    for (&aj, kj) in a.iter().zip(k) {
+        if aj == 0.0 {
+            continue;
+        }
+        let kj = &kj.as_ref()[..n];
+        if first {
+            for (o, kv) in out.iter_mut().zip(kj) {
+                *o = aj * kv;
+            }
+            first = false;
+        } else {
+            for (o, kv) in out.iter_mut().zip(kj) {
+                *o += aj * kv;
+            }
+        }
+    }
+    if first {
+        out.fill(0.0);
+    }
+    for (o, yv) in out.iter_mut().zip(y) {
+        *o = yv + h * *o;
     }
 }
 

@@ -301,18 +301,17 @@ impl EmbeddedPair for Dop853 {
     fn error<S: StateVector>(h: f64, k: &[S], sk: &S) -> f64 {
         let sk = sk.as_ref();
         let n = sk.len();
+        // Slices of a known length: no bounds checks in the loop below.
+        let ks: [&[f64]; 12] = std::array::from_fn(|j| &k[j].as_ref()[..n]);
         let (mut err5, mut err3) = (0.0, 0.0);
         for i in 0..n {
             let (mut e5, mut b) = (0.0, 0.0);
             for j in 0..12 {
-                let kj = k[j].as_ref()[i];
+                let kj = ks[j][i];
                 e5 += E5[j] * kj;
                 b += A[12][j] * kj;
             }
-            let e3 = b
-                - BHH[0] * k[0].as_ref()[i]
-                - BHH[1] * k[8].as_ref()[i]
-                - BHH[2] * k[11].as_ref()[i];
+            let e3 = b - BHH[0] * ks[0][i] - BHH[1] * ks[8][i] - BHH[2] * ks[11][i];
             err5 += (e5 / sk[i]).powi(2);
             err3 += (e3 / sk[i]).powi(2);
         }

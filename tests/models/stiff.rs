@@ -1,9 +1,12 @@
 // The stiff reference problems of the IVP Test Set (Bari) with their
 // published solutions, shared by tests/stiff.rs and the benchmark
-// (`include!`d; reference-problems.md §5–§7).
+// (`include!`d; reference-problems.md §5–§7). The ODEs are macros so each
+// includer chooses the `#[dae_model]` arguments: `van_der_pol_model!();`.
 
+macro_rules! van_der_pol_model {
+    ($($arguments:tt)*) => {
 /// Van der Pol, ε = 1e-6 (test set `vdpol`).
-#[dae_model]
+#[dae_model($($arguments)*)]
 fn van_der_pol() {
     let eps = param(1e-6);
     let y1 = state(2.0);
@@ -11,13 +14,17 @@ fn van_der_pol() {
     der(y1) == y2;
     der(y2) == ((1.0 - y1 * y1) * y2 - y1) / eps;
 }
+    };
+}
 
 /// Published at t = 2 (test set vdpol.f, RADAU in extended precision).
 #[allow(dead_code)]
 const VDP_AT_2: [f64; 2] = [0.1706167732170483e1, -0.8928097010247975];
 
+macro_rules! robertson_model {
+    ($($arguments:tt)*) => {
 /// Robertson's chemical kinetics (test set `rober`).
-#[dae_model]
+#[dae_model($($arguments)*)]
 fn robertson() {
     let y1 = state(1.0);
     let y2 = state(0.0);
@@ -25,6 +32,8 @@ fn robertson() {
     der(y1) == -0.04 * y1 + 1e4 * y2 * y3;
     der(y2) == 0.04 * y1 - 1e4 * y2 * y3 - 3e7 * y2 * y2;
     der(y3) == 3e7 * y2 * y2;
+}
+    };
 }
 
 /// Robertson's kinetics as a semi-explicit index-1 DAE: the third equation
@@ -48,8 +57,10 @@ const ROBER_AT_1E11: [f64; 3] = [
     0.9999999791665050,
 ];
 
+macro_rules! hires_model {
+    ($($arguments:tt)*) => {
 /// HIRES (test set `hires`).
-#[dae_model]
+#[dae_model($($arguments)*)]
 fn hires() {
     let y = state_array([1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0057]);
     der(y[0]) == -1.71 * y[0] + 0.43 * y[1] + 8.32 * y[2] + 0.0007;
@@ -60,6 +71,8 @@ fn hires() {
     der(y[5]) == -280.0 * y[5] * y[7] + 0.69 * y[3] + 1.71 * y[4] - 0.43 * y[5] + 0.69 * y[6];
     der(y[6]) == 280.0 * y[5] * y[7] - 1.81 * y[6];
     der(y[7]) == -280.0 * y[5] * y[7] + 1.81 * y[6];
+}
+    };
 }
 
 /// Published at t = 321.8122 (test set hires.f; Hairer's hir_exact.txt agrees).

@@ -40,10 +40,12 @@ pub fn work_precision_svg(title: &str, records: &[Record]) -> Result<String, Str
     let (t0, t1) = fold(|r| r.seconds * 1e3);
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (720, 480)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (880, 480)).into_drawing_area();
         let draw = |e: DrawingAreaErrorKind<_>| format!("{title}: {e:?}");
         root.fill(&WHITE).map_err(draw)?;
-        let mut chart = ChartBuilder::on(&root)
+        // The legend beside the chart, where it hides no point.
+        let (plot, legend) = root.split_horizontally(660);
+        let mut chart = ChartBuilder::on(&plot)
             .caption(title, ("sans-serif", 18))
             .margin(12)
             .x_label_area_size(40)
@@ -58,6 +60,7 @@ pub fn work_precision_svg(title: &str, records: &[Record]) -> Result<String, Str
             .y_label_formatter(&|v| format!("{v:.0e}"))
             .draw()
             .map_err(draw)?;
+        let mut row = 0;
         for (k, (method, curve)) in curves(records).into_iter().enumerate() {
             let colour = COLOURS[k % COLOURS.len()];
             let mut points: Vec<(f64, f64)> = curve
@@ -70,13 +73,11 @@ pub fn work_precision_svg(title: &str, records: &[Record]) -> Result<String, Str
             }
             points.sort_by(|a, b| b.0.total_cmp(&a.0));
             let ours = method.starts_with("daegen ");
-            let style = ShapeStyle::from(&colour).stroke_width(if ours { 2 } else { 1 });
-            let series = chart
+            let width = if ours { 2 } else { 1 };
+            let style = ShapeStyle::from(&colour).stroke_width(width);
+            chart
                 .draw_series(LineSeries::new(points.clone(), style))
                 .map_err(draw)?;
-            series.label(method.clone()).legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 16, y)], colour.stroke_width(2))
-            });
             chart
                 .draw_series(points.iter().map(|&p| {
                     if ours {
@@ -86,14 +87,15 @@ pub fn work_precision_svg(title: &str, records: &[Record]) -> Result<String, Str
                     }
                 }))
                 .map_err(draw)?;
+            let y = 48 + 22 * row;
+            legend
+                .draw(&PathElement::new(vec![(4, y), (28, y)], style))
+                .map_err(draw)?;
+            legend
+                .draw(&Text::new(method, (34, y - 7), ("sans-serif", 13)))
+                .map_err(draw)?;
+            row += 1;
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()
-            .map_err(draw)?;
         root.present().map_err(draw)?;
     }
     Ok(svg)

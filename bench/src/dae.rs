@@ -1,0 +1,404 @@
+//! The DAE benchmarks (`--dae`): the price of the DAE forms against the
+//! ODEs they reduce to, the global and recursive formulations of a scene,
+//! and Robertson as an index-1 DAE against diffsol's mass-matrix BDF. These
+//! compare forms of one problem rather than sweep a registered model, so
+//! they keep their own tables.
+
+use super::*;
+use std::time::{Duration, Instant};
+
+fn mixed_error(got: &[f64], reference: &[f64]) -> f64 {
+    got.iter()
+        .zip(reference)
+        .map(|(g, r)| (g - r).abs() / r.abs().max(1.0))
+        .fold(0.0, f64::max)
+}
+
+/// Median wall time of `run` over repeats (after one warm-up), and its result.
+fn time<T>(mut run: impl FnMut() -> T) -> (Duration, T) {
+    let mut result = run();
+    let mut times = Vec::new();
+    let start = Instant::now();
+    // Sub-millisecond runs on a shared 2-core machine vary by ±30% between
+    // batches: take many repeats (at least 1 s or 200 runs) before the median.
+    while times.len() < 200 && (times.len() < 5 || start.elapsed() < Duration::from_secs(1)) {
+        let t = Instant::now();
+        result = run();
+        times.push(t.elapsed());
+    }
+    times.sort();
+    (times[times.len() / 2], result)
+}
+
+/// One point of a work-precision curve.
+#[derive(Clone, Debug)]
+struct Point {
+    tol: f64,
+    error: f64,
+    seconds: f64,
+}
+
+/// A peer's time at `error`, by log–log interpolation on its curve (None
+/// outside the range it covers).
+fn time_at_error(curve: &[Point], error: f64) -> Option<f64> {
+    let mut pts: Vec<&Point> = curve
+        .iter()
+        .filter(|p| p.error > 0.0 && p.error.is_finite())
+        .collect();
+    pts.sort_by(|a, b| b.error.total_cmp(&a.error));
+    pts.windows(2).find_map(|w| {
+        let (a, b) = (w[0], w[1]);
+        if error <= a.error && error >= b.error {
+            let s = (error.ln() - a.error.ln()) / (b.error.ln() - a.error.ln());
+            Some((a.seconds.ln() + s * (b.seconds.ln() - a.seconds.ln())).exp())
+        } else {
+            None
+        }
+    })
+}
+
+/// One run of a pendulum form: the error in (x, y, u, v) at t = 10 against
+/// Cash's recomputed reference, the time, and the steps taken.
+fn pendulum_run<M: Model + Clone + Send + Sync + 'static>(
+    model: &M,
+    method: Method,
+    tol: f64,
+    formulation: Formulation,
+    cartesian: &dyn Fn(&[f64]) -> [f64; 4],
+) -> (Point, usize) {
+    let options = Options::new()
+        .method(method)
+        .rtol(tol)
+        .atol(tol)
+        .dense_output(false)
+        .formulation(formulation);
+    let (d, sol) = time(|| model.simulate(0.0, 10.0, &options));
+    let (error, steps) = match sol {
+        Ok(sol) => {
+            let got = cartesian(sol.state(sol.times().len() - 1).unwrap_or(&[0.0; 4]));
+            (
+                mixed_error(&got, &CASH_PENDULUM_AT_10[..4]),
+                sol.stats().steps,
+            )
+        }
+        Err(_) => (f64::INFINITY, 0),
+    };
+    (
+        Point {
+            tol,
+            error,
+            seconds: d.as_secs_f64(),
+        },
+        steps,
+    )
+}
+
+/// The slider-crank (global coordinates, 15 × 15 KKT system solved at each
+/// evaluation) against its crank-angle ODE to t = 2, DOP853: the error in
+/// the crank angle against the angle form at tol 1e-13, time per step.
+fn slider_crank_against_ode() {
+    println!("\n### Slider-crank to t = 2: global coordinates (DAE) against the crank-angle ODE, DOP853\n");
+    println!("| tol | DAE error | DAE time (ms) | DAE steps | DAE µs/step | ODE error | ODE time (ms) | ODE steps | ODE µs/step | time ratio |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    let dae = SliderCrank::default();
+    let probe = dae
+        .simulate(0.0, 2.0, &Options::new().method(Method::Dop853))
+        .expect("the slider-crank runs");
+    let phi0 = probe.state(0).map_or(1.0, |s| s[4]);
+    let ode = SliderCrankAngle {
+        phi0,
+        ..SliderCrankAngle::default()
+    };
+    let reference = ode
+        .simulate(
+            0.0,
+            2.0,
+            &Options::new()
+                .method(Method::Dop853)
+                .rtol(1e-13)
+                .atol(1e-13),
+        )
+        .and_then(|s| s.last("phi"))
+        .unwrap_or(f64::NAN);
+    for tol in [1e-6, 1e-9, 1e-12] {
+        let options = Options::new()
+            .method(Method::Dop853)
+            .rtol(tol)
+            .atol(tol)
+            .dense_output(false);
+        let (da, a) = time(|| dae.simulate(0.0, 2.0, &options));
+        let (db, b) = time(|| ode.simulate(0.0, 2.0, &options));
+        let (Ok(a), Ok(b)) = (a, b) else {
+            println!("| {tol:.0e} | failed | | | | | | | | |");
+            continue;
+        };
+        let ea = (a.last("theta1").unwrap_or(f64::NAN) - reference).abs();
+        let eb = (b.last("phi").unwrap_or(f64::NAN) - reference).abs();
+        let (sa, sb) = (a.stats().steps, b.stats().steps);
+        println!(
+            "| {tol:.0e} | {ea:.2e} | {:.3} | {sa} | {:.2} | {eb:.2e} | {:.3} | {sb} | {:.2} | {} |",
+            da.as_secs_f64() * 1e3,
+            da.as_secs_f64() * 1e6 / sa.max(1) as f64,
+            db.as_secs_f64() * 1e3,
+            db.as_secs_f64() * 1e6 / sb.max(1) as f64,
+            ratio(da.as_secs_f64() / db.as_secs_f64())
+        );
+    }
+}
+
+/// The source of an n-rod chain scene, for timing the macro on it.
+fn rod_chain_source(n: usize) -> String {
+    let mut s = String::from("fn chain() { let g = param(9.81); let ground = ground();");
+    for i in 0..n {
+        s += &format!("let rod{i} = body(1.0, 1.0 / 12.0, [{}.5, 0.0, 0.0]);", i);
+    }
+    s += "revolute(ground, vec3(0.0, 0.0, 0.0), rod0, vec3(-0.5, 0.0, 0.0));";
+    for i in 1..n {
+        s += &format!(
+            "revolute(rod{}, vec3(0.5, 0.0, 0.0), rod{i}, vec3(-0.5, 0.0, 0.0));",
+            i - 1
+        );
+    }
+    s + "gravity(vec3(0.0, -g, 0.0)); }"
+}
+
+/// A ten-rod chain in the global and the recursive formulation: macro
+/// expansion time and generated size, and the run's cost per step.
+fn formulations() {
+    println!(
+        "\n### Ten-rod chain: global against recursive formulation (DOP853, tol 1e-8, t = 1)\n"
+    );
+    println!(
+        "| formulation | expansion (ms) | generated (kB) | states | run (ms) | steps | µs/step |"
+    );
+    println!("|---|---|---|---|---|---|---|");
+    let source: proc_macro2::TokenStream = rod_chain_source(10).parse().expect("the chain parses");
+    let options = Options::new()
+        .method(Method::Dop853)
+        .rtol(1e-8)
+        .atol(1e-8)
+        .dense_output(false);
+    for (name, attr) in [
+        ("global", "scene = global"),
+        ("recursive", "scene = recursive"),
+    ] {
+        let attr: proc_macro2::TokenStream = attr.parse().expect("the attribute parses");
+        let (expansion, tokens) =
+            time(|| daegen::codegen::expand_dae_model(attr.clone(), source.clone()));
+        let kb = tokens.to_string().len() as f64 / 1e3;
+        let (run, steps, states) = if name == "global" {
+            let (d, s) = time(|| RodChainGlobal::default().simulate(0.0, 1.0, &options));
+            (
+                d,
+                s.map(|s| s.stats().steps).unwrap_or(0),
+                RodChainGlobal::STATES,
+            )
+        } else {
+            let (d, s) = time(|| RodChainRecursive::default().simulate(0.0, 1.0, &options));
+            (
+                d,
+                s.map(|s| s.stats().steps).unwrap_or(0),
+                RodChainRecursive::STATES,
+            )
+        };
+        println!(
+            "| {name} | {:.1} | {kb:.0} | {states} | {:.2} | {steps} | {:.1} |",
+            expansion.as_secs_f64() * 1e3,
+            run.as_secs_f64() * 1e3,
+            run.as_secs_f64() * 1e6 / steps.max(1) as f64
+        );
+    }
+}
+
+/// The index-3 pendulum as a DAE (index-1 form with projection) against
+/// its angle ODE, same method and tolerance: the price of the DAE form.
+fn dae_against_ode() {
+    println!("\n### Cash's index-3 pendulum to t = 10: the DAE form against the angle ODE\n");
+    println!("| method | tol | DAE error | DAE time (ms) | DAE steps | DAE µs/step | ODE error | ODE time (ms) | ODE steps | ODE µs/step | time ratio |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    let dae = CashPendulum::default();
+    let ode = CashPendulumAngle::default();
+    for (name, method, formulation) in [
+        ("DOP853", Method::Dop853, Formulation::IndexOneProjected),
+        ("Taylor", Method::Taylor, Formulation::IndexOneProjected),
+        ("RADAU5", Method::Radau5, Formulation::IndexOneProjected),
+        ("RADAU5, GGL form", Method::Radau5, Formulation::MassMatrix),
+    ] {
+        for tol in [1e-6, 1e-9, 1e-12] {
+            let (a, sa) = pendulum_run(&dae, method, tol, formulation, &|s| {
+                [s[0], s[1], s[2], s[3]]
+            });
+            let (b, sb) = pendulum_run(&ode, method, tol, Formulation::IndexOneProjected, &|s| {
+                let (theta, omega) = (s[0], s[1]);
+                [
+                    theta.cos(),
+                    theta.sin(),
+                    -omega * theta.sin(),
+                    omega * theta.cos(),
+                ]
+            });
+            let per_step = |p: &Point, n: usize| p.seconds * 1e6 / n.max(1) as f64;
+            println!(
+                "| {name} | {tol:.0e} | {:.2e} | {:.3} | {sa} | {:.2} | {:.2e} | {:.3} | {sb} | {:.2} | {} |",
+                a.error,
+                a.seconds * 1e3,
+                per_step(&a, sa),
+                b.error,
+                b.seconds * 1e3,
+                per_step(&b, sb),
+                ratio(a.seconds / b.seconds)
+            );
+        }
+    }
+}
+
+/// diffsol's BDF on Robertson as an index-1 DAE with the singular mass
+/// matrix diag(1, 1, 0), its documented way of solving DAEs.
+fn diffsol_robertson_dae(tol: f64, atol: f64) -> Point {
+    use diffsol::{NalgebraLU, NalgebraMat, OdeBuilder, OdeSolverMethod};
+    let run = || -> Option<Vec<f64>> {
+        let p = OdeBuilder::<NalgebraMat<f64>>::new()
+            .rtol(tol)
+            .atol([atol])
+            .rhs_implicit(
+                |x, _p, _t, y| {
+                    y[0] = -0.04 * x[0] + 1e4 * x[1] * x[2];
+                    y[1] = 0.04 * x[0] - 1e4 * x[1] * x[2] - 3e7 * x[1] * x[1];
+                    y[2] = x[0] + x[1] + x[2] - 1.0;
+                },
+                |x, _p, _t, v, y| {
+                    y[0] = -0.04 * v[0] + 1e4 * v[1] * x[2] + 1e4 * x[1] * v[2];
+                    y[1] = 0.04 * v[0] - 1e4 * v[1] * x[2] - 1e4 * x[1] * v[2] - 6e7 * x[1] * v[1];
+                    y[2] = v[0] + v[1] + v[2];
+                },
+            )
+            .mass(|v, _p, _t, beta, y| {
+                y[0] = v[0] + beta * y[0];
+                y[1] = v[1] + beta * y[1];
+                y[2] = beta * y[2];
+            })
+            .init(
+                |_p, _t, y| {
+                    y[0] = 1.0;
+                    y[1] = 0.0;
+                    y[2] = 0.0;
+                },
+                3,
+            )
+            .build()
+            .ok()?;
+        let mut s = p.bdf::<NalgebraLU<f64>>().ok()?;
+        s.solve(1e11).ok()?;
+        Some((0..3).map(|i| s.state().y[i]).collect())
+    };
+    let (d, y) = time(run);
+    Point {
+        tol,
+        error: y.map_or(f64::INFINITY, |y| mixed_error(&y, &ROBER_AT_1E11)),
+        seconds: d.as_secs_f64(),
+    }
+}
+
+fn ratio(r: f64) -> String {
+    if r < 0.1 {
+        format!("{r:.1e}×")
+    } else {
+        format!("{r:.2}×")
+    }
+}
+
+fn report(problem: &str, ours: &[(&str, Vec<Point>)], peers: &[(&str, Option<Vec<Point>>)]) {
+    println!("\n### {problem}\n");
+    println!(
+        "| method | tol | error | time (ms) | vs {} |",
+        peers.iter().map(|p| p.0).collect::<Vec<_>>().join(" | vs ")
+    );
+    println!("|---|---|---|---|{}", "---|".repeat(peers.len()));
+    for (name, curve) in ours {
+        for p in curve {
+            let ratios: Vec<String> = peers
+                .iter()
+                .map(|(_, peer)| match peer {
+                    None => "missing".to_string(),
+                    Some(c) => time_at_error(c, p.error)
+                        .map_or("–".to_string(), |t| ratio(p.seconds / t)),
+                })
+                .collect();
+            println!(
+                "| {name} | {:.0e} | {:.2e} | {:.3} | {} |",
+                p.tol,
+                p.error,
+                p.seconds * 1e3,
+                ratios.join(" | ")
+            );
+        }
+    }
+    for (name, peer) in peers {
+        match peer {
+            None => println!("\n{name}: missing (not installed)"),
+            Some(c) => {
+                let pts: Vec<String> = c
+                    .iter()
+                    .map(|p| {
+                        format!(
+                            "{:.0e}: {:.2e} in {:.3} ms",
+                            p.tol,
+                            p.error,
+                            p.seconds * 1e3
+                        )
+                    })
+                    .collect();
+                println!("\n{name}: {}", pts.join("; "));
+            }
+        }
+    }
+}
+
+/// The DAE forms: the pendulum against its ODE, Robertson's index-1 DAE
+/// against diffsol's mass-matrix BDF. `--dae-only` runs just this.
+pub fn dae_section(stiff_tols: &[f64]) {
+    dae_against_ode();
+    slider_crank_against_ode();
+    formulations();
+    let rd = RobertsonDae::default();
+    let rober_dae_ours = vec![(
+        "daegen RADAU5 (index-1 DAE, y3 solved symbolically)",
+        stiff_tols
+            .iter()
+            .map(|&t| {
+                let options = Options::new().method(Method::Radau5).rtol(t).atol(1e-6 * t);
+                let (d, sol) = time(|| rd.simulate(0.0, 1e11, &options));
+                let error = match sol {
+                    Ok(sol) => {
+                        let got: Vec<f64> = ["y1", "y2", "y3"]
+                            .iter()
+                            .map(|n| sol.last(n).unwrap_or(f64::NAN))
+                            .collect();
+                        mixed_error(&got, &ROBER_AT_1E11)
+                    }
+                    Err(_) => f64::INFINITY,
+                };
+                Point {
+                    tol: t,
+                    error,
+                    seconds: d.as_secs_f64(),
+                }
+            })
+            .collect(),
+    )];
+    let rober_dae_peers = vec![(
+        "diffsol BDF (mass matrix)",
+        Some(
+            stiff_tols
+                .iter()
+                .map(|&t| diffsol_robertson_dae(t, 1e-6 * t))
+                .collect(),
+        ),
+    )];
+    report(
+        "Robertson as an index-1 DAE to t = 1e11, atol = 1e-6·rtol",
+        &rober_dae_ours,
+        &rober_dae_peers,
+    );
+}
+
