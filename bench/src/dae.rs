@@ -401,4 +401,3 @@ pub fn dae_section(stiff_tols: &[f64]) {
         &rober_dae_peers,
     );
 }
-

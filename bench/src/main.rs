@@ -41,7 +41,10 @@ arenstorf_model!(
     taylor = 1,
     unroll = [5, 6, 7, 8, 10, 11, 12, 13, 14, 15, 16, 18],
     bench = Bench::until(ARENSTORF_T)
-        .reference(ARENSTORF_Y0, "periodic orbit: the initial state after one period")
+        .reference(
+            ARENSTORF_Y0,
+            "periodic orbit: the initial state after one period"
+        )
         .methods([Dopri5, Dop853, Taylor])
         .peer("arenstorf")
 );
@@ -49,7 +52,10 @@ outer_solar_system_model!(
     taylor = 1,
     unroll = [12, 13, 14, 15, 16, 18],
     bench = Bench::until(20000.0)
-        .reference(OSS_REFERENCE, "recomputed 38-digit reference, reference-problems.md §11a")
+        .reference(
+            OSS_REFERENCE,
+            "recomputed 38-digit reference, reference-problems.md §11a"
+        )
         .methods([Dop853, Taylor])
         .tolerances(9, 14)
         .peer("outer_solar_system")
@@ -165,7 +171,16 @@ fn rustc_seconds(code: &str, name: &str) -> Result<f64, String> {
     std::fs::write(&source, code).map_err(|e| e.to_string())?;
     let start = Instant::now();
     let out = Command::new("rustc")
-        .args(["--edition", "2021", "--crate-type", "lib", "-C", "opt-level=3", "-A", "warnings"])
+        .args([
+            "--edition",
+            "2021",
+            "--crate-type",
+            "lib",
+            "-C",
+            "opt-level=3",
+            "-A",
+            "warnings",
+        ])
         .arg("--crate-name")
         .arg(format!("generated_{name}"))
         .arg("-L")
@@ -235,13 +250,17 @@ fn targets_markdown(problems: &[Problem]) -> String {
             let Some(p) = problems.iter().find(|p| p.name == name) else {
                 continue;
             };
-            let pick = |m: &str| -> Vec<&Record> { p.records.iter().filter(|r| r.method == m).collect() };
+            let pick =
+                |m: &str| -> Vec<&Record> { p.records.iter().filter(|r| r.method == m).collect() };
             let ours: Vec<&Record> = pick(target.ours)
                 .into_iter()
                 .filter(|r| r.tol <= target.tol_at_most)
                 .collect();
             let peer = pick(target.peer);
-            let mut ratios: Vec<f64> = matched_ratio(&ours, &peer).into_iter().map(|x| x.1).collect();
+            let mut ratios: Vec<f64> = matched_ratio(&ours, &peer)
+                .into_iter()
+                .map(|x| x.1)
+                .collect();
             ratios.sort_by(f64::total_cmp);
             let (cell, met) = if peer.is_empty() {
                 ("peer missing".to_string(), "—")
@@ -256,7 +275,11 @@ fn targets_markdown(problems: &[Problem]) -> String {
                         ratios[ratios.len() - 1],
                         ratios.len()
                     ),
-                    if median <= target.max_ratio { "yes" } else { "**no**" },
+                    if median <= target.max_ratio {
+                        "yes"
+                    } else {
+                        "**no**"
+                    },
                 )
             };
             s.push_str(&format!("| {} | {name} | {cell} | {met} |\n", target.what));
@@ -325,7 +348,15 @@ fn main() {
             }
         )*};
     }
-    run!(Example14, Kepler, Arenstorf, OuterSolarSystem, VanDerPol, Robertson, Hires);
+    run!(
+        Example14,
+        Kepler,
+        Arenstorf,
+        OuterSolarSystem,
+        VanDerPol,
+        Robertson,
+        Hires
+    );
 
     for p in runner.problems_mut() {
         eprint!("\r\x1b[2K{}: rustc on the generated code", p.name);

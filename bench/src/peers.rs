@@ -21,7 +21,12 @@ pub struct OdeSolvers {
 struct Wrapped<'a>(&'a (dyn Fn(f64, &[f64], &mut [f64]) + Sync));
 
 impl<const N: usize> ode_solvers::System<f64, ode_solvers::SVector<f64, N>> for Wrapped<'_> {
-    fn system(&self, t: f64, y: &ode_solvers::SVector<f64, N>, dy: &mut ode_solvers::SVector<f64, N>) {
+    fn system(
+        &self,
+        t: f64,
+        y: &ode_solvers::SVector<f64, N>,
+        dy: &mut ode_solvers::SVector<f64, N>,
+    ) {
         (self.0)(t, y.as_slice(), dy.as_mut_slice());
     }
 }
@@ -29,7 +34,11 @@ impl<const N: usize> ode_solvers::System<f64, ode_solvers::SVector<f64, N>> for 
 impl OdeSolvers {
     /// One solve with stack vectors of the problem's size (as a user of
     /// the crate with a fixed-size system writes it).
-    fn solve<const N: usize>(&self, p: &PeerProblem, tol: f64) -> Option<(Vec<f64>, ode_solvers::dop_shared::Stats)> {
+    fn solve<const N: usize>(
+        &self,
+        p: &PeerProblem,
+        tol: f64,
+    ) -> Option<(Vec<f64>, ode_solvers::dop_shared::Stats)> {
         let y0 = ode_solvers::SVector::<f64, N>::from_column_slice(&p.y0);
         let atol = tol * p.atol_factor;
         let (t1, dx) = (p.t_end, p.t_end / 1000.0);
@@ -37,16 +46,26 @@ impl OdeSolvers {
         let sparse = ode_solvers::OutputType::Sparse;
         let (stats, x_end, y_end) = if self.dop853 {
             let mut s = ode_solvers::Dop853::from_param(
-                system, 0.0, t1, dx, y0, tol, atol, 0.9, 0.0, 0.333, 6.0, t1, 0.0, 10_000_000, 1000, sparse,
+                system, 0.0, t1, dx, y0, tol, atol, 0.9, 0.0, 0.333, 6.0, t1, 0.0, 10_000_000,
+                1000, sparse,
             );
             let stats = s.integrate().ok()?;
-            (stats, *s.x_out().last()?, s.y_out().last()?.as_slice().to_vec())
+            (
+                stats,
+                *s.x_out().last()?,
+                s.y_out().last()?.as_slice().to_vec(),
+            )
         } else {
             let mut s = ode_solvers::Dopri5::from_param(
-                system, 0.0, t1, dx, y0, tol, atol, 0.9, 0.04, 0.2, 10.0, t1, 0.0, 10_000_000, 1000, sparse,
+                system, 0.0, t1, dx, y0, tol, atol, 0.9, 0.04, 0.2, 10.0, t1, 0.0, 10_000_000,
+                1000, sparse,
             );
             let stats = s.integrate().ok()?;
-            (stats, *s.x_out().last()?, s.y_out().last()?.as_slice().to_vec())
+            (
+                stats,
+                *s.x_out().last()?,
+                s.y_out().last()?.as_slice().to_vec(),
+            )
         };
         ((x_end - t1).abs() <= 1e-12 * t1.abs()).then_some((y_end, stats))
     }
@@ -54,7 +73,10 @@ impl OdeSolvers {
 
 impl Peer for OdeSolvers {
     fn name(&self) -> String {
-        format!("ode_solvers {}", if self.dop853 { "Dop853" } else { "Dopri5" })
+        format!(
+            "ode_solvers {}",
+            if self.dop853 { "Dop853" } else { "Dopri5" }
+        )
     }
     fn applies(&self, p: &PeerProblem) -> bool {
         p.nonstiff && matches!(p.y0.len(), 1..=8 | 12 | 36)
@@ -207,7 +229,13 @@ pub struct Python {
 const PEER_SCRIPT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/peers/peer.py");
 
 impl Python {
-    fn call(&self, problem: &str, tol: f64, atol: Option<f64>, repeat: usize) -> Result<String, String> {
+    fn call(
+        &self,
+        problem: &str,
+        tol: f64,
+        atol: Option<f64>,
+        repeat: usize,
+    ) -> Result<String, String> {
         let mut cmd = Command::new("python3");
         cmd.arg(PEER_SCRIPT)
             .arg(problem)
@@ -220,7 +248,9 @@ impl Python {
         if let Some(a) = atol {
             cmd.arg("--atol").arg(format!("{a:e}"));
         }
-        let out = cmd.output().map_err(|e| format!("python3 not found: {e}"))?;
+        let out = cmd
+            .output()
+            .map_err(|e| format!("python3 not found: {e}"))?;
         let stderr = String::from_utf8_lossy(&out.stderr);
         if stderr.contains("ModuleNotFoundError") || stderr.contains("No module named") {
             return Err(format!(
@@ -229,7 +259,10 @@ impl Python {
             ));
         }
         if !out.status.success() {
-            return Err(format!("peer.py failed: {}", stderr.lines().last().unwrap_or("").trim()));
+            return Err(format!(
+                "peer.py failed: {}",
+                stderr.lines().last().unwrap_or("").trim()
+            ));
         }
         Ok(String::from_utf8_lossy(&out.stdout).into_owned())
     }
@@ -246,7 +279,10 @@ fn array(text: &str, name: &str) -> Option<Vec<f64>> {
     let i = text.find(&format!("\"{name}\""))?;
     let rest = &text[i..];
     let (a, b) = (rest.find('[')?, rest.find(']')?);
-    rest[a + 1..b].split(',').map(|v| v.trim().parse().ok()).collect()
+    rest[a + 1..b]
+        .split(',')
+        .map(|v| v.trim().parse().ok())
+        .collect()
 }
 
 impl Peer for Python {
@@ -267,7 +303,8 @@ impl Peer for Python {
         let problem = p.peer.unwrap_or_default();
         let atol = (p.atol_factor != 1.0).then_some(tol * p.atol_factor);
         let text = self.call(problem, tol, atol, settings.min_repeats.max(3))?;
-        let seconds = field(&text, "solve_s").ok_or_else(|| format!("peer.py printed {text:.200}"))?;
+        let seconds =
+            field(&text, "solve_s").ok_or_else(|| format!("peer.py printed {text:.200}"))?;
         // peer.py's own mixed error where it has the reference; else ours.
         let error = field(&text, "max_mixed_err")
             .or_else(|| array(&text, "y_end").map(|y| mixed_error(&y, p.reference)))

@@ -18,7 +18,11 @@ pub struct ExpansionCost {
 
 /// Expands `source` (a model function) with `attributes` (the
 /// `#[dae_model(...)]` arguments) `repeats` times.
-pub fn expansion_cost(source: &str, attributes: &str, repeats: usize) -> Result<ExpansionCost, String> {
+pub fn expansion_cost(
+    source: &str,
+    attributes: &str,
+    repeats: usize,
+) -> Result<ExpansionCost, String> {
     let item = proc_macro2::TokenStream::from_str(source).map_err(|e| e.to_string())?;
     let attr = proc_macro2::TokenStream::from_str(attributes).map_err(|e| e.to_string())?;
     let mut times = Vec::new();

@@ -34,7 +34,10 @@ pub fn work_precision_svg(title: &str, records: &[Record]) -> Result<String, Str
     let fold = |f: fn(&Record) -> f64| {
         let lo = finite.iter().map(|r| f(r)).fold(f64::INFINITY, f64::min);
         let hi = finite.iter().map(|r| f(r)).fold(0.0, f64::max);
-        (decade(lo, false), decade(hi, true).max(decade(lo, false) * 10.0))
+        (
+            decade(lo, false),
+            decade(hi, true).max(decade(lo, false) * 10.0),
+        )
     };
     let (e0, e1) = fold(|r| r.error);
     let (t0, t1) = fold(|r| r.seconds * 1e3);

@@ -70,7 +70,9 @@ pub fn summary_markdown(problems: &[Problem]) -> String {
             ));
         }
         if let Some(r) = p.rustc_seconds {
-            s.push_str(&format!(" rustc (release) on the generated code: {r:.2} s."));
+            s.push_str(&format!(
+                " rustc (release) on the generated code: {r:.2} s."
+            ));
         }
         for (peer, t) in &p.setup {
             s.push_str(&format!(" {peer} set-up (JIT): {:.1} ms.", t * 1e3));

@@ -102,7 +102,10 @@ fn a_tiny_sweep_writes_well_formed_csv_svg_and_summary() {
     // Euler's error is O(h): ten times smaller h, about ten times smaller error.
     let drop = euler[0].error / euler[1].error;
     assert!((5.0..20.0).contains(&drop), "Euler error ratio {drop}");
-    assert_eq!(problem.missing, vec![("absent".to_string(), "not installed".to_string())]);
+    assert_eq!(
+        problem.missing,
+        vec![("absent".to_string(), "not installed".to_string())]
+    );
     let expansion = problem.expansion.as_ref().expect("the model expands");
     assert!(expansion.bytes > 100 && expansion.code.contains("fn rhs"));
 

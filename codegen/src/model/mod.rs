@@ -154,7 +154,8 @@ fn attributes(cx: &mut ctxt::Ctxt, attr: TokenStream) -> Attributes {
         if !out.written.is_empty() {
             out.written.push_str(", ");
         }
-        out.written.push_str(&quote::ToTokens::to_token_stream(arg).to_string());
+        out.written
+            .push_str(&quote::ToTokens::to_token_stream(arg).to_string());
     }
     out
 }
