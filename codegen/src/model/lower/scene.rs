@@ -368,6 +368,9 @@ impl Lower<'_> {
         let (Some(a), Some(b)) = (self.frame(&c.args[0]), self.frame(&c.args[2])) else {
             return;
         };
+        if a == b {
+            return self.same_frame_joint(c);
+        }
         let (Some(pa), Some(pb)) = (
             self.world_point(a, &c.args[1], e),
             self.world_point(b, &c.args[3], e),
@@ -496,6 +499,12 @@ impl Lower<'_> {
             algebraics,
             rows,
         });
+    }
+
+    /// A joint from a frame to itself constrains nothing.
+    pub(super) fn same_frame_joint(&mut self, c: &syn::ExprCall) {
+        let name = c.args[0].to_token_stream().to_string();
+        self.cx.error_at(c, format!("this joint joins `{name}` to itself: name two different bodies (or a body and the ground)"));
     }
 
     /// A joint's constraint rows, each with its reaction `name[k]` as an

@@ -436,6 +436,9 @@ impl Lower<'_> {
         let (Some(a), Some(b)) = (self.frame(&c.args[0]), self.frame(&c.args[2])) else {
             return;
         };
+        if a == b {
+            return self.same_frame_joint(c);
+        }
         let (Some(sa), Some(sb)) = (
             self.vec3_arg(&c.args[1], "a point in body coordinates"),
             self.vec3_arg(&c.args[3], "a point in body coordinates"),
