@@ -528,9 +528,9 @@ impl Lower<'_> {
                 if !self.arity(call, "param", 1) {
                     return;
                 }
-                let Some(v) = self.constant(&call.args[0]) else {
-                    return;
-                };
+                let v = self
+                    .constant(&call.args[0])
+                    .unwrap_or_else(|| self.g.zero());
                 let default = self.g.as_number(v).map_or(f64::NAN, |n| n.to_f64());
                 match self.g.parameter(&name) {
                     Ok(id) => {
@@ -548,9 +548,11 @@ impl Lower<'_> {
                 if !self.arity(call, "state", 1) {
                     return;
                 }
-                let Some(init) = self.initial_value(&call.args[0]) else {
-                    return;
-                };
+                // A bad initial value is reported; the state is still
+                // declared, so its uses raise no second error.
+                let init = self
+                    .initial_value(&call.args[0])
+                    .unwrap_or_else(|| self.g.zero());
                 match self.g.state(&name) {
                     Ok(id) => {
                         let symbol = self.g.as_symbol(id).unwrap_or(SymbolId(0));
@@ -632,9 +634,9 @@ impl Lower<'_> {
                 if !self.arity(call, "algebraic", 1) {
                     return;
                 }
-                let Some(init) = self.initial_value(&call.args[0]) else {
-                    return;
-                };
+                let init = self
+                    .initial_value(&call.args[0])
+                    .unwrap_or_else(|| self.g.zero());
                 match self.g.algebraic(&name) {
                     Ok(id) => {
                         let symbol = self.g.as_symbol(id).unwrap_or(SymbolId(0));
@@ -1176,8 +1178,31 @@ impl Lower<'_> {
         let parsed = match lit {
             Lit::Int(i) => i.base10_parse::<f64>(),
             Lit::Float(f) => f.base10_parse::<f64>(),
+            Lit::Str(s) => {
+                let v = s.value();
+                let fix = if v.trim().parse::<f64>().is_ok() {
+                    format!("write the number without quotes: `{}`", v.trim())
+                } else {
+                    "write a number such as `1.0`".to_string()
+                };
+                self.cx
+                    .error_at(lit, format!("a string is not a number: {fix}"));
+                return None;
+            }
+            Lit::Bool(b) => {
+                let v = if b.value { "1.0" } else { "0.0" };
+                self.cx.error_at(
+                    lit,
+                    format!(
+                        "`{}` is not a number: the model language has only numbers (`{v}`)",
+                        b.value
+                    ),
+                );
+                return None;
+            }
             other => {
-                self.cx.error_at(other, "expected a number");
+                self.cx
+                    .error_at(other, "expected a number such as `1.0` or `2`");
                 return None;
             }
         };

@@ -125,6 +125,18 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         residuals.push(r);
     }
     let mut ok = true;
+    // An algebraic variable no equation reads has nothing to determine it
+    // (a constraint force left out of the dynamics).
+    for a in &ir.algebraics {
+        if !residuals
+            .iter()
+            .any(|&r| g.free_symbols(r).contains(&a.symbol))
+        {
+            let name = &a.name;
+            cx.error_at(&a.origin, format!("algebraic variable `{name}` appears in no equation: use it where its constraint acts (a pendulum's `der(u) == -{name} * x;`), or remove it"));
+            ok = false;
+        }
+    }
     for (i, s) in ir.states.iter().enumerate() {
         if order[i] == 0 {
             let name = &s.name;
