@@ -276,3 +276,26 @@ fn a_banded_newton_solve_follows_the_exact_damped_mode() {
         assert!(error <= 10.0 * tol, "tol {tol:e}: error {error:e}");
     }
 }
+
+/// y' = 2y: backward Euler's Newton matrix I/h − J is zero for h = 1/2.
+#[dae_model]
+fn growth() {
+    let y = state(1.0);
+    der(y) == 2.0 * y;
+}
+
+#[test]
+fn a_singular_newton_matrix_is_an_error_with_the_time_and_the_partial_solution() {
+    let opts = Options::new().method(Method::BackwardEuler).step(0.5);
+    match Growth::default().simulate(0.0, 2.0, &opts) {
+        Err(daegen::Error::SingularMatrix { t, partial }) => {
+            // Reported at the end of the step it could not take.
+            assert_eq!(t, 0.5);
+            assert_eq!(partial.times(), &[0.0]);
+        }
+        other => panic!("expected SingularMatrix, got {other:?}"),
+    }
+    // With h = 1/4 the matrix is 2 and the run goes through.
+    let opts = Options::new().method(Method::BackwardEuler).step(0.25);
+    assert!(Growth::default().simulate(0.0, 2.0, &opts).is_ok());
+}

@@ -1,4 +1,22 @@
 //! Errors of a run: what went wrong, where, and the solution up to there.
+//!
+//! Every error of a run keeps the accepted steps (`partial`, reachable with
+//! [`Error::partial_solution`]); none is a panic, and no run ends with a
+//! silent NaN. Each row is checked by the test named.
+//!
+//! | error | cause | remedy | test |
+//! |---|---|---|---|
+//! | [`Error::NonFinite`] | a state became NaN or ±∞ (a pole, `sqrt` of a negative, a non-finite initial value or parameter) | check the model near `t` and `variable`; a finite-time blow-up is real | `tests/nonstiff.rs` `a_singularity_stops_the_run_with_an_error_and_the_partial_solution`, `tests/taylor_adaptive.rs` `a_finite_time_blow_up_is_an_error_at_the_pole`, `tests/models.rs` `bad_requests_are_errors_not_panics` |
+//! | [`Error::Evaluation`] | the model could not be evaluated: a singular mass-matrix block at run time, Taylor derivatives of an order not generated | the message names the block or the `#[dae_model(taylor = p)]` to write | `tests/taylor_fixed.rs` `an_order_above_the_generated_one_is_refused` |
+//! | [`Error::StepSizeUnderflow`] | the step fell below the time's precision or `min_step`: stiffness for an explicit method, a singularity, tolerances too tight | a stiff method (`Radau5`), looser tolerances, or look at the model at `t` | `tests/stiff.rs` `a_minimum_step_stops_the_run_early` |
+//! | [`Error::NewtonFailure`] | the implicit method's Newton iteration kept diverging as the step shrank | a wrong or discontinuous model near `t`; tighter tolerances | `tests/stiff.rs` `newton_failures_are_reported_with_the_time_and_the_partial_solution` |
+//! | [`Error::SingularMatrix`] | the Newton matrix `I/(γh) − J` was singular | another step size (`1/(γh)` hit an eigenvalue of J), or an adaptive method | `tests/stiff.rs` `a_singular_newton_matrix_is_an_error_with_the_time_and_the_partial_solution` |
+//! | [`Error::MaxSteps`] | more steps than `Options::max_steps` | a stiff method if the problem is stiff, else raise the limit | `tests/nonstiff.rs` `a_stiff_problem_hits_the_step_limit_with_a_clear_error` |
+//! | [`Error::Constraint`] | inconsistent initial values projection cannot repair, redundant constraints, a singular constraint Jacobian (a mechanism at a dead point) | consistent initial values, remove the redundant joint, avoid the singular configuration | `tests/dae.rs` `unrepairable_or_redundant_constraints_are_errors_that_name_the_constraint` |
+//! | [`Error::InvalidOptions`] | tolerances ≤ 0 or not finite, a non-positive step, a method the model was not expanded for | the message says which option and what to write | `tests/models.rs` `bad_requests_are_errors_not_panics`, `tests/taylor_adaptive.rs` `integrates_backwards_and_refuses_models_without_a_tape` |
+//! | [`Error::MethodNotAvailable`] | reserved: every [`crate::Method`] is implemented | — | — |
+//! | [`Error::UnknownName`] | `Solution::at`/`last` with a name that is no state, algebraic variable or output | use one of `known` | `tests/models.rs` `bad_requests_are_errors_not_panics` |
+//! | [`Error::OutOfRange`] | `Solution::at` outside the integrated interval | ask within `interval` | `tests/models.rs` `bad_requests_are_errors_not_panics` |
 
 use crate::solution::Solution;
 use std::fmt;
