@@ -2,7 +2,7 @@
 //! `taylor_determine_h`): coefficients from the model's AD tape
 //! (`taylor_tape.rs`), order p = max(2, ⌈−ln(tol)/2 + 1⌉) from the
 //! tolerance, step h = min(ρ_{p−1}, ρ_p)·e⁻²·e^(−0.7/(p−1)) with
-//! ρ_k = (N/‖x^[k]‖∞)^(1/k), N = max(1, ‖x‖∞) (absolute below 1, relative
+//! ρ_k = (N/‖x^\[k\]‖∞)^(1/k), N = max(1, ‖x‖∞) (absolute below 1, relative
 //! above). No step is rejected. Time is summed with compensation, and each
 //! step's polynomial is the dense output.
 

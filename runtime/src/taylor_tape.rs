@@ -227,7 +227,7 @@ impl TaylorWork {
         &self.rows
     }
 
-    /// The normalised coefficients x_i^[k] = x_i^(k)/k! of state `i`.
+    /// The normalised coefficients x_i^\[k\] = x_i^(k)/k! of state `i`.
     #[inline]
     pub fn state(&self, i: usize) -> &[f64] {
         let w = self.order + 1;
