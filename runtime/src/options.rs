@@ -56,6 +56,7 @@ pub struct Options {
     pub(crate) taylor_compact: bool,
     pub(crate) dense_output: bool,
     pub(crate) formulation: Formulation,
+    pub(crate) keep_every: usize,
 }
 
 /// How a DAE is integrated.
@@ -87,6 +88,7 @@ impl Default for Options {
             taylor_compact: false,
             dense_output: true,
             formulation: Formulation::IndexOneProjected,
+            keep_every: 1,
         }
     }
 }
@@ -171,6 +173,18 @@ impl Options {
     pub fn dense_output(self, dense_output: bool) -> Options {
         Options {
             dense_output,
+            ..self
+        }
+    }
+
+    /// Stores only every `k`-th accepted step, and always the last one
+    /// (default 1: every step): a run of 10⁶ steps with `k = 1000` keeps
+    /// about a thousand states. Implies `dense_output(false)` (`at` is then
+    /// linear between stored steps); `stats()` still counts every step.
+    /// Not with events, which are located on every step: the run is refused.
+    pub fn keep_every(self, k: usize) -> Options {
+        Options {
+            keep_every: k,
             ..self
         }
     }

@@ -163,7 +163,27 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
             ),
         });
     }
-    let solution = Solution::new(model, 1024);
+    if options.keep_every == 0 {
+        return Err(Error::InvalidOptions {
+            message: "keep_every(k) needs k ≥ 1 (1 keeps every step)".to_string(),
+        });
+    }
+    if options.keep_every > 1 && !M::INFO.events.is_empty() {
+        return Err(Error::InvalidOptions {
+            message: format!(
+                "{} has events, which are located on every step's continuous extension: run it without keep_every",
+                M::INFO.name
+            ),
+        });
+    }
+    let thinned = options.dense_output(false);
+    let options = if options.keep_every > 1 {
+        &thinned
+    } else {
+        options
+    };
+    let mut solution = Solution::new(model, 1024);
+    solution.set_keep_every(options.keep_every);
     let mut y0 = y0.to_vec();
     if let Some(i) = y0.iter().position(|v| !v.is_finite()) {
         return Err(Error::NonFinite {

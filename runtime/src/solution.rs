@@ -79,6 +79,13 @@ pub struct Solution {
     /// The last step's computed end state, when cut short.
     uncut_end: Vec<f64>,
     event_info: &'static [crate::model::EventInfo],
+    /// Keep every `keep_every`-th accepted step (and always the latest).
+    keep_every: usize,
+    /// Steps pushed so far, kept or not.
+    pushed: usize,
+    /// The last stored entry is the latest step but not one to keep: the
+    /// next step overwrites it.
+    tail: bool,
 }
 
 /// Steps from `first` on use `interpolant` on `width` vectors per step,
@@ -127,7 +134,16 @@ impl Solution {
             cut_from: None,
             uncut_end: Vec::new(),
             event_info: M::INFO.events,
+            keep_every: 1,
+            pushed: 0,
+            tail: false,
         }
+    }
+
+    /// Stores only every `k`-th accepted step from now on, and the latest
+    /// (see [`crate::Options::keep_every`]).
+    pub(crate) fn set_keep_every(&mut self, k: usize) {
+        self.keep_every = k.max(1);
     }
 
     /// The steps pushed from now on carry `width` dense-output vectors, read by `f`.
@@ -175,8 +191,19 @@ impl Solution {
     }
 
     pub(crate) fn push(&mut self, t: f64, y: &[f64]) {
-        self.times.push(t);
-        self.states.extend_from_slice(y);
+        let k = self.pushed;
+        self.pushed += 1;
+        if self.tail && self.times.len() >= 2 {
+            // Overwrite the provisional latest step: memory stays at one
+            // entry per `keep_every` steps plus one.
+            let last = self.times.len() - 1;
+            self.times[last] = t;
+            self.states[last * self.n..(last + 1) * self.n].copy_from_slice(y);
+        } else {
+            self.times.push(t);
+            self.states.extend_from_slice(y);
+        }
+        self.tail = self.keep_every > 1 && k % self.keep_every != 0;
     }
 
     pub(crate) fn stats_mut(&mut self) -> &mut Stats {

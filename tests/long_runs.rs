@@ -1,0 +1,82 @@
+//! Long runs with bounded memory: `Options::keep_every(k)` stores every
+//! k-th accepted step and the last one, while `stats()` counts them all.
+
+use daegen::prelude::*;
+
+/// x'' = −x from (1, 0): x = cos t.
+#[dae_model]
+fn oscillator() {
+    let x = state(1.0);
+    let v = state(0.0);
+    der(x) == v;
+    der(v) == -x;
+}
+
+#[test]
+fn a_million_steps_keep_a_thousand_states() {
+    let n = 1_000_000usize;
+    let h = 2.0 * std::f64::consts::PI / 1000.0;
+    let t1 = n as f64 * h;
+    let opts = Options::new().method(Method::Rk4).step(h).keep_every(1000);
+    let sol = Oscillator::default().simulate(0.0, t1, &opts).unwrap();
+    assert_eq!(sol.stats().steps, n);
+    // Steps 0, 1000, 2000, …: the initial state, then every 1000th.
+    assert_eq!(sol.times().len(), n / 1000 + 1);
+    assert_eq!(*sol.times().last().unwrap(), t1);
+    // RK4's energy error per step is h⁶/72 (|R(ih)|² = 1 − h⁶/72 + O(h⁸)),
+    // so after n steps x² + v² = 1 − n h⁶/72 ≈ 1 − 8.4e-10.
+    let end = sol.final_state();
+    let energy = end[0] * end[0] + end[1] * end[1];
+    let predicted = 1.0 - n as f64 * h.powi(6) / 72.0;
+    assert!(
+        (energy - predicted).abs() <= 1e-3 * (1.0 - predicted),
+        "{energy} vs {predicted}"
+    );
+    // Every stored state is on the circle to that accuracy, at its time.
+    for (k, &t) in sol.times().iter().enumerate() {
+        let s = sol.state(k).unwrap();
+        assert!(((s[0] * s[0] + s[1] * s[1]) - 1.0).abs() <= 1e-9, "t = {t}");
+    }
+}
+
+#[test]
+fn thinning_keeps_the_last_step_of_an_adaptive_run_and_refuses_zero() {
+    let opts = Options::new()
+        .method(Method::Dop853)
+        .rtol(1e-12)
+        .atol(1e-12)
+        .keep_every(7);
+    let thin = Oscillator::default().simulate(0.0, 100.0, &opts).unwrap();
+    let full = Oscillator::default()
+        .simulate(0.0, 100.0, &opts.keep_every(1))
+        .unwrap();
+    let steps = full.times().len() - 1;
+    assert_eq!(thin.stats().steps, steps);
+    assert_eq!(
+        thin.times().len(),
+        steps / 7 + 1 + usize::from(steps % 7 != 0)
+    );
+    assert_eq!(thin.final_state(), full.final_state());
+    assert!((thin.last("x").unwrap() - 100f64.cos()).abs() <= 1e-9);
+    let zero = Oscillator::default().simulate(0.0, 1.0, &opts.keep_every(0));
+    assert!(matches!(zero, Err(daegen::Error::InvalidOptions { .. })));
+}
+
+/// A falling ball with its impact as an event.
+#[dae_model]
+fn falling() {
+    let h = state(1.0);
+    der(der(h)) == -9.81;
+    let impact = event(h).falling().terminal();
+}
+
+#[test]
+fn thinning_is_refused_for_a_model_with_events() {
+    let opts = Options::new().method(Method::Dop853).keep_every(10);
+    match Falling::default().simulate(0.0, 1.0, &opts) {
+        Err(daegen::Error::InvalidOptions { message }) => {
+            assert!(message.contains("events"), "{message}")
+        }
+        other => panic!("expected InvalidOptions, got {other:?}"),
+    }
+}
