@@ -27,7 +27,7 @@
 //! ```
 //!
 //! The crates behind it: [`codegen`] is the symbolic engine, [`runtime`]
-//! the integrators and the run API.
+//! the integrators and the run API. Start with the [`guide`].
 
 pub use daegen_codegen as codegen;
 pub use daegen_macros::dae_model;
@@ -38,6 +38,8 @@ pub use daegen_runtime::{
 };
 
 /// Everything a model file needs: `use daegen::prelude::*;`.
+pub mod guide;
+
 pub mod prelude {
     pub use crate::{dae_model, Error, Formulation, Method, Model, Options, Solution};
 }

@@ -10,7 +10,7 @@ pub mod bench;
 pub mod dense_lu;
 pub mod dop853;
 pub mod dopri5;
-mod error;
+pub mod error;
 mod events;
 pub mod explicit_rk;
 pub mod implicit_tableau;

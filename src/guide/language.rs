@@ -1,0 +1,70 @@
+//! # The model language
+//!
+//! A model is a Rust function with no arguments under `#[dae_model]`; its
+//! body is a small language the macro reads (it is never run as Rust). The
+//! macro generates a struct named after the function in UpperCamelCase,
+//! with one `pub f64` field per parameter and a `Default` with the values
+//! written.
+//!
+//! | statement | meaning |
+//! |---|---|
+//! | `let k = param(2.0);` | a parameter: a field of the struct, constant during a run |
+//! | `let x = state(1.0);` | a state with its initial value (constants and parameters) |
+//! | `let q = state_array([1.0, 0.0]);`, `state_array([0.0; N])` | an array of states, `q[i]` |
+//! | `der(x) == f;`, `der(der(x)) == a;` | an equation; second derivatives are reduced to first order (`init(der(x), v0)` sets the initial rate) |
+//! | `lhs == rhs;` | any equation, also implicit in the derivatives (solved symbolically) |
+//! | `let y = algebraic(0.0);` and `constraint(g);` | a DAE: see [`super::daes`] |
+//! | `let e = output(expr);` | a value computed from the solution, only when asked for |
+//! | `let hit = event(g).falling().terminal();` | a zero crossing of `g`, located to machine precision |
+//! | `let t = time();` | the independent variable |
+//! | `const N: usize = 3; for i in 0..N { ... }` | loops over constants, unrolled |
+//! | `let r = rot_z(theta); let p = r * vec3(1.0, 0.0, 0.0);` | vectors and 3 × 3 matrices: see [`super::mechanisms`] |
+//!
+//! Functions: `sin cos tan asin acos atan atan2 sinh cosh tanh exp ln sqrt
+//! abs`, `x.powi(n)`, `x.powf(a)`. Everything must be smooth for the Taylor
+//! methods (`abs` is refused there, with its span). Mistakes are compile
+//! errors on the tokens at fault, with the fix: an unknown name suggests the
+//! nearest declared one, `ln(0.0)` is refused as it is written.
+//!
+//! ```
+//! use daegen::prelude::*;
+//!
+//! /// Two coupled oscillators, a damping parameter and an output.
+//! #[dae_model]
+//! fn coupled() {
+//!     let c = param(0.1);
+//!     const N: usize = 2;
+//!     let x = state_array([1.0, 0.0]);
+//!     for i in 0..N {
+//!         init(der(x[i]), 0.0);
+//!     }
+//!     der(der(x[0])) == -x[0] + 0.5 * (x[1] - x[0]) - c * der(x[0]);
+//!     der(der(x[1])) == -x[1] + 0.5 * (x[0] - x[1]) - c * der(x[1]);
+//!     /// Distance between the two.
+//!     let gap = output(x[1] - x[0]);
+//! }
+//!
+//! let sol = Coupled { c: 0.0 }.simulate(0.0, 10.0, &Options::new().rtol(1e-10).atol(1e-10))?;
+//! // Without damping, x0 − x1 oscillates at √2: x1 − x0 = −cos(√2 t).
+//! assert!((sol.last("gap")? + (10.0 * 2f64.sqrt()).cos()).abs() < 1e-8);
+//! # Ok::<(), daegen::Error>(())
+//! ```
+//!
+//! An event stops a run (`terminal`) or is only recorded; the solution
+//! lists the crossings:
+//!
+//! ```
+//! use daegen::prelude::*;
+//!
+//! #[dae_model]
+//! fn drop() {
+//!     let h = state(1.0);
+//!     der(der(h)) == -9.81;
+//!     let ground = event(h).falling().terminal();
+//! }
+//!
+//! let sol = Drop::default().simulate(0.0, 10.0, &Options::new())?;
+//! let t = sol.event_times("ground")?[0];
+//! assert!((t - (2.0f64 / 9.81).sqrt()).abs() < 1e-12);
+//! # Ok::<(), daegen::Error>(())
+//! ```

@@ -1,0 +1,79 @@
+//! # Mechanisms: multibody scenes
+//!
+//! Instead of writing the constraint equations of a mechanism, declare its
+//! bodies and joints; the macro writes the equations of motion (course
+//! notes §4.2) and hands them to the DAE pipeline of [`super::daes`].
+//!
+//! Planar scenes: `body(m, j, [x, y, θ], [vx, vy, ω]?)`, joints
+//! `revolute(a, pa, b, pb)`, `prismatic(a, pa, b, pb, axis)`,
+//! `distance(a, pa, b, pb, l)`, `fixed(a, pa, b, pb)`; loads `gravity`,
+//! `force`, `torque`, `spring(a, pa, b, pb, k, l0, c)`; `position(b, p)`.
+//! Points are in the body's coordinates; a joint's reactions are algebraic
+//! variables named after it (`pin[0]`).
+//!
+//! ```
+//! use daegen::prelude::*;
+//!
+//! /// A pendulum of two rods: four coordinates' worth of joints on six.
+//! #[dae_model]
+//! fn double_rod() {
+//!     let ground = ground();
+//!     let upper = body(1.0, 1.0 / 12.0, [0.5, 0.0, 0.0]);
+//!     let lower = body(1.0, 1.0 / 12.0, [1.5, 0.0, 0.0]);
+//!     let pin = revolute(ground, vec3(0.0, 0.0, 0.0), upper, vec3(-0.5, 0.0, 0.0));
+//!     revolute(upper, vec3(0.5, 0.0, 0.0), lower, vec3(-0.5, 0.0, 0.0));
+//!     gravity(vec3(0.0, -9.81, 0.0));
+//!     let tip = position(lower, vec3(0.5, 0.0, 0.0));
+//!     let tip_y = output(tip[1]);
+//! }
+//!
+//! let opts = Options::new().method(Method::Dop853).rtol(1e-10).atol(1e-10);
+//! let sol = DoubleRod::default().simulate(0.0, 1.0, &opts)?;
+//! assert_eq!(sol.degrees_of_freedom(), Some(2));
+//! assert!(sol.last("tip_y")? < 0.0); // it fell
+//! assert!(sol.max_constraint_residual() < 1e-12);
+//! # Ok::<(), daegen::Error>(())
+//! ```
+//!
+//! `#[dae_model(scene = recursive)]` uses joint coordinates along a
+//! spanning tree instead (the double rod becomes an ODE in two angles; cut
+//! joints of closed loops stay constraints). The macro counts the degrees
+//! of freedom as n − rank Φ_q at the initial configuration, and a joint
+//! whose rows follow from the others is a compile error on that joint.
+//!
+//! Spatial scenes: `spatial_body(m, inertia, [x, y, z], [q0, q1, q2, q3],
+//! [v]?, [ω]?)` with a unit quaternion and body rates as states, joints
+//! `spherical`, `revolute(a, pa, b, pb, axis)`, `prismatic`, `fixed`,
+//! `distance`, loads in world axes, `orientation(b)` for R(q):
+//!
+//! ```
+//! use daegen::prelude::*;
+//!
+//! /// A conical pendulum: a bob on a rod, on its circular orbit.
+//! #[dae_model]
+//! fn conical() {
+//!     let g = param(9.81);
+//!     let ground = ground();
+//!     let bob = spatial_body(
+//!         1.0,
+//!         vec3(0.01, 0.01, 0.01),
+//!         [sin(0.6), 0.0, -cos(0.6)],
+//!         [1.0, 0.0, 0.0, 0.0],
+//!         [0.0, sin(0.6) * sqrt(g / cos(0.6)), 0.0],
+//!         [0.0, 0.0, 0.0],
+//!     );
+//!     distance(ground, vec3(0.0, 0.0, 0.0), bob, vec3(0.0, 0.0, 0.0), 1.0);
+//!     gravity(vec3(0.0, 0.0, -g));
+//! }
+//!
+//! let opts = Options::new().method(Method::Dop853).rtol(1e-10).atol(1e-10);
+//! let sol = Conical::default().simulate(0.0, 1.0, &opts)?;
+//! // It stays at its height.
+//! assert!((sol.last("bob.z")? + 0.6f64.cos()).abs() < 1e-8);
+//! # Ok::<(), daegen::Error>(())
+//! ```
+//!
+//! The rotations of the course notes (`rot_x`, `euler_313`, `bryan_123`,
+//! `rot_seq("zyx", ..)`, `axis_angle`, `quat_to_rot`, `omega_seq`,
+//! `omega_quat`, `planar_frame`, `natural_frame`) exist in the model
+//! language and numerically in [`crate::runtime::kinematics`].

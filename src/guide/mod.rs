@@ -1,0 +1,19 @@
+//! The guide: how to write models and run them, in the order a newcomer
+//! needs it. Every code block here is compiled and run as a doctest.
+//!
+//! 1. [`language`]: the model language (states, parameters, equations,
+//!    outputs, events, arrays and loops, vectors and rotations).
+//! 2. [`running`]: the run API, the methods and when to use each, the
+//!    solution, and the errors a run can return.
+//! 3. [`daes`]: constraints and algebraic variables, what the macro does
+//!    with them (index reduction, projection), and the two formulations.
+//! 4. [`mechanisms`]: multibody scenes, planar and spatial, global and
+//!    recursive.
+//! 5. [`work_precision`]: registering a model in the benchmarks and
+//!    reading a work-precision diagram.
+
+pub mod daes;
+pub mod language;
+pub mod mechanisms;
+pub mod running;
+pub mod work_precision;

@@ -1,0 +1,69 @@
+//! # Running a model
+//!
+//! `model.simulate(t0, t1, &options)` integrates from the model's initial
+//! values and returns a [`crate::Solution`] or a [`crate::Error`];
+//! `simulate_from(t0, &y, t1, &options)` starts from another state.
+//! [`crate::Options`] chooses the method, tolerances, step, limits and what
+//! is stored.
+//!
+//! | method | use it for |
+//! |---|---|
+//! | `Auto` (default) | not sure: DOPRI5 or DOP853, switching to RADAU5 when the problem turns stiff |
+//! | `Dopri5`, `Dop853` | non-stiff problems; DOP853 below rtol 1e-7 |
+//! | `Radau5` | stiff problems and DAEs with a singular mass matrix |
+//! | `Taylor` | smooth problems at tight tolerances (orbits); needs `#[dae_model(taylor = 1)]` or `unroll = [..]` |
+//! | `TaylorFixed { order, step }` | the economic Taylor scheme of the course notes |
+//! | `BackwardEuler`, `Euler`, `Rk4`, … | fixed steps: teaching, convergence studies |
+//!
+//! The solution holds the accepted steps: `times()`, `state(k)`,
+//! `final_state()`, `last(name)` and `at(t, name)` for any state,
+//! `der(x)`, algebraic variable or output (with each method's continuous
+//! output), `stats()` (steps, rejections, evaluations), `events()`.
+//!
+//! ```
+//! use daegen::prelude::*;
+//!
+//! /// Van der Pol, stiff for small ε.
+//! #[dae_model]
+//! fn van_der_pol() {
+//!     let eps = param(1e-3);
+//!     let y1 = state(2.0);
+//!     let y2 = state(0.0);
+//!     der(y1) == y2;
+//!     der(y2) == ((1.0 - y1 * y1) * y2 - y1) / eps;
+//! }
+//!
+//! let opts = Options::new().method(Method::Radau5).rtol(1e-8).atol(1e-8);
+//! let sol = VanDerPol::default().simulate(0.0, 2.0, &opts)?;
+//! assert!(sol.stats().steps < 2_000);
+//! // Stored steps; `at` reads the collocation polynomial between them,
+//! // which agrees with a run that ends there.
+//! let y = sol.at(1.234, "y1")?;
+//! let direct = VanDerPol::default().simulate(0.0, 1.234, &opts)?;
+//! assert!((y - direct.last("y1")?).abs() < 1e-5);
+//! # Ok::<(), daegen::Error>(())
+//! ```
+//!
+//! A run that fails returns an error that says what happened, where (time
+//! and variable) and keeps the steps before it; the table of every error
+//! with its cause, remedy and test is in [`crate::runtime::error`]:
+//!
+//! ```
+//! use daegen::prelude::*;
+//!
+//! /// y' = y², y(0) = 1: a pole at t = 1.
+//! #[dae_model]
+//! fn blow_up() {
+//!     let y = state(1.0);
+//!     der(y) == y * y;
+//! }
+//!
+//! let err = BlowUp::default().simulate(0.0, 2.0, &Options::new()).unwrap_err();
+//! let partial = err.partial_solution().unwrap();
+//! assert!((partial.times().last().unwrap() - 1.0).abs() < 1e-3);
+//! println!("{err}");
+//! ```
+//!
+//! Long runs: `Options::keep_every(k)` stores every k-th step and the last
+//! one (a million steps in a thousand states); `dense_output(false)` drops
+//! the continuous output of adaptive methods.
