@@ -10,6 +10,10 @@
 //! Run: `cargo run --release --example pendulum`
 
 use daegen::prelude::*;
+use daegen_workprecision::Series;
+
+#[path = "support/output.rs"]
+mod output;
 
 /// Planar pendulum in its angle θ (the contract's pendulum, as an ODE).
 #[dae_model]
@@ -69,7 +73,7 @@ fn zero_crossings(sol: &Solution) -> Vec<f64> {
         .collect()
 }
 
-fn main() -> Result<(), daegen::Error> {
+fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("Pendulum, l = 1 m, g = 9.81 m/s², RK4 with h = 1e-4 s, 4 periods per amplitude\n");
     println!("  θ₀ (deg)   period (s)          exact (s)           rel. error   small-angle (s)   energy drift / gl");
     for degrees in [5.0, 30.0, 60.0, 90.0, 120.0, 150.0, 170.0, 179.0] {
@@ -139,5 +143,43 @@ fn main() -> Result<(), daegen::Error> {
             model.m * model.g * (3.0 - 2.0 * theta0.cos()),
         );
     }
+
+    // θ(t) over two seconds at three amplitudes, sampled on RK4's steps.
+    let amplitudes = [30.0, 90.0, 170.0];
+    let runs = amplitudes
+        .iter()
+        .map(|&d| {
+            let model = Pendulum {
+                theta0: f64::to_radians(d),
+                ..Pendulum::default()
+            };
+            model.simulate(0.0, 4.0, &Options::new().method(Method::Rk4).step(1e-3))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let times: Vec<f64> = (0..=400).map(|k| 0.01 * k as f64).collect();
+    let mut rows = Vec::with_capacity(times.len());
+    for &t in &times {
+        let mut row = vec![t];
+        for sol in &runs {
+            row.push(sol.at(t, "theta")?);
+        }
+        rows.push(row);
+    }
+    let names = ["θ₀ = 30°", "θ₀ = 90°", "θ₀ = 170°"];
+    let series: Vec<Series> = names
+        .iter()
+        .enumerate()
+        .map(|(k, name)| Series {
+            name,
+            points: rows.iter().map(|r| (r[0], r[k + 1])).collect(),
+        })
+        .collect();
+    output::write(
+        "pendulum",
+        &["t", "theta_30deg", "theta_90deg", "theta_170deg"],
+        &rows,
+        ("Pendulum, l = 1 m: angle (rad)", "t (s)", "θ (rad)"),
+        &series,
+    )?;
     Ok(())
 }

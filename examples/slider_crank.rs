@@ -8,6 +8,10 @@
 //! Run: `cargo run --release --example slider_crank`
 
 use daegen::prelude::*;
+use daegen_workprecision::Series;
+
+#[path = "support/output.rs"]
+mod output;
 
 macro_rules! slider_crank {
     ($name:ident, $($attr:tt)*) => {
@@ -42,7 +46,7 @@ macro_rules! slider_crank {
 slider_crank!(slider_crank_global, scene = global);
 slider_crank!(slider_crank_recursive, scene = recursive);
 
-fn main() -> Result<(), daegen::Error> {
+fn main() -> Result<(), Box<dyn std::error::Error>> {
     let opts = Options::new()
         .method(Method::Dop853)
         .rtol(1e-10)
@@ -72,5 +76,30 @@ fn main() -> Result<(), daegen::Error> {
         global.stats().steps,
         recursive.stats().steps
     );
+    let rows: Vec<Vec<f64>> = (0..=400)
+        .map(|k| {
+            let t = 2.0 * k as f64 / 400.0;
+            Ok(vec![
+                t,
+                global.at(t, "crank_angle")?,
+                global.at(t, "slider_x")?,
+                global.at(t, "rod[0]")?,
+            ])
+        })
+        .collect::<Result<_, daegen::Error>>()?;
+    output::write(
+        "slider_crank",
+        &["t", "crank_angle", "slider_x", "rod_multiplier"],
+        &rows,
+        (
+            "Slider-crank driven by a motor torque",
+            "t (s)",
+            "slider x (m)",
+        ),
+        &[Series {
+            name: "slider x (global formulation)",
+            points: rows.iter().map(|r| (r[0], r[2])).collect(),
+        }],
+    )?;
     Ok(())
 }

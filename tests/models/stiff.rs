@@ -3,6 +3,7 @@
 // (`include!`d; reference-problems.md §5–§7). The ODEs are macros so each
 // includer chooses the `#[dae_model]` arguments: `van_der_pol_model!();`.
 
+#[allow(unused_macros)]
 macro_rules! van_der_pol_model {
     ($($arguments:tt)*) => {
 /// Van der Pol, ε = 1e-6 (test set `vdpol`).
@@ -21,6 +22,7 @@ fn van_der_pol() {
 #[allow(dead_code)]
 const VDP_AT_2: [f64; 2] = [0.1706167732170483e1, -0.8928097010247975];
 
+#[allow(unused_macros)]
 macro_rules! robertson_model {
     ($($arguments:tt)*) => {
 /// Robertson's chemical kinetics (test set `rober`).
@@ -57,6 +59,7 @@ const ROBER_AT_1E11: [f64; 3] = [
     0.9999999791665050,
 ];
 
+#[allow(unused_macros)]
 macro_rules! hires_model {
     ($($arguments:tt)*) => {
 /// HIRES (test set `hires`).

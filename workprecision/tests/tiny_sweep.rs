@@ -136,3 +136,54 @@ fn a_tiny_sweep_writes_well_formed_csv_svg_and_summary() {
     assert_eq!(parse_csv(&written).unwrap().len(), problem.records.len());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_line_chart_draws_each_series_and_refuses_an_empty_one() {
+    use daegen_workprecision::{line_chart_svg, Series};
+    let circle: Vec<(f64, f64)> = (0..=100)
+        .map(|k| {
+            let a = k as f64 * std::f64::consts::TAU / 100.0;
+            (a.cos(), a.sin())
+        })
+        .collect();
+    let line = vec![(-1.0, 0.0), (1.0, 0.0), (f64::NAN, 1.0)];
+    let svg = line_chart_svg(
+        "orbit",
+        "x",
+        "y",
+        &[
+            Series {
+                name: "circle",
+                points: circle,
+            },
+            Series {
+                name: "axis",
+                points: line,
+            },
+        ],
+    )
+    .unwrap();
+    assert!(svg.trim_start().starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+    // Each series: its curve and its legend swatch, in its colour.
+    assert_eq!(
+        svg.matches(r##"stroke="#1F77B4" stroke-width="2""##)
+            .count(),
+        2
+    );
+    assert_eq!(
+        svg.matches(r##"stroke="#D62728" stroke-width="2""##)
+            .count(),
+        2
+    );
+    assert!(svg.contains("circle") && svg.contains("axis") && !svg.contains("NaN"));
+    assert!(line_chart_svg(
+        "none",
+        "x",
+        "y",
+        &[Series {
+            name: "e",
+            points: vec![]
+        }]
+    )
+    .is_err());
+}
