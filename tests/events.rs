@@ -293,3 +293,45 @@ fn a_backward_run_finds_the_crossings_in_reverse_with_their_directions_in_time()
         );
     }
 }
+
+#[test]
+fn restarting_at_accumulating_bounces_ends_in_a_chatter_error_at_the_zeno_time() {
+    // Restitution 1/2: the flights shrink geometrically and the impacts
+    // accumulate at T = t₁ (1 + e)/(1 − e) = 3 t₁, t₁ = sqrt(2h/g).
+    let ball = BouncingBall::default();
+    let zeno = 3.0 * (2.0 * ball.h / ball.g).sqrt();
+    for method in [Method::Taylor, Method::Dop853] {
+        let opts = Options::new().method(method).rtol(1e-12).atol(1e-12);
+        let (mut t, mut y) = (0.0, vec![ball.h, 0.0]);
+        let mut bounces = 0;
+        let err = loop {
+            match ball.simulate_from(t, &y, 100.0, &opts) {
+                Ok(sol) => {
+                    let hit = sol.stopped_by().expect("an impact");
+                    t = hit.t;
+                    y = vec![hit.state[0], -0.5 * hit.state[1]];
+                    bounces += 1;
+                    assert!(bounces < 200, "{method:?}: no end to the bounces");
+                }
+                Err(e) => break e,
+            }
+        };
+        match &err {
+            daegen::Error::EventChatter {
+                t, event, after, ..
+            } => {
+                assert_eq!(*event, "impact");
+                assert!(*after < 1e-12);
+                assert!((t - zeno).abs() <= 1e-9, "{method:?}: {t} vs {zeno}");
+            }
+            other => {
+                panic!("{method:?}: expected EventChatter after {bounces} bounces, got {other}")
+            }
+        }
+        assert!(err.to_string().contains("Zeno"));
+        assert!(
+            (30..100).contains(&bounces),
+            "{method:?}: {bounces} bounces"
+        );
+    }
+}

@@ -13,6 +13,7 @@
 //! | [`Error::SingularMatrix`] | the Newton matrix `I/(γh) − J` was singular | another step size (`1/(γh)` hit an eigenvalue of J), or an adaptive method | `tests/stiff.rs` `a_singular_newton_matrix_is_an_error_with_the_time_and_the_partial_solution` |
 //! | [`Error::MaxSteps`] | more steps than `Options::max_steps` | a stiff method if the problem is stiff, else raise the limit | `tests/nonstiff.rs` `a_stiff_problem_hits_the_step_limit_with_a_clear_error` |
 //! | [`Error::Constraint`] | inconsistent initial values projection cannot repair, redundant constraints, a singular constraint Jacobian (a mechanism at a dead point) | consistent initial values, remove the redundant joint, avoid the singular configuration | `tests/dae.rs` `unrepairable_or_redundant_constraints_are_errors_that_name_the_constraint` |
+//! | [`Error::EventChatter`] | a terminal event fires again within ~1e-13 (relative) of the start: restarts at its crossings make no progress (Zeno) | stop the restarts there, e.g. below a rebound speed | `tests/events.rs` `restarting_at_accumulating_bounces_ends_in_a_chatter_error_at_the_zeno_time` |
 //! | [`Error::InvalidOptions`] | tolerances ≤ 0 or not finite, a non-positive step, a method the model was not expanded for | the message says which option and what to write | `tests/models.rs` `bad_requests_are_errors_not_panics`, `tests/taylor_adaptive.rs` `integrates_backwards_and_refuses_models_without_a_tape` |
 //! | [`Error::MethodNotAvailable`] | reserved: every [`crate::Method`] is implemented | — | — |
 //! | [`Error::UnknownName`] | `Solution::at`/`last` with a name that is no state, algebraic variable or output | use one of `known` | `tests/models.rs` `bad_requests_are_errors_not_panics` |
@@ -94,6 +95,19 @@ pub enum Error {
         /// The accepted steps before it.
         partial: Box<Solution>,
     },
+    /// A terminal event fired again within a few rounding errors of the
+    /// start of the run: its crossings accumulate there (Zeno behaviour, a
+    /// ball bouncing ever lower), and restarting once more cannot progress.
+    EventChatter {
+        /// The time the crossings accumulate at.
+        t: f64,
+        /// The event, by name.
+        event: &'static str,
+        /// How long after the start it fired again.
+        after: f64,
+        /// The run up to it.
+        partial: Box<Solution>,
+    },
     /// The options or the interval are unusable (a non-positive step, say).
     InvalidOptions {
         /// What is wrong and how to fix it.
@@ -130,6 +144,7 @@ impl Error {
             | Error::StepSizeUnderflow { partial, .. }
             | Error::NewtonFailure { partial, .. }
             | Error::SingularMatrix { partial, .. }
+            | Error::EventChatter { partial, .. }
             | Error::Constraint { partial, .. } => Some(partial),
             _ => None,
         }
@@ -144,6 +159,7 @@ impl Error {
             | Error::StepSizeUnderflow { partial, .. }
             | Error::NewtonFailure { partial, .. }
             | Error::SingularMatrix { partial, .. }
+            | Error::EventChatter { partial, .. }
             | Error::Constraint { partial, .. } => Some(partial),
             _ => None,
         }
@@ -188,6 +204,10 @@ impl fmt::Display for Error {
                 };
                 write!(f, "constraint `{constraint}`{which} at t = {t}: {message}")
             }
+            Error::EventChatter { t, event, after, .. } => write!(
+                f,
+                "event `{event}` fired again {after:e} after the start, at t = {t}: its crossings accumulate there (Zeno behaviour); stop restarting at this point, e.g. once the rebound speed or the time between events falls below a threshold"
+            ),
             Error::InvalidOptions { message } => write!(f, "invalid options: {message}"),
             Error::MethodNotAvailable { method } => {
                 write!(

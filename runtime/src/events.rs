@@ -157,6 +157,19 @@ impl<'m, M: Model> EventWatch<'m, M> {
         });
         let stop = hits.iter().position(|h| M::INFO.events[h.index].terminal);
         if let Some(k) = stop {
+            // Fired again right after a restart: the crossings accumulate
+            // and one more restart would not move.
+            let after = (hits[k].t - self.t_start).abs();
+            if after <= 1e3 * f64::EPSILON * hits[k].t.abs().max(1.0) {
+                let hit = &hits[k];
+                solution.end_last_step_at(hit.t, &hit.state);
+                return Err(Error::EventChatter {
+                    t: hit.t,
+                    event: M::INFO.events[hit.index].name,
+                    after,
+                    partial: Box::new(solution),
+                });
+            }
             hits.truncate(k + 1);
             let last = &hits[k];
             solution.end_last_step_at(last.t, &last.state);
