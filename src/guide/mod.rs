@@ -9,10 +9,13 @@
 //!    with them (index reduction, projection), and the two formulations.
 //! 4. [`mechanisms`]: multibody scenes, planar and spatial, global and
 //!    recursive.
-//! 5. [`work_precision`]: registering a model in the benchmarks and
+//! 5. [`kinematics`]: rotations, angle sequences, quaternions, angular
+//!    velocities and frames, in the model language and numerically.
+//! 6. [`work_precision`]: registering a model in the benchmarks and
 //!    reading a work-precision diagram.
 
 pub mod daes;
+pub mod kinematics;
 pub mod language;
 pub mod mechanisms;
 pub mod running;
