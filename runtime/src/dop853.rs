@@ -192,6 +192,10 @@ const E5: [f64; 12] = [
     0.08192320648511571,
     -0.022355307863886294,
 ];
+/// The stages with a non-zero weight in the 8th-order solution and in the
+/// 5th-order error estimate.
+const NONZERO_WEIGHTS: [usize; 8] = [0, 5, 6, 7, 8, 9, 10, 11];
+
 /// Weights of the 3rd-order embedded solution (`bhh` of `dop853.f`), on stages 1, 9 and 12.
 const BHH: [f64; 3] = [0.2440944881889764, 0.7338466882816118, 0.022058823529411766];
 /// Dense output: rows give r5..r8 as combinations of the 16 stages.
@@ -304,12 +308,15 @@ impl EmbeddedPair for Dop853 {
         // Slices of a known length: no bounds checks in the loop below.
         let ks: [&[f64]; 12] = std::array::from_fn(|j| &k[j].as_ref()[..n]);
         let (mut err5, mut err3) = (0.0, 0.0);
+        // Stages 2–5 have zero weight in both sums (`dop853.f` leaves them
+        // out too); adding the others in the same order gives the same sums.
+        let b_row = A[12];
         for i in 0..n {
             let (mut e5, mut b) = (0.0, 0.0);
-            for j in 0..12 {
+            for j in NONZERO_WEIGHTS {
                 let kj = ks[j][i];
                 e5 += E5[j] * kj;
-                b += A[12][j] * kj;
+                b += b_row[j] * kj;
             }
             let e3 = b - BHH[0] * ks[0][i] - BHH[1] * ks[8][i] - BHH[2] * ks[11][i];
             err5 += (e5 / sk[i]).powi(2);
@@ -354,5 +361,20 @@ impl EmbeddedPair for Dop853 {
         let r = |m: usize| c[m * n + i];
         let tail = r(4) + s * (r(5) + s1 * (r(6) + s * r(7)));
         r(0) + s * (r(1) + s1 * (r(2) + s * (r(3) + s1 * tail)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_skipped_stages_have_zero_weight() {
+        for j in 0..12 {
+            if !NONZERO_WEIGHTS.contains(&j) {
+                assert_eq!(E5[j], 0.0, "E5[{j}]");
+                assert_eq!(A[12][j], 0.0, "b[{j}]");
+            }
+        }
     }
 }
