@@ -4,7 +4,8 @@
 //!
 //! Run: `cd bench && cargo run --release` (≈ 10 min; `--quick` stops at
 //! tolerance 1e-8 with fewer repeats; `--no-python` leaves out SciPy and
-//! heyoka; `--dae` prints the DAE tables instead). Writes
+//! heyoka; `--no-rustc` skips timing rustc on the generated code; `--only
+//! name` runs one model; `--dae` prints the DAE tables instead). Writes
 //! `results/results.csv`, one SVG per problem and `results/summary.md`.
 //!
 //! Errors are max |y − ref| / max(1, |ref|) at the end time against exact or
@@ -359,6 +360,9 @@ fn main() {
     );
 
     for p in runner.problems_mut() {
+        if has("--no-rustc") {
+            break;
+        }
         eprint!("\r\x1b[2K{}: rustc on the generated code", p.name);
         if let Some(code) = p.expansion.as_ref().map(|e| e.code.clone()) {
             match rustc_seconds(&code, &p.name) {
