@@ -269,10 +269,8 @@ proptest! {
 }
 
 /// How deep the generators reach: a campaign is only as good as the share
-/// of cases that get past the parser. Run with the long campaign:
-/// `cargo test --release -p daegen-codegen --test front_end_fuzz -- --ignored --nocapture`.
+/// of cases that get past the parser.
 #[test]
-#[ignore]
 fn the_generators_reach_past_the_parser() {
     use proptest::strategy::ValueTree;
     use proptest::test_runner::TestRunner;
@@ -280,16 +278,18 @@ fn the_generators_reach_past_the_parser() {
     let expanded = |body: &str, attr: &str| -> bool {
         matches!(expand(attr, body), Ok(Some(out)) if !out.contains("compile_error"))
     };
-    let odes = (0..300)
+    let odes = (0..60)
         .filter(|_| expanded(&ode().new_tree(&mut runner).unwrap().current(), ""))
         .count();
-    let scenes = (0..300)
+    let scenes = (0..60)
         .filter(|_| {
             let (recursive, body) = scene().new_tree(&mut runner).unwrap().current();
             expanded(&body, if recursive { "scene = recursive" } else { "" })
         })
         .count();
-    eprintln!("of 300 each, {odes} random ODEs and {scenes} random scenes expanded to models");
-    // Measured: about 125 and 60.
-    assert!(odes >= 60 && scenes >= 30, "{odes} ODEs, {scenes} scenes");
+    // Measured over 300 each: about 42 % and 22 %.
+    assert!(
+        odes >= 12 && scenes >= 6,
+        "of 60 each: {odes} ODEs, {scenes} scenes"
+    );
 }

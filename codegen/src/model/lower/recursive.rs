@@ -117,16 +117,6 @@ impl Lower<'_> {
                     let g = &mut self.g;
                     let relative0 = g.sub(ct0, parent_start[2])?;
                     let theta = g.add(parent_pose[2], relative0)?;
-                    let rotate =
-                        |g: &mut crate::Graph, angle: Id, p: [Id; 2]| -> crate::Result<[Id; 2]> {
-                            let (c, s) = (
-                                g.call(crate::Func::Cos, angle)?,
-                                g.call(crate::Func::Sin, angle)?,
-                            );
-                            let (a1, a2) = (g.mul(c, p[0])?, g.mul(s, p[1])?);
-                            let (b1, b2) = (g.mul(s, p[0])?, g.mul(c, p[1])?);
-                            Ok([g.sub(a1, a2)?, g.add(b1, b2)?])
-                        };
                     let arm = rotate(g, parent_pose[2], p_parent)?;
                     let back = rotate(g, theta, p_child)?;
                     let x = g.add(parent_pose[0], arm[0])?;
@@ -146,16 +136,6 @@ impl Lower<'_> {
             let built = (|| -> crate::Result<(Id, [Id; 3], [Id; 3], Id)> {
                 let g = &mut self.g;
                 let q_node = g.state(&name)?;
-                let rotate =
-                    |g: &mut crate::Graph, angle: Id, p: [Id; 2]| -> crate::Result<[Id; 2]> {
-                        let (c, s) = (
-                            g.call(crate::Func::Cos, angle)?,
-                            g.call(crate::Func::Sin, angle)?,
-                        );
-                        let (a1, a2) = (g.mul(c, p[0])?, g.mul(s, p[1])?);
-                        let (b1, b2) = (g.mul(s, p[0])?, g.mul(c, p[1])?);
-                        Ok([g.sub(a1, a2)?, g.add(b1, b2)?])
-                    };
                 let relative0 = g.sub(ct0, parent_start[2])?;
                 if rec.kind == "revolute" {
                     // θ_child = θ_parent + q; the child hangs from the joint.
@@ -235,13 +215,7 @@ impl Lower<'_> {
                                       angle: Id,
                                       p: [Id; 2]|
                  -> crate::Result<[Id; 2]> {
-                    let (c, s) = (
-                        g.call(crate::Func::Cos, angle)?,
-                        g.call(crate::Func::Sin, angle)?,
-                    );
-                    let (a1, a2) = (g.mul(c, p[0])?, g.mul(s, p[1])?);
-                    let (b1, b2) = (g.mul(s, p[0])?, g.mul(c, p[1])?);
-                    let (rx, ry) = (g.sub(a1, a2)?, g.add(b1, b2)?);
+                    let [rx, ry] = rotate(g, angle, p)?;
                     let wy = g.mul(v[2], ry)?;
                     let wx = g.mul(v[2], rx)?;
                     Ok([g.sub(v[0], wy)?, g.add(v[1], wx)?])
@@ -249,13 +223,7 @@ impl Lower<'_> {
                 let vb = point_velocity(g, child_velocity, child_start[2], p_child)?;
                 let vj = point_velocity(g, parent_velocity, parent_start[2], p_parent)?;
                 let axis = rec.axis.unwrap_or([zero, zero]);
-                let (c, s) = (
-                    g.call(crate::Func::Cos, parent_start[2])?,
-                    g.call(crate::Func::Sin, parent_start[2])?,
-                );
-                let (a1, a2) = (g.mul(c, axis[0])?, g.mul(s, axis[1])?);
-                let (b1, b2) = (g.mul(s, axis[0])?, g.mul(c, axis[1])?);
-                let dir = [g.sub(a1, a2)?, g.add(b1, b2)?];
+                let dir = rotate(g, parent_start[2], axis)?;
                 let (xx, yy) = (g.mul(axis[0], axis[0])?, g.mul(axis[1], axis[1])?);
                 let len2 = g.add(xx, yy)?;
                 let len = g.sqrt(len2)?;
@@ -496,4 +464,15 @@ impl Lower<'_> {
             cut.len()
         ));
     }
+}
+
+/// `R(angle) p` in the plane.
+fn rotate(g: &mut crate::Graph, angle: Id, p: [Id; 2]) -> crate::Result<[Id; 2]> {
+    let (c, s) = (
+        g.call(crate::Func::Cos, angle)?,
+        g.call(crate::Func::Sin, angle)?,
+    );
+    let (a1, a2) = (g.mul(c, p[0])?, g.mul(s, p[1])?);
+    let (b1, b2) = (g.mul(s, p[0])?, g.mul(c, p[1])?);
+    Ok([g.sub(a1, a2)?, g.add(b1, b2)?])
 }

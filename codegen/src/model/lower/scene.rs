@@ -350,27 +350,14 @@ impl Lower<'_> {
         if kind == "spherical" {
             return self.cx.error_at(c, "a planar scene has no spherical joint: use `revolute`, or declare the bodies with `spatial_body`");
         }
-        let arity = match kind {
-            "revolute" | "fixed" => 4,
-            _ => 5,
+        let extra = match kind {
+            "distance" => Some("length"),
+            "prismatic" => Some("axis_in_a"),
+            _ => None,
         };
-        if c.args.len() != arity {
-            let usage = match kind {
-                "revolute" => "`revolute(a, point_in_a, b, point_in_b)`",
-                "fixed" => "`fixed(a, point_in_a, b, point_in_b)`",
-                "distance" => "`distance(a, point_in_a, b, point_in_b, length)`",
-                _ => "`prismatic(a, point_in_a, b, point_in_b, axis_in_a)`",
-            };
-            return self
-                .cx
-                .error_at(c, format!("`{kind}` takes {arity} arguments: {usage}"));
-        }
-        let (Some(a), Some(b)) = (self.frame(&c.args[0]), self.frame(&c.args[2])) else {
+        let Some((a, b)) = self.joint_frames(kind, c, extra) else {
             return;
         };
-        if a == b {
-            return self.same_frame_joint(c);
-        }
         let (Some(pa), Some(pb)) = (
             self.world_point(a, &c.args[1], e),
             self.world_point(b, &c.args[3], e),
@@ -501,10 +488,32 @@ impl Lower<'_> {
         });
     }
 
-    /// A joint from a frame to itself constrains nothing.
-    pub(super) fn same_frame_joint(&mut self, c: &syn::ExprCall) {
-        let name = c.args[0].to_token_stream().to_string();
-        self.cx.error_at(c, format!("this joint joins `{name}` to itself: name two different bodies (or a body and the ground)"));
+    /// Checks a joint's arguments `(a, point_in_a, b, point_in_b[, extra])`
+    /// and resolves its two frames, which must differ (a joint from a frame
+    /// to itself constrains nothing).
+    pub(super) fn joint_frames(
+        &mut self,
+        kind: &str,
+        c: &syn::ExprCall,
+        extra: Option<&str>,
+    ) -> Option<(Frame, Frame)> {
+        let arity = if extra.is_some() { 5 } else { 4 };
+        if c.args.len() != arity {
+            let tail = extra.map_or(String::new(), |e| format!(", {e}"));
+            self.cx.error_at(
+                c,
+                format!("`{kind}` takes {arity} arguments: `{kind}(a, point_in_a, b, point_in_b{tail})`"),
+            );
+            return None;
+        }
+        let (a, b) = (self.frame(&c.args[0]), self.frame(&c.args[2]));
+        let (a, b) = (a?, b?);
+        if a == b {
+            let name = c.args[0].to_token_stream().to_string();
+            self.cx.error_at(c, format!("this joint joins `{name}` to itself: name two different bodies (or a body and the ground)"));
+            return None;
+        }
+        Some((a, b))
     }
 
     /// A joint's constraint rows, each with its reaction `name[k]` as an

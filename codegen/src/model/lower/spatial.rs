@@ -418,27 +418,14 @@ impl Lower<'_> {
         let Some(&(kind, _)) = SPATIAL_JOINTS.iter().find(|(k, _)| *k == kind) else {
             return self.cx.error_at(c, format!("`{kind}` is not a spatial joint: use `spherical`, `revolute`, `prismatic`, `fixed` or `distance`"));
         };
-        let arity = match kind {
-            "spherical" | "fixed" => 4,
-            _ => 5,
+        let extra = match kind {
+            "distance" => Some("length"),
+            "revolute" | "prismatic" => Some("axis_in_a"),
+            _ => None,
         };
-        if c.args.len() != arity {
-            let usage = match kind {
-                "spherical" => "`spherical(a, point_in_a, b, point_in_b)`",
-                "fixed" => "`fixed(a, point_in_a, b, point_in_b)`",
-                "distance" => "`distance(a, point_in_a, b, point_in_b, length)`",
-                _ => "`(a, point_in_a, b, point_in_b, axis_in_a)`",
-            };
-            return self
-                .cx
-                .error_at(c, format!("`{kind}` takes {arity} arguments: {usage}"));
-        }
-        let (Some(a), Some(b)) = (self.frame(&c.args[0]), self.frame(&c.args[2])) else {
+        let Some((a, b)) = self.joint_frames(kind, c, extra) else {
             return;
         };
-        if a == b {
-            return self.same_frame_joint(c);
-        }
         let (Some(sa), Some(sb)) = (
             self.vec3_arg(&c.args[1], "a point in body coordinates"),
             self.vec3_arg(&c.args[3], "a point in body coordinates"),
