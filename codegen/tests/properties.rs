@@ -195,7 +195,12 @@ fn dual(r: &R, point: &[f64; 4], direction: usize, scale: &mut f64) -> Dual {
             let p = *k as f64 / 2.0;
             Dual {
                 v: a.v.powf(p),
-                d: if a.d == 0.0 {
+                // At a zero base a half power below 1 has no derivative (the
+                // chain rule's u'/(2√u) is 0/0 even where u ≡ 0 nearby):
+                // such points are rejected rather than compared.
+                d: if a.v == 0.0 && p < 1.0 {
+                    f64::NAN
+                } else if a.d == 0.0 {
                     0.0
                 } else {
                     p * a.v.powf(p - 1.0) * a.d

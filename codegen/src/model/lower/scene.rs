@@ -91,6 +91,10 @@ pub(super) struct JointRecord {
 
 /// Joint statements, which may be named by a `let`.
 pub(super) const JOINTS: [&str; 5] = ["revolute", "distance", "prismatic", "fixed", "spherical"];
+/// What `force` takes, in the plane and in space.
+pub(super) const FORCE_USAGE: &str =
+    "a body, the point of application in its coordinates and the force in world axes";
+
 /// Load statements.
 pub(super) const LOADS: [&str; 4] = ["gravity", "force", "torque", "spring"];
 
@@ -581,6 +585,50 @@ impl Lower<'_> {
         ))
     }
 
+    /// The body a `force` or `torque` (the call's name) acts on: checks the
+    /// number of arguments (`usage` says what they are) and that the first
+    /// names a body.
+    pub(super) fn loaded_body(
+        &mut self,
+        c: &syn::ExprCall,
+        arity: usize,
+        usage: &str,
+    ) -> Option<usize> {
+        let kind = c.func.to_token_stream().to_string();
+        if c.args.len() != arity {
+            self.cx.error_at(c, format!("`{kind}` takes {usage}"));
+            return None;
+        }
+        match self.frame(&c.args[0])? {
+            Frame::Body(b) => Some(b),
+            Frame::Ground => {
+                self.cx.error_at(
+                    &c.args[0],
+                    format!("a {kind} acts on a body, not on the ground"),
+                );
+                None
+            }
+        }
+    }
+
+    /// `spring(a, pa, b, pb, k, l0, c)`: its two frames and stiffness, rest
+    /// length and damping (the points are read by the caller, in the plane
+    /// or in space).
+    pub(super) fn spring_arguments(
+        &mut self,
+        c: &syn::ExprCall,
+    ) -> Option<(Frame, Frame, [Id; 3])> {
+        if c.args.len() != 7 {
+            self.cx.error_at(c, "`spring` takes `spring(a, point_in_a, b, point_in_b, stiffness, rest_length, damping)`");
+            return None;
+        }
+        let (a, b) = (self.frame(&c.args[0]), self.frame(&c.args[2]));
+        let values = [4, 5, 6].map(|i| self.value(&c.args[i]));
+        let (a, b) = (a?, b?);
+        let [k, l0, damping] = values;
+        Some((a, b, [k?, l0?, damping?]))
+    }
+
     /// `gravity(g)`, `force(body, point, f)`, `torque(body, tau)`.
     pub(super) fn load(&mut self, kind: &str, c: &syn::ExprCall, e: &Expr) {
         if self.scene.is_spatial() {
@@ -601,13 +649,8 @@ impl Lower<'_> {
                 self.scene.gravity = Some((t.data[0], t.data[1]));
             }
             "force" => {
-                if c.args.len() != 3 {
-                    return self.cx.error_at(c, "`force` takes a body, the point of application in its coordinates and the force in world axes");
-                }
-                let Some(Frame::Body(b)) = self.frame(&c.args[0]) else {
-                    return self
-                        .cx
-                        .error_at(&c.args[0], "a force acts on a body, not on the ground");
+                let Some(b) = self.loaded_body(c, 3, FORCE_USAGE) else {
+                    return;
                 };
                 let Some(f) = self.tensor(&c.args[2]) else {
                     return;
@@ -625,16 +668,10 @@ impl Lower<'_> {
             }
             "spring" => self.spring(c, e),
             _ => {
-                if c.args.len() != 2 {
-                    return self.cx.error_at(
-                        c,
-                        "`torque` takes a body and the torque about its centre of mass",
-                    );
-                }
-                let Some(Frame::Body(b)) = self.frame(&c.args[0]) else {
-                    return self
-                        .cx
-                        .error_at(&c.args[0], "a torque acts on a body, not on the ground");
+                let Some(b) =
+                    self.loaded_body(c, 2, "a body and the torque about its centre of mass")
+                else {
+                    return;
                 };
                 let Some(tau) = self.value(&c.args[1]) else {
                     return;
@@ -665,22 +702,12 @@ impl Lower<'_> {
     /// `spring(a, pa, b, pb, k, l0, c)`: a spring–damper between two points,
     /// tension `k (d − l0) + c ḋ` along the line from one to the other.
     fn spring(&mut self, c: &syn::ExprCall, e: &Expr) {
-        if c.args.len() != 7 {
-            return self.cx.error_at(c, "`spring` takes `spring(a, point_in_a, b, point_in_b, stiffness, rest_length, damping)`");
-        }
-        let (Some(a), Some(b)) = (self.frame(&c.args[0]), self.frame(&c.args[2])) else {
+        let Some((a, b, [k, l0, damping])) = self.spring_arguments(c) else {
             return;
         };
         let (Some(pa), Some(pb)) = (
             self.world_point(a, &c.args[1], e),
             self.world_point(b, &c.args[3], e),
-        ) else {
-            return;
-        };
-        let (Some(k), Some(l0), Some(damping)) = (
-            self.value(&c.args[4]),
-            self.value(&c.args[5]),
-            self.value(&c.args[6]),
         ) else {
             return;
         };

@@ -537,13 +537,8 @@ impl Lower<'_> {
                 }
             }
             "force" => {
-                if c.args.len() != 3 {
-                    return self.cx.error_at(c, "`force` takes a body, the point of application in its coordinates and the force in world axes");
-                }
-                let Some(Frame::Body(b)) = self.frame(&c.args[0]) else {
-                    return self
-                        .cx
-                        .error_at(&c.args[0], "a force acts on a body, not on the ground");
+                let Some(b) = self.loaded_body(c, 3, super::scene::FORCE_USAGE) else {
+                    return;
                 };
                 let (Some(s), Some(f)) = (
                     self.vec3_arg(&c.args[1], "a point in body coordinates"),
@@ -564,16 +559,10 @@ impl Lower<'_> {
                 }
             }
             "torque" => {
-                if c.args.len() != 2 {
-                    return self.cx.error_at(
-                        c,
-                        "`torque` takes a body and the torque in world axes (a 3-vector)",
-                    );
-                }
-                let Some(Frame::Body(b)) = self.frame(&c.args[0]) else {
-                    return self
-                        .cx
-                        .error_at(&c.args[0], "a torque acts on a body, not on the ground");
+                let Some(b) =
+                    self.loaded_body(c, 2, "a body and the torque in world axes (a 3-vector)")
+                else {
+                    return;
                 };
                 let Some(tau) = self.vec3_arg(&c.args[1], "a torque") else {
                     return;
@@ -595,22 +584,12 @@ impl Lower<'_> {
     /// `spring(a, pa, b, pb, k, l0, c)` between two points of a spatial scene.
     fn spatial_spring(&mut self, c: &syn::ExprCall, e: &Expr) {
         use super::scene::Frame;
-        if c.args.len() != 7 {
-            return self.cx.error_at(c, "`spring` takes `spring(a, point_in_a, b, point_in_b, stiffness, rest_length, damping)`");
-        }
-        let (Some(a), Some(b)) = (self.frame(&c.args[0]), self.frame(&c.args[2])) else {
+        let Some((a, b, [k, l0, damping])) = self.spring_arguments(c) else {
             return;
         };
         let (Some(sa), Some(sb)) = (
             self.vec3_arg(&c.args[1], "a point in body coordinates"),
             self.vec3_arg(&c.args[3], "a point in body coordinates"),
-        ) else {
-            return;
-        };
-        let (Some(k), Some(l0), Some(damping)) = (
-            self.value(&c.args[4]),
-            self.value(&c.args[5]),
-            self.value(&c.args[6]),
         ) else {
             return;
         };
