@@ -140,8 +140,10 @@ fn bouncing_ball_with_a_terminal_event() {
 }
 
 /// The unrolled Taylor recurrences of order 3 for a forced logistic
-/// equation: a product, a square, a sine/cosine pair of the time and a
-/// constant, each coefficient one slot of `r`, one function per order.
+/// equation: a product, a sine/cosine pair of the time and a constant, each
+/// coefficient one slot of `r`, one function per order; the negation and
+/// `1 − x` are one folded sum, and `k·x·(1 − x)` is folded into the output
+/// with its weight `k` computed once (`taylor_folding`).
 #[test]
 fn logistic_with_unrolled_taylor_recurrences_of_order_3() {
     insta::assert_snapshot!(expand_with(

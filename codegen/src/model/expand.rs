@@ -140,8 +140,12 @@ fn taylor_method(
     });
     let (ops, outs) = (&tape.ops, &tape.outputs);
     // The unrolled layout, for the orders the user asked for.
+    let numbers: Vec<Option<f64>> = consts
+        .iter()
+        .map(|&id| g.as_number(id).map(|x| x.to_f64()))
+        .collect();
     let unrolled_arms = unroll.iter().map(|&order| {
-        let body = super::taylor_unrolled::unrolled_jet(&tape, n, order);
+        let body = super::taylor_unrolled::unrolled_jet(&tape, n, order, &numbers);
         let (order_lit, len) = (index(order), index(n * (order + 1)));
         quote! {
             #order_lit => {

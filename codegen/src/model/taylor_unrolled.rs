@@ -13,22 +13,28 @@
 //! j/k weights folded into literals, so the coefficients agree with the
 //! interpreter's to rounding.
 
+use super::taylor_folding::{
+    fold_linear, known_constants, Base, Folding, LinearTerm, Role, Weight,
+};
 use super::taylor_tape::{InverseFunction, Operand, Recurrence, Tape};
 use proc_macro2::{Literal, TokenStream};
-use quote::{format_ident, quote};
+use quote::{format_ident, quote, ToTokens};
 
 /// Where the coefficients live: one array `r` of rows of `order + 1`
-/// coefficients, states first, then u-variables, then one reciprocal 1/x₀
-/// per u-variable; constants in `c`, the time in `t`.
+/// coefficients, states first, then the u-variables that have a row (see
+/// [`Plan`]), then one reciprocal 1/x₀ per such row; constants and the
+/// weights of the folded sums in `c`, the time in `t`.
 struct Layout {
     order: usize,
     states: usize,
-    vars: usize,
+    /// The row of each u-variable among the u-variables' rows, if it has one.
+    rows: Vec<Option<usize>>,
+    row_count: usize,
 }
 
 impl Layout {
     fn len(&self) -> usize {
-        (self.states + self.vars) * (self.order + 1) + self.vars
+        (self.states + self.row_count) * (self.order + 1) + self.row_count
     }
 
     fn slot(&self, row: usize, k: usize) -> TokenStream {
@@ -36,11 +42,17 @@ impl Layout {
         quote!(r[#at])
     }
 
+    /// The row of u-variable `v` in `r`; only asked of u-variables that
+    /// have one (the plan never refers to the others by row).
+    fn var_row(&self, v: usize) -> usize {
+        self.states + self.rows[v].unwrap_or(0)
+    }
+
     /// Coefficient `k` of an operand: `None` when it is zero.
     fn coefficient(&self, o: Operand, k: usize) -> Option<TokenStream> {
         match o {
             Operand::State(i) => Some(self.slot(i, k)),
-            Operand::Var(v) => Some(self.slot(self.states + v, k)),
+            Operand::Var(v) => Some(self.slot(self.var_row(v), k)),
             Operand::Time => match k {
                 0 => Some(quote!(t)),
                 1 => Some(quote!(1.0)),
@@ -55,7 +67,8 @@ impl Layout {
 
     /// The slot of 1/x₀ for u-variable `v`'s recurrence.
     fn reciprocal(&self, v: usize) -> TokenStream {
-        let at = Literal::usize_unsuffixed((self.states + self.vars) * (self.order + 1) + v);
+        let row = self.rows[v].unwrap_or(0);
+        let at = Literal::usize_unsuffixed((self.states + self.row_count) * (self.order + 1) + row);
         quote!(r[#at])
     }
 }
@@ -88,9 +101,20 @@ impl Term {
 
 /// `Σ weight·a·b` over the non-zero terms, or `0.0`.
 fn sum(terms: Vec<(f64, Option<TokenStream>, Option<TokenStream>)>) -> TokenStream {
+    sum_with(terms, Vec::new())
+}
+
+/// `Σ weight·a·b` over the non-zero terms plus the `extra` terms, or `0.0`.
+fn sum_with(
+    terms: Vec<(f64, Option<TokenStream>, Option<TokenStream>)>,
+    extra: Vec<Term>,
+) -> TokenStream {
     let mut out: Vec<Term> = Vec::new();
     for (weight, a, b) in terms {
         let (Some(a), Some(b)) = (a, b) else { continue };
+        if weight == 0.0 {
+            continue;
+        }
         let mut factors: Vec<TokenStream> = [a, b]
             .into_iter()
             .filter(|f| f.to_string() != "1.0")
@@ -116,6 +140,7 @@ fn sum(terms: Vec<(f64, Option<TokenStream>, Option<TokenStream>)>) -> TokenStre
             }
         });
     }
+    out.extend(extra);
     // Leaves of the tree in pairs, a·b + c fused where the target has FMA.
     let mut leaves = Vec::with_capacity(out.len().div_ceil(2));
     let mut it = out.into_iter();
@@ -165,22 +190,15 @@ fn recurrence_at(l: &Layout, v: usize, r: Recurrence, k: usize) -> TokenStream {
     let u = |k: usize| l.coefficient(Operand::Var(v), k);
     let pair = |k: usize| l.coefficient(Operand::Var(v + 1), k);
     let c = |o: Operand, k: usize| l.coefficient(o, k);
-    let name = l.slot(l.states + v, k);
+    let name = l.slot(l.var_row(v), k);
     let kf = k as f64;
     if k == 0 {
         let zero = |o: Operand| c(o, 0).unwrap_or(quote!(0.0f64));
         let value = match r {
-            Recurrence::Add(a, b) => {
-                let (a, b) = (zero(a), zero(b));
-                quote!(#a + #b)
-            }
-            Recurrence::Scale(a, s) => {
-                let (a, s) = (zero(a), zero(Operand::Const(s)));
-                quote!(#a * #s)
-            }
-            Recurrence::Quotient(a, s) => {
-                let (a, s) = (zero(a), zero(Operand::Const(s)));
-                quote!(#a / #s)
+            // Linear recurrences are folded sums (`taylor_folding`), never
+            // rows of their own.
+            Recurrence::Add(..) | Recurrence::Scale(..) | Recurrence::Quotient(..) => {
+                return TokenStream::new()
             }
             Recurrence::Mul(a, b) => {
                 let (a, b) = (zero(a), zero(b));
@@ -224,7 +242,7 @@ fn recurrence_at(l: &Layout, v: usize, r: Recurrence, k: usize) -> TokenStream {
             }
             Recurrence::SinCos(a) | Recurrence::SinhCosh(a) => {
                 let a = zero(a);
-                let second = l.slot(l.states + v + 1, 0);
+                let second = l.slot(l.var_row(v + 1), 0);
                 return if let Recurrence::SinCos(_) = r {
                     quote!(let (sin, cos) = #a.sin_cos(); #name = sin; #second = cos;)
                 } else {
@@ -250,17 +268,8 @@ fn recurrence_at(l: &Layout, v: usize, r: Recurrence, k: usize) -> TokenStream {
         return quote!(#name = #value;);
     }
     let value = match r {
-        Recurrence::Add(a, b) => sum(vec![
-            (1.0, c(a, k), Some(quote!(1.0))),
-            (1.0, c(b, k), Some(quote!(1.0))),
-        ]),
-        Recurrence::Scale(a, s) => sum(vec![(1.0, c(a, k), c(Operand::Const(s), 0))]),
-        Recurrence::Quotient(a, s) => {
-            let (a, s) = (c(a, k), c(Operand::Const(s), 0));
-            match a {
-                Some(a) => quote!(#a / #s),
-                None => quote!(0.0f64),
-            }
+        Recurrence::Add(..) | Recurrence::Scale(..) | Recurrence::Quotient(..) => {
+            return TokenStream::new()
         }
         Recurrence::Mul(a, b) => sum((0..=k).map(|j| (1.0, c(a, j), c(b, k - j))).collect()),
         Recurrence::Square(a) => {
@@ -306,7 +315,7 @@ fn recurrence_at(l: &Layout, v: usize, r: Recurrence, k: usize) -> TokenStream {
             let co = sum((1..=k)
                 .map(|j| (j as f64 / kf, c(a, j), u(k - j)))
                 .collect());
-            let second = l.slot(l.states + v + 1, k);
+            let second = l.slot(l.var_row(v + 1), k);
             return if let Recurrence::SinCos(_) = r {
                 quote!(#name = #s; #second = -(#co);)
             } else {
@@ -340,27 +349,137 @@ fn recurrence_at(l: &Layout, v: usize, r: Recurrence, k: usize) -> TokenStream {
     quote!(#name = #value;)
 }
 
+/// The weights of folded terms that are not numbers, as extra entries of
+/// `c` after the tape's constants (computed once per call).
+struct Weights {
+    list: Vec<Weight>,
+    first: usize,
+}
+
+impl Weights {
+    fn collect(folding: &Folding, first: usize) -> Weights {
+        let mut list: Vec<Weight> = Vec::new();
+        let sums = folding.roles.iter().filter_map(|r| match r {
+            Role::SumRow(terms) => Some(terms),
+            _ => None,
+        });
+        for t in sums.chain(&folding.outputs).flatten() {
+            if !t.weight.is_literal() && !list.contains(&t.weight) {
+                list.push(t.weight.clone());
+            }
+        }
+        Weights { list, first }
+    }
+
+    /// `c[i]` for a weight that is not a number.
+    fn token(&self, w: &Weight) -> Option<TokenStream> {
+        let i = self.list.iter().position(|x| x == w)?;
+        let at = Literal::usize_unsuffixed(self.first + i);
+        Some(quote!(c[#at]))
+    }
+
+    /// The expressions of the weights, from the constants `c0`, `c1`, ...
+    fn values(&self) -> Vec<TokenStream> {
+        let name = |i: &usize| format_ident!("c{}", i);
+        self.list
+            .iter()
+            .map(|w| {
+                let mut factors: Vec<TokenStream> = w
+                    .times
+                    .iter()
+                    .map(|i| name(i).into_token_stream())
+                    .collect();
+                if w.literal.abs() != 1.0 || factors.is_empty() {
+                    factors.insert(0, float(w.literal.abs()));
+                }
+                let sign = (w.literal < 0.0).then(|| quote!(-));
+                let product = factors
+                    .into_iter()
+                    .reduce(|a, b| quote!(#a * #b))
+                    .unwrap_or_default();
+                let numerator = quote!(#sign (#product));
+                if w.over.is_empty() {
+                    numerator
+                } else {
+                    let over = w
+                        .over
+                        .iter()
+                        .map(|i| name(i).into_token_stream())
+                        .reduce(|a, b| quote!(#a * #b))
+                        .unwrap_or_default();
+                    quote!(#numerator / (#over))
+                }
+            })
+            .collect()
+    }
+}
+
+/// Coefficient `k` of a folded sum: terms with numeric weights (and the
+/// convolutions of folded squares and products) flattened into one
+/// pairwise sum, the others multiplied by their weight from `c`.
+fn folded_sum(l: &Layout, weights: &Weights, terms: &[LinearTerm], k: usize) -> TokenStream {
+    let c = |o: Operand, k: usize| l.coefficient(o, k);
+    let mut flat = Vec::new();
+    let mut extra = Vec::new();
+    for t in terms {
+        let products: Vec<_> = match t.base {
+            Base::Operand(o) => vec![(1.0, c(o, k), Some(quote!(1.0)))],
+            Base::Square(a) => (0..=k)
+                .filter(|&j| j <= k - j)
+                .map(|j| (if j < k - j { 2.0 } else { 1.0 }, c(a, j), c(a, k - j)))
+                .collect(),
+            Base::Product(a, b) => (0..=k).map(|j| (1.0, c(a, j), c(b, k - j))).collect(),
+        };
+        match weights.token(&t.weight) {
+            None => flat.extend(
+                products
+                    .into_iter()
+                    .map(|(w, a, b)| (w * t.weight.literal, a, b)),
+            ),
+            Some(weight) => {
+                if products.iter().any(|(_, a, b)| a.is_some() && b.is_some()) {
+                    let inner = sum(products);
+                    extra.push(Term::Product(weight, quote!((#inner))));
+                }
+            }
+        }
+    }
+    sum_with(flat, extra)
+}
+
 /// Up to this many (operations × order²), about the number of products, the
 /// orders are inlined into one function (Kepler at order 19: 3,000).
 const SINGLE_FUNCTION_TERMS: usize = 20_000;
 
 /// The body of `taylor_jet_unrolled` for `order`: reads `t`, `y` (an array
-/// of `n` states) and the constants `c` (an array) and writes state i's
-/// normalised coefficient k to `out[i·(order+1) + k]` (an array). One
-/// function per order, not inlined for large jets: rustc's time on one
-/// function of thousands of live values grows much faster than linearly
-/// (the outer solar system at three orders took over five minutes as one
-/// function, 1.5 minutes split, for 12 % more run time).
-pub fn unrolled_jet(tape: &Tape, n: usize, order: usize) -> TokenStream {
+/// of `n` states) and the constants `c0, c1, …` (`known[i]` is constant i's
+/// value when it is a number) and writes state i's normalised coefficient k
+/// to `out[i·(order+1) + k]` (an array). One function per order, not
+/// inlined for large jets: rustc's time on one function of thousands of
+/// live values grows much faster than linearly (the outer solar system at
+/// three orders took over five minutes as one function, 1.5 minutes split,
+/// for 12 % more run time).
+pub fn unrolled_jet(tape: &Tape, n: usize, order: usize, known: &[Option<f64>]) -> TokenStream {
+    let folding = fold_linear(tape, &known_constants(tape, known));
+    let mut rows = vec![None; tape.ops.len()];
+    let mut row_count = 0;
+    for (v, role) in folding.roles.iter().enumerate() {
+        if *role != Role::Folded {
+            rows[v] = Some(row_count);
+            row_count += 1;
+        }
+    }
     let l = Layout {
         order,
         states: n,
-        vars: tape.ops.len(),
+        rows,
+        row_count,
     };
     let len = Literal::usize_unsuffixed(l.len());
+    let weights = Weights::collect(&folding, tape.constants.len());
     // Small jets become one function, whose coefficient array the compiler
     // keeps in registers; large ones stay one function per order.
-    let terms = tape.ops.len() * order * order;
+    let terms = row_count * order * order;
     let inline = if terms <= SINGLE_FUNCTION_TERMS {
         quote!(#[inline(always)])
     } else {
@@ -369,10 +488,11 @@ pub fn unrolled_jet(tape: &Tape, n: usize, order: usize) -> TokenStream {
     let constants: Vec<_> = (0..tape.constants.len())
         .map(|i| format_ident!("c{}", i))
         .collect();
-    let nc = Literal::usize_unsuffixed(constants.len());
+    let weight_values = weights.values();
+    let nc = Literal::usize_unsuffixed(constants.len() + weight_values.len());
     let mut code = TokenStream::new();
     code.extend(quote! {
-        let c: [f64; #nc] = [#(#constants),*];
+        let c: [f64; #nc] = [#(#constants,)* #(#weight_values),*];
         let mut r = [0.0f64; #len];
     });
     for i in 0..n {
@@ -382,15 +502,34 @@ pub fn unrolled_jet(tape: &Tape, n: usize, order: usize) -> TokenStream {
     for k in 0..order {
         let mut step = TokenStream::new();
         for &(v, rec) in &tape.recurrences {
-            step.extend(recurrence_at(&l, v, rec, k));
+            match &folding.roles[v] {
+                Role::Row => step.extend(recurrence_at(&l, v, rec, k)),
+                Role::SumRow(terms) => {
+                    let (name, value) =
+                        (l.slot(l.var_row(v), k), folded_sum(&l, &weights, terms, k));
+                    step.extend(quote!(#name = #value;));
+                }
+                Role::Folded => {}
+            }
         }
         // x^[k+1] = f^[k] / (k + 1).
         let scale = float(1.0 / (k + 1) as f64);
-        for (i, &o) in tape.output_operands.iter().enumerate() {
+        for (i, terms) in folding.outputs.iter().enumerate() {
             let slot = l.slot(i, k + 1);
-            let value = match l.coefficient(o, k) {
+            let single = match terms.as_slice() {
+                [LinearTerm {
+                    weight,
+                    base: Base::Operand(o),
+                }] if weight.is_literal() && weight.literal == 1.0 => Some(*o),
+                _ => None,
+            };
+            let value = match single {
+                Some(o) => l.coefficient(o, k),
+                None => Some(folded_sum(&l, &weights, terms, k)),
+            };
+            let value = match value {
                 Some(f) if k == 0 => f,
-                Some(f) => quote!(#f * #scale),
+                Some(f) => quote!((#f) * #scale),
                 None => quote!(0.0f64),
             };
             step.extend(quote!(#slot = #value;));
