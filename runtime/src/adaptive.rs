@@ -61,6 +61,7 @@ impl<M: Model> Rhs<'_, M> {
 /// Stage by stage over whole vectors (skipping the tableau's zeros, as
 /// Hairer's codes do), so each pass is a vectorizable loop over slices of a
 /// known length; per component the terms are added in the same order.
+#[inline(always)]
 fn combine<S: StateVector>(y: &S, h: f64, a: &[f64], k: &[S], out: &mut S) {
     let out = out.as_mut();
     let n = out.len();
@@ -90,6 +91,40 @@ fn combine<S: StateVector>(y: &S, h: f64, a: &[f64], k: &[S], out: &mut S) {
     }
 }
 
+/// Stage `S` of one step: `k[S] = f(t + c_S h, y + h Σ_{j<S} a_Sj k_j)`,
+/// the last stage at `y_new`. A constant `S` makes the tableau row a
+/// constant: the compiler drops its zeros and unrolls the sums over the
+/// stages, as the hand-written stages of Hairer's codes do.
+#[inline(always)]
+fn stage<M: Model, P: EmbeddedPair, const S: usize>(
+    rhs: &mut Rhs<'_, M>,
+    t: f64,
+    h: f64,
+    y: &M::State,
+    k: &mut [M::State],
+    stage: &mut M::State,
+    y_new: &mut M::State,
+) -> Result<(), (f64, EvalError)> {
+    if S >= P::STAGES {
+        return Ok(());
+    }
+    let (a, c) = (P::coefficients(), P::nodes());
+    let (done, rest) = k.split_at_mut(S);
+    if S + 1 == P::STAGES {
+        combine(y, h, a[S], done, y_new);
+        rhs.call(t + h, y_new.as_ref(), rest[0].as_mut())
+            .map_err(|cause| (t + h, cause))
+    } else {
+        combine(y, h, a[S], done, stage);
+        let ts = t + c[S] * h;
+        rhs.call(ts, stage.as_ref(), rest[0].as_mut())
+            .map_err(|cause| (ts, cause))
+    }
+}
+
+/// The most stages of a pair (DOP853's 12 and the new solution's).
+const MAX_STAGES: usize = 13;
+
 /// Stages 1.. of one step from `(t, y)` with `k[0] = f(t, y)` given: fills
 /// `k`, the new solution `y_new` and f at it (the last stage). On failure,
 /// the time of the evaluation that failed.
@@ -99,24 +134,22 @@ fn stages<M: Model, P: EmbeddedPair>(
     h: f64,
     y: &M::State,
     k: &mut [M::State],
-    stage: &mut M::State,
+    s: &mut M::State,
     y_new: &mut M::State,
 ) -> Result<(), (f64, EvalError)> {
-    let (a, c) = (P::coefficients(), P::nodes());
-    for s in 1..P::STAGES {
-        let (done, rest) = k.split_at_mut(s);
-        if s + 1 == P::STAGES {
-            combine(y, h, a[s], done, y_new);
-            rhs.call(t + h, y_new.as_ref(), rest[0].as_mut())
-                .map_err(|cause| (t + h, cause))?;
-        } else {
-            combine(y, h, a[s], done, stage);
-            let ts = t + c[s] * h;
-            rhs.call(ts, stage.as_ref(), rest[0].as_mut())
-                .map_err(|cause| (ts, cause))?;
-        }
-    }
-    Ok(())
+    const { assert!(P::STAGES <= MAX_STAGES) };
+    stage::<M, P, 1>(rhs, t, h, y, k, s, y_new)?;
+    stage::<M, P, 2>(rhs, t, h, y, k, s, y_new)?;
+    stage::<M, P, 3>(rhs, t, h, y, k, s, y_new)?;
+    stage::<M, P, 4>(rhs, t, h, y, k, s, y_new)?;
+    stage::<M, P, 5>(rhs, t, h, y, k, s, y_new)?;
+    stage::<M, P, 6>(rhs, t, h, y, k, s, y_new)?;
+    stage::<M, P, 7>(rhs, t, h, y, k, s, y_new)?;
+    stage::<M, P, 8>(rhs, t, h, y, k, s, y_new)?;
+    stage::<M, P, 9>(rhs, t, h, y, k, s, y_new)?;
+    stage::<M, P, 10>(rhs, t, h, y, k, s, y_new)?;
+    stage::<M, P, 11>(rhs, t, h, y, k, s, y_new)?;
+    stage::<M, P, 12>(rhs, t, h, y, k, s, y_new)
 }
 
 /// How a run of an explicit pair ended.

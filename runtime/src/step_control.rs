@@ -32,12 +32,25 @@ impl Default for PiState {
     }
 }
 
+/// `x^e` for the controller's exponents: DOP853's 1/8 by three square
+/// roots and β = 0 as 1, within two ulps of `powf` and without the libm
+/// call that took a tenth of DOP853's time on two-body problems.
+fn power(x: f64, e: f64) -> f64 {
+    if e == 0.0 {
+        1.0
+    } else if e == 0.125 {
+        x.sqrt().sqrt().sqrt()
+    } else {
+        x.powf(e)
+    }
+}
+
 impl Controller {
     /// The factor `h_new / h` after a step with scaled error `err`, and the
     /// controller state to keep if the step is accepted.
     pub fn factor(&self, err: f64, state: PiState) -> (f64, PiState) {
-        let fac11 = err.powf(self.exponent);
-        let fac = fac11 / state.previous_error.powf(self.beta);
+        let fac11 = power(err, self.exponent);
+        let fac = fac11 / power(state.previous_error, self.beta);
         let fac = (fac / self.safety).clamp(1.0 / self.max_factor, 1.0 / self.min_factor);
         (
             1.0 / fac,
@@ -49,7 +62,7 @@ impl Controller {
 
     /// The factor after a rejected step: no PI memory, only shrinking.
     pub fn rejected_factor(&self, err: f64) -> f64 {
-        let fac11 = err.powf(self.exponent);
+        let fac11 = power(err, self.exponent);
         1.0 / (fac11 / self.safety).min(1.0 / self.min_factor)
     }
 }
@@ -122,6 +135,22 @@ pub fn initial_step(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The shortcuts agree with `powf` to two ulps from 1e-300 to 1e300.
+    #[test]
+    fn controller_powers_agree_with_powf() {
+        for i in 0..=6000 {
+            let x = 10f64.powf(-300.0 + 0.1 * i as f64) * 1.2345;
+            for e in [0.0, 0.125] {
+                let (fast, libm) = (power(x, e), x.powf(e));
+                assert!(
+                    (fast - libm).abs() <= 2.0 * f64::EPSILON * libm,
+                    "{x}^{e}: {fast} vs {libm}"
+                );
+            }
+        }
+        assert_eq!(power(0.0, 0.125), 0.0);
+    }
 
     #[test]
     fn controller_bounds_the_change_of_step() {
