@@ -305,22 +305,36 @@ impl EmbeddedPair for Dop853 {
     fn error<S: StateVector>(h: f64, k: &[S], sk: &S) -> f64 {
         let sk = sk.as_ref();
         let n = sk.len();
-        // Slices of a known length: no bounds checks in the loop below.
-        let ks: [&[f64]; 12] = std::array::from_fn(|j| &k[j].as_ref()[..n]);
-        let (mut err5, mut err3) = (0.0, 0.0);
         // Stages 2–5 have zero weight in both sums (`dop853.f` leaves them
-        // out too); adding the others in the same order gives the same sums.
+        // out too). The sums are accumulated stage by stage over whole
+        // vectors, then divided by the scale in one pass: each loop
+        // vectorises (the outer solar system spent 16 % of its time here
+        // component by component); per component the terms are added in
+        // the same order as in `dop853.f`.
+        let (mut e5, mut e3) = (S::zeros(), S::zeros());
+        let (e5s, e3s) = (&mut e5.as_mut()[..n], &mut e3.as_mut()[..n]);
         let b_row = A[12];
-        for i in 0..n {
-            let (mut e5, mut b) = (0.0, 0.0);
-            for j in NONZERO_WEIGHTS {
-                let kj = ks[j][i];
-                e5 += E5[j] * kj;
-                b += b_row[j] * kj;
+        for j in NONZERO_WEIGHTS {
+            let kj = &k[j].as_ref()[..n];
+            for ((e, b), kv) in e5s.iter_mut().zip(e3s.iter_mut()).zip(kj) {
+                *e += E5[j] * kv;
+                *b += b_row[j] * kv;
             }
-            let e3 = b - BHH[0] * ks[0][i] - BHH[1] * ks[8][i] - BHH[2] * ks[11][i];
-            err5 += (e5 / sk[i]).powi(2);
-            err3 += (e3 / sk[i]).powi(2);
+        }
+        let (k0, k8, k11) = (
+            &k[0].as_ref()[..n],
+            &k[8].as_ref()[..n],
+            &k[11].as_ref()[..n],
+        );
+        for i in 0..n {
+            let e3 = e3s[i] - BHH[0] * k0[i] - BHH[1] * k8[i] - BHH[2] * k11[i];
+            e5s[i] /= sk[i];
+            e3s[i] = e3 / sk[i];
+        }
+        let (mut err5, mut err3) = (0.0, 0.0);
+        for (e5, e3) in e5s.iter().zip(e3s.iter()) {
+            err5 += e5 * e5;
+            err3 += e3 * e3;
         }
         if err5 == 0.0 && err3 == 0.0 {
             return 0.0;
