@@ -215,7 +215,7 @@ struct Target {
     what: &'static str,
 }
 
-const TARGETS: [Target; 3] = [
+const TARGETS: [Target; 5] = [
     Target {
         problems: &["kepler", "arenstorf", "outer_solar_system"],
         ours: "daegen Taylor",
@@ -231,6 +231,22 @@ const TARGETS: [Target; 3] = [
         tol_at_most: 1e-12,
         max_ratio: 0.2,
         what: "Taylor ≥ 5× faster than ode_solvers DOP853 (tol ≤ 1e-12)",
+    },
+    Target {
+        problems: &["kepler", "arenstorf"],
+        ours: "daegen DOPRI5",
+        peer: "ode_solvers Dopri5",
+        tol_at_most: 1.0,
+        max_ratio: 1.0,
+        what: "DOPRI5 ≤ 1× ode_solvers Dopri5",
+    },
+    Target {
+        problems: &["kepler", "arenstorf", "outer_solar_system"],
+        ours: "daegen DOP853",
+        peer: "ode_solvers Dop853",
+        tol_at_most: 1.0,
+        max_ratio: 1.0,
+        what: "DOP853 ≤ 1× ode_solvers Dop853",
     },
     Target {
         problems: &["van_der_pol", "robertson", "hires"],
