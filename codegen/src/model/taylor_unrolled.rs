@@ -99,48 +99,87 @@ impl Term {
     }
 }
 
+/// One term `weight·a·b` of a sum (a missing factor is a zero one), and
+/// whether it reads a coefficient of the order being computed.
+type Triple = (f64, Option<TokenStream>, Option<TokenStream>, bool);
+
 /// `Σ weight·a·b` over the non-zero terms, or `0.0`.
-fn sum(terms: Vec<(f64, Option<TokenStream>, Option<TokenStream>)>) -> TokenStream {
+fn sum(terms: Vec<Triple>) -> TokenStream {
     sum_with(terms, Vec::new())
 }
 
+/// A term as a product of its factors (weight first), or a single value.
+fn term(weight: f64, a: TokenStream, b: TokenStream) -> Term {
+    let mut factors: Vec<TokenStream> = [a, b]
+        .into_iter()
+        .filter(|f| f.to_string() != "1.0")
+        .collect();
+    if weight.abs() != 1.0 {
+        factors.insert(0, float(weight.abs()));
+    }
+    if factors.is_empty() {
+        factors.push(quote!(1.0f64));
+    }
+    if weight < 0.0 {
+        let first = &factors[0];
+        factors[0] = quote!((-#first));
+    }
+    let last = factors.pop().unwrap_or_default();
+    match factors.len() {
+        0 => Term::Single(last),
+        1 => Term::Product(factors.pop().unwrap_or_default(), last),
+        _ => {
+            let first = factors.remove(0);
+            let product = factors.into_iter().fold(first, |acc, f| quote!(#acc * #f));
+            Term::Product(quote!((#product)), last)
+        }
+    }
+}
+
 /// `Σ weight·a·b` over the non-zero terms plus the `extra` terms, or `0.0`.
-fn sum_with(
-    terms: Vec<(f64, Option<TokenStream>, Option<TokenStream>)>,
-    extra: Vec<Term>,
-) -> TokenStream {
-    let mut out: Vec<Term> = Vec::new();
-    for (weight, a, b) in terms {
+///
+/// The terms that read only earlier orders form a balanced tree, which the
+/// processor computes while the current order's first coefficients are
+/// still being produced; the terms that read the current order (and the
+/// `extra` ones) are added last, one fused multiply-add each. The chain
+/// from one order's coefficient to the next order's is then a few
+/// operations long instead of log₂(k) + 1 levels per recurrence, which is
+/// what bounds small jets (the recurrences of one order depend on one
+/// another, so the processor cannot overlap them).
+fn sum_with(terms: Vec<Triple>, extra: Vec<Term>) -> TokenStream {
+    let (mut old, mut fresh): (Vec<Term>, Vec<Term>) = (Vec::new(), Vec::new());
+    for (weight, a, b, is_fresh) in terms {
         let (Some(a), Some(b)) = (a, b) else { continue };
         if weight == 0.0 {
             continue;
         }
-        let mut factors: Vec<TokenStream> = [a, b]
-            .into_iter()
-            .filter(|f| f.to_string() != "1.0")
-            .collect();
-        if weight.abs() != 1.0 {
-            factors.insert(0, float(weight.abs()));
+        let t = term(weight, a, b);
+        if is_fresh {
+            fresh.push(t);
+        } else {
+            old.push(t);
         }
-        if factors.is_empty() {
-            factors.push(quote!(1.0f64));
-        }
-        if weight < 0.0 {
-            let first = &factors[0];
-            factors[0] = quote!((-#first));
-        }
-        let last = factors.pop().unwrap_or_default();
-        out.push(match factors.len() {
-            0 => Term::Single(last),
-            1 => Term::Product(factors.pop().unwrap_or_default(), last),
-            _ => {
-                let first = factors.remove(0);
-                let product = factors.into_iter().fold(first, |acc, f| quote!(#acc * #f));
-                Term::Product(quote!((#product)), last)
+    }
+    fresh.extend(extra);
+    let mut acc = if old.is_empty() {
+        None
+    } else {
+        Some(tree(old))
+    };
+    for t in fresh {
+        acc = Some(match (acc, t) {
+            (None, t) => t.tokens(),
+            (Some(acc), Term::Product(a, b)) => {
+                quote!(::daegen::runtime::taylor_tape::mul_add(#a, #b, #acc))
             }
+            (Some(acc), Term::Single(v)) => quote!((#acc + #v)),
         });
     }
-    out.extend(extra);
+    acc.unwrap_or(quote!(0.0f64))
+}
+
+/// The sum of `out` as a balanced tree of fused pairs.
+fn tree(out: Vec<Term>) -> TokenStream {
     // Leaves of the tree in pairs, a·b + c fused where the target has FMA.
     let mut leaves = Vec::with_capacity(out.len().div_ceil(2));
     let mut it = out.into_iter();
@@ -271,49 +310,59 @@ fn recurrence_at(l: &Layout, v: usize, r: Recurrence, k: usize) -> TokenStream {
         Recurrence::Add(..) | Recurrence::Scale(..) | Recurrence::Quotient(..) => {
             return TokenStream::new()
         }
-        Recurrence::Mul(a, b) => sum((0..=k).map(|j| (1.0, c(a, j), c(b, k - j))).collect()),
-        Recurrence::Square(a) => {
-            let twice = sum((0..k)
-                .filter(|&j| j < k - j)
-                .map(|j| (2.0, c(a, j), c(a, k - j)))
-                .collect());
-            if k % 2 == 0 {
-                let middle = c(a, k / 2);
-                quote!(#twice + #middle * #middle)
-            } else {
-                twice
-            }
-        }
+        Recurrence::Mul(a, b) => sum((0..=k)
+            .map(|j| (1.0, c(a, j), c(b, k - j), j == 0 || j == k))
+            .collect()),
+        Recurrence::Square(a) => sum((0..=k)
+            .filter(|&j| j <= k - j)
+            .map(|j| {
+                (
+                    if j < k - j { 2.0 } else { 1.0 },
+                    c(a, j),
+                    c(a, k - j),
+                    j == 0,
+                )
+            })
+            .collect()),
         Recurrence::Div(a, d) => {
             // u = a/d: u^[k] = (a^[k] − Σ_{j<k} u^[j] d^[k−j]) / d^[0].
             let a = c(a, k).unwrap_or(quote!(0.0f64));
-            let s = sum((0..k).map(|j| (1.0, u(j), c(d, k - j))).collect());
+            let s = sum((0..k).map(|j| (1.0, u(j), c(d, k - j), j == 0)).collect());
             let inv = l.reciprocal(v);
             quote!((#a - (#s)) * #inv)
         }
         Recurrence::Pow(a, e) => {
             // u^[k] = Σ_{j<k} (k·e − j·(e+1)) u^[j] a^[k−j] / (k a^[0]).
             let s = sum((0..k)
-                .map(|j| ((kf * e - j as f64 * (e + 1.0)) / kf, u(j), c(a, k - j)))
+                .map(|j| {
+                    (
+                        (kf * e - j as f64 * (e + 1.0)) / kf,
+                        u(j),
+                        c(a, k - j),
+                        j == 0,
+                    )
+                })
                 .collect());
             let inv = l.reciprocal(v);
             quote!((#s) * #inv)
         }
         Recurrence::Exp(a) => sum((1..=k)
-            .map(|j| (j as f64 / kf, c(a, j), u(k - j)))
+            .map(|j| (j as f64 / kf, c(a, j), u(k - j), j == k))
             .collect()),
         Recurrence::Ln(a) => {
             let ak = c(a, k).unwrap_or(quote!(0.0f64));
-            let s = sum((1..k).map(|j| (j as f64 / kf, u(j), c(a, k - j))).collect());
+            let s = sum((1..k)
+                .map(|j| (j as f64 / kf, u(j), c(a, k - j), false))
+                .collect());
             let inv = l.reciprocal(v);
             quote!((#ak - (#s)) * #inv)
         }
         Recurrence::SinCos(a) | Recurrence::SinhCosh(a) => {
             let s = sum((1..=k)
-                .map(|j| (j as f64 / kf, c(a, j), pair(k - j)))
+                .map(|j| (j as f64 / kf, c(a, j), pair(k - j), j == k))
                 .collect());
             let co = sum((1..=k)
-                .map(|j| (j as f64 / kf, c(a, j), u(k - j)))
+                .map(|j| (j as f64 / kf, c(a, j), u(k - j), j == k))
                 .collect());
             let second = l.slot(l.var_row(v + 1), k);
             return if let Recurrence::SinCos(_) = r {
@@ -329,19 +378,23 @@ fn recurrence_at(l: &Layout, v: usize, r: Recurrence, k: usize) -> TokenStream {
                 InverseFunction::Acos => quote!(-(#ak)),
                 _ => ak,
             };
-            let s = sum((1..k).map(|j| (j as f64 / kf, u(j), c(d, k - j))).collect());
+            let s = sum((1..k)
+                .map(|j| (j as f64 / kf, u(j), c(d, k - j), false))
+                .collect());
             let inv = l.reciprocal(v);
             quote!((#ak - (#s)) * #inv)
         }
         Recurrence::Atan2(y, x, d) => {
             // d·u' = x·y' − y·x'.
             let plus = sum((1..=k)
-                .map(|j| (j as f64 / kf, c(y, j), c(x, k - j)))
+                .map(|j| (j as f64 / kf, c(y, j), c(x, k - j), j == k))
                 .collect());
             let minus = sum((1..=k)
-                .map(|j| (j as f64 / kf, c(x, j), c(y, k - j)))
+                .map(|j| (j as f64 / kf, c(x, j), c(y, k - j), j == k))
                 .collect());
-            let s = sum((1..k).map(|j| (j as f64 / kf, u(j), c(d, k - j))).collect());
+            let s = sum((1..k)
+                .map(|j| (j as f64 / kf, u(j), c(d, k - j), false))
+                .collect());
             let inv = l.reciprocal(v);
             quote!(((#plus) - (#minus) - (#s)) * #inv)
         }
@@ -423,21 +476,33 @@ fn folded_sum(l: &Layout, weights: &Weights, terms: &[LinearTerm], k: usize) -> 
     let mut extra = Vec::new();
     for t in terms {
         let products: Vec<_> = match t.base {
-            Base::Operand(o) => vec![(1.0, c(o, k), Some(quote!(1.0)))],
+            Base::Operand(o) => vec![(1.0, c(o, k), Some(quote!(1.0)), true)],
             Base::Square(a) => (0..=k)
                 .filter(|&j| j <= k - j)
-                .map(|j| (if j < k - j { 2.0 } else { 1.0 }, c(a, j), c(a, k - j)))
+                .map(|j| {
+                    (
+                        if j < k - j { 2.0 } else { 1.0 },
+                        c(a, j),
+                        c(a, k - j),
+                        j == 0,
+                    )
+                })
                 .collect(),
-            Base::Product(a, b) => (0..=k).map(|j| (1.0, c(a, j), c(b, k - j))).collect(),
+            Base::Product(a, b) => (0..=k)
+                .map(|j| (1.0, c(a, j), c(b, k - j), j == 0 || j == k))
+                .collect(),
         };
         match weights.token(&t.weight) {
             None => flat.extend(
                 products
                     .into_iter()
-                    .map(|(w, a, b)| (w * t.weight.literal, a, b)),
+                    .map(|(w, a, b, fresh)| (w * t.weight.literal, a, b, fresh)),
             ),
             Some(weight) => {
-                if products.iter().any(|(_, a, b)| a.is_some() && b.is_some()) {
+                if products
+                    .iter()
+                    .any(|(_, a, b, _)| a.is_some() && b.is_some())
+                {
                     let inner = sum(products);
                     extra.push(Term::Product(weight, quote!((#inner))));
                 }
