@@ -25,12 +25,14 @@ fn run<M: Model + Clone + Send + Sync + 'static>(
     t1: f64,
     opts: &Options,
     repeats: usize,
-) {
+) -> Vec<f64> {
+    let mut last = Vec::new();
     let mut steps = 0;
     let start = Instant::now();
     for _ in 0..repeats {
         let sol = model.simulate(0.0, t1, opts).expect("solve");
         steps = sol.stats().steps;
+        last = sol.final_state().to_vec();
     }
     let per = start.elapsed().as_secs_f64() / repeats as f64;
     println!(
@@ -38,12 +40,17 @@ fn run<M: Model + Clone + Send + Sync + 'static>(
         per,
         per / steps as f64
     );
+    last
 }
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     if args[1] == "tape" {
-        return dump_tape(&OuterSolarSystem::default());
+        return match args[2].as_str() {
+            "arenstorf" => dump_tape(&Arenstorf::default()),
+            "kepler" => dump_tape(&Kepler::default()),
+            _ => dump_tape(&OuterSolarSystem::default()),
+        };
     }
     let (model, method, tol) = (&args[1], &args[2], args[3].parse::<f64>().unwrap());
     let repeats = args.get(4).map_or(1000, |r| r.parse().unwrap());
@@ -56,14 +63,29 @@ fn main() {
         other => panic!("unknown method {other}"),
     };
     match model.as_str() {
-        "kepler" => run(
-            &Kepler::default(),
-            20.0 * std::f64::consts::PI,
-            &opts,
-            repeats,
-        ),
-        "arenstorf" => run(&Arenstorf::default(), ARENSTORF_T, &opts, repeats),
-        "oss" => run(&OuterSolarSystem::default(), 20000.0, &opts, repeats),
+        "kepler" => {
+            let t1 = 20.0 * std::f64::consts::PI;
+            let y = run(&Kepler::default(), t1, &opts, repeats);
+            let exact = kepler_exact(t1);
+            let error = y
+                .iter()
+                .zip(exact)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            println!("error at t1 {error:.2e}");
+        }
+        "arenstorf" => {
+            let y = run(&Arenstorf::default(), ARENSTORF_T, &opts, repeats);
+            let error = y
+                .iter()
+                .zip(ARENSTORF_Y0)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            println!("error at t1 {error:.2e}");
+        }
+        "oss" => {
+            run(&OuterSolarSystem::default(), 20000.0, &opts, repeats);
+        }
         other => panic!("unknown model {other}"),
     }
 }

@@ -5,7 +5,9 @@
 //! Run: `cd bench && cargo run --release` (≈ 10 min; `--quick` stops at
 //! tolerance 1e-8 with fewer repeats; `--no-python` leaves out SciPy and
 //! heyoka; `--no-rustc` skips timing rustc on the generated code; `--only
-//! name` runs one model; `--dae` prints the DAE tables instead). Writes
+//! name` runs one model; `--dae` prints the DAE tables instead;
+//! `--versus-heyoka` times our Taylor method and heyoka in alternation,
+//! `results/versus_heyoka.md`). Writes
 //! `results/results.csv`, one SVG per problem and `results/summary.md`.
 //!
 //! Errors are max |y − ref| / max(1, |ref|) at the end time against exact or
@@ -13,6 +15,7 @@
 
 mod dae;
 mod peers;
+mod versus;
 
 use daegen::prelude::*;
 use daegen_workprecision::{matched_ratio, Benchmark, Problem, Record, Runner, Settings};
@@ -327,6 +330,27 @@ fn machine() -> String {
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let has = |flag: &str| args.iter().any(|a| a == flag);
+    if has("--versus-heyoka") {
+        // Taylor vs heyoka timed in alternation (see versus.rs).
+        let (tolerances, rounds) = ([1e-12, 1e-13, 1e-14], 7);
+        let mut rows = Vec::new();
+        for run in [
+            versus::versus_heyoka::<Kepler>,
+            versus::versus_heyoka::<Arenstorf>,
+            versus::versus_heyoka::<OuterSolarSystem>,
+        ] {
+            match run(&tolerances, rounds) {
+                Ok(r) => rows.extend(r),
+                Err(e) => eprintln!("versus heyoka: {e}"),
+            }
+        }
+        let text = versus::markdown(&rows, rounds);
+        let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results/versus_heyoka.md");
+        let _ = std::fs::write(&out, &text);
+        eprintln!("\r\x1b[2Kdone");
+        println!("{text}");
+        return;
+    }
     if has("--dae") {
         dae::dae_section(&(4..=10).map(|k| 10f64.powi(-k)).collect::<Vec<_>>());
         return;

@@ -229,7 +229,8 @@ pub struct Python {
 const PEER_SCRIPT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/peers/peer.py");
 
 impl Python {
-    fn call(
+    /// Runs peer.py once and returns the JSON it printed.
+    pub fn call(
         &self,
         problem: &str,
         tol: f64,
@@ -268,7 +269,8 @@ impl Python {
     }
 }
 
-fn field(text: &str, name: &str) -> Option<f64> {
+/// A number field of peer.py's JSON.
+pub fn field(text: &str, name: &str) -> Option<f64> {
     let i = text.find(&format!("\"{name}\""))?;
     let rest = &text[i + name.len() + 3..];
     let end = rest.find([',', '}'])?;

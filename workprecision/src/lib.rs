@@ -27,5 +27,5 @@ pub use plot::{line_chart_svg, work_precision_svg, Series};
 pub use record::{parse_csv, to_csv, Record};
 pub use runner::{Problem, Runner};
 pub use summary::{matched_ratio, summary_markdown, time_at_error};
-pub use sweep::{mixed_error, sweep};
+pub use sweep::{mixed_error, reference_values, sweep};
 pub use timing::{median_time, Settings};

@@ -53,7 +53,7 @@ fn with_step(method: Method, h: f64) -> Option<Method> {
 }
 
 /// The reference values at the end time: given, or a run of another method.
-pub(crate) fn reference_values<M: Benchmark>(bench: &Bench) -> Result<Vec<f64>, String> {
+pub fn reference_values<M: Benchmark>(bench: &Bench) -> Result<Vec<f64>, String> {
     match &bench.reference {
         Reference::Values(v) => Ok(v.clone()),
         Reference::Run { method, tol } => {
