@@ -160,7 +160,9 @@ fn term(weight: f64, a: TokenStream, b: TokenStream) -> Term {
 /// log₂(k) + 1, which is what bounds small jets (Kepler 25 % faster). The terms of this order are also the largest of a
 /// convolution (they hold the coefficient 0 of the other factor), and adding
 /// them last rather than in the tree keeps Kepler's error at tolerance
-/// 1e-14 at 1.4e-11 (3.5e-10 with the states' terms in the tree).
+/// 1e-14 at 1.4e-11 (3.5e-10 with the states' terms in the tree), built
+/// for a host with FMA as the benchmark is; it is a rounding floor, so it
+/// moves with the target (about 1e-10 without FMA) and no test pins it.
 fn sum_with(terms: Vec<Triple>, extra: Vec<Term>) -> TokenStream {
     let (mut old, mut fresh): (Vec<Term>, Vec<(u8, Term)>) = (Vec::new(), Vec::new());
     for (weight, a, b, rank) in terms {
