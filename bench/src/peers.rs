@@ -226,6 +226,10 @@ pub struct Python {
     pub solver: &'static str,
 }
 
+/// heyoka's solves take milliseconds: a median over this many is as steady
+/// as our own timing (up to 200 repeats in 0.5 s).
+pub const HEYOKA_REPEATS: usize = 51;
+
 const PEER_SCRIPT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/peers/peer.py");
 
 impl Python {
@@ -304,11 +308,9 @@ impl Peer for Python {
     fn run(&self, p: &PeerProblem, tol: f64, settings: &Settings) -> Result<Record, String> {
         let problem = p.peer.unwrap_or_default();
         let atol = (p.atol_factor != 1.0).then_some(tol * p.atol_factor);
-        // heyoka's solves take milliseconds: a median over 51 of them is as
-        // steady as our own timing (up to 200 repeats in 0.5 s); SciPy's
-        // take up to a second each.
+        // SciPy's solves take up to a second each.
         let repeat = match self.solver {
-            "heyoka" => settings.min_repeats.max(51),
+            "heyoka" => settings.min_repeats.max(HEYOKA_REPEATS),
             _ => settings.min_repeats.max(3),
         };
         let text = self.call(problem, tol, atol, repeat)?;

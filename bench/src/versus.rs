@@ -2,12 +2,12 @@
 //! another process, so the sweep times it seconds or minutes after us, and
 //! on this shared machine the load moves sub-millisecond solves by ±40 %
 //! in that time. Here each round times ours (median of repeats) and then
-//! heyoka (median of 51 solves in peer.py), and the ratio is taken per
+//! heyoka (median of `HEYOKA_REPEATS` solves in peer.py), and the ratio is taken per
 //! round; the median over rounds is the figure. Both take the same steps
 //! at the same tolerance (same order, same step rule), so equal tolerance
 //! is equal error; the table shows both errors to confirm it.
 
-use crate::peers::{field, Python};
+use crate::peers::{field, Python, HEYOKA_REPEATS};
 use daegen::prelude::*;
 use daegen_workprecision::{median_time, mixed_error, reference_values, Benchmark, Settings};
 
@@ -57,7 +57,7 @@ pub fn versus_heyoka<M: Benchmark>(tolerances: &[f64], rounds: usize) -> Result<
             );
             let (ours, sol) = median_time(&settings, || model.simulate(0.0, bench.t_end, &options));
             let sol = sol.map_err(|e| e.to_string())?;
-            let text = heyoka.call(peer, tol, None, 51)?;
+            let text = heyoka.call(peer, tol, None, HEYOKA_REPEATS)?;
             let theirs = field(&text, "solve_s").ok_or("peer.py printed no solve_s")?;
             row.ratios.push(ours / theirs);
             row.ours_error = mixed_error(sol.final_state(), &reference);
@@ -74,20 +74,19 @@ pub fn versus_heyoka<M: Benchmark>(tolerances: &[f64], rounds: usize) -> Result<
 /// The rows as a markdown table.
 pub fn markdown(rows: &[Row], rounds: usize) -> String {
     let mut s = format!(
-        "# Taylor vs heyoka, timed in alternation\n\n{rounds} rounds per tolerance; each round: our median solve time, then heyoka's (median of 51 solves); ratio = ours / heyoka's per round.\n\n| problem | tol | median ratio (range) | steps ours / heyoka | error ours / heyoka |\n|---|---|---|---|---|\n"
+        "# Taylor vs heyoka, timed in alternation\n\n{rounds} rounds per tolerance; each round: our median solve time, then heyoka's (median of {HEYOKA_REPEATS} solves); ratio = ours / heyoka's per round.\n\n| problem | tol | median ratio (range) | steps ours / heyoka | error ours / heyoka |\n|---|---|---|---|---|\n"
     );
     for r in rows {
-        let median = r.ratios[r.ratios.len() / 2];
+        let (Some(first), Some(median), Some(last)) = (
+            r.ratios.first(),
+            r.ratios.get(r.ratios.len() / 2),
+            r.ratios.last(),
+        ) else {
+            continue;
+        };
         s.push_str(&format!(
-            "| {} | {:.0e} | {median:.2}× ({:.2}–{:.2}) | {} / {} | {:.1e} / {:.1e} |\n",
-            r.problem,
-            r.tol,
-            r.ratios[0],
-            r.ratios[r.ratios.len() - 1],
-            r.ours_steps,
-            r.heyoka_steps,
-            r.ours_error,
-            r.heyoka_error
+            "| {} | {:.0e} | {median:.2}× ({first:.2}–{last:.2}) | {} / {} | {:.1e} / {:.1e} |\n",
+            r.problem, r.tol, r.ours_steps, r.heyoka_steps, r.ours_error, r.heyoka_error
         ));
     }
     s

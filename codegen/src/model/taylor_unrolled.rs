@@ -243,13 +243,49 @@ fn pairwise(mut terms: Vec<TokenStream>) -> TokenStream {
     terms.pop().unwrap_or_default()
 }
 
+/// The terms `w(j)·x^[j]·y^[k−j]` for `j` in `range`, each with when it
+/// can be added (see [`Layout::fresh`]).
+fn convolution(
+    l: &Layout,
+    x: Operand,
+    y: Operand,
+    k: usize,
+    range: impl Iterator<Item = usize>,
+    w: impl Fn(usize) -> f64,
+) -> Vec<Triple> {
+    range
+        .map(|j| {
+            let rank = l.fresh(x, j, k).max(l.fresh(y, k - j, k));
+            (w(j), l.coefficient(x, j), l.coefficient(y, k - j), rank)
+        })
+        .collect()
+}
+
+/// The terms of coefficient `k` of a base: the operand's coefficient, or
+/// the Cauchy product (a square by its half-sum, each cross term twice).
+fn base_terms(l: &Layout, base: Base, k: usize) -> Vec<Triple> {
+    match base {
+        Base::Operand(o) => vec![(
+            1.0,
+            l.coefficient(o, k),
+            Some(quote!(1.0)),
+            l.fresh(o, k, k),
+        )],
+        Base::Square(a) => convolution(l, a, a, k, (0..=k).filter(|&j| j <= k - j), |j| {
+            if j < k - j {
+                2.0
+            } else {
+                1.0
+            }
+        }),
+        Base::Product(a, b) => convolution(l, a, b, k, 0..=k, |_| 1.0),
+    }
+}
+
 /// `let` statements for coefficient `k` of u-variable `v` (and of `v + 1`
 /// for the sin/cos and sinh/cosh pairs).
 fn recurrence_at(l: &Layout, v: usize, r: Recurrence, k: usize) -> TokenStream {
-    let u = |k: usize| l.coefficient(Operand::Var(v), k);
-    let pair = |k: usize| l.coefficient(Operand::Var(v + 1), k);
     let c = |o: Operand, k: usize| l.coefficient(o, k);
-    let fresh = |o: Operand, index: usize| l.fresh(o, index, k);
     let name = l.slot(l.var_row(v), k);
     let kf = k as f64;
     if k == 0 {
@@ -327,66 +363,38 @@ fn recurrence_at(l: &Layout, v: usize, r: Recurrence, k: usize) -> TokenStream {
         };
         return quote!(#name = #value;);
     }
+    let own = Operand::Var(v);
+    let by_k = |j: usize| j as f64 / kf;
     let value = match r {
         Recurrence::Add(..) | Recurrence::Scale(..) | Recurrence::Quotient(..) => {
             return TokenStream::new()
         }
-        Recurrence::Mul(a, b) => sum((0..=k)
-            .map(|j| (1.0, c(a, j), c(b, k - j), fresh(a, j).max(fresh(b, k - j))))
-            .collect()),
-        Recurrence::Square(a) => sum((0..=k)
-            .filter(|&j| j <= k - j)
-            .map(|j| {
-                (
-                    if j < k - j { 2.0 } else { 1.0 },
-                    c(a, j),
-                    c(a, k - j),
-                    fresh(a, k - j),
-                )
-            })
-            .collect()),
+        Recurrence::Mul(a, b) => sum(base_terms(l, Base::Product(a, b), k)),
+        Recurrence::Square(a) => sum(base_terms(l, Base::Square(a), k)),
         Recurrence::Div(a, d) => {
             // u = a/d: u^[k] = (a^[k] − Σ_{j<k} u^[j] d^[k−j]) / d^[0].
             let a = c(a, k).unwrap_or(quote!(0.0f64));
-            let s = sum((0..k)
-                .map(|j| (1.0, u(j), c(d, k - j), fresh(d, k - j)))
-                .collect());
+            let s = sum(convolution(l, own, d, k, 0..k, |_| 1.0));
             let inv = l.reciprocal(v);
             quote!((#a - (#s)) * #inv)
         }
         Recurrence::Pow(a, e) => {
             // u^[k] = Σ_{j<k} (k·e − j·(e+1)) u^[j] a^[k−j] / (k a^[0]).
-            let s = sum((0..k)
-                .map(|j| {
-                    (
-                        (kf * e - j as f64 * (e + 1.0)) / kf,
-                        u(j),
-                        c(a, k - j),
-                        fresh(a, k - j),
-                    )
-                })
-                .collect());
+            let w = |j: usize| (kf * e - j as f64 * (e + 1.0)) / kf;
+            let s = sum(convolution(l, own, a, k, 0..k, w));
             let inv = l.reciprocal(v);
             quote!((#s) * #inv)
         }
-        Recurrence::Exp(a) => sum((1..=k)
-            .map(|j| (j as f64 / kf, c(a, j), u(k - j), fresh(a, j)))
-            .collect()),
+        Recurrence::Exp(a) => sum(convolution(l, a, own, k, 1..=k, by_k)),
         Recurrence::Ln(a) => {
             let ak = c(a, k).unwrap_or(quote!(0.0f64));
-            let s = sum((1..k)
-                .map(|j| (j as f64 / kf, u(j), c(a, k - j), 0))
-                .collect());
+            let s = sum(convolution(l, own, a, k, 1..k, by_k));
             let inv = l.reciprocal(v);
             quote!((#ak - (#s)) * #inv)
         }
         Recurrence::SinCos(a) | Recurrence::SinhCosh(a) => {
-            let s = sum((1..=k)
-                .map(|j| (j as f64 / kf, c(a, j), pair(k - j), fresh(a, j)))
-                .collect());
-            let co = sum((1..=k)
-                .map(|j| (j as f64 / kf, c(a, j), u(k - j), fresh(a, j)))
-                .collect());
+            let s = sum(convolution(l, a, Operand::Var(v + 1), k, 1..=k, by_k));
+            let co = sum(convolution(l, a, own, k, 1..=k, by_k));
             let second = l.slot(l.var_row(v + 1), k);
             return if let Recurrence::SinCos(_) = r {
                 quote!(#name = #s; #second = -(#co);)
@@ -401,37 +409,15 @@ fn recurrence_at(l: &Layout, v: usize, r: Recurrence, k: usize) -> TokenStream {
                 InverseFunction::Acos => quote!(-(#ak)),
                 _ => ak,
             };
-            let s = sum((1..k)
-                .map(|j| (j as f64 / kf, u(j), c(d, k - j), 0))
-                .collect());
+            let s = sum(convolution(l, own, d, k, 1..k, by_k));
             let inv = l.reciprocal(v);
             quote!((#ak - (#s)) * #inv)
         }
         Recurrence::Atan2(y, x, d) => {
             // d·u' = x·y' − y·x'.
-            let plus = sum((1..=k)
-                .map(|j| {
-                    (
-                        j as f64 / kf,
-                        c(y, j),
-                        c(x, k - j),
-                        fresh(y, j).max(fresh(x, k - j)),
-                    )
-                })
-                .collect());
-            let minus = sum((1..=k)
-                .map(|j| {
-                    (
-                        j as f64 / kf,
-                        c(x, j),
-                        c(y, k - j),
-                        fresh(x, j).max(fresh(y, k - j)),
-                    )
-                })
-                .collect());
-            let s = sum((1..k)
-                .map(|j| (j as f64 / kf, u(j), c(d, k - j), 0))
-                .collect());
+            let plus = sum(convolution(l, y, x, k, 1..=k, by_k));
+            let minus = sum(convolution(l, x, y, k, 1..=k, by_k));
+            let s = sum(convolution(l, own, d, k, 1..k, by_k));
             let inv = l.reciprocal(v);
             quote!(((#plus) - (#minus) - (#s)) * #inv)
         }
@@ -508,34 +494,10 @@ impl Weights {
 /// convolutions of folded squares and products) flattened into one
 /// pairwise sum, the others multiplied by their weight from `c`.
 fn folded_sum(l: &Layout, weights: &Weights, terms: &[LinearTerm], k: usize) -> TokenStream {
-    let c = |o: Operand, k: usize| l.coefficient(o, k);
     let mut flat = Vec::new();
     let mut extra = Vec::new();
     for t in terms {
-        let products: Vec<_> = match t.base {
-            Base::Operand(o) => vec![(1.0, c(o, k), Some(quote!(1.0)), l.fresh(o, k, k))],
-            Base::Square(a) => (0..=k)
-                .filter(|&j| j <= k - j)
-                .map(|j| {
-                    (
-                        if j < k - j { 2.0 } else { 1.0 },
-                        c(a, j),
-                        c(a, k - j),
-                        l.fresh(a, k - j, k),
-                    )
-                })
-                .collect(),
-            Base::Product(a, b) => (0..=k)
-                .map(|j| {
-                    (
-                        1.0,
-                        c(a, j),
-                        c(b, k - j),
-                        l.fresh(a, j, k).max(l.fresh(b, k - j, k)),
-                    )
-                })
-                .collect(),
-        };
+        let products = base_terms(l, t.base, k);
         match weights.token(&t.weight) {
             None => flat.extend(
                 products
