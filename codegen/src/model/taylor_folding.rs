@@ -78,6 +78,15 @@ impl Base {
     fn is_convolution(&self) -> bool {
         !matches!(self, Base::Operand(_))
     }
+
+    /// 0 for an operand, 1 for a square, 2 for a product.
+    pub fn kind(&self) -> u8 {
+        match self {
+            Base::Operand(_) => 0,
+            Base::Square(_) => 1,
+            Base::Product(..) => 2,
+        }
+    }
 }
 
 /// One term `weight · base` of a folded sum.
@@ -117,7 +126,8 @@ fn is_linear(r: &Recurrence) -> bool {
     )
 }
 
-fn operands(r: &Recurrence) -> Vec<Operand> {
+/// The operands a recurrence reads, in order.
+pub fn operands(r: &Recurrence) -> Vec<Operand> {
     match *r {
         Recurrence::Scale(a, _)
         | Recurrence::Quotient(a, _)
@@ -220,6 +230,11 @@ pub fn fold_linear(tape: &Tape, known: &[Option<f64>]) -> Folding {
             }
             _ => continue,
         };
+        // One order for the terms of every sum (operands, squares,
+        // products), so that sums built alike from different operands are
+        // written alike (`taylor_lanes` pairs them).
+        let mut terms = terms;
+        terms.sort_by_key(|t| t.base.kind());
         let convolutions = terms.iter().any(|t| t.base.is_convolution());
         let keeps_row = other_uses[v] > 0
             || terms.len() > MAX_FOLDED_TERMS
@@ -328,7 +343,8 @@ mod tests {
 
     /// A product read by one sum is folded into it; a sum read twice that
     /// holds a convolution keeps a row, so the convolution runs once; a
-    /// quotient by a parameter divides the weight.
+    /// quotient by a parameter divides the weight; operands come before
+    /// convolutions in every sum.
     #[test]
     fn convolutions_are_never_computed_twice() {
         use Operand::{State, Var};
@@ -347,8 +363,8 @@ mod tests {
         assert_eq!(
             f.roles[2],
             Role::SumRow(vec![
-                term(1.0, &[], &[0], Base::Product(State(0), State(1))),
                 term(1.0, &[], &[], Base::Operand(State(0))),
+                term(1.0, &[], &[0], Base::Product(State(0), State(1))),
             ])
         );
         assert_eq!(
