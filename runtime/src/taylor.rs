@@ -155,6 +155,7 @@ pub(crate) fn integrate<M: Model>(
     let direction = if t1 >= t0 { 1.0 } else { -1.0 };
     let hmax = options.max_step.unwrap_or(f64::INFINITY);
     let safety = (-2.0f64).exp() * (-0.7 / (p as f64 - 1.0)).exp();
+    let (inv_pm1, inv_p) = (1.0 / (p - 1) as f64, 1.0 / p as f64);
     let (mut t, mut compensation, mut steps) = (t0, 0.0f64, 0usize);
     while (t1 - t) * direction > 0.0 {
         if steps >= options.max_steps {
@@ -178,18 +179,20 @@ pub(crate) fn integrate<M: Model>(
         let state = |i: usize| &coefficients[i * w..(i + 1) * w];
         solution.stats_mut().rhs_evals += 1;
         let norm = |k: usize| (0..n).map(|i| state(i)[k].abs()).fold(0.0, f64::max);
-        let big_n = norm(0).max(1.0);
         // ρ_k = (N/‖x^[k]‖)^(1/k); of ρ_{p−1} and ρ_p the smaller, compared
-        // through logarithms so that only one power is taken.
+        // through logarithms so that only one power is taken. The step
+        // waits for ρ: ln N − ln ‖x^[k]‖ times 1/k keeps two divisions off
+        // that path.
+        let log_n = norm(0).max(1.0).ln();
         let (norm_pm1, norm_p) = (norm(p - 1), norm(p));
-        let log_rho = |nk: f64, k: usize| {
+        let log_rho = |nk: f64, inv_k: f64| {
             if nk == 0.0 {
                 f64::INFINITY
             } else {
-                (big_n / nk).ln() / k as f64
+                (log_n - nk.ln()) * inv_k
             }
         };
-        let rho = log_rho(norm_pm1, p - 1).min(log_rho(norm_p, p)).exp();
+        let rho = log_rho(norm_pm1, inv_pm1).min(log_rho(norm_p, inv_p)).exp();
         let remaining = (t1 - t).abs();
         // A polynomial solution has an infinite radius: the step is then
         // limited by the interval and max_step only.
