@@ -257,17 +257,7 @@ pub fn fold_linear(tape: &Tape, known: &[Option<f64>]) -> Folding {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use proc_macro2::TokenStream;
-
-    fn tape(recurrences: Vec<Recurrence>, outputs: Vec<Operand>, constants: usize) -> Tape {
-        Tape {
-            constants: (0..constants).map(|_| Constant::Integer(0)).collect(),
-            ops: vec![TokenStream::new(); recurrences.len()],
-            outputs: vec![TokenStream::new(); outputs.len()],
-            recurrences: recurrences.into_iter().enumerate().collect(),
-            output_operands: outputs,
-        }
-    }
+    use crate::model::taylor_tape::test_tape;
 
     fn term(literal: f64, times: &[usize], over: &[usize], base: Base) -> LinearTerm {
         LinearTerm {
@@ -288,7 +278,7 @@ mod tests {
     fn a_gravitating_pair_folds_to_its_convolutions() {
         use Operand::{State, Var};
         // c0 = −1 (known), c1 = a mass (a parameter).
-        let t = tape(
+        let t = test_tape(
             vec![
                 Recurrence::Scale(State(0), 0),
                 Recurrence::Add(State(1), Var(0)),
@@ -348,7 +338,7 @@ mod tests {
     #[test]
     fn convolutions_are_never_computed_twice() {
         use Operand::{State, Var};
-        let t = tape(
+        let t = test_tape(
             vec![
                 Recurrence::Mul(State(0), State(1)),
                 Recurrence::Quotient(Var(0), 0),

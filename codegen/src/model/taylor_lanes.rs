@@ -315,24 +315,13 @@ pub fn schedule(tape: &Tape, folding: &Folding, lanes: &Lanes) -> Option<Vec<usi
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::taylor_folding::{fold_linear, known_constants};
-    use crate::model::taylor_tape::Constant;
-    use proc_macro2::TokenStream;
+    use crate::model::taylor_folding::fold_linear;
+    use crate::model::taylor_tape::test_tape;
     use Operand::{Const, State, Var};
 
-    fn tape(recurrences: Vec<Recurrence>, outputs: Vec<Operand>, constants: usize) -> Tape {
-        Tape {
-            constants: (0..constants).map(|_| Constant::Integer(-1)).collect(),
-            ops: vec![TokenStream::new(); recurrences.len()],
-            outputs: vec![TokenStream::new(); outputs.len()],
-            recurrences: recurrences.into_iter().enumerate().collect(),
-            output_operands: outputs,
-        }
-    }
-
+    /// The lanes with every constant a parameter (no number known).
     fn lanes_of(t: &Tape, n: usize) -> (Folding, Lanes) {
-        let known = known_constants(t, &vec![None; t.constants.len()]);
-        let folding = fold_linear(t, &known);
+        let folding = fold_linear(t, &vec![None; t.constants.len()]);
         let lanes = pair_lanes(t, &folding, n);
         (folding, lanes)
     }
@@ -343,8 +332,8 @@ mod tests {
     /// are a pair of convolutions inside one sum.
     #[test]
     fn kepler_pairs_the_components_and_shares_the_power() {
-        // x, y, vx, vy; c0 = −1.
-        let t = tape(
+        // x, y, vx, vy; c0 = −1 (a parameter here).
+        let t = test_tape(
             vec![
                 Recurrence::Square(State(0)),
                 Recurrence::Square(State(1)),
@@ -382,8 +371,8 @@ mod tests {
     /// side; `y²`, read by both sums, stays single.
     #[test]
     fn two_centres_pair_their_distances_and_powers() {
-        // y1, y2, v1, v2; c0 = μ, c1 = μ − 1, c2 = −1 (all unknown numbers).
-        let t = tape(
+        // y1, y2, v1, v2; c0 = μ, c1 = μ − 1, c2 = −1 (parameters here).
+        let t = test_tape(
             vec![
                 Recurrence::Add(State(0), Const(0)), // u0 = y1 + μ
                 Recurrence::Square(Var(0)),          // u1
@@ -425,7 +414,7 @@ mod tests {
     /// `exp(x)` and `exp(exp(x))` stay single.
     #[test]
     fn a_row_never_pairs_with_a_row_that_reads_it() {
-        let t = tape(
+        let t = test_tape(
             vec![Recurrence::Exp(State(0)), Recurrence::Exp(Var(0))],
             vec![Var(0), Var(1)],
             0,

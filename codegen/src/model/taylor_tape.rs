@@ -100,6 +100,23 @@ pub enum InverseFunction {
     Atan,
 }
 
+/// A tape of `recurrences` (u-variable i computed by recurrence i) and
+/// `constants` constants, for the unit tests of the passes that read tapes.
+#[cfg(test)]
+pub(crate) fn test_tape(
+    recurrences: Vec<Recurrence>,
+    outputs: Vec<Operand>,
+    constants: usize,
+) -> Tape {
+    Tape {
+        constants: (0..constants).map(|_| Constant::Integer(0)).collect(),
+        ops: vec![TokenStream::new(); recurrences.len()],
+        outputs: vec![TokenStream::new(); outputs.len()],
+        recurrences: recurrences.into_iter().enumerate().collect(),
+        output_operands: outputs,
+    }
+}
+
 /// The tape of `outputs`: (constant expressions, operations, output operands).
 pub struct Tape {
     /// Constants, in order (`c0`, `c1`, ...).
@@ -263,7 +280,7 @@ impl Builder<'_> {
     /// at a zero base, where the general power recurrence divides by it).
     fn integer_power(&mut self, a: &Operand, n: u64) -> Operand {
         if n == 1 {
-            return a.clone();
+            return *a;
         }
         let half = self.integer_power(a, n / 2);
         let square = self.binary("Mul", &half, &half);
