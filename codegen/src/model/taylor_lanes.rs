@@ -14,6 +14,13 @@
 //! and give the seed up if any position conflicts. Values are never
 //! affected: a pairing only changes where coefficients are stored and the
 //! order in which independent statements are written.
+//!
+//! Two lanes cover an N-body model only in part: pairing bodies 1 and 2
+//! pairs the interactions (1, 3) and (2, 3), which then cannot also pair
+//! with (1, 4) and (2, 4) for bodies 3 and 4 — that would take four lanes.
+//! The outer solar system pairs 64 of its 120 rows and 12 of its 36 states;
+//! Kepler pairs its components (x with y, vx with vy), both lanes reading
+//! its one power; Arenstorf pairs its two centres' rows, all but y².
 
 use super::taylor_folding::{operands, Base, Folding, LinearTerm, Role};
 use super::taylor_tape::{Operand, Recurrence, Tape};
