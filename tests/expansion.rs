@@ -260,3 +260,27 @@ fn cartesian_double_pendulum_reduces_its_kkt_system_to_the_multipliers() {
         }
     }));
 }
+
+/// Kepler's problem unrolled at order 2: x and y, and their velocities, are
+/// lane pairs (`taylor_lanes`) — their rows interleaved in `r`, written side
+/// by side and copied to `seeds` for the vectoriser — the squares of
+/// x² + y² are a pair of sums inside one row, and the power r⁻³ is read by
+/// both lanes.
+#[test]
+fn kepler_with_lane_pairs_at_order_2() {
+    insta::assert_snapshot!(expand_with(
+        quote!(unroll = [2]),
+        quote! {
+            fn kepler() {
+                let x = state(0.5);
+                let y = state(0.0);
+                let u = state(0.0);
+                let v = state(1.5);
+                der(x) == u;
+                der(y) == v;
+                der(u) == -x * (x * x + y * y).powf(-1.5);
+                der(v) == -y * (x * x + y * y).powf(-1.5);
+            }
+        }
+    ));
+}
