@@ -242,10 +242,9 @@ fn term(weight: f64, a: TokenStream, b: TokenStream) -> Term {
 /// (Ice Lake server), and the solves 14–17 % faster.
 ///
 /// The order of summation changes where the random walk of rounding errors
-/// in long runs ends: Kepler e = 0.9 over ten orbits at tolerances 3e-14 to
-/// 1e-15 ends 1e-11 to 5e-10 from the exact solution depending on the order
-/// tried, heyoka's 2e-11 to 1e-10 from the same start; over 24 starts one
-/// ulp apart the energy errors of both have the same RMS (1.1–1.2e-14). So
+/// in long runs ends (Kepler e = 0.9 over ten orbits at tolerances 3e-14 to
+/// 1e-15: anywhere from 1e-11 to 5e-10 from the exact solution with the
+/// orders tried, before the state update carried its rounding errors), so
 /// no test pins that floor.
 fn sum_with(terms: Vec<Triple>, extra: Vec<Term>, scale: Option<TokenStream>) -> TokenStream {
     let (mut old, mut fresh): (Vec<Term>, Vec<(u8, Term)>) = (Vec::new(), Vec::new());
