@@ -19,6 +19,7 @@ pub mod reduce;
 pub mod solve_unknowns;
 pub mod taylor_folding;
 pub mod taylor_lanes;
+pub mod taylor_layout;
 pub mod taylor_tape;
 pub mod taylor_unrolled;
 

@@ -1,0 +1,148 @@
+//! Where the unrolled Taylor recurrences keep their coefficients: one
+//! array of rows, lane pairs interleaved, and which coefficients each order
+//! may read early (`taylor_unrolled` emits the code that fills it).
+
+use super::taylor_lanes::{Lanes, Node};
+use super::taylor_tape::Operand;
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
+
+/// Where the coefficients live: one array `r` of rows of `order + 1`
+/// coefficients, states first, then the u-variables that have a row (see
+/// `taylor_folding`), then one reciprocal 1/x₀ per such row; constants and the
+/// weights of the folded sums in `c`, the time in `t`. The two rows of a
+/// lane pair are interleaved (coefficient k of lane l at `2k + l` of their
+/// block), so that their coefficients of one order are neighbours.
+pub(super) struct Layout {
+    states: usize,
+    /// The row of each u-variable among the u-variables' rows, if it has one.
+    rows: Vec<Option<usize>>,
+    /// Per row (states first), its first slot and the distance between
+    /// its coefficients.
+    place: Vec<(usize, usize)>,
+    /// Per u-variable row, the slot of its reciprocal.
+    reciprocals: Vec<usize>,
+    len: usize,
+}
+
+impl Layout {
+    /// The layout for `order`, `states` states, the u-variables' `rows`
+    /// (`None` for those folded away) and the pairs in `lanes`.
+    pub(super) fn new(
+        order: usize,
+        states: usize,
+        rows: Vec<Option<usize>>,
+        lanes: &Lanes,
+    ) -> Layout {
+        let row_count = rows.iter().flatten().count();
+        let mut var_of_row = vec![0; row_count];
+        for (v, row) in rows.iter().enumerate() {
+            if let Some(row) = row {
+                var_of_row[*row] = v;
+            }
+        }
+        let node = |row: usize| {
+            if row < states {
+                Node::State(row)
+            } else {
+                Node::Var(var_of_row[row - states])
+            }
+        };
+        let row_of = |n: Node| match n {
+            Node::State(i) => i,
+            Node::Var(v) => states + rows[v].unwrap_or(0),
+        };
+        let total = states + row_count;
+        let (mut place, mut reciprocals) = (vec![(0, 1); total], vec![0; row_count]);
+        let mut next = 0;
+        for row in 0..total {
+            match lanes.of(node(row)) {
+                Some((_, 1)) => {}
+                Some((partner, _)) => {
+                    place[row] = (next, 2);
+                    place[row_of(partner)] = (next + 1, 2);
+                    next += 2 * (order + 1);
+                }
+                None => {
+                    place[row] = (next, 1);
+                    next += order + 1;
+                }
+            }
+        }
+        for row in states..total {
+            match lanes.of(node(row)) {
+                Some((_, 1)) => {}
+                Some((partner, _)) => {
+                    reciprocals[row - states] = next;
+                    reciprocals[row_of(partner) - states] = next + 1;
+                    next += 2;
+                }
+                None => {
+                    reciprocals[row - states] = next;
+                    next += 1;
+                }
+            }
+        }
+        Layout {
+            states,
+            rows,
+            place,
+            reciprocals,
+            len: next,
+        }
+    }
+
+    /// The length of `r`.
+    pub(super) fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Coefficient `k` of row `row` (states first) in `r`.
+    pub(super) fn slot(&self, row: usize, k: usize) -> TokenStream {
+        let (first, stride) = self.place[row];
+        let at = Literal::usize_unsuffixed(first + stride * k);
+        quote!(r[#at])
+    }
+
+    /// The row of u-variable `v` in `r`; only asked of u-variables that
+    /// have one (the plan never refers to the others by row).
+    pub(super) fn var_row(&self, v: usize) -> usize {
+        self.states + self.rows[v].unwrap_or(0)
+    }
+
+    /// Coefficient `k` of an operand: `None` when it is zero.
+    pub(super) fn coefficient(&self, o: Operand, k: usize) -> Option<TokenStream> {
+        match o {
+            Operand::State(i) => Some(self.slot(i, k)),
+            Operand::Var(v) => Some(self.slot(self.var_row(v), k)),
+            Operand::Time => match k {
+                0 => Some(quote!(t)),
+                1 => Some(quote!(1.0)),
+                _ => None,
+            },
+            Operand::Const(i) => (k == 0).then(|| {
+                let i = Literal::usize_unsuffixed(i);
+                quote!(c[#i])
+            }),
+        }
+    }
+
+    /// When coefficient `index` of `o` is known to order `k`'s sums: 0
+    /// long before, 1 computed in order k − 1 (a u-variable's coefficient
+    /// k − 1), 2 at the start of order k (a state's coefficient k), 3 once
+    /// computed in order k (a u-variable's coefficient k).
+    pub(super) fn fresh(&self, o: Operand, index: usize, k: usize) -> u8 {
+        match o {
+            Operand::Var(_) if index == k => 3,
+            _ if index == k => 2,
+            Operand::Var(_) if index + 1 == k => 1,
+            _ => 0,
+        }
+    }
+
+    /// The slot of 1/x₀ for u-variable `v`'s recurrence.
+    pub(super) fn reciprocal(&self, v: usize) -> TokenStream {
+        let at = Literal::usize_unsuffixed(self.reciprocals[self.rows[v].unwrap_or(0)]);
+        quote!(r[#at])
+    }
+}
