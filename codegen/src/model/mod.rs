@@ -18,6 +18,7 @@ pub mod names;
 pub mod reduce;
 pub mod solve_unknowns;
 pub mod taylor_folding;
+pub mod taylor_groups;
 pub mod taylor_lanes;
 pub mod taylor_layout;
 pub mod taylor_tape;

@@ -42,7 +42,8 @@ pub enum Node {
 }
 
 impl Node {
-    fn of(o: Operand) -> Option<Node> {
+    /// The row an operand reads, if it has one.
+    pub(super) fn of(o: Operand) -> Option<Node> {
         match o {
             Operand::State(i) => Some(Node::State(i)),
             Operand::Var(v) => Some(Node::Var(v)),
@@ -51,16 +52,43 @@ impl Node {
     }
 }
 
-/// The lane pairs of a model: each node with a partner, and its lane (0 or 1).
+/// The lane pairs of a model: each node with a partner, and its lane (0 or
+/// 1); or, for jets computed in memory, its lane groups (`taylor_groups`):
+/// rows of one shape, any number of them, computed by one loop over lanes.
 #[derive(Debug, Default, PartialEq)]
 pub struct Lanes {
-    partner: BTreeMap<Node, (Node, u8)>,
+    pub(super) partner: BTreeMap<Node, (Node, u8)>,
+    /// The groups, each its nodes in lane order.
+    pub(super) groups: Vec<Vec<Node>>,
+    /// Per node in a group: the group and the node's lane.
+    pub(super) group_of: BTreeMap<Node, (usize, usize)>,
 }
 
 impl Lanes {
     /// The partner of `n` and `n`'s lane, when it has one.
     pub fn of(&self, n: Node) -> Option<(Node, u8)> {
         self.partner.get(&n).copied()
+    }
+
+    /// The vector `n` is a lane of: its lane-0 node, `n`'s lane and the
+    /// number of lanes (a pair's or a group's).
+    pub fn vector_of(&self, n: Node) -> Option<(Node, usize, usize)> {
+        if let Some(&(g, lane)) = self.group_of.get(&n) {
+            let members = &self.groups[g];
+            return Some((members[0], lane, members.len()));
+        }
+        let (partner, lane) = self.of(n)?;
+        Some(if lane == 0 {
+            (n, 0, 2)
+        } else {
+            (partner, 1, 2)
+        })
+    }
+
+    /// The members of the group `n` is in, in lane order.
+    pub fn group(&self, n: Node) -> Option<&[Node]> {
+        let &(g, _) = self.group_of.get(&n)?;
+        Some(&self.groups[g])
     }
 
     /// The pairs, lane 0 first, in the order of their lane-0 node.
@@ -97,7 +125,7 @@ impl Lanes {
 /// The shape of a node's computation, without its operands: two nodes of
 /// one shape emit the same code up to which coefficients they read.
 #[derive(Clone, Debug, PartialEq)]
-enum Shape {
+pub(super) enum Shape {
     /// A nonlinear recurrence: its kind and its exponent, if any.
     Recurrence(std::mem::Discriminant<Recurrence>, u64),
     /// A sum: per term, its literal weight (None when it reads constants
@@ -123,7 +151,7 @@ fn sum_shape(terms: &[LinearTerm]) -> (Shape, Vec<Operand>) {
 
 /// The shape and operands of node `n`, or None when it is never paired
 /// (the sin/cos and sinh/cosh pairs, which fill two rows at once).
-fn shape(n: Node, tape: &Tape, folding: &Folding) -> Option<(Shape, Vec<Operand>)> {
+pub(super) fn shape(n: Node, tape: &Tape, folding: &Folding) -> Option<(Shape, Vec<Operand>)> {
     match n {
         Node::State(i) => Some(sum_shape(&folding.outputs[i])),
         Node::Var(v) => match &folding.roles[v] {
@@ -182,6 +210,7 @@ pub fn pair_lanes(tape: &Tape, folding: &Folding, n: usize) -> Lanes {
                 if let Some(found) = unify(&lanes, &shapes, a, b, gather_states) {
                     let mut trial = Lanes {
                         partner: lanes.partner.clone(),
+                        ..Lanes::default()
                     };
                     for (x, y) in found {
                         trial.partner.insert(x, (y, 0));
@@ -260,9 +289,10 @@ fn unify(
 pub fn schedule(tape: &Tape, folding: &Folding, lanes: &Lanes) -> Option<Vec<usize>> {
     let vars = folding.roles.len();
     let has_row = |v: usize| folding.roles[v] != Role::Folded;
-    // Groups: a pair or a single row, named by its first u-variable.
-    let leader = |v: usize| match lanes.of(Node::Var(v)) {
-        Some((Node::Var(w), 1)) => w,
+    // Groups: a lane group, a pair or a single row, named by its first
+    // u-variable.
+    let leader = |v: usize| match lanes.vector_of(Node::Var(v)) {
+        Some((Node::Var(w), _, _)) => w,
         _ => v,
     };
     let reads = |v: usize| -> Vec<usize> {
@@ -295,9 +325,14 @@ pub fn schedule(tape: &Tape, folding: &Folding, lanes: &Lanes) -> Option<Vec<usi
     for v in (0..vars).filter(|&v| has_row(v)) {
         members.entry(group_of(v)).or_default().push(v);
     }
-    // Lane 0 before lane 1.
+    // In lane order.
     for list in members.values_mut() {
-        list.sort_by_key(|&v| (lanes.of(Node::Var(v)).map_or(0, |(_, lane)| lane), v));
+        list.sort_by_key(|&v| {
+            (
+                lanes.vector_of(Node::Var(v)).map_or(0, |(_, lane, _)| lane),
+                v,
+            )
+        });
     }
     let mut waits: BTreeMap<usize, usize> = members.keys().map(|&g| (g, 0)).collect();
     let mut users: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
@@ -340,7 +375,7 @@ pub fn schedule(tape: &Tape, folding: &Folding, lanes: &Lanes) -> Option<Vec<usi
 mod tests {
     use super::*;
     use crate::model::taylor_folding::fold_linear;
-    use crate::model::taylor_tape::test_tape;
+    use crate::model::taylor_tape::{n_body_tape, test_tape};
     use Operand::{Const, State, Var};
 
     /// The lanes with every constant a parameter (no number known).
@@ -432,53 +467,6 @@ mod tests {
         // Every row after the rows it reads.
         let at = |v| order.iter().position(|&u| u == v).unwrap();
         assert!(at(2) < at(3) && at(3) < at(7) && at(6) < at(8));
-    }
-
-    /// The tape of `bodies` bodies attracting each other in space, as the
-    /// outer solar system writes it: per interaction (i, j), i < j, the
-    /// differences `x_j − x_i`, their squares' sum, its −3/2 power and the
-    /// three products, added with ±G·m into both bodies' accelerations.
-    fn n_body_tape(bodies: usize) -> Tape {
-        // States: positions 3i + c, velocities 3(bodies + i) + c. Constants:
-        // c0 = −1, then G·m_j, then −G·m_i.
-        let position = |i: usize, c: usize| State(3 * i + c);
-        let mut ops: Vec<Recurrence> = Vec::new();
-        let mut push = |ops: &mut Vec<Recurrence>, r| {
-            ops.push(r);
-            Var(ops.len() - 1)
-        };
-        let mut acceleration: Vec<Option<Operand>> = vec![None; 3 * bodies];
-        for i in 0..bodies {
-            for j in i + 1..bodies {
-                let mut d = Vec::new();
-                let mut squares = Vec::new();
-                for c in 0..3 {
-                    let minus = push(&mut ops, Recurrence::Scale(position(i, c), 0));
-                    let dc = push(&mut ops, Recurrence::Add(position(j, c), minus));
-                    squares.push(push(&mut ops, Recurrence::Square(dc)));
-                    d.push(dc);
-                }
-                let partial = push(&mut ops, Recurrence::Add(squares[0], squares[1]));
-                let r2 = push(&mut ops, Recurrence::Add(partial, squares[2]));
-                let r3 = push(&mut ops, Recurrence::Pow(r2, -1.5));
-                for (c, &dc) in d.iter().enumerate() {
-                    let product = push(&mut ops, Recurrence::Mul(dc, r3));
-                    for (body, weight) in [(i, 1 + j), (j, 1 + bodies + i)] {
-                        let term = push(&mut ops, Recurrence::Scale(product, weight));
-                        let sum = match acceleration[3 * body + c] {
-                            Some(previous) => push(&mut ops, Recurrence::Add(previous, term)),
-                            None => term,
-                        };
-                        acceleration[3 * body + c] = Some(sum);
-                    }
-                }
-            }
-        }
-        let outputs = (0..3 * bodies)
-            .map(|i| State(3 * bodies + i))
-            .chain(acceleration.into_iter().flatten())
-            .collect();
-        test_tape(ops, outputs, 1 + 2 * bodies)
     }
 
     /// With two lanes, pairs that must pair their states too cover the

@@ -6,6 +6,8 @@ use super::taylor_lanes::{Lanes, Node};
 use super::taylor_tape::Operand;
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
+use std::cell::RefCell;
+use std::collections::BTreeSet;
 
 /// Where the coefficients live: one array `r` of rows of `order + 1`
 /// coefficients, states first, then the u-variables that have a row (see
@@ -23,6 +25,9 @@ pub(super) struct Layout {
     /// Per u-variable row, the slot of its reciprocal.
     reciprocals: Vec<usize>,
     len: usize,
+    /// While a lane group's loop is written: the rows read at lane `lane`
+    /// of their group (the others are read at the slot itself).
+    looped: RefCell<BTreeSet<usize>>,
 }
 
 impl Layout {
@@ -54,30 +59,44 @@ impl Layout {
         };
         let total = states + row_count;
         let (mut place, mut reciprocals) = (vec![(0, 1); total], vec![0; row_count]);
+        // The rows of the vector whose lane 0 is `row`, in lane order.
+        let vector = |row: usize| -> Option<Vec<usize>> {
+            let n = node(row);
+            match lanes.vector_of(n)? {
+                (_, 0, _) => Some(match lanes.group(n) {
+                    Some(members) => members.iter().map(|&m| row_of(m)).collect(),
+                    None => vec![row, row_of(lanes.of(n)?.0)],
+                }),
+                _ => None,
+            }
+        };
         let mut next = 0;
         for row in 0..total {
-            match lanes.of(node(row)) {
-                Some((_, 1)) => {}
-                Some((partner, _)) => {
-                    place[row] = (next, 2);
-                    place[row_of(partner)] = (next + 1, 2);
-                    next += 2 * (order + 1);
+            match (lanes.vector_of(node(row)), vector(row)) {
+                (_, Some(rows)) => {
+                    let width = rows.len();
+                    for (lane, r) in rows.into_iter().enumerate() {
+                        place[r] = (next + lane, width);
+                    }
+                    next += width * (order + 1);
                 }
-                None => {
+                (Some(_), None) => {}
+                (None, None) => {
                     place[row] = (next, 1);
                     next += order + 1;
                 }
             }
         }
         for row in states..total {
-            match lanes.of(node(row)) {
-                Some((_, 1)) => {}
-                Some((partner, _)) => {
-                    reciprocals[row - states] = next;
-                    reciprocals[row_of(partner) - states] = next + 1;
-                    next += 2;
+            match (lanes.vector_of(node(row)), vector(row)) {
+                (_, Some(rows)) => {
+                    for (lane, r) in rows.iter().enumerate() {
+                        reciprocals[r - states] = next + lane;
+                    }
+                    next += rows.len();
                 }
-                None => {
+                (Some(_), None) => {}
+                (None, None) => {
                     reciprocals[row - states] = next;
                     next += 1;
                 }
@@ -89,6 +108,7 @@ impl Layout {
             place,
             reciprocals,
             len: next,
+            looped: RefCell::new(BTreeSet::new()),
         }
     }
 
@@ -100,8 +120,34 @@ impl Layout {
     /// Coefficient `k` of row `row` (states first) in `r`.
     pub(super) fn slot(&self, row: usize, k: usize) -> TokenStream {
         let (first, stride) = self.place[row];
-        let at = Literal::usize_unsuffixed(first + stride * k);
-        quote!(r[#at])
+        self.at(row, first + stride * k)
+    }
+
+    /// `r[at]`, or `r[at + lane]` for a row read by a lane group's loop.
+    fn at(&self, row: usize, at: usize) -> TokenStream {
+        let at = Literal::usize_unsuffixed(at);
+        if self.looped.borrow().contains(&row) {
+            quote!(r[#at + lane])
+        } else {
+            quote!(r[#at])
+        }
+    }
+
+    /// While `write` writes a lane group's statement for lane 0, `rows`
+    /// (lane 0 of their groups) are read at lane `lane` of their group.
+    pub(super) fn looping<T>(&self, rows: BTreeSet<usize>, write: impl FnOnce() -> T) -> T {
+        *self.looped.borrow_mut() = rows;
+        let written = write();
+        self.looped.borrow_mut().clear();
+        written
+    }
+
+    /// The row of a node.
+    pub(super) fn row(&self, n: Node) -> usize {
+        match n {
+            Node::State(i) => i,
+            Node::Var(v) => self.var_row(v),
+        }
     }
 
     /// The row of u-variable `v` in `r`; only asked of u-variables that
@@ -142,7 +188,6 @@ impl Layout {
 
     /// The slot of 1/x₀ for u-variable `v`'s recurrence.
     pub(super) fn reciprocal(&self, v: usize) -> TokenStream {
-        let at = Literal::usize_unsuffixed(self.reciprocals[self.rows[v].unwrap_or(0)]);
-        quote!(r[#at])
+        self.at(self.var_row(v), self.reciprocals[self.rows[v].unwrap_or(0)])
     }
 }

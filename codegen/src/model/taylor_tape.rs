@@ -117,6 +117,62 @@ pub(crate) fn test_tape(
     }
 }
 
+/// The tape of `bodies` bodies attracting each other in space, as the
+/// outer solar system writes it: per interaction (i, j), i < j, the
+/// differences `x_j − x_i`, their squares' sum, its −3/2 power and the
+/// three products, added with ±G·m into both bodies' accelerations.
+#[cfg(test)]
+pub(crate) fn n_body_tape(bodies: usize) -> Tape {
+    use Operand::{State, Var};
+    // States: positions 3i + c, velocities 3(bodies + i) + c. Constants:
+    // c0 = −1, then G·m_j, then −G·m_i.
+    let position = |i: usize, c: usize| State(3 * i + c);
+    let mut ops: Vec<Recurrence> = Vec::new();
+    let push = |ops: &mut Vec<Recurrence>, r| {
+        ops.push(r);
+        Var(ops.len() - 1)
+    };
+    let mut acceleration: Vec<Option<Operand>> = vec![None; 3 * bodies];
+    for i in 0..bodies {
+        for j in i + 1..bodies {
+            let mut d = Vec::new();
+            let mut squares = Vec::new();
+            for c in 0..3 {
+                let minus = push(&mut ops, Recurrence::Scale(position(i, c), 0));
+                let dc = push(&mut ops, Recurrence::Add(position(j, c), minus));
+                squares.push(push(&mut ops, Recurrence::Square(dc)));
+                d.push(dc);
+            }
+            let partial = push(&mut ops, Recurrence::Add(squares[0], squares[1]));
+            let r2 = push(&mut ops, Recurrence::Add(partial, squares[2]));
+            let r3 = push(&mut ops, Recurrence::Pow(r2, -1.5));
+            for (c, &dc) in d.iter().enumerate() {
+                let product = push(&mut ops, Recurrence::Mul(dc, r3));
+                for (body, weight) in [(i, 1 + j), (j, 1 + bodies + i)] {
+                    let term = push(&mut ops, Recurrence::Scale(product, weight));
+                    let sum = match acceleration[3 * body + c] {
+                        Some(previous) => push(&mut ops, Recurrence::Add(previous, term)),
+                        None => term,
+                    };
+                    acceleration[3 * body + c] = Some(sum);
+                }
+            }
+        }
+    }
+    let outputs = (0..3 * bodies)
+        .map(|i| State(3 * bodies + i))
+        .chain(acceleration.into_iter().flatten())
+        .collect();
+    let mut tape = test_tape(ops, outputs, 1 + 2 * bodies);
+    // Integers for the expansion to fold: G·m_j = j + 1.
+    tape.constants = std::iter::once(-1)
+        .chain((0..bodies as i64).map(|j| j + 1))
+        .chain((0..bodies as i64).map(|i| -(i + 1)))
+        .map(Constant::Integer)
+        .collect();
+    tape
+}
+
 /// The tape of `outputs`: (constant expressions, operations, output operands).
 pub struct Tape {
     /// Constants, in order (`c0`, `c1`, ...).

@@ -12,17 +12,20 @@
 //! §3; heyoka's `ad_notes`), with 1/x₀ computed once per u-variable and the
 //! j/k weights folded into literals, so the coefficients agree with the
 //! interpreter's to rounding. Rows that repeat one computation on other
-//! operands are written side by side as lane pairs (`taylor_lanes`), which
-//! the compiler vectorises.
+//! operands are written side by side as lane pairs (`taylor_lanes`) in
+//! small jets, and computed by one loop per lane group (`taylor_groups`)
+//! in large ones; the compiler vectorises both.
 
 use super::taylor_folding::{
     fold_linear, known_constants, Base, Folding, LinearTerm, Role, Weight,
 };
-use super::taylor_lanes::{pair_lanes, schedule, Lanes, Node};
+use super::taylor_groups::group_lanes;
+use super::taylor_lanes::{pair_lanes, schedule, shape, Lanes, Node};
 use super::taylor_layout::Layout;
 use super::taylor_tape::{InverseFunction, Operand, Recurrence, Tape};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote, ToTokens};
+use std::collections::BTreeSet;
 
 /// A finite constant as tokens (a negative one as a negation: literals are unsigned).
 fn float(x: f64) -> TokenStream {
@@ -285,11 +288,7 @@ fn recurrence_at(l: &Layout, v: usize, r: Recurrence, k: usize) -> TokenStream {
                 } else if e == 1.5 {
                     quote!(#a0 * #a0.sqrt())
                 } else if e == -1.5 {
-                    if std::env::var("DAEGEN_POWF").is_ok() {
-                        quote!(#a0.powf(-1.5))
-                    } else {
-                        quote!(1.0 / (#a0 * #a0.sqrt()))
-                    }
+                    quote!(1.0 / (#a0 * #a0.sqrt()))
                 } else {
                     let e = float(e);
                     quote!(#a0.powf(#e))
@@ -563,19 +562,85 @@ fn folded_sum(
     (prelude, sum_with(flat, extra, scale))
 }
 
-/// Up to this many (operations × order²), about the number of products, the
-/// orders are inlined into one function (Kepler at order 19: 3,000).
-const SINGLE_FUNCTION_TERMS: usize = 20_000;
+/// The rows a lane group's loop reads at its lane (lane 0 of the group
+/// itself and of each operand that is a group in the same lane order), or
+/// None when its lanes cannot be one loop: an operand read lane by lane
+/// from states, sums whose weights differ between lanes, or a row read
+/// both at the lane and as the one operand of every lane.
+fn looped_rows(
+    l: &Layout,
+    tape: &Tape,
+    folding: &Folding,
+    lanes: &Lanes,
+    members: &[Node],
+) -> Option<BTreeSet<usize>> {
+    let operands: Vec<Vec<Operand>> = members
+        .iter()
+        .map(|&m| Some(shape(m, tape, folding)?.1))
+        .collect::<Option<_>>()?;
+    if let Node::Var(first) = members[0] {
+        if let Role::SumRow(terms) = &folding.roles[first] {
+            for m in &members[1..] {
+                let Node::Var(v) = m else { return None };
+                let Role::SumRow(other) = &folding.roles[*v] else {
+                    return None;
+                };
+                if other.len() != terms.len()
+                    || other.iter().zip(terms).any(|(a, b)| a.weight != b.weight)
+                {
+                    return None;
+                }
+            }
+        }
+    }
+    let mut looped = BTreeSet::from([l.row(members[0])]);
+    let mut shared = BTreeSet::new();
+    for position in 0..operands[0].len() {
+        let ops: Vec<Operand> = operands.iter().map(|o| o[position]).collect();
+        if ops.iter().all(|&o| o == ops[0]) {
+            if let Some(n) = Node::of(ops[0]) {
+                shared.insert(l.row(n));
+            }
+            continue;
+        }
+        let nodes: Vec<Node> = ops.iter().map(|&o| Node::of(o)).collect::<Option<_>>()?;
+        if lanes.group(nodes[0]) != Some(nodes.as_slice()) {
+            return None;
+        }
+        looped.insert(l.row(nodes[0]));
+    }
+    looped.is_disjoint(&shared).then_some(looped)
+}
+
+/// Up to this many rows × order², the orders are inlined into one function
+/// (Kepler's 2 rows at order 19: 722; Arenstorf's 7: 2,527), whose code
+/// still fits the processor's instruction cache. Beyond, one function per
+/// order with lane groups is faster: the outer solar system's 120 rows at
+/// order 12 (17,280) take 2.5 µs per step so against 5.5 µs as one
+/// function with lane pairs; Kepler and Arenstorf, split, 1.5× slower.
+const SINGLE_FUNCTION_TERMS: usize = 5_000;
 
 /// The body of `taylor_jet_unrolled` for `order`: reads `t`, `y` (an array
 /// of `n` states) and the constants `c0, c1, …` (`known[i]` is constant i's
 /// value when it is a number) and writes state i's normalised coefficient k
 /// to `out[i·(order+1) + k]` (an array). One function per order, not
-/// inlined for large jets: rustc's time on one function of thousands of
-/// live values grows much faster than linearly (the outer solar system at
-/// three orders took over five minutes as one function, 1.5 minutes split,
-/// for 12 % more run time).
+/// inlined, for large jets (see [`SINGLE_FUNCTION_TERMS`]): they run
+/// faster so, and rustc's time on one function of thousands of live
+/// values grows much faster than linearly (the outer solar system at three
+/// orders took over five minutes as one function, 1.5 minutes split).
 pub fn unrolled_jet(tape: &Tape, n: usize, order: usize, known: &[Option<f64>]) -> TokenStream {
+    jet_in(tape, n, order, known, SINGLE_FUNCTION_TERMS)
+}
+
+/// [`unrolled_jet`], one function when rows × order² is at most
+/// `single_function_terms`.
+fn jet_in(
+    tape: &Tape,
+    n: usize,
+    order: usize,
+    known: &[Option<f64>],
+    single_function_terms: usize,
+) -> TokenStream {
     let folding = fold_linear(tape, &known_constants(tape, known));
     let mut rows = vec![None; tape.ops.len()];
     let mut row_count = 0;
@@ -585,14 +650,23 @@ pub fn unrolled_jet(tape: &Tape, n: usize, order: usize, known: &[Option<f64>]) 
             row_count += 1;
         }
     }
-    let lanes = pair_lanes(tape, &folding, n);
+    // Small jets become one function, whose coefficient array the compiler
+    // keeps in registers, with lane pairs; large ones stay one function per
+    // order, with lane groups, each computed by one loop.
+    let single_function = row_count * order * order <= single_function_terms;
+    let lanes = if single_function {
+        pair_lanes(tape, &folding, n)
+    } else {
+        group_lanes(tape, &folding)
+    };
     let l = Layout::new(order, n, rows, &lanes);
+    let looped: Vec<Option<BTreeSet<usize>>> = lanes
+        .groups
+        .iter()
+        .map(|members| looped_rows(&l, tape, &folding, &lanes, members))
+        .collect();
     let len = Literal::usize_unsuffixed(l.len());
     let weights = Weights::collect(&folding, tape.constants.len());
-    // Small jets become one function, whose coefficient array the compiler
-    // keeps in registers; large ones stay one function per order.
-    let terms = row_count * order * order;
-    let single_function = terms <= SINGLE_FUNCTION_TERMS;
     let inline = if single_function {
         quote!(#[inline(always)])
     } else {
@@ -644,15 +718,26 @@ pub fn unrolled_jet(tape: &Tape, n: usize, order: usize, known: &[Option<f64>]) 
     for k in 0..order {
         let mut step = TokenStream::new();
         for &v in &written {
-            match (&folding.roles[v], recurrence.get(&v)) {
-                (Role::Row, Some(&rec)) => step.extend(recurrence_at(&l, v, rec, k)),
+            let write = |seeds: &mut Seeds| match (&folding.roles[v], recurrence.get(&v)) {
+                (Role::Row, Some(&rec)) => recurrence_at(&l, v, rec, k),
                 (Role::SumRow(terms), _) => {
                     let name = l.slot(l.var_row(v), k);
-                    let (prelude, value) =
-                        folded_sum(&l, &weights, &mut seeds, terms, k, true, None);
-                    step.extend(quote!(#prelude #name = #value;));
+                    let (prelude, value) = folded_sum(&l, &weights, seeds, terms, k, true, None);
+                    quote!(#prelude #name = #value;)
                 }
-                _ => {}
+                _ => TokenStream::new(),
+            };
+            // A looped group's lane 0 writes the loop; its other lanes
+            // are in it.
+            let group = lanes.group_of.get(&Node::Var(v)).copied();
+            match group.and_then(|(g, lane)| Some((looped[g].as_ref()?, lane, g))) {
+                Some((_, lane, _)) if lane > 0 => {}
+                Some((rows, _, g)) => {
+                    let width = Literal::usize_unsuffixed(lanes.groups[g].len());
+                    let body = l.looping(rows.clone(), || write(&mut seeds));
+                    step.extend(quote!(for lane in 0..#width { #body }));
+                }
+                None => step.extend(write(&mut seeds)),
             }
             if let (true, Some((first, 1))) = (seed_rows, lanes.of(Node::Var(v))) {
                 let (a, b) = (row_slot(first, k), row_slot(Node::Var(v), k));
@@ -722,4 +807,28 @@ pub fn unrolled_jet(tape: &Tape, n: usize, order: usize, known: &[Option<f64>]) 
         code.extend(quote!(::core::hint::black_box(&seeds);));
     }
     code
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::taylor_tape::n_body_tape;
+
+    /// Three bodies in space at order 2, one function per order: the three
+    /// interactions' rows are lane groups, interleaved in `r` three by
+    /// three; the differences are written lane by lane (they read states),
+    /// the sums of squares, the powers and the products each by one loop.
+    #[test]
+    fn three_bodies_in_lane_groups_at_order_2() {
+        let tape = n_body_tape(3);
+        let known = vec![Some(1.0); tape.constants.len()];
+        let body = jet_in(&tape, 18, 2, &known, 0);
+        let tokens = quote! {
+            fn jet(t: f64, y: &[f64; 18], out: &mut [f64; 54], c0: f64, c1: f64, c2: f64, c3: f64, c4: f64, c5: f64, c6: f64) {
+                #body
+            }
+        };
+        let file: syn::File = syn::parse2(tokens).expect("the jet parses");
+        insta::assert_snapshot!(prettyplease::unparse(&file));
+    }
 }
