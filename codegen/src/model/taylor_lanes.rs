@@ -21,11 +21,13 @@
 //! (the outer solar system: 64 of its 120 rows). A second pass therefore
 //! lets the two lanes read states that are not a pair, which the
 //! vectoriser loads as one vector from two places; every interaction can
-//! then pair with any other (116 of the 120 rows, the jet's order-12
-//! coefficients in 588 instead of 808 cycles of llvm-mca's throughput, the
-//! solve 15 % faster). Kepler pairs its components (x with y, vx with vy),
-//! both lanes reading its one power; Arenstorf pairs its two centres' rows,
-//! all but y².
+//! then pair with any other (116 of the 120 rows; as one function its
+//! order-12 coefficients took 588 instead of 808 cycles of llvm-mca's
+//! throughput, the solve 15 % faster). Jets that large are now split per
+//! order with lane groups instead (`taylor_groups`): pairs serve the small
+//! ones. Kepler pairs its components (x with y, vx with vy), both lanes
+//! reading its one power; Arenstorf pairs its two centres' rows, all but
+//! y².
 
 use super::taylor_folding::{operands, Base, Folding, LinearTerm, Role};
 use super::taylor_tape::{Operand, Recurrence, Tape};
