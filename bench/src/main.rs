@@ -6,6 +6,8 @@
 //! tolerance 1e-8 with fewer repeats; `--no-python` leaves out SciPy and
 //! heyoka; `--no-rustc` skips timing rustc on the generated code; `--only
 //! name` runs one model; `--dae` prints the DAE tables instead;
+//! `--versus-dop853` times it against `ode_solvers`' Dop853 at equal
+//! error, in alternation (`results/versus_dop853.md`);
 //! `--versus-heyoka` times our Taylor method and heyoka in alternation,
 //! `results/versus_heyoka.md`). Writes
 //! `results/results.csv`, one SVG per problem and `results/summary.md`.
@@ -346,6 +348,28 @@ fn main() {
         }
         let text = versus::markdown(&rows, rounds);
         let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results/versus_heyoka.md");
+        let _ = std::fs::write(&out, &text);
+        eprintln!("\r\x1b[2Kdone");
+        println!("{text}");
+        return;
+    }
+    if has("--versus-dop853") {
+        // Taylor vs ode_solvers' Dop853 at equal error, timed in
+        // alternation (see versus.rs).
+        let (tolerances, rounds) = ([1e-12, 1e-13, 1e-14], 7);
+        let mut rows = Vec::new();
+        for run in [
+            versus::versus_dop853::<Kepler>,
+            versus::versus_dop853::<Arenstorf>,
+            versus::versus_dop853::<OuterSolarSystem>,
+        ] {
+            match run(&tolerances, rounds) {
+                Ok(r) => rows.extend(r),
+                Err(e) => eprintln!("versus Dop853: {e}"),
+            }
+        }
+        let text = versus::dop853_markdown(&rows, rounds);
+        let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results/versus_dop853.md");
         let _ = std::fs::write(&out, &text);
         eprintln!("\r\x1b[2Kdone");
         println!("{text}");
