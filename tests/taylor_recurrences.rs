@@ -115,7 +115,7 @@ fn agree<M: Model>(model: &M, boxes: &[(f64, f64)], points: usize) {
     let (n, p) = (M::STATES, M::TAYLOR_ORDER);
     let (tape, outputs) = model.taylor_tape().expect("a Taylor tape");
     let mut work = TaylorWork::new(&tape, &outputs, n, p);
-    let mut jet = vec![0.0; n * (p + 1)];
+    let mut jet = vec![0.0; model.taylor_jet_len(p)];
     let mut symbolic = vec![0.0; n * p];
     let mut seed = 2026;
     for _ in 0..points {
@@ -157,7 +157,7 @@ fn unrolled_agrees_with_the_tape<M: Model>(model: &M, order: usize, boxes: &[(f6
     let n = M::STATES;
     let (tape, outputs) = model.taylor_tape().expect("a Taylor tape");
     let mut work = TaylorWork::new(&tape, &outputs, n, order);
-    let mut jet = vec![0.0; n * (order + 1)];
+    let mut jet = vec![0.0; model.taylor_jet_len(order)];
     let mut seed = 7;
     for _ in 0..200 {
         let t = uniform(&mut seed, -1.0, 1.0);

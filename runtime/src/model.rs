@@ -158,11 +158,19 @@ pub trait Model {
     /// (`#[dae_model(unroll = [..])]`); empty: the tape is interpreted.
     const TAYLOR_UNROLLED: &'static [usize] = &[];
 
+    /// The length of the buffer [`Model::taylor_jet_unrolled`] needs for
+    /// `order`: STATES·(order+1), or more for a large jet, which keeps all
+    /// its intermediate coefficients there after the states'.
+    fn taylor_jet_len(&self, order: usize) -> usize {
+        Self::STATES * (order + 1)
+    }
+
     /// The normalised Taylor coefficients of the solution through (t, y)
     /// up to `order`, by the straight-line recurrences emitted for that
-    /// order: state i's coefficient k at `out[i·(order+1) + k]`. `false`
-    /// (and nothing written) when `order` is not in
-    /// [`Model::TAYLOR_UNROLLED`] or `out` is shorter than STATES·(order+1).
+    /// order: state i's coefficient k at `out[i·(order+1) + k]` (what lies
+    /// beyond is the jet's own). `false` (and nothing written) when `order`
+    /// is not in [`Model::TAYLOR_UNROLLED`] or `out` is shorter than
+    /// [`Model::taylor_jet_len`].
     fn taylor_jet_unrolled(&self, t: f64, y: &[f64], order: usize, out: &mut [f64]) -> bool {
         let _ = (t, y, order, out);
         false

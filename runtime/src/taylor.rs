@@ -168,7 +168,7 @@ pub(crate) fn integrate<M: Model>(
     // else the interpreted tape.
     let unrolled = M::TAYLOR_UNROLLED.contains(&p) && !options.taylor_compact;
     let mut work = (!unrolled).then(|| TaylorWork::new(&tape, &outputs, n, p));
-    let mut jet = vec![0.0; if unrolled { n * (p + 1) } else { 0 }];
+    let mut jet = vec![0.0; if unrolled { model.taylor_jet_len(p) } else { 0 }];
     let mut y = y0.to_vec();
     let mut carried = vec![0.0; n];
     let mut dense = vec![0.0; (p + 1) * n];
@@ -201,7 +201,7 @@ pub(crate) fn integrate<M: Model>(
             }
             None => {
                 model.taylor_jet_unrolled(t, &y, p, &mut jet);
-                &jet
+                &jet[..n * (p + 1)]
             }
         };
         let w = p + 1;

@@ -144,9 +144,22 @@ fn taylor_method(
         .iter()
         .map(|&id| g.as_number(id).map(|x| x.to_f64()))
         .collect();
-    let unrolled_arms = unroll.iter().map(|&order| {
-        let body = super::taylor_unrolled::unrolled_jet(&tape, n, order, &numbers);
-        let (order_lit, len) = (index(order), index(n * (order + 1)));
+    let jets: Vec<_> = unroll
+        .iter()
+        .map(|&order| {
+            (
+                order,
+                super::taylor_unrolled::unrolled_jet(&tape, n, order, &numbers),
+            )
+        })
+        .collect();
+    let jet_lengths = jets.iter().map(|(order, jet)| {
+        let (order, buffer) = (index(*order), index(jet.buffer));
+        quote!(#order => #buffer,)
+    });
+    let unrolled_arms = jets.iter().map(|(order, jet)| {
+        let body = &jet.body;
+        let (order_lit, len) = (index(*order), index(jet.buffer));
         quote! {
             #order_lit => {
                 let ::core::option::Option::Some(out) = out.get_mut(..#len) else { return false };
@@ -164,6 +177,13 @@ fn taylor_method(
     } else {
         quote! {
             const TAYLOR_UNROLLED: &'static [usize] = &[#(#unrolled_orders),*];
+
+            fn taylor_jet_len(&self, order: usize) -> usize {
+                match order {
+                    #(#jet_lengths)*
+                    _ => #nn * (order + 1),
+                }
+            }
 
             #[allow(clippy::all)]
             fn taylor_jet_unrolled(&self, t: f64, y: &[f64], order: usize, out: &mut [f64]) -> bool {

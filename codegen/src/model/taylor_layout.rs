@@ -112,6 +112,12 @@ impl Layout {
         }
     }
 
+    /// True when the states' rows come first, each its `order + 1`
+    /// coefficients in a row, as the caller of the jet reads them.
+    pub(super) fn states_first(&self, order: usize) -> bool {
+        (0..self.states).all(|i| self.place[i] == (i * (order + 1), 1))
+    }
+
     /// The length of `r`.
     pub(super) fn len(&self) -> usize {
         self.len

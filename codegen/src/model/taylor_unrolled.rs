@@ -628,8 +628,18 @@ const SINGLE_FUNCTION_TERMS: usize = 5_000;
 /// faster so, and rustc's time on one function of thousands of live
 /// values grows much faster than linearly (the outer solar system at three
 /// orders took over five minutes as one function, 1.5 minutes split).
-pub fn unrolled_jet(tape: &Tape, n: usize, order: usize, known: &[Option<f64>]) -> TokenStream {
+pub fn unrolled_jet(tape: &Tape, n: usize, order: usize, known: &[Option<f64>]) -> UnrolledJet {
     jet_in(tape, n, order, known, SINGLE_FUNCTION_TERMS)
+}
+
+/// The code of one unrolled order and the length of the buffer `out` it
+/// writes: `n·(order + 1)`, or for a jet split per order all of its
+/// coefficients, the states' first (see [`unrolled_jet`]).
+pub struct UnrolledJet {
+    /// Statements reading `t`, `y`, the constants and writing `out`.
+    pub body: TokenStream,
+    /// The length of `out`, an array.
+    pub buffer: usize,
 }
 
 /// [`unrolled_jet`], one function when rows × order² is at most
@@ -640,7 +650,7 @@ fn jet_in(
     order: usize,
     known: &[Option<f64>],
     single_function_terms: usize,
-) -> TokenStream {
+) -> UnrolledJet {
     let folding = fold_linear(tape, &known_constants(tape, known));
     let mut rows = vec![None; tape.ops.len()];
     let mut row_count = 0;
@@ -705,11 +715,23 @@ fn jet_in(
         Node::State(i) => l.slot(i, k),
         Node::Var(v) => l.slot(l.var_row(v), k),
     };
+    // Split per order, the jet works in `out` itself, where the states'
+    // rows come first as the caller reads them: no array to clear and no
+    // copy at the end (stale values are never read: every slot is written
+    // before it is read).
+    let in_out = !single_function && l.states_first(order);
     let mut code = TokenStream::new();
-    code.extend(quote! {
-        let c: [f64; #nc] = [#(#constants,)* #(#weight_values),*];
-        let mut r = [0.0f64; #len];
-    });
+    code.extend(quote!(let c: [f64; #nc] = [#(#constants,)* #(#weight_values),*];));
+    if in_out {
+        code.extend(quote!(let r = out;));
+    } else {
+        code.extend(quote!(let mut r = [0.0f64; #len];));
+    }
+    let r_arg = if in_out {
+        quote!(&mut *r)
+    } else {
+        quote!(&mut r)
+    };
     for i in 0..n {
         let (slot, i) = (l.slot(i, 0), Literal::usize_unsuffixed(i));
         code.extend(quote!(#slot = y[#i];));
@@ -793,20 +815,25 @@ fn jet_in(
             fn #name(r: &mut [f64; #len], #seeds_param t: f64, c: &[f64; #nc]) {
                 #step
             }
-            #name(&mut r, #seeds_arg t, &c);
+            #name(#r_arg, #seeds_arg t, &c);
         });
     }
-    for i in 0..n {
-        for k in 0..=order {
-            let slot = l.slot(i, k);
-            let at = Literal::usize_unsuffixed(i * (order + 1) + k);
-            code.extend(quote!(out[#at] = #slot;));
+    if !in_out {
+        for i in 0..n {
+            for k in 0..=order {
+                let slot = l.slot(i, k);
+                let at = Literal::usize_unsuffixed(i * (order + 1) + k);
+                code.extend(quote!(out[#at] = #slot;));
+            }
         }
     }
     if seeded {
         code.extend(quote!(::core::hint::black_box(&seeds);));
     }
-    code
+    UnrolledJet {
+        body: code,
+        buffer: if in_out { l.len() } else { n * (order + 1) },
+    }
 }
 
 #[cfg(test)]
@@ -822,9 +849,10 @@ mod tests {
     fn three_bodies_in_lane_groups_at_order_2() {
         let tape = n_body_tape(3);
         let known = vec![Some(1.0); tape.constants.len()];
-        let body = jet_in(&tape, 18, 2, &known, 0);
+        let jet = jet_in(&tape, 18, 2, &known, 0);
+        let (body, buffer) = (jet.body, Literal::usize_unsuffixed(jet.buffer));
         let tokens = quote! {
-            fn jet(t: f64, y: &[f64; 18], out: &mut [f64; 54], c0: f64, c1: f64, c2: f64, c3: f64, c4: f64, c5: f64, c6: f64) {
+            fn jet(t: f64, y: &[f64; 18], out: &mut [f64; #buffer], c0: f64, c1: f64, c2: f64, c3: f64, c4: f64, c5: f64, c6: f64) {
                 #body
             }
         };
