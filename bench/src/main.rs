@@ -329,50 +329,62 @@ fn machine() -> String {
     format!("{date}, {cpu}, {cores} cores, one thread per solve")
 }
 
+/// Runs one alternated comparison (see versus.rs) on the three Taylor
+/// problems at tolerances 1e-12 to 1e-14, 7 rounds each, and writes its
+/// table to `results/<file>`.
+fn versus_section<R>(
+    peer: &str,
+    file: &str,
+    runs: [fn(&[f64], usize) -> Result<Vec<R>, String>; 3],
+    markdown: fn(&[R], usize) -> String,
+) {
+    let (tolerances, rounds) = ([1e-12, 1e-13, 1e-14], 7);
+    let mut rows = Vec::new();
+    for run in runs {
+        match run(&tolerances, rounds) {
+            Ok(r) => rows.extend(r),
+            Err(e) => eprintln!("versus {peer}: {e}"),
+        }
+    }
+    let text = markdown(&rows, rounds);
+    let out = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("results")
+        .join(file);
+    let _ = std::fs::write(&out, &text);
+    eprintln!("\r\x1b[2Kdone");
+    println!("{text}");
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let has = |flag: &str| args.iter().any(|a| a == flag);
     if has("--versus-heyoka") {
         // Taylor vs heyoka timed in alternation (see versus.rs).
-        let (tolerances, rounds) = ([1e-12, 1e-13, 1e-14], 7);
-        let mut rows = Vec::new();
-        for run in [
-            versus::versus_heyoka::<Kepler>,
-            versus::versus_heyoka::<Arenstorf>,
-            versus::versus_heyoka::<OuterSolarSystem>,
-        ] {
-            match run(&tolerances, rounds) {
-                Ok(r) => rows.extend(r),
-                Err(e) => eprintln!("versus heyoka: {e}"),
-            }
-        }
-        let text = versus::markdown(&rows, rounds);
-        let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results/versus_heyoka.md");
-        let _ = std::fs::write(&out, &text);
-        eprintln!("\r\x1b[2Kdone");
-        println!("{text}");
+        versus_section(
+            "heyoka",
+            "versus_heyoka.md",
+            [
+                versus::versus_heyoka::<Kepler>,
+                versus::versus_heyoka::<Arenstorf>,
+                versus::versus_heyoka::<OuterSolarSystem>,
+            ],
+            versus::markdown,
+        );
         return;
     }
     if has("--versus-dop853") {
         // Taylor vs ode_solvers' Dop853 at equal error, timed in
         // alternation (see versus.rs).
-        let (tolerances, rounds) = ([1e-12, 1e-13, 1e-14], 7);
-        let mut rows = Vec::new();
-        for run in [
-            versus::versus_dop853::<Kepler>,
-            versus::versus_dop853::<Arenstorf>,
-            versus::versus_dop853::<OuterSolarSystem>,
-        ] {
-            match run(&tolerances, rounds) {
-                Ok(r) => rows.extend(r),
-                Err(e) => eprintln!("versus Dop853: {e}"),
-            }
-        }
-        let text = versus::dop853_markdown(&rows, rounds);
-        let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results/versus_dop853.md");
-        let _ = std::fs::write(&out, &text);
-        eprintln!("\r\x1b[2Kdone");
-        println!("{text}");
+        versus_section(
+            "Dop853",
+            "versus_dop853.md",
+            [
+                versus::versus_dop853::<Kepler>,
+                versus::versus_dop853::<Arenstorf>,
+                versus::versus_dop853::<OuterSolarSystem>,
+            ],
+            versus::dop853_markdown,
+        );
         return;
     }
     if has("--dae") {

@@ -85,19 +85,25 @@ pub fn markdown(rows: &[Row], rounds: usize) -> String {
         "# Taylor vs heyoka, timed in alternation\n\n{rounds} rounds per tolerance; each round: our median solve time, then heyoka's (median of {HEYOKA_REPEATS} solves); ratio = ours / heyoka's per round.\n\n| problem | tol | median ratio (range) | steps ours / heyoka | error ours / heyoka |\n|---|---|---|---|---|\n"
     );
     for r in rows {
-        let (Some(first), Some(median), Some(last)) = (
-            r.ratios.first(),
-            r.ratios.get(r.ratios.len() / 2),
-            r.ratios.last(),
-        ) else {
+        let Some(ratio) = ratio_cell(&r.ratios) else {
             continue;
         };
         s.push_str(&format!(
-            "| {} | {:.0e} | {median:.2}× ({first:.2}–{last:.2}) | {} / {} | {:.1e} / {:.1e} |\n",
+            "| {} | {:.0e} | {ratio} | {} / {} | {:.1e} / {:.1e} |\n",
             r.problem, r.tol, r.ours_steps, r.heyoka_steps, r.ours_error, r.heyoka_error
         ));
     }
     s
+}
+
+/// `median× (least–largest)` of sorted ratios, if there are any.
+fn ratio_cell(ratios: &[f64]) -> Option<String> {
+    let (first, median, last) = (
+        ratios.first()?,
+        ratios.get(ratios.len() / 2)?,
+        ratios.last()?,
+    );
+    Some(format!("{median:.2}× ({first:.2}–{last:.2})"))
 }
 
 /// One tolerance of one problem against `ode_solvers`' Dop853.
@@ -213,16 +219,7 @@ pub fn dop853_markdown(rows: &[Dop853Row], rounds: usize) -> String {
             Some([(ta, ea), (tb, eb)]) => format!("{ta:.1e} ({ea:.1e}), {tb:.1e} ({eb:.1e})"),
             None => "our error out of its reach".into(),
         };
-        let ratio = match (
-            r.ratios.first(),
-            r.ratios.get(r.ratios.len() / 2),
-            r.ratios.last(),
-        ) {
-            (Some(first), Some(median), Some(last)) => {
-                format!("{median:.2}× ({first:.2}–{last:.2})")
-            }
-            _ => "—".into(),
-        };
+        let ratio = ratio_cell(&r.ratios).unwrap_or_else(|| "—".into());
         s.push_str(&format!(
             "| {} | {:.0e} | {:.1e} | {bracket} | {ratio} |\n",
             r.problem, r.tol, r.ours_error
