@@ -562,18 +562,28 @@ fn folded_sum(
     (prelude, sum_with(flat, extra, scale))
 }
 
-/// The rows a lane group's loop reads at its lane (lane 0 of the group
-/// itself and of each operand that is a group in the same lane order), or
-/// None when its lanes cannot be one loop: an operand read lane by lane
-/// from states, sums whose weights differ between lanes, or a row read
-/// both at the lane and as the one operand of every lane.
-fn looped_rows(
+/// How a lane group is computed by a loop over its lanes.
+struct Loop {
+    /// The rows read at lane `lane` (lane 0 of the group itself and of
+    /// each operand that is a group in the same lane order).
+    looped: BTreeSet<usize>,
+    /// The rows every lane reads at one place.
+    shared: BTreeSet<usize>,
+    /// The rows of all the group's lanes.
+    written: BTreeSet<usize>,
+}
+
+/// The loop of a lane group, or None when its lanes cannot be one loop: an
+/// operand read lane by lane from states, sums whose weights differ
+/// between lanes, or a row read both at the lane and as the one operand of
+/// every lane.
+fn group_loop(
     l: &Layout,
     tape: &Tape,
     folding: &Folding,
     lanes: &Lanes,
     members: &[Node],
-) -> Option<BTreeSet<usize>> {
+) -> Option<Loop> {
     let operands: Vec<Vec<Operand>> = members
         .iter()
         .map(|&m| Some(shape(m, tape, folding)?.1))
@@ -609,7 +619,38 @@ fn looped_rows(
         }
         looped.insert(l.row(nodes[0]));
     }
-    looped.is_disjoint(&shared).then_some(looped)
+    let written = members.iter().map(|&m| l.row(m)).collect();
+    looped.is_disjoint(&shared).then_some(Loop {
+        looped,
+        shared,
+        written,
+    })
+}
+
+/// Consecutive lane groups of one width written as one loop, so that the
+/// operands they share (an N-body model's differences, read by the sum of
+/// squares and by the products) are loaded once per lane.
+struct FusedLoop {
+    width: usize,
+    written: BTreeSet<usize>,
+    shared: BTreeSet<usize>,
+    body: TokenStream,
+}
+
+impl FusedLoop {
+    /// Whether `g` can join: same width, and no lane reads at one place a
+    /// row that another statement of the loop writes lane by lane.
+    fn admits(&self, width: usize, g: &Loop) -> bool {
+        self.width == width
+            && self.written.is_disjoint(&g.shared)
+            && self.shared.is_disjoint(&g.written)
+    }
+
+    /// The loop's tokens.
+    fn tokens(self) -> TokenStream {
+        let (width, body) = (Literal::usize_unsuffixed(self.width), self.body);
+        quote!(for lane in 0..#width { #body })
+    }
 }
 
 /// Up to this many rows × order², the orders are inlined into one function
@@ -670,10 +711,10 @@ fn jet_in(
         group_lanes(tape, &folding)
     };
     let l = Layout::new(order, n, rows, &lanes);
-    let looped: Vec<Option<BTreeSet<usize>>> = lanes
+    let loops: Vec<Option<Loop>> = lanes
         .groups
         .iter()
-        .map(|members| looped_rows(&l, tape, &folding, &lanes, members))
+        .map(|members| group_loop(&l, tape, &folding, &lanes, members))
         .collect();
     let len = Literal::usize_unsuffixed(l.len());
     let weights = Weights::collect(&folding, tape.constants.len());
@@ -739,6 +780,7 @@ fn jet_in(
     let mut steps = Vec::with_capacity(order);
     for k in 0..order {
         let mut step = TokenStream::new();
+        let mut fused: Option<FusedLoop> = None;
         for &v in &written {
             let write = |seeds: &mut Seeds| match (&folding.roles[v], recurrence.get(&v)) {
                 (Role::Row, Some(&rec)) => recurrence_at(&l, v, rec, k),
@@ -749,23 +791,42 @@ fn jet_in(
                 }
                 _ => TokenStream::new(),
             };
-            // A looped group's lane 0 writes the loop; its other lanes
-            // are in it.
+            // A looped group's lane 0 writes its statement into the loop;
+            // its other lanes are in it.
             let group = lanes.group_of.get(&Node::Var(v)).copied();
-            match group.and_then(|(g, lane)| Some((looped[g].as_ref()?, lane, g))) {
+            match group.and_then(|(g, lane)| Some((loops[g].as_ref()?, lane, g))) {
                 Some((_, lane, _)) if lane > 0 => {}
-                Some((rows, _, g)) => {
-                    let width = Literal::usize_unsuffixed(lanes.groups[g].len());
-                    let body = l.looping(rows.clone(), || write(&mut seeds));
-                    step.extend(quote!(for lane in 0..#width { #body }));
+                Some((group_loop, _, g)) => {
+                    let width = lanes.groups[g].len();
+                    let body = l.looping(group_loop.looped.clone(), || write(&mut seeds));
+                    match fused.as_mut() {
+                        Some(f) if f.admits(width, group_loop) => {
+                            f.body.extend(body);
+                            f.written.extend(&group_loop.written);
+                            f.shared.extend(&group_loop.shared);
+                        }
+                        _ => {
+                            step.extend(fused.take().map(FusedLoop::tokens));
+                            fused = Some(FusedLoop {
+                                width,
+                                written: group_loop.written.clone(),
+                                shared: group_loop.shared.clone(),
+                                body,
+                            });
+                        }
+                    }
                 }
-                None => step.extend(write(&mut seeds)),
+                None => {
+                    step.extend(fused.take().map(FusedLoop::tokens));
+                    step.extend(write(&mut seeds));
+                }
             }
             if let (true, Some((first, 1))) = (seed_rows, lanes.of(Node::Var(v))) {
                 let (a, b) = (row_slot(first, k), row_slot(Node::Var(v), k));
                 step.extend(seeds.store(&a, &b));
             }
         }
+        step.extend(fused.take().map(FusedLoop::tokens));
         // x^[k+1] = f^[k] / (k + 1).
         let scale = float(1.0 / (k + 1) as f64);
         for &i in &state_order {
