@@ -16,9 +16,13 @@
 //! one operand read by every lane, a tuple that is itself a group in the
 //! same lane order, or states (the group's rows are then written lane by
 //! lane, reading each state where it is) — and give the seed up on any
-//! conflict. Values are never affected: a group only changes where
-//! coefficients are stored and whether a lane's statement is written out
-//! or run by the loop.
+//! conflict. Consecutive groups of one width share one loop (the sums of
+//! squares, powers and products of the interactions: their common
+//! operands are loaded once per lane). Values are never affected: a group
+//! only changes where coefficients are stored and whether a lane's
+//! statement is written out or run by the loop. On the outer solar system
+//! (15 interactions, order 15) a step went from 5.7 µs with lane pairs to
+//! 3.0 µs with a loop per group and 2.6 µs with fused loops.
 
 use super::taylor_folding::{Folding, Role};
 use super::taylor_lanes::{schedule, shape, Lanes, Node, Shape};
