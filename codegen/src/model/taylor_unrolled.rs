@@ -120,17 +120,32 @@ fn term(weight: f64, a: TokenStream, b: TokenStream) -> Term {
 /// orders tried, before the state update carried its rounding errors), so
 /// no test pins that floor.
 fn sum_with(terms: Vec<Triple>, extra: Vec<Term>, scale: Option<TokenStream>) -> TokenStream {
-    let (mut old, mut fresh): (Vec<Term>, Vec<(u8, Term)>) = (Vec::new(), Vec::new());
+    let mut fresh: Vec<(u8, Term)> = Vec::new();
+    // The old terms by weight, in order of first appearance.
+    let mut by_weight: Vec<(f64, Vec<(TokenStream, TokenStream)>)> = Vec::new();
     for (weight, a, b, rank) in terms {
         let (Some(a), Some(b)) = (a, b) else { continue };
         if weight == 0.0 {
             continue;
         }
-        let t = term(weight, a, b);
         if rank == 0 {
-            old.push(t);
+            match by_weight.iter_mut().find(|(w, _)| *w == weight) {
+                Some((_, class)) => class.push((a, b)),
+                None => by_weight.push((weight, vec![(a, b)])),
+            }
         } else {
-            fresh.push((rank, t));
+            fresh.push((rank, term(weight, a, b)));
+        }
+    }
+    // A weight shared by several old terms (the 2 of a square's cross
+    // terms) multiplies their sum once instead of each term.
+    let mut old: Vec<Term> = Vec::new();
+    for (weight, class) in by_weight {
+        if class.len() > 1 && weight.abs() != 1.0 {
+            let inner = tree(class.into_iter().map(|(a, b)| term(1.0, a, b)).collect());
+            old.push(Term::Product(float(weight), quote!((#inner))));
+        } else {
+            old.extend(class.into_iter().map(|(a, b)| term(weight, a, b)));
         }
     }
     fresh.sort_by_key(|(rank, _)| *rank);
