@@ -3,10 +3,10 @@
 //! jets by one loop over their lanes instead of one copy each.
 //!
 //! Large jets keep their coefficients in memory and are one function per
-//! order; written out row by row they are so long (the outer solar system
-//! at order 15: some 150 kB of instructions per jet) that the processor
-//! spends its time fetching and decoding them, never hitting its caches
-//! for instructions. The interactions of an N-body model are one
+//! order; written out row by row they are long (the outer solar system at
+//! order 15: some 150 kB of instructions per jet, several times what the
+//! processor's instruction cache holds), and the time goes as much into
+//! fetching and decoding them as into the arithmetic. The interactions of an N-body model are one
 //! computation repeated: a group of rows (the 15 interactions' powers, say)
 //! with their coefficients interleaved (coefficient k of lane l at
 //! `first + W·k + l`) is one loop over l whose body reads its operands'
