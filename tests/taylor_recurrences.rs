@@ -102,6 +102,21 @@ fn five_bodies() {
     }
 }
 
+/// Three lanes of `exp(aᵢ²)` and of `gᵢ = exp(exp(aᵢ²))`, and products
+/// (under a square root, so that they are rows of their own) that all read
+/// g₁, at an order whose jet is split per order: the products read that
+/// lane at one place, so they must not share the loop that writes it
+/// (lane 0 would read lane 1 before it is written; this fails if they do).
+#[dae_model(taylor = 1, unroll = [22])]
+fn shared_lane() {
+    let a = state_array([0.1, -0.2, 0.3]);
+    let e = [exp(a[0] * a[0]), exp(a[1] * a[1]), exp(a[2] * a[2])];
+    let g = [exp(e[0]), exp(e[1]), exp(e[2])];
+    der(a[0]) == 0.1 * sqrt(e[0] * g[1]) - 0.01 * g[0];
+    der(a[1]) == 0.1 * sqrt(e[1] * g[1]) - 0.01 * g[1];
+    der(a[2]) == 0.1 * sqrt(e[2] * g[1]) - 0.01 * g[2];
+}
+
 /// A deterministic pseudo-random number in [lo, hi) (a 64-bit LCG).
 fn uniform(seed: &mut u64, lo: f64, hi: f64) -> f64 {
     *seed = seed
@@ -235,6 +250,15 @@ fn lane_groups_agree_with_the_interpreted_tape() {
         .map(|&s| (s - 0.1, s + 0.1))
         .collect();
     unrolled_agrees_with_the_tape(&FiveBodies::default(), 18, &boxes);
+}
+
+#[test]
+fn a_lane_read_by_every_lane_is_written_before_the_loop_that_reads_it() {
+    unrolled_agrees_with_the_tape(
+        &SharedLane::default(),
+        22,
+        &[(-0.5, 0.5), (-0.5, 0.5), (-0.5, 0.5)],
+    );
 }
 
 #[test]
