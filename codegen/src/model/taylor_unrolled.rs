@@ -661,6 +661,30 @@ impl FusedLoop {
             && self.shared.is_disjoint(&g.written)
     }
 
+    /// Adds a group's statement `body` to the open loop if it can join it;
+    /// else opens a new loop with it and returns the one it closed.
+    fn push(
+        open: &mut Option<FusedLoop>,
+        width: usize,
+        g: &Loop,
+        body: TokenStream,
+    ) -> Option<TokenStream> {
+        if let Some(f) = open.as_mut().filter(|f| f.admits(width, g)) {
+            f.body.extend(body);
+            f.written.extend(&g.written);
+            f.shared.extend(&g.shared);
+            return None;
+        }
+        let closed = open.take().map(FusedLoop::tokens);
+        *open = Some(FusedLoop {
+            width,
+            written: g.written.clone(),
+            shared: g.shared.clone(),
+            body,
+        });
+        closed
+    }
+
     /// The loop's tokens.
     fn tokens(self) -> TokenStream {
         let (width, body) = (Literal::usize_unsuffixed(self.width), self.body);
@@ -814,22 +838,7 @@ fn jet_in(
                 Some((group_loop, _, g)) => {
                     let width = lanes.groups[g].len();
                     let body = l.looping(group_loop.looped.clone(), || write(&mut seeds));
-                    match fused.as_mut() {
-                        Some(f) if f.admits(width, group_loop) => {
-                            f.body.extend(body);
-                            f.written.extend(&group_loop.written);
-                            f.shared.extend(&group_loop.shared);
-                        }
-                        _ => {
-                            step.extend(fused.take().map(FusedLoop::tokens));
-                            fused = Some(FusedLoop {
-                                width,
-                                written: group_loop.written.clone(),
-                                shared: group_loop.shared.clone(),
-                                body,
-                            });
-                        }
-                    }
+                    step.extend(FusedLoop::push(&mut fused, width, group_loop, body));
                 }
                 None => {
                     step.extend(fused.take().map(FusedLoop::tokens));
