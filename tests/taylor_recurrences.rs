@@ -117,6 +117,21 @@ fn shared_lane() {
     der(a[2]) == 0.1 * sqrt(e[2] * g[1]) - 0.01 * g[2];
 }
 
+/// Three lanes of one expression with logarithms, quotients, arctangents,
+/// exponentials and square roots, at an order whose jet is split per
+/// order: the recurrences with a reciprocal 1/x₀ (ln, the square root) run
+/// in lane groups' loops, the others lane by lane.
+#[dae_model(taylor = 1, unroll = [16])]
+fn elementary_lanes() {
+    let a = state_array([0.1, -0.2, 0.3]);
+    for i in 0..3 {
+        der(a[i])
+            == ln(1.0 + a[i] * a[i]) / (2.0 + a[i])
+                + atan2(a[i], 1.5) * exp(-a[i])
+                + sqrt(1.0 + a[i] * a[i]);
+    }
+}
+
 /// A deterministic pseudo-random number in [lo, hi) (a 64-bit LCG).
 fn uniform(seed: &mut u64, lo: f64, hi: f64) -> f64 {
     *seed = seed
@@ -250,6 +265,15 @@ fn lane_groups_agree_with_the_interpreted_tape() {
         .map(|&s| (s - 0.1, s + 0.1))
         .collect();
     unrolled_agrees_with_the_tape(&FiveBodies::default(), 18, &boxes);
+}
+
+#[test]
+fn lane_groups_of_elementary_functions_agree_with_the_interpreted_tape() {
+    unrolled_agrees_with_the_tape(
+        &ElementaryLanes::default(),
+        16,
+        &[(-0.9, 0.9), (-0.9, 0.9), (-0.9, 0.9)],
+    );
 }
 
 #[test]
