@@ -29,8 +29,10 @@ use super::taylor_lanes::{schedule, shape, Lanes, Node, Shape};
 use super::taylor_tape::{Operand, Tape};
 use std::collections::BTreeMap;
 
-/// Finds the lane groups of the rows of `tape` under `folding`.
-pub fn group_lanes(tape: &Tape, folding: &Folding) -> Lanes {
+/// Finds the lane groups of the rows of `tape` under `folding`; `known[i]`
+/// is constant i's value when it is a number (lanes reading different
+/// constants of one value read them as one).
+pub fn group_lanes(tape: &Tape, folding: &Folding, known: &[Option<f64>]) -> Lanes {
     let mut nodes: Vec<Node> = Vec::new();
     for &(v, _) in &tape.recurrences {
         if folding.roles[v] == Role::Row {
@@ -47,23 +49,25 @@ pub fn group_lanes(tape: &Tape, folding: &Folding) -> Lanes {
         .filter_map(|&x| Some((x, shape(x, tape, folding)?)))
         .collect();
     let mut lanes = Lanes::default();
-    // Seeds: every nonlinear row of one shape, in tape order.
-    let mut classes: Vec<(Shape, Vec<Node>)> = Vec::new();
+    // Seeds: every nonlinear row of one shape whose operands are of the
+    // same kinds (rows, states, constants), in tape order.
+    let mut classes: Vec<((Shape, Vec<u8>), Vec<Node>)> = Vec::new();
     for &(v, _) in &tape.recurrences {
         let n = Node::Var(v);
-        let Some((s, _)) = shapes.get(&n) else {
+        let Some((s, ops)) = shapes.get(&n) else {
             continue;
         };
         if folding.roles[v] != Role::Row {
             continue;
         }
-        match classes.iter_mut().find(|(c, _)| c == s) {
+        let key = (s.clone(), ops.iter().map(operand_kind).collect::<Vec<u8>>());
+        match classes.iter_mut().find(|(c, _)| *c == key) {
             Some((_, members)) => members.push(n),
-            None => classes.push((s.clone(), vec![n])),
+            None => classes.push((key, vec![n])),
         }
     }
     for (_, members) in &classes {
-        try_group(tape, folding, &shapes, &mut lanes, members.clone());
+        try_group(tape, folding, known, &shapes, &mut lanes, members.clone());
     }
     // Then rows whose operands are in groups, their lanes in the order of
     // their first grouped operand's lanes, until no group forms.
@@ -95,7 +99,7 @@ pub fn group_lanes(tape: &Tape, folding: &Folding) -> Lanes {
         for (_, mut members) in buckets {
             members.sort();
             let tuple: Vec<Node> = members.into_iter().map(|(_, n)| n).collect();
-            formed |= try_group(tape, folding, &shapes, &mut lanes, tuple);
+            formed |= try_group(tape, folding, known, &shapes, &mut lanes, tuple);
         }
         if !formed {
             break;
@@ -109,6 +113,7 @@ pub fn group_lanes(tape: &Tape, folding: &Folding) -> Lanes {
 fn try_group(
     tape: &Tape,
     folding: &Folding,
+    known: &[Option<f64>],
     shapes: &BTreeMap<Node, (Shape, Vec<Operand>)>,
     lanes: &mut Lanes,
     tuple: Vec<Node>,
@@ -116,7 +121,7 @@ fn try_group(
     if tuple.len() < 2 {
         return false;
     }
-    let Some(found) = unify(lanes, shapes, tuple) else {
+    let Some(found) = unify(lanes, shapes, known, tuple) else {
         return false;
     };
     let mut trial = Lanes {
@@ -143,6 +148,7 @@ fn try_group(
 fn unify(
     lanes: &Lanes,
     shapes: &BTreeMap<Node, (Shape, Vec<Operand>)>,
+    known: &[Option<f64>],
     tuple: Vec<Node>,
 ) -> Option<Vec<Vec<Node>>> {
     let mut found: Vec<Vec<Node>> = Vec::new();
@@ -178,7 +184,7 @@ fn unify(
         }
         for position in 0..o0.len() {
             let ops: Vec<Operand> = t.iter().map(|n| shapes[n].1[position]).collect();
-            if ops.iter().all(|&o| o == ops[0]) {
+            if same_operand(&ops, known) {
                 continue;
             }
             let rows: Option<Vec<Node>> = ops.iter().map(|&o| Node::of(o)).collect();
@@ -194,11 +200,69 @@ fn unify(
     Some(found)
 }
 
+/// The kind of an operand: a row (0), a state (1), a constant (2) or the
+/// time (3).
+fn operand_kind(o: &Operand) -> u8 {
+    match o {
+        Operand::Var(_) => 0,
+        Operand::State(_) => 1,
+        Operand::Const(_) => 2,
+        Operand::Time => 3,
+    }
+}
+
+/// True when every lane reads the same operand: one operand, or constants
+/// known to be one number.
+pub(super) fn same_operand(ops: &[Operand], known: &[Option<f64>]) -> bool {
+    let value = |o: &Operand| match o {
+        Operand::Const(i) => known.get(*i).copied().flatten(),
+        _ => None,
+    };
+    ops.iter().all(|o| *o == ops[0])
+        || (value(&ops[0]).is_some() && ops.iter().all(|o| value(o) == value(&ops[0])))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::model::taylor_folding::fold_linear;
     use crate::model::taylor_tape::n_body_tape;
+
+    /// Squares of three states and of a constant: the states' squares make
+    /// one group (the constant's, of the same shape, is left out rather
+    /// than spoiling it), and three quotients by different constants of
+    /// one value make another, reading the constants as one.
+    #[test]
+    fn seeds_split_by_operand_kind_and_equal_constants_match() {
+        use crate::model::taylor_tape::{test_tape, Recurrence};
+        use Operand::{Const, State, Var};
+        let t = test_tape(
+            vec![
+                Recurrence::Square(State(0)), // u0
+                Recurrence::Square(State(1)), // u1
+                Recurrence::Square(Const(0)), // u2
+                Recurrence::Square(State(2)), // u3
+                Recurrence::Div(Var(0), Const(1)),
+                Recurrence::Div(Var(1), Const(2)),
+                Recurrence::Div(Var(3), Const(3)),
+                Recurrence::Add(Var(4), Var(2)),
+            ],
+            vec![Var(7), Var(5), Var(6)],
+            4,
+        );
+        let known = [Some(1.5), Some(2.0), Some(2.0), Some(2.0)];
+        let folding = fold_linear(&t, &known);
+        let lanes = group_lanes(&t, &folding, &known);
+        let squares = [Node::Var(0), Node::Var(1), Node::Var(3)];
+        let quotients = [Node::Var(4), Node::Var(5), Node::Var(6)];
+        assert_eq!(lanes.group(Node::Var(0)), Some(&squares[..]));
+        assert_eq!(lanes.group(Node::Var(4)), Some(&quotients[..]));
+        assert_eq!(lanes.group(Node::Var(2)), None);
+        // With the constants unknown, the quotients read different ones.
+        let unknown = [None; 4];
+        let lanes = group_lanes(&t, &fold_linear(&t, &unknown), &unknown);
+        assert_eq!(lanes.group(Node::Var(4)), None);
+    }
 
     /// Six bodies: each of the 8 rows of an interaction (3 differences,
     /// the sum of squares, the power, 3 products) makes one group of the
@@ -207,7 +271,7 @@ mod tests {
     fn n_body_rows_make_one_group_per_row_of_an_interaction() {
         let t = n_body_tape(6);
         let folding = fold_linear(&t, &vec![None; t.constants.len()]);
-        let lanes = group_lanes(&t, &folding);
+        let lanes = group_lanes(&t, &folding, &vec![None; t.constants.len()]);
         assert_eq!(lanes.groups.len(), 8);
         assert!(lanes.groups.iter().all(|g| g.len() == 15));
         // Lane l of the powers reads lane l of the sums of squares.

@@ -19,7 +19,7 @@
 use super::taylor_folding::{
     fold_linear, known_constants, Base, Folding, LinearTerm, Role, Weight,
 };
-use super::taylor_groups::group_lanes;
+use super::taylor_groups::{group_lanes, same_operand};
 use super::taylor_lanes::{pair_lanes, schedule, shape, Lanes, Node};
 use super::taylor_layout::Layout;
 use super::taylor_tape::{InverseFunction, Operand, Recurrence, Tape};
@@ -596,6 +596,7 @@ fn group_loop(
     l: &Layout,
     tape: &Tape,
     folding: &Folding,
+    known: &[Option<f64>],
     lanes: &Lanes,
     members: &[Node],
 ) -> Option<Loop> {
@@ -622,7 +623,7 @@ fn group_loop(
     let mut shared = BTreeSet::new();
     for position in 0..operands[0].len() {
         let ops: Vec<Operand> = operands.iter().map(|o| o[position]).collect();
-        if ops.iter().all(|&o| o == ops[0]) {
+        if same_operand(&ops, known) {
             if let Some(n) = Node::of(ops[0]) {
                 shared.insert(l.row(n));
             }
@@ -731,7 +732,8 @@ fn jet_in(
     known: &[Option<f64>],
     single_function_terms: usize,
 ) -> UnrolledJet {
-    let folding = fold_linear(tape, &known_constants(tape, known));
+    let known = known_constants(tape, known);
+    let folding = fold_linear(tape, &known);
     let mut rows = vec![None; tape.ops.len()];
     let mut row_count = 0;
     for (v, role) in folding.roles.iter().enumerate() {
@@ -747,13 +749,13 @@ fn jet_in(
     let lanes = if single_function {
         pair_lanes(tape, &folding, n)
     } else {
-        group_lanes(tape, &folding)
+        group_lanes(tape, &folding, &known)
     };
     let l = Layout::new(order, n, rows, &lanes);
     let loops: Vec<Option<Loop>> = lanes
         .groups
         .iter()
-        .map(|members| group_loop(&l, tape, &folding, &lanes, members))
+        .map(|members| group_loop(&l, tape, &folding, &known, &lanes, members))
         .collect();
     let len = Literal::usize_unsuffixed(l.len());
     let weights = Weights::collect(&folding, tape.constants.len());
