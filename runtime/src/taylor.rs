@@ -39,6 +39,26 @@ fn first_non_finite(c: &[f64]) -> Option<usize> {
     c.iter().position(|x| !x.is_finite())
 }
 
+/// The largest |c[i·w + k]| over the rows of `c` (NaNs ignored, as
+/// `f64::max` does). Four running maxima, so that the chain is a quarter
+/// of the rows long: with one, the outer solar system's three norms were
+/// chains of 36 NaN-aware maxima, some 5 % of its step.
+fn column_max(c: &[f64], w: usize, k: usize) -> f64 {
+    let mut lanes = [0.0f64; 4];
+    let mut column = c.iter().skip(k).step_by(w).map(|x| x.abs());
+    'rows: loop {
+        for lane in &mut lanes {
+            let Some(x) = column.next() else { break 'rows };
+            // False for a NaN x: the maximum keeps its value.
+            if x > *lane {
+                *lane = x;
+            }
+        }
+    }
+    let pair = |a: f64, b: f64| if a > b { a } else { b };
+    pair(pair(lanes[0], lanes[1]), pair(lanes[2], lanes[3]))
+}
+
 /// Leading coefficients of each series summed by Horner's rule, one fused
 /// multiply-add each, as heyoka's state update does.
 const LEADING: usize = 4;
@@ -205,9 +225,8 @@ pub(crate) fn integrate<M: Model>(
             }
         };
         let w = p + 1;
-        let state = |i: usize| &coefficients[i * w..(i + 1) * w];
         solution.stats_mut().rhs_evals += 1;
-        let norm = |k: usize| (0..n).map(|i| state(i)[k].abs()).fold(0.0, f64::max);
+        let norm = |k: usize| column_max(&coefficients[..n * w], w, k);
         // ρ_k = (N/‖x^[k]‖)^(1/k); of ρ_{p−1} and ρ_p the smaller, compared
         // through logarithms so that only one power is taken. The step
         // waits for ρ: ln N − ln ‖x^[k]‖ times 1/k keeps two divisions off
@@ -306,6 +325,28 @@ mod tests {
             assert_eq!(first_non_finite(&c), Some(at));
             c[at] = 1.0;
         }
+    }
+
+    #[test]
+    fn column_max_finds_the_largest_magnitude_in_any_row_and_ignores_nan() {
+        // Seven rows of three: column k of row i is −(i + 1)·(k + 1) except
+        // where set below.
+        let (n, w) = (7, 3);
+        let mut c: Vec<f64> = (0..n * w)
+            .map(|x| -(((x / w) + 1) as f64) * ((x % w) + 1) as f64)
+            .collect();
+        assert_eq!(column_max(&c, w, 0), 7.0);
+        assert_eq!(column_max(&c, w, 2), 21.0);
+        for row in 0..n {
+            let at = row * w + 1;
+            let old = c[at];
+            c[at] = 100.0;
+            assert_eq!(column_max(&c, w, 1), 100.0, "largest in row {row}");
+            c[at] = f64::NAN;
+            assert_eq!(column_max(&c, w, 1), if row == 6 { 12.0 } else { 14.0 });
+            c[at] = old;
+        }
+        assert_eq!(column_max(&[f64::NAN; 4], 1, 0), 0.0);
     }
 
     #[test]
