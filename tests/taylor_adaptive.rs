@@ -1,13 +1,16 @@
 //! The adaptive Taylor method on the non-stiff references
-//! (../shared/notes/reference-problems.md §9, §10).
+//! (../shared/notes/reference-problems.md §9, §10, §12d).
 
 use daegen::prelude::*;
 
 include!("models/kepler.rs");
 include!("models/arenstorf.rs");
+include!("models/lorenz.rs");
 // Orders 8 and 19 (tolerances 1e-6 and 1e-15) are also emitted unrolled.
 kepler_model!(taylor = 1, unroll = [8, 19]);
 arenstorf_model!(taylor = 1);
+// Order 18 (tolerance 1e-14) unrolled.
+lorenz_model!([-8.0, 8.0, 27.0], taylor = 1, unroll = [18]);
 
 fn max_error(got: &[f64], want: &[f64]) -> f64 {
     got.iter()
@@ -63,6 +66,30 @@ fn errors_fall_with_the_tolerance_on_kepler_and_arenstorf() {
     assert!(k6 / k15 > 1e5, "Kepler: {k6:e} → {k15:e}");
     assert!(a6 / a15 > 1e5, "Arenstorf: {a6:e} → {a15:e}");
     assert!(k15 < 1e-9 && a15 < 1e-9, "{k15:e}, {a15:e}");
+}
+
+/// A chaotic flow: errors grow about as e^(0.9 t), some 2e6 by t = 16
+/// (reference-problems.md §12d), so the error at 16 is about the tolerance
+/// times that (0.09 of it measured at 1e-10 and 1e-14); a factor 10 over
+/// it leaves room for the order in which rounding errors add up.
+#[test]
+fn lorenz_follows_its_reference_within_the_growth_of_errors() {
+    let growth = (0.9f64 * 16.0).exp();
+    let run = |tol: f64, compact: bool| {
+        let o = Options::new()
+            .method(Method::Taylor)
+            .rtol(tol)
+            .atol(tol)
+            .taylor_compact(compact);
+        let sol = Lorenz::default().simulate(0.0, 16.0, &o).unwrap();
+        max_error(&final_state(&sol), &LORENZ_HNW_AT_16)
+    };
+    let (e10, e14, e14_compact) = (run(1e-10, false), run(1e-14, false), run(1e-14, true));
+    for (tol, e) in [(1e-10, e10), (1e-14, e14), (1e-14, e14_compact)] {
+        assert!(e < 10.0 * tol * growth, "tol {tol:e}: error {e:e}");
+    }
+    // Four decades of tolerance, at least three of error.
+    assert!(e10 / e14 > 1e3, "{e10:e} → {e14:e}");
 }
 
 #[test]

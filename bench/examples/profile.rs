@@ -1,5 +1,5 @@
 //! Repeats one solve many times for `perf`: `cargo run --release --example
-//! profile -- MODEL METHOD TOL [REPEATS]` (MODEL: kepler, arenstorf, oss;
+//! profile -- MODEL METHOD TOL [REPEATS]` (MODEL: kepler, arenstorf, oss, lorenz;
 //! METHOD: taylor, taylor-compact, dop853, dopri5). Prints the mean time per
 //! solve, the steps and, for Kepler and Arenstorf, the error at the end
 //! against the exact or periodic solution; `profile -- tape MODEL` prints
@@ -11,6 +11,7 @@ use std::time::Instant;
 include!("../../tests/models/kepler.rs");
 include!("../../tests/models/arenstorf.rs");
 include!("../../tests/models/outer_solar_system.rs");
+include!("../../tests/models/lorenz.rs");
 
 kepler_model!(
     taylor = 1,
@@ -21,9 +22,14 @@ arenstorf_model!(
     unroll = [5, 6, 7, 8, 10, 11, 12, 13, 14, 15, 16, 18]
 );
 outer_solar_system_model!(taylor = 1, unroll = [12, 13, 14, 15, 16, 18]);
+lorenz_model!(
+    [1.0, 0.0, 0.0],
+    taylor = 1,
+    unroll = [8, 10, 11, 12, 13, 14, 15, 16, 18, 19]
+);
 
 const USAGE: &str = "usage: profile MODEL METHOD TOL [REPEATS] | profile tape MODEL \
-                     (MODEL: kepler, arenstorf, oss; METHOD: taylor, taylor-compact, dop853, dopri5)";
+                     (MODEL: kepler, arenstorf, oss, lorenz; METHOD: taylor, taylor-compact, dop853, dopri5)";
 
 /// Solves `repeats` times from 0 to `t1`, prints the timing and, when
 /// `reference` is given, the largest error at `t1`.
@@ -75,6 +81,7 @@ fn main() -> Result<(), String> {
             "kepler" => dump_tape(&Kepler::default()),
             "arenstorf" => dump_tape(&Arenstorf::default()),
             "oss" => dump_tape(&OuterSolarSystem::default()),
+            "lorenz" => dump_tape(&Lorenz::default()),
             _ => return Err(USAGE.into()),
         }
         return Ok(());
@@ -106,6 +113,13 @@ fn main() -> Result<(), String> {
             repeats,
         ),
         "oss" => run(&OuterSolarSystem::default(), 20000.0, None, &opts, repeats),
+        "lorenz" => run(
+            &Lorenz::default(),
+            20.0,
+            Some(&LORENZ_AT_20),
+            &opts,
+            repeats,
+        ),
         _ => Err(USAGE.into()),
     }
 }

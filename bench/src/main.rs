@@ -9,7 +9,8 @@
 //! `--versus-dop853` times it against `ode_solvers`' Dop853 at equal
 //! error, in alternation (`results/versus_dop853.md`);
 //! `--versus-heyoka` times our Taylor method and heyoka in alternation,
-//! `results/versus_heyoka.md`). Writes
+//! `results/versus_heyoka.md`; with `--only name`, one problem, printed
+//! only). Writes
 //! `results/results.csv`, one SVG per problem and `results/summary.md`.
 //!
 //! Errors are max |y − ref| / max(1, |ref|) at the end time against exact or
@@ -28,6 +29,7 @@ use std::time::Instant;
 include!("../../tests/models/kepler.rs");
 include!("../../tests/models/arenstorf.rs");
 include!("../../tests/models/outer_solar_system.rs");
+include!("../../tests/models/lorenz.rs");
 include!("../../tests/models/stiff.rs");
 include!("../../tests/models/pendulum.rs");
 include!("../../tests/models/slider_crank.rs");
@@ -65,6 +67,19 @@ outer_solar_system_model!(
         .methods([Dop853, Taylor])
         .tolerances(9, 14)
         .peer("outer_solar_system")
+);
+lorenz_model!(
+    [1.0, 0.0, 0.0],
+    taylor = 1,
+    unroll = [8, 10, 11, 12, 13, 14, 15, 16, 18, 19],
+    bench = Bench::until(20.0)
+        .reference(
+            LORENZ_AT_20,
+            "mpmath Taylor series, two runs agreeing to 3e-36 (bench/references/lorenz_reference.py)"
+        )
+        .methods([Dopri5, Dop853, Taylor])
+        .tolerances(6, 15)
+        .peer("lorenz")
 );
 van_der_pol_model!(
     bench = Bench::until(2.0)
@@ -222,7 +237,7 @@ struct Target {
 
 const TARGETS: [Target; 5] = [
     Target {
-        problems: &["kepler", "arenstorf", "outer_solar_system"],
+        problems: &["kepler", "arenstorf", "lorenz", "outer_solar_system"],
         ours: "daegen Taylor",
         peer: "heyoka",
         tol_at_most: 1e-12,
@@ -230,7 +245,7 @@ const TARGETS: [Target; 5] = [
         what: "Taylor ≤ 0.8× heyoka (tol ≤ 1e-12)",
     },
     Target {
-        problems: &["kepler", "arenstorf", "outer_solar_system"],
+        problems: &["kepler", "arenstorf", "lorenz", "outer_solar_system"],
         ours: "daegen Taylor",
         peer: "ode_solvers Dop853",
         tol_at_most: 1e-12,
@@ -238,7 +253,7 @@ const TARGETS: [Target; 5] = [
         what: "Taylor ≥ 5× faster than ode_solvers DOP853 (tol ≤ 1e-12)",
     },
     Target {
-        problems: &["kepler", "arenstorf"],
+        problems: &["kepler", "arenstorf", "lorenz"],
         ours: "daegen DOPRI5",
         peer: "ode_solvers Dopri5",
         tol_at_most: 1.0,
@@ -246,7 +261,7 @@ const TARGETS: [Target; 5] = [
         what: "DOPRI5 ≤ 1× ode_solvers Dopri5",
     },
     Target {
-        problems: &["kepler", "arenstorf", "outer_solar_system"],
+        problems: &["kepler", "arenstorf", "lorenz", "outer_solar_system"],
         ours: "daegen DOP853",
         peer: "ode_solvers Dop853",
         tol_at_most: 1.0,
@@ -329,28 +344,38 @@ fn machine() -> String {
     format!("{date}, {cpu}, {cores} cores, one thread per solve")
 }
 
-/// Runs one alternated comparison (see versus.rs) on the three Taylor
-/// problems at tolerances 1e-12 to 1e-14, 7 rounds each, and writes its
-/// table to `results/<file>`.
+/// A Taylor problem's alternated comparison against one peer.
+type VersusRun<R> = (&'static str, fn(&[f64], usize) -> Result<Vec<R>, String>);
+
+/// Runs one alternated comparison (see versus.rs) on the four Taylor
+/// problems (or the one named by `only`) at tolerances 1e-12 to 1e-14, 7
+/// rounds each, and writes its table to `results/<file>` (prints it only,
+/// for one problem).
 fn versus_section<R>(
     peer: &str,
     file: &str,
-    runs: [fn(&[f64], usize) -> Result<Vec<R>, String>; 3],
+    runs: [VersusRun<R>; 4],
+    only: Option<&str>,
     markdown: fn(&[R], usize) -> String,
 ) {
     let (tolerances, rounds) = ([1e-12, 1e-13, 1e-14], 7);
     let mut rows = Vec::new();
-    for run in runs {
+    for (name, run) in runs {
+        if only.is_some_and(|o| o != name) {
+            continue;
+        }
         match run(&tolerances, rounds) {
             Ok(r) => rows.extend(r),
             Err(e) => eprintln!("versus {peer}: {e}"),
         }
     }
     let text = markdown(&rows, rounds);
-    let out = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("results")
-        .join(file);
-    let _ = std::fs::write(&out, &text);
+    if only.is_none() {
+        let out = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("results")
+            .join(file);
+        let _ = std::fs::write(&out, &text);
+    }
     eprintln!("\r\x1b[2Kdone");
     println!("{text}");
 }
@@ -358,16 +383,30 @@ fn versus_section<R>(
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let has = |flag: &str| args.iter().any(|a| a == flag);
+    // `--only name` runs one of the registered models.
+    let only = args
+        .iter()
+        .position(|a| a == "--only")
+        .and_then(|i| args.get(i + 1))
+        .cloned();
     if has("--versus-heyoka") {
         // Taylor vs heyoka timed in alternation (see versus.rs).
         versus_section(
             "heyoka",
             "versus_heyoka.md",
             [
-                versus::versus_heyoka::<Kepler>,
-                versus::versus_heyoka::<Arenstorf>,
-                versus::versus_heyoka::<OuterSolarSystem>,
+                (<Kepler as Benchmark>::NAME, versus::versus_heyoka::<Kepler>),
+                (
+                    <Arenstorf as Benchmark>::NAME,
+                    versus::versus_heyoka::<Arenstorf>,
+                ),
+                (<Lorenz as Benchmark>::NAME, versus::versus_heyoka::<Lorenz>),
+                (
+                    <OuterSolarSystem as Benchmark>::NAME,
+                    versus::versus_heyoka::<OuterSolarSystem>,
+                ),
             ],
+            only.as_deref(),
             versus::markdown,
         );
         return;
@@ -379,10 +418,18 @@ fn main() {
             "Dop853",
             "versus_dop853.md",
             [
-                versus::versus_dop853::<Kepler>,
-                versus::versus_dop853::<Arenstorf>,
-                versus::versus_dop853::<OuterSolarSystem>,
+                (<Kepler as Benchmark>::NAME, versus::versus_dop853::<Kepler>),
+                (
+                    <Arenstorf as Benchmark>::NAME,
+                    versus::versus_dop853::<Arenstorf>,
+                ),
+                (<Lorenz as Benchmark>::NAME, versus::versus_dop853::<Lorenz>),
+                (
+                    <OuterSolarSystem as Benchmark>::NAME,
+                    versus::versus_dop853::<OuterSolarSystem>,
+                ),
             ],
+            only.as_deref(),
             versus::dop853_markdown,
         );
         return;
@@ -412,12 +459,6 @@ fn main() {
         }
     }
 
-    // The registered models: one line each (`--only name` runs one).
-    let only = args
-        .iter()
-        .position(|a| a == "--only")
-        .and_then(|i| args.get(i + 1))
-        .cloned();
     macro_rules! run {
         ($($model:ty),*) => {$(
             if only.as_deref().is_none_or(|n| n == <$model as Benchmark>::NAME) {
@@ -429,6 +470,7 @@ fn main() {
         Example14,
         Kepler,
         Arenstorf,
+        Lorenz,
         OuterSolarSystem,
         VanDerPol,
         Robertson,

@@ -281,7 +281,8 @@ pub fn field(text: &str, name: &str) -> Option<f64> {
     rest[..end].trim().parse().ok()
 }
 
-fn array(text: &str, name: &str) -> Option<Vec<f64>> {
+/// The numbers of array `name` in peer.py's JSON line.
+pub fn array(text: &str, name: &str) -> Option<Vec<f64>> {
     let i = text.find(&format!("\"{name}\""))?;
     let rest = &text[i..];
     let (a, b) = (rest.find('[')?, rest.find(']')?);

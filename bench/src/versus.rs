@@ -13,7 +13,7 @@
 //! tolerances whose errors bracket ours, its time at our error
 //! interpolated log–log between them, as the sweep does.
 
-use crate::peers::{field, OdeSolvers, Python, HEYOKA_REPEATS};
+use crate::peers::{array, field, OdeSolvers, Python, HEYOKA_REPEATS};
 use daegen::prelude::*;
 use daegen_workprecision::{
     median_time, mixed_error, reference_values, Benchmark, Peer, PeerProblem, Settings,
@@ -70,7 +70,10 @@ pub fn versus_heyoka<M: Benchmark>(tolerances: &[f64], rounds: usize) -> Result<
             row.ratios.push(ours / theirs);
             row.ours_error = mixed_error(sol.final_state(), &reference);
             row.ours_steps = sol.stats().steps;
-            row.heyoka_error = field(&text, "max_mixed_err").unwrap_or(f64::NAN);
+            // peer.py's own error where it has the reference; else ours.
+            row.heyoka_error = field(&text, "max_mixed_err")
+                .or_else(|| array(&text, "y_end").map(|y| mixed_error(&y, &reference)))
+                .unwrap_or(f64::NAN);
             row.heyoka_steps = field(&text, "steps").unwrap_or(f64::NAN) as usize;
         }
         row.ratios.sort_by(f64::total_cmp);
