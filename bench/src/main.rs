@@ -346,6 +346,25 @@ fn machine() -> String {
     format!("{date}, {cpu}, {cores} cores, one thread per solve")
 }
 
+/// The four Taylor problems' alternated comparisons by `$run` (one of
+/// versus.rs), each with its name for `--only`.
+macro_rules! taylor_problems {
+    ($run:ident) => {
+        [
+            (<Kepler as Benchmark>::NAME, versus::$run::<Kepler> as _),
+            (
+                <Arenstorf as Benchmark>::NAME,
+                versus::$run::<Arenstorf> as _,
+            ),
+            (<Lorenz as Benchmark>::NAME, versus::$run::<Lorenz> as _),
+            (
+                <OuterSolarSystem as Benchmark>::NAME,
+                versus::$run::<OuterSolarSystem> as _,
+            ),
+        ]
+    };
+}
+
 /// A Taylor problem's alternated comparison against one peer.
 type VersusRun<R> = (&'static str, fn(&[f64], usize) -> Result<Vec<R>, String>);
 
@@ -396,18 +415,7 @@ fn main() {
         versus_section(
             "heyoka",
             "versus_heyoka.md",
-            [
-                (<Kepler as Benchmark>::NAME, versus::versus_heyoka::<Kepler>),
-                (
-                    <Arenstorf as Benchmark>::NAME,
-                    versus::versus_heyoka::<Arenstorf>,
-                ),
-                (<Lorenz as Benchmark>::NAME, versus::versus_heyoka::<Lorenz>),
-                (
-                    <OuterSolarSystem as Benchmark>::NAME,
-                    versus::versus_heyoka::<OuterSolarSystem>,
-                ),
-            ],
+            taylor_problems!(versus_heyoka),
             only.as_deref(),
             versus::markdown,
         );
@@ -419,18 +427,7 @@ fn main() {
         versus_section(
             "Dop853",
             "versus_dop853.md",
-            [
-                (<Kepler as Benchmark>::NAME, versus::versus_dop853::<Kepler>),
-                (
-                    <Arenstorf as Benchmark>::NAME,
-                    versus::versus_dop853::<Arenstorf>,
-                ),
-                (<Lorenz as Benchmark>::NAME, versus::versus_dop853::<Lorenz>),
-                (
-                    <OuterSolarSystem as Benchmark>::NAME,
-                    versus::versus_dop853::<OuterSolarSystem>,
-                ),
-            ],
+            taylor_problems!(versus_dop853),
             only.as_deref(),
             versus::dop853_markdown,
         );
