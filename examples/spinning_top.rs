@@ -4,7 +4,7 @@
 //! equations with the constraint torque `Lᵀ Φ_qᵀ λ`, finds index 3, and the
 //! run keeps the pivot closed and |q| = 1 by projection. Printed: the tilt
 //! of the axis (nutation), its azimuth (precession), the pivot force, and
-//! the drift of the energy over 1000+ Taylor steps.
+//! the drift of the energy over some 800 Taylor steps.
 //!
 //! Run: `cargo run --release --example spinning_top`
 

@@ -388,7 +388,7 @@ fn the_heavy_top_scene_conserves_energy_and_unit_norm_over_a_thousand_taylor_ste
     let tol = 1e-15;
     let opts = Options::new().method(Method::Taylor).rtol(tol).atol(tol);
     let sol = HeavyTopScene::default()
-        .simulate(0.0, 300.0, &opts)
+        .simulate(0.0, 450.0, &opts)
         .unwrap();
     let steps = sol.times().len();
     let e0 = sol.at(0.0, "energy").unwrap();
@@ -400,8 +400,9 @@ fn the_heavy_top_scene_conserves_energy_and_unit_norm_over_a_thousand_taylor_ste
             .sum();
         norm = norm.max((q - 1.0).abs());
     }
-    // Measured: 1148 steps, 1.8e-15, 4.4e-16 and 2.2e-16 (the hand-written
-    // model of the kinematics tests takes the same 1148 steps).
+    // Measured: 1227 steps, 8.9e-16 and 6.7e-16 (the hand-written model of
+    // the kinematics tests, whose tape is shorter, gets a higher order
+    // and 1117 steps).
     assert!(steps >= 1000, "{steps} steps");
     assert!(energy <= 1e-12 * e0, "energy drift {energy:e}");
     assert!(norm <= 1e-15, "|q|² − 1 = {norm:e}");

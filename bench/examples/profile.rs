@@ -1,9 +1,11 @@
 //! Repeats one solve many times for `perf`: `cargo run --release --example
 //! profile -- MODEL METHOD TOL [REPEATS]` (MODEL: kepler, arenstorf, oss, lorenz;
-//! METHOD: taylor, taylor-compact, dop853, dopri5). Prints the mean time per
-//! solve, the steps and, for Kepler and Arenstorf, the error at the end
-//! against the exact or periodic solution; `profile -- tape MODEL` prints
-//! the model's Taylor tape. No peers and no timing harness in the profile.
+//! METHOD: taylor, taylor:ORDER (the order fixed), taylor-compact, dop853,
+//! dopri5). Prints the mean time per solve, the steps and, for Kepler and
+//! Arenstorf, the error at the end against the exact or periodic solution;
+//! `profile -- tape MODEL` prints the model's Taylor tape and `profile --
+//! orders MODEL` the order `Method::Taylor` picks at each tolerance. No
+//! peers and no timing harness in the profile.
 
 use daegen::prelude::*;
 use std::time::Instant;
@@ -13,23 +15,24 @@ include!("../../tests/models/arenstorf.rs");
 include!("../../tests/models/outer_solar_system.rs");
 include!("../../tests/models/lorenz.rs");
 
+// Jorba & Zou's orders and those `Method::Taylor` picks, 1e-9 … 1e-15.
 kepler_model!(
     taylor = 1,
-    unroll = [5, 6, 7, 8, 10, 11, 12, 13, 14, 15, 16, 18]
+    unroll = [12, 13, 14, 15, 16, 17, 18, 19, 20, 23, 24]
 );
 arenstorf_model!(
     taylor = 1,
-    unroll = [5, 6, 7, 8, 10, 11, 12, 13, 14, 15, 16, 18]
+    unroll = [12, 13, 14, 15, 16, 17, 18, 19, 20, 23, 24]
 );
-outer_solar_system_model!(taylor = 1, unroll = [12, 13, 14, 15, 16, 18]);
+outer_solar_system_model!(taylor = 1, unroll = [12, 15, 16, 18, 19, 20, 22, 23]);
 lorenz_model!(
     [1.0, 0.0, 0.0],
     taylor = 1,
-    unroll = [8, 10, 11, 12, 13, 14, 15, 16, 18, 19]
+    unroll = [12, 13, 14, 15, 16, 17, 18, 19, 20, 23, 24]
 );
 
-const USAGE: &str = "usage: profile MODEL METHOD TOL [REPEATS] | profile tape MODEL \
-                     (MODEL: kepler, arenstorf, oss, lorenz; METHOD: taylor, taylor-compact, dop853, dopri5)";
+const USAGE: &str = "usage: profile MODEL METHOD TOL [REPEATS] | profile tape MODEL | profile orders MODEL \
+                     (MODEL: kepler, arenstorf, oss, lorenz; METHOD: taylor, taylor:ORDER, taylor-compact, dop853, dopri5)";
 
 /// Solves `repeats` times from 0 to `t1`, prints the timing and, when
 /// `reference` is given, the largest error at `t1`.
@@ -73,6 +76,20 @@ fn dump_tape<M: Model>(model: &M) {
     }
 }
 
+/// The order `Method::Taylor` picks at each tolerance if all were
+/// unrolled, next to Jorba & Zou's.
+fn print_orders<M: Model>(model: &M) {
+    use daegen::runtime::taylor_order::{jorba_zou_order, order_to_unroll};
+    for k in 3..=16 {
+        let tol = 10f64.powi(-k);
+        let best = order_to_unroll(model, tol).unwrap_or(0);
+        println!(
+            "tol {tol:.0e}: order {best} (Jorba & Zou {})",
+            jorba_zou_order(tol)
+        );
+    }
+}
+
 fn main() -> Result<(), String> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let arg = |i: usize| args.get(i).map(String::as_str).ok_or(USAGE);
@@ -86,6 +103,16 @@ fn main() -> Result<(), String> {
         }
         return Ok(());
     }
+    if arg(0)? == "orders" {
+        match arg(1)? {
+            "kepler" => print_orders(&Kepler::default()),
+            "arenstorf" => print_orders(&Arenstorf::default()),
+            "oss" => print_orders(&OuterSolarSystem::default()),
+            "lorenz" => print_orders(&Lorenz::default()),
+            _ => return Err(USAGE.into()),
+        }
+        return Ok(());
+    }
     let tol: f64 = arg(2)?.parse().map_err(|_| USAGE)?;
     let repeats: usize = match args.get(3) {
         Some(r) => r.parse().map_err(|_| USAGE)?,
@@ -95,6 +122,10 @@ fn main() -> Result<(), String> {
     let opts = match arg(1)? {
         "taylor" => opts.method(Method::Taylor),
         "taylor-compact" => opts.method(Method::Taylor).taylor_compact(true),
+        m if m.starts_with("taylor:") => {
+            let order = m["taylor:".len()..].parse().map_err(|_| USAGE)?;
+            opts.method(Method::Taylor).taylor_order(order)
+        }
         "dop853" => opts.method(Method::Dop853),
         "dopri5" => opts.method(Method::Dopri5),
         _ => return Err(USAGE.into()),

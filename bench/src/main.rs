@@ -21,6 +21,7 @@ mod peers;
 mod versus;
 
 use daegen::prelude::*;
+use daegen::runtime::taylor_order::{jorba_zou_order, order_to_unroll};
 use daegen_workprecision::{matched_ratio, Benchmark, Problem, Record, Runner, Settings};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -35,11 +36,12 @@ include!("../../tests/models/pendulum.rs");
 include!("../../tests/models/slider_crank.rs");
 include!("../../tests/models/rod_chain.rs");
 
-// The Taylor orders unrolled are those of the tolerances swept, down to
-// 1e-15 as issue 5 asks (p = ⌈−ln(tol)/2 + 1⌉: 19 at 1e-15).
+// The Taylor orders unrolled are those `Method::Taylor` picks at the
+// tolerances swept, down to 1e-15 as issue 5 asks (`--orders` lists them),
+// and Jorba & Zou's at 1e-12 … 1e-14 (15, 16, 18) for `--versus-heyoka`.
 kepler_model!(
     taylor = 1,
-    unroll = [5, 6, 7, 8, 10, 11, 12, 13, 14, 15, 16, 18, 19],
+    unroll = [7, 8, 9, 10, 13, 14, 15, 16, 17, 18, 19, 20, 23, 24],
     bench = Bench::until(20.0 * std::f64::consts::PI)
         .exact(kepler_exact)
         .methods([Dopri5, Dop853, Taylor])
@@ -48,7 +50,7 @@ kepler_model!(
 );
 arenstorf_model!(
     taylor = 1,
-    unroll = [5, 6, 7, 8, 10, 11, 12, 13, 14, 15, 16, 18, 19],
+    unroll = [7, 8, 9, 10, 13, 14, 15, 16, 17, 18, 19, 20, 23, 24],
     bench = Bench::until(ARENSTORF_T)
         .reference(
             ARENSTORF_Y0,
@@ -60,7 +62,7 @@ arenstorf_model!(
 );
 outer_solar_system_model!(
     taylor = 1,
-    unroll = [12, 13, 14, 15, 16, 18, 19],
+    unroll = [15, 16, 17, 18, 19, 20, 22, 23],
     bench = Bench::until(20000.0)
         .reference(
             OSS_REFERENCE,
@@ -73,7 +75,7 @@ outer_solar_system_model!(
 lorenz_model!(
     [1.0, 0.0, 0.0],
     taylor = 1,
-    unroll = [8, 10, 11, 12, 13, 14, 15, 16, 18, 19],
+    unroll = [10, 13, 14, 15, 16, 17, 18, 19, 20, 23, 24],
     bench = Bench::until(20.0)
         .reference(
             LORENZ_AT_20,
@@ -123,10 +125,7 @@ fn example_1_4() {
 
 rod_chain_model!(rod_chain_global, scene = global);
 rod_chain_model!(rod_chain_recursive, scene = recursive);
-cash_pendulum_model!(
-    taylor = 1,
-    unroll = [6, 7, 8, 10, 11, 12, 13, 14, 15, 16, 18, 19]
-);
+cash_pendulum_model!(taylor = 1, unroll = [10, 15, 19]);
 
 /// The outer solar system at t = 20 000 days in the model's state order
 /// (x, y, z of the six bodies, then u, v, w): the recomputed 38-digit
@@ -401,9 +400,37 @@ fn versus_section<R>(
     println!("{text}");
 }
 
+/// `--orders`: the Taylor order `Method::Taylor` picks for each model at
+/// each tolerance when all are unrolled, which the `unroll` lists above
+/// hold for the tolerances swept (and Jorba & Zou's orders, at which
+/// `--versus-heyoka` also runs ours).
+fn print_orders() {
+    fn row<M: Model + Default>(name: &str) {
+        let orders: Vec<String> = (3..=15)
+            .map(|k| {
+                let tol = 10f64.powi(-k);
+                let best = order_to_unroll(&M::default(), tol).unwrap_or(0);
+                format!("{tol:.0e}: {best} ({})", jorba_zou_order(tol))
+            })
+            .collect();
+        println!("{name}: {}", orders.join(", "));
+    }
+    println!("order chosen (Jorba & Zou's) at each tolerance");
+    row::<Kepler>("kepler");
+    row::<Arenstorf>("arenstorf");
+    row::<Lorenz>("lorenz");
+    row::<OuterSolarSystem>("outer_solar_system");
+    row::<CashPendulum>("cash_pendulum");
+    row::<CashPendulumAngle>("cash_pendulum_angle");
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let has = |flag: &str| args.iter().any(|a| a == flag);
+    if has("--orders") {
+        print_orders();
+        return;
+    }
     // `--only name` runs one of the registered models.
     let only = args
         .iter()

@@ -2,10 +2,17 @@
 //! another process, so the sweep times it seconds or minutes after us, and
 //! on this shared machine the load moves sub-millisecond solves by ±40 %
 //! in that time. Here each round times ours (median of repeats) and then
-//! heyoka (median of `HEYOKA_REPEATS` solves in peer.py), and the ratio is taken per
-//! round; the median over rounds is the figure. Both take the same steps
-//! at the same tolerance (same order, same step rule), so equal tolerance
-//! is equal error; the table shows both errors to confirm it.
+//! heyoka (median of `HEYOKA_REPEATS` solves in peer.py), and the ratio is
+//! taken per round; the median over rounds is the figure.
+//!
+//! Equal tolerance is not equal error: our order follows the model's cost
+//! (runtime/src/taylor_order.rs), heyoka's the tolerance alone. So, as
+//! against Dop853 below, heyoka's errors are first scanned on a grid of
+//! tolerances four to a decade, and each round times it at the two whose
+//! errors bracket ours, its time at our error interpolated log–log. Each
+//! round also times ours at heyoka's own order (Jorba & Zou's, the same
+//! steps as heyoka at the same tolerance) against heyoka at that
+//! tolerance: the generated code's speed alone, without the order.
 //!
 //! Against `ode_solvers`' Dop853, in the same process, equal error is not
 //! equal tolerance: its errors are first scanned on a grid of tolerances
@@ -15,20 +22,68 @@
 
 use crate::peers::{array, field, OdeSolvers, Python, HEYOKA_REPEATS};
 use daegen::prelude::*;
+use daegen::runtime::taylor_order::jorba_zou_order;
 use daegen_workprecision::{
     median_time, mixed_error, reference_values, Benchmark, Peer, PeerProblem, Settings,
 };
+
+/// A peer's error on a grid of tolerances four a decade, 10^(−lo/4) to
+/// 10^(−hi/4), from one solve each.
+fn error_grid(
+    lo: usize,
+    hi: usize,
+    error_at: impl Fn(f64) -> Result<f64, String>,
+) -> Result<Vec<(f64, f64)>, String> {
+    (lo..=hi)
+        .map(|j| 10f64.powf(-(j as f64) / 4.0))
+        .map(|tol| Ok((tol, error_at(tol)?)))
+        .collect()
+}
+
+/// The two neighbouring tolerances of the grid whose errors bracket
+/// `error`.
+fn bracket(grid: &[(f64, f64)], error: f64) -> Option<[(f64, f64); 2]> {
+    grid.windows(2)
+        .find(|w| w[0].1 >= error && error >= w[1].1)
+        .map(|w| [w[0], w[1]])
+}
+
+/// The peer's time at `error` from its times at the bracket's two
+/// tolerances: log t linear in log error between them.
+fn time_at_error(
+    error: f64,
+    [(_, err_a), (_, err_b)]: [(f64, f64); 2],
+    time_a: f64,
+    time_b: f64,
+) -> f64 {
+    let s = if err_a == err_b {
+        0.0
+    } else {
+        (error / err_a).ln() / (err_b / err_a).ln()
+    };
+    (time_a.ln() + s * (time_b / time_a).ln()).exp()
+}
 
 /// One tolerance of one problem.
 pub struct Row {
     pub problem: &'static str,
     pub tol: f64,
-    /// Our time over heyoka's, per round, sorted.
+    /// Our time over heyoka's at our error, per round, sorted; empty when
+    /// heyoka's grid does not reach our error.
     pub ratios: Vec<f64>,
-    pub ours_error: f64,
-    pub heyoka_error: f64,
+    /// Ours at heyoka's order over heyoka at the same tolerance (the same
+    /// steps), per round, sorted.
+    pub same_order_ratios: Vec<f64>,
+    pub ours_order: usize,
     pub ours_steps: usize,
+    pub ours_error: f64,
+    /// heyoka's two tolerances and errors around our error.
+    pub bracket: Option<[(f64, f64); 2]>,
+    /// Ours at heyoka's order, and heyoka, at this tolerance.
+    pub same_order_steps: usize,
+    pub same_order_error: f64,
     pub heyoka_steps: usize,
+    pub heyoka_error: f64,
 }
 
 /// `rounds` alternating timings of `M` with `Method::Taylor` and heyoka at
@@ -39,6 +94,21 @@ pub fn versus_heyoka<M: Benchmark>(tolerances: &[f64], rounds: usize) -> Result<
     let peer = bench.peer.ok_or("no peer problem")?;
     let reference = reference_values::<M>(&bench)?;
     let heyoka = Python { solver: "heyoka" };
+    let atol = |tol: f64| (bench.atol_factor != 1.0).then_some(tol * bench.atol_factor);
+    // peer.py's own error where it has the reference; else ours.
+    let heyoka_error = |text: &str| {
+        field(text, "max_mixed_err")
+            .or_else(|| array(text, "y_end").map(|y| mixed_error(&y, &reference)))
+            .unwrap_or(f64::NAN)
+    };
+    let heyoka_time = |tol: f64| -> Result<f64, String> {
+        let text = heyoka.call(peer, tol, atol(tol), HEYOKA_REPEATS)?;
+        field(&text, "solve_s").ok_or_else(|| "peer.py printed no solve_s".to_string())
+    };
+    eprint!("\r\x1b[2K{} heyoka's errors on the grid", M::NAME);
+    let grid = error_grid(36, 64, |tol| {
+        Ok(heyoka_error(&heyoka.call(peer, tol, atol(tol), 1)?))
+    })?;
     let model = M::default();
     let settings = Settings::default();
     let mut rows = Vec::new();
@@ -48,14 +118,28 @@ pub fn versus_heyoka<M: Benchmark>(tolerances: &[f64], rounds: usize) -> Result<
             .rtol(tol)
             .atol(tol * bench.atol_factor)
             .dense_output(false);
+        let same_order = options.taylor_order(jorba_zou_order(tol));
+        let run = |o: &Options| {
+            model
+                .simulate(0.0, bench.t_end, o)
+                .map_err(|e| e.to_string())
+        };
+        let (sol, same) = (run(&options)?, run(&same_order)?);
+        let text = heyoka.call(peer, tol, atol(tol), 1)?;
+        let ours_error = mixed_error(sol.final_state(), &reference);
         let mut row = Row {
             problem: M::NAME,
             tol,
             ratios: Vec::new(),
-            ours_error: f64::NAN,
-            heyoka_error: f64::NAN,
-            ours_steps: 0,
-            heyoka_steps: 0,
+            same_order_ratios: Vec::new(),
+            ours_order: sol.stats().taylor_order,
+            ours_steps: sol.stats().steps,
+            ours_error,
+            bracket: bracket(&grid, ours_error),
+            same_order_steps: same.stats().steps,
+            same_order_error: mixed_error(same.final_state(), &reference),
+            heyoka_steps: field(&text, "steps").unwrap_or(f64::NAN) as usize,
+            heyoka_error: heyoka_error(&text),
         };
         for round in 0..rounds {
             eprint!(
@@ -63,20 +147,16 @@ pub fn versus_heyoka<M: Benchmark>(tolerances: &[f64], rounds: usize) -> Result<
                 M::NAME,
                 round + 1
             );
-            let (ours, sol) = median_time(&settings, || model.simulate(0.0, bench.t_end, &options));
-            let sol = sol.map_err(|e| e.to_string())?;
-            let text = heyoka.call(peer, tol, None, HEYOKA_REPEATS)?;
-            let theirs = field(&text, "solve_s").ok_or("peer.py printed no solve_s")?;
-            row.ratios.push(ours / theirs);
-            row.ours_error = mixed_error(sol.final_state(), &reference);
-            row.ours_steps = sol.stats().steps;
-            // peer.py's own error where it has the reference; else ours.
-            row.heyoka_error = field(&text, "max_mixed_err")
-                .or_else(|| array(&text, "y_end").map(|y| mixed_error(&y, &reference)))
-                .unwrap_or(f64::NAN);
-            row.heyoka_steps = field(&text, "steps").unwrap_or(f64::NAN) as usize;
+            let (ours, _) = median_time(&settings, || run(&options));
+            let (ours_same, _) = median_time(&settings, || run(&same_order));
+            row.same_order_ratios.push(ours_same / heyoka_time(tol)?);
+            if let Some(b @ [(tol_a, _), (tol_b, _)]) = row.bracket {
+                let theirs = time_at_error(ours_error, b, heyoka_time(tol_a)?, heyoka_time(tol_b)?);
+                row.ratios.push(ours / theirs);
+            }
         }
         row.ratios.sort_by(f64::total_cmp);
+        row.same_order_ratios.sort_by(f64::total_cmp);
         rows.push(row);
     }
     Ok(rows)
@@ -85,15 +165,18 @@ pub fn versus_heyoka<M: Benchmark>(tolerances: &[f64], rounds: usize) -> Result<
 /// The rows as a markdown table.
 pub fn markdown(rows: &[Row], rounds: usize) -> String {
     let mut s = format!(
-        "# Taylor vs heyoka, timed in alternation\n\n{rounds} rounds per tolerance; each round: our median solve time, then heyoka's (median of {HEYOKA_REPEATS} solves); ratio = ours / heyoka's per round.\n\n| problem | tol | median ratio (range) | steps ours / heyoka | error ours / heyoka |\n|---|---|---|---|---|\n"
+        "# Taylor vs heyoka, timed in alternation\n\n{rounds} rounds per tolerance; each round: our median solve time, then heyoka's (median of {HEYOKA_REPEATS} solves) at the two tolerances of its grid (four a decade) whose errors bracket ours, interpolated log–log to our error; then ours at heyoka's order (Jorba & Zou's, the same steps) against heyoka at the same tolerance. Ratio = ours / heyoka's per round.\n\n| problem | tol | our order, steps, error | heyoka tolerances (errors) | ratio at equal error | at heyoka's order: steps ours / heyoka, errors ours / heyoka | ratio at the same order |\n|---|---|---|---|---|---|---|\n"
     );
     for r in rows {
-        let Some(ratio) = ratio_cell(&r.ratios) else {
-            continue;
+        let bracket = match r.bracket {
+            Some([(ta, ea), (tb, eb)]) => format!("{ta:.1e} ({ea:.1e}), {tb:.1e} ({eb:.1e})"),
+            None => "our error out of its reach".into(),
         };
+        let ratio = ratio_cell(&r.ratios).unwrap_or_else(|| "—".into());
+        let same = ratio_cell(&r.same_order_ratios).unwrap_or_else(|| "—".into());
         s.push_str(&format!(
-            "| {} | {:.0e} | {ratio} | {} / {} | {:.1e} / {:.1e} |\n",
-            r.problem, r.tol, r.ours_steps, r.heyoka_steps, r.ours_error, r.heyoka_error
+            "| {} | {:.0e} | {}, {}, {:.1e} | {bracket} | {ratio} | {} / {}, {:.1e} / {:.1e} | {same} |\n",
+            r.problem, r.tol, r.ours_order, r.ours_steps, r.ours_error, r.same_order_steps, r.heyoka_steps, r.same_order_error, r.heyoka_error
         ));
     }
     s
@@ -116,6 +199,7 @@ pub struct Dop853Row {
     /// Our time over Dop853's at our error, per round, sorted; empty when
     /// Dop853 does not reach our error on the grid.
     pub ratios: Vec<f64>,
+    pub ours_order: usize,
     pub ours_error: f64,
     /// Dop853's two tolerances and errors around ours.
     pub bracket: Option<[(f64, f64); 2]>,
@@ -159,10 +243,7 @@ pub fn versus_dop853<M: Benchmark>(
         ..Settings::default()
     };
     // Dop853's error on the grid 1e-8 … 1e-16, four tolerances a decade.
-    let grid: Vec<(f64, f64)> = (32..=64)
-        .map(|j| 10f64.powf(-(j as f64) / 4.0))
-        .map(|tol| Ok((tol, dop853.run(&problem, tol, &once)?.error)))
-        .collect::<Result<_, String>>()?;
+    let grid = error_grid(32, 64, |tol| Ok(dop853.run(&problem, tol, &once)?.error))?;
     let mut rows = Vec::new();
     for &tol in tolerances {
         let options = Options::new()
@@ -174,18 +255,15 @@ pub fn versus_dop853<M: Benchmark>(
             .simulate(0.0, bench.t_end, &options)
             .map_err(|e| e.to_string())?;
         let ours_error = mixed_error(sol.final_state(), &reference);
-        let bracket = grid
-            .windows(2)
-            .find(|w| w[0].1 >= ours_error && ours_error >= w[1].1)
-            .map(|w| [w[0], w[1]]);
         let mut row = Dop853Row {
             problem: M::NAME,
             tol,
             ratios: Vec::new(),
+            ours_order: sol.stats().taylor_order,
             ours_error,
-            bracket,
+            bracket: bracket(&grid, ours_error),
         };
-        if let Some([(tol_a, err_a), (tol_b, err_b)]) = bracket {
+        if let Some(b @ [(tol_a, _), (tol_b, _)]) = row.bracket {
             for round in 0..rounds {
                 eprint!(
                     "\r\x1b[2K{} Taylor vs Dop853 {tol:.0e}, round {}",
@@ -196,14 +274,8 @@ pub fn versus_dop853<M: Benchmark>(
                     median_time(&settings, || model.simulate(0.0, bench.t_end, &options));
                 let time_a = dop853.run(&problem, tol_a, &settings)?.seconds;
                 let time_b = dop853.run(&problem, tol_b, &settings)?.seconds;
-                // log t linear in log error between the two tolerances.
-                let s = if err_a == err_b {
-                    0.0
-                } else {
-                    (ours_error / err_a).ln() / (err_b / err_a).ln()
-                };
-                let theirs = (time_a.ln() + s * (time_b / time_a).ln()).exp();
-                row.ratios.push(ours / theirs);
+                row.ratios
+                    .push(ours / time_at_error(ours_error, b, time_a, time_b));
             }
             row.ratios.sort_by(f64::total_cmp);
         }
@@ -215,7 +287,7 @@ pub fn versus_dop853<M: Benchmark>(
 /// The Dop853 rows as a markdown table.
 pub fn dop853_markdown(rows: &[Dop853Row], rounds: usize) -> String {
     let mut s = format!(
-        "# Taylor vs ode_solvers Dop853, timed in alternation at equal error\n\n{rounds} rounds per tolerance; each round: our median solve time, then Dop853's at the two tolerances of its grid (four a decade) whose errors bracket ours, interpolated log–log to our error; ratio = ours / Dop853's per round.\n\n| problem | tol | our error | Dop853 tolerances (errors) | median ratio (range) |\n|---|---|---|---|---|\n"
+        "# Taylor vs ode_solvers Dop853, timed in alternation at equal error\n\n{rounds} rounds per tolerance; each round: our median solve time, then Dop853's at the two tolerances of its grid (four a decade) whose errors bracket ours, interpolated log–log to our error; ratio = ours / Dop853's per round.\n\n| problem | tol | our order, error | Dop853 tolerances (errors) | median ratio (range) |\n|---|---|---|---|---|\n"
     );
     for r in rows {
         let bracket = match r.bracket {
@@ -224,8 +296,8 @@ pub fn dop853_markdown(rows: &[Dop853Row], rounds: usize) -> String {
         };
         let ratio = ratio_cell(&r.ratios).unwrap_or_else(|| "—".into());
         s.push_str(&format!(
-            "| {} | {:.0e} | {:.1e} | {bracket} | {ratio} |\n",
-            r.problem, r.tol, r.ours_error
+            "| {} | {:.0e} | {}, {:.1e} | {bracket} | {ratio} |\n",
+            r.problem, r.tol, r.ours_order, r.ours_error
         ));
     }
     s

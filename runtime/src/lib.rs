@@ -25,6 +25,7 @@ mod solution;
 pub mod step_control;
 pub mod taylor;
 mod taylor_fixed;
+pub mod taylor_order;
 pub mod taylor_series;
 pub mod taylor_tape;
 

@@ -54,6 +54,7 @@ pub struct Options {
     pub(crate) min_step: f64,
     pub(crate) max_steps: usize,
     pub(crate) taylor_compact: bool,
+    pub(crate) taylor_order: Option<usize>,
     pub(crate) dense_output: bool,
     pub(crate) formulation: Formulation,
     pub(crate) keep_every: usize,
@@ -86,6 +87,7 @@ impl Default for Options {
             min_step: 0.0,
             max_steps: 10_000_000,
             taylor_compact: false,
+            taylor_order: None,
             dense_output: true,
             formulation: Formulation::IndexOneProjected,
             keep_every: 1,
@@ -160,6 +162,17 @@ impl Options {
     pub fn taylor_compact(self, compact: bool) -> Options {
         Options {
             taylor_compact: compact,
+            ..self
+        }
+    }
+
+    /// Fixes `Method::Taylor`'s order (2 or more) instead of choosing it
+    /// from the tolerance and the model's cost per order
+    /// (`daegen::runtime::taylor_order`); the step still follows ρ and the
+    /// tolerance. To compare layouts or orders at equal footing.
+    pub fn taylor_order(self, order: usize) -> Options {
+        Options {
+            taylor_order: Some(order),
             ..self
         }
     }

@@ -147,6 +147,13 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
             });
         }
     }
+    if let Some(order) = options.taylor_order.filter(|&p| p < 2) {
+        return Err(Error::InvalidOptions {
+            message: format!(
+                "taylor_order({order}): the adaptive Taylor method needs an order of 2 or more"
+            ),
+        });
+    }
     // The initial state, checked once for every method, then made
     // consistent with the constraints of a DAE.
     // A singular mass matrix: only RADAU5 integrates it (Auto picks it).

@@ -19,6 +19,11 @@ pub struct Stats {
     pub method: &'static str,
     /// How the model was integrated: an ODE, or which DAE formulation.
     pub formulation: &'static str,
+    /// `Method::Taylor`'s order (0 for the other methods).
+    pub taylor_order: usize,
+    /// Whether that order ran as the macro's straight-line recurrences
+    /// (`#[dae_model(unroll = [..])]`) rather than the interpreted tape.
+    pub taylor_unrolled: bool,
 }
 
 /// A crossing of an event function, located to machine precision.

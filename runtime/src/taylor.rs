@@ -12,6 +12,7 @@ use crate::model::Model;
 use crate::options::Options;
 use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
+use crate::taylor_order::{choose_order, step_factor, JetCost};
 use crate::taylor_tape::{mul_add, TaylorWork};
 
 /// Sub-intervals of each step on which event functions are checked for a
@@ -148,11 +149,6 @@ fn horner(rows: &[f64], w: usize, h: f64, y: &mut [f64], carried: &mut [f64]) {
     }
 }
 
-/// The order the method uses for a tolerance.
-pub fn order_for(tol: f64) -> usize {
-    ((-tol.ln() / 2.0 + 1.0).ceil() as usize).max(2)
-}
-
 /// Component `i` of the step polynomial at `s = (t − t_old)/h`; the
 /// coefficients are stored state by state, already multiplied by hᵏ.
 pub(crate) fn interpolate(c: &[f64], n: usize, i: usize, s: f64) -> f64 {
@@ -185,10 +181,19 @@ pub(crate) fn integrate<M: Model>(
     } else {
         options.atol
     };
-    let p = order_for(tol);
-    // The straight-line recurrences when the macro emitted this order,
-    // else the interpreted tape.
-    let unrolled = M::TAYLOR_UNROLLED.contains(&p) && !options.taylor_compact;
+    let unrolled_orders = if options.taylor_compact {
+        &[][..]
+    } else {
+        M::TAYLOR_UNROLLED
+    };
+    // The straight-line recurrences when the macro emitted the order, else
+    // the interpreted tape.
+    let (p, unrolled) = match options.taylor_order {
+        Some(p) => (p, unrolled_orders.contains(&p)),
+        None => choose_order(tol, &JetCost::of_tape(&tape, n), unrolled_orders),
+    };
+    solution.stats_mut().taylor_order = p;
+    solution.stats_mut().taylor_unrolled = unrolled;
     let mut work = (!unrolled).then(|| TaylorWork::new(&tape, &outputs, n, p));
     let mut jet = vec![0.0; if unrolled { model.taylor_jet_len(p) } else { 0 }];
     let mut y = y0.to_vec();
@@ -205,7 +210,7 @@ pub(crate) fn integrate<M: Model>(
     }
     let direction = if t1 >= t0 { 1.0 } else { -1.0 };
     let hmax = options.max_step.unwrap_or(f64::INFINITY);
-    let safety = (-2.0f64).exp() * (-0.7 / (p as f64 - 1.0)).exp();
+    let safety = step_factor(tol, p);
     let (inv_pm1, inv_p) = (1.0 / (p - 1) as f64, 1.0 / p as f64);
     let (mut t, mut compensation, mut steps) = (t0, 0.0f64, 0usize);
     while (t1 - t) * direction > 0.0 {
@@ -391,13 +396,5 @@ mod tests {
         for yi in y {
             assert_eq!(yi, 1.0 + 2f64.powi(-50));
         }
-    }
-
-    #[test]
-    fn order_follows_heyoka() {
-        // heyoka: tol 1e-16 → p = 20, 1e-9 → p = 12 (design notes).
-        assert_eq!(order_for(1e-16), 20);
-        assert_eq!(order_for(1e-9), 12);
-        assert_eq!(order_for(0.5), 2);
     }
 }

@@ -1,0 +1,258 @@
+//! The adaptive Taylor method's order for a tolerance, chosen for the
+//! least work per unit of time from the model's own cost per order.
+//!
+//! Jorba & Zou (2005, §3.2) take the step h = ρ·e⁻² and the order
+//! p = ⌈−ln(tol)/2 + 1⌉, which truncates each step at (h/ρ)^(p−1) ≈ tol·e²
+//! and minimises the work per unit time when a step costs ∝ p², that is,
+//! when the convolutions dominate. That holds for large models (the outer
+//! solar system), not for small ones: Lorenz's step is mostly a fixed
+//! cost (the step-size rule, the update) and terms linear in the order, so
+//! fewer, longer steps of higher order are cheaper. We keep Jorba & Zou's
+//! truncation, the first term dropped being (h₀/ρ)^(p₀+1) with p₀ and h₀
+//! their order and step ([`step_factor`]), and choose p to minimise
+//! cost(p)/h, the work per unit of time at a given ρ.
+//!
+//! Matching the first dropped term, rather than (h/ρ)^(p−1) = tol·e² as
+//! their derivation does, keeps the errors at a tolerance nearer theirs:
+//! ρ is estimated from the last coefficients, and the higher the order,
+//! the less that estimate errs on the safe side. For the same reason the
+//! step stays within [`MAX_STEP_FACTOR`]·ρ, which bounds the order.
+
+use crate::model::Model;
+use crate::taylor_tape::{Operand, TapeOp};
+
+/// The fixed work of a step (the norms and logarithms of the step-size
+/// rule, the bookkeeping), in multiply-adds of the jet. Measured on Kepler
+/// and Lorenz (order 15): the rule and the update take 60–90 ns, as long
+/// as 350–450 of the jet's multiply-adds.
+const FIXED_STEP_COST: f64 = 400.0;
+
+/// How many times slower the interpreted tape is than the straight-line
+/// recurrences, per multiply-add (3.9–9.3× measured at 1e-12 on Kepler,
+/// Arenstorf and the outer solar system): its orders compete with the
+/// unrolled ones only when none of those is near the best.
+const INTERPRETED_SLOWDOWN: f64 = 4.0;
+
+/// The Jorba–Zou order for a tolerance, p₀ = max(2, ⌈−ln(tol)/2 + 1⌉),
+/// heyoka's choice.
+pub fn jorba_zou_order(tol: f64) -> usize {
+    ((-tol.ln() / 2.0 + 1.0).ceil() as usize).max(2)
+}
+
+/// The work of the model's recurrences, in multiply-adds: order k costs
+/// `linear + convolution·k`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JetCost {
+    /// The work per order that does not grow with it: sums, products by
+    /// constants, the states' scaling by 1/k and their Horner terms.
+    pub linear: f64,
+    /// The work per order that grows with k: the convolutions of products,
+    /// quotients and the elementary functions' recurrences.
+    pub convolution: f64,
+}
+
+impl JetCost {
+    /// Counts the work of a tape whose outputs are the derivatives of
+    /// `states` states.
+    pub fn of_tape(tape: &[TapeOp], states: usize) -> JetCost {
+        let is_const = |a: &Operand| matches!(a, Operand::Const(_));
+        let mut cost = JetCost {
+            linear: 2.0 * states as f64,
+            convolution: 0.0,
+        };
+        for op in tape {
+            // (linear, convolution) per op: a product of two series is
+            // k + 1 multiply-adds at order k, a square half that; a
+            // function's recurrence is one or two convolutions.
+            let (linear, convolution) = match op {
+                TapeOp::Add(..) => (1.0, 0.0),
+                TapeOp::Mul(a, b) | TapeOp::Div(a, b) if is_const(a) || is_const(b) => (1.0, 0.0),
+                TapeOp::Mul(a, b) if a == b => (1.0, 0.5),
+                TapeOp::Mul(..) | TapeOp::Div(..) => (1.0, 1.0),
+                TapeOp::Pow(..) => (2.0, 2.0),
+                TapeOp::Exp(_) | TapeOp::Ln(_) => (1.0, 1.0),
+                TapeOp::Sin(_) | TapeOp::Sinh(_) => (2.0, 2.0),
+                TapeOp::CosOfPrevious | TapeOp::CoshOfPrevious => (0.0, 0.0),
+                TapeOp::Inverse(..) => (2.0, 2.0),
+                TapeOp::Atan2(..) => (2.0, 3.0),
+            };
+            cost.linear += linear;
+            cost.convolution += convolution;
+        }
+        cost
+    }
+
+    /// The work of one step of order p, fixed part included.
+    pub fn step(&self, p: usize) -> f64 {
+        let p = p as f64;
+        FIXED_STEP_COST + self.linear * p + self.convolution * p * (p + 1.0) / 2.0
+    }
+}
+
+/// The step's factor of ρ at order p for the tolerance, h/ρ =
+/// exp(−(2 + 0.7/(p₀−1))·(p₀+1)/(p+1)): the first term dropped,
+/// (h/ρ)^(p+1), is the one Jorba & Zou drop at p₀ with h/ρ =
+/// e⁻²·e^(−0.7/(p₀−1)), their step exactly at p = p₀.
+pub fn step_factor(tol: f64, p: usize) -> f64 {
+    let p0 = jorba_zou_order(tol) as f64;
+    (-(2.0 + 0.7 / (p0 - 1.0)) * (p0 + 1.0) / (p as f64 + 1.0)).exp()
+}
+
+/// The longest step, as a fraction of ρ, that an order may take. Beyond
+/// about 0.2 the first dropped term no longer predicts the error: with the
+/// orders uncapped (h/ρ up to 0.33), the final errors on Kepler and Lorenz
+/// at a tolerance were up to 20–90× those of Jorba & Zou's order (Lorenz
+/// at 1e-9, Kepler at 1e-13), for 0.76–1.06× their time at equal error;
+/// capped here, within the scatter of Jorba & Zou's own errors, for
+/// 0.76–0.98× their time (Kepler, Arenstorf, Lorenz at 1e-9 … 1e-15, the
+/// fastest solve that reaches each error on a grid four tolerances a
+/// decade). The estimate of ρ from two coefficients errs more at higher
+/// orders, and the dropped tail (h/ρ)^(p+1)/(1 − h/ρ) grows with h/ρ.
+const MAX_STEP_FACTOR: f64 = 0.2019; // e^−1.6
+
+/// The highest order considered at a tolerance: the last whose step stays
+/// within [`MAX_STEP_FACTOR`]·ρ, at most 2·p₀.
+fn highest_order(tol: f64) -> usize {
+    let p0 = jorba_zou_order(tol);
+    (p0..=2 * p0)
+        .take_while(|&p| step_factor(tol, p) <= MAX_STEP_FACTOR)
+        .last()
+        .unwrap_or(p0)
+}
+
+/// The order of least work per unit time for the tolerance, and whether
+/// it is one of `unrolled` (else the interpreted tape runs it), among
+/// orders 2 ..= [`highest_order`].
+pub fn choose_order(tol: f64, cost: &JetCost, unrolled: &[usize]) -> (usize, bool) {
+    let highest = highest_order(tol);
+    let work_per_time = |p: usize, slowdown: f64| cost.step(p) * slowdown / step_factor(tol, p);
+    let mut best = (jorba_zou_order(tol), false);
+    let mut least = work_per_time(best.0, INTERPRETED_SLOWDOWN);
+    for p in 2..=highest {
+        for (is_unrolled, slowdown) in [(false, INTERPRETED_SLOWDOWN), (true, 1.0)] {
+            if is_unrolled && !unrolled.contains(&p) {
+                continue;
+            }
+            let work = work_per_time(p, slowdown);
+            if work < least {
+                (best, least) = ((p, is_unrolled), work);
+            }
+        }
+    }
+    best
+}
+
+/// The order `Method::Taylor` would choose for `model` at `tol` if every
+/// order were unrolled: the one to list in `#[dae_model(unroll = [..])]`
+/// for that tolerance. `None` when the model has no Taylor tape.
+pub fn order_to_unroll<M: Model>(model: &M, tol: f64) -> Option<usize> {
+    let (tape, _) = model.taylor_tape()?;
+    let cost = JetCost::of_tape(&tape, M::STATES);
+    let every: Vec<usize> = (2..=highest_order(tol)).collect();
+    Some(choose_order(tol, &cost, &every).0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TOLERANCES: [f64; 4] = [1e-6, 1e-9, 1e-12, 1e-15];
+
+    #[test]
+    fn the_step_is_jorba_and_zous_at_their_order_and_longer_above_it() {
+        for tol in TOLERANCES {
+            let p0 = jorba_zou_order(tol);
+            let theirs = (-2.0f64).exp() * (-0.7 / (p0 as f64 - 1.0)).exp();
+            assert!((step_factor(tol, p0) / theirs - 1.0).abs() <= 4.0 * f64::EPSILON);
+            for p in p0..2 * p0 {
+                assert!(step_factor(tol, p + 1) > step_factor(tol, p));
+                // The first term dropped is theirs: (h/ρ)^(p+1) fixed.
+                let dropped = step_factor(tol, p).powi(p as i32 + 1);
+                assert!((dropped / theirs.powi(p0 as i32 + 1) - 1.0).abs() <= 1e-13);
+            }
+        }
+    }
+
+    #[test]
+    fn jorba_zou_order_follows_heyoka() {
+        assert_eq!(jorba_zou_order(1e-16), 20);
+        assert_eq!(jorba_zou_order(1e-12), 15);
+        assert_eq!(jorba_zou_order(1e-9), 12);
+        assert_eq!(jorba_zou_order(0.5), 2);
+    }
+
+    /// Work ∝ p² (convolutions only) is Jorba & Zou's premise: their order
+    /// comes back, give or take the rounding of p₀ and one for the exact
+    /// minimum of p²·exp(a(p₀+1)/(p+1)) at p + 1 ≈ a(p₀+1)/2, a ≈ 2.05.
+    #[test]
+    fn convolution_bound_models_keep_jorba_and_zous_order() {
+        let cost = JetCost {
+            linear: 0.0,
+            convolution: 1e6,
+        };
+        for tol in TOLERANCES {
+            let p0 = jorba_zou_order(tol);
+            let (p, unrolled) = choose_order(tol, &cost, &[]);
+            assert!(!unrolled);
+            assert!(p >= p0 && p <= p0 + 2, "tol {tol:e}: {p} against {p0}");
+        }
+    }
+
+    /// A step of fixed cost only: the longest steps win, up to the cap on
+    /// h/ρ (e^−1.6: p + 1 ≤ 1.6⁻¹(2 + 0.7/(p₀−1))(p₀+1), 19 at 1e-12).
+    #[test]
+    fn fixed_cost_models_take_the_highest_order() {
+        let cost = JetCost {
+            linear: 0.0,
+            convolution: 0.0,
+        };
+        for tol in TOLERANCES {
+            let p0 = jorba_zou_order(tol) as f64;
+            let bound = ((2.0 + 0.7 / (p0 - 1.0)) * (p0 + 1.0) / 1.6 - 1.0).floor() as usize;
+            assert_eq!(choose_order(tol, &cost, &[]).0, bound, "tol {tol:e}");
+            assert!(step_factor(tol, bound) <= MAX_STEP_FACTOR);
+            assert!(step_factor(tol, bound + 1) > MAX_STEP_FACTOR);
+        }
+        assert_eq!(highest_order(1e-12), 19);
+    }
+
+    /// Lorenz's costs (17 linear, 2 convolution): a higher order than
+    /// Jorba & Zou's, and an unrolled order is preferred to the tape's
+    /// unless it is far from the best.
+    #[test]
+    fn small_models_take_higher_orders_and_prefer_unrolled_ones() {
+        let cost = JetCost {
+            linear: 17.0,
+            convolution: 2.0,
+        };
+        let best = choose_order(1e-12, &cost, &[]).0;
+        assert!(best > jorba_zou_order(1e-12) + 2, "{best}");
+        assert_eq!(choose_order(1e-12, &cost, &[best]), (best, true));
+        assert_eq!(choose_order(1e-12, &cost, &[15, 18]), (18, true));
+        // Order 3 unrolled is worse than the tape at its best.
+        assert!(!choose_order(1e-12, &cost, &[3]).1);
+        // Unrolled orders are all cheaper than the tape's.
+        let all: Vec<usize> = (2..=30).collect();
+        assert_eq!(choose_order(1e-12, &cost, &all), (best, true));
+    }
+
+    #[test]
+    fn the_cost_of_a_tape_counts_each_operation_once() {
+        use Operand::{Const, State, Var};
+        // A sum, a scaled term, a product, a square, a power and a pair.
+        let tape = [
+            TapeOp::Add(State(1), Var(9)),
+            TapeOp::Mul(Const(10.0), Var(0)),
+            TapeOp::Mul(State(0), State(2)),
+            TapeOp::Mul(State(0), State(0)),
+            TapeOp::Pow(Var(3), -1.5),
+            TapeOp::Sin(State(1)),
+            TapeOp::CosOfPrevious,
+        ];
+        let cost = JetCost::of_tape(&tape, 3);
+        // 6 for the three states, then 1 + 1 + 1 + 1 + 2 + 2 + 0.
+        assert_eq!(cost.linear, 14.0);
+        assert_eq!(cost.convolution, 1.0 + 0.5 + 2.0 + 2.0);
+        assert_eq!(cost.step(2), FIXED_STEP_COST + 28.0 + 5.5 * 3.0);
+    }
+}
