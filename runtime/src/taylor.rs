@@ -1,10 +1,13 @@
 //! The adaptive Taylor method (Jorba & Zou 2005, as in heyoka's
 //! `taylor_determine_h`): coefficients from the model's AD tape
-//! (`taylor_tape.rs`), order p = max(2, ⌈−ln(tol)/2 + 1⌉) from the
-//! tolerance, step h = min(ρ_{p−1}, ρ_p)·e⁻²·e^(−0.7/(p−1)) with
+//! (`taylor_tape.rs`) or the macro's straight-line recurrences, the order
+//! of least work per unit time for the tolerance (`taylor_order.rs`;
+//! Jorba & Zou's p₀ = ⌈−ln(tol)/2 + 1⌉ when the convolutions dominate),
+//! step h = min(ρ_{p−1}, ρ_p)·[`step_factor`] with
 //! ρ_k = (N/‖x^\[k\]‖∞)^(1/k), N = max(1, ‖x‖∞) (absolute below 1, relative
-//! above). No step is rejected. Time is summed with compensation, and each
-//! step's polynomial is the dense output.
+//! above); at p = p₀ the factor is their e⁻²·e^(−0.7/(p−1)). No step is
+//! rejected. Time is summed with compensation, and each step's polynomial
+//! is the dense output.
 
 use crate::error::Error;
 use crate::events::{stop_at_terminal_event, EventWatch};

@@ -108,11 +108,11 @@ pub fn step_factor(tol: f64, p: usize) -> f64 {
 /// fastest solve that reaches each error on a grid four tolerances a
 /// decade). The estimate of ρ from two coefficients errs more at higher
 /// orders, and the dropped tail (h/ρ)^(p+1)/(1 − h/ρ) grows with h/ρ.
-const MAX_STEP_FACTOR: f64 = 0.2019; // e^−1.6
+pub const MAX_STEP_FACTOR: f64 = 0.2019; // e^−1.6
 
 /// The highest order considered at a tolerance: the last whose step stays
 /// within [`MAX_STEP_FACTOR`]·ρ, at most 2·p₀.
-fn highest_order(tol: f64) -> usize {
+pub fn highest_order(tol: f64) -> usize {
     let p0 = jorba_zou_order(tol);
     (p0..=2 * p0)
         .take_while(|&p| step_factor(tol, p) <= MAX_STEP_FACTOR)

@@ -18,7 +18,15 @@
 //! The solution holds the accepted steps: `times()`, `state(k)`,
 //! `final_state()`, `last(name)` and `at(t, name)` for any state,
 //! `der(x)`, algebraic variable or output (with each method's continuous
-//! output), `stats()` (steps, rejections, evaluations), `events()`.
+//! output), `stats()` (steps, rejections, evaluations; for `Taylor` the
+//! order it chose and whether it ran unrolled), `events()`.
+//!
+//! `Taylor` chooses its order from the tolerance and the model's cost per
+//! order (higher than Jorba & Zou's for small models, theirs when the
+//! convolutions dominate), among the orders of `unroll = [..]` unless the
+//! interpreted tape's is much cheaper:
+//! `daegen::runtime::taylor_order::order_to_unroll(&model, tol)` says which
+//! order to unroll for a tolerance, and `Options::taylor_order(p)` fixes it.
 //!
 //! ```
 //! use daegen::prelude::*;
