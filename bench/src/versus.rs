@@ -168,10 +168,7 @@ pub fn markdown(rows: &[Row], rounds: usize) -> String {
         "# Taylor vs heyoka, timed in alternation\n\n{rounds} rounds per tolerance; each round: our median solve time, then heyoka's (median of {HEYOKA_REPEATS} solves) at the two tolerances of its grid (four a decade) whose errors bracket ours, interpolated log–log to our error; then ours at heyoka's order (Jorba & Zou's, the same steps) against heyoka at the same tolerance. Ratio = ours / heyoka's per round.\n\n| problem | tol | our order, steps, error | heyoka tolerances (errors) | ratio at equal error | at heyoka's order: steps ours / heyoka, errors ours / heyoka | ratio at the same order |\n|---|---|---|---|---|---|---|\n"
     );
     for r in rows {
-        let bracket = match r.bracket {
-            Some([(ta, ea), (tb, eb)]) => format!("{ta:.1e} ({ea:.1e}), {tb:.1e} ({eb:.1e})"),
-            None => "our error out of its reach".into(),
-        };
+        let bracket = bracket_cell(r.bracket);
         let ratio = ratio_cell(&r.ratios).unwrap_or_else(|| "—".into());
         let same = ratio_cell(&r.same_order_ratios).unwrap_or_else(|| "—".into());
         s.push_str(&format!(
@@ -180,6 +177,15 @@ pub fn markdown(rows: &[Row], rounds: usize) -> String {
         ));
     }
     s
+}
+
+/// The peer's two tolerances (and errors) around ours, or why there are
+/// none.
+fn bracket_cell(bracket: Option<[(f64, f64); 2]>) -> String {
+    match bracket {
+        Some([(ta, ea), (tb, eb)]) => format!("{ta:.1e} ({ea:.1e}), {tb:.1e} ({eb:.1e})"),
+        None => "our error out of its reach".into(),
+    }
 }
 
 /// `median× (least–largest)` of sorted ratios, if there are any.
@@ -290,10 +296,7 @@ pub fn dop853_markdown(rows: &[Dop853Row], rounds: usize) -> String {
         "# Taylor vs ode_solvers Dop853, timed in alternation at equal error\n\n{rounds} rounds per tolerance; each round: our median solve time, then Dop853's at the two tolerances of its grid (four a decade) whose errors bracket ours, interpolated log–log to our error; ratio = ours / Dop853's per round.\n\n| problem | tol | our order, error | Dop853 tolerances (errors) | median ratio (range) |\n|---|---|---|---|---|\n"
     );
     for r in rows {
-        let bracket = match r.bracket {
-            Some([(ta, ea), (tb, eb)]) => format!("{ta:.1e} ({ea:.1e}), {tb:.1e} ({eb:.1e})"),
-            None => "our error out of its reach".into(),
-        };
+        let bracket = bracket_cell(r.bracket);
         let ratio = ratio_cell(&r.ratios).unwrap_or_else(|| "—".into());
         s.push_str(&format!(
             "| {} | {:.0e} | {}, {:.1e} | {bracket} | {ratio} |\n",
