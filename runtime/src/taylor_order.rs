@@ -1,7 +1,8 @@
 //! The adaptive Taylor method's order for a tolerance, chosen for the
 //! least work per unit of time from the model's own cost per order.
 //!
-//! Jorba & Zou (2005, §3.2) take the step h = ρ·e⁻² and the order
+//! Jorba & Zou (2005, Experimental Mathematics 14, the choice of order
+//! and step) take the step h = ρ·e⁻² and the order
 //! p = ⌈−ln(tol)/2 + 1⌉, which truncates each step at (h/ρ)^(p−1) ≈ tol·e²
 //! and minimises the work per unit time when a step costs ∝ p², that is,
 //! when the convolutions dominate. That holds for large models (the outer
