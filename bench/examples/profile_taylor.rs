@@ -1,12 +1,12 @@
 //! Profiling aid: Kepler e = 0.9 over ten orbits with the adaptive Taylor
-//! method at tol 1e-9 and 1e-15 (orders 12 and 19), interpreted tape
+//! method at tol 1e-9 and 1e-15 (orders 14 and 24), interpreted tape
 //! against unrolled recurrences, repeated. Run: `cargo run --release --manifest-path
 //! bench/Cargo.toml --example profile_taylor`.
 
 use daegen::prelude::*;
 
 include!("../../tests/models/kepler.rs");
-kepler_model!(taylor = 1, unroll = [12, 19]);
+kepler_model!(taylor = 1, unroll = [14, 24]);
 
 fn main() -> Result<(), daegen::Error> {
     let only_unrolled = std::env::args().any(|a| a == "--unrolled");

@@ -26,7 +26,8 @@
 //! convolutions dominate), among the orders of `unroll = [..]` unless the
 //! interpreted tape's is much cheaper:
 //! `daegen::runtime::taylor_order::order_to_unroll(&model, tol)` says which
-//! order to unroll for a tolerance, and `Options::taylor_order(p)` fixes it.
+//! order to unroll for a tolerance, and `Options::taylor_order(p)` fixes it
+//! (the only way an odd order runs: listing one in `unroll` warns).
 //!
 //! ```
 //! use daegen::prelude::*;

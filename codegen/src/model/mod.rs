@@ -23,6 +23,7 @@ pub mod taylor_lanes;
 pub mod taylor_layout;
 pub mod taylor_tape;
 pub mod taylor_unrolled;
+pub mod warnings;
 
 use proc_macro2::TokenStream;
 
@@ -50,6 +51,7 @@ pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
         match expand::expand(&mut ir, system, &attributes) {
             Ok(mut tokens) => {
                 tokens.extend(benchmark_impl(&item, &ir, &attributes));
+                tokens.extend(warnings::odd_unrolled_orders(&attributes.odd_unrolled));
                 return tokens;
             }
             Err(e @ crate::Error::NotSmooth { node, .. }) => {
@@ -82,6 +84,9 @@ pub struct Attributes {
     /// `unroll = [p, ...]`, 2 ≤ p ≤ 40: orders of the adaptive Taylor method
     /// to emit as straight-line code (see `taylor_unrolled`).
     pub unroll: Vec<usize>,
+    /// The odd orders of `unroll`, where they were written: `Method::Taylor`
+    /// never picks them (see `warnings`).
+    pub odd_unrolled: Vec<(usize, proc_macro2::Span)>,
     /// `scene = recursive`: a scene in relative joint coordinates (the
     /// default, `scene = global`, keeps each body's coordinates).
     pub recursive: bool,
@@ -93,7 +98,7 @@ pub struct Attributes {
     pub written: String,
 }
 
-/// Reads `#[dae_model]`, `#[dae_model(taylor = p)]`, `#[dae_model(unroll = [15, 19])]`
+/// Reads `#[dae_model]`, `#[dae_model(taylor = p)]`, `#[dae_model(unroll = [14, 18])]`
 /// or both (only what is asked for is generated).
 fn attributes(cx: &mut ctxt::Ctxt, attr: TokenStream) -> Attributes {
     let mut out = Attributes::default();
@@ -134,13 +139,21 @@ fn attributes(cx: &mut ctxt::Ctxt, attr: TokenStream) -> Attributes {
             };
             match orders {
                 Some(mut orders) => {
+                    if let syn::Expr::Array(a) = &arg.value {
+                        out.odd_unrolled = a
+                            .elems
+                            .iter()
+                            .filter_map(|e| Some((integer(e)?, syn::spanned::Spanned::span(e))))
+                            .filter(|(p, _)| p % 2 == 1)
+                            .collect();
+                    }
                     orders.sort_unstable();
                     orders.dedup();
                     out.unroll = orders;
                 }
                 None => cx.error_at(
                     &arg.value,
-                    "`unroll` takes a list of Taylor orders from 2 to 40, e.g. `unroll = [15, 19]` (tolerance 1e-12 uses 15, 1e-15 uses 19)",
+                    "`unroll` takes a list of Taylor orders from 2 to 40, e.g. `unroll = [14, 18]` (Kepler at tolerances 1e-9 and 1e-12; `daegen::runtime::taylor_order::order_to_unroll` says which order a model uses)",
                 ),
             }
         } else if arg.path.is_ident("bench") && out.bench.is_none() {
