@@ -21,6 +21,7 @@ pub mod taylor_folding;
 pub mod taylor_groups;
 pub mod taylor_lanes;
 pub mod taylor_layout;
+pub mod taylor_shared;
 pub mod taylor_tape;
 pub mod taylor_unrolled;
 pub mod warnings;

@@ -6,7 +6,7 @@ use super::taylor_lanes::{Lanes, Node};
 use super::taylor_tape::Operand;
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::collections::BTreeSet;
 
 /// Where the coefficients live: one array `r` of rows of `order + 1`
@@ -28,6 +28,10 @@ pub(super) struct Layout {
     /// While a lane group's loop is written: the rows read at lane `lane`
     /// of their group (the others are read at the slot itself).
     looped: RefCell<BTreeSet<usize>>,
+    /// While a statement is written for any order (`taylor_shared`): the
+    /// order it is written at, whose coefficients k′ ≥ k are then read at
+    /// `r[F + S * k]` with `k` a variable.
+    any_order: Cell<Option<usize>>,
 }
 
 impl Layout {
@@ -109,6 +113,7 @@ impl Layout {
             reciprocals,
             len: next,
             looped: RefCell::new(BTreeSet::new()),
+            any_order: Cell::new(None),
         }
     }
 
@@ -126,7 +131,29 @@ impl Layout {
     /// Coefficient `k` of row `row` (states first) in `r`.
     pub(super) fn slot(&self, row: usize, k: usize) -> TokenStream {
         let (first, stride) = self.place[row];
-        self.at(row, first + stride * k)
+        match self.any_order.get() {
+            Some(at) if k >= at && !self.looped.borrow().contains(&row) => {
+                let offset = Literal::usize_unsuffixed(first + stride * (k - at));
+                match (first + stride * (k - at), stride) {
+                    (0, 1) => quote!(r[k]),
+                    (_, 1) => quote!(r[#offset + k]),
+                    _ => {
+                        let stride = Literal::usize_unsuffixed(stride);
+                        quote!(r[#offset + #stride * k])
+                    }
+                }
+            }
+            _ => self.at(row, first + stride * k),
+        }
+    }
+
+    /// `write` run as for order `k`, its slots of orders k′ ≥ k read as
+    /// `r[F + S * k]` for any k (see `taylor_shared`).
+    pub(super) fn any_order<T>(&self, k: usize, write: impl FnOnce() -> T) -> T {
+        self.any_order.set(Some(k));
+        let written = write();
+        self.any_order.set(None);
+        written
     }
 
     /// `r[at]`, or `r[at + lane]` for a row read by a lane group's loop.

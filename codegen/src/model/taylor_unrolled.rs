@@ -22,13 +22,14 @@ use super::taylor_folding::{
 use super::taylor_groups::{group_lanes, same_operand};
 use super::taylor_lanes::{pair_lanes, schedule, shape, Lanes, Node};
 use super::taylor_layout::Layout;
+use super::taylor_shared::{share, Piece};
 use super::taylor_tape::{InverseFunction, Operand, Recurrence, Tape};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote, ToTokens};
 use std::collections::BTreeSet;
 
 /// A finite constant as tokens (a negative one as a negation: literals are unsigned).
-fn float(x: f64) -> TokenStream {
+pub(super) fn float(x: f64) -> TokenStream {
     let magnitude = Literal::f64_suffixed(x.abs());
     if x.is_sign_negative() {
         quote!((-#magnitude))
@@ -818,9 +819,12 @@ fn jet_in(
         let (slot, i) = (l.slot(i, 0), Literal::usize_unsuffixed(i));
         code.extend(quote!(#slot = y[#i];));
     }
-    let mut steps = Vec::with_capacity(order);
+    // Split per order, statements written alike at every order are shared
+    // between the orders' functions (`taylor_shared`).
+    let split = !single_function;
+    let mut orders: Vec<Vec<Piece>> = Vec::with_capacity(order);
     for k in 0..order {
-        let mut step = TokenStream::new();
+        let mut pieces = Vec::new();
         let mut fused: Option<FusedLoop> = None;
         for &v in &written {
             let write = |seeds: &mut Seeds| match (&folding.roles[v], recurrence.get(&v)) {
@@ -840,24 +844,30 @@ fn jet_in(
                 Some((group_loop, _, g)) => {
                     let width = lanes.groups[g].len();
                     let body = l.looping(group_loop.looped.clone(), || write(&mut seeds));
-                    step.extend(FusedLoop::push(&mut fused, width, group_loop, body));
+                    pieces.extend(
+                        FusedLoop::push(&mut fused, width, group_loop, body).map(Piece::Own),
+                    );
                 }
                 None => {
-                    step.extend(fused.take().map(FusedLoop::tokens));
-                    step.extend(write(&mut seeds));
+                    pieces.extend(fused.take().map(|f| Piece::Own(f.tokens())));
+                    let literal = write(&mut seeds);
+                    if !literal.is_empty() {
+                        let any_order =
+                            (split && k > 0).then(|| l.any_order(k, || write(&mut seeds)));
+                        pieces.push(Piece::Statement { literal, any_order });
+                    }
                 }
             }
             if let (true, Some((first, 1))) = (seed_rows, lanes.of(Node::Var(v))) {
                 let (a, b) = (row_slot(first, k), row_slot(Node::Var(v), k));
-                step.extend(seeds.store(&a, &b));
+                pieces.push(Piece::Own(seeds.store(&a, &b)));
             }
         }
-        step.extend(fused.take().map(FusedLoop::tokens));
+        pieces.extend(fused.take().map(|f| Piece::Own(f.tokens())));
         // x^[k+1] = f^[k] / (k + 1).
         let scale = float(1.0 / (k + 1) as f64);
         for &i in &state_order {
             let terms = &folding.outputs[i];
-            let slot = l.slot(i, k + 1);
             let single = match terms.as_slice() {
                 [LinearTerm {
                     weight,
@@ -865,28 +875,55 @@ fn jet_in(
                 }] if weight.is_literal() && weight.literal == 1.0 => Some(*o),
                 _ => None,
             };
-            let value = match (single, k) {
-                (Some(o), 0) => l.coefficient(o, k).unwrap_or(quote!(0.0f64)),
-                (Some(o), _) => match l.coefficient(o, k) {
-                    Some(f) => quote!(#f * #scale),
-                    None => quote!(0.0f64),
-                },
-                (None, _) => {
-                    let scale = (k > 0).then(|| scale.clone());
-                    let (prelude, value) =
-                        folded_sum(&l, &weights, &mut seeds, terms, k, false, scale);
-                    step.extend(prelude);
-                    value
-                }
+            let state_row = |scale: &TokenStream, seeds: &mut Seeds| {
+                let slot = l.slot(i, k + 1);
+                let (prelude, value) = match (single, k) {
+                    (Some(o), 0) => (
+                        TokenStream::new(),
+                        l.coefficient(o, k).unwrap_or(quote!(0.0f64)),
+                    ),
+                    (Some(o), _) => (
+                        TokenStream::new(),
+                        match l.coefficient(o, k) {
+                            Some(f) => quote!(#f * #scale),
+                            None => quote!(0.0f64),
+                        },
+                    ),
+                    (None, _) => {
+                        let scale = (k > 0).then(|| scale.clone());
+                        folded_sum(&l, &weights, seeds, terms, k, false, scale)
+                    }
+                };
+                quote!(#prelude #slot = #value;)
             };
-            step.extend(quote!(#slot = #value;));
+            let literal = state_row(&scale, &mut seeds);
+            let any_order =
+                (split && k > 0).then(|| l.any_order(k, || state_row(&quote!(s), &mut seeds)));
+            pieces.push(Piece::Statement { literal, any_order });
             if let (true, Some((first, 1))) = (seed_rows, lanes.of(Node::State(i))) {
                 let (a, b) = (row_slot(first, k + 1), row_slot(Node::State(i), k + 1));
-                step.extend(seeds.store(&a, &b));
+                pieces.push(Piece::Own(seeds.store(&a, &b)));
             }
         }
-        steps.push(step);
+        orders.push(pieces);
     }
+    let (shared, steps) = if split {
+        share(orders, l.len(), constants.len() + weight_values.len())
+    } else {
+        let whole = |pieces: Vec<Piece>| -> TokenStream {
+            pieces
+                .into_iter()
+                .map(|piece| match piece {
+                    Piece::Own(tokens)
+                    | Piece::Statement {
+                        literal: tokens, ..
+                    } => tokens,
+                })
+                .collect()
+        };
+        (TokenStream::new(), orders.into_iter().map(whole).collect())
+    };
+    code.extend(shared);
     let seeded = seeds.next > 0;
     let seed_count = Literal::usize_unsuffixed(seeds.next);
     let (seeds_param, seeds_arg) = if seeded {
@@ -928,15 +965,18 @@ mod tests {
     use super::*;
     use crate::model::taylor_tape::n_body_tape;
 
-    /// Three bodies in space at order 2, one function per order: the three
+    /// Three bodies in space at order 3, one function per order: the three
     /// interactions' rows are lane groups, interleaved in `r` three by
     /// three; the differences are written lane by lane (they read states),
     /// the sums of squares, the powers and the products each by one loop.
+    /// Orders 1 and 2 call one function for their differences and one for
+    /// their state rows (`taylor_shared`); order 0, with its constants,
+    /// writes its own.
     #[test]
-    fn three_bodies_in_lane_groups_at_order_2() {
+    fn three_bodies_in_lane_groups_at_order_3() {
         let tape = n_body_tape(3);
         let known = vec![Some(1.0); tape.constants.len()];
-        let jet = jet_in(&tape, 18, 2, &known, 0);
+        let jet = jet_in(&tape, 18, 3, &known, 0);
         let (body, buffer) = (jet.body, Literal::usize_unsuffixed(jet.buffer));
         let tokens = quote! {
             fn jet(t: f64, y: &[f64; 18], out: &mut [f64; #buffer], c0: f64, c1: f64, c2: f64, c3: f64, c4: f64, c5: f64, c6: f64) {
