@@ -4,7 +4,7 @@
 //! A jet split into one function per order (`taylor_unrolled`) repeats at
 //! each order straight-line statements that only move coefficient k of
 //! some rows into coefficient k (or k + 1) of others: an N-body model's
-//! differences of positions and its state rows x^[k+1] = f^[k]/(k + 1),
+//! differences of positions and its state rows `x^[k+1] = f^[k]/(k + 1)`,
 //! some 390 of the 480–680 instructions of each order's function in the
 //! outer solar system. The per-order functions of its order-18 jet hold
 //! 10,200 instructions, some 60 kB against a 32 kB instruction cache.
