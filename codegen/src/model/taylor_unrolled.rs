@@ -889,9 +889,20 @@ fn jet_in(
                             None => quote!(0.0f64),
                         },
                     ),
-                    (None, _) => {
+                    // One function: the scale distributed over the sum's
+                    // chain, off the path from one order to the next.
+                    (None, _) if !split => {
                         let scale = (k > 0).then(|| scale.clone());
                         folded_sum(&l, &weights, seeds, terms, k, false, scale)
+                    }
+                    // Split, the jet is bound by its operations: the sum
+                    // scaled once, a product per term fewer (the outer
+                    // solar system's 18 velocity rows of five terms).
+                    (None, 0) => folded_sum(&l, &weights, seeds, terms, k, false, None),
+                    (None, _) => {
+                        let (prelude, value) =
+                            folded_sum(&l, &weights, seeds, terms, k, false, None);
+                        (prelude, quote!((#value) * #scale))
                     }
                 };
                 quote!(#prelude #slot = #value;)
