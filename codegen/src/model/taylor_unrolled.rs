@@ -819,6 +819,10 @@ fn jet_in(
         let (slot, i) = (l.slot(i, 0), Literal::usize_unsuffixed(i));
         code.extend(quote!(#slot = y[#i];));
     }
+    for &slot in l.padding() {
+        let slot = Literal::usize_unsuffixed(slot);
+        code.extend(quote!(r[#slot] = 1.0;));
+    }
     // Split per order, statements written alike at every order are shared
     // between the orders' functions (`taylor_shared`).
     let split = !single_function;
@@ -842,7 +846,7 @@ fn jet_in(
             match group.and_then(|(g, lane)| Some((loops[g].as_ref()?, lane, g))) {
                 Some((_, lane, _)) if lane > 0 => {}
                 Some((group_loop, _, g)) => {
-                    let width = lanes.groups[g].len();
+                    let width = super::taylor_layout::padded(lanes.groups[g].len());
                     let body = l.looping(group_loop.looped.clone(), || write(&mut seeds));
                     pieces.extend(
                         FusedLoop::push(&mut fused, width, group_loop, body).map(Piece::Own),
