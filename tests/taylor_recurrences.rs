@@ -197,6 +197,14 @@ fn unrolled_agrees_with_the_tape<M: Model>(model: &M, order: usize, boxes: &[(f6
             .collect();
         work.compute(t, &y);
         assert!(model.taylor_jet_unrolled(t, &y, order, &mut jet));
+        // The whole buffer, the lanes that pad lane groups to whole
+        // vectors included (they start from 1, not from the buffer's 0).
+        if let Some(at) = jet.iter().position(|v| !v.is_finite()) {
+            panic!(
+                "slot {at} of the buffer is {} at t = {t}, y = {y:?}",
+                jet[at]
+            );
+        }
         for k in 0..=order {
             let scale = (0..n)
                 .map(|i| work.state(i)[k].abs())
