@@ -165,10 +165,20 @@ pub trait Model {
         Self::STATES * (order + 1)
     }
 
+    /// Whether [`Model::taylor_jet_unrolled`] writes `order`'s coefficients
+    /// order by order, state i's coefficient k at `out[k·STATES + i]`,
+    /// instead of state by state. Large jets do: the state update and the
+    /// step size rule then run over contiguous vectors of states.
+    fn taylor_jet_by_coefficient(&self, order: usize) -> bool {
+        let _ = order;
+        false
+    }
+
     /// The normalised Taylor coefficients of the solution through (t, y)
     /// up to `order`, by the straight-line recurrences emitted for that
-    /// order: state i's coefficient k at `out[i·(order+1) + k]` (what lies
-    /// beyond is the jet's own). `false` (and nothing written) when `order`
+    /// order: state i's coefficient k at `out[i·(order+1) + k]`, or at
+    /// `out[k·STATES + i]` when [`Model::taylor_jet_by_coefficient`] says
+    /// so (what lies beyond is the jet's own). `false` (and nothing written) when `order`
     /// is not in [`Model::TAYLOR_UNROLLED`] or `out` is shorter than
     /// [`Model::taylor_jet_len`].
     fn taylor_jet_unrolled(&self, t: f64, y: &[f64], order: usize, out: &mut [f64]) -> bool {

@@ -172,6 +172,20 @@ fn taylor_method(
         }
     });
     let unrolled_orders = unroll.iter().map(|&o| index(o));
+    let by_coefficient: Vec<_> = jets
+        .iter()
+        .filter(|(_, jet)| jet.by_coefficient)
+        .map(|(order, _)| index(*order))
+        .collect();
+    let by_coefficient = if by_coefficient.is_empty() {
+        TokenStream::new()
+    } else {
+        quote! {
+            fn taylor_jet_by_coefficient(&self, order: usize) -> bool {
+                matches!(order, #(#by_coefficient)|*)
+            }
+        }
+    };
     let unrolled = if unroll.is_empty() {
         TokenStream::new()
     } else {
@@ -184,6 +198,8 @@ fn taylor_method(
                     _ => #nn * (order + 1),
                 }
             }
+
+            #by_coefficient
 
             #[allow(clippy::all)]
             fn taylor_jet_unrolled(&self, t: f64, y: &[f64], order: usize, out: &mut [f64]) -> bool {

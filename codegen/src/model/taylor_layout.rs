@@ -55,11 +55,15 @@ pub(super) fn padded(width: usize) -> usize {
 impl Layout {
     /// The layout for `order`, `states` states, the u-variables' `rows`
     /// (`None` for those folded away) and the pairs in `lanes`.
+    /// With `by_coefficient`, the states' coefficients come first, order by
+    /// order (state i's coefficient k at `k·states + i`), unless a state is
+    /// a lane of a vector.
     pub(super) fn new(
         order: usize,
         states: usize,
         rows: Vec<Option<usize>>,
         lanes: &Lanes,
+        by_coefficient: bool,
     ) -> Layout {
         let row_count = rows.iter().flatten().count();
         let mut var_of_row = vec![0; row_count];
@@ -93,7 +97,15 @@ impl Layout {
             }
         };
         let (mut next, mut padding) = (0, Vec::new());
-        for row in 0..total {
+        let by_coefficient =
+            by_coefficient && (0..states).all(|i| lanes.vector_of(Node::State(i)).is_none());
+        if by_coefficient {
+            for (i, place) in place.iter_mut().enumerate().take(states) {
+                *place = (i, states);
+            }
+            next = states * (order + 1);
+        }
+        for row in (if by_coefficient { states } else { 0 })..total {
             match (lanes.vector_of(node(row)), vector(row)) {
                 (_, Some(rows)) => {
                     let width = padded(rows.len());
@@ -142,6 +154,12 @@ impl Layout {
     /// coefficients in a row, as the caller of the jet reads them.
     pub(super) fn states_first(&self, order: usize) -> bool {
         (0..self.states).all(|i| self.place[i] == (i * (order + 1), 1))
+    }
+
+    /// True when the states' coefficients come first order by order (see
+    /// [`Layout::new`]).
+    pub(super) fn states_by_coefficient(&self) -> bool {
+        (0..self.states).all(|i| self.place[i] == (i, self.states))
     }
 
     /// The slots of order 0 that pad lane groups, set to 1 before the first

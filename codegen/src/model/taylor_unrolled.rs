@@ -722,6 +722,9 @@ pub struct UnrolledJet {
     pub body: TokenStream,
     /// The length of `out`, an array.
     pub buffer: usize,
+    /// Whether `out` holds the states' coefficients order by order (state
+    /// i's coefficient k at `k·n + i`) rather than state by state.
+    pub by_coefficient: bool,
 }
 
 /// [`unrolled_jet`], one function when rows × order² is at most
@@ -752,7 +755,7 @@ fn jet_in(
     } else {
         group_lanes(tape, &folding, &known)
     };
-    let l = Layout::new(order, n, rows, &lanes);
+    let l = Layout::new(order, n, rows, &lanes, !single_function);
     let loops: Vec<Option<Loop>> = lanes
         .groups
         .iter()
@@ -802,7 +805,8 @@ fn jet_in(
     // rows come first as the caller reads them: no array to clear and no
     // copy at the end (stale values are never read: every slot is written
     // before it is read).
-    let in_out = !single_function && l.states_first(order);
+    let by_coefficient = !single_function && l.states_by_coefficient();
+    let in_out = !single_function && (by_coefficient || l.states_first(order));
     let mut code = TokenStream::new();
     code.extend(quote!(let c: [f64; #nc] = [#(#constants,)* #(#weight_values),*];));
     if in_out {
@@ -972,6 +976,7 @@ fn jet_in(
     UnrolledJet {
         body: code,
         buffer: if in_out { l.len() } else { n * (order + 1) },
+        by_coefficient,
     }
 }
 
