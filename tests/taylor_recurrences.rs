@@ -321,3 +321,37 @@ fn trigonometric_hyperbolic_and_inverse_functions() {
 fn powers_quotients_and_atan2_in_every_quadrant() {
     agree(&Rational::default(), &[(0.2, 2.0), (-2.0, 2.0)], 200);
 }
+
+/// A jet that writes its coefficients order by order (five bodies at 18)
+/// steps as the interpreted tape, which writes them state by state, does:
+/// the same number of steps, the same states and dense output between the
+/// steps to rounding (the state update, the step size's norms and the
+/// dense output each read the coefficients in the jet's layout).
+#[test]
+fn a_jet_written_order_by_order_steps_as_the_tape_does() {
+    let model = FiveBodies::default();
+    assert!(model.taylor_jet_by_coefficient(18));
+    let options = Options::new()
+        .method(Method::Taylor)
+        .rtol(1e-12)
+        .atol(1e-12)
+        .taylor_order(18)
+        .dense_output(true);
+    let unrolled = model.simulate(0.0, 2.0, &options).unwrap();
+    let tape = model
+        .simulate(0.0, 2.0, &options.taylor_compact(true))
+        .unwrap();
+    assert!(unrolled.stats().taylor_unrolled && !tape.stats().taylor_unrolled);
+    assert_eq!(unrolled.stats().steps, tape.stats().steps);
+    assert!(unrolled.stats().steps > 5, "{}", unrolled.stats().steps);
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1.0);
+    for (a, b) in unrolled.final_state().iter().zip(tape.final_state()) {
+        assert!(close(*a, *b), "{a} against {b}");
+    }
+    for t in [0.3, 0.77, 1.5] {
+        for name in FiveBodies::INFO.states {
+            let (a, b) = (unrolled.at(t, name).unwrap(), tape.at(t, name).unwrap());
+            assert!(close(a, b), "{name} at {t}: {a} against {b}");
+        }
+    }
+}
