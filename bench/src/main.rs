@@ -7,7 +7,9 @@
 //! heyoka; `--no-rustc` skips timing rustc on the generated code; `--only
 //! name` runs one model; `--dae` prints the DAE tables instead;
 //! `--versus-dop853` times it against `ode_solvers`' Dop853 at equal
-//! error, in alternation (`results/versus_dop853.md`);
+//! error, in alternation (`results/versus_dop853.md`), and
+//! `--dop853-versus-dop853` our DOP853 likewise
+//! (`results/dop853_versus_dop853.md`);
 //! `--versus-heyoka` times our Taylor method and heyoka in alternation,
 //! `results/versus_heyoka.md`; with `--only name`, one problem, printed
 //! only). Writes
@@ -460,6 +462,18 @@ fn main() {
             "Dop853",
             "versus_dop853.md",
             taylor_problems!(versus_dop853),
+            only.as_deref(),
+            versus::dop853_markdown,
+        );
+        return;
+    }
+    if has("--dop853-versus-dop853") {
+        // Our DOP853 against ode_solvers' at equal error, in alternation:
+        // the sweep's explicit-pair targets time the two minutes apart.
+        versus_section(
+            "Dop853",
+            "dop853_versus_dop853.md",
+            taylor_problems!(dop853_versus_dop853),
             only.as_deref(),
             versus::dop853_markdown,
         );

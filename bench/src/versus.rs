@@ -205,6 +205,9 @@ pub struct Dop853Row {
     /// Our time over Dop853's at our error, per round, sorted; empty when
     /// Dop853 does not reach our error on the grid.
     pub ratios: Vec<f64>,
+    /// Our method, "Taylor" or "DOP853".
+    pub method: &'static str,
+    /// Taylor's order (0 for DOP853).
     pub ours_order: usize,
     pub ours_error: f64,
     /// Dop853's two tolerances and errors around ours.
@@ -214,6 +217,25 @@ pub struct Dop853Row {
 /// `rounds` alternating timings of `M` with `Method::Taylor` and
 /// `ode_solvers`' Dop853 at our error, per tolerance.
 pub fn versus_dop853<M: Benchmark>(
+    tolerances: &[f64],
+    rounds: usize,
+) -> Result<Vec<Dop853Row>, String> {
+    ours_versus_dop853::<M>(Method::Taylor, tolerances, rounds)
+}
+
+/// [`versus_dop853`] with our DOP853 instead: the same method on both
+/// sides, timed in alternation (the sweep times them minutes apart).
+pub fn dop853_versus_dop853<M: Benchmark>(
+    tolerances: &[f64],
+    rounds: usize,
+) -> Result<Vec<Dop853Row>, String> {
+    ours_versus_dop853::<M>(Method::Dop853, tolerances, rounds)
+}
+
+/// `rounds` alternating timings of `M` with `method` and `ode_solvers`'
+/// Dop853 at our error, per tolerance.
+fn ours_versus_dop853<M: Benchmark>(
+    method: Method,
     tolerances: &[f64],
     rounds: usize,
 ) -> Result<Vec<Dop853Row>, String> {
@@ -253,7 +275,7 @@ pub fn versus_dop853<M: Benchmark>(
     let mut rows = Vec::new();
     for &tol in tolerances {
         let options = Options::new()
-            .method(Method::Taylor)
+            .method(method.clone())
             .rtol(tol)
             .atol(tol * bench.atol_factor)
             .dense_output(false);
@@ -262,6 +284,10 @@ pub fn versus_dop853<M: Benchmark>(
             .map_err(|e| e.to_string())?;
         let ours_error = mixed_error(sol.final_state(), &reference);
         let mut row = Dop853Row {
+            method: match method {
+                Method::Taylor => "Taylor",
+                _ => "DOP853",
+            },
             problem: M::NAME,
             tol,
             ratios: Vec::new(),
@@ -272,7 +298,7 @@ pub fn versus_dop853<M: Benchmark>(
         if let Some(b @ [(tol_a, _), (tol_b, _)]) = row.bracket {
             for round in 0..rounds {
                 eprint!(
-                    "\r\x1b[2K{} Taylor vs Dop853 {tol:.0e}, round {}",
+                    "\r\x1b[2K{} {method:?} vs Dop853 {tol:.0e}, round {}",
                     M::NAME,
                     round + 1
                 );
@@ -292,15 +318,20 @@ pub fn versus_dop853<M: Benchmark>(
 
 /// The Dop853 rows as a markdown table.
 pub fn dop853_markdown(rows: &[Dop853Row], rounds: usize) -> String {
+    let method = rows.first().map_or("Taylor", |r| r.method);
     let mut s = format!(
-        "# Taylor vs ode_solvers Dop853, timed in alternation at equal error\n\n{rounds} rounds per tolerance; each round: our median solve time, then Dop853's at the two tolerances of its grid (four a decade) whose errors bracket ours, interpolated log–log to our error; ratio = ours / Dop853's per round.\n\n| problem | tol | our order, error | Dop853 tolerances (errors) | median ratio (range) |\n|---|---|---|---|---|\n"
+        "# {method} vs ode_solvers Dop853, timed in alternation at equal error\n\n{rounds} rounds per tolerance; each round: our median solve time, then Dop853's at the two tolerances of its grid (four a decade) whose errors bracket ours, interpolated log–log to our error; ratio = ours / Dop853's per round.\n\n| problem | tol | our order, error | Dop853 tolerances (errors) | median ratio (range) |\n|---|---|---|---|---|\n"
     );
     for r in rows {
         let bracket = bracket_cell(r.bracket);
         let ratio = ratio_cell(&r.ratios).unwrap_or_else(|| "—".into());
+        let order = match r.ours_order {
+            0 => "—".to_string(),
+            p => p.to_string(),
+        };
         s.push_str(&format!(
-            "| {} | {:.0e} | {}, {:.1e} | {bracket} | {ratio} |\n",
-            r.problem, r.tol, r.ours_order, r.ours_error
+            "| {} | {:.0e} | {order}, {:.1e} | {bracket} | {ratio} |\n",
+            r.problem, r.tol, r.ours_error
         ));
     }
     s
