@@ -38,12 +38,12 @@ pub(super) struct Layout {
 
 /// The lanes a group of `width` rows takes in `r`, and its loop runs over:
 /// a whole number of 4-wide vectors (a pair keeps its two). With 15 lanes
-/// the compiler masks every load and store of the loop (AVX-512), and the
-/// statements after it that read the products wait for the masked stores
-/// to reach the cache instead of taking their values from the store buffer;
-/// padded to 16, the outer solar system's order-18 jet ran 0.83–0.88× the
-/// time (three rounds alternated). The extra lanes compute on their own
-/// slots only, from finite values (see [`Layout::padding`]).
+/// the compiler masks every load and store of the loop (AVX-512); padded
+/// to 16, the outer solar system's order-18 jet ran 0.83–0.88× the time
+/// (three rounds alternated). Why is not settled: the state rows reading
+/// the previous order's products instead of the ones just stored (no
+/// store to forward from) changed nothing. The extra lanes compute on
+/// their own slots only, from finite values (see [`Layout::padding`]).
 pub(super) fn padded(width: usize) -> usize {
     if width > 2 {
         width.next_multiple_of(4)
