@@ -24,7 +24,8 @@ use crate::peers::{array, field, OdeSolvers, Python, HEYOKA_REPEATS};
 use daegen::prelude::*;
 use daegen::runtime::taylor_order::jorba_zou_order;
 use daegen_workprecision::{
-    median_time, mixed_error, reference_values, Benchmark, Peer, PeerProblem, Settings,
+    expansion_cost, function_operations, median_time, mixed_error, reference_values,
+    taylor_jet_operations, Benchmark, Peer, PeerProblem, Record, Settings,
 };
 
 /// A peer's error on a grid of tolerances four a decade, 10^(−lo/4) to
@@ -212,9 +213,43 @@ pub struct Dop853Row {
     pub ours_error: f64,
     /// Dop853's two tolerances and errors around ours.
     pub bracket: Option<[(f64, f64); 2]>,
+    /// Floating-point operations of our solve and of Dop853's at our
+    /// error (see [`Work`]), when the generated code could be counted.
+    pub work: Option<(f64, f64)>,
+    /// Our median solve time over the rounds, in seconds.
+    pub ours_seconds: f64,
 }
 
-/// `rounds` alternating timings of `M` with `Method::Taylor` and
+/// The arithmetic a solve does, counted in the generated code
+/// (`daegen_workprecision::function_operations`) and in the methods'
+/// tableaus: what separates a method that wins by doing less from one
+/// that wins by doing the same faster.
+struct Work {
+    /// Operations of one right-hand side.
+    rhs: f64,
+    /// The model's generated code, for its jets.
+    code: String,
+    /// States.
+    n: f64,
+}
+
+impl Work {
+    /// A DOP853 solve (ours or `ode_solvers`'): its right-hand sides and,
+    /// per step tried, the stage sums and error estimate of
+    /// `dop853::operations_per_state`.
+    fn dop853(&self, rhs_evals: usize, steps_tried: usize) -> f64 {
+        let per_state = daegen::runtime::dop853::operations_per_state() as f64;
+        rhs_evals as f64 * self.rhs + steps_tried as f64 * self.n * per_state
+    }
+
+    /// A Taylor solve at an unrolled order: per step its jet and its state
+    /// update; None for the interpreted tape.
+    fn taylor(&self, order: usize, steps: usize) -> Option<f64> {
+        let jet = taylor_jet_operations(&self.code, order)? as f64;
+        let update = daegen::runtime::taylor::update_operations_per_state(order) as f64;
+        Some(steps as f64 * (jet + self.n * update))
+    }
+}
 /// `ode_solvers`' Dop853 at our error, per tolerance.
 pub fn versus_dop853<M: Benchmark>(
     tolerances: &[f64],
@@ -263,6 +298,15 @@ fn ours_versus_dop853<M: Benchmark>(
         rhs: &rhs,
         jacobian: &no_jacobian,
     };
+    let work = expansion_cost(M::SOURCE, M::ATTRIBUTES, 1)
+        .ok()
+        .and_then(|cost| {
+            Some(Work {
+                rhs: function_operations(&cost.code, "rhs")? as f64,
+                code: cost.code,
+                n: M::STATES as f64,
+            })
+        });
     let dop853 = OdeSolvers { dop853: true };
     let settings = Settings::default();
     let once = Settings {
@@ -270,8 +314,13 @@ fn ours_versus_dop853<M: Benchmark>(
         max_repeats: 1,
         ..Settings::default()
     };
-    // Dop853's error on the grid 1e-8 … 1e-16, four tolerances a decade.
-    let grid = error_grid(32, 64, |tol| Ok(dop853.run(&problem, tol, &once)?.error))?;
+    // Dop853's error on the grid 1e-8 … 1e-16, four tolerances a decade,
+    // and its runs there for their work.
+    let runs: Vec<Record> = (32..=64)
+        .map(|j| dop853.run(&problem, 10f64.powf(-(j as f64) / 4.0), &once))
+        .collect::<Result<_, _>>()?;
+    let grid: Vec<(f64, f64)> = runs.iter().map(|r| (r.tol, r.error)).collect();
+    let run_at = |tol: f64| runs.iter().find(|r| r.tol == tol);
     let mut rows = Vec::new();
     for &tol in tolerances {
         let options = Options::new()
@@ -294,8 +343,25 @@ fn ours_versus_dop853<M: Benchmark>(
             ours_order: sol.stats().taylor_order,
             ours_error,
             bracket: bracket(&grid, ours_error),
+            work: None,
+            ours_seconds: f64::NAN,
         };
+        // Our arithmetic and Dop853's at our error, interpolated log–log
+        // between the bracket's two runs as its time is.
+        if let (Some(w), Some(b @ [(tol_a, _), (tol_b, _)])) = (&work, row.bracket) {
+            let stats = sol.stats();
+            let ours = match method {
+                Method::Taylor => w.taylor(stats.taylor_order, stats.steps),
+                _ => Some(w.dop853(stats.rhs_evals, stats.steps + stats.rejected)),
+            };
+            let theirs =
+                |tol: f64| run_at(tol).map(|r| w.dop853(r.rhs_evals, r.steps + r.rejected));
+            if let (Some(ours), Some(a), Some(b_work)) = (ours, theirs(tol_a), theirs(tol_b)) {
+                row.work = Some((ours, time_at_error(ours_error, b, a, b_work)));
+            }
+        }
         if let Some(b @ [(tol_a, _), (tol_b, _)]) = row.bracket {
+            let mut times = Vec::new();
             for round in 0..rounds {
                 eprint!(
                     "\r\x1b[2K{} {method:?} vs Dop853 {tol:.0e}, round {}",
@@ -308,8 +374,11 @@ fn ours_versus_dop853<M: Benchmark>(
                 let time_b = dop853.run(&problem, tol_b, &settings)?.seconds;
                 row.ratios
                     .push(ours / time_at_error(ours_error, b, time_a, time_b));
+                times.push(ours);
             }
             row.ratios.sort_by(f64::total_cmp);
+            times.sort_by(f64::total_cmp);
+            row.ours_seconds = times[times.len() / 2];
         }
         rows.push(row);
     }
@@ -320,7 +389,7 @@ fn ours_versus_dop853<M: Benchmark>(
 pub fn dop853_markdown(rows: &[Dop853Row], rounds: usize) -> String {
     let method = rows.first().map_or("Taylor", |r| r.method);
     let mut s = format!(
-        "# {method} vs ode_solvers Dop853, timed in alternation at equal error\n\n{rounds} rounds per tolerance; each round: our median solve time, then Dop853's at the two tolerances of its grid (four a decade) whose errors bracket ours, interpolated log–log to our error; ratio = ours / Dop853's per round.\n\n| problem | tol | our order, error | Dop853 tolerances (errors) | median ratio (range) |\n|---|---|---|---|---|\n"
+        "# {method} vs ode_solvers Dop853, timed in alternation at equal error\n\n{rounds} rounds per tolerance; each round: our median solve time, then Dop853's at the two tolerances of its grid (four a decade) whose errors bracket ours, interpolated log–log to our error; ratio = ours / Dop853's per round.\n\nArithmetic: the floating-point operations of a solve, counted in the generated code (a jet or right-hand side; loops by their trips) and in the methods' updates (DOP853's stage sums and error estimate over the tableau's nonzero coefficients, per step tried; Taylor's Horner sums and norms), Dop853's interpolated to our error as its time is. Operations per second = arithmetic ratio / time ratio: how much faster than Dop853's our code computes (ours in Gop/s after it, an FMA one operation). To be k× faster, a method doing r× Dop853's arithmetic must compute r·k× as fast.\n\n| problem | tol | our order, error | Dop853 tolerances (errors) | median ratio (range) | arithmetic, ours / Dop853's | our operations per second / Dop853's (ours) |\n|---|---|---|---|---|---|---|\n"
     );
     for r in rows {
         let bracket = bracket_cell(r.bracket);
@@ -329,8 +398,20 @@ pub fn dop853_markdown(rows: &[Dop853Row], rounds: usize) -> String {
             0 => "—".to_string(),
             p => p.to_string(),
         };
+        let median = r.ratios.get(r.ratios.len() / 2);
+        let (arithmetic, rate) = match (r.work, median) {
+            (Some((ours, theirs)), Some(time)) => (
+                format!("{ours:.2e} / {theirs:.2e} = {:.2}", ours / theirs),
+                format!(
+                    "{:.1}× ({:.1} Gop/s)",
+                    ours / theirs / time,
+                    ours / r.ours_seconds / 1e9
+                ),
+            ),
+            _ => ("—".into(), "—".into()),
+        };
         s.push_str(&format!(
-            "| {} | {:.0e} | {order}, {:.1e} | {bracket} | {ratio} |\n",
+            "| {} | {:.0e} | {order}, {:.1e} | {bracket} | {ratio} | {arithmetic} | {rate} |\n",
             r.problem, r.tol, r.ours_error
         ));
     }

@@ -198,6 +198,21 @@ const NONZERO_WEIGHTS: [usize; 8] = [0, 5, 6, 7, 8, 9, 10, 11];
 
 /// Weights of the 3rd-order embedded solution (`bhh` of `dop853.f`), on stages 1, 9 and 12.
 const BHH: [f64; 3] = [0.2440944881889764, 0.7338466882816118, 0.022058823529411766];
+/// Floating-point operations per state of one step besides its twelve
+/// right-hand sides: the least a DOP853 step does, for work models (the
+/// benchmark's arithmetic per solve). Each of the eleven stages' and the
+/// solution's y + h·Σ a_ij·k_j is a multiply-add per nonzero coefficient
+/// and one more; the error estimates take one per nonzero weight (the
+/// 5th-order one) and per `bhh` coefficient (the 3rd-order one, from the
+/// solution's sum, as `dop853.f` forms it); the error norm four (two
+/// quotients by the scale, two squares added) and the scale
+/// atol + rtol·max(|y|, |y₁|) three.
+pub fn operations_per_state() -> usize {
+    let nonzero = |row: &[f64]| row.iter().filter(|&&a| a != 0.0).count();
+    let sums: usize = A[1..=12].iter().map(|row| nonzero(row) + 1).sum();
+    sums + nonzero(&E5) + BHH.len() + 4 + 3
+}
+
 /// Dense output: rows give r5..r8 as combinations of the 16 stages.
 const D: [[f64; 16]; 4] = [
     [

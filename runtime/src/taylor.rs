@@ -143,6 +143,16 @@ fn horner(rows: &[f64], w: usize, h: f64, y: &mut [f64], carried: &mut [f64]) {
     }
 }
 
+/// Floating-point operations per state of one step of order `order`
+/// besides the jet, for work models (the benchmark's arithmetic per
+/// solve): the series summed by [`horner`] (a multiply-add per
+/// coefficient after the first, one more to join Estrin's halves), the
+/// compensated addition of [`add_increment`] (ten) and the three norms
+/// that set the step (an absolute value and a comparison each).
+pub fn update_operations_per_state(order: usize) -> usize {
+    order + 1 + 10 + 3 * 2
+}
+
 /// `y += p·h`, the increment's rounding error and the sum's carried in
 /// `carried` to the next step (see [`horner`]).
 #[inline(always)]

@@ -11,6 +11,7 @@
 //! Peers (other crates, Python) live in the benchmark binary, not here, so
 //! the test command never compiles them.
 
+mod arithmetic;
 mod expansion;
 mod peer;
 mod plot;
@@ -20,6 +21,7 @@ mod summary;
 mod sweep;
 mod timing;
 
+pub use arithmetic::{function_operations, taylor_jet_operations};
 pub use daegen::runtime::bench::{Bench, Benchmark, Reference};
 pub use expansion::{expansion_cost, ExpansionCost};
 pub use peer::{Peer, PeerProblem};
