@@ -250,6 +250,8 @@ impl Work {
         Some(steps as f64 * (jet + self.n * update))
     }
 }
+
+/// `rounds` alternating timings of `M` with `Method::Taylor` and
 /// `ode_solvers`' Dop853 at our error, per tolerance.
 pub fn versus_dop853<M: Benchmark>(
     tolerances: &[f64],
