@@ -215,7 +215,12 @@ fn dual(r: &R, point: &[f64; 4], direction: usize, scale: &mut f64) -> Dual {
             } else {
                 a.v.powf(c.v)
             };
-            let da = if a.d == 0.0 {
+            // As for half powers: at a zero base an exponent below 1 has no
+            // derivative (the chain rule's c·u^(c−1)·u' is ∞·0 even where
+            // u ≡ 0 nearby, as for 0^z/t): such points are rejected.
+            let da = if a.v == 0.0 && c.v < 1.0 && c.v != 0.0 {
+                f64::NAN
+            } else if a.d == 0.0 {
                 0.0
             } else {
                 c.v * a.v.powf(c.v - 1.0) * a.d
