@@ -26,8 +26,7 @@ const KEYWORDS: [&str; 8] = ["return", "in", "mut", "let", "if", "while", "match
 /// The operations of one call of `function` (its first definition in
 /// `code`), or None when the code does not parse or has no such function.
 pub fn function_operations(code: &str, function: &str) -> Option<u64> {
-    let tokens: Vec<TokenTree> = TokenStream::from_str(code).ok()?.into_iter().collect();
-    let body = find_function(&tokens, function)?;
+    let body = function_body(code, function)?;
     Some(Counter::new(&body).count(&body))
 }
 
@@ -35,36 +34,17 @@ pub fn function_operations(code: &str, function: &str) -> Option<u64> {
 /// `order` (its `match` arm), or None when the code has no unrolled jet
 /// of that order.
 pub fn taylor_jet_operations(code: &str, order: usize) -> Option<u64> {
-    let tokens: Vec<TokenTree> = TokenStream::from_str(code).ok()?.into_iter().collect();
-    let body = find_function(&tokens, "taylor_jet_unrolled")?;
+    let body = function_body(code, "taylor_jet_unrolled")?;
     let arm = find_arm(&body, order)?;
     Some(Counter::new(&arm).count(&arm))
 }
 
-/// The body of the first `fn name`, searched through every group.
-fn find_function(tokens: &[TokenTree], name: &str) -> Option<Vec<TokenTree>> {
-    for (i, t) in tokens.iter().enumerate() {
-        match t {
-            TokenTree::Ident(f) if f == "fn" => {
-                if matches!(tokens.get(i + 1), Some(TokenTree::Ident(n)) if n == name) {
-                    return tokens[i + 2..].iter().find_map(|t| match t {
-                        TokenTree::Group(g) if g.delimiter() == Delimiter::Brace => {
-                            Some(g.stream().into_iter().collect())
-                        }
-                        _ => None,
-                    });
-                }
-            }
-            TokenTree::Group(g) => {
-                let inner: Vec<TokenTree> = g.stream().into_iter().collect();
-                if let Some(body) = find_function(&inner, name) {
-                    return Some(body);
-                }
-            }
-            _ => {}
-        }
-    }
-    None
+/// The body of the first `fn name` in `code`, searched through every group.
+fn function_body(code: &str, name: &str) -> Option<Vec<TokenTree>> {
+    let tokens: Vec<TokenTree> = TokenStream::from_str(code).ok()?.into_iter().collect();
+    let mut functions = HashMap::new();
+    collect_functions(&tokens, &mut functions);
+    Some(functions.get(name)?.stream().into_iter().collect())
 }
 
 /// The block of the `match` arm `order => { … }`, searched through every
@@ -199,13 +179,16 @@ fn collect_functions(tokens: &[TokenTree], functions: &mut HashMap<String, Group
 /// `tokens[at]` (1 when its range is not two integer literals), its body,
 /// and the position after it.
 fn loop_parts(tokens: &[TokenTree], at: usize) -> (u64, Vec<TokenTree>, usize) {
-    let Some(open) = (at..tokens.len())
-        .find(|&j| matches!(&tokens[j], TokenTree::Group(g) if g.delimiter() == Delimiter::Brace))
-    else {
+    let body = tokens
+        .iter()
+        .enumerate()
+        .skip(at)
+        .find_map(|(j, t)| match t {
+            TokenTree::Group(g) if g.delimiter() == Delimiter::Brace => Some((j, g)),
+            _ => None,
+        });
+    let Some((open, body)) = body else {
         return (1, Vec::new(), tokens.len());
-    };
-    let TokenTree::Group(body) = &tokens[open] else {
-        unreachable!("found as a group")
     };
     let header: Vec<String> = tokens[at..open].iter().map(|t| t.to_string()).collect();
     let trips = header
