@@ -261,6 +261,25 @@ fn cartesian_double_pendulum_reduces_its_kkt_system_to_the_multipliers() {
     }));
 }
 
+/// Two products sharing the factor x, once shifted by a constant, at order
+/// 3 (`taylor_factoring`): `(x + 1)·sin y + x·cos y` is written as its heads
+/// `(x + 1)^[0]·sin^[k]` and `x^[0]·cos^[k]` plus one convolution
+/// `Σ_{j≥1} x^[j]·e^[k−j]` on the row `e = sin y + cos y`.
+#[test]
+fn products_sharing_a_factor_with_unrolled_taylor_recurrences_of_order_3() {
+    insta::assert_snapshot!(expand_with(
+        quote!(unroll = [3]),
+        quote! {
+            fn shared_factor() {
+                let x = state(0.5);
+                let y = state(0.2);
+                der(x) == (x + 1.0) * sin(y) + x * cos(y);
+                der(y) == -x;
+            }
+        }
+    ));
+}
+
 /// Kepler's problem unrolled at order 2: x and y, and their velocities, are
 /// lane pairs (`taylor_lanes`) — their rows interleaved in `r`, written side
 /// by side and copied to `seeds` for the vectoriser — the squares of

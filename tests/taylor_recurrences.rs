@@ -132,6 +132,30 @@ fn elementary_lanes() {
     }
 }
 
+/// The restricted three-body problem (Arenstorf's), whose accelerations
+/// sum products that share a factor, itself or shifted by a constant:
+/// (x + μ)/d₁³ and (x − μ′)/d₂³, y/d₁³ and y/d₂³, factored into one
+/// convolution each with the row −μ′/d₁³ − μ/d₂³ (`taylor_factoring`); a
+/// third sum shares the factor z with a product of its own. One function
+/// at order 4 (checked against the symbolic scheme too), one per order at 30.
+#[dae_model(taylor = 4, unroll = [4, 30])]
+fn shared_factors() {
+    let mu = param(0.012277471);
+    let x = state(0.994);
+    let y = state(0.1);
+    let u = state(0.0);
+    let v = state(-2.0);
+    let z = state(0.3);
+    let mup = 1.0 - mu;
+    let d1 = ((x + mu).powi(2) + y * y).powf(1.5);
+    let d2 = ((x - mup).powi(2) + y * y).powf(1.5);
+    der(x) == u;
+    der(y) == v;
+    der(u) == x + 2.0 * v - mup * (x + mu) / d1 - mu * (x - mup) / d2;
+    der(v) == y - 2.0 * u - mup * y / d1 - mu * y / d2;
+    der(z) == z * exp(x) - 2.0 * (z + 1.0) * sin(y) + 0.5 * z * x;
+}
+
 /// A deterministic pseudo-random number in [lo, hi) (a 64-bit LCG).
 fn uniform(seed: &mut u64, lo: f64, hi: f64) -> f64 {
     *seed = seed
@@ -306,6 +330,24 @@ fn a_lane_read_by_every_lane_is_written_before_the_loop_that_reads_it() {
         22,
         &[(-0.5, 0.5), (-0.5, 0.5), (-0.5, 0.5)],
     );
+}
+
+#[test]
+fn products_sharing_a_factor_agree_with_the_tape_and_the_symbolic_scheme() {
+    // Away from both primaries (at x = −μ and x = μ′, y = 0).
+    let boxes = [
+        (-0.6, 0.6),
+        (0.2, 0.8),
+        (-1.0, 1.0),
+        (-1.0, 1.0),
+        (-1.0, 1.0),
+    ];
+    assert!(!SharedFactors::default().taylor_jet_by_coefficient(4));
+    assert!(SharedFactors::default().taylor_jet_by_coefficient(30));
+    for order in [4, 30] {
+        unrolled_agrees_with_the_tape(&SharedFactors::default(), order, &boxes);
+    }
+    agree(&SharedFactors::default(), &boxes, 100);
 }
 
 #[test]

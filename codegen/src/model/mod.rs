@@ -17,6 +17,7 @@ pub mod mass_form;
 pub mod names;
 pub mod reduce;
 pub mod solve_unknowns;
+pub mod taylor_factoring;
 pub mod taylor_folding;
 pub mod taylor_groups;
 pub mod taylor_lanes;

@@ -30,7 +30,7 @@ pub struct Weight {
 }
 
 impl Weight {
-    fn one() -> Weight {
+    pub(super) fn one() -> Weight {
         Weight {
             literal: 1.0,
             times: Vec::new(),
@@ -72,19 +72,27 @@ pub enum Base {
     Square(Operand),
     /// The coefficients of `a·b`.
     Product(Operand, Operand),
+    /// The first term of `a·b`'s convolution, `a^[0]·b^[k]` (see
+    /// `taylor_factoring`).
+    Head(Operand, Operand),
+    /// The rest of `a·b`'s convolution, `Σ_{j=1..k} a^[j]·b^[k−j]`.
+    Tail(Operand, Operand),
 }
 
 impl Base {
     fn is_convolution(&self) -> bool {
-        !matches!(self, Base::Operand(_))
+        matches!(self, Base::Square(_) | Base::Product(..) | Base::Tail(..))
     }
 
-    /// 0 for an operand, 1 for a square, 2 for a product.
+    /// 0 for an operand, 1 for a square, 2 for a product, 3 for a head and
+    /// 4 for a tail.
     pub fn kind(&self) -> u8 {
         match self {
             Base::Operand(_) => 0,
             Base::Square(_) => 1,
             Base::Product(..) => 2,
+            Base::Head(..) => 3,
+            Base::Tail(..) => 4,
         }
     }
 }

@@ -143,7 +143,9 @@ fn sum_shape(terms: &[LinearTerm]) -> (Shape, Vec<Operand>) {
             let weight = t.weight.is_literal().then(|| t.weight.literal.to_bits());
             match t.base {
                 Base::Operand(o) | Base::Square(o) => operands.push(o),
-                Base::Product(a, b) => operands.extend([a, b]),
+                Base::Product(a, b) | Base::Head(a, b) | Base::Tail(a, b) => {
+                    operands.extend([a, b])
+                }
             }
             (weight, t.base.kind())
         })

@@ -14,8 +14,10 @@
 //! interpreter's to rounding. Rows that repeat one computation on other
 //! operands are written side by side as lane pairs (`taylor_lanes`) in
 //! small jets, and computed by one loop per lane group (`taylor_groups`)
-//! in large ones; the compiler vectorises both.
+//! in large ones; the compiler vectorises both. Products of one sum that
+//! share a factor are one convolution (`taylor_factoring`).
 
+use super::taylor_factoring::factor_shared_operands;
 use super::taylor_folding::{
     fold_linear, known_constants, Base, Folding, LinearTerm, Role, Weight,
 };
@@ -263,6 +265,8 @@ fn base_terms(l: &Layout, base: Base, k: usize) -> Vec<Triple> {
             }
         }),
         Base::Product(a, b) => convolution(l, a, b, k, 0..=k, |_| 1.0),
+        Base::Head(a, b) => convolution(l, a, b, k, 0..=0, |_| 1.0),
+        Base::Tail(a, b) => convolution(l, a, b, k, 1..=k, |_| 1.0),
     }
 }
 
@@ -737,8 +741,9 @@ fn jet_in(
     single_function_terms: usize,
 ) -> UnrolledJet {
     let known = known_constants(tape, known);
-    let folding = fold_linear(tape, &known);
-    let mut rows = vec![None; tape.ops.len()];
+    let mut folding = fold_linear(tape, &known);
+    factor_shared_operands(&mut folding, tape);
+    let mut rows = vec![None; folding.roles.len()];
     let mut row_count = 0;
     for (v, role) in folding.roles.iter().enumerate() {
         if *role != Role::Folded {
@@ -774,8 +779,15 @@ fn jet_in(
     let weight_values = weights.values();
     let nc = Literal::usize_unsuffixed(constants.len() + weight_values.len());
     // The u-variables in the order they are written (lane pairs together).
-    let written = schedule(tape, &folding, &lanes)
-        .unwrap_or_else(|| tape.recurrences.iter().map(|(v, _)| *v).collect());
+    // (The rows `taylor_factoring` adds come after the tape's.)
+    let written = schedule(tape, &folding, &lanes).unwrap_or_else(|| {
+        let added = tape.ops.len()..folding.roles.len();
+        tape.recurrences
+            .iter()
+            .map(|(v, _)| *v)
+            .chain(added)
+            .collect()
+    });
     let recurrence: std::collections::BTreeMap<usize, Recurrence> =
         tape.recurrences.iter().copied().collect();
     // The states in the order their next coefficients are written.
@@ -835,6 +847,11 @@ fn jet_in(
         let mut pieces = Vec::new();
         let mut fused: Option<FusedLoop> = None;
         for &v in &written {
+            // The rows `taylor_factoring` adds are read only by tails, which
+            // read coefficients below k: the last order needs none of theirs.
+            if v >= tape.ops.len() && k + 1 == order {
+                continue;
+            }
             let write = |seeds: &mut Seeds| match (&folding.roles[v], recurrence.get(&v)) {
                 (Role::Row, Some(&rec)) => recurrence_at(&l, v, rec, k),
                 (Role::SumRow(terms), _) => {
