@@ -121,8 +121,7 @@ fn factor_sum(
     let mut terms = terms.to_vec();
     let mut changed = false;
     loop {
-        // Per shared series, the products that have it as a (shifted)
-        // factor: (term, that factor, the other one).
+        // Per shared series, the products that have it as a (shifted) factor.
         let mut groups: Vec<(Operand, Vec<Member>)> = Vec::new();
         for (i, t) in terms.iter().enumerate() {
             let Base::Product(p, q) = t.base else {
@@ -130,13 +129,11 @@ fn factor_sum(
             };
             for (a, b) in [(p, q), (q, p)] {
                 let Some(s) = root(folding, a) else { continue };
-                let group = match groups.iter_mut().find(|(r, _)| *r == s) {
-                    Some((_, g)) => g,
-                    None => {
-                        groups.push((s, Vec::new()));
-                        &mut groups.last_mut()?.1
-                    }
-                };
+                let index = groups.iter().position(|(r, _)| *r == s).unwrap_or_else(|| {
+                    groups.push((s, Vec::new()));
+                    groups.len() - 1
+                });
+                let group = &mut groups[index].1;
                 if group.last().map(|(j, ..)| *j) != Some(i) {
                     group.push((i, a, b));
                 }
