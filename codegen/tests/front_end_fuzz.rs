@@ -13,6 +13,8 @@ use std::str::FromStr;
 use std::sync::mpsc;
 use std::time::Duration;
 
+mod support;
+
 /// Expands `attr` and `body` (the statements of `fn m() { ... }`) on another
 /// thread: `Err` if it panicked or took longer than the limit, else the
 /// expansion as text. Input that does not lex is `Ok(None)`.
@@ -241,7 +243,7 @@ fn scene() -> impl Strategy<Value = (bool, String)> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+    #![proptest_config(support::config(96, None))]
 
     #[test]
     fn token_soups_never_panic(body in soup(), taylor in any::<bool>()) {

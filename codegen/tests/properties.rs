@@ -7,6 +7,8 @@ use proc_macro2::{Literal, TokenStream};
 use proptest::prelude::*;
 use quote::quote;
 
+mod support;
+
 const NAMES: [&str; 4] = ["x", "y", "z", "t"];
 
 /// An expression as written, before the graph simplifies it.
@@ -122,8 +124,10 @@ fn build(g: &mut Graph, s: &[SymbolId], r: &R) -> Option<Id> {
     })
 }
 
-/// A value with its derivative along one direction, and the largest
-/// magnitude met on the way (the scale that rounding errors are relative to).
+/// A value with its derivative along one direction. [`dual`] also reports
+/// the largest magnitude met on the way, or the largest amplification of a
+/// rounding error by a function (the scale that rounding errors are
+/// relative to: its condition, to first order).
 #[derive(Clone, Copy, Debug)]
 struct Dual {
     v: f64,
@@ -246,6 +250,14 @@ fn dual(r: &R, point: &[f64; 4], direction: usize, scale: &mut f64) -> Dual {
                 Func::Abs => daegen_codegen::sign(a.v),
                 Func::Sign => 0.0,
             };
+            // A function amplifies the rounding of its argument: a relative
+            // error ε in `a` moves f(a) by ε·|a f'(a)| and f'(a)·a' by about
+            // ε·|a|·|f''(a) a'| (bounded here by |f'| + |f|, exact for sin,
+            // cos and exp). sin(−1/(3x⁴)) at x = −0.0044 has |a| ≈ 8.6e8:
+            // two codes rounding `a` differently disagree in the seventh
+            // digit, and such points are ill-conditioned, not wrong.
+            let amplification = a.v.abs() * (fp.abs() + a.d.abs() * (fp.abs() + v.abs()));
+            *scale = scale.max(amplification);
             Dual {
                 v,
                 d: if a.d == 0.0 { 0.0 } else { fp * a.d },
@@ -309,12 +321,7 @@ fn usable(value: f64, scale: f64) -> bool {
 proptest! {
     // Points where the written expression is undefined are rejected (a few
     // percent); failures found are kept in properties.proptest-regressions.
-    #![proptest_config(ProptestConfig {
-        cases: 2000,
-        max_global_rejects: 1_000_000,
-        failure_persistence: Some(Box::new(proptest::test_runner::FileFailurePersistence::Direct("tests/properties.proptest-regressions"))),
-        ..ProptestConfig::default()
-    })]
+    #![proptest_config(support::config(2000, Some("tests/properties.proptest-regressions")))]
 
     #[test]
     fn simplification_never_changes_a_finite_value(r in recipe(), at in point()) {
@@ -377,32 +384,106 @@ proptest! {
 
     #[test]
     fn scheduled_and_emitted_code_computes_the_same_values(r in recipe(), q in recipe(), at in point()) {
-        let (mut g, s) = graph();
-        let (Some(e), Some(f)) = (build(&mut g, &s, &r), build(&mut g, &s, &q)) else { return Ok(()) };
-        let (Some(de), Some(df)) = (derivative_or_skip(g.partial(e, s[0]))?, derivative_or_skip(g.partial(f, s[1]))?) else { return Ok(()) };
-        let outputs = [e, f, de, df];
-        let direct = g.eval(&outputs, &|sym| at[sym.index()]);
-        let program = g.schedule(&outputs);
-        let scheduled = program.evaluate(&g, &|sym| at[sym.index()]).map_err(TestCaseError::fail)?;
-        let code = emit_program(&g, &program, &|sym| { let n = quote::format_ident!("{}", NAMES[sym.index()]); quote!(#n) },
-            &|i, v| { let i = Literal::usize_unsuffixed(i); quote!(out[#i] = #v;) });
-        let emitted = interpret(&code, &at).map_err(TestCaseError::fail)?;
-        for k in 0..outputs.len() {
-            // Same operations in the same order: bit-identical (or both NaN).
-            prop_assert!(direct[k].to_bits() == scheduled[k].to_bits() || (direct[k].is_nan() && scheduled[k].is_nan()),
-                "output {k}: graph {} vs program {}", direct[k], scheduled[k]);
-            // Emission reorders (division instead of x^-1, sqrt forms): rounding only.
-            let scale = direct[k].abs().max(1.0);
-            if direct[k].is_finite() && scale < 1e6 {
-                prop_assert!(close(emitted[k], direct[k], scale, 1e-9),
-                    "output {k} of {}: emitted code gives {} where the graph gives {}\n{}", g.show(outputs[k]), emitted[k], direct[k], code);
-            }
-        }
+        scheduled_and_emitted_agree(&r, &q, &at)?;
     }
 }
 
+/// The graph, its schedule and the emitted Rust evaluate `r`, `q` and their
+/// partial derivatives in x and y alike: the schedule bit for bit, the
+/// emitted code to rounding wherever the expressions are well-conditioned.
+fn scheduled_and_emitted_agree(r: &R, q: &R, at: &[f64; 4]) -> Result<(), TestCaseError> {
+    let (mut g, s) = graph();
+    let (Some(e), Some(f)) = (build(&mut g, &s, r), build(&mut g, &s, q)) else {
+        return Ok(());
+    };
+    let (Some(de), Some(df)) = (
+        derivative_or_skip(g.partial(e, s[0]))?,
+        derivative_or_skip(g.partial(f, s[1]))?,
+    ) else {
+        return Ok(());
+    };
+    let outputs = [e, f, de, df];
+    let direct = g.eval(&outputs, &|sym| at[sym.index()]);
+    let program = g.schedule(&outputs);
+    let scheduled = program
+        .evaluate(&g, &|sym| at[sym.index()])
+        .map_err(TestCaseError::fail)?;
+    let code = emit_program(
+        &g,
+        &program,
+        &|sym| {
+            let n = quote::format_ident!("{}", NAMES[sym.index()]);
+            quote!(#n)
+        },
+        &|i, v| {
+            let i = Literal::usize_unsuffixed(i);
+            quote!(out[#i] = #v;)
+        },
+    );
+    let emitted = interpret(&code, at).map_err(TestCaseError::fail)?;
+    // The condition of each expression as written, from the oracle.
+    let mut condition = [0.0f64; 2];
+    let written = [
+        dual(r, at, 0, &mut condition[0]),
+        dual(q, at, 1, &mut condition[1]),
+    ];
+    for k in 0..outputs.len() {
+        // Same operations in the same order: bit-identical (or both NaN).
+        prop_assert!(
+            direct[k].to_bits() == scheduled[k].to_bits()
+                || (direct[k].is_nan() && scheduled[k].is_nan()),
+            "output {k}: graph {} vs program {}",
+            direct[k],
+            scheduled[k]
+        );
+        // Emission reorders (division instead of x^-1, sqrt forms): rounding
+        // only, compared where the written expression is well-conditioned.
+        let want = if k < 2 {
+            written[k].v
+        } else {
+            written[k - 2].d
+        };
+        let scale = direct[k].abs().max(1.0);
+        if direct[k].is_finite() && scale < 1e6 && usable(want, condition[k % 2]) {
+            prop_assert!(
+                close(emitted[k], direct[k], scale, 1e-9),
+                "output {k} of {}: emitted code gives {} where the graph gives {}\n{}",
+                g.show(outputs[k]),
+                emitted[k],
+                direct[k],
+                code
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Found by CI: sin(−1/(3x⁴)) near x = −0.0044 takes sin of −8.6e8, where
+/// the graph's and the emitted code's roundings of the argument differ by
+/// about 1e-7 in the sine. Ill-conditioned, so not compared; the bit-for-bit
+/// schedule check still runs.
+#[test]
+fn an_ill_conditioned_point_is_not_compared_to_rounding() {
+    let x = Box::new(R::Var(0));
+    let r = R::Call(
+        Func::Sin,
+        Box::new(R::Div(
+            Box::new(R::Int(-1)),
+            Box::new(R::Mul(Box::new(R::Int(3)), Box::new(R::Powi(x, 4)))),
+        )),
+    );
+    let at = [-0.004438441918562186, 0.5, 0.25, 1.0];
+    let mut condition = 0.0;
+    let value = dual(&r, &at, 0, &mut condition).v;
+    assert!(
+        value.is_finite() && !usable(value, condition),
+        "condition {condition:e}"
+    );
+    scheduled_and_emitted_agree(&r, &R::Var(1), &at).unwrap();
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+    #![proptest_config(support::config(300, None))]
 
     /// The same model always expands to the same code: two fresh graphs, the
     /// same construction, byte-identical output.
