@@ -140,7 +140,7 @@ fn backward_euler_is_stable_where_explicit_euler_explodes() {
     let e = (sol.last("y").unwrap() - 2f64.sin()).abs();
     // Local error h²|y''|/2 damped by 1/(1 − hλ): about h|y''|/|λ| = 1e-8.
     assert!(e < 1e-7, "error {e:e}");
-    assert_eq!(sol.stats().jacobian_evals, 200);
+    assert_eq!((sol.stats().steps, sol.stats().rejected), (200, 0));
     let explicit = model.simulate(0.0, 2.0, &Options::new().method(Method::Euler).step(0.01));
     assert!(
         matches!(explicit, Err(Error::NonFinite { .. })),
@@ -179,7 +179,10 @@ fn quadratic() {
 }
 
 #[test]
-fn newton_failures_are_reported_with_the_time_and_the_partial_solution() {
+fn newton_failures_are_reported_with_the_time_and_what_was_tried() {
+    // No root for h = 1 or 1/2; h = 1/4 has the double root y₁ = 2, ahead
+    // of the exact y(1/4) = 4/3, so the backward Euler solution blows up
+    // before the exact pole at t = 1, and the halved steps end there.
     let err = Quadratic::default()
         .simulate(
             0.0,
@@ -187,11 +190,20 @@ fn newton_failures_are_reported_with_the_time_and_the_partial_solution() {
             &Options::new().method(Method::BackwardEuler).step(1.0),
         )
         .unwrap_err();
+    let message = err.to_string();
+    match &err {
+        Error::NewtonFailure { t, tried, .. } => {
+            assert!(*t > 0.25 && *t < 1.0, "{message}");
+            assert!(tried.contains("halved 30 times"), "{message}");
+        }
+        other => panic!("expected a Newton failure, got {other}"),
+    }
     assert!(
-        matches!(err, Error::NewtonFailure { t, .. } if t == 1.0),
-        "{err}"
+        message.contains("Options::step") && message.contains("Method::Radau5"),
+        "{message}"
     );
-    assert_eq!(err.partial_solution().map(|p| p.times().len()), Some(1));
+    let partial = err.partial_solution().unwrap();
+    assert!(partial.times().len() > 2 && partial.stats().rejected >= 30);
     // RADAU5 runs into the pole at t = 1 and stops there with an error.
     let err = Quadratic::default()
         .simulate(0.0, 2.0, &Options::new().method(Method::Radau5))
@@ -203,6 +215,75 @@ fn newton_failures_are_reported_with_the_time_and_the_partial_solution() {
         other => panic!("unexpected {other}"),
     };
     assert!((t - 1.0).abs() < 1e-2, "stopped at t = {t}: {err}");
+    assert!(!err.to_string().contains("use Method::Radau5"), "{err}");
+}
+
+/// Robertson at t = 40, where SUNDIALS' cvRoberts_dns prints y =
+/// (7.1583e-01, 9.1855e-06, 2.8416e-01): RADAU5 at tight tolerances as the
+/// reference, checked against those digits.
+fn robertson_at_40() -> Vec<f64> {
+    let reference = Robertson::default()
+        .simulate(0.0, 40.0, &radau(1e-12, 1e-18))
+        .unwrap();
+    let y = last_state(&reference);
+    let printed = [7.1583e-01, 9.1855e-06, 2.8416e-01];
+    assert!(mixed_error(&y, &printed, 0.0) < 1e-4, "{y:?}");
+    y
+}
+
+/// Backward Euler is L-stable and of order 1: on Robertson (stiff from
+/// t ≈ 1e-4 on, eigenvalues to −1e4) any step works, and the error falls
+/// tenfold with the step.
+#[test]
+fn backward_euler_integrates_robertson_to_first_order() {
+    let reference = robertson_at_40();
+    let error = |h: f64| {
+        let sol = Robertson::default()
+            .simulate(
+                0.0,
+                40.0,
+                &Options::new().method(Method::BackwardEuler).step(h),
+            )
+            .unwrap();
+        mixed_error(&last_state(&sol), &reference, 0.0)
+    };
+    let (coarse, fine) = (error(1e-2), error(1e-3));
+    assert!(coarse < 3e-4, "h = 1e-2: relative error {coarse:e}");
+    let ratio = coarse / fine;
+    assert!((8.0..12.5).contains(&ratio), "error ratio {ratio}");
+}
+
+/// Van der Pol with ε = 1e-6 and h ≫ ε: at each fold of the slow manifold
+/// the backward Euler equation has one real root, far on the wrong side of
+/// the jump (at t = 0.805, h = 1e-3: y ≈ (−0.999, −2035)), so steps taken
+/// whole would bounce between the branches. Such steps are taken in halves,
+/// counted as rejected, and the run follows the jumps to the published
+/// solution at t = 2, more closely the smaller the step.
+#[test]
+fn backward_euler_follows_van_der_pol_across_its_relaxation_jumps() {
+    let mut last = f64::INFINITY;
+    for (h, bound) in [(1e-2, 0.3), (1e-3, 0.08)] {
+        let sol = VanDerPol::default()
+            .simulate(
+                0.0,
+                2.0,
+                &Options::new().method(Method::BackwardEuler).step(h),
+            )
+            .unwrap();
+        let e = mixed_error(&last_state(&sol), &VDP_AT_2, 1.0);
+        assert!(e < bound && e < last, "h = {h:e}: error {e:e}");
+        last = e;
+        assert!(sol.stats().rejected > 0, "the jumps were refined");
+        // Every grid point is among the steps.
+        let times = sol.times();
+        for k in 0..=(2.0 / h).round() as usize {
+            let t = (k as f64 * h).min(2.0);
+            assert!(
+                times.iter().any(|&s| (s - t).abs() <= 1e-12),
+                "t = {t} missing"
+            );
+        }
+    }
 }
 
 #[test]
@@ -277,7 +358,8 @@ fn a_banded_newton_solve_follows_the_exact_damped_mode() {
     }
 }
 
-/// y' = 2y: backward Euler's Newton matrix I/h − J is zero for h = 1/2.
+/// y' = 2y: backward Euler's Newton matrix I/h − J is zero for h = 1/2,
+/// so each step of 1/2 is taken as two of 1/4.
 #[dae_model]
 fn growth() {
     let y = state(1.0);
@@ -285,17 +367,35 @@ fn growth() {
 }
 
 #[test]
-fn a_singular_newton_matrix_is_an_error_with_the_time_and_the_partial_solution() {
+fn a_step_whose_newton_matrix_is_singular_is_taken_in_halves() {
     let opts = Options::new().method(Method::BackwardEuler).step(0.5);
-    match Growth::default().simulate(0.0, 2.0, &opts) {
-        Err(daegen::Error::SingularMatrix { t, partial }) => {
-            // Reported at the end of the step it could not take.
-            assert_eq!(t, 0.5);
-            assert_eq!(partial.times(), &[0.0]);
+    let sol = Growth::default().simulate(0.0, 2.0, &opts).unwrap();
+    // Eight steps of 1/4, each multiplying y by 1/(1 − 2·1/4) = 2.
+    assert_eq!(sol.last("y").unwrap(), 256.0);
+    assert_eq!((sol.stats().steps, sol.stats().rejected), (8, 4));
+}
+
+/// y' = √y from y = 0: the Jacobian 1/(2√y) is infinite at the start.
+#[dae_model]
+fn square_root() {
+    let y = state(0.0);
+    der(y) == sqrt(y);
+}
+
+#[test]
+fn a_newton_matrix_that_stays_singular_is_an_error_with_the_time() {
+    for method in [Method::BackwardEuler, Method::Radau5] {
+        match SquareRoot::default().simulate(0.0, 1.0, &Options::new().method(method)) {
+            Err(Error::SingularMatrix { t, partial, .. }) => {
+                assert!(t < 1e-6, "{method:?}: t = {t}");
+                assert_eq!(partial.times(), &[0.0]);
+            }
+            other => panic!("{method:?}: expected SingularMatrix, got {other:?}"),
         }
-        other => panic!("expected SingularMatrix, got {other:?}"),
     }
-    // With h = 1/4 the matrix is 2 and the run goes through.
-    let opts = Options::new().method(Method::BackwardEuler).step(0.25);
-    assert!(Growth::default().simulate(0.0, 2.0, &opts).is_ok());
+    let message = SquareRoot::default()
+        .simulate(0.0, 1.0, &Options::new().method(Method::Radau5))
+        .unwrap_err()
+        .to_string();
+    assert!(message.contains("not finite"), "{message}");
 }

@@ -61,13 +61,19 @@ pub enum Error {
         t: f64,
         /// The last step tried.
         h: f64,
+        /// What the iteration tried before giving up.
+        tried: String,
         /// The accepted steps.
         partial: Box<Solution>,
     },
-    /// The iteration matrix `γ/h·I − J` was singular five times in a row.
+    /// The iteration matrix `γ/h·I − J` stayed singular while the step
+    /// shrank (five times in a row for RADAU5; for backward Euler, which
+    /// halves a step whose matrix is singular, down to 2⁻³⁰ of it).
     SingularMatrix {
         /// Time reached.
         t: f64,
+        /// The step that made it singular.
+        h: f64,
         /// The accepted steps.
         partial: Box<Solution>,
     },
@@ -166,6 +172,23 @@ impl Error {
     }
 }
 
+impl Error {
+    /// The method that ran, as [`crate::Stats::method`] names it ("" when
+    /// the run did not start).
+    fn method(&self) -> &'static str {
+        self.partial_solution()
+            .map(|s| s.stats().method)
+            .unwrap_or("")
+    }
+
+    /// Whether the method that failed was an implicit one (RADAU5, backward
+    /// Euler, or `Auto` after it switched to RADAU5).
+    fn failed_implicit(&self) -> bool {
+        let method = self.method();
+        method.ends_with("Radau5") || method.contains("BackwardEuler")
+    }
+}
+
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -173,21 +196,37 @@ impl fmt::Display for Error {
                 write!(f, "state `{variable}` became non-finite at t = {t}; check the model's domain or reduce the step")
             }
             Error::Evaluation { t, cause, .. } => {
-                write!(f, "the model could not be evaluated at t = {t}: {cause:?}")
+                write!(f, "the model could not be evaluated at t = {t}: {cause}")
             }
-                        Error::StepSizeUnderflow { t, h, .. } => write!(
-                f,
-                "the step size fell to {h:e} at t = {t}: the problem may be stiff (use Method::Radau5), singular there, or the tolerances too tight"
-            ),
-                        Error::NewtonFailure { t, h, .. } => write!(
-                f,
-                "Newton's method did not converge at t = {t} even with steps down to {h:e}: the model may be singular there"
-            ),
-            Error::SingularMatrix { t, .. } => {
-                write!(f, "the Newton matrix was singular at t = {t} five times in a row: check the Jacobian and the model near there")
+            Error::StepSizeUnderflow { t, h, .. } => {
+                write!(f, "the step size fell to {h:e} at t = {t}: ")?;
+                if self.method().contains("BackwardEuler") {
+                    write!(f, "backward Euler halved its step that far without resolving the solution; use Method::Radau5, which adapts its step to the solution, or check the model near there")
+                } else if self.failed_implicit() {
+                    write!(f, "the solution may be singular there (a pole, a discontinuity of the model or its Jacobian), or the tolerances too tight for the precision of t")
+                } else {
+                    write!(f, "the problem may be stiff there (use Method::Radau5 or Method::Auto), singular, or the tolerances too tight")
+                }
             }
+            Error::NewtonFailure { t, h, tried, .. } => {
+                write!(f, "Newton's method did not converge at t = {t} with the step {h:e} ({tried}): ")?;
+                if self.method().contains("BackwardEuler") {
+                    write!(f, "take a smaller step (Options::step) or use Method::Radau5, which adapts its step")
+                } else {
+                    write!(f, "the model or its Jacobian may be discontinuous or singular there")
+                }
+            }
+            Error::SingularMatrix { t, h, .. } => write!(
+                f,
+                "the Newton matrix stayed singular at t = {t} down to the step {h:e}: the Jacobian is not finite there (a square root or a division at zero, say) or the model is singular there"
+            ),
             Error::MaxSteps { t, max_steps, .. } => {
-                write!(f, "stopped at t = {t} after {max_steps} steps; raise Options::max_steps or the step size")
+                write!(f, "stopped at t = {t} after {max_steps} steps; raise Options::max_steps")?;
+                if self.failed_implicit() {
+                    write!(f, " or loosen the tolerances")
+                } else {
+                    write!(f, ", or use Method::Radau5 or Method::Auto if the problem is stiff")
+                }
             }
             Error::Constraint {
                 t,
@@ -210,10 +249,7 @@ impl fmt::Display for Error {
             ),
             Error::InvalidOptions { message } => write!(f, "invalid options: {message}"),
             Error::MethodNotAvailable { method } => {
-                write!(
-                    f,
-                    "{method:?} is not available yet; use Method::Rk4, Rk38 or Euler"
-                )
+                write!(f, "{method:?} is not available for this model")
             }
             Error::UnknownName { name, known } => write!(
                 f,

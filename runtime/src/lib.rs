@@ -14,6 +14,7 @@ pub mod error;
 mod events;
 pub mod explicit_rk;
 pub mod implicit_tableau;
+mod jacobian;
 pub mod kinematics;
 pub mod linalg;
 mod model;

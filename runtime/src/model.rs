@@ -19,6 +19,26 @@ pub enum EvalError {
     },
 }
 
+impl std::fmt::Display for EvalError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            EvalError::SingularMassMatrix { unknowns } => write!(
+                f,
+                "the equations do not determine {} here (their coefficient matrix is singular at this point): the model passes through a singular configuration, or its equations are dependent there",
+                unknowns.join(", ")
+            ),
+            EvalError::JacobianUnavailable => write!(
+                f,
+                "the model has no analytic Jacobian (its mass matrix is solved at run time)"
+            ),
+            EvalError::TaylorUnavailable { order } => write!(
+                f,
+                "Taylor derivatives of order {order} were not generated; expand the model with #[dae_model(taylor = {order})] or higher"
+            ),
+        }
+    }
+}
+
 /// Which zero crossings of an event function fire the event.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum EventDirection {

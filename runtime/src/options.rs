@@ -21,7 +21,13 @@ pub enum Method {
     },
     /// Explicit Euler, fixed step (order 1).
     Euler,
-    /// Implicit Euler with Newton and the model's Jacobian, fixed step (order 1).
+    /// Implicit Euler with Newton and the model's Jacobian, fixed step
+    /// (order 1, L-stable). Newton converges to the tolerances (`rtol`,
+    /// `atol`) and below the step's own local error. A step Newton cannot
+    /// solve, or whose local error exceeds its share h/(t1 − t0) of a
+    /// component's magnitude (a relaxation jump the step does not resolve),
+    /// is taken in halves: counted in `stats().rejected`, and kept in the
+    /// solution with the grid points.
     BackwardEuler,
     /// The classic Runge–Kutta method, fixed step (order 4).
     Rk4,

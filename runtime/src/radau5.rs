@@ -13,6 +13,7 @@ use crate::band_lu::{BandNewton, BandOrdering};
 use crate::dense_lu::{ComplexLu, RealLu};
 use crate::error::Error;
 use crate::events::{stop_at_terminal_event, EventWatch};
+use crate::jacobian::DenseJacobian;
 use crate::model::{EvalError, Model};
 use crate::options::Options;
 use crate::projection::{project_onto_constraints, Projector};
@@ -149,11 +150,9 @@ impl Newton {
 
 struct Work<'m, M> {
     model: &'m M,
-    n: usize,
     evals: usize,
     jacobian_evals: usize,
-    jacobian: Vec<f64>,
-    values: Vec<f64>,
+    jacobian: DenseJacobian,
 }
 
 impl<M: Model> Work<'_, M> {
@@ -162,41 +161,11 @@ impl<M: Model> Work<'_, M> {
         self.model.rhs(t, y, out)
     }
 
-    /// The dense Jacobian: the generated one, or finite differences
-    /// (`radau5.f`'s increments) when the model has none. `f0 = f(t, y)`.
-    fn evaluate_jacobian(
-        &mut self,
-        t: f64,
-        y: &mut [f64],
-        f0: &[f64],
-        scratch: &mut [f64],
-    ) -> Result<(), EvalError> {
+    /// The dense Jacobian at `(t, y)`, `f0 = f(t, y)`.
+    fn evaluate_jacobian(&mut self, t: f64, y: &mut [f64], f0: &[f64]) -> Result<(), EvalError> {
         self.jacobian_evals += 1;
-        let n = self.n;
-        self.jacobian.iter_mut().for_each(|v| *v = 0.0);
-        match self.model.jacobian(t, y, &mut self.values) {
-            Ok(()) => {
-                for (&(r, c), &v) in M::JACOBIAN_PATTERN.iter().zip(&self.values) {
-                    self.jacobian[r * n + c] = v;
-                }
-                Ok(())
-            }
-            Err(EvalError::JacobianUnavailable) => {
-                for j in 0..n {
-                    let saved = y[j];
-                    let delta = (f64::EPSILON * saved.abs().max(1e-5)).sqrt();
-                    y[j] = saved + delta;
-                    let r = self.rhs(t, y, scratch);
-                    y[j] = saved;
-                    r?;
-                    for i in 0..n {
-                        self.jacobian[i * n + j] = (scratch[i] - f0[i]) / delta;
-                    }
-                }
-                Ok(())
-            }
-            Err(e) => Err(e),
-        }
+        self.jacobian
+            .evaluate(self.model, t, y, f0, &mut self.evals)
     }
 }
 
@@ -237,11 +206,9 @@ pub(crate) fn integrate<M: Model>(
 
     let mut w = Work {
         model,
-        n,
         evals: 0,
         jacobian_evals: 0,
-        jacobian: vec![0.0; n * n],
-        values: vec![0.0; M::JACOBIAN_PATTERN.len()],
+        jacobian: DenseJacobian::new::<M>(),
     };
     // A singular mass matrix (Hairer's IMAS = 1, diagonal): dense Newton.
     let mass: Vec<f64> = if M::MASS.len() == n {
@@ -321,7 +288,7 @@ pub(crate) fn integrate<M: Model>(
 
     'steps: loop {
         if refresh == Refresh::Jacobian {
-            if let Err(cause) = w.evaluate_jacobian(t, &mut y, &y0, &mut scratch) {
+            if let Err(cause) = w.evaluate_jacobian(t, &mut y, &y0) {
                 return fail(solution, &w, accepted, rejected, t, cause);
             }
             caljac = true;
@@ -329,13 +296,14 @@ pub(crate) fn integrate<M: Model>(
             caljac = false;
         }
         if refresh != Refresh::Nothing {
-            let ok = newton.factor(gamma / h, alpha / h, beta / h, M::MASS, &w.jacobian);
+            let ok = newton.factor(gamma / h, alpha / h, beta / h, M::MASS, &w.jacobian.matrix);
             if !ok {
                 singular += 1;
                 if singular >= 5 {
                     finish(&mut solution, accepted, rejected, &w);
                     return Err(Error::SingularMatrix {
                         t,
+                        h,
                         partial: Box::new(solution),
                     });
                 }
@@ -355,7 +323,14 @@ pub(crate) fn integrate<M: Model>(
             finish(&mut solution, accepted, rejected, &w);
             let partial = Box::new(solution);
             return Err(if newton_failures > 0 {
-                Error::NewtonFailure { t, h, partial }
+                Error::NewtonFailure {
+                    t,
+                    h,
+                    tried: format!(
+                        "{newton_failures} Newton iterations in a row failed to converge while the step shrank to {h:e}, each retried with a fresh Jacobian or factorisation"
+                    ),
+                    partial,
+                }
             } else {
                 Error::StepSizeUnderflow { t, h, partial }
             });

@@ -299,7 +299,15 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
                 Method::Heun => &explicit_rk::HEUN,
                 Method::Ralston => &explicit_rk::RALSTON,
                 Method::BackwardEuler => {
-                    return backward_euler::integrate(model, t0, t1, &y0, steps as usize, solution)
+                    return backward_euler::integrate(
+                        model,
+                        t0,
+                        t1,
+                        &y0,
+                        steps as usize,
+                        options,
+                        solution,
+                    )
                 }
                 other => return Err(Error::MethodNotAvailable { method: other }),
             };

@@ -1,0 +1,93 @@
+//! The model's Jacobian ∂f/∂y as a dense row-major matrix, for the implicit
+//! methods' Newton matrices: the generated sparse one scattered, or forward
+//! differences with `radau5.f`'s increments where the model has none.
+
+use crate::model::{EvalError, Model};
+
+/// A dense n × n Jacobian and the scratch it is evaluated in.
+pub(crate) struct DenseJacobian {
+    /// Row-major ∂f/∂y at the last evaluation.
+    pub(crate) matrix: Vec<f64>,
+    /// The generated Jacobian's non-zeros, in [`Model::JACOBIAN_PATTERN`] order.
+    values: Vec<f64>,
+    /// f at a perturbed point (finite differences only).
+    perturbed: Vec<f64>,
+}
+
+impl DenseJacobian {
+    /// Storage for `M`'s Jacobian.
+    pub(crate) fn new<M: Model>() -> DenseJacobian {
+        DenseJacobian {
+            matrix: vec![0.0; M::STATES * M::STATES],
+            values: vec![0.0; M::JACOBIAN_PATTERN.len()],
+            perturbed: vec![0.0; M::STATES],
+        }
+    }
+
+    /// Evaluates ∂f/∂y at `(t, y)`; `f0 = f(t, y)` is read only by finite
+    /// differences, whose right-hand-side calls are added to `evals`. `y` is
+    /// perturbed and restored.
+    pub(crate) fn evaluate<M: Model>(
+        &mut self,
+        model: &M,
+        t: f64,
+        y: &mut [f64],
+        f0: &[f64],
+        evals: &mut usize,
+    ) -> Result<(), EvalError> {
+        let n = M::STATES;
+        self.matrix.iter_mut().for_each(|v| *v = 0.0);
+        match model.jacobian(t, y, &mut self.values) {
+            Ok(()) => {
+                for (&(r, c), &v) in M::JACOBIAN_PATTERN.iter().zip(&self.values) {
+                    self.matrix[r * n + c] = v;
+                }
+                Ok(())
+            }
+            Err(EvalError::JacobianUnavailable) => {
+                for j in 0..n {
+                    let saved = y[j];
+                    let delta = (f64::EPSILON * saved.abs().max(1e-5)).sqrt();
+                    y[j] = saved + delta;
+                    *evals += 1;
+                    let r = model.rhs(t, y, &mut self.perturbed);
+                    y[j] = saved;
+                    r?;
+                    for i in 0..n {
+                        self.matrix[i * n + j] = (self.perturbed[i] - f0[i]) / delta;
+                    }
+                }
+                Ok(())
+            }
+            Err(e) => Err(e),
+        }
+    }
+
+    /// `out = (J(t, y) − matrix)·direction`: how the Jacobian changed since
+    /// it was last evaluated, along `direction`, from the generated Jacobian
+    /// (one evaluation, no factorisation). `Ok(false)` when the model has
+    /// none, which finite differences would make as costly as a new matrix.
+    pub(crate) fn change_along<M: Model>(
+        &mut self,
+        model: &M,
+        t: f64,
+        y: &[f64],
+        direction: &[f64],
+        out: &mut [f64],
+    ) -> Result<bool, EvalError> {
+        match model.jacobian(t, y, &mut self.values) {
+            Ok(()) => {}
+            Err(EvalError::JacobianUnavailable) => return Ok(false),
+            Err(e) => return Err(e),
+        }
+        let n = M::STATES;
+        for (i, o) in out.iter_mut().enumerate() {
+            let row = &self.matrix[i * n..(i + 1) * n];
+            *o = -row.iter().zip(direction).map(|(a, d)| a * d).sum::<f64>();
+        }
+        for (&(r, c), &v) in M::JACOBIAN_PATTERN.iter().zip(&self.values) {
+            out[r] += v * direction[c];
+        }
+        Ok(true)
+    }
+}
