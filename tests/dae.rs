@@ -550,7 +550,7 @@ fn initialization_keeps_fixed_values_and_reports_the_degrees_of_freedom() {
     let auto = Pendulum::default()
         .simulate(0.0, 1.0, &Options::new().rtol(1e-6).atol(1e-6))
         .unwrap();
-    assert_eq!(auto.stats().method, "Auto: Dopri5");
+    assert_eq!(auto.stats().method, "Dopri5");
 }
 
 /// A constraint no real configuration satisfies.

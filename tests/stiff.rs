@@ -148,9 +148,10 @@ fn backward_euler_is_stable_where_explicit_euler_explodes() {
     );
 }
 
-/// `Method::Auto` starts explicit, detects stiffness (Hairer's test on the
-/// last two stages) and switches to RADAU5: Van der Pol still reaches the
-/// published value, with a dense output across both methods.
+/// `Method::Auto` starts explicit, detects stiffness and switches to
+/// RADAU5, and back where the jumps make the problem non-stiff: Van der
+/// Pol still reaches the published value, with a dense output across the
+/// methods.
 #[test]
 fn auto_switches_to_radau5_when_the_problem_turns_stiff() {
     for tol in [1e-6, 1e-8] {
@@ -158,6 +159,7 @@ fn auto_switches_to_radau5_when_the_problem_turns_stiff() {
             .simulate(0.0, 2.0, &Options::new().rtol(tol).atol(tol))
             .unwrap();
         assert!(sol.stats().jacobian_evals > 0, "RADAU5 took over");
+        assert!(sol.stats().method.contains("Radau5") && sol.stats().switches >= 1);
         let e = mixed_error(&last_state(&sol), &VDP_AT_2, 1.0);
         assert!(e <= 10.0 * tol, "tol {tol:e}: mixed error {e:e}");
         assert!(sol.at(1.0, "y1").is_ok() && sol.at(1e-9, "y2").is_ok());
@@ -167,7 +169,114 @@ fn auto_switches_to_radau5_when_the_problem_turns_stiff() {
         .simulate(0.0, 10.0, &Options::new().rtol(1e-8).atol(1e-8))
         .unwrap();
     assert_eq!(osc.stats().jacobian_evals, 0);
+    assert_eq!((osc.stats().method, osc.stats().switches), ("Dop853", 0));
     assert!((osc.last("x").unwrap() - 10f64.cos()).abs() < 1e-6);
+}
+
+/// Robertson to t = 1e5 with an explicit pair: the pair stops where the
+/// problem turns stiff (t ≈ 0.01, eigenvalues near −1e4), within a few
+/// dozen steps, with an error that says so and what to use instead.
+#[test]
+fn an_explicit_pair_stops_where_the_problem_turns_stiff() {
+    for method in [Method::Dopri5, Method::Dop853] {
+        let err = Robertson::default()
+            .simulate(0.0, 1e5, &Options::new().method(method))
+            .unwrap_err();
+        let message = err.to_string();
+        let Error::Stiff { t, onset, .. } = err else {
+            panic!("{method:?}: {message}");
+        };
+        assert!(onset > 1e-4 && onset < 0.1 && t < 1.0, "{message}");
+        for word in ["stiff", "Radau5", "Auto", &format!("{method:?}")] {
+            assert!(message.contains(word), "{message}");
+        }
+        let partial = err.partial_solution().unwrap();
+        let after_onset = partial.times().iter().filter(|&&s| s >= onset).count();
+        assert!(after_onset <= 1000, "{after_onset} steps after the onset");
+        assert!(partial.stats().steps < 2000, "{:?}", partial.stats());
+    }
+}
+
+/// A low-pass filter x' = (sin ωt − x)/τ with τ = 2e-4 and ω = 10π: stiff
+/// (ρ = 1/τ = 5000) while the solution is a smooth sine. Exact solution
+/// x = [sin ωt − ωτ cos ωt + ωτ e^(−t/τ)]/(1 + ω²τ²).
+#[dae_model]
+fn low_pass() {
+    let t = time();
+    let tau = param(2e-4);
+    let omega = param(31.415926535897932);
+    let x = state(0.0);
+    der(x) == (sin(omega * t) - x) / tau;
+}
+
+fn low_pass_exact(t: f64) -> f64 {
+    let (tau, omega) = (2e-4, 10.0 * std::f64::consts::PI);
+    let wt = omega * tau;
+    ((omega * t).sin() - wt * (omega * t).cos() + wt * (-t / tau).exp()) / (1.0 + wt * wt)
+}
+
+/// DOPRI5 holds this filter at h·ρ ≈ 1.5, well inside its stability
+/// region (the error of the stiff component limits it): Hairer's test
+/// never fires, yet RADAU5 takes thirty times fewer steps. `Auto` hands
+/// over early: its steps stay within twice RADAU5's.
+#[test]
+fn auto_hands_a_stiff_filter_to_radau5_early() {
+    for tol in [1e-6, 1e-9] {
+        let opts = Options::new().rtol(tol).atol(tol);
+        let auto = LowPass::default().simulate(0.0, 1.0, &opts).unwrap();
+        let radau = LowPass::default()
+            .simulate(0.0, 1.0, &opts.method(Method::Radau5))
+            .unwrap();
+        assert!(
+            auto.stats().method.ends_with("→Radau5"),
+            "{:?}",
+            auto.stats()
+        );
+        assert_eq!(auto.stats().switches, 1);
+        let (a, r) = (auto.stats().steps, radau.stats().steps);
+        assert!(a <= 2 * r, "Auto {a} steps, Radau5 {r}");
+        // As accurate as RADAU5 alone (whose tolerance rtol' = 0.1 rtol^(2/3),
+        // radau5.f's, leaves errors of 2.6e-7 here at rtol = 1e-9).
+        let error = |s: &Solution| {
+            (1..=100)
+                .map(|k| {
+                    let t = k as f64 / 100.0;
+                    (s.at(t, "x").unwrap() - low_pass_exact(t)).abs()
+                })
+                .fold(0.0, f64::max)
+        };
+        let (e_auto, e_radau) = (error(&auto), error(&radau));
+        assert!(e_auto <= 3.0 * e_radau + tol, "tol {tol:e}: Auto {e_auto:e}, Radau5 {e_radau:e}");
+    }
+}
+
+/// Prothero–Robinson with a stiffness that fades, y' = −k(t)(y − sin t) +
+/// cos t, k = 1e5·e^(−5t²): y = sin t exactly whatever k. Stiff at first,
+/// non-stiff from t ≈ 1.5 on: `Auto` switches to RADAU5 and back.
+#[dae_model]
+fn fading_stiffness() {
+    let t = time();
+    let y = state(0.0);
+    der(y) == -1e5 * exp(-5.0 * t * t) * (y - sin(t)) + cos(t);
+}
+
+#[test]
+fn auto_switches_back_where_the_stiffness_fades() {
+    for tol in [1e-6, 1e-9] {
+        let sol = FadingStiffness::default()
+            .simulate(0.0, 10.0, &Options::new().rtol(tol).atol(tol))
+            .unwrap();
+        let stats = sol.stats();
+        assert_eq!(stats.switches, 2, "{stats:?}");
+        assert!(
+            stats.method.ends_with("→Radau5→Dopri5") || stats.method.ends_with("→Radau5→Dop853"),
+            "{stats:?}"
+        );
+        for t in [0.1, 1.0, 5.0, 10.0] {
+            let e = (sol.at(t, "y").unwrap() - t.sin()).abs();
+            assert!(e <= 100.0 * tol, "tol {tol:e}, t = {t}: error {e:e}");
+        }
+    }
 }
 
 /// y' = y², y(0) = 1: one backward Euler step of h = 1 asks for

@@ -10,6 +10,7 @@ use crate::options::Options;
 use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
 use crate::step_control::{initial_step, scale, Controller, PiState};
+use crate::stiffness::{stage_quotient, Finish, StiffnessTest};
 
 /// What the driver needs from one embedded pair.
 pub trait EmbeddedPair {
@@ -152,84 +153,15 @@ fn stages<M: Model, P: EmbeddedPair>(
     stage::<M, P, 12>(rhs, t, h, y, k, s, y_new)
 }
 
-/// How a run of an explicit pair ended.
-pub(crate) enum Finish {
-    /// At t1.
-    Done,
-    /// Stopped early because the problem turned stiff at this time (only
-    /// when asked to detect stiffness).
-    StiffAt(f64),
-}
-
-/// Hairer's stiffness test: 15 stiff checks, not interrupted by 6 non-stiff
-/// ones in a row, mean stiffness (checks every 10th accepted step).
-#[derive(Default)]
-struct StiffnessDetector {
-    stiff: usize,
-    non_stiff: usize,
-}
-
-impl StiffnessDetector {
-    fn step_is_stiff(&mut self, h_rho: f64, bound: f64) -> bool {
-        if h_rho > bound {
-            self.non_stiff = 0;
-            self.stiff += 1;
-            self.stiff >= 15
-        } else {
-            self.non_stiff += 1;
-            if self.non_stiff == 6 {
-                self.stiff = 0;
-            }
-            false
-        }
-    }
-}
-
-/// Scratch for the spectral radius estimate.
-struct Jacobian {
-    values: Vec<f64>,
-    v: Vec<f64>,
-    w: Vec<f64>,
-}
-
-impl Jacobian {
-    fn new<M: Model>() -> Jacobian {
-        Jacobian {
-            values: vec![0.0; M::JACOBIAN_PATTERN.len()],
-            v: vec![0.0; M::STATES],
-            w: vec![0.0; M::STATES],
-        }
-    }
-}
-
-/// ρ(J) at (t, y) by 30 steps of the power iteration on the sparse
-/// generated Jacobian (`None` if the model has none). A lower bound that is
-/// close for the well-separated stiff eigenvalues that matter here.
-fn spectral_radius<M: Model>(model: &M, t: f64, y: &[f64], j: &mut Jacobian) -> Option<f64> {
-    model.jacobian(t, y, &mut j.values).ok()?;
-    let n = y.len();
-    for (i, v) in j.v.iter_mut().enumerate() {
-        *v = 1.0 + (i as f64) * 0.618_033_988_749_895 % 1.0;
-    }
-    let mut rho = 0.0;
-    for _ in 0..30 {
-        j.w.iter_mut().for_each(|x| *x = 0.0);
-        for (&(r, c), &value) in M::JACOBIAN_PATTERN.iter().zip(&j.values) {
-            j.w[r] += value * j.v[c];
-        }
-        let (norm_w, norm_v) = (
-            j.w.iter().map(|x| x * x).sum::<f64>().sqrt(),
-            j.v.iter().map(|x| x * x).sum::<f64>().sqrt(),
-        );
-        if norm_w == 0.0 || !norm_w.is_finite() {
-            return Some(0.0);
-        }
-        rho = norm_w / norm_v;
-        for i in 0..n {
-            j.v[i] = j.w[i] / norm_w;
-        }
-    }
-    Some(rho)
+/// What a run does about stiffness.
+pub(crate) enum Stiffness {
+    /// Nothing (`Options::stiffness_detection(false)`).
+    Ignore,
+    /// Stops with [`Error::Stiff`] when Hairer's test finds the problem
+    /// stiff: h·ρ beyond the stability boundary for 15 steps.
+    Fail,
+    /// Returns [`Finish::StiffAt`] when this test fires (`Method::Auto`).
+    Switch(StiffnessTest),
 }
 
 /// Integrates `model` from `t0` to `t1` (either direction) with pair `P`.
@@ -239,13 +171,17 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
     t1: f64,
     y0: &[f64],
     options: &Options,
-    detect_stiffness: bool,
+    stiffness: Stiffness,
     mut solution: Solution,
 ) -> Result<(Solution, Finish), Error> {
     let n = M::STATES;
     let (rtol, atol) = (options.rtol, options.atol);
-    let mut detector = StiffnessDetector::default();
-    let mut jacobian = Jacobian::new::<M>();
+    let mut test = match stiffness {
+        Stiffness::Ignore => None,
+        Stiffness::Fail => Some(StiffnessTest::new(P::STIFFNESS_BOUND, 15)),
+        Stiffness::Switch(test) => Some(test),
+    };
+    let fail_when_stiff = matches!(stiffness, Stiffness::Fail);
     let direction = if t1 >= t0 { 1.0 } else { -1.0 };
     let (a, c) = (P::coefficients(), P::nodes());
     let controller = P::controller();
@@ -357,6 +293,22 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
             continue;
         }
         if err <= 1.0 {
+            // h·ρ from the last two stages, both at t + h (before the dense
+            // stages reuse `stage`).
+            let h_rho = stage_quotient(
+                h,
+                k[P::STAGES - 1].as_ref(),
+                k[P::STAGES - 2].as_ref(),
+                y_new.as_ref(),
+                stage.as_ref(),
+            );
+            let turned_stiff = match test.as_mut() {
+                Some(test) => {
+                    let change = relative_change(y.as_ref(), y_new.as_ref(), sk.as_ref());
+                    test.step_is_stiff(t + h, h_rho, change)
+                }
+                None => false,
+            };
             let (factor, state) = controller.factor(err, pi);
             pi = state;
             let dense_stages = if keep_dense { P::DENSE_STAGES } else { 0 };
@@ -374,31 +326,6 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
             }
             if keep_dense {
                 P::dense_coefficients(h, &y, &y_new, &k, &mut dense);
-            }
-            let mut turned_stiff = false;
-            if detect_stiffness && accepted % 10 == 0 {
-                // h·ρ(J) against the stability boundary. ρ from the generated
-                // Jacobian by power iteration; without one, Hairer's quotient
-                // of the last two stages (both at t + h).
-                let rho = match spectral_radius(model, t + h, y_new.as_ref(), &mut jacobian) {
-                    Some(rho) => rho,
-                    None => {
-                        let (last, before) = (k[P::STAGES - 1].as_ref(), k[P::STAGES - 2].as_ref());
-                        let num: f64 = last.iter().zip(before).map(|(a, b)| (a - b).powi(2)).sum();
-                        let den: f64 = y_new
-                            .as_ref()
-                            .iter()
-                            .zip(stage.as_ref())
-                            .map(|(a, b)| (a - b).powi(2))
-                            .sum();
-                        if den > 0.0 {
-                            (num / den).sqrt()
-                        } else {
-                            0.0
-                        }
-                    }
-                };
-                turned_stiff = detector.step_is_stiff(h.abs() * rho, P::STIFFNESS_BOUND);
             }
             // Compensated summation: long runs keep t exact to rounding.
             let step = h - compensation;
@@ -432,7 +359,16 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
             }
             if turned_stiff {
                 finish_stats(&mut solution, accepted, rejected, rhs.evals);
-                return Ok((solution, Finish::StiffAt(t)));
+                if fail_when_stiff {
+                    return Err(Error::Stiff {
+                        t,
+                        onset: test.map_or(t, |test| test.onset()),
+                        h,
+                        h_rho,
+                        partial: Box::new(solution),
+                    });
+                }
+                return Ok((solution, Finish::StiffAt { t, h, h_rho }));
             }
             let mut h_new = h * factor;
             if last_rejected {
@@ -448,6 +384,21 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
     }
     finish_stats(&mut solution, accepted, rejected, rhs.evals);
     Ok((solution, Finish::Done))
+}
+
+/// ‖y_new − y‖/‖y‖ in the norm the tolerances weigh by (`scale` holds
+/// atol + rtol·|y|): how much the step changed the solution.
+fn relative_change(y: &[f64], y_new: &[f64], scale: &[f64]) -> f64 {
+    let (mut change, mut size) = (0.0, 0.0);
+    for ((a, b), s) in y.iter().zip(y_new).zip(scale) {
+        change += ((b - a) / s).powi(2);
+        size += (a / s).powi(2);
+    }
+    if size > 0.0 {
+        (change / size).sqrt()
+    } else {
+        f64::INFINITY
+    }
 }
 
 fn finish_stats(solution: &mut Solution, steps: usize, rejected: usize, evals: usize) {

@@ -8,10 +8,11 @@
 //! |---|---|---|---|
 //! | [`Error::NonFinite`] | a state became NaN or ±∞ (a pole, `sqrt` of a negative, a non-finite initial value or parameter) | check the model near `t` and `variable`; a finite-time blow-up is real | `tests/nonstiff.rs` `a_singularity_stops_the_run_with_an_error_and_the_partial_solution`, `tests/taylor_adaptive.rs` `a_finite_time_blow_up_is_an_error_at_the_pole`, `tests/models.rs` `bad_requests_are_errors_not_panics` |
 //! | [`Error::Evaluation`] | the model could not be evaluated: a singular mass-matrix block at run time, Taylor derivatives of an order not generated | the message names the block or the `#[dae_model(taylor = p)]` to write | `tests/taylor_fixed.rs` `an_order_above_the_generated_one_is_refused` |
-//! | [`Error::StepSizeUnderflow`] | the step fell below the time's precision or `min_step`: stiffness for an explicit method, a singularity, tolerances too tight | a stiff method (`Radau5`), looser tolerances, or look at the model at `t` | `tests/stiff.rs` `a_minimum_step_stops_the_run_early` |
-//! | [`Error::NewtonFailure`] | the implicit method's Newton iteration kept diverging as the step shrank | a wrong or discontinuous model near `t`; tighter tolerances | `tests/stiff.rs` `newton_failures_are_reported_with_the_time_and_the_partial_solution` |
-//! | [`Error::SingularMatrix`] | the Newton matrix `I/(γh) − J` was singular | another step size (`1/(γh)` hit an eigenvalue of J), or an adaptive method | `tests/stiff.rs` `a_singular_newton_matrix_is_an_error_with_the_time_and_the_partial_solution` |
-//! | [`Error::MaxSteps`] | more steps than `Options::max_steps` | a stiff method if the problem is stiff, else raise the limit | `tests/nonstiff.rs` `a_stiff_problem_hits_the_step_limit_with_a_clear_error` |
+//! | [`Error::StepSizeUnderflow`] | the step fell below the time's precision or `min_step`: a singularity, tolerances too tight; for backward Euler, a step halved 30 times without resolving the solution | the message says what to try for the method that ran | `tests/stiff.rs` `a_minimum_step_stops_the_run_early` |
+//! | [`Error::NewtonFailure`] | the implicit method's Newton iteration failed as the step shrank; `tried` says what it tried | a smaller step for backward Euler; for RADAU5 a wrong or discontinuous model near `t` | `tests/stiff.rs` `newton_failures_are_reported_with_the_time_and_what_was_tried` |
+//! | [`Error::SingularMatrix`] | the Newton matrix stayed singular as the step shrank: a Jacobian that is not finite, or a singular model | look at the model and its Jacobian at `t` | `tests/stiff.rs` `a_newton_matrix_that_stays_singular_is_an_error_with_the_time` |
+//! | [`Error::Stiff`] | `Dopri5` or `Dop853` held at its stability boundary (Hairer's test) | `Radau5` or `Auto`, or `Options::stiffness_detection(false)` | `tests/stiff.rs` `an_explicit_pair_stops_where_the_problem_turns_stiff` |
+//! | [`Error::MaxSteps`] | more steps than `Options::max_steps` | raise the limit; a stiff method if the problem is stiff | `tests/nonstiff.rs` `a_stiff_problem_hits_the_step_limit_with_a_clear_error` |
 //! | [`Error::Constraint`] | inconsistent initial values projection cannot repair, redundant constraints, a singular constraint Jacobian (a mechanism at a dead point) | consistent initial values, remove the redundant joint, avoid the singular configuration | `tests/dae.rs` `unrepairable_or_redundant_constraints_are_errors_that_name_the_constraint` |
 //! | [`Error::EventChatter`] | a terminal event fires again within ~1e-13 (relative) of the start: restarts at its crossings make no progress (Zeno) | stop the restarts there, e.g. below a rebound speed | `tests/events.rs` `restarting_at_accumulating_bounces_ends_in_a_chatter_error_at_the_zeno_time` |
 //! | [`Error::InvalidOptions`] | tolerances ≤ 0 or not finite, a non-positive step, a method the model was not expanded for | the message says which option and what to write | `tests/models.rs` `bad_requests_are_errors_not_panics`, `tests/taylor_adaptive.rs` `integrates_backwards_and_refuses_models_without_a_tape` |
@@ -74,6 +75,21 @@ pub enum Error {
         t: f64,
         /// The step that made it singular.
         h: f64,
+        /// The accepted steps.
+        partial: Box<Solution>,
+    },
+    /// The problem turned stiff for an explicit method: its step is held
+    /// at the edge of its stability region, not by accuracy (Hairer's
+    /// test, as in `dopri5.f` and `dop853.f`).
+    Stiff {
+        /// Time reached.
+        t: f64,
+        /// Where the steps held by stability began.
+        onset: f64,
+        /// The last step.
+        h: f64,
+        /// h·ρ(J) estimated at that step.
+        h_rho: f64,
         /// The accepted steps.
         partial: Box<Solution>,
     },
@@ -147,6 +163,7 @@ impl Error {
             Error::NonFinite { partial, .. }
             | Error::Evaluation { partial, .. }
             | Error::MaxSteps { partial, .. }
+            | Error::Stiff { partial, .. }
             | Error::StepSizeUnderflow { partial, .. }
             | Error::NewtonFailure { partial, .. }
             | Error::SingularMatrix { partial, .. }
@@ -162,6 +179,7 @@ impl Error {
             Error::NonFinite { partial, .. }
             | Error::Evaluation { partial, .. }
             | Error::MaxSteps { partial, .. }
+            | Error::Stiff { partial, .. }
             | Error::StepSizeUnderflow { partial, .. }
             | Error::NewtonFailure { partial, .. }
             | Error::SingularMatrix { partial, .. }
@@ -219,6 +237,13 @@ impl fmt::Display for Error {
             Error::SingularMatrix { t, h, .. } => write!(
                 f,
                 "the Newton matrix stayed singular at t = {t} down to the step {h:e}: the Jacobian is not finite there (a square root or a division at zero, say) or the model is singular there"
+            ),
+            Error::Stiff {
+                t, onset, h, h_rho, ..
+            } => write!(
+                f,
+                "the problem is stiff from t = {onset} on: {}'s step is held at {h:e} by its stability (h·ρ(J) ≈ {h_rho:.2}, the edge of its stability region), not by accuracy; stopped at t = {t}. Use Method::Radau5 or Method::Auto (or Options::stiffness_detection(false) to go on anyway)",
+                self.method()
             ),
             Error::MaxSteps { t, max_steps, .. } => {
                 write!(f, "stopped at t = {t} after {max_steps} steps; raise Options::max_steps")?;

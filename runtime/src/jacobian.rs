@@ -12,6 +12,10 @@ pub(crate) struct DenseJacobian {
     values: Vec<f64>,
     /// f at a perturbed point (finite differences only).
     perturbed: Vec<f64>,
+    /// Whether the last evaluation was the generated Jacobian (in `values`).
+    analytic: bool,
+    /// Scratch of the power iteration.
+    power: (Vec<f64>, Vec<f64>),
 }
 
 impl DenseJacobian {
@@ -21,6 +25,8 @@ impl DenseJacobian {
             matrix: vec![0.0; M::STATES * M::STATES],
             values: vec![0.0; M::JACOBIAN_PATTERN.len()],
             perturbed: vec![0.0; M::STATES],
+            analytic: false,
+            power: (vec![0.0; M::STATES], vec![0.0; M::STATES]),
         }
     }
 
@@ -37,11 +43,13 @@ impl DenseJacobian {
     ) -> Result<(), EvalError> {
         let n = M::STATES;
         self.matrix.iter_mut().for_each(|v| *v = 0.0);
+        self.analytic = false;
         match model.jacobian(t, y, &mut self.values) {
             Ok(()) => {
                 for (&(r, c), &v) in M::JACOBIAN_PATTERN.iter().zip(&self.values) {
                     self.matrix[r * n + c] = v;
                 }
+                self.analytic = true;
                 Ok(())
             }
             Err(EvalError::JacobianUnavailable) => {
@@ -89,5 +97,32 @@ impl DenseJacobian {
             out[r] += v * direction[c];
         }
         Ok(true)
+    }
+
+    /// ρ of the last evaluated Jacobian, by the power iteration: on the
+    /// generated sparse Jacobian where there is one, else on the matrix.
+    pub(crate) fn spectral_radius<M: Model>(&mut self) -> f64 {
+        let (v, w) = (&mut self.power.0, &mut self.power.1);
+        let n = M::STATES;
+        if self.analytic {
+            let values = &self.values;
+            crate::stiffness::spectral_radius(v, w, |v, w| {
+                w.fill(0.0);
+                for (&(r, c), &value) in M::JACOBIAN_PATTERN.iter().zip(values) {
+                    w[r] += value * v[c];
+                }
+            })
+        } else {
+            let matrix = &self.matrix;
+            crate::stiffness::spectral_radius(v, w, |v, w| {
+                for (i, wi) in w.iter_mut().enumerate() {
+                    *wi = matrix[i * n..(i + 1) * n]
+                        .iter()
+                        .zip(v.iter())
+                        .map(|(a, b)| a * b)
+                        .sum();
+                }
+            })
+        }
     }
 }

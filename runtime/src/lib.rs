@@ -4,6 +4,7 @@
 //! generated code calls.
 
 mod adaptive;
+mod auto;
 mod backward_euler;
 pub mod band_lu;
 pub mod bench;
@@ -24,6 +25,7 @@ mod radau5;
 mod simulate;
 mod solution;
 pub mod step_control;
+mod stiffness;
 pub mod taylor;
 mod taylor_fixed;
 pub mod taylor_order;

@@ -3,9 +3,12 @@
 /// An integration method.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Method {
-    /// Picks a method for the model: `Dopri5` for rtol ≥ 1e-7, `Dop853` for
-    /// tighter tolerances (where its higher order pays, Hairer–Nørsett–Wanner
-    /// I §II.10). Stiff problems need `Radau5`.
+    /// An explicit pair while the problem is non-stiff, `Radau5` where it
+    /// is stiff, switching both ways as the problem changes: `Dopri5` for
+    /// rtol ≥ 1e-7, `Dop853` for tighter tolerances (where its higher order
+    /// pays, Hairer–Nørsett–Wanner I §II.10). `stats().method` names the
+    /// methods in the order they ran (`"Dopri5→Radau5"`), `stats().switches`
+    /// counts the hand-overs. A singular mass matrix runs `Radau5` alone.
     Auto,
     /// Taylor series with adaptive order and step (Jorba–Zou; heyoka's
     /// step rule) from the model's AD tape; needs `#[dae_model(taylor = p)]`.
@@ -39,9 +42,12 @@ pub enum Method {
     Heun,
     /// Ralston's method, eq. 1.19 with γ = 3/4, fixed step (order 2).
     Ralston,
-    /// Dormand–Prince 5(4), adaptive, with 4th-order dense output.
+    /// Dormand–Prince 5(4), adaptive, with 4th-order dense output. Stops
+    /// with [`crate::Error::Stiff`] where the problem turns stiff (see
+    /// [`Options::stiffness_detection`]).
     Dopri5,
-    /// Hairer's DOP853, adaptive, with 7th-order dense output.
+    /// Hairer's DOP853, adaptive, with 7th-order dense output. Stops with
+    /// [`crate::Error::Stiff`] where the problem turns stiff.
     Dop853,
     /// Radau IIA of order 5 for stiff problems (Hairer–Wanner's RADAU5),
     /// with the generated Jacobian.
@@ -64,6 +70,7 @@ pub struct Options {
     pub(crate) dense_output: bool,
     pub(crate) formulation: Formulation,
     pub(crate) keep_every: usize,
+    pub(crate) stiffness_detection: bool,
 }
 
 /// How a DAE is integrated.
@@ -97,6 +104,7 @@ impl Default for Options {
             dense_output: true,
             formulation: Formulation::IndexOneProjected,
             keep_every: 1,
+            stiffness_detection: true,
         }
     }
 }
@@ -204,6 +212,17 @@ impl Options {
     pub fn keep_every(self, k: usize) -> Options {
         Options {
             keep_every: k,
+            ..self
+        }
+    }
+
+    /// Whether `Dopri5` and `Dop853` stop with [`crate::Error::Stiff`] when
+    /// the problem turns stiff (default `true`): Hairer's test, h·ρ(J) at
+    /// the edge of the stability region for 15 steps. With `false` they go
+    /// on with steps held at that edge, as many as the problem takes.
+    pub fn stiffness_detection(self, detect: bool) -> Options {
+        Options {
+            stiffness_detection: detect,
             ..self
         }
     }

@@ -18,6 +18,7 @@ use crate::model::{EvalError, Model};
 use crate::options::Options;
 use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
+use crate::stiffness::{Finish, NonStiffWatch};
 
 const SQ6: f64 = 2.449_489_742_783_178;
 const C1: f64 = (4.0 - SQ6) / 10.0;
@@ -148,6 +149,25 @@ impl Newton {
     }
 }
 
+/// The floating-point operations of one factorisation of RADAU5's two
+/// Newton matrices (the real one and the complex one, which costs four
+/// real ones) and of one solve with both, for `M`'s structure: banded
+/// where [`Newton::for_pattern`] bands it, dense otherwise.
+pub(crate) fn newton_operations<M: Model>() -> (f64, f64) {
+    let n = M::STATES as f64;
+    if M::MASS.is_empty() && !M::JACOBIAN_PATTERN.is_empty() {
+        let ordering = BandOrdering::reverse_cuthill_mckee(M::STATES, M::JACOBIAN_PATTERN);
+        if ordering.pays() {
+            let (kl, ku) = (ordering.lower as f64, ordering.upper as f64);
+            return (
+                5.0 * 2.0 * n * kl * (kl + ku + 1.0),
+                5.0 * 2.0 * n * (2.0 * kl + ku + 1.0),
+            );
+        }
+    }
+    (5.0 * 2.0 / 3.0 * n * n * n, 5.0 * 2.0 * n * n)
+}
+
 struct Work<'m, M> {
     model: &'m M,
     evals: usize,
@@ -190,8 +210,23 @@ pub(crate) fn integrate<M: Model>(
     t1: f64,
     start: &[f64],
     options: &Options,
-    mut solution: Solution,
+    solution: Solution,
 ) -> Result<Solution, Error> {
+    integrate_watching(model, t0, t1, start, options, None, solution).map(|(s, _)| s)
+}
+
+/// Integrates `model` from `t0` to `t1` with RADAU5, stopping early with
+/// [`Finish::NonStiffAt`] where `watch` finds the problem no longer stiff
+/// (h·ρ(J), ρ by the power iteration on each new Jacobian).
+pub(crate) fn integrate_watching<M: Model>(
+    model: &M,
+    t0: f64,
+    t1: f64,
+    start: &[f64],
+    options: &Options,
+    watch: Option<NonStiffWatch>,
+    mut solution: Solution,
+) -> Result<(Solution, Finish), Error> {
     let n = M::STATES;
     // radau5.f tightens the user's tolerances: rtol' = 0.1 rtol^(2/3).
     let rtol = 0.1 * options.rtol.max(1e-15).powf(2.0 / 3.0);
@@ -238,14 +273,18 @@ pub(crate) fn integrate<M: Model>(
 
     y.copy_from_slice(start);
     if t0 == t1 {
-        return Ok(solution);
+        return Ok((solution, Finish::Done));
     }
+    // ρ(J) at the last Jacobian, and the steps in a row RADAU5 took with
+    // h·ρ below the watch's bound.
+    let (mut rho, mut calm) = (f64::INFINITY, 0usize);
     let fail = |solution: Solution,
                 w: &Work<'_, M>,
                 steps: usize,
                 rejected: usize,
                 t: f64,
-                cause: EvalError| {
+                cause: EvalError|
+     -> Result<(Solution, Finish), Error> {
         let mut solution = solution;
         finish(&mut solution, steps, rejected, w);
         Err(Error::Evaluation {
@@ -290,6 +329,9 @@ pub(crate) fn integrate<M: Model>(
         if refresh == Refresh::Jacobian {
             if let Err(cause) = w.evaluate_jacobian(t, &mut y, &y0) {
                 return fail(solution, &w, accepted, rejected, t, cause);
+            }
+            if watch.is_some() {
+                rho = w.jacobian.spectral_radius::<M>();
             }
             caljac = true;
         } else {
@@ -537,6 +579,17 @@ pub(crate) fn integrate<M: Model>(
                 h_new = direction * h_new.abs().min(h.abs());
             }
             reject = false;
+            if let Some(watch) = watch {
+                calm = if h.abs() * rho < watch.below {
+                    calm + 1
+                } else {
+                    0
+                };
+                if calm >= watch.confirmations {
+                    finish(&mut solution, accepted, rejected, &w);
+                    return Ok((solution, Finish::NonStiffAt { t, h: h_new }));
+                }
+            }
             if (t + h_new / QUOT1 - t1) * direction >= 0.0 {
                 h = t1 - t;
                 last = true;
@@ -572,7 +625,7 @@ pub(crate) fn integrate<M: Model>(
         }
     }
     finish(&mut solution, accepted, rejected, &w);
-    Ok(solution)
+    Ok((solution, Finish::Done))
 }
 
 /// After a failed Newton iteration or step: shrink h by `factor`, mark the

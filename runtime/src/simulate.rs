@@ -1,6 +1,7 @@
 //! Checks a run's request and hands it to the method.
 
-use crate::adaptive;
+use crate::adaptive::{self, Stiffness};
+use crate::auto;
 use crate::backward_euler;
 use crate::dop853::Dop853;
 use crate::dopri5::Dopri5;
@@ -32,6 +33,15 @@ fn formulation<M: Model>() -> &'static str {
         (0, false) => "ODE, projected onto its invariants after every step",
         (_, true) => "DAE solved for its algebraic variables at each evaluation (index 1)",
         _ => "DAE: index-1 form (constraints differentiated until they determine the unknowns), projected onto the constraints and their hidden levels after every step",
+    }
+}
+
+/// What an explicit pair run on its own does when the problem turns stiff.
+fn stiffness(options: &Options) -> Stiffness {
+    if options.stiffness_detection {
+        Stiffness::Fail
+    } else {
+        Stiffness::Ignore
     }
 }
 
@@ -226,43 +236,32 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     solution.push(t0, &y0);
     match options.method {
         Method::Auto if !M::MASS.is_empty() => {
+            // A singular mass matrix: only RADAU5 integrates it.
             let mut solution = solution;
-            solution.stats_mut().method = "Auto: Radau5 (singular mass matrix)";
+            solution.stats_mut().method = "Radau5";
             radau5::integrate(model, t0, t1, &y0, options, solution)
         }
-        Method::Auto => {
-            // An explicit pair watches for stiffness (Hairer's test) and hands
-            // over to RADAU5 from the point where the problem turned stiff.
-            let mut solution = solution;
-            let explicit = if options.rtol >= 1e-7 {
-                solution.stats_mut().method = "Auto: Dopri5";
-                adaptive::integrate::<M, Dopri5>(model, t0, t1, &y0, options, true, solution)
-            } else {
-                solution.stats_mut().method = "Auto: Dop853";
-                adaptive::integrate::<M, Dop853>(model, t0, t1, &y0, options, true, solution)
-            };
-            match explicit? {
-                (solution, adaptive::Finish::Done) => Ok(solution),
-                (mut solution, adaptive::Finish::StiffAt(t)) => {
-                    let stats = solution.stats_mut();
-                    stats.method = if stats.method == "Auto: Dopri5" {
-                        "Auto: Dopri5, then Radau5 where the problem turned stiff"
-                    } else {
-                        "Auto: Dop853, then Radau5 where the problem turned stiff"
-                    };
-                    let y = solution.last_state().map(<[f64]>::to_vec).unwrap_or(y0);
-                    radau5::integrate(model, t, t1, &y, options, solution)
-                }
-            }
-        }
-        Method::Dopri5 => {
-            adaptive::integrate::<M, Dopri5>(model, t0, t1, &y0, options, false, solution)
-                .map(|r| r.0)
-        }
-        Method::Dop853 => {
-            adaptive::integrate::<M, Dop853>(model, t0, t1, &y0, options, false, solution)
-                .map(|r| r.0)
-        }
+        Method::Auto => auto::integrate(model, t0, t1, &y0, options, solution),
+        Method::Dopri5 => adaptive::integrate::<M, Dopri5>(
+            model,
+            t0,
+            t1,
+            &y0,
+            options,
+            stiffness(options),
+            solution,
+        )
+        .map(|r| r.0),
+        Method::Dop853 => adaptive::integrate::<M, Dop853>(
+            model,
+            t0,
+            t1,
+            &y0,
+            options,
+            stiffness(options),
+            solution,
+        )
+        .map(|r| r.0),
         Method::Radau5 => radau5::integrate(model, t0, t1, &y0, options, solution),
         Method::Taylor => taylor::integrate(model, t0, t1, &y0, options, solution),
         Method::TaylorFixed { order, step } => {

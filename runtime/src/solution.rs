@@ -15,8 +15,13 @@ pub struct Stats {
     pub rhs_evals: usize,
     /// Evaluations of the Jacobian.
     pub jacobian_evals: usize,
-    /// The method that ran (`Method::Auto` says which it picked).
+    /// The methods that ran, in order: `"Dopri5"`, or for `Method::Auto`
+    /// the chain it switched along, `"Dopri5→Radau5"` (`"Dopri5⇄Radau5"`
+    /// beyond four stretches; [`Stats::switches`] counts them).
     pub method: &'static str,
+    /// How often `Method::Auto` switched between its explicit pair and
+    /// RADAU5 (0 for every other method).
+    pub switches: usize,
     /// How the model was integrated: an ODE, or which DAE formulation.
     pub formulation: &'static str,
     /// `Method::Taylor`'s order (0 for the other methods).

@@ -1,0 +1,192 @@
+//! `Method::Auto`: an explicit pair while the problem is non-stiff and
+//! RADAU5 where it is stiff, switching both ways as often as the problem
+//! changes (after LSODA, Petzold 1983, and DifferentialEquations.jl's
+//! `AutoTsit5(Rodas5())`).
+//!
+//! - The pair is DOPRI5 for rtol ≥ 1e-7 and DOP853 below, where its higher
+//!   order pays (Hairer, Nørsett, Wanner I §II.10).
+//! - A RADAU5 step costs `K` of the pair's ([`step_cost_ratio`], from the
+//!   model's size and sparsity): RADAU5 pays where its steps are more than
+//!   `K` times the pair's.
+//! - The pair hands over to RADAU5 when h·ρ(J) stays above a fraction of
+//!   its stability boundary, and above [`STIFFNESS_RATIO`] times the
+//!   step's relative change of the solution, for [`CONFIRMATIONS`] steps:
+//!   the fraction grows
+//!   with `K`, from 0.1 where RADAU5 is as cheap as the pair (a pair held
+//!   well inside its stability region by the error of a stiff component,
+//!   [`crate::stiffness`]) to 0.9, Hairer's own test, where it is dear.
+//! - RADAU5 hands back, once its step has settled, when it is no longer
+//!   `K` times the pair's (compared as h·ρ, so a change of ρ counts).
+//! - A hand-over that RADAU5 gives back within [`TRIAL_STEPS`] steps did
+//!   not pay (a non-stiff problem at a loose tolerance); the pair then waits
+//!   for Hairer's own test before trying again.
+
+use crate::adaptive::{self, EmbeddedPair, Stiffness};
+use crate::dop853::Dop853;
+use crate::dopri5::Dopri5;
+use crate::error::Error;
+use crate::model::Model;
+use crate::options::Options;
+use crate::radau5;
+use crate::solution::Solution;
+use crate::stiffness::{Finish, NonStiffWatch, StiffnessTest};
+
+/// Steps with h·ρ above the threshold that decide the pair is held back.
+pub(crate) const CONFIRMATIONS: usize = 15;
+/// How many times faster than the solution itself the Jacobian's fastest
+/// mode must be for a step to count as held back by it: a step of a
+/// non-stiff problem changes the solution about as much as h·ρ says, one of
+/// a stiff problem far less (the filter above: h·ρ ≈ 1.5 while the
+/// solution moves 1 %).
+const STIFFNESS_RATIO: f64 = 20.0;
+/// Steps in a row that decide RADAU5 is no longer ahead.
+const CALM_STEPS: usize = 3;
+/// A RADAU5 stretch shorter than this was a trial that did not pay.
+const TRIAL_STEPS: usize = 20;
+
+/// Integrates `model` from `t0` to `t1` with the pair and RADAU5 in turn.
+pub(crate) fn integrate<M: Model>(
+    model: &M,
+    t0: f64,
+    t1: f64,
+    y0: &[f64],
+    options: &Options,
+    solution: Solution,
+) -> Result<Solution, Error> {
+    if options.rtol >= 1e-7 {
+        switching::<M, Dopri5>(model, t0, t1, y0, options, 0, solution)
+    } else {
+        switching::<M, Dop853>(model, t0, t1, y0, options, 1, solution)
+    }
+}
+
+/// The chain of methods that ran, for [`crate::Stats::method`].
+fn chain(pair: usize, segments: usize) -> &'static str {
+    const CHAINS: [[&str; 5]; 2] = [
+        [
+            "Dopri5",
+            "Dopri5→Radau5",
+            "Dopri5→Radau5→Dopri5",
+            "Dopri5→Radau5→Dopri5→Radau5",
+            "Dopri5⇄Radau5",
+        ],
+        [
+            "Dop853",
+            "Dop853→Radau5",
+            "Dop853→Radau5→Dop853",
+            "Dop853→Radau5→Dop853→Radau5",
+            "Dop853⇄Radau5",
+        ],
+    ];
+    CHAINS[pair][segments.clamp(1, 5) - 1]
+}
+
+/// The cost of a RADAU5 step over the pair's, counted in floating-point
+/// operations: a right-hand side costs about one operation per non-zero of
+/// its Jacobian and per state; a RADAU5 step takes about two Newton
+/// iterations (three right-hand sides each, one solve with both Newton
+/// matrices) plus its error estimate, and forms new matrices on 0.7 of its
+/// steps (measured on Robertson, Van der Pol, HIRES and OREGO: 0.5 to 1);
+/// each stage of the pair adds one right-hand side and a vector update.
+pub(crate) fn step_cost_ratio<M: Model, P: EmbeddedPair>() -> f64 {
+    let n = M::STATES as f64;
+    let rhs = (M::JACOBIAN_PATTERN.len() as f64).max(n) + n;
+    let (factorisation, solve) = radau5::newton_operations::<M>();
+    let radau = 7.0 * rhs + 0.7 * (factorisation + rhs) + 2.5 * solve + 40.0 * n;
+    let stages = P::STAGES as f64;
+    let pair = (stages - 1.0) * rhs + stages * 2.0 * n * stages / 2.0;
+    radau / pair
+}
+
+fn switching<M: Model, P: EmbeddedPair>(
+    model: &M,
+    t0: f64,
+    t1: f64,
+    y0: &[f64],
+    options: &Options,
+    pair: usize,
+    mut solution: Solution,
+) -> Result<Solution, Error> {
+    let ratio = step_cost_ratio::<M, P>();
+    let mut threshold = (0.1 * ratio).clamp(0.1, 0.9);
+    let (mut t, mut y, mut h) = (t0, y0.to_vec(), options.initial_step);
+    let mut segments = 0usize;
+    // Labels the solution (or the partial one of an error) with the
+    // methods so far.
+    let label = |solution: &mut Solution, segments: usize| {
+        let stats = solution.stats_mut();
+        stats.method = chain(pair, segments);
+        stats.switches = segments.saturating_sub(1);
+    };
+    let labelled = |result: Result<(Solution, Finish), Error>, segments: usize| match result {
+        Ok((mut s, finish)) => {
+            label(&mut s, segments);
+            Ok((s, finish))
+        }
+        Err(mut e) => {
+            if let Some(s) = e.partial_solution_mut() {
+                label(s, segments);
+            }
+            Err(e)
+        }
+    };
+    loop {
+        // The explicit pair until the problem turns stiff.
+        segments += 1;
+        let phase = remaining(options, &solution, h);
+        let test = StiffnessTest::new(threshold * P::STIFFNESS_BOUND, CONFIRMATIONS)
+            .with_ratio(STIFFNESS_RATIO);
+        let result = adaptive::integrate::<M, P>(
+            model,
+            t,
+            t1,
+            &y,
+            &phase,
+            Stiffness::Switch(test),
+            solution,
+        );
+        let h_rho;
+        (solution, (t, h, h_rho)) = match labelled(result, segments)? {
+            (s, Finish::StiffAt { t, h, h_rho }) => (s, (t, Some(h.abs()), h_rho)),
+            (s, _) => return Ok(s),
+        };
+        y.copy_from_slice(solution.final_state());
+        // RADAU5 while its steps stay well ahead of the pair's.
+        segments += 1;
+        let steps_before = solution.stats().steps;
+        let phase = remaining(options, &solution, h);
+        let watch = NonStiffWatch {
+            below: ratio * h_rho,
+            confirmations: CALM_STEPS,
+        };
+        let result = radau5::integrate_watching(model, t, t1, &y, &phase, Some(watch), solution);
+        let rho_h;
+        (solution, (t, rho_h)) = match labelled(result, segments)? {
+            (s, Finish::NonStiffAt { t, h }) => (s, (t, h)),
+            (s, _) => return Ok(s),
+        };
+        if solution.stats().steps - steps_before < TRIAL_STEPS {
+            // RADAU5 did not pay here: wait for the pair to sit at its
+            // stability boundary before trying again.
+            threshold = 0.9;
+        }
+        h = Some(rho_h.abs());
+        y.copy_from_slice(solution.final_state());
+    }
+}
+
+/// The options of the next stretch: the steps left of `max_steps`, and the
+/// step the last stretch ended with as the first.
+fn remaining(options: &Options, solution: &Solution, h: Option<f64>) -> Options {
+    let stats = solution.stats();
+    let mut phase = options.max_steps(
+        options
+            .max_steps
+            .saturating_sub(stats.steps + stats.rejected)
+            .max(1),
+    );
+    if let Some(h) = h {
+        phase = phase.initial_step(h);
+    }
+    phase
+}
