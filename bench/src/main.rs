@@ -10,6 +10,9 @@
 //! error, in alternation (`results/versus_dop853.md`), and
 //! `--dop853-versus-dop853` our DOP853 likewise
 //! (`results/dop853_versus_dop853.md`);
+//! `--auto` times `Method::Auto` against the best single method on every
+//! reference problem and an explicit pair on a stiff problem
+//! (`results/auto.md`);
 //! `--versus-heyoka` times our Taylor method and heyoka in alternation,
 //! `results/versus_heyoka.md`; with `--only name`, one problem, printed
 //! only). Writes
@@ -23,6 +26,7 @@
 // expected here.
 #![allow(deprecated)]
 
+mod auto;
 mod dae;
 mod peers;
 mod versus;
@@ -477,6 +481,15 @@ fn main() {
             only.as_deref(),
             versus::dop853_markdown,
         );
+        return;
+    }
+    if let Some(i) = args.iter().position(|a| a == "--stiff-probe") {
+        let method = args.get(i + 1).map_or("Dopri5", |s| s.as_str());
+        auto::stiff_probe(method, args.get(i + 2).is_none_or(|s| s != "off"));
+        return;
+    }
+    if has("--auto") {
+        auto::auto_section();
         return;
     }
     if has("--dae") {

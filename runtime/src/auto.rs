@@ -32,7 +32,7 @@ use crate::solution::Solution;
 use crate::stiffness::{Finish, NonStiffWatch, StiffnessTest};
 
 /// Steps with h·ρ above the threshold that decide the pair is held back.
-pub(crate) const CONFIRMATIONS: usize = 15;
+pub(crate) const CONFIRMATIONS: usize = 8;
 /// How many times faster than the solution itself the Jacobian's fastest
 /// mode must be for a step to count as held back by it: a step of a
 /// non-stiff problem changes the solution about as much as h·ρ says, one of
