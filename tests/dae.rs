@@ -987,3 +987,49 @@ fn explicit_definitions_may_have_parameter_coefficients() {
         .max((sol.last("y").unwrap() - PENDUL3[0].1[1]).abs());
     assert!(e <= 20.0 * tol, "error {e:e}");
 }
+
+/// Both formulations of the contract's pendulum report the same things,
+/// truthfully: every name (states, the multiplier, the output), which
+/// formulation ran, the constraint residuals measured at every accepted
+/// step at the position and at the velocity level, and the degrees of
+/// freedom.
+#[test]
+fn every_formulation_reports_its_names_residuals_and_degrees_of_freedom() {
+    let tol = 1e-8;
+    let base = Options::new().method(Method::Radau5).rtol(tol).atol(tol);
+    let projected = Pendulum::default().simulate(0.0, 3.0, &base).unwrap();
+    let mass = Pendulum::default()
+        .simulate(0.0, 3.0, &base.formulation(Formulation::MassMatrix))
+        .unwrap();
+    for (sol, what) in [(&projected, "projected"), (&mass, "mass-matrix")] {
+        let stats = sol.stats();
+        assert!(
+            stats.formulation.contains(what),
+            "{what}: {}",
+            stats.formulation
+        );
+        assert_eq!(sol.degrees_of_freedom(), Some(1), "{what}");
+        // The output and the multiplier by name, at a step and between.
+        // Released at rest level with the pivot: the energy stays 0.
+        let energy = sol.last("energy").unwrap();
+        assert!(energy.abs() < 1e-4, "{what}: energy {energy}");
+        assert!(sol.at(1.234, "energy").unwrap().is_finite(), "{what}");
+        let lambda = sol.at(1.5, "lambda").unwrap();
+        assert!(
+            lambda.is_finite() && lambda.abs() > 1.0,
+            "{what}: λ = {lambda}"
+        );
+        // Measured, not assumed: above zero, below the tolerance's reach.
+        let (p, v) = (
+            sol.max_constraint_residual(),
+            sol.max_velocity_constraint_residual(),
+        );
+        assert!(p > 0.0 && v > 0.0, "{what}: residuals {p:e}, {v:e}");
+        assert!(p < 1e-6 && v < 1e-4, "{what}: residuals {p:e}, {v:e}");
+    }
+    assert!(mass.stats().formulation.contains("Gear–Gupta–Leimkuhler"));
+    // Projection holds the constraints to rounding; the GGL form to its
+    // Newton tolerance, well above.
+    assert!(projected.max_constraint_residual() < 1e-13);
+    assert!(mass.max_constraint_residual() > projected.max_constraint_residual());
+}

@@ -246,7 +246,10 @@ fn auto_hands_a_stiff_filter_to_radau5_early() {
                 .fold(0.0, f64::max)
         };
         let (e_auto, e_radau) = (error(&auto), error(&radau));
-        assert!(e_auto <= 3.0 * e_radau + tol, "tol {tol:e}: Auto {e_auto:e}, Radau5 {e_radau:e}");
+        assert!(
+            e_auto <= 3.0 * e_radau + tol,
+            "tol {tol:e}: Auto {e_auto:e}, Radau5 {e_radau:e}"
+        );
     }
 }
 

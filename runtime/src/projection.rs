@@ -66,19 +66,22 @@ impl<'m, M: Model> Projector<'m, M> {
 
     /// Projects `y` onto every level in turn, holding the states marked in
     /// `hold` (if given), with at most `iterations` Gauss–Newton steps per
-    /// level; returns the largest |Φ| of the level-0 constraints after it.
+    /// level; returns the largest |Φ| of the position-level constraints
+    /// after it and of their velocity level (the constraints differentiated
+    /// once). A model that keeps its constraints itself (the mass-matrix
+    /// form, no [`Model::PROJECTION`]) is only measured.
     pub(crate) fn project(
         &mut self,
         t: f64,
         y: &mut [f64],
         iterations: usize,
         hold: Option<&[bool]>,
-    ) -> Result<f64, Failure> {
+    ) -> Result<Residuals, Failure> {
         for (k, level) in M::PROJECTION.iter().enumerate() {
             self.project_level(k, level, t, y, iterations, hold)?;
         }
         self.model.constraints(t, y, &mut self.residuals);
-        let mut worst = 0.0f64;
+        let mut worst = Residuals::default();
         for (r, info) in M::CONSTRAINTS.iter().enumerate() {
             let v = self.residuals[r].abs();
             if !v.is_finite() {
@@ -87,8 +90,10 @@ impl<'m, M: Model> Projector<'m, M> {
                     message: "its residual is not finite".into(),
                 });
             }
-            if info.level == 0 {
-                worst = worst.max(v);
+            match info.level {
+                0 => worst.position = worst.position.max(v),
+                1 => worst.velocity = worst.velocity.max(v),
+                _ => {}
             }
         }
         Ok(worst)
@@ -284,6 +289,15 @@ fn solve_symmetric(a: &mut [f64], n: usize, b: &mut [f64]) -> Result<(), usize> 
     Ok(())
 }
 
+/// The largest constraint residuals at one point, by level.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Residuals {
+    /// |Φ| of the constraints as written.
+    pub(crate) position: f64,
+    /// |Φ̇|: the constraints differentiated once.
+    pub(crate) velocity: f64,
+}
+
 /// Makes the initial values consistent: projects them onto every
 /// constraint level, then checks that the constraints hold.
 pub(crate) fn consistent_initial_values<M: Model>(
@@ -354,9 +368,9 @@ macro_rules! project_onto_constraints {
         match $projector.as_mut() {
             None => false,
             Some(p) => match p.project($t, $y, $crate::projection::STEP_ITERATIONS, None) {
-                Ok(residual) => {
-                    $solution.note_constraint_residual(residual);
-                    true
+                Ok(residuals) => {
+                    $solution.note_constraint_residuals(residuals);
+                    !M::PROJECTION.is_empty()
                 }
                 Err(f) => {
                     return Err($crate::error::Error::Constraint {

@@ -28,6 +28,12 @@ pub fn simulate<M: Model + Clone + Send + Sync + 'static>(
 
 /// How a model of this type is integrated, for [`crate::Stats::formulation`].
 fn formulation<M: Model>() -> &'static str {
+    if !M::INDEX2_COMPONENTS.is_empty() {
+        return "DAE in mass-matrix form with RADAU5: the Gear–Gupta–Leimkuhler index-2 form (position and velocity constraints kept by the multipliers mu, no projection)";
+    }
+    if !M::MASS.is_empty() {
+        return "DAE in mass-matrix form with RADAU5: the algebraic equations kept as written (index 1)";
+    }
     match (M::INDEX, M::CONSTRAINTS.is_empty()) {
         (0, true) => "ODE",
         (0, false) => "ODE, projected onto its invariants after every step",
@@ -74,7 +80,10 @@ fn labelled<M: Model>(
         if stats.method.is_empty() {
             stats.method = method;
         }
-        stats.formulation = formulation::<M>();
+        // A run handed to another form of the model keeps that form's label.
+        if stats.formulation.is_empty() {
+            stats.formulation = formulation::<M>();
+        }
     };
     match result {
         Ok(mut s) => {
@@ -217,8 +226,24 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
             // An ODE has no other form: the option does not apply.
         } else {
             let mass_options = options.formulation(crate::options::Formulation::IndexOneProjected);
+            // The model's own initialization found the degrees of freedom.
+            let dof = solution.degrees_of_freedom_found();
+            let carry = |s: &mut Solution| {
+                if let Some(dof) = dof {
+                    s.set_degrees_of_freedom(dof);
+                }
+            };
             return match model.simulate_mass_form(t0, &y0, t1, &mass_options) {
-                Some(result) => result,
+                Some(Ok(mut s)) => {
+                    carry(&mut s);
+                    Ok(s)
+                }
+                Some(Err(mut e)) => {
+                    if let Some(s) = e.partial_solution_mut() {
+                        carry(s);
+                    }
+                    Err(e)
+                }
                 None => Err(Error::InvalidOptions {
                     message: format!(
                         "{} has no mass-matrix form (its differential equations do not solve symbolically for the highest derivatives, or a constraint needs more than two differentiations): use Formulation::IndexOneProjected",
@@ -230,7 +255,7 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     }
     if let Some(mut p) = crate::projection::Projector::new(model) {
         if let Ok(r) = p.project(t0, &mut y0, 0, None) {
-            solution.note_constraint_residual(r);
+            solution.note_constraint_residuals(r);
         }
     }
     solution.push(t0, &y0);

@@ -71,8 +71,10 @@ pub struct Solution {
     output_names: &'static [&'static str],
     algebraic_names: &'static [&'static str],
     observables: Arc<dyn Observables>,
-    /// Largest |Φ| of the level-0 constraints at the accepted steps.
+    /// Largest |Φ| of the position-level constraints at the accepted steps.
     constraint_residual: f64,
+    /// Largest |Φ̇| of their velocity level.
+    velocity_residual: f64,
     /// n − rank Φ_q at the start, for a model with constraints.
     degrees_of_freedom: Option<usize>,
     stats: Stats,
@@ -135,6 +137,7 @@ impl Solution {
             output_names: M::INFO.outputs,
             algebraic_names: M::INFO.algebraics,
             constraint_residual: 0.0,
+            velocity_residual: 0.0,
             degrees_of_freedom: None,
             observables: Arc::new(ModelObservables(model.clone())),
             stats: Stats::default(),
@@ -267,9 +270,17 @@ impl Solution {
     }
 
     /// Largest |Φ| of the user's constraints (not their derivatives) over
-    /// the accepted steps, after projection; 0 for an ODE, which has none.
+    /// the accepted steps, measured at each (after projection, in the
+    /// projected formulation); 0 for an ODE, which has none.
     pub fn max_constraint_residual(&self) -> f64 {
         self.constraint_residual
+    }
+
+    /// Largest |Φ̇| of the velocity level of the constraints (a position
+    /// constraint differentiated once, or a velocity constraint as written)
+    /// over the accepted steps; 0 for a model without.
+    pub fn max_velocity_constraint_residual(&self) -> f64 {
+        self.velocity_residual
     }
 
     /// Degrees of freedom of a constrained model at the start of the run:
@@ -283,9 +294,15 @@ impl Solution {
         self.degrees_of_freedom = Some(dof);
     }
 
-    /// Records the constraint residual at an accepted step.
-    pub(crate) fn note_constraint_residual(&mut self, r: f64) {
-        self.constraint_residual = self.constraint_residual.max(r);
+    /// Records the constraint residuals at an accepted step.
+    pub(crate) fn note_constraint_residuals(&mut self, r: crate::projection::Residuals) {
+        self.constraint_residual = self.constraint_residual.max(r.position);
+        self.velocity_residual = self.velocity_residual.max(r.velocity);
+    }
+
+    /// The degrees of freedom found at the start, if any.
+    pub(crate) fn degrees_of_freedom_found(&self) -> Option<usize> {
+        self.degrees_of_freedom
     }
 
     /// The index of a name among the model's observables: outputs, then

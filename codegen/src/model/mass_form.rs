@@ -316,6 +316,7 @@ pub fn emit_mass_form(
     let items = model_items(g, form, emit)?;
     let names = &form.names;
     let name_str = form_name.to_string();
+    let differential = index(form.differential);
     let doc = format!("The mass-matrix form of [`{name}`] for RADAU5 with a singular mass matrix: states, algebraic variables and (for constraints differentiated twice) the Gear–Gupta–Leimkuhler multipliers `mu[k]`, which vanish on the solution.");
     let form_type = quote! {
         #[doc = #doc]
@@ -327,18 +328,27 @@ pub fn emit_mass_form(
             const INDEX: usize = 2;
             const INFO: ::daegen::ModelInfo = ::daegen::ModelInfo {
                 name: #name_str, doc: #doc, states: &[#(#names),*], parameters: &[], parameter_docs: &[],
-                outputs: &[], output_docs: &[], equations: #n, events: &[], algebraics: &[],
+                outputs: <#name as ::daegen::Model>::INFO.outputs,
+                output_docs: <#name as ::daegen::Model>::INFO.output_docs,
+                equations: #n, events: &[], algebraics: &[],
             };
+            // The model's constraints, measured at every step but never
+            // projected onto: the form keeps them itself.
+            const CONSTRAINTS: &'static [::daegen::ConstraintInfo] = <#name as ::daegen::Model>::CONSTRAINTS;
             #items
             fn initial_state(&self, y: &mut [f64]) {
                 y.iter_mut().for_each(|v| *v = 0.0);
             }
+            fn constraints(&self, t: f64, y: &[f64], out: &mut [f64]) {
+                let model = #name { #(#params: self.#params,)* };
+                ::daegen::Model::constraints(&model, t, &y[..#differential], out)
+            }
             fn output(&self, index: usize, t: f64, y: &[f64]) -> f64 {
-                f64::NAN
+                let model = #name { #(#params: self.#params,)* };
+                ::daegen::Model::output(&model, index, t, &y[..#differential])
             }
         }
     };
-    let differential = index(form.differential);
     let algebraic_count = index(form.components.len() - form.differential);
     let method = quote! {
         fn simulate_mass_form(
