@@ -298,19 +298,66 @@ fn bad_requests_are_errors_not_panics() {
     assert!(
         matches!(&taylor, Err(Error::InvalidOptions { message }) if message.contains("taylor = p"))
     );
-    let bad_step =
-        Oscillator::default().simulate(0.0, 1.0, &Options::new().method(Method::Rk4).step(-1.0));
-    assert!(matches!(bad_step, Err(Error::InvalidOptions { .. })));
-    for (rtol, atol) in [(0.0, 0.0), (-1e-6, 1e-9), (1e-6, f64::NAN)] {
-        let bad_tol =
-            Oscillator::default().simulate(0.0, 1.0, &Options::new().rtol(rtol).atol(atol));
+    // Every unusable option is refused before the first step, by name, for
+    // every method (a step given to an adaptive method is checked too).
+    let refused = |options: Options, name: &str| {
+        for method in [Method::Rk4, Method::Dopri5, Method::Radau5, Method::Auto] {
+            match Oscillator::default().simulate(0.0, 1.0, &options.method(method)) {
+                Err(Error::InvalidOptions { message }) => {
+                    assert!(message.contains(name), "{method:?}: {message}")
+                }
+                other => panic!("{method:?}, {name}: expected InvalidOptions, got {other:?}"),
+            }
+        }
+    };
+    refused(Options::new().step(-1.0), "step(-1)");
+    refused(Options::new().step(0.0), "step(0)");
+    refused(Options::new().initial_step(f64::NAN), "initial_step(NaN)");
+    refused(Options::new().max_step(0.0), "max_step(0)");
+    refused(Options::new().min_step(-1e-3), "min_step(-0.001)");
+    refused(
+        Options::new().max_step(1e-3).min_step(1e-2),
+        "max_step(0.001) is below min_step(0.01)",
+    );
+    refused(Options::new().max_steps(0), "max_steps(0)");
+    refused(Options::new().rtol(0.0).atol(0.0), "rtol(0) with atol(0)");
+    refused(Options::new().rtol(-1e-6), "rtol(-0.000001)");
+    refused(Options::new().atol(f64::NAN), "atol(NaN)");
+    refused(Options::new().rtol(f64::INFINITY), "rtol(inf)");
+    // A NaN or infinite parameter or initial value, by name.
+    for value in [f64::NAN, f64::INFINITY] {
+        let err = Oscillator { omega: value }
+            .simulate(0.0, 1.0, &Options::new())
+            .unwrap_err();
         assert!(
-            matches!(bad_tol, Err(Error::InvalidOptions { .. })),
-            "rtol {rtol}, atol {atol}"
+            matches!(
+                err,
+                Error::NonFiniteParameter {
+                    parameter: "omega",
+                    ..
+                }
+            ),
+            "{err:?}"
+        );
+        assert!(err.to_string().contains("parameter `omega`"), "{err}");
+        let err = Oscillator::default()
+            .simulate_from(0.0, &[1.0, value], 1.0, &Options::new())
+            .unwrap_err();
+        assert!(
+            matches!(
+                err,
+                Error::NonFiniteInitialValue {
+                    variable: "der(x)",
+                    ..
+                }
+            ),
+            "{err:?}"
+        );
+        assert!(
+            err.to_string().contains("initial value of `der(x)`"),
+            "{err}"
         );
     }
-    let nan_param = Oscillator { omega: f64::NAN }.simulate(0.0, 1.0, &Options::new());
-    assert!(matches!(nan_param, Err(Error::NonFinite { .. })));
 }
 
 /// The README's model, verbatim, so the README cannot rot.

@@ -15,6 +15,8 @@
 //! | [`Error::MaxSteps`] | more steps than `Options::max_steps` | raise the limit; a stiff method if the problem is stiff | `tests/nonstiff.rs` `a_stiff_problem_hits_the_step_limit_with_a_clear_error` |
 //! | [`Error::Constraint`] | inconsistent initial values projection cannot repair, redundant constraints, a singular constraint Jacobian (a mechanism at a dead point) | consistent initial values, remove the redundant joint, avoid the singular configuration | `tests/dae.rs` `unrepairable_or_redundant_constraints_are_errors_that_name_the_constraint` |
 //! | [`Error::EventChatter`] | a terminal event fires again within ~1e-13 (relative) of the start: restarts at its crossings make no progress (Zeno) | stop the restarts there, e.g. below a rebound speed | `tests/events.rs` `restarting_at_accumulating_bounces_ends_in_a_chatter_error_at_the_zeno_time` |
+//! | [`Error::NonFiniteParameter`] | a parameter field is NaN or ±∞ | a finite value | `tests/models.rs` `bad_requests_are_errors_not_panics` |
+//! | [`Error::NonFiniteInitialValue`] | an initial value is NaN or ±∞ | a finite value | `tests/models.rs` `bad_requests_are_errors_not_panics` |
 //! | [`Error::InvalidOptions`] | tolerances ≤ 0 or not finite, a non-positive step, a method the model was not expanded for | the message says which option and what to write | `tests/models.rs` `bad_requests_are_errors_not_panics`, `tests/taylor_adaptive.rs` `integrates_backwards_and_refuses_models_without_a_tape` |
 //! | [`Error::MethodNotAvailable`] | reserved: every [`crate::Method`] is implemented | — | — |
 //! | [`Error::UnknownName`] | `Solution::at`/`last` with a name that is no state, algebraic variable or output | use one of `known` | `tests/models.rs` `bad_requests_are_errors_not_panics` |
@@ -129,6 +131,20 @@ pub enum Error {
         after: f64,
         /// The run up to it.
         partial: Box<Solution>,
+    },
+    /// A parameter of the model is NaN or infinite.
+    NonFiniteParameter {
+        /// The parameter, by name.
+        parameter: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// An initial value is NaN or infinite.
+    NonFiniteInitialValue {
+        /// The state, by name.
+        variable: &'static str,
+        /// Its value.
+        value: f64,
     },
     /// The options or the interval are unusable (a non-positive step, say).
     InvalidOptions {
@@ -271,6 +287,14 @@ impl fmt::Display for Error {
             Error::EventChatter { t, event, after, .. } => write!(
                 f,
                 "event `{event}` fired again {after:e} after the start, at t = {t}: its crossings accumulate there (Zeno behaviour); stop restarting at this point, e.g. once the rebound speed or the time between events falls below a threshold"
+            ),
+            Error::NonFiniteParameter { parameter, value } => write!(
+                f,
+                "parameter `{parameter}` is {value}: every parameter must be finite"
+            ),
+            Error::NonFiniteInitialValue { variable, value } => write!(
+                f,
+                "the initial value of `{variable}` is {value}: every initial value must be finite"
             ),
             Error::InvalidOptions { message } => write!(f, "invalid options: {message}"),
             Error::MethodNotAvailable { method } => {

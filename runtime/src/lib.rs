@@ -8,6 +8,7 @@ mod auto;
 mod backward_euler;
 pub mod band_lu;
 pub mod bench;
+mod checks;
 pub mod dense_lu;
 pub mod dop853;
 pub mod dopri5;

@@ -147,6 +147,13 @@ pub trait Model {
     /// Writes the initial state (values may depend on the parameters).
     fn initial_state(&self, y: &mut [f64]);
 
+    /// The value of parameter `index` of [`ModelInfo::parameters`] (NaN
+    /// past the last), which a run checks before its first step.
+    fn parameter(&self, index: usize) -> f64 {
+        let _ = index;
+        0.0
+    }
+
     /// Writes `dy = f(t, y)`. `y` and `dy` have [`Model::STATES`] entries.
     fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), EvalError>;
 

@@ -122,86 +122,7 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     t1: f64,
     options: &Options,
 ) -> Result<Solution, Error> {
-    if y0.len() != M::STATES {
-        return Err(Error::InvalidOptions {
-            message: format!(
-                "the initial state has {} values but {} has {} states ({})",
-                y0.len(),
-                M::INFO.name,
-                M::STATES,
-                M::INFO.states.join(", ")
-            ),
-        });
-    }
-    if !t0.is_finite() || !t1.is_finite() {
-        return Err(Error::InvalidOptions {
-            message: format!("the interval [{t0}, {t1}] must be finite"),
-        });
-    }
-    let tolerances_ok = options.rtol.is_finite()
-        && options.atol.is_finite()
-        && options.rtol >= 0.0
-        && options.atol >= 0.0
-        && (options.rtol >= 1e-15 || options.atol > 0.0);
-    if !tolerances_ok {
-        return Err(Error::InvalidOptions {
-            message: format!(
-                "tolerances must be finite and non-negative, with rtol ≥ 1e-15 or atol > 0; got rtol = {}, atol = {}",
-                options.rtol, options.atol
-            ),
-        });
-    }
-    if let Method::TaylorFixed { order, step } = options.method {
-        if order == 0 || order > M::TAYLOR_ORDER {
-            return Err(Error::InvalidOptions {
-                message: format!(
-                    "TaylorFixed of order {order} needs the model expanded with #[dae_model(taylor = {order})] or higher; it has {}",
-                    M::TAYLOR_ORDER
-                ),
-            });
-        }
-        if !(step.is_finite() && step > 0.0) {
-            return Err(Error::InvalidOptions {
-                message: format!("the step must be positive and finite, not {step}"),
-            });
-        }
-    }
-    if let Some(order) = options.taylor_order.filter(|&p| p < 2) {
-        return Err(Error::InvalidOptions {
-            message: format!(
-                "taylor_order({order}): the adaptive Taylor method needs an order of 2 or more"
-            ),
-        });
-    }
-    // The initial state, checked once for every method, then made
-    // consistent with the constraints of a DAE.
-    // A singular mass matrix: only RADAU5 integrates it (Auto picks it).
-    if !M::MASS.is_empty() && !matches!(options.method, Method::Radau5 | Method::Auto) {
-        return Err(Error::InvalidOptions {
-            message: format!(
-                "{} has a singular mass matrix (algebraic components {}): integrate it with Method::Radau5 (or Method::Auto)",
-                M::INFO.name,
-                (0..M::STATES)
-                    .filter(|&i| M::MASS.get(i) == Some(&0.0))
-                    .map(|i| M::INFO.states[i])
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-        });
-    }
-    if options.keep_every == 0 {
-        return Err(Error::InvalidOptions {
-            message: "keep_every(k) needs k ≥ 1 (1 keeps every step)".to_string(),
-        });
-    }
-    if options.keep_every > 1 && !M::INFO.events.is_empty() {
-        return Err(Error::InvalidOptions {
-            message: format!(
-                "{} has events, which are located on every step's continuous extension: run it without keep_every",
-                M::INFO.name
-            ),
-        });
-    }
+    crate::checks::check_request(model, t0, y0, t1, options)?;
     let thinned = options.dense_output(false);
     let options = if options.keep_every > 1 {
         &thinned
@@ -211,13 +132,6 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     let mut solution = Solution::new(model, 1024);
     solution.set_keep_every(options.keep_every);
     let mut y0 = y0.to_vec();
-    if let Some(i) = y0.iter().position(|v| !v.is_finite()) {
-        return Err(Error::NonFinite {
-            t: t0,
-            variable: M::INFO.states[i],
-            partial: Box::new(solution),
-        });
-    }
     let solution = crate::projection::consistent_initial_values(model, t0, &mut y0, solution)?;
     let mut solution =
         crate::projection::consistent_algebraic_components(model, t0, &mut y0, solution)?;

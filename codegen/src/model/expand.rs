@@ -726,6 +726,7 @@ pub fn expand(
         None => (TokenStream::new(), TokenStream::new()),
     };
     let info = info(ir, sys);
+    let parameter = parameter_method(ir);
     let model_index = index(sys.index);
     let struct_and_default = struct_and_default(ir, &dae_analysis(ir, sys));
     let n_lit = index(n);
@@ -741,6 +742,8 @@ pub fn expand(
             const INDEX: usize = #model_index;
             const INFO: ::daegen::ModelInfo = #info;
             const JACOBIAN_PATTERN: &'static [(usize, usize)] = #pattern;
+
+            #parameter
 
             fn initial_state(&self, y: &mut [f64]) {
                 let ::core::result::Result::Ok(y) = <&mut [f64; #n_lit]>::try_from(y) else { return };
@@ -806,6 +809,7 @@ fn expand_mass_only(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenSt
     // The algebraic variables are states here.
     let states: Vec<&str> = form.names.iter().map(String::as_str).collect();
     let info = info_with(ir, &states, &[]);
+    let parameter = parameter_method(ir);
     Ok(quote! {
         #struct_and_default
 
@@ -813,9 +817,30 @@ fn expand_mass_only(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenSt
         impl ::daegen::Model for #name {
             const INDEX: usize = #model_index;
             const INFO: ::daegen::ModelInfo = #info;
+            #parameter
             #items
         }
     })
+}
+
+/// `Model::parameter`: each field by its index in `ModelInfo::parameters`
+/// (nothing for a model without parameters, whose default is never asked).
+fn parameter_method(ir: &ModelIr) -> TokenStream {
+    if ir.params.is_empty() {
+        return TokenStream::new();
+    }
+    let arms = ir.params.iter().enumerate().map(|(k, p)| {
+        let (k, ident) = (index(k), &p.ident);
+        quote!(#k => self.#ident,)
+    });
+    quote! {
+        fn parameter(&self, index: usize) -> f64 {
+            match index {
+                #(#arms)*
+                _ => f64::NAN,
+            }
+        }
+    }
 }
 
 fn info(ir: &ModelIr, sys: &FirstOrder) -> TokenStream {

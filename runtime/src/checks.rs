@@ -1,0 +1,132 @@
+//! What a run's request must satisfy before the first step: the interval,
+//! every option, the model's parameters and the initial state. Each
+//! failure names the option, parameter or state and says what to write.
+
+use crate::error::Error;
+use crate::model::Model;
+use crate::options::{Method, Options};
+
+/// `Err(InvalidOptions)` with `message`.
+fn invalid(message: String) -> Result<(), Error> {
+    Err(Error::InvalidOptions { message })
+}
+
+/// Checks the request of a run of `model` from `y0` at `t0` to `t1`.
+pub(crate) fn check_request<M: Model>(
+    model: &M,
+    t0: f64,
+    y0: &[f64],
+    t1: f64,
+    options: &Options,
+) -> Result<(), Error> {
+    if y0.len() != M::STATES {
+        return invalid(format!(
+            "the initial state has {} values but {} has {} states ({})",
+            y0.len(),
+            M::INFO.name,
+            M::STATES,
+            M::INFO.states.join(", ")
+        ));
+    }
+    if !t0.is_finite() || !t1.is_finite() {
+        return invalid(format!("the interval [{t0}, {t1}] must be finite"));
+    }
+    check_options::<M>(options)?;
+    for (k, &name) in M::INFO.parameters.iter().enumerate() {
+        let value = model.parameter(k);
+        if !value.is_finite() {
+            return Err(Error::NonFiniteParameter {
+                parameter: name,
+                value,
+            });
+        }
+    }
+    if let Some(i) = y0.iter().position(|v| !v.is_finite()) {
+        return Err(Error::NonFiniteInitialValue {
+            variable: M::INFO.states[i],
+            value: y0[i],
+        });
+    }
+    Ok(())
+}
+
+/// Every option on its own and against the others.
+fn check_options<M: Model>(options: &Options) -> Result<(), Error> {
+    for (name, value) in [("rtol", options.rtol), ("atol", options.atol)] {
+        if !(value.is_finite() && value >= 0.0) {
+            return invalid(format!(
+                "{name}({value}): a tolerance must be finite and ≥ 0"
+            ));
+        }
+    }
+    if options.rtol < 1e-15 && options.atol == 0.0 {
+        return invalid(format!(
+            "rtol({}) with atol(0): no error is small enough; give rtol ≥ 1e-15 or atol > 0",
+            options.rtol
+        ));
+    }
+    let positive = |name: &str, value: Option<f64>| match value {
+        Some(h) if !(h.is_finite() && h > 0.0) => invalid(format!(
+            "{name}({h}): a step must be positive and finite (its direction follows t0 → t1)"
+        )),
+        _ => Ok(()),
+    };
+    positive("step", options.step)?;
+    positive("initial_step", options.initial_step)?;
+    positive("max_step", options.max_step)?;
+    if !(options.min_step.is_finite() && options.min_step >= 0.0) {
+        return invalid(format!(
+            "min_step({}): the smallest step must be finite and ≥ 0",
+            options.min_step
+        ));
+    }
+    if let Some(max) = options.max_step.filter(|&max| max < options.min_step) {
+        return invalid(format!(
+            "max_step({max}) is below min_step({}): no step is allowed",
+            options.min_step
+        ));
+    }
+    if options.max_steps == 0 {
+        return invalid("max_steps(0): a run needs at least one step".to_string());
+    }
+    if let Method::TaylorFixed { order, step } = options.method {
+        if order == 0 || order > M::TAYLOR_ORDER {
+            return invalid(format!(
+                "TaylorFixed of order {order} needs the model expanded with #[dae_model(taylor = {order})] or higher; it has {}",
+                M::TAYLOR_ORDER
+            ));
+        }
+        if !(step.is_finite() && step > 0.0) {
+            return invalid(format!(
+                "TaylorFixed {{ step: {step}, .. }}: the step must be positive and finite"
+            ));
+        }
+    }
+    if let Some(order) = options.taylor_order.filter(|&p| p < 2) {
+        return invalid(format!(
+            "taylor_order({order}): the adaptive Taylor method needs an order of 2 or more"
+        ));
+    }
+    // A singular mass matrix: only RADAU5 integrates it (Auto picks it).
+    if !M::MASS.is_empty() && !matches!(options.method, Method::Radau5 | Method::Auto) {
+        return invalid(format!(
+            "{} has a singular mass matrix (algebraic components {}): integrate it with Method::Radau5 (or Method::Auto)",
+            M::INFO.name,
+            (0..M::STATES)
+                .filter(|&i| M::MASS.get(i) == Some(&0.0))
+                .map(|i| M::INFO.states[i])
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    if options.keep_every == 0 {
+        return invalid("keep_every(0): k ≥ 1 (1 keeps every step)".to_string());
+    }
+    if options.keep_every > 1 && !M::INFO.events.is_empty() {
+        return invalid(format!(
+            "{} has events, which are located on every step's continuous extension: run it without keep_every",
+            M::INFO.name
+        ));
+    }
+    Ok(())
+}
