@@ -33,8 +33,8 @@ pub use daegen_codegen as codegen;
 pub use daegen_macros::dae_model;
 pub use daegen_runtime as runtime;
 pub use daegen_runtime::{
-    ConstraintInfo, Error, EvalError, EventDirection, EventInfo, Formulation, Method, Model,
-    ModelInfo, Options, ProjectionLevel, Solution, Stats,
+    ConstraintInfo, Error, EvalError, EventDirection, EventInfo, Formulation, InitialCorrection,
+    Method, Model, ModelInfo, Options, ProjectionLevel, Solution, Stats,
 };
 
 /// Everything a model file needs: `use daegen::prelude::*;`.

@@ -1035,3 +1035,60 @@ fn every_formulation_reports_its_names_residuals_and_degrees_of_freedom() {
     assert!(projected.max_constraint_residual() < 1e-13);
     assert!(mass.max_constraint_residual() > projected.max_constraint_residual());
 }
+
+/// Inconsistent initial values are moved onto the constraints and the
+/// moves are reported; with strict_initial_values they are an error that
+/// names the values, and consistent ones move nothing.
+#[test]
+fn moved_initial_values_are_reported_or_refused() {
+    let model = Pendulum::default();
+    let opts = Options::new().method(Method::Radau5);
+    // |(1.1, 0)| = 1.1 on a pendulum of length 1: x moves to 1 (the
+    // minimum-norm correction along Φ_q = (2x, 2y)); y, u, v stay.
+    let sol = model
+        .simulate_from(0.0, &[1.1, 0.0, 0.0, 0.0], 1.0, &opts)
+        .unwrap();
+    let moved = sol.initial_corrections();
+    assert_eq!(moved.len(), 1, "{moved:?}");
+    assert_eq!((moved[0].name, moved[0].given), ("x", 1.1));
+    assert!((moved[0].used - 1.0).abs() < 1e-15, "{moved:?}");
+    // Consistent values move nothing; so does an ODE.
+    let consistent = model.simulate(0.0, 1.0, &opts).unwrap();
+    assert!(consistent.initial_corrections().is_empty());
+    let strict = opts.strict_initial_values(true);
+    assert!(model.simulate(0.0, 1.0, &strict).is_ok());
+    // Strict: the move is an error naming the constraint and the values.
+    let err = model
+        .simulate_from(0.0, &[1.1, 0.0, 0.0, 0.0], 1.0, &strict)
+        .unwrap_err();
+    let message = err.to_string();
+    assert!(
+        matches!(
+            err,
+            Error::Constraint {
+                constraint: "constraint(x * x + y * y - l * l)",
+                level: 0,
+                ..
+            }
+        ),
+        "{message}"
+    );
+    assert!(message.contains("`x` from 1.1 to 1"), "{message}");
+    // The mass-matrix formulation reports the same moves.
+    let mass = model
+        .simulate_from(
+            0.0,
+            &[1.1, 0.0, 0.0, 0.0],
+            1.0,
+            &opts.formulation(Formulation::MassMatrix),
+        )
+        .unwrap();
+    assert_eq!(mass.initial_corrections(), sol.initial_corrections());
+    // A mass-matrix model's algebraic guess counts too: z = 0.9 → 1.
+    let decay = SquareRootDecay::default()
+        .simulate(0.0, 1.0, &Options::new())
+        .unwrap();
+    let moved = decay.initial_corrections();
+    assert_eq!((moved.len(), moved[0].name, moved[0].given), (1, "z", 0.9));
+    assert!((moved[0].used - 1.0).abs() < 1e-15);
+}

@@ -43,4 +43,4 @@ pub use model::{
 pub use nalgebra;
 pub use options::{Formulation, Method, Options};
 pub use simulate::{simulate, simulate_from};
-pub use solution::{EventHit, Solution, Stats};
+pub use solution::{EventHit, InitialCorrection, Solution, Stats};

@@ -71,6 +71,7 @@ pub struct Options {
     pub(crate) formulation: Formulation,
     pub(crate) keep_every: usize,
     pub(crate) stiffness_detection: bool,
+    pub(crate) strict_initial_values: bool,
 }
 
 /// How a DAE is integrated.
@@ -105,6 +106,7 @@ impl Default for Options {
             formulation: Formulation::IndexOneProjected,
             keep_every: 1,
             stiffness_detection: true,
+            strict_initial_values: false,
         }
     }
 }
@@ -223,6 +225,17 @@ impl Options {
     pub fn stiffness_detection(self, detect: bool) -> Options {
         Options {
             stiffness_detection: detect,
+            ..self
+        }
+    }
+
+    /// Whether inconsistent initial values of a DAE are an error (`true`)
+    /// instead of being moved onto the constraints (default `false`: moved,
+    /// and listed in [`crate::Solution::initial_corrections`]). The error
+    /// is an [`crate::Error::Constraint`] that names the values.
+    pub fn strict_initial_values(self, strict: bool) -> Options {
+        Options {
+            strict_initial_values: strict,
             ..self
         }
     }

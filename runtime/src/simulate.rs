@@ -10,7 +10,7 @@ use crate::explicit_rk;
 use crate::model::Model;
 use crate::options::{Method, Options};
 use crate::radau5;
-use crate::solution::Solution;
+use crate::solution::{InitialCorrection, Solution};
 use crate::taylor;
 use crate::taylor_fixed;
 
@@ -115,6 +115,59 @@ pub fn simulate_from<M: Model + Clone + Send + Sync + 'static>(
     )
 }
 
+/// The values initialization moved by more than `rtol·|given| + atol`.
+fn initial_corrections<M: Model>(
+    given: &[f64],
+    used: &[f64],
+    options: &Options,
+) -> Vec<InitialCorrection> {
+    given
+        .iter()
+        .zip(used)
+        .enumerate()
+        .filter(|(_, (g, u))| (*u - *g).abs() > options.rtol * g.abs() + options.atol)
+        .map(|(i, (&given, &used))| InitialCorrection {
+            name: M::INFO.states[i],
+            given,
+            used,
+        })
+        .collect()
+}
+
+/// `Options::strict_initial_values`: the moved values as an error, naming
+/// the constraint most violated at the values given.
+fn inconsistent_start<M: Model>(
+    model: &M,
+    t0: f64,
+    given: &[f64],
+    corrections: &[InitialCorrection],
+    solution: Solution,
+) -> Error {
+    let mut residuals = vec![0.0; M::CONSTRAINTS.len()];
+    model.constraints(t0, given, &mut residuals);
+    let worst =
+        (0..residuals.len()).max_by(|&a, &b| residuals[a].abs().total_cmp(&residuals[b].abs()));
+    let (constraint, level) = match worst {
+        Some(r) => (M::CONSTRAINTS[r].equation, M::CONSTRAINTS[r].level),
+        // A mass-matrix model: its algebraic equation, by the value it solves for.
+        None => (corrections[0].name, 0),
+    };
+    let moves: Vec<String> = corrections
+        .iter()
+        .map(|c| format!("`{}` from {} to {}", c.name, c.given, c.used))
+        .collect();
+    Error::Constraint {
+        t: t0,
+        constraint,
+        level,
+        message: format!(
+            "the initial values do not satisfy it, and strict_initial_values(true) forbids moving them (initialization would move {}); give consistent values, or allow the repair and read Solution::initial_corrections()",
+            moves.join(", ")
+        ),
+        partial: Box::new(solution),
+    }
+}
+
 fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     model: &M,
     t0: f64,
@@ -132,20 +185,35 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     let mut solution = Solution::new(model, 1024);
     solution.set_keep_every(options.keep_every);
     let mut y0 = y0.to_vec();
+    let given = y0.clone();
     let solution = crate::projection::consistent_initial_values(model, t0, &mut y0, solution)?;
     let mut solution =
         crate::projection::consistent_algebraic_components(model, t0, &mut y0, solution)?;
+    let corrections = initial_corrections::<M>(&given, &y0, options);
+    if options.strict_initial_values && !corrections.is_empty() {
+        return Err(inconsistent_start(
+            model,
+            t0,
+            &given,
+            &corrections,
+            solution,
+        ));
+    }
+    solution.set_initial_corrections(corrections);
     if options.formulation == crate::options::Formulation::MassMatrix && M::MASS.is_empty() {
         if M::INFO.algebraics.is_empty() {
             // An ODE has no other form: the option does not apply.
         } else {
             let mass_options = options.formulation(crate::options::Formulation::IndexOneProjected);
-            // The model's own initialization found the degrees of freedom.
+            // The model's own initialization found the degrees of freedom
+            // and moved the initial values.
             let dof = solution.degrees_of_freedom_found();
+            let corrections = solution.initial_corrections().to_vec();
             let carry = |s: &mut Solution| {
                 if let Some(dof) = dof {
                     s.set_degrees_of_freedom(dof);
                 }
+                s.set_initial_corrections(corrections.clone());
             };
             return match model.simulate_mass_form(t0, &y0, t1, &mass_options) {
                 Some(Ok(mut s)) => {

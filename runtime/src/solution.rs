@@ -31,6 +31,19 @@ pub struct Stats {
     pub taylor_unrolled: bool,
 }
 
+/// An initial value that consistent initialization moved: the constraints
+/// of a DAE (or the algebraic equations of a mass-matrix model) did not
+/// hold at the value given, and the run started from `used` instead.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InitialCorrection {
+    /// The state, as [`crate::ModelInfo::states`] names it.
+    pub name: &'static str,
+    /// The value given (by the model's `state(..)`, or to `simulate_from`).
+    pub given: f64,
+    /// The value the run started from.
+    pub used: f64,
+}
+
 /// A crossing of an event function, located to machine precision.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EventHit {
@@ -77,6 +90,8 @@ pub struct Solution {
     velocity_residual: f64,
     /// n − rank Φ_q at the start, for a model with constraints.
     degrees_of_freedom: Option<usize>,
+    /// The initial values consistent initialization moved.
+    initial_corrections: Vec<InitialCorrection>,
     stats: Stats,
     /// Dense-output coefficients of the steps of each segment, read by the
     /// segment's interpolant.
@@ -139,6 +154,7 @@ impl Solution {
             constraint_residual: 0.0,
             velocity_residual: 0.0,
             degrees_of_freedom: None,
+            initial_corrections: Vec::new(),
             observables: Arc::new(ModelObservables(model.clone())),
             stats: Stats::default(),
             dense: Vec::new(),
@@ -298,6 +314,18 @@ impl Solution {
     pub(crate) fn note_constraint_residuals(&mut self, r: crate::projection::Residuals) {
         self.constraint_residual = self.constraint_residual.max(r.position);
         self.velocity_residual = self.velocity_residual.max(r.velocity);
+    }
+
+    /// The initial values that consistent initialization moved by more
+    /// than `rtol·|given| + atol`, in state order; empty when nothing moved
+    /// (always for an ODE). With [`crate::Options::strict_initial_values`]
+    /// any such move is an error instead.
+    pub fn initial_corrections(&self) -> &[InitialCorrection] {
+        &self.initial_corrections
+    }
+
+    pub(crate) fn set_initial_corrections(&mut self, corrections: Vec<InitialCorrection>) {
+        self.initial_corrections = corrections;
     }
 
     /// The degrees of freedom found at the start, if any.
