@@ -40,7 +40,7 @@ fn a_million_steps_keep_a_thousand_states() {
 }
 
 #[test]
-fn thinning_keeps_the_last_step_of_an_adaptive_run_and_refuses_zero() {
+fn keep_every_thins_the_stored_steps_and_at_refuses_between_them() {
     let opts = Options::new()
         .method(Method::Dop853)
         .rtol(1e-12)
@@ -58,6 +58,17 @@ fn thinning_keeps_the_last_step_of_an_adaptive_run_and_refuses_zero() {
     );
     assert_eq!(thin.final_state(), full.final_state());
     assert!((thin.last("x").unwrap() - 100f64.cos()).abs() <= 1e-9);
+    // At a kept step `at` answers; between kept steps it says it cannot,
+    // rather than interpolating linearly across the steps it dropped.
+    let kept = thin.times()[3];
+    assert_eq!(thin.at(kept, "x").unwrap(), thin.state(3).unwrap()[0]);
+    let between = 0.5 * (thin.times()[3] + thin.times()[4]);
+    match thin.at(between, "x") {
+        Err(daegen::Error::Thinned { t, keep_every: 7 }) => assert_eq!(t, between),
+        other => panic!("expected Thinned, got {other:?}"),
+    }
+    let message = thin.at(between, "x").unwrap_err().to_string();
+    assert!(message.contains("keep_every(7)"), "{message}");
     let zero = Oscillator::default().simulate(0.0, 1.0, &opts.keep_every(0));
     assert!(matches!(zero, Err(daegen::Error::InvalidOptions { .. })));
 }

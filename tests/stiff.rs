@@ -511,3 +511,55 @@ fn a_newton_matrix_that_stays_singular_is_an_error_with_the_time() {
         .to_string();
     assert!(message.contains("not finite"), "{message}");
 }
+
+/// RADAU5's continuous output is its collocation polynomial (CONTR5):
+/// between steps it is about as accurate as at them. On Van der Pol and
+/// HIRES the largest error at the steps' midpoints is within 10× of the
+/// largest at their ends. On Robertson's initial transient the ends are
+/// superconvergent (order 5) while the polynomial has the stage order 3,
+/// and midpoints reach 20× the ends; they stay within 10 × tol.
+#[test]
+fn radau5_is_as_accurate_between_steps_as_at_them() {
+    fn errors<M: Model + Default + Clone + Send + Sync + 'static>(
+        t1: f64,
+        tol: f64,
+        atol: f64,
+    ) -> (f64, f64) {
+        let run =
+            |rtol: f64, atol: f64| M::default().simulate(0.0, t1, &radau(rtol, atol)).unwrap();
+        let (sol, reference) = (run(tol, atol), run(1e-13, atol * 1e-5));
+        let error = |t: f64| {
+            M::INFO
+                .states
+                .iter()
+                .map(|n| {
+                    let r = reference.at(t, n).unwrap();
+                    (sol.at(t, n).unwrap() - r).abs() / r.abs().max(atol / tol)
+                })
+                .fold(0.0, f64::max)
+        };
+        let (mut ends, mut middles) = (0.0f64, 0.0f64);
+        for w in sol.times().windows(2) {
+            ends = ends.max(error(w[1]));
+            middles = middles.max(error(0.5 * (w[0] + w[1])));
+        }
+        (ends, middles)
+    }
+    for tol in [1e-6, 1e-8] {
+        let (ends, middles) = errors::<VanDerPol>(2.0, tol, tol);
+        assert!(
+            middles <= 10.0 * ends,
+            "VdP tol {tol:e}: {middles:e} vs {ends:e}"
+        );
+        let (ends, middles) = errors::<Hires>(321.8122, tol, tol);
+        assert!(
+            middles <= 10.0 * ends,
+            "HIRES tol {tol:e}: {middles:e} vs {ends:e}"
+        );
+        let (ends, middles) = errors::<Robertson>(40.0, tol, 1e-6 * tol);
+        assert!(
+            middles <= 10.0 * tol && middles <= 30.0 * ends,
+            "Robertson tol {tol:e}: {middles:e} vs {ends:e}"
+        );
+    }
+}

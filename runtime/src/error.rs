@@ -20,6 +20,7 @@
 //! | [`Error::InvalidOptions`] | tolerances ≤ 0 or not finite, a non-positive step, a method the model was not expanded for | the message says which option and what to write | `tests/models.rs` `bad_requests_are_errors_not_panics`, `tests/taylor_adaptive.rs` `integrates_backwards_and_refuses_models_without_a_tape` |
 //! | [`Error::MethodNotAvailable`] | reserved: every [`crate::Method`] is implemented | — | — |
 //! | [`Error::UnknownName`] | `Solution::at`/`last` with a name that is no state, algebraic variable or output | use one of `known` | `tests/models.rs` `bad_requests_are_errors_not_panics` |
+//! | [`Error::Thinned`] | `Solution::at` between the steps a `keep_every` run kept | ask at `Solution::times`, or keep every step | `tests/long_runs.rs` `keep_every_thins_the_stored_steps_and_at_refuses_between_them` |
 //! | [`Error::OutOfRange`] | `Solution::at` outside the integrated interval | ask within `interval` | `tests/models.rs` `bad_requests_are_errors_not_panics` |
 
 use crate::solution::Solution;
@@ -163,6 +164,14 @@ pub enum Error {
         /// The names there are.
         known: Vec<&'static str>,
     },
+    /// A time between the steps a solution kept
+    /// ([`crate::Options::keep_every`]), where it knows nothing.
+    Thinned {
+        /// The time asked for.
+        t: f64,
+        /// One step in this many was kept.
+        keep_every: usize,
+    },
     /// A time outside the solution's interval.
     OutOfRange {
         /// The time asked for.
@@ -304,6 +313,10 @@ impl fmt::Display for Error {
                 f,
                 "no variable or output named `{name}`; known: {}",
                 known.join(", ")
+            ),
+            Error::Thinned { t, keep_every } => write!(
+                f,
+                "t = {t} lies between the steps this solution kept (Options::keep_every({keep_every}) stores one step in {keep_every}): `at` answers only at its stored times (Solution::times); keep every step to interpolate between them"
             ),
             Error::OutOfRange { t, interval } => {
                 write!(

@@ -208,9 +208,10 @@ impl Options {
 
     /// Stores only every `k`-th accepted step, and always the last one
     /// (default 1: every step): a run of 10⁶ steps with `k = 1000` keeps
-    /// about a thousand states. Implies `dense_output(false)` (`at` is then
-    /// linear between stored steps); `stats()` still counts every step.
-    /// Not with events, which are located on every step: the run is refused.
+    /// about a thousand states. Implies `dense_output(false)`; `at` then
+    /// answers only at the stored times ([`crate::Error::Thinned`]
+    /// between them); `stats()` still counts every step. Not with events,
+    /// which are located on every step: the run is refused.
     pub fn keep_every(self, k: usize) -> Options {
         Options {
             keep_every: k,

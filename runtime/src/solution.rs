@@ -408,9 +408,12 @@ impl Solution {
     }
 
     /// A state or output at time `t`. Adaptive methods interpolate with
-    /// their own continuous extension (order 4 for DOPRI5, 7 for DOP853);
-    /// fixed-step methods interpolate linearly between steps (second order
-    /// in the step: for plotting, not for accuracy-critical values).
+    /// their own continuous extension (order 4 for DOPRI5, 7 for DOP853,
+    /// RADAU5's collocation polynomial); fixed-step methods, and runs with
+    /// `dense_output(false)`, interpolate linearly between steps (second
+    /// order in the step: for plotting, not for accuracy-critical values).
+    /// A solution thinned by [`crate::Options::keep_every`] answers only at
+    /// its stored times ([`Error::Thinned`] elsewhere).
     pub fn at(&self, t: f64, name: &str) -> Result<f64, Error> {
         let (first, last) = match (self.times.first(), self.times.last()) {
             (Some(&a), Some(&b)) => (a, b),
@@ -429,6 +432,16 @@ impl Solution {
         }
         if self.times.len() == 1 {
             return self.value_at_step(0, name);
+        }
+        if self.keep_every > 1 {
+            // Only the kept steps are known; between them nothing is.
+            return match self.times.iter().position(|&s| s == t) {
+                Some(k) => self.value_at_step(k, name),
+                None => Err(Error::Thinned {
+                    t,
+                    keep_every: self.keep_every,
+                }),
+            };
         }
         let forward = first <= last;
         let k = self
