@@ -779,6 +779,17 @@ impl Lower<'_> {
             }
             Expr::ForLoop(f) => self.for_loop(f),
             Expr::If(i) => self.const_if(i),
+            Expr::Assign(a) if !matches!(&*a.left, Expr::Path(_)) => {
+                // `der(x) = f;`: an equation written with Rust's assignment.
+                let (lhs, rhs) = (
+                    super::names::source_text(&a.left.to_token_stream()),
+                    super::names::source_text(&a.right.to_token_stream()),
+                );
+                self.cx.error_at(
+                    a.eq_token,
+                    format!("`=` assigns; write an equation with `==`: `{lhs} == {rhs};`"),
+                );
+            }
             Expr::Assign(a) => {
                 let v = self.value(&a.right);
                 self.assign(&a.left, v, e);

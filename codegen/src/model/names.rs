@@ -15,19 +15,31 @@ pub fn upper_camel_case(snake: &str) -> String {
         .collect()
 }
 
+/// The Damerau–Levenshtein distance (optimal string alignment): insertions,
+/// deletions, substitutions and transpositions of neighbours count one
+/// each, so `omgea` is one edit from `omega`, as a typist's slip is.
 fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut prev = row[0];
-        row[0] = i + 1;
-        for (j, &cb) in b.iter().enumerate() {
-            let cur = row[j + 1];
-            row[j + 1] = (prev + usize::from(ca != cb)).min(row[j] + 1).min(cur + 1);
-            prev = cur;
+    let (a, b): (Vec<char>, Vec<char>) = (a.chars().collect(), b.chars().collect());
+    // Three rows of the table: two back (for transpositions), one back, this.
+    let mut before: Vec<usize> = vec![0; b.len() + 1];
+    let mut previous: Vec<usize> = (0..=b.len()).collect();
+    let mut current = vec![0; b.len() + 1];
+    for i in 1..=a.len() {
+        current[0] = i;
+        for j in 1..=b.len() {
+            let cost = usize::from(a[i - 1] != b[j - 1]);
+            let mut d = (previous[j - 1] + cost)
+                .min(previous[j] + 1)
+                .min(current[j - 1] + 1);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                d = d.min(before[j - 2] + 1);
+            }
+            current[j] = d;
         }
+        std::mem::swap(&mut before, &mut previous);
+        std::mem::swap(&mut previous, &mut current);
     }
-    row[b.len()]
+    previous[b.len()]
 }
 
 /// The known name closest to `name`, if it is close enough to be a typo.
@@ -58,6 +70,24 @@ mod tests {
             Some("lambda")
         );
         assert_eq!(did_you_mean("zeta", ["lambda", "l", "m"].into_iter()), None);
+        // A transposition is one slip, not two substitutions.
+        assert_eq!(edit_distance("omgea", "omega"), 1);
+        assert_eq!(edit_distance("omega", "omega"), 0);
+        assert_eq!(edit_distance("lamda", "lambda"), 1);
+        assert_eq!(edit_distance("abc", "ca"), 3);
+        assert_eq!(
+            did_you_mean("omgea", ["omega", "theta"].into_iter()),
+            Some("omega")
+        );
+    }
+
+    #[test]
+    fn source_text_reads_as_written() {
+        let text = |s: &str| source_text(&s.parse().unwrap());
+        assert_eq!(text("der (x) == - k * x"), "der(x) == -k * x");
+        assert_eq!(text("a - b * (- c)"), "a - b * (-c)");
+        assert_eq!(text("- x . powi (2)"), "-x.powi(2)");
+        assert_eq!(text("f (a , - b)"), "f(a, -b)");
         assert_eq!(did_you_mean("y", ["k", "x"].into_iter()), None);
     }
 }
@@ -74,7 +104,17 @@ pub fn source_text(tokens: &proc_macro2::TokenStream) -> String {
             let after = chars.get(i + 1).copied();
             let call_or_index = matches!(after, Some('(' | '['))
                 && before.is_some_and(|b| b.is_alphanumeric() || b == '_' || b == ')' || b == ']');
+            // A unary minus: `-` after an operator, an opening bracket or
+            // nothing, as in `== - k` (written `== -k`).
+            let unary_minus = before == Some('-')
+                && out
+                    .trim_end_matches('-')
+                    .trim_end()
+                    .chars()
+                    .last()
+                    .is_none_or(|p| "([,=*/+-!<>".contains(p));
             let drop = call_or_index
+                || unary_minus
                 || matches!(before, Some('(' | '[' | '.'))
                 || matches!(after, Some(')' | ']' | ',' | '.' | ';'));
             if drop {
