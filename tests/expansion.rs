@@ -175,10 +175,9 @@ fn taylor_tape_shares_products_that_differ_by_constants() {
         },
     );
     let tape = &code[code.find("fn taylor_tape").expect("a tape")..];
-    let products = tape.matches("TapeOp::Mul(").count();
-    let convolutions = tape
-        .matches("TapeOp::Mul(::daegen::runtime::taylor_tape::Operand::State(0)")
-        .count();
+    // The tape names `TapeOp` T and `Operand` O.
+    let products = tape.matches("T::Mul(").count();
+    let convolutions = tape.matches("T::Mul(O::State(0)").count();
     assert_eq!((products, convolutions), (3, 1), "{tape}");
 }
 
@@ -203,7 +202,8 @@ fn taylor_tape_shares_a_product_with_a_negated_difference() {
         },
     );
     let tape = &code[code.find("fn taylor_tape").expect("a tape")..];
-    let ops: Vec<&str> = tape.split("TapeOp::").skip(1).collect();
+    // The tape names `TapeOp` T.
+    let ops: Vec<&str> = tape.split("T::").skip(1).collect();
     // Products of two time-dependent operands (not scalings by a constant).
     let convolutions = ops
         .iter()

@@ -165,18 +165,52 @@ fn integrates_backwards_and_refuses_models_without_a_tape() {
         )
         .unwrap();
     assert!(max_error(&final_state(&back), &kepler_exact(0.0)) < 1e-8);
+    // Every smooth explicit model has the tape without an attribute.
     #[dae_model]
-    fn no_tape() {
+    fn plain() {
         let x = state(1.0);
         der(x) == -x;
     }
-    let err = NoTape::default()
-        .simulate(0.0, 1.0, &Options::new().method(Method::Taylor))
-        .unwrap_err();
-    assert!(
-        err.to_string().contains("#[dae_model(taylor = p)]"),
-        "{err}"
-    );
+    let sol = Plain::default()
+        .simulate(
+            0.0,
+            1.0,
+            &Options::new()
+                .method(Method::Taylor)
+                .rtol(1e-12)
+                .atol(1e-12),
+        )
+        .unwrap();
+    assert!((sol.last("x").unwrap() - (-1f64).exp()).abs() < 1e-12);
+    // Where the tape cannot be made, the run is refused with the reason
+    // found at compile time (which the type's documentation states too).
+    #[dae_model]
+    fn kinked() {
+        let x = state(1.0);
+        der(x) == -abs(x);
+    }
+    #[dae_model(taylor = 0)]
+    fn opted_out() {
+        let x = state(1.0);
+        der(x) == -x;
+    }
+    for (err, reason) in [
+        (
+            Kinked::default().simulate(0.0, 1.0, &Options::new().method(Method::Taylor)),
+            "`abs` is not smooth",
+        ),
+        (
+            OptedOut::default().simulate(0.0, 1.0, &Options::new().method(Method::Taylor)),
+            "taylor = 0",
+        ),
+    ] {
+        let message = err.unwrap_err().to_string();
+        assert!(
+            message.contains(reason) && message.contains("Method::Auto"),
+            "{message}"
+        );
+    }
+    assert!(Kinked::TAYLOR_UNAVAILABLE.contains("`abs` is not smooth"));
 }
 
 /// The pendulum x'' = −sin x from heyoka's accuracy tutorial (x0 = 0.05,

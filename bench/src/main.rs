@@ -10,6 +10,8 @@
 //! error, in alternation (`results/versus_dop853.md`), and
 //! `--dop853-versus-dop853` our DOP853 likewise
 //! (`results/dop853_versus_dop853.md`);
+//! `--tape-cost` measures what the default Taylor tape costs the macro and
+//! rustc (`results/default_tape.md`);
 //! `--auto` times `Method::Auto` against the best single method on every
 //! reference problem and an explicit pair on a stiff problem
 //! (`results/auto.md`);
@@ -29,6 +31,7 @@
 mod auto;
 mod dae;
 mod peers;
+mod tape_cost;
 mod versus;
 
 use daegen::prelude::*;
@@ -486,6 +489,10 @@ fn main() {
     if let Some(i) = args.iter().position(|a| a == "--stiff-probe") {
         let method = args.get(i + 1).map_or("Dopri5", |s| s.as_str());
         auto::stiff_probe(method, args.get(i + 2).is_none_or(|s| s != "off"));
+        return;
+    }
+    if has("--tape-cost") {
+        tape_cost::tape_cost_section();
         return;
     }
     if has("--auto") {

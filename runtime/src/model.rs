@@ -181,6 +181,11 @@ pub trait Model {
         Err(EvalError::TaylorUnavailable { order })
     }
 
+    /// Why [`Model::taylor_tape`] is `None`, found at compile time (empty
+    /// where the model has its tape): `Method::Taylor` refuses the run with
+    /// it.
+    const TAYLOR_UNAVAILABLE: &'static str = "";
+
     /// Orders of the adaptive Taylor method emitted as straight-line code
     /// (`#[dae_model(unroll = [..])]`); empty: the tape is interpreted.
     const TAYLOR_UNROLLED: &'static [usize] = &[];
@@ -214,8 +219,9 @@ pub trait Model {
     }
 
     /// The right-hand side as a tape of elementary operations and the
-    /// operand of each f_i, for the adaptive Taylor method (generated with
-    /// `#[dae_model(taylor = p)]`; `None` otherwise).
+    /// operand of each f_i, for the adaptive Taylor method (generated for
+    /// every explicit ODE with a smooth right-hand side; `None` otherwise,
+    /// see [`Model::TAYLOR_UNAVAILABLE`]).
     #[allow(clippy::type_complexity)]
     fn taylor_tape(
         &self,

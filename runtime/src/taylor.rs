@@ -268,10 +268,16 @@ pub(crate) fn integrate<M: Model>(
     mut solution: Solution,
 ) -> Result<Solution, Error> {
     let Some((tape, outputs)) = model.taylor_tape() else {
+        let reason = if M::TAYLOR_UNAVAILABLE.is_empty() {
+            "it has no Taylor tape"
+        } else {
+            M::TAYLOR_UNAVAILABLE
+        };
         return Err(Error::InvalidOptions {
-            message:
-                "Method::Taylor needs the model expanded with #[dae_model(taylor = p)] (any p)"
-                    .into(),
+            message: format!(
+                "Method::Taylor is not available for {}: {reason}; use Method::Auto, or Method::Radau5 for a stiff or implicit model",
+                M::INFO.name
+            ),
         });
     };
     let n = M::STATES;

@@ -11,7 +11,7 @@
 //! | `Auto` (default) | not sure: DOPRI5 or DOP853, switching to RADAU5 when the problem turns stiff |
 //! | `Dopri5`, `Dop853` | non-stiff problems; DOP853 below rtol 1e-7 |
 //! | `Radau5` | stiff problems and DAEs with a singular mass matrix |
-//! | `Taylor` | smooth problems at tight tolerances (orbits); needs `#[dae_model(taylor = 1)]` or `unroll = [..]` |
+//! | `Taylor` | smooth problems at tight tolerances (orbits); every smooth explicit model has its tape, `unroll = [..]` makes it faster |
 //! | `TaylorFixed { order, step }` | the economic Taylor scheme of the course notes |
 //! | `BackwardEuler`, `Euler`, `Rk4`, … | fixed steps: teaching, convergence studies |
 //!

@@ -57,31 +57,56 @@ impl Layout {
     }
 }
 
+/// The right-hand side of an explicit ODE, slot by slot: what the Taylor
+/// methods differentiate. `Err` for a model that solves a mass matrix at
+/// run time.
+fn explicit_rhs(sys: &FirstOrder) -> crate::Result<Vec<Id>> {
+    sys.derivatives
+        .iter()
+        .map(|d| match d {
+            SlotDerivative::Explicit(e) => Ok(*e),
+            SlotDerivative::Block { .. } | SlotDerivative::AfterSolve(_) => {
+                Err(crate::Error::Unsupported {
+                    message: "`taylor = p` needs an explicit ODE; this model solves a mass matrix at run time".into(),
+                })
+            }
+        })
+        .collect()
+}
+
+/// Why the Taylor tape could not be made, as a clause after "because":
+/// the compile-time error's own reason without its fix (which speaks of a
+/// `taylor = p` the user did not write).
+fn taylor_refusal(e: &crate::Error) -> String {
+    let text = match e {
+        crate::Error::Unsupported { message } => message.clone(),
+        other => other.to_string(),
+    };
+    let reason = text.split(": remove").next().unwrap_or(&text);
+    let reason = reason
+        .split("; this model")
+        .nth(1)
+        .map_or(reason.to_string(), |r| format!("the model{}", r));
+    reason.replace(
+        "`taylor = p` needs an explicit ODE",
+        "the model is no explicit ODE",
+    )
+}
+
 /// `TAYLOR_ORDER` and `taylor_derivatives`: D_1 = f and D_{k+1} the total
 /// time derivative of D_k (course notes §1.3.1), where the k-th derivative
 /// of slot i is a fresh symbol read from `out` (`der` of a slot would alias
 /// the other slots of a reduced higher-order state). One program per order,
 /// each reading the lower orders already written.
-fn taylor_method(
+fn economic_taylor(
     g: &mut Graph,
     layout: &mut Layout,
     sys: &FirstOrder,
     time: SymbolId,
+    f: Vec<Id>,
     order: usize,
-    unroll: &[usize],
 ) -> crate::Result<TokenStream> {
     let n = sys.slots.len();
-    let mut f = Vec::with_capacity(n);
-    for d in &sys.derivatives {
-        match d {
-            SlotDerivative::Explicit(e) => f.push(*e),
-            SlotDerivative::Block { .. } | SlotDerivative::AfterSolve(_) => {
-                return Err(crate::Error::Unsupported {
-                    message: "`taylor = p` needs an explicit ODE; this model solves a mass matrix at run time".into(),
-                })
-            }
-        }
-    }
     let mut field = crate::VectorField::new();
     let one = g.one();
     field.set(time, one);
@@ -119,9 +144,38 @@ fn taylor_method(
         body.extend(quote!(if order >= #k1 { #code }));
     }
     let (nn, np, p) = (index(n), index(n * order), index(order));
+    Ok(quote! {
+        const TAYLOR_ORDER: usize = #p;
+
+        #[inline]
+        fn taylor_derivatives(&self, t: f64, y: &[f64], order: usize, out: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
+            let (::core::result::Result::Ok(y), ::core::result::Result::Ok(out)) =
+                (<&[f64; #nn]>::try_from(y), <&mut [f64; #np]>::try_from(out))
+            else {
+                return ::core::result::Result::Ok(());
+            };
+            #body
+            ::core::result::Result::Ok(())
+        }
+    })
+}
+
+/// `taylor_tape`, the AD tape of the adaptive Taylor method (compact
+/// layout, interpreted at run time), and the straight-line jets of the
+/// orders in `unroll`.
+fn taylor_tape_items(
+    g: &mut Graph,
+    layout: &Layout,
+    sys: &FirstOrder,
+    time: SymbolId,
+    f: &[Id],
+    unroll: &[usize],
+) -> crate::Result<TokenStream> {
+    let n = sys.slots.len();
+    let nn = index(n);
     // The AD tape for the adaptive Taylor method (compact layout).
     let slot_of = layout.slot_of.clone();
-    let explicit: Vec<Id> = levels[0].clone();
+    let explicit: Vec<Id> = f.to_vec();
     let negations = super::taylor_tape::negated_sums(g, &explicit)?;
     let tape = super::taylor_tape::decompose(g, &explicit, &slot_of, time, &negations)?;
     let consts: Vec<Id> = tape
@@ -218,21 +272,11 @@ fn taylor_method(
             ::std::vec::Vec<::daegen::runtime::taylor_tape::TapeOp>,
             ::std::vec::Vec<::daegen::runtime::taylor_tape::Operand>,
         )> {
+            // Short names: a large model's tape runs to thousands of operations.
+            #[allow(unused_imports)]
+            use ::daegen::runtime::taylor_tape::{Inverse as I, Operand as O, TapeOp as T};
             #const_code
             ::core::option::Option::Some((::std::vec![#(#ops),*], ::std::vec![#(#outs),*]))
-        }
-
-        const TAYLOR_ORDER: usize = #p;
-
-        #[inline]
-        fn taylor_derivatives(&self, t: f64, y: &[f64], order: usize, out: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
-            let (::core::result::Result::Ok(y), ::core::result::Result::Ok(out)) =
-                (<&[f64; #nn]>::try_from(y), <&mut [f64; #np]>::try_from(out))
-            else {
-                return ::core::result::Result::Ok(());
-            };
-            #body
-            ::core::result::Result::Ok(())
         }
     })
 }
@@ -697,15 +741,31 @@ pub fn expand(
         &index(n),
         quote!(#block_setup #rhs_body #block_solve),
     );
-    let taylor_tokens = match taylor {
-        Some(order) => taylor_method(
-            &mut ir.graph,
-            &mut layout,
-            sys,
-            ir.time,
-            order,
-            &attributes.unroll,
-        )?,
+    // Taylor: the economic scheme and the tape when asked for; otherwise
+    // the tape alone wherever the model allows it (`taylor = 0`: nothing),
+    // and where it does not, the reason, for the run-time refusal.
+    let (taylor_tokens, taylor_unavailable) = match taylor {
+        Some(order) => {
+            let f = explicit_rhs(sys)?;
+            let economic =
+                economic_taylor(&mut ir.graph, &mut layout, sys, ir.time, f.clone(), order)?;
+            let tape =
+                taylor_tape_items(&mut ir.graph, &layout, sys, ir.time, &f, &attributes.unroll)?;
+            (quote!(#tape #economic), None)
+        }
+        None if attributes.taylor_off => (
+            TokenStream::new(),
+            Some("it was expanded with `#[dae_model(taylor = 0)]`".to_string()),
+        ),
+        None => match explicit_rhs(sys)
+            .and_then(|f| taylor_tape_items(&mut ir.graph, &layout, sys, ir.time, &f, &[]))
+        {
+            Ok(tape) => (tape, None),
+            Err(e) => (TokenStream::new(), Some(taylor_refusal(&e))),
+        },
+    };
+    let taylor_unavailable_const = match &taylor_unavailable {
+        Some(reason) => quote!(const TAYLOR_UNAVAILABLE: &'static str = #reason;),
         None => TokenStream::new(),
     };
     // Last, so its partial derivatives cannot change the code above.
@@ -728,7 +788,16 @@ pub fn expand(
     let info = info(ir, sys);
     let parameter = parameter_method(ir);
     let model_index = index(sys.index);
-    let struct_and_default = struct_and_default(ir, &dae_analysis(ir, sys));
+    let mut analysis = dae_analysis(ir, sys);
+    if let Some(reason) = &taylor_unavailable {
+        let note = format!("`Method::Taylor` is not available: {reason}.");
+        analysis = if analysis.is_empty() {
+            note
+        } else {
+            format!("{analysis}\n\n{note}")
+        };
+    }
+    let struct_and_default = struct_and_default(ir, &analysis);
     let n_lit = index(n);
     Ok(quote! {
         #struct_and_default
@@ -765,6 +834,7 @@ pub fn expand(
             }
 
                         #taylor_tokens
+            #taylor_unavailable_const
 
                         #events_method
 
@@ -810,6 +880,7 @@ fn expand_mass_only(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenSt
     let states: Vec<&str> = form.names.iter().map(String::as_str).collect();
     let info = info_with(ir, &states, &[]);
     let parameter = parameter_method(ir);
+    let reason = "the model runs in mass-matrix form only (an algebraic equation is nonlinear in its variable)";
     Ok(quote! {
         #struct_and_default
 
@@ -817,6 +888,7 @@ fn expand_mass_only(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenSt
         impl ::daegen::Model for #name {
             const INDEX: usize = #model_index;
             const INFO: ::daegen::ModelInfo = #info;
+            const TAYLOR_UNAVAILABLE: &'static str = #reason;
             #parameter
             #items
         }

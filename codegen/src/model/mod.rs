@@ -81,8 +81,11 @@ pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
 #[derive(Clone, Default)]
 pub struct Attributes {
     /// `taylor = p`, 1 ≤ p ≤ 8: the economic Taylor derivatives up to order
-    /// p and the AD tape of the adaptive Taylor method.
+    /// p and the AD tape of the adaptive Taylor method (which every model
+    /// that allows it has anyway).
     pub taylor: Option<usize>,
+    /// `taylor = 0`: no Taylor code at all, not even the tape.
+    pub taylor_off: bool,
     /// `unroll = [p, ...]`, 2 ≤ p ≤ 40: orders of the adaptive Taylor method
     /// to emit as straight-line code (see `taylor_unrolled`).
     pub unroll: Vec<usize>,
@@ -107,7 +110,7 @@ fn attributes(cx: &mut ctxt::Ctxt, attr: TokenStream) -> Attributes {
     if attr.is_empty() {
         return out;
     }
-    let fix = "`#[dae_model]` takes `taylor = p` (p from 1 to 8), `unroll = [p, ...]` (orders from 2 to 40), `scene = global` or `scene = recursive`, and `bench = Bench::until(t1)...`";
+    let fix = "`#[dae_model]` takes `taylor = p` (p from 0 to 8), `unroll = [p, ...]` (orders from 2 to 40), `scene = global` or `scene = recursive`, and `bench = Bench::until(t1)...`";
     let parser =
         syn::punctuated::Punctuated::<syn::MetaNameValue, syn::Token![,]>::parse_terminated;
     let Ok(args) = syn::parse::Parser::parse2(parser, attr.clone()) else {
@@ -125,9 +128,10 @@ fn attributes(cx: &mut ctxt::Ctxt, attr: TokenStream) -> Attributes {
         if arg.path.is_ident("taylor") && out.taylor.is_none() {
             match integer(&arg.value) {
                 Some(p) if (1..=8).contains(&p) => out.taylor = Some(p),
+                Some(0) => out.taylor_off = true,
                 _ => cx.error_at(
                     &arg.value,
-                    "`taylor = p` takes an order p from 1 to 8 (the economic scheme's derivatives); `Method::Taylor` picks its own order, and `unroll = [p]` emits order p as code",
+                    "`taylor = p` takes an order p from 1 to 8 (the economic scheme's derivatives), or 0 for no Taylor code at all; `Method::Taylor` picks its own order, and `unroll = [p]` emits order p as code",
                 ),
             }
         } else if arg.path.is_ident("unroll") && out.unroll.is_empty() {

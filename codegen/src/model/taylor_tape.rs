@@ -24,7 +24,7 @@ pub enum Operand {
 
 impl Operand {
     fn tokens(&self) -> TokenStream {
-        let path = quote!(::daegen::runtime::taylor_tape::Operand);
+        let path = quote!(O);
         let lit = |i: usize| proc_macro2::Literal::usize_unsuffixed(i);
         match self {
             Operand::Var(i) => {
@@ -244,7 +244,7 @@ impl Builder<'_> {
             let difference = self.binary("Add", &one, &negated);
             let b = difference.tokens();
             self.push(
-                quote!(::daegen::runtime::taylor_tape::TapeOp::Pow(#b, 0.5)),
+                quote!(T::Pow(#b, 0.5)),
                 Some(Recurrence::Pow(difference, 0.5)),
             )
         };
@@ -257,8 +257,8 @@ impl Builder<'_> {
         let (a, d) = (a.tokens(), d.tokens());
         let f = quote::format_ident!("{}", f);
         self.push(
-            quote!(::daegen::runtime::taylor_tape::TapeOp::Inverse(
-                ::daegen::runtime::taylor_tape::Inverse::#f,
+            quote!(T::Inverse(
+                I::#f,
                 #a,
                 #d
             )),
@@ -271,10 +271,7 @@ impl Builder<'_> {
             return (Operand::Var(v), Operand::Var(v + 1));
         }
         let s = self.unary("Sinh", a);
-        let c = self.push(
-            quote!(::daegen::runtime::taylor_tape::TapeOp::CoshOfPrevious),
-            None,
-        );
+        let c = self.push(quote!(T::CoshOfPrevious), None);
         if let Operand::Var(v) = s {
             self.sinh_of.insert(arg, v);
         }
@@ -311,10 +308,7 @@ impl Builder<'_> {
         };
         let (a, b) = (a.tokens(), b.tokens());
         let op = quote::format_ident!("{}", name);
-        self.push(
-            quote!(::daegen::runtime::taylor_tape::TapeOp::#op(#a, #b)),
-            Some(step),
-        )
+        self.push(quote!(T::#op(#a, #b)), Some(step))
     }
 
     fn unary(&mut self, name: &str, a: &Operand) -> Operand {
@@ -326,10 +320,7 @@ impl Builder<'_> {
         };
         let a = a.tokens();
         let op = quote::format_ident!("{}", name);
-        self.push(
-            quote!(::daegen::runtime::taylor_tape::TapeOp::#op(#a)),
-            Some(step),
-        )
+        self.push(quote!(T::#op(#a)), Some(step))
     }
 
     /// `a^n` for an integer n ≥ 1 by binary powering (products only: safe
@@ -352,10 +343,7 @@ impl Builder<'_> {
             return (Operand::Var(v), Operand::Var(v + 1));
         }
         let s = self.unary("Sin", a);
-        let c = self.push(
-            quote!(::daegen::runtime::taylor_tape::TapeOp::CosOfPrevious),
-            None,
-        );
+        let c = self.push(quote!(T::CosOfPrevious), None);
         if let Operand::Var(v) = s {
             self.sin_of.insert(arg, v);
         }
@@ -486,7 +474,7 @@ impl Builder<'_> {
                         let value = n.to_f64();
                         let (b, e) = (base.tokens(), value);
                         self.push(
-                            quote!(::daegen::runtime::taylor_tape::TapeOp::Pow(#b, #e)),
+                            quote!(T::Pow(#b, #e)),
                             Some(Recurrence::Pow(base, value)),
                         )
                     }
@@ -535,7 +523,7 @@ impl Builder<'_> {
                 let step = Recurrence::Atan2(y, x, d);
                 let (y, x, d) = (y.tokens(), x.tokens(), d.tokens());
                 self.push(
-                    quote!(::daegen::runtime::taylor_tape::TapeOp::Atan2(#y, #x, #d)),
+                    quote!(T::Atan2(#y, #x, #d)),
                     Some(step),
                 )
             }
