@@ -1,12 +1,13 @@
 //! Errors of a run: what went wrong, where, and the solution up to there.
 //!
 //! Every error of a run keeps the accepted steps (`partial`, reachable with
-//! [`Error::partial_solution`]); none is a panic, and no run ends with a
-//! silent NaN. Each row is checked by the test named.
+//! [`Error::partial_solution`]); a request refused before the first step
+//! (options, parameters, initial values) has none. None is a panic, and no
+//! run ends with a silent NaN. Each row is checked by the test named.
 //!
 //! | error | cause | remedy | test |
 //! |---|---|---|---|
-//! | [`Error::NonFinite`] | a state became NaN or ±∞ (a pole, `sqrt` of a negative, a non-finite initial value or parameter) | check the model near `t` and `variable`; a finite-time blow-up is real | `tests/nonstiff.rs` `a_singularity_stops_the_run_with_an_error_and_the_partial_solution`, `tests/taylor_adaptive.rs` `a_finite_time_blow_up_is_an_error_at_the_pole`, `tests/models.rs` `bad_requests_are_errors_not_panics` |
+//! | [`Error::NonFinite`] | a state became NaN or ±∞ during the run (a pole, `sqrt` of a negative) | check the model near `t` and `variable`; a finite-time blow-up is real | `tests/nonstiff.rs` `a_singularity_stops_the_run_with_an_error_and_the_partial_solution`, `tests/taylor_adaptive.rs` `a_finite_time_blow_up_is_an_error_at_the_pole`, `tests/models.rs` `bad_requests_are_errors_not_panics` |
 //! | [`Error::Evaluation`] | the model could not be evaluated: a singular mass-matrix block at run time, Taylor derivatives of an order not generated | the message names the block or the `#[dae_model(taylor = p)]` to write | `tests/taylor_fixed.rs` `an_order_above_the_generated_one_is_refused` |
 //! | [`Error::StepSizeUnderflow`] | the step fell below the time's precision or `min_step`: a singularity, tolerances too tight; for backward Euler, a step halved 30 times without resolving the solution | the message says what to try for the method that ran | `tests/stiff.rs` `a_minimum_step_stops_the_run_early` |
 //! | [`Error::NewtonFailure`] | the implicit method's Newton iteration failed as the step shrank; `tried` says what it tried | a smaller step for backward Euler; for RADAU5 a wrong or discontinuous model near `t` | `tests/stiff.rs` `newton_failures_are_reported_with_the_time_and_what_was_tried` |
@@ -17,7 +18,7 @@
 //! | [`Error::EventChatter`] | a terminal event fires again within ~1e-13 (relative) of the start: restarts at its crossings make no progress (Zeno) | stop the restarts there, e.g. below a rebound speed | `tests/events.rs` `restarting_at_accumulating_bounces_ends_in_a_chatter_error_at_the_zeno_time` |
 //! | [`Error::NonFiniteParameter`] | a parameter field is NaN or ±∞ | a finite value | `tests/models.rs` `bad_requests_are_errors_not_panics` |
 //! | [`Error::NonFiniteInitialValue`] | an initial value is NaN or ±∞ | a finite value | `tests/models.rs` `bad_requests_are_errors_not_panics` |
-//! | [`Error::InvalidOptions`] | tolerances ≤ 0 or not finite, a non-positive step, a method the model was not expanded for | the message says which option and what to write | `tests/models.rs` `bad_requests_are_errors_not_panics`, `tests/taylor_adaptive.rs` `integrates_backwards_and_refuses_models_without_a_tape` |
+//! | [`Error::InvalidOptions`] | an option out of range (tolerances, steps, `max_steps`, `keep_every`), `max_step` below `min_step`, a method the model cannot run | the message names the option and says what to write | `tests/models.rs` `bad_requests_are_errors_not_panics`, `tests/taylor_adaptive.rs` `integrates_backwards_and_refuses_models_without_a_tape` |
 //! | [`Error::MethodNotAvailable`] | reserved: every [`crate::Method`] is implemented | — | — |
 //! | [`Error::UnknownName`] | `Solution::at`/`last` with a name that is no state, algebraic variable or output | use one of `known` | `tests/models.rs` `bad_requests_are_errors_not_panics` |
 //! | [`Error::Thinned`] | `Solution::at` between the steps a `keep_every` run kept | ask at `Solution::times`, or keep every step | `tests/long_runs.rs` `keep_every_thins_the_stored_steps_and_at_refuses_between_them` |
