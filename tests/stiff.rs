@@ -10,6 +10,7 @@ include!("models/stiff.rs");
 van_der_pol_model!();
 robertson_model!();
 hires_model!();
+low_pass_model!();
 
 fn last_state(sol: &Solution) -> Vec<f64> {
     sol.state(sol.times().len() - 1).unwrap_or(&[]).to_vec()
@@ -197,24 +198,6 @@ fn an_explicit_pair_stops_where_the_problem_turns_stiff() {
     }
 }
 
-/// A low-pass filter x' = (sin ωt − x)/τ with τ = 2e-4 and ω = 10π: stiff
-/// (ρ = 1/τ = 5000) while the solution is a smooth sine. Exact solution
-/// x = [sin ωt − ωτ cos ωt + ωτ e^(−t/τ)]/(1 + ω²τ²).
-#[dae_model]
-fn low_pass() {
-    let t = time();
-    let tau = param(2e-4);
-    let omega = param(31.415926535897932);
-    let x = state(0.0);
-    der(x) == (sin(omega * t) - x) / tau;
-}
-
-fn low_pass_exact(t: f64) -> f64 {
-    let (tau, omega) = (2e-4, 10.0 * std::f64::consts::PI);
-    let wt = omega * tau;
-    ((omega * t).sin() - wt * (omega * t).cos() + wt * (-t / tau).exp()) / (1.0 + wt * wt)
-}
-
 /// DOPRI5 holds this filter at h·ρ ≈ 1.5, well inside its stability
 /// region (the error of the stiff component limits it): Hairer's test
 /// never fires, yet RADAU5 takes thirty times fewer steps. `Auto` hands
@@ -241,7 +224,8 @@ fn auto_hands_a_stiff_filter_to_radau5_early() {
             (1..=100)
                 .map(|k| {
                     let t = k as f64 / 100.0;
-                    (s.at(t, "x").unwrap() - low_pass_exact(t)).abs()
+                    (s.at(t, "x").unwrap() - low_pass_exact(t, 2e-4, 10.0 * std::f64::consts::PI))
+                        .abs()
                 })
                 .fold(0.0, f64::max)
         };

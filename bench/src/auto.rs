@@ -13,28 +13,6 @@ use crate::*;
 use daegen_workprecision::{median_time, mixed_error, Settings};
 use std::time::Duration;
 
-/// A low-pass filter driven at 5 Hz, τ = 2e-4: stiff (ρ = 5000) with a
-/// smooth solution, where DOPRI5 sits well inside its stability region.
-#[dae_model]
-fn low_pass() {
-    let t = time();
-    let tau = param(2e-4);
-    let omega = param(31.415926535897932);
-    let x = state(0.0);
-    der(x) == (sin(omega * t) - x) / tau;
-}
-
-/// An RC circuit (R = 1 Ω, C = 1e-4 F) driven by a 1 Hz sine.
-#[dae_model]
-fn rc_circuit() {
-    let t = time();
-    let r = param(1.0);
-    let c = param(1e-4);
-    let omega = param(6.283185307179586);
-    let v = state(0.0);
-    der(v) == (sin(omega * t) - v) / (r * c);
-}
-
 /// The Oregonator (IVP test set `orego`).
 #[dae_model]
 fn orego() {
@@ -53,12 +31,6 @@ const OREGO_AT_360: [f64; 3] = [
     0.1320554942846706e3,
 ];
 
-/// x' = (sin ωt − x)/τ from x(0) = 0: x = [sin ωt − ωτ cos ωt + ωτ e^(−t/τ)]/(1 + ω²τ²).
-fn filter_exact(t: f64, tau: f64, omega: f64) -> [f64; 1] {
-    let wt = omega * tau;
-    [((omega * t).sin() - wt * (omega * t).cos() + wt * (-t / tau).exp()) / (1.0 + wt * wt)]
-}
-
 const METHODS: [Method; 3] = [Method::Dopri5, Method::Dop853, Method::Radau5];
 
 /// One problem at one tolerance.
@@ -76,7 +48,8 @@ struct Row {
 }
 
 /// Times Auto and the single methods on `M` from 0 to `t1` in `rounds`.
-fn compare<M: Model + Default + Clone + Send + Sync + 'static>(
+fn compare<M: Model + Clone + Send + Sync + 'static>(
+    model: M,
     problem: &'static str,
     t1: f64,
     reference: &[f64],
@@ -89,7 +62,6 @@ fn compare<M: Model + Default + Clone + Send + Sync + 'static>(
         budget: Duration::from_millis(100),
         tightest: 0.0,
     };
-    let model = M::default();
     let mut rows = Vec::new();
     for tol in [1e-4, 1e-6, 1e-8, 1e-10] {
         eprint!("\r\x1b[2Kauto: {problem} at {tol:e}");
@@ -186,16 +158,20 @@ pub fn stiff_probe(method: &str, detect: bool) {
 pub fn auto_section() {
     let rounds = 5;
     let mut rows = Vec::new();
-    rows.extend(compare::<Kepler>("kepler (e = 0.9, 10 orbits)", 20.0 * std::f64::consts::PI, &kepler_exact(20.0 * std::f64::consts::PI), 1.0, rounds));
-    rows.extend(compare::<Arenstorf>("arenstorf (one period)", ARENSTORF_T, &ARENSTORF_Y0, 1.0, rounds));
-    rows.extend(compare::<Lorenz>("lorenz (t = 20)", 20.0, &LORENZ_AT_20, 1.0, rounds));
-    rows.extend(compare::<OuterSolarSystem>("outer solar system (20 000 days)", 20000.0, &OSS_REFERENCE, 1.0, rounds));
-    rows.extend(compare::<LowPass>("low-pass filter (τ = 2e-4, t = 1)", 1.0, &filter_exact(1.0, 2e-4, 31.415926535897932), 1.0, rounds));
-    rows.extend(compare::<RcCircuit>("RC circuit (RC = 1e-4, t = 2)", 2.0, &filter_exact(2.0, 1e-4, 6.283185307179586), 1.0, rounds));
-    rows.extend(compare::<VanDerPol>("van der Pol (ε = 1e-6, t = 2)", 2.0, &VDP_AT_2, 1.0, rounds));
-    rows.extend(compare::<Robertson>("robertson (t = 1e11, atol = 1e-6·rtol)", 1e11, &ROBER_AT_1E11, 1e-6, rounds));
-    rows.extend(compare::<Hires>("hires", 321.8122, &HIRES_AT_END, 1.0, rounds));
-    rows.extend(compare::<Orego>("orego (t = 360)", 360.0, &OREGO_AT_360, 1.0, rounds));
+    rows.extend(compare(Kepler::default(), "kepler (e = 0.9, 10 orbits)", 20.0 * std::f64::consts::PI, &kepler_exact(20.0 * std::f64::consts::PI), 1.0, rounds));
+    rows.extend(compare(Arenstorf::default(), "arenstorf (one period)", ARENSTORF_T, &ARENSTORF_Y0, 1.0, rounds));
+    rows.extend(compare(Lorenz::default(), "lorenz (t = 20)", 20.0, &LORENZ_AT_20, 1.0, rounds));
+    rows.extend(compare(OuterSolarSystem::default(), "outer solar system (20 000 days)", 20000.0, &OSS_REFERENCE, 1.0, rounds));
+    let filter = LowPass::default();
+    let exact = [low_pass_exact(1.0, filter.tau, filter.omega)];
+    rows.extend(compare(filter, "low-pass filter (τ = 2e-4, 5 Hz, t = 1)", 1.0, &exact, 1.0, rounds));
+    let rc = LowPass { tau: 1e-4, omega: 2.0 * std::f64::consts::PI };
+    let exact = [low_pass_exact(2.0, rc.tau, rc.omega)];
+    rows.extend(compare(rc, "RC circuit (RC = 1e-4, 1 Hz, t = 2)", 2.0, &exact, 1.0, rounds));
+    rows.extend(compare(VanDerPol::default(), "van der Pol (ε = 1e-6, t = 2)", 2.0, &VDP_AT_2, 1.0, rounds));
+    rows.extend(compare(Robertson::default(), "robertson (t = 1e11, atol = 1e-6·rtol)", 1e11, &ROBER_AT_1E11, 1e-6, rounds));
+    rows.extend(compare(Hires::default(), "hires", 321.8122, &HIRES_AT_END, 1.0, rounds));
+    rows.extend(compare(Orego::default(), "orego (t = 360)", 360.0, &OREGO_AT_360, 1.0, rounds));
     eprintln!("\r\x1b[2Kauto: explicit pairs on Robertson");
     let mut text = format!(
         "# `Method::Auto` against the single methods\n\nMachine: {}. Written by `cd bench && cargo run --release -- --auto` (bench/src/auto.rs).\n\n",

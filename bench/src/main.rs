@@ -51,7 +51,7 @@ include!("../../tests/models/slider_crank.rs");
 include!("../../tests/models/rod_chain.rs");
 
 // The Taylor orders unrolled are those `Method::Taylor` picks at the
-// tolerances swept, down to 1e-15 as issue 5 asks (`--orders` lists them),
+// tolerances swept, down to 1e-15 (`--orders` lists them),
 // and Jorba & Zou's at 1e-12 … 1e-14 (15, 16, 18) for `--versus-heyoka`.
 kepler_model!(
     taylor = 1,
@@ -114,6 +114,7 @@ robertson_model!(
         .atol_factor(1e-6)
         .peer("robertson_1e11")
 );
+low_pass_model!();
 hires_model!(
     bench = Bench::until(321.8122)
         .reference(HIRES_AT_END, "IVP test set hires, published")

@@ -1,6 +1,6 @@
 //! Checks a run's request and hands it to the method.
 
-use crate::adaptive::{self, Stiffness};
+use crate::adaptive::{self, EmbeddedPair, Stiffness};
 use crate::auto;
 use crate::backward_euler;
 use crate::dop853::Dop853;
@@ -42,13 +42,22 @@ fn formulation<M: Model>() -> &'static str {
     }
 }
 
-/// What an explicit pair run on its own does when the problem turns stiff.
-fn stiffness(options: &Options) -> Stiffness {
-    if options.stiffness_detection {
+/// An explicit pair on its own: it stops with `Error::Stiff` where the
+/// problem turns stiff, unless told not to look.
+fn explicit_pair<M: Model, P: EmbeddedPair>(
+    model: &M,
+    t0: f64,
+    t1: f64,
+    y0: &[f64],
+    options: &Options,
+    solution: Solution,
+) -> Result<Solution, Error> {
+    let stiffness = if options.stiffness_detection {
         Stiffness::Fail
     } else {
         Stiffness::Ignore
-    }
+    };
+    adaptive::integrate::<M, P>(model, t0, t1, y0, options, stiffness, solution).map(|r| r.0)
 }
 
 fn method_name(method: Method) -> &'static str {
@@ -249,26 +258,8 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
             radau5::integrate(model, t0, t1, &y0, options, solution)
         }
         Method::Auto => auto::integrate(model, t0, t1, &y0, options, solution),
-        Method::Dopri5 => adaptive::integrate::<M, Dopri5>(
-            model,
-            t0,
-            t1,
-            &y0,
-            options,
-            stiffness(options),
-            solution,
-        )
-        .map(|r| r.0),
-        Method::Dop853 => adaptive::integrate::<M, Dop853>(
-            model,
-            t0,
-            t1,
-            &y0,
-            options,
-            stiffness(options),
-            solution,
-        )
-        .map(|r| r.0),
+        Method::Dopri5 => explicit_pair::<M, Dopri5>(model, t0, t1, &y0, options, solution),
+        Method::Dop853 => explicit_pair::<M, Dop853>(model, t0, t1, &y0, options, solution),
         Method::Radau5 => radau5::integrate(model, t0, t1, &y0, options, solution),
         Method::Taylor => taylor::integrate(model, t0, t1, &y0, options, solution),
         Method::TaylorFixed { order, step } => {
