@@ -303,3 +303,38 @@ fn kepler_with_lane_pairs_at_order_2() {
         }
     ));
 }
+
+/// A capacitor between two nodes written at both: the rows of the node
+/// equations are opposite, and their sum stands in for the second as an
+/// equation without derivatives (differentiated once: index 1). The
+/// capacitance divides the combination, so a run checks it is not zero
+/// (`degenerate_parameters`); the mass-matrix form keeps the singular
+/// matrix as written (`MASS_PATTERN`).
+#[test]
+fn a_capacitor_between_two_nodes_combines_their_equations() {
+    insta::assert_snapshot!(expand(quote! {
+        fn two_nodes() {
+            let c = param(1e-6);
+            let r = param(1000.0);
+            let v1 = state(1.0);
+            let v2 = state(0.0);
+            c * der(v1) - c * der(v2) == -v1 / r;
+            -c * der(v1) + c * der(v2) == -v2 / r + v1 / r;
+        }
+    }));
+}
+
+/// An algebraic equation quadratic in its variable: the model solves it by
+/// Newton's method at each evaluation (`__daegen_algebraics`, the residual
+/// and ∂g/∂z generated), and the rest reads z from that solve.
+#[test]
+fn a_nonlinear_algebraic_equation_is_solved_by_newton() {
+    insta::assert_snapshot!(expand(quote! {
+        fn quadratic() {
+            let y = state(2.0);
+            let z = algebraic(1.0);
+            der(y) == -z;
+            0.0 == z * z + z - y;
+        }
+    }));
+}

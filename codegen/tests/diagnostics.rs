@@ -58,9 +58,10 @@ fn structural_mistakes_name_the_derivative() {
             "not linear in `der(x)`",
         ),
         (
-            // Twice the same equation: det(E s + A) vanishes identically.
+            // Twice the same equation: their combination free of the
+            // derivatives vanishes identically.
             quote! { fn m() { let x = state(1.0); let y = state(1.0); der(x) + der(y) == x; 2.0 * der(x) + 2.0 * der(y) == 2.0 * x; } },
-            "singular pencil",
+            "is a combination of `2.0 * der(x) + 2.0 * der(y) == 2.0 * x`: it adds nothing",
         ),
         (
             quote! { fn m() { let x = state(1.0); init(der(x), 1.0); der(x) == x; } },

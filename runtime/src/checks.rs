@@ -3,7 +3,7 @@
 //! failure names the option, parameter or state and says what to write.
 
 use crate::error::Error;
-use crate::model::Model;
+use crate::model::{has_mass_matrix, Model};
 use crate::options::{Method, Options};
 
 /// `Err(InvalidOptions)` with `message`.
@@ -40,6 +40,12 @@ pub(crate) fn check_request<M: Model>(
                 value,
             });
         }
+    }
+    if let Some(condition) = model.degenerate_parameters() {
+        return Err(Error::DegenerateParameters {
+            model: M::INFO.name,
+            condition,
+        });
     }
     if let Some(i) = y0.iter().position(|v| !v.is_finite()) {
         return Err(Error::NonFiniteInitialValue {
@@ -108,15 +114,28 @@ fn check_options<M: Model>(options: &Options) -> Result<(), Error> {
         ));
     }
     // A singular mass matrix: only RADAU5 integrates it (Auto picks it).
-    if !M::MASS.is_empty() && !matches!(options.method, Method::Radau5 | Method::Auto) {
+    if has_mass_matrix::<M>() && !matches!(options.method, Method::Radau5 | Method::Auto) {
+        let algebraic: Vec<&str> = (0..M::STATES)
+            .filter(|&i| M::MASS.get(i) == Some(&0.0))
+            .map(|i| M::INFO.states[i])
+            .collect();
+        let which = if algebraic.is_empty() {
+            String::new()
+        } else {
+            format!(" (algebraic components {})", algebraic.join(", "))
+        };
         return invalid(format!(
-            "{} has a singular mass matrix (algebraic components {}): integrate it with Method::Radau5 (or Method::Auto)",
+            "{} has a singular mass matrix{which}: integrate it with Method::Radau5 (or Method::Auto)",
             M::INFO.name,
-            (0..M::STATES)
-                .filter(|&i| M::MASS.get(i) == Some(&0.0))
-                .map(|i| M::INFO.states[i])
-                .collect::<Vec<_>>()
-                .join(", ")
+        ));
+    }
+    let mass_form = options.formulation == crate::options::Formulation::MassMatrix
+        && !(M::INDEX == 0 && M::INFO.algebraics.is_empty());
+    if mass_form && !matches!(options.method, Method::Radau5 | Method::Auto) {
+        return invalid(format!(
+            "Formulation::MassMatrix runs {} with RADAU5 only: use Method::Radau5 (or Method::Auto), or Formulation::IndexOneProjected for {:?}",
+            M::INFO.name,
+            options.method
         ));
     }
     if options.keep_every == 0 {

@@ -25,14 +25,21 @@ impl RealLu {
         self.factor_shifted_mass(shift, &[], jacobian)
     }
 
-    /// Factors `shift·M − J` for a diagonal mass matrix `M` (empty: I).
+    /// Factors `shift·M − J` for a mass matrix `M`: empty for I, n values
+    /// for a diagonal, n × n (row-major) for a general one.
     pub fn factor_shifted_mass(&mut self, shift: f64, mass: &[f64], jacobian: &[f64]) -> bool {
         let n = self.n;
         for (dst, src) in self.a.iter_mut().zip(jacobian) {
             *dst = -src;
         }
-        for i in 0..n {
-            self.a[i * n + i] += shift * mass.get(i).copied().unwrap_or(1.0);
+        if mass.len() == n * n && n > 1 {
+            for (dst, m) in self.a.iter_mut().zip(mass) {
+                *dst += shift * m;
+            }
+        } else {
+            for i in 0..n {
+                self.a[i * n + i] += shift * mass.get(i).copied().unwrap_or(1.0);
+            }
         }
         self.factor()
     }
@@ -112,7 +119,8 @@ impl ComplexLu {
         self.factor_shifted_mass(alpha, beta, &[], jacobian)
     }
 
-    /// Factors `(α + iβ)·M − J` for a diagonal mass matrix `M` (empty: I).
+    /// Factors `(α + iβ)·M − J` for a mass matrix `M` as
+    /// [`RealLu::factor_shifted_mass`] takes it.
     pub fn factor_shifted_mass(
         &mut self,
         alpha: f64,
@@ -125,10 +133,17 @@ impl ComplexLu {
             *dst = -src;
         }
         self.im.iter_mut().for_each(|v| *v = 0.0);
-        for i in 0..n {
-            let m = mass.get(i).copied().unwrap_or(1.0);
-            self.re[i * n + i] += alpha * m;
-            self.im[i * n + i] = beta * m;
+        if mass.len() == n * n && n > 1 {
+            for (k, &m) in mass.iter().enumerate() {
+                self.re[k] += alpha * m;
+                self.im[k] = beta * m;
+            }
+        } else {
+            for i in 0..n {
+                let m = mass.get(i).copied().unwrap_or(1.0);
+                self.re[i * n + i] += alpha * m;
+                self.im[i * n + i] = beta * m;
+            }
         }
         for col in 0..n {
             let magnitude = |k: usize| self.re[k * n + col].hypot(self.im[k * n + col]);

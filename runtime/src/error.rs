@@ -8,7 +8,7 @@
 //! | error | cause | remedy | test |
 //! |---|---|---|---|
 //! | [`Error::NonFinite`] | a state became NaN or ±∞ during the run (a pole, `sqrt` of a negative) | check the model near `t` and `variable`; a finite-time blow-up is real | `tests/nonstiff.rs` `a_singularity_stops_the_run_with_an_error_and_the_partial_solution`, `tests/taylor_adaptive.rs` `a_finite_time_blow_up_is_an_error_at_the_pole`, `tests/models.rs` `bad_requests_are_errors_not_panics` |
-//! | [`Error::Evaluation`] | the model could not be evaluated: a singular mass-matrix block at run time, Taylor derivatives of an order not generated | the message names the block or the `#[dae_model(taylor = p)]` to write | `tests/taylor_fixed.rs` `an_order_above_the_generated_one_is_refused` |
+//! | [`Error::Evaluation`] | the model could not be evaluated: a singular mass-matrix block at run time, nonlinear algebraic equations Newton cannot solve or whose Jacobian is singular (not index 1 there), Taylor derivatives of an order not generated | the message names the block, the equations, or the `#[dae_model(taylor = p)]` to write | `tests/taylor_fixed.rs` `an_order_above_the_generated_one_is_refused`, `tests/implicit_daes.rs` `a_singular_algebraic_jacobian_at_the_start_names_the_equation` |
 //! | [`Error::StepSizeUnderflow`] | the step fell below the time's precision or `min_step`: a singularity, tolerances too tight; for backward Euler, a step halved 30 times without resolving the solution | the message says what to try for the method that ran | `tests/stiff.rs` `a_minimum_step_stops_the_run_early` |
 //! | [`Error::NewtonFailure`] | the implicit method's Newton iteration failed as the step shrank; `tried` says what it tried | a smaller step for backward Euler; for RADAU5 a wrong or discontinuous model near `t` | `tests/stiff.rs` `newton_failures_are_reported_with_the_time_and_what_was_tried` |
 //! | [`Error::SingularMatrix`] | the Newton matrix stayed singular as the step shrank: a Jacobian that is not finite, or a singular model | look at the model and its Jacobian at `t` | `tests/stiff.rs` `a_newton_matrix_that_stays_singular_is_an_error_with_the_time` |
@@ -17,6 +17,7 @@
 //! | [`Error::Constraint`] | inconsistent initial values projection cannot repair, redundant constraints, a singular constraint Jacobian (a mechanism at a dead point) | consistent initial values, remove the redundant joint, avoid the singular configuration | `tests/dae.rs` `unrepairable_or_redundant_constraints_are_errors_that_name_the_constraint` |
 //! | [`Error::EventChatter`] | a terminal event fires again within ~1e-13 (relative) of the start: restarts at its crossings make no progress (Zeno) | stop the restarts there, e.g. below a rebound speed | `tests/events.rs` `restarting_at_accumulating_bounces_ends_in_a_chatter_error_at_the_zeno_time` |
 //! | [`Error::NonFiniteParameter`] | a parameter field is NaN or ±∞ | a finite value | `tests/models.rs` `bad_requests_are_errors_not_panics` |
+//! | [`Error::DegenerateParameters`] | a parameter value zeroes a coefficient the macro divided by to combine the equations (a capacitance of 0) | a nonzero value | `tests/implicit_daes.rs` `a_capacitance_of_zero_changes_the_rank_and_is_refused` |
 //! | [`Error::NonFiniteInitialValue`] | an initial value is NaN or ±∞ | a finite value | `tests/models.rs` `bad_requests_are_errors_not_panics` |
 //! | [`Error::InvalidOptions`] | an option out of range (tolerances, steps, `max_steps`, `keep_every`), `max_step` below `min_step`, a method the model cannot run | the message names the option and says what to write | `tests/models.rs` `bad_requests_are_errors_not_panics`, `tests/taylor_adaptive.rs` `integrates_backwards_and_refuses_models_without_a_tape` |
 //! | [`Error::MethodNotAvailable`] | reserved: every [`crate::Method`] is implemented | — | — |
@@ -140,6 +141,16 @@ pub enum Error {
         parameter: &'static str,
         /// Its value.
         value: f64,
+    },
+    /// The parameters make zero a coefficient the macro divided by when it
+    /// combined the model's equations (see
+    /// [`crate::Model::degenerate_parameters`]): the equations then combine
+    /// differently from the generated code.
+    DegenerateParameters {
+        /// The model.
+        model: &'static str,
+        /// Which coefficient: "the coefficient of `der(y1)` in `…`".
+        condition: &'static str,
     },
     /// An initial value is NaN or infinite.
     NonFiniteInitialValue {
@@ -301,6 +312,10 @@ impl fmt::Display for Error {
             Error::NonFiniteParameter { parameter, value } => write!(
                 f,
                 "parameter `{parameter}` is {value}: every parameter must be finite"
+            ),
+            Error::DegenerateParameters { model, condition } => write!(
+                f,
+                "with these parameters {condition} is zero (or not finite): {model}'s equations were combined dividing by it, so the generated code does not hold; give it a nonzero value, or write the model for that case"
             ),
             Error::NonFiniteInitialValue { variable, value } => write!(
                 f,

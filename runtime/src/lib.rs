@@ -4,6 +4,7 @@
 //! generated code calls.
 
 mod adaptive;
+pub mod algebraic;
 mod auto;
 mod backward_euler;
 pub mod band_lu;

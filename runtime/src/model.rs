@@ -11,6 +11,18 @@ pub enum EvalError {
     },
     /// The model has no analytic Jacobian (its mass matrix is solved at run time).
     JacobianUnavailable,
+    /// Newton's method on the model's nonlinear algebraic equations failed:
+    /// ∂g/∂z singular (`singular`: the equations do not determine the
+    /// variables there, the DAE is not of index 1 at this point), or no
+    /// convergence from the last solution nor from the guesses.
+    NonlinearAlgebraic {
+        /// The equations, as written.
+        equations: Vec<&'static str>,
+        /// The variables they determine.
+        unknowns: Vec<&'static str>,
+        /// Whether ∂g/∂z was singular.
+        singular: bool,
+    },
     /// The model has no Taylor derivatives of this order: expand it with
     /// `#[dae_model(taylor = p)]`, p ≥ the order asked for.
     TaylorUnavailable {
@@ -27,6 +39,25 @@ impl std::fmt::Display for EvalError {
                 "the equations do not determine {} here (their coefficient matrix is singular at this point): the model passes through a singular configuration, or its equations are dependent there",
                 unknowns.join(", ")
             ),
+            EvalError::NonlinearAlgebraic {
+                equations,
+                unknowns,
+                singular: true,
+            } => write!(
+                f,
+                "the equations `{}` do not determine `{}` here: their Jacobian in {} is singular, so the DAE is not of index 1 at this point (a turning point of the algebraic equations, or variables the equations do not fix)",
+                equations.join("`, `"),
+                unknowns.join("`, `"),
+                unknowns.join(", ")
+            ),
+            EvalError::NonlinearAlgebraic {
+                equations, unknowns, ..
+            } => write!(
+                f,
+                "Newton's method on `{}` did not converge for `{}`, neither from the last solution nor from the guesses given with algebraic(..): the equations may have no solution near there, or the guesses are too far",
+                equations.join("`, `"),
+                unknowns.join("`, `")
+            ),
             EvalError::JacobianUnavailable => write!(
                 f,
                 "the model has no analytic Jacobian (its mass matrix is solved at run time)"
@@ -36,6 +67,34 @@ impl std::fmt::Display for EvalError {
                 "Taylor derivatives of order {order} were not generated; expand the model with #[dae_model(taylor = {order})] or higher"
             ),
         }
+    }
+}
+
+/// Whether `M` integrates a mass matrix other than the identity (diagonal
+/// or general), which only RADAU5 does.
+pub(crate) fn has_mass_matrix<M: Model>() -> bool {
+    !M::MASS.is_empty() || !M::MASS_PATTERN.is_empty()
+}
+
+/// `M`'s mass matrix, dense and row-major (`n × n`), or empty for `M = I`.
+pub(crate) fn dense_mass_matrix<M: Model>(model: &M) -> Vec<f64> {
+    let n = M::STATES;
+    if !M::MASS_PATTERN.is_empty() {
+        let mut values = vec![0.0; M::MASS_PATTERN.len()];
+        model.mass_values(&mut values);
+        let mut dense = vec![0.0; n * n];
+        for (&(r, c), v) in M::MASS_PATTERN.iter().zip(values) {
+            dense[r * n + c] = v;
+        }
+        dense
+    } else if M::MASS.len() == n {
+        let mut dense = vec![0.0; n * n];
+        for (i, &m) in M::MASS.iter().enumerate() {
+            dense[i * n + i] = m;
+        }
+        dense
+    } else {
+        Vec::new()
     }
 }
 
@@ -147,6 +206,15 @@ pub trait Model {
     /// Writes the initial state (values may depend on the parameters).
     fn initial_state(&self, y: &mut [f64]);
 
+    /// Where the macro combined the model's equations by dividing by an
+    /// expression of its parameters (a circuit's capacitance, say), the
+    /// first such divisor these parameters make zero or not finite, as
+    /// "the coefficient of `der(y1)` in `…`"; `None` when all hold. A run
+    /// checks it before its first step.
+    fn degenerate_parameters(&self) -> Option<&'static str> {
+        None
+    }
+
     /// The value of parameter `index` of [`ModelInfo::parameters`] (NaN
     /// past the last), which a run checks before its first step.
     fn parameter(&self, index: usize) -> f64 {
@@ -255,6 +323,18 @@ pub trait Model {
     /// Only RADAU5 integrates such a model (the Gear–Gupta–Leimkuhler form
     /// of a mechanism, a semi-explicit index-1 DAE).
     const MASS: &'static [f64] = &[];
+
+    /// The non-zero entries `(row, column)` of a general mass matrix `M` in
+    /// `M y' = f(t, y)`, constant during a run (it may depend on the
+    /// parameters): a circuit's capacitances between nodes, as written.
+    /// Empty for `M = I` or the diagonal [`Model::MASS`]. Only RADAU5
+    /// integrates such a model, as Hairer's RADAU5 does.
+    const MASS_PATTERN: &'static [(usize, usize)] = &[];
+
+    /// Writes the entries of [`Model::MASS_PATTERN`], in its order.
+    fn mass_values(&self, values: &mut [f64]) {
+        let _ = values;
+    }
 
     /// Components that are index-2 variables of a mass-matrix model (their
     /// error is measured relative to the step, as in `radau5.f`).

@@ -14,7 +14,7 @@ use crate::dense_lu::{ComplexLu, RealLu};
 use crate::error::Error;
 use crate::events::{stop_at_terminal_event, EventWatch};
 use crate::jacobian::DenseJacobian;
-use crate::model::{EvalError, Model};
+use crate::model::{has_mass_matrix, EvalError, Model};
 use crate::options::Options;
 use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
@@ -245,17 +245,24 @@ pub(crate) fn integrate_watching<M: Model>(
         jacobian_evals: 0,
         jacobian: DenseJacobian::new::<M>(),
     };
-    // A singular mass matrix (Hairer's IMAS = 1, diagonal): dense Newton.
+    // A singular mass matrix (Hairer's IMAS = 1): diagonal, or general and
+    // dense (`mass_matrix`, applied by `apply_mass`); dense Newton either way.
     let mass: Vec<f64> = if M::MASS.len() == n {
         M::MASS.to_vec()
     } else {
         vec![1.0; n]
     };
-    let mut newton = if M::MASS.is_empty() {
-        Newton::for_pattern(n, M::JACOBIAN_PATTERN)
+    let mass_matrix = if M::MASS_PATTERN.is_empty() {
+        Vec::new()
     } else {
-        Newton::for_pattern(n, &[])
+        crate::model::dense_mass_matrix(model)
     };
+    let mut newton = if has_mass_matrix::<M>() {
+        Newton::for_pattern(n, &[])
+    } else {
+        Newton::for_pattern(n, M::JACOBIAN_PATTERN)
+    };
+    let mut mass_applied = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
     let mut y = vec![0.0; n];
     let mut y0 = vec![0.0; n];
     let (mut z1, mut z2, mut z3) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
@@ -338,7 +345,18 @@ pub(crate) fn integrate_watching<M: Model>(
             caljac = false;
         }
         if refresh != Refresh::Nothing {
-            let ok = newton.factor(gamma / h, alpha / h, beta / h, M::MASS, &w.jacobian.matrix);
+            let factor_mass = if mass_matrix.is_empty() {
+                M::MASS
+            } else {
+                &mass_matrix[..]
+            };
+            let ok = newton.factor(
+                gamma / h,
+                alpha / h,
+                beta / h,
+                factor_mass,
+                &w.jacobian.matrix,
+            );
             if !ok {
                 singular += 1;
                 if singular >= 5 {
@@ -424,12 +442,25 @@ pub(crate) fn integrate_watching<M: Model>(
                 z3[i] = TI[2][0] * a1 + TI[2][1] * a2 + TI[2][2] * a3;
             }
             let (fac1, alphn, betan) = (gamma / h, alpha / h, beta / h);
-            for i in 0..n {
-                let m = mass[i];
-                let (s2, s3) = (-m * f2[i], -m * f3[i]);
-                z1[i] -= m * f1[i] * fac1;
-                z2[i] += s2 * alphn - s3 * betan;
-                z3[i] += s3 * alphn + s2 * betan;
+            if mass_matrix.is_empty() {
+                for i in 0..n {
+                    let m = mass[i];
+                    let (s2, s3) = (-m * f2[i], -m * f3[i]);
+                    z1[i] -= m * f1[i] * fac1;
+                    z2[i] += s2 * alphn - s3 * betan;
+                    z3[i] += s3 * alphn + s2 * betan;
+                }
+            } else {
+                for (out, f) in mass_applied.iter_mut().zip([&f1, &f2, &f3]) {
+                    apply_mass(&mass_matrix, f, out);
+                }
+                let [m1, m2, m3] = &mass_applied;
+                for i in 0..n {
+                    let (s2, s3) = (-m2[i], -m3[i]);
+                    z1[i] -= m1[i] * fac1;
+                    z2[i] += s2 * alphn - s3 * betan;
+                    z3[i] += s3 * alphn + s2 * betan;
+                }
             }
             newton.solve_real(&mut z1);
             newton.solve_complex(&mut z2, &mut z3);
@@ -487,8 +518,18 @@ pub(crate) fn integrate_watching<M: Model>(
         // Error estimate (ESTRAD): (γ/h − J)⁻¹ (f(y) + (DD·Z)/h), refined once
         // through f after a rejection or on the first step.
         let (hee1, hee2, hee3) = (DD1 / h, DD2 / h, DD3 / h);
+        if mass_matrix.is_empty() {
+            for i in 0..n {
+                f2[i] = mass[i] * (hee1 * z1[i] + hee2 * z2[i] + hee3 * z3[i]);
+            }
+        } else {
+            let combined = &mut mass_applied[0];
+            for i in 0..n {
+                combined[i] = hee1 * z1[i] + hee2 * z2[i] + hee3 * z3[i];
+            }
+            apply_mass(&mass_matrix, combined, &mut f2);
+        }
         for i in 0..n {
-            f2[i] = mass[i] * (hee1 * z1[i] + hee2 * z2[i] + hee3 * z3[i]);
             scratch[i] = f2[i] + y0[i];
         }
         newton.solve_real(&mut scratch);
@@ -626,6 +667,18 @@ pub(crate) fn integrate_watching<M: Model>(
     }
     finish(&mut solution, accepted, rejected, &w);
     Ok((solution, Finish::Done))
+}
+
+/// `out = M x` for the dense row-major mass matrix `m`.
+fn apply_mass(m: &[f64], x: &[f64], out: &mut [f64]) {
+    let n = x.len();
+    for (i, o) in out.iter_mut().enumerate() {
+        *o = m[i * n..(i + 1) * n]
+            .iter()
+            .zip(x)
+            .map(|(a, b)| a * b)
+            .sum();
+    }
 }
 
 /// After a failed Newton iteration or step: shrink h by `factor`, mark the

@@ -7,7 +7,7 @@ use crate::dop853::Dop853;
 use crate::dopri5::Dopri5;
 use crate::error::Error;
 use crate::explicit_rk;
-use crate::model::Model;
+use crate::model::{has_mass_matrix, Model};
 use crate::options::{Method, Options};
 use crate::radau5;
 use crate::solution::{InitialCorrection, Solution};
@@ -30,6 +30,9 @@ pub fn simulate<M: Model + Clone + Send + Sync + 'static>(
 fn formulation<M: Model>() -> &'static str {
     if !M::INDEX2_COMPONENTS.is_empty() {
         return "DAE in mass-matrix form with RADAU5: the Gear–Gupta–Leimkuhler index-2 form (position and velocity constraints kept by the multipliers mu, no projection)";
+    }
+    if !M::MASS_PATTERN.is_empty() {
+        return "DAE in mass-matrix form with RADAU5: M y' = f(t, y) with the singular mass matrix as written (index 1)";
     }
     if !M::MASS.is_empty() {
         return "DAE in mass-matrix form with RADAU5: the algebraic equations kept as written (index 1)";
@@ -209,9 +212,10 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
         ));
     }
     solution.set_initial_corrections(corrections);
-    if options.formulation == crate::options::Formulation::MassMatrix && M::MASS.is_empty() {
-        if M::INFO.algebraics.is_empty() {
-            // An ODE has no other form: the option does not apply.
+    if options.formulation == crate::options::Formulation::MassMatrix && !has_mass_matrix::<M>() {
+        if M::INDEX == 0 && M::INFO.algebraics.is_empty() {
+            // An ODE has no other form: the option does not apply (and
+            // stats().formulation says "ODE").
         } else {
             let mass_options = options.formulation(crate::options::Formulation::IndexOneProjected);
             // The model's own initialization found the degrees of freedom
@@ -251,7 +255,7 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     }
     solution.push(t0, &y0);
     match options.method {
-        Method::Auto if !M::MASS.is_empty() => {
+        Method::Auto if has_mass_matrix::<M>() => {
             // A singular mass matrix: only RADAU5 integrates it.
             let mut solution = solution;
             solution.stats_mut().method = "Radau5";

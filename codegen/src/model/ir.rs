@@ -29,6 +29,7 @@ pub struct StateDecl {
 }
 
 /// `let z = algebraic(guess);`
+#[derive(Clone)]
 pub struct AlgebraicDecl {
     /// Its name.
     pub name: String,

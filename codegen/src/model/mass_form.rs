@@ -29,11 +29,17 @@ pub struct MassForm {
     pub differential: usize,
     /// Components that are index-2 variables.
     pub index2: Vec<usize>,
+    /// A general mass matrix `(row, column, entry)`, entries of the
+    /// parameters; `None`: diagonal, 1 on the differential components.
+    pub general: Option<Vec<(usize, usize, Id)>>,
 }
 
 /// The mass-matrix form of `sys`, if it has algebraic variables and its
 /// differential equations solve symbolically for the highest derivatives.
 pub fn mass_form(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Option<MassForm>> {
+    if !sys.combined.is_empty() {
+        return linearly_implicit(g, sys);
+    }
     if sys.algebraic_symbols.is_empty() {
         return Ok(None);
     }
@@ -162,6 +168,77 @@ pub fn mass_form(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Option<MassFo
         names,
         differential: differential_count,
         index2,
+        general: None,
+    }))
+}
+
+/// The equations as written, `M w' = F(t, w)` with `w` the slots and the
+/// algebraic variables and `M` the coefficients of the highest
+/// derivatives: a singular matrix of the parameters (a circuit's
+/// capacitances between nodes) that RADAU5 takes as it is, as Hairer's
+/// RADAU5 does. A lower slot's row is `der^k(x)' = der^(k+1)(x)`. `None`
+/// when a coefficient depends on the states or time (RADAU5 needs `M`
+/// constant) or the equations do not square with the components.
+fn linearly_implicit(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Option<MassForm>> {
+    let z = &sys.highest;
+    let zero = g.zero();
+    let one = g.one();
+    let mut components: Vec<SymbolId> = sys.slots.iter().map(|s| s.symbol).collect();
+    let mut names: Vec<String> = sys.slots.iter().map(|s| s.name.clone()).collect();
+    let differential = components.len();
+    for &a in &sys.algebraic_symbols {
+        components.push(a);
+        names.push(g.symbol(a).name.clone());
+    }
+    // The slot each highest derivative is the derivative of.
+    let mut top_slot = vec![usize::MAX; z.len()];
+    let mut rows = Vec::new();
+    let mut entries = Vec::new();
+    for (i, (slot, derivative)) in sys.slots.iter().zip(&sys.derivatives).enumerate() {
+        match z.iter().position(|&s| is_next(g, slot.symbol, s)) {
+            Some(j) => top_slot[j] = i,
+            None => {
+                let SlotDerivative::Explicit(next) = derivative else {
+                    return Ok(None);
+                };
+                entries.push((rows.len(), i, one));
+                rows.push(*next);
+            }
+        }
+    }
+    if top_slot.contains(&usize::MAX) {
+        return Ok(None);
+    }
+    let replace_zero: FxHashMap<SymbolId, Id> = z.iter().map(|&s| (s, zero)).collect();
+    for &r in &sys.written {
+        let row = rows.len();
+        for (j, &s) in z.iter().enumerate() {
+            let c = g.partial(r, s)?;
+            if c == zero {
+                continue;
+            }
+            let constant = g
+                .free_symbols(c)
+                .iter()
+                .all(|&s| matches!(g.symbol(s).kind, SymbolKind::Parameter));
+            if !constant {
+                return Ok(None);
+            }
+            entries.push((row, top_slot[j], c));
+        }
+        let r0 = g.substitute(r, &replace_zero)?;
+        rows.push(g.negate_terms(r0)?);
+    }
+    if rows.len() != components.len() {
+        return Ok(None);
+    }
+    Ok(Some(MassForm {
+        rows,
+        components,
+        names,
+        differential,
+        index2: Vec::new(),
+        general: Some(entries),
     }))
 }
 
@@ -222,19 +299,44 @@ fn model_items(g: &mut Graph, form: &MassForm, emit: Emit<'_>) -> crate::Result<
         let k = index(k);
         quote!(values[#k] = #v;)
     });
-    let mass = (0..form.components.len()).map(|i| {
-        if i < form.differential {
-            quote!(1.0)
-        } else {
-            quote!(0.0)
+    let mass = match &form.general {
+        None => {
+            let diagonal = (0..form.components.len()).map(|i| {
+                if i < form.differential {
+                    quote!(1.0)
+                } else {
+                    quote!(0.0)
+                }
+            });
+            quote!(const MASS: &'static [f64] = &[#(#diagonal),*];)
         }
-    });
+        Some(entries) => {
+            let pattern = entries.iter().map(|&(r, c, _)| {
+                let (r, c) = (index(r), index(c));
+                quote!((#r, #c))
+            });
+            let k = index(entries.len());
+            let ids: Vec<Id> = entries.iter().map(|e| e.2).collect();
+            let values = emit(g, &ids, &|i, v| {
+                let i = index(i);
+                quote!(values[#i] = #v;)
+            });
+            quote! {
+                const MASS_PATTERN: &'static [(usize, usize)] = &[#(#pattern),*];
+                fn mass_values(&self, values: &mut [f64]) {
+                    let ::core::result::Result::Ok(values) = <&mut [f64; #k]>::try_from(values) else { return };
+                    let t = 0.0f64;
+                    #values
+                }
+            }
+        }
+    };
     let index2 = form.index2.iter().map(|&i| index(i));
     Ok(quote! {
         const STATES: usize = #n;
         type State = [f64; #n];
         const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[#(#pattern),*];
-        const MASS: &'static [f64] = &[#(#mass),*];
+        #mass
         const INDEX2_COMPONENTS: &'static [usize] = &[#(#index2),*];
         fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
             let (::core::result::Result::Ok(y), ::core::result::Result::Ok(dy)) =
@@ -317,7 +419,13 @@ pub fn emit_mass_form(
     let names = &form.names;
     let name_str = form_name.to_string();
     let differential = index(form.differential);
-    let doc = format!("The mass-matrix form of [`{name}`] for RADAU5 with a singular mass matrix: states, algebraic variables and (for constraints differentiated twice) the Gear–Gupta–Leimkuhler multipliers `mu[k]`, which vanish on the solution.");
+    let doc = if form.general.is_some() {
+        format!("The mass-matrix form of [`{name}`] for RADAU5: its equations as written, M w' = F(t, w), with the singular mass matrix M of their derivatives' coefficients.")
+    } else if form.index2.is_empty() {
+        format!("The mass-matrix form of [`{name}`] for RADAU5 with a singular mass matrix: its states, then its algebraic variables, their equations kept as written.")
+    } else {
+        format!("The mass-matrix form of [`{name}`] for RADAU5 with a singular mass matrix: states, algebraic variables and the Gear–Gupta–Leimkuhler multipliers `mu[k]`, which vanish on the solution.")
+    };
     let form_type = quote! {
         #[doc = #doc]
         #[derive(Clone, Copy, Debug, PartialEq)]

@@ -8,6 +8,7 @@
 
 pub mod constraints;
 pub mod ctxt;
+pub mod derivative_free;
 pub mod expand;
 pub mod index_reduction;
 pub mod ir;
@@ -15,6 +16,7 @@ pub mod linear_pencil;
 pub mod lower;
 pub mod mass_form;
 pub mod names;
+pub mod newton_block;
 pub mod reduce;
 pub mod solve_unknowns;
 pub mod taylor_factoring;

@@ -66,8 +66,18 @@ pub struct FirstOrder {
     pub index: usize,
     /// Unknowns solved at run time: symbol, block, row.
     pub block_unknowns: Vec<(SymbolId, usize, usize)>,
-    /// The user's equations as residuals `lhs − rhs`, before index reduction.
+    /// The user's equations as residuals `lhs − rhs`, before index
+    /// reduction (a combination free of the highest derivatives in place
+    /// of an equation it made dependent).
     pub residuals: Vec<Id>,
+    /// Equations replaced by such a combination, each with the equations
+    /// it combines.
+    pub combined: Vec<(usize, Vec<usize>)>,
+    /// The user's equations as residuals, as written.
+    pub written: Vec<Id>,
+    /// Pivots of that combination: expressions of the parameters a run
+    /// must not make zero.
+    pub rank_conditions: Vec<super::derivative_free::RankCondition>,
     /// How often index reduction differentiated each equation.
     pub differentiations: Vec<usize>,
     /// The highest derivative of each state.
@@ -75,8 +85,13 @@ pub struct FirstOrder {
     /// The algebraic variables.
     pub algebraic_symbols: Vec<SymbolId>,
     /// Only the mass-matrix form exists (an algebraic equation is
-    /// nonlinear in the algebraic variables): the model is emitted as it.
+    /// nonlinear in the algebraic variables, and they do not close into a
+    /// Newton block): the model is emitted as it.
     pub mass_only: bool,
+    /// Algebraic equations nonlinear in their variables, solved by Newton
+    /// at each evaluation; their variables are read as run-time block
+    /// `blocks.len()` (after the linear blocks).
+    pub newton: Option<super::newton_block::NewtonBlock>,
     /// States in solution order.
     pub slots: Vec<Slot>,
     /// `dy_i` for each slot.
@@ -93,6 +108,8 @@ struct Equation {
     residual: Id,
     unknowns: Vec<usize>,
     origin: TokenStream,
+    /// Its position among the model's equations.
+    index: usize,
 }
 
 /// Reduces the model, or reports why it cannot.
@@ -167,6 +184,44 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         .map(|(s, &k)| (s.symbol, k))
         .collect();
     let origins: Vec<TokenStream> = ir.equations.iter().map(|e| e.origin.clone()).collect();
+    // Equations whose highest derivatives cancel in a combination become
+    // that combination (a circuit's node equations: `0 == f1 + f2`).
+    let texts: Vec<String> = origins.iter().map(super::names::source_text).collect();
+    let z_names: Vec<String> = z_symbols
+        .iter()
+        .map(|&s| g.symbol(s).name.clone())
+        .collect();
+    // Only a square system (as many equations as unknowns) is separated: in
+    // another, a repeated or missing equation is the mistake to report.
+    let square = residuals.len() == z_symbols.len() + ir.algebraics.len();
+    let separated = if !square {
+        Ok(super::derivative_free::Separated {
+            residuals: residuals.clone(),
+            combined: Vec::new(),
+            conditions: Vec::new(),
+        })
+    } else {
+        super::derivative_free::separate(g, &residuals, &z_symbols, &texts, &z_names)
+    };
+    let separated = match separated {
+        Ok(separated) => separated,
+        Err(super::derivative_free::Failure::Dependent { equation, of }) => {
+            let others: Vec<String> = of.iter().map(|&i| format!("`{}`", texts[i])).collect();
+            cx.error_at(
+                    &origins[equation],
+                    format!(
+                        "this equation is a combination of {}: it adds nothing; remove it or state what it was meant to add",
+                        others.join(" and ")
+                    ),
+                );
+            return None;
+        }
+        Err(super::derivative_free::Failure::Graph(e)) => {
+            cx.error_at(&origins[0], e);
+            return None;
+        }
+    };
+    let written = std::mem::replace(&mut residuals, separated.residuals);
     let reduction = super::index_reduction::reduce_index(
         cx,
         g,
@@ -179,12 +234,45 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         &residuals,
         &origins,
     )?;
-    // The unknowns: z, then λ.
-    z_symbols.extend(&algebraic_symbols);
+    // Algebraic equations nonlinear in their variables: a Newton block,
+    // its variables known to the rest of the reduction.
+    let candidates: Vec<(SymbolId, String, Id)> = ir
+        .algebraics
+        .iter()
+        .map(|a| (a.symbol, a.name.clone(), a.init))
+        .collect();
+    let newton = match super::newton_block::find(
+        g,
+        &super::newton_block::Candidates {
+            residuals: &reduction.residuals,
+            differentiations: &reduction.differentiations,
+            highest: &z_symbols,
+            algebraics: &candidates,
+            texts: &texts,
+        },
+    ) {
+        Ok(newton) => newton,
+        Err(e) => {
+            cx.error_at(&origins[0], e);
+            return None;
+        }
+    };
+    let in_newton = |s: &SymbolId| newton.as_ref().is_some_and(|b| b.unknowns.contains(s));
+    // The unknowns: z, then λ (but for the Newton block's).
+    let linear_algebraics: Vec<super::ir::AlgebraicDecl> = ir
+        .algebraics
+        .iter()
+        .filter(|a| !in_newton(&a.symbol))
+        .cloned()
+        .collect();
+    z_symbols.extend(linear_algebraics.iter().map(|a| a.symbol));
     let z_index: FxHashMap<SymbolId, usize> =
         z_symbols.iter().enumerate().map(|(j, &s)| (s, j)).collect();
     let mut equations = Vec::with_capacity(residuals.len());
-    for (eq, &r) in ir.equations.iter().zip(&reduction.residuals) {
+    for (e, (eq, &r)) in ir.equations.iter().zip(&reduction.residuals).enumerate() {
+        if newton.as_ref().is_some_and(|b| b.equations.contains(&e)) {
+            continue;
+        }
         let unknowns: Vec<usize> = g
             .free_symbols(r)
             .into_iter()
@@ -194,9 +282,17 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
             residual: r,
             unknowns,
             origin: eq.origin.clone(),
+            index: e,
         });
     }
-    let owner = matched(cx, g, &ir.states, &ir.algebraics, &equations, &z_symbols)?;
+    let owner = matched(
+        cx,
+        g,
+        &ir.states,
+        &linear_algebraics,
+        &equations,
+        &z_symbols,
+    )?;
     // Linear in z: E_ij = ∂r_i/∂z_j must not contain z; g = -r|_{z=0}.
     let n = z_symbols.len();
     let zero = g.zero();
@@ -207,10 +303,10 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
     // constraint) nonlinear in the algebraic variables has no index-1 form
     // here: the model is integrated in its mass-matrix form instead.
     let mut mass_only = false;
-    for (e, eq) in equations.iter().enumerate() {
+    for eq in &equations {
         let mut row = Vec::new();
         let algebraic_equation =
-            reduction.differentiations[e] == 0 && eq.unknowns.iter().all(|&j| j >= n_states);
+            reduction.differentiations[eq.index] == 0 && eq.unknowns.iter().all(|&j| j >= n_states);
         for &j in &eq.unknowns {
             let c = g.partial(eq.residual, z_symbols[j]).ok()?;
             if let Some(bad) = g
@@ -340,7 +436,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         if let Some(s) = g
             .free_symbols(v)
             .into_iter()
-            .find(|s| z_index.contains_key(s))
+            .find(|s| z_index.contains_key(s) || in_newton(s))
         {
             let name = g.symbol(s).name.clone();
             cx.error_at(origin, format!("this {what} reads `{name}`, which is only known after a numerical solve; compute it from the states instead"));
@@ -356,19 +452,30 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
     for e in &ir.events {
         events.push(observe(e.value, &e.origin, "event")?);
     }
-    let algebraics = (n_states..z_symbols.len())
-        .map(|j| match (solution[j], block_of[j]) {
-            (Some(v), _) => Some(SlotDerivative::Explicit(v)),
-            (None, Some((block, row))) => Some(SlotDerivative::Block { block, row }),
-            (None, None) if after_solve[j].is_some() => {
-                after_solve[j].map(SlotDerivative::AfterSolve)
-            }
-            (None, None) if mass_only => {
-                Some(SlotDerivative::Explicit(g.symbol_node(z_symbols[j])))
-            }
-            (None, None) => None,
-        })
-        .collect::<Option<Vec<_>>>()?;
+    // Each algebraic variable in declaration order: from the linear solve,
+    // or from the Newton block (read as block `mass_blocks.len()`).
+    let newton_block_index = mass_blocks.len();
+    let mut algebraics = Vec::with_capacity(ir.algebraics.len());
+    for a in &ir.algebraics {
+        if let Some(k) = newton
+            .as_ref()
+            .and_then(|b| b.unknowns.iter().position(|&s| s == a.symbol))
+        {
+            algebraics.push(SlotDerivative::Block {
+                block: newton_block_index,
+                row: k,
+            });
+            continue;
+        }
+        let j = *z_index.get(&a.symbol)?;
+        algebraics.push(match (solution[j], block_of[j]) {
+            (Some(v), _) => SlotDerivative::Explicit(v),
+            (None, Some((block, row))) => SlotDerivative::Block { block, row },
+            (None, None) if after_solve[j].is_some() => SlotDerivative::AfterSolve(after_solve[j]?),
+            (None, None) if mass_only => SlotDerivative::Explicit(g.symbol_node(z_symbols[j])),
+            (None, None) => return None,
+        });
+    }
     // The user's invariants: functions of the states, projected onto.
     let mut invariants = reduction.invariants;
     for inv in &ir.invariants {
@@ -388,11 +495,16 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
             text: super::names::source_text(&inv.origin),
         });
     }
-    let block_unknowns = z_symbols
+    let mut block_unknowns: Vec<(SymbolId, usize, usize)> = z_symbols
         .iter()
         .enumerate()
         .filter_map(|(j, &s)| block_of[j].map(|(b, r)| (s, b, r)))
         .collect();
+    if let Some(b) = &newton {
+        for (k, &s) in b.unknowns.iter().enumerate() {
+            block_unknowns.push((s, newton_block_index, k));
+        }
+    }
     ok.then_some(FirstOrder {
         slots,
         derivatives,
@@ -404,10 +516,14 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         index: reduction.index,
         block_unknowns,
         residuals,
+        combined: separated.combined,
+        written,
+        rank_conditions: separated.conditions,
         differentiations: reduction.differentiations,
         highest: z_symbols[..n_states].to_vec(),
         algebraic_symbols,
         mass_only,
+        newton,
     })
 }
 
