@@ -92,10 +92,8 @@ fn integrate(g: &Graph, d: &[Id], x: SymbolId, steps: usize) -> f64 {
             let v = g.eval(&[dk], &value)[0];
             known.push(v);
         }
-        let derivatives: Vec<[f64; 1]> = known[1..].iter().map(|&v| [v]).collect();
-        let slices: Vec<&[f64]> = derivatives.iter().map(|v| &v[..]).collect();
         let mut next = [0.0];
-        taylor_step(&y, &slices, h, &mut next);
+        taylor_step(&y, &known[1..], h, &mut next);
         y = next;
     }
     y[0]

@@ -33,8 +33,9 @@ pub use daegen_codegen as codegen;
 pub use daegen_macros::dae_model;
 pub use daegen_runtime as runtime;
 pub use daegen_runtime::{
-    ConstraintInfo, Error, EvalError, EventDirection, EventInfo, Formulation, InitialCorrection,
-    Method, Model, ModelInfo, Options, ProjectionLevel, Solution, Stats,
+    ConstraintInfo, Error, EvalError, EventDirection, EventInfo, Flow, Formulation,
+    InitialCorrection, Method, Model, ModelInfo, Options, ProjectionLevel, Solution, Stats, Step,
+    Table,
 };
 
 /// Everything a model file needs: `use daegen::prelude::*;`.

@@ -872,7 +872,7 @@ fn an_algebraic_equation_nonlinear_in_its_variable_runs_with_every_method() {
             (base.method(Method::Dopri5), "Dopri5"),
             (base.method(Method::Dop853), "Dop853"),
             (base.method(Method::Radau5), "Radau5"),
-            (base, "Auto"),
+            (base.clone(), "Auto"),
             (
                 base.method(Method::Radau5)
                     .formulation(Formulation::MassMatrix),

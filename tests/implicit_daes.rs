@@ -74,7 +74,7 @@ fn the_transistor_amplifier_as_written_matches_the_test_set() {
         let base = Options::new().rtol(tol).atol(tol);
         for (options, what) in [
             (base.method(Method::Radau5), "Radau5"),
-            (base, "Auto"),
+            (base.clone(), "Auto"),
             (
                 base.method(Method::Radau5)
                     .formulation(Formulation::MassMatrix),
@@ -192,7 +192,7 @@ fn the_one_transistor_amplifier_agrees_in_both_formulations() {
         let base = Options::new().rtol(tol).atol(tol);
         for options in [
             base.method(Method::Radau5),
-            base,
+            base.clone(),
             base.method(Method::Radau5)
                 .formulation(Formulation::MassMatrix),
         ] {
@@ -240,7 +240,7 @@ fn newton_on_a_quadratic_algebraic_equation_serves_every_method() {
             base.method(Method::Dopri5),
             base.method(Method::Dop853),
             base.method(Method::Radau5),
-            base,
+            base.clone(),
             base.method(Method::Radau5)
                 .formulation(Formulation::MassMatrix),
         ] {

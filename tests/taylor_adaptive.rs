@@ -357,7 +357,7 @@ fn a_finite_time_blow_up_is_an_error_at_the_pole() {
 }
 
 /// Without dense output the Taylor method takes the same steps to the same
-/// end; `at` is then linear between steps.
+/// end; `at` is then cubic Hermite between steps.
 #[test]
 fn taylor_without_dense_output_takes_the_same_steps() {
     let t1 = 4.0 * std::f64::consts::PI;
@@ -373,11 +373,8 @@ fn taylor_without_dense_output_takes_the_same_steps() {
     assert_eq!(final_state(&a), final_state(&b));
     let t = 1.0;
     assert!((a.at(t, "q1").unwrap() - kepler_exact(t)[0]).abs() < 1e-12);
-    let k = b.times().partition_point(|&s| s < t);
-    let (t0, t1) = (b.times()[k - 1], b.times()[k]);
-    let (y0, y1) = (b.state(k - 1).unwrap()[0], b.state(k).unwrap()[0]);
-    let linear = y0 + (t - t0) / (t1 - t0) * (y1 - y0);
-    assert!((b.at(t, "q1").unwrap() - linear).abs() <= 1e-15);
+    let hermite = hermite_between_steps(&b, t, 0, 2);
+    assert!((b.at(t, "q1").unwrap() - hermite).abs() <= 1e-14);
 }
 
 /// The order follows the model's cost (taylor_order.rs): Kepler, a small
@@ -420,4 +417,18 @@ fn the_order_follows_the_model_and_can_be_fixed() {
         matches!(&err, daegen::Error::InvalidOptions { message } if message.contains("taylor_order(1)")),
         "{err}"
     );
+}
+
+/// Component `i` at `t` by the cubic Hermite polynomial through the stored
+/// steps around `t`, with component `di` as its derivative.
+fn hermite_between_steps(sol: &daegen::Solution, t: f64, i: usize, di: usize) -> f64 {
+    let k = sol.times().partition_point(|&s| s < t);
+    let (t0, t1) = (sol.times()[k - 1], sol.times()[k]);
+    let (a, b) = (sol.state(k - 1).unwrap(), sol.state(k).unwrap());
+    let (h, s) = (t1 - t0, (t - t0) / (t1 - t0));
+    let (s2, s3) = (s * s, s * s * s);
+    (2.0 * s3 - 3.0 * s2 + 1.0) * a[i]
+        + (s3 - 2.0 * s2 + s) * h * a[di]
+        + (3.0 * s2 - 2.0 * s3) * b[i]
+        + (s3 - s2) * h * b[di]
 }

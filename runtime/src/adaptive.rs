@@ -4,7 +4,7 @@
 //! of a real run (Hairer, Nørsett, Wanner, *Solving ODEs I*, §II.4–§II.6).
 
 use crate::error::Error;
-use crate::events::{stop_at_terminal_event, EventWatch};
+use crate::events::{after_accepted_step, EventWatch};
 use crate::model::{EvalError, Model, StateVector};
 use crate::options::Options;
 use crate::projection::{project_onto_constraints, Projector};
@@ -353,7 +353,7 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
             } else {
                 solution.push(t, y.as_ref());
             }
-            stop_at_terminal_event!(events, solution);
+            after_accepted_step!(events, solution);
             if last {
                 break;
             }

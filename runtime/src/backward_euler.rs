@@ -25,7 +25,7 @@
 
 use crate::dense_lu::RealLu;
 use crate::error::Error;
-use crate::events::{stop_at_terminal_event, EventWatch};
+use crate::events::{after_accepted_step, EventWatch};
 use crate::jacobian::DenseJacobian;
 use crate::model::{EvalError, Model};
 use crate::options::Options;
@@ -603,7 +603,7 @@ pub(crate) fn integrate<M: Model>(
         project_onto_constraints!(projector, t, &mut y, solution);
         solution.push(t, &y);
         solution.stats_mut().steps += 1;
-        stop_at_terminal_event!(events, solution);
+        after_accepted_step!(events, solution);
     }
     Ok(solution)
 }

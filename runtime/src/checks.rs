@@ -32,6 +32,9 @@ pub(crate) fn check_request<M: Model>(
         return invalid(format!("the interval [{t0}, {t1}] must be finite"));
     }
     check_options::<M>(options)?;
+    if let Some(times) = &options.output_times {
+        check_output_times(times, t0, t1, options)?;
+    }
     for (k, &name) in M::INFO.parameters.iter().enumerate() {
         let value = model.parameter(k);
         if !value.is_finite() {
@@ -141,10 +144,42 @@ fn check_options<M: Model>(options: &Options) -> Result<(), Error> {
     if options.keep_every == 0 {
         return invalid("keep_every(0): k ≥ 1 (1 keeps every step)".to_string());
     }
-    if options.keep_every > 1 && !M::INFO.events.is_empty() {
+    Ok(())
+}
+
+/// `output_times`: finite, inside the interval, in its direction, and not
+/// with the options that would leave nothing to interpolate them from.
+fn check_output_times(times: &[f64], t0: f64, t1: f64, options: &Options) -> Result<(), Error> {
+    if options.keep_every > 1 {
         return invalid(format!(
-            "{} has events, which are located on every step's continuous extension: run it without keep_every",
-            M::INFO.name
+            "output_times and keep_every({}) both choose what to store: use one",
+            options.keep_every
+        ));
+    }
+    if !options.dense_output {
+        return invalid(
+            "output_times interpolates in the steps with their dense output: drop dense_output(false)"
+                .to_string(),
+        );
+    }
+    let (lo, hi) = (t0.min(t1), t0.max(t1));
+    if let Some(t) = times.iter().find(|t| !(lo..=hi).contains(*t)) {
+        return invalid(format!(
+            "output_times: {t} lies outside the interval [{t0}, {t1}]; give times from t0 to t1"
+        ));
+    }
+    let forward = t1 >= t0;
+    if let Some(k) = (1..times.len()).find(|&k| {
+        if forward {
+            times[k] <= times[k - 1]
+        } else {
+            times[k] >= times[k - 1]
+        }
+    }) {
+        let order = if forward { "increasing" } else { "decreasing" };
+        return invalid(format!(
+            "output_times must be strictly {order} (the direction from t0 to t1): {} is followed by {}",
+            times[k - 1], times[k]
         ));
     }
     Ok(())

@@ -23,6 +23,8 @@
 //! | [`Error::MethodNotAvailable`] | reserved: every [`crate::Method`] is implemented | — | — |
 //! | [`Error::UnknownName`] | `Solution::at`/`last` with a name that is no state, algebraic variable or output | use one of `known` | `tests/models.rs` `bad_requests_are_errors_not_panics` |
 //! | [`Error::Thinned`] | `Solution::at` between the steps a `keep_every` run kept | ask at `Solution::times`, or keep every step | `tests/long_runs.rs` `keep_every_thins_the_stored_steps_and_at_refuses_between_them` |
+//! | [`Error::NotStored`] | `Solution::at` or `sample` at a time an `output_times` run did not store | ask at `Solution::times`, or add the time to `output_times` | `tests/results_out.rs` `output_times_store_those_times_at_the_methods_order` |
+//! | [`Error::Io`] | writing a CSV file failed | the message carries the system's reason | `tests/results_out.rs` `a_failing_writer_is_an_error_not_a_panic` |
 //! | [`Error::OutOfRange`] | `Solution::at` outside the integrated interval | ask within `interval` | `tests/models.rs` `bad_requests_are_errors_not_panics` |
 
 use crate::solution::Solution;
@@ -184,6 +186,17 @@ pub enum Error {
         /// One step in this many was kept.
         keep_every: usize,
     },
+    /// A time a solution stored at [`crate::Options::output_times`] did
+    /// not store.
+    NotStored {
+        /// The time asked for.
+        t: f64,
+    },
+    /// Writing results failed.
+    Io {
+        /// What was being written, and the system's reason.
+        message: String,
+    },
     /// A time outside the solution's interval.
     OutOfRange {
         /// The time asked for.
@@ -334,6 +347,11 @@ impl fmt::Display for Error {
                 f,
                 "t = {t} lies between the steps this solution kept (Options::keep_every({keep_every}) stores one step in {keep_every}): `at` answers only at its stored times (Solution::times); keep every step to interpolate between them"
             ),
+            Error::NotStored { t } => write!(
+                f,
+                "t = {t} is not among the times this solution stored (Options::output_times): ask at Solution::times, or add t to output_times"
+            ),
+            Error::Io { message } => write!(f, "{message}"),
             Error::OutOfRange { t, interval } => {
                 write!(
                     f,

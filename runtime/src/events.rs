@@ -53,8 +53,10 @@ pub(crate) fn stop_after_step<M: Model>(
 
 /// In an integrator's step loop, after an accepted step was pushed: checks
 /// it for events if the model has any (only then: moving the solution in
-/// and out costs a copy) and breaks out of the loop at a terminal one.
-macro_rules! stop_at_terminal_event {
+/// and out costs a copy), shows it to the step callback and the progress
+/// bar, and breaks out of the loop at a terminal event or when the
+/// callback says stop.
+macro_rules! after_accepted_step {
     ($events:ident, $solution:ident) => {
         if $events.is_some() {
             let stop;
@@ -63,9 +65,12 @@ macro_rules! stop_at_terminal_event {
                 break;
             }
         }
+        if $solution.after_accepted_step() {
+            break;
+        }
     };
 }
-pub(crate) use stop_at_terminal_event;
+pub(crate) use after_accepted_step;
 
 impl<'m, M: Model> EventWatch<'m, M> {
     /// A watch for `model`'s events from `(t0, y0)`, or `None` if it has none.
@@ -100,10 +105,10 @@ impl<'m, M: Model> EventWatch<'m, M> {
     /// Checks the last step of `solution` for events, records them in it and,
     /// at a terminal one, cuts the solution there (and says so with `true`).
     pub(crate) fn after_step(&mut self, mut solution: Solution) -> Result<(Solution, bool), Error> {
-        let times = solution.times();
-        let Some(&[t_old, t_new]) = times.get(times.len().wrapping_sub(2)..) else {
+        let Some((t_old, t_new)) = solution.last_step() else {
             return Ok((solution, false));
         };
+        solution.prepare_last_step();
         let mut hits: Vec<EventHit> = Vec::new();
         let mut a = t_old;
         for j in 1..=self.subdivisions {
@@ -113,9 +118,7 @@ impl<'m, M: Model> EventWatch<'m, M> {
                 t_old + (t_new - t_old) * (j as f64 / self.subdivisions as f64)
             };
             if j == self.subdivisions {
-                if let Some(y) = solution.last_state() {
-                    self.y.copy_from_slice(y);
-                }
+                self.y.copy_from_slice(solution.last_step_end());
             } else {
                 solution.interpolate_last_step(b, &mut self.y);
             }
@@ -221,7 +224,7 @@ impl<'m, M: Model> EventWatch<'m, M> {
                 continue;
             }
             let t = bracketed_root(|t| self.along(solution, i, t, false), lo, hi, g_lo, g_hi);
-            let t_new = solution.times().last().copied().unwrap_or(t);
+            let t_new = solution.last_step().map_or(t, |(_, t_new)| t_new);
             let start_tolerance =
                 16.0 * f64::EPSILON * self.t_start.abs().max((t_new - self.t_start).abs());
             if (t - self.t_start).abs() <= start_tolerance {

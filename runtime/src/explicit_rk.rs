@@ -3,7 +3,7 @@
 //! §II.1). The tableaux are data; one stepping routine serves them all.
 
 use crate::error::Error;
-use crate::events::{stop_at_terminal_event, EventWatch};
+use crate::events::{after_accepted_step, EventWatch};
 use crate::model::Model;
 use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
@@ -143,7 +143,7 @@ pub(crate) fn integrate<M: Model>(
         project_onto_constraints!(projector, t_next, &mut y, solution);
         solution.push(t_next, &y);
         solution.stats_mut().steps += 1;
-        stop_at_terminal_event!(events, solution);
+        after_accepted_step!(events, solution);
     }
     Ok(solution)
 }

@@ -28,6 +28,7 @@ mod simulate;
 mod solution;
 pub mod step_control;
 mod stiffness;
+mod table;
 pub mod taylor;
 mod taylor_fixed;
 pub mod taylor_order;
@@ -42,6 +43,7 @@ pub use model::{
 /// The linear-algebra crate of [`kinematics`], re-exported so users get the
 /// same version.
 pub use nalgebra;
-pub use options::{Formulation, Method, Options};
+pub use options::{Flow, Formulation, Method, Options, Step};
 pub use simulate::{simulate, simulate_from};
 pub use solution::{EventHit, InitialCorrection, Solution, Stats};
+pub use table::Table;

@@ -1,5 +1,7 @@
 //! How to run a model: the method and its settings, as a by-value builder.
 
+use std::sync::{Arc, Mutex};
+
 /// An integration method.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Method {
@@ -56,8 +58,45 @@ pub enum Method {
     Radau5,
 }
 
-/// Settings of a run. Build with `Options::new().method(..).rtol(..)`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// What [`Options::on_step`] sees of each accepted step.
+#[derive(Clone, Copy, Debug)]
+pub struct Step<'a> {
+    /// The time reached.
+    pub t: f64,
+    /// The state there, in the order of [`crate::ModelInfo::states`].
+    pub y: &'a [f64],
+    /// Steps accepted so far, this one included.
+    pub steps: usize,
+    /// The states' names.
+    pub names: &'static [&'static str],
+}
+
+impl Step<'_> {
+    /// The state called `name`, if there is one.
+    pub fn get(&self, name: &str) -> Option<f64> {
+        self.names
+            .iter()
+            .position(|n| *n == name)
+            .and_then(|i| self.y.get(i).copied())
+    }
+}
+
+/// Whether a run goes on after [`Options::on_step`] saw a step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Flow {
+    /// Go on.
+    Continue,
+    /// End the run here, successfully ([`crate::Solution::cancelled_at`]).
+    Stop,
+}
+
+/// A callback that sees every accepted step.
+pub(crate) type StepCallback = Arc<Mutex<dyn FnMut(&Step<'_>) -> Flow + Send>>;
+
+/// Settings of a run. Build with `Options::new().method(..).rtol(..)`:
+/// each setter returns a changed copy and leaves the options it was called
+/// on as they were, so one `Options` can be the base of several.
+#[derive(Clone)]
 pub struct Options {
     pub(crate) method: Method,
     pub(crate) rtol: f64,
@@ -74,6 +113,63 @@ pub struct Options {
     pub(crate) keep_every: usize,
     pub(crate) stiffness_detection: bool,
     pub(crate) strict_initial_values: bool,
+    pub(crate) output_times: Option<Arc<[f64]>>,
+    pub(crate) on_step: Option<StepCallback>,
+    pub(crate) progress: bool,
+}
+
+impl std::fmt::Debug for Options {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Options")
+            .field("method", &self.method)
+            .field("rtol", &self.rtol)
+            .field("atol", &self.atol)
+            .field("step", &self.step)
+            .field("initial_step", &self.initial_step)
+            .field("max_step", &self.max_step)
+            .field("min_step", &self.min_step)
+            .field("max_steps", &self.max_steps)
+            .field("taylor_compact", &self.taylor_compact)
+            .field("taylor_order", &self.taylor_order)
+            .field("dense_output", &self.dense_output)
+            .field("formulation", &self.formulation)
+            .field("keep_every", &self.keep_every)
+            .field("stiffness_detection", &self.stiffness_detection)
+            .field("strict_initial_values", &self.strict_initial_values)
+            .field("output_times", &self.output_times.as_ref().map(|t| t.len()))
+            .field("on_step", &self.on_step.is_some())
+            .field("progress", &self.progress)
+            .finish()
+    }
+}
+
+/// Equal settings; two callbacks are equal when they are the same one.
+impl PartialEq for Options {
+    fn eq(&self, other: &Options) -> bool {
+        let same_callback = match (&self.on_step, &other.on_step) {
+            (None, None) => true,
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            _ => false,
+        };
+        self.method == other.method
+            && self.rtol == other.rtol
+            && self.atol == other.atol
+            && self.step == other.step
+            && self.initial_step == other.initial_step
+            && self.max_step == other.max_step
+            && self.min_step == other.min_step
+            && self.max_steps == other.max_steps
+            && self.taylor_compact == other.taylor_compact
+            && self.taylor_order == other.taylor_order
+            && self.dense_output == other.dense_output
+            && self.formulation == other.formulation
+            && self.keep_every == other.keep_every
+            && self.stiffness_detection == other.stiffness_detection
+            && self.strict_initial_values == other.strict_initial_values
+            && self.output_times == other.output_times
+            && same_callback
+            && self.progress == other.progress
+    }
 }
 
 /// How a DAE is integrated.
@@ -109,6 +205,9 @@ impl Default for Options {
             keep_every: 1,
             stiffness_detection: true,
             strict_initial_values: false,
+            output_times: None,
+            on_step: None,
+            progress: false,
         }
     }
 }
@@ -120,67 +219,79 @@ impl Options {
     }
 
     /// The integration method.
-    pub fn method(self, method: Method) -> Options {
-        Options { method, ..self }
+    pub fn method(&self, method: Method) -> Options {
+        Options {
+            method,
+            ..self.clone()
+        }
     }
 
     /// Relative tolerance of adaptive methods.
-    pub fn rtol(self, rtol: f64) -> Options {
-        Options { rtol, ..self }
+    pub fn rtol(&self, rtol: f64) -> Options {
+        Options {
+            rtol,
+            ..self.clone()
+        }
     }
 
     /// Absolute tolerance of adaptive methods.
-    pub fn atol(self, atol: f64) -> Options {
-        Options { atol, ..self }
+    pub fn atol(&self, atol: f64) -> Options {
+        Options {
+            atol,
+            ..self.clone()
+        }
     }
 
     /// Step size of fixed-step methods (default: the interval over 1000).
-    pub fn step(self, step: f64) -> Options {
+    pub fn step(&self, step: f64) -> Options {
         Options {
             step: Some(step),
-            ..self
+            ..self.clone()
         }
     }
 
     /// First step of adaptive methods (default: Hairer's estimate from f and
     /// its change along an Euler step).
-    pub fn initial_step(self, h: f64) -> Options {
+    pub fn initial_step(&self, h: f64) -> Options {
         Options {
             initial_step: Some(h),
-            ..self
+            ..self.clone()
         }
     }
 
     /// Largest step of adaptive methods (default: the whole interval).
-    pub fn max_step(self, h: f64) -> Options {
+    pub fn max_step(&self, h: f64) -> Options {
         Options {
             max_step: Some(h),
-            ..self
+            ..self.clone()
         }
     }
 
     /// Smallest step adaptive methods may take before stopping with
     /// [`crate::Error::StepSizeUnderflow`] (default 0: only the precision of t limits it).
-    pub fn min_step(self, h: f64) -> Options {
+    pub fn min_step(&self, h: f64) -> Options {
         Options {
             min_step: h,
-            ..self
+            ..self.clone()
         }
     }
 
     /// Most steps a run may take before it stops with [`crate::Error::MaxSteps`].
-    pub fn max_steps(self, max_steps: usize) -> Options {
-        Options { max_steps, ..self }
+    pub fn max_steps(&self, max_steps: usize) -> Options {
+        Options {
+            max_steps,
+            ..self.clone()
+        }
     }
 
     /// `Method::Taylor` interprets the model's tape (the compact layout)
     /// even where the macro emitted straight-line recurrences for the order
     /// in use (`#[dae_model(unroll = [..])]`, used by default): to compare
     /// the two layouts.
-    pub fn taylor_compact(self, compact: bool) -> Options {
+    pub fn taylor_compact(&self, compact: bool) -> Options {
         Options {
             taylor_compact: compact,
-            ..self
+            ..self.clone()
         }
     }
 
@@ -188,23 +299,25 @@ impl Options {
     /// from the tolerance and the model's cost per order
     /// (`daegen::runtime::taylor_order`); the step still follows ρ and the
     /// tolerance. To compare layouts or orders at equal footing.
-    pub fn taylor_order(self, order: usize) -> Options {
+    pub fn taylor_order(&self, order: usize) -> Options {
         Options {
             taylor_order: Some(order),
-            ..self
+            ..self.clone()
         }
     }
 
     /// Whether adaptive methods keep each step's continuous extension for
     /// [`crate::Solution::at`] (default `true`). With `false` only the
-    /// accepted steps are kept and `at` interpolates linearly between them,
-    /// as for fixed-step methods: less memory on long runs, and DOP853
-    /// saves the three extra stages of its dense output per step. A model
-    /// with events keeps it anyway (events are located on it).
-    pub fn dense_output(self, dense_output: bool) -> Options {
+    /// accepted steps are kept and `at` interpolates between them by the
+    /// cubic Hermite polynomial through both ends and their derivatives,
+    /// as for the fixed-step Runge–Kutta methods: less memory on long
+    /// runs, and DOP853 saves the three extra stages of its dense output
+    /// per step. A model with events keeps it anyway (events are located
+    /// on it). Not with [`Options::output_times`], which interpolates on it.
+    pub fn dense_output(&self, dense_output: bool) -> Options {
         Options {
             dense_output,
-            ..self
+            ..self.clone()
         }
     }
 
@@ -212,12 +325,12 @@ impl Options {
     /// (default 1: every step): a run of 10⁶ steps with `k = 1000` keeps
     /// about a thousand states. Implies `dense_output(false)`; `at` then
     /// answers only at the stored times ([`crate::Error::Thinned`]
-    /// between them); `stats()` still counts every step. Not with events,
-    /// which are located on every step: the run is refused.
-    pub fn keep_every(self, k: usize) -> Options {
+    /// between them); `stats()` still counts every step. Events are still
+    /// located on every step's continuous extension.
+    pub fn keep_every(&self, k: usize) -> Options {
         Options {
             keep_every: k,
-            ..self
+            ..self.clone()
         }
     }
 
@@ -225,10 +338,10 @@ impl Options {
     /// the problem turns stiff (default `true`): Hairer's test, h·ρ(J) at
     /// the edge of the stability region for 15 steps. With `false` they go
     /// on with steps held at that edge, as many as the problem takes.
-    pub fn stiffness_detection(self, detect: bool) -> Options {
+    pub fn stiffness_detection(&self, detect: bool) -> Options {
         Options {
             stiffness_detection: detect,
-            ..self
+            ..self.clone()
         }
     }
 
@@ -236,18 +349,53 @@ impl Options {
     /// instead of being moved onto the constraints (default `false`: moved,
     /// and listed in [`crate::Solution::initial_corrections`]). The error
     /// is an [`crate::Error::Constraint`] that names the values.
-    pub fn strict_initial_values(self, strict: bool) -> Options {
+    pub fn strict_initial_values(&self, strict: bool) -> Options {
         Options {
             strict_initial_values: strict,
-            ..self
+            ..self.clone()
+        }
+    }
+
+    /// Stores the solution at these times only (SciPy's `t_eval`,
+    /// DifferentialEquations.jl's `saveat`), each from the step that
+    /// covers it by the method's own continuous extension (cubic Hermite
+    /// for the fixed-step methods); the steps themselves are not kept, so
+    /// memory stays that of the times asked for. The times must lie in the
+    /// interval, in its direction. `at` then answers at these times only;
+    /// `last` and `final_state` give the end of the run.
+    pub fn output_times(&self, times: Vec<f64>) -> Options {
+        Options {
+            output_times: Some(times.into()),
+            ..self.clone()
+        }
+    }
+
+    /// Calls `callback` after every accepted step with the time and state
+    /// ([`Step`]); returning [`Flow::Stop`] ends the run there (a success:
+    /// [`crate::Solution::cancelled_at`] says where). With
+    /// [`Options::output_times`] (or `keep_every`) a run of any length
+    /// keeps constant memory while the callback streams the steps.
+    pub fn on_step(&self, callback: impl FnMut(&Step<'_>) -> Flow + Send + 'static) -> Options {
+        Options {
+            on_step: Some(Arc::new(Mutex::new(callback))),
+            ..self.clone()
+        }
+    }
+
+    /// Draws a progress bar on stderr (time reached of the interval, steps,
+    /// steps per second) for a run that lasts over a second; off by default.
+    pub fn progress(&self, show: bool) -> Options {
+        Options {
+            progress: show,
+            ..self.clone()
         }
     }
 
     /// How a DAE is integrated (see [`Formulation`]); ODEs ignore it.
-    pub fn formulation(self, formulation: Formulation) -> Options {
+    pub fn formulation(&self, formulation: Formulation) -> Options {
         Options {
             formulation,
-            ..self
+            ..self.clone()
         }
     }
 

@@ -12,7 +12,7 @@
 use crate::band_lu::{BandNewton, BandOrdering};
 use crate::dense_lu::{ComplexLu, RealLu};
 use crate::error::Error;
-use crate::events::{stop_at_terminal_event, EventWatch};
+use crate::events::{after_accepted_step, EventWatch};
 use crate::jacobian::DenseJacobian;
 use crate::model::{has_mass_matrix, EvalError, Model};
 use crate::options::Options;
@@ -608,7 +608,7 @@ pub(crate) fn integrate_watching<M: Model>(
             } else {
                 solution.push(t, &y);
             }
-            stop_at_terminal_event!(events, solution);
+            after_accepted_step!(events, solution);
             if last {
                 break;
             }

@@ -100,11 +100,13 @@ fn labelled<M: Model>(
     match result {
         Ok(mut s) => {
             label(&mut s);
+            s.finish_run();
             Ok(s)
         }
         Err(mut e) => {
             if let Some(s) = e.partial_solution_mut() {
                 label(s);
+                s.finish_run();
             }
             Err(e)
         }
@@ -188,6 +190,8 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     options: &Options,
 ) -> Result<Solution, Error> {
     crate::checks::check_request(model, t0, y0, t1, options)?;
+    // A thinned run keeps no dense output: it could not serve between the
+    // stored steps.
     let thinned = options.dense_output(false);
     let options = if options.keep_every > 1 {
         &thinned
@@ -195,7 +199,7 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
         options
     };
     let mut solution = Solution::new(model, 1024);
-    solution.set_keep_every(options.keep_every);
+    solution.configure(options, t0, t1);
     let mut y0 = y0.to_vec();
     let given = y0.clone();
     let solution = crate::projection::consistent_initial_values(model, t0, &mut y0, solution)?;
@@ -253,7 +257,7 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
             solution.note_constraint_residuals(r);
         }
     }
-    solution.push(t0, &y0);
+    solution.push_initial(t0, &y0);
     match options.method {
         Method::Auto if has_mass_matrix::<M>() => {
             // A singular mass matrix: only RADAU5 integrates it.
@@ -275,7 +279,8 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
                     partial: Box::new(solution),
                 });
             }
-            taylor_fixed::integrate(model, t0, t1, &y0, order, steps as usize, solution)
+            let steps = steps as usize;
+            taylor_fixed::integrate(model, t0, t1, &y0, order, steps, options, solution)
         }
         fixed => {
             let step = options.step.unwrap_or((t1 - t0).abs() / 1000.0);

@@ -10,7 +10,7 @@
 //! is the dense output.
 
 use crate::error::Error;
-use crate::events::{stop_at_terminal_event, EventWatch};
+use crate::events::{after_accepted_step, EventWatch};
 use crate::model::Model;
 use crate::options::Options;
 use crate::projection::{project_onto_constraints, Projector};
@@ -437,7 +437,7 @@ pub(crate) fn integrate<M: Model>(
         }
         solution.stats_mut().steps += 1;
         steps += 1;
-        stop_at_terminal_event!(events, solution);
+        after_accepted_step!(events, solution);
     }
     Ok(solution)
 }

@@ -1,10 +1,13 @@
 //! The economic Taylor scheme with a fixed step (course notes §1.3.1):
 //! y_{k+1} = y_k + h y'_k + h²/2 y''_k + … + hᵖ/p! y⁽ᵖ⁾_k, the derivatives
-//! from the model's generated `taylor_derivatives`.
+//! from the model's generated `taylor_derivatives`. The dense output is the
+//! step's own Taylor polynomial, so values between the steps have the
+//! scheme's order.
 
 use crate::error::Error;
-use crate::events::{stop_at_terminal_event, EventWatch};
+use crate::events::{after_accepted_step, EventWatch};
 use crate::model::Model;
+use crate::options::Options;
 use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
 use crate::taylor_series::taylor_step;
@@ -17,6 +20,7 @@ pub(crate) fn integrate<M: Model>(
     y0: &[f64],
     order: usize,
     steps: usize,
+    options: &Options,
     mut solution: Solution,
 ) -> Result<Solution, Error> {
     let n = M::STATES;
@@ -25,6 +29,12 @@ pub(crate) fn integrate<M: Model>(
     let mut derivatives = vec![0.0; M::TAYLOR_ORDER * n];
     let mut events = EventWatch::new(model, t0, y0, 1);
     let mut projector = Projector::new(model);
+    // The step's polynomial in s = (t - t_k)/h: c_j = h^j/j! y^(j), per component.
+    let mut dense = vec![0.0; (order + 1) * n];
+    let keep_dense = options.dense_output || events.is_some();
+    if keep_dense {
+        solution.set_interpolant(order + 1, crate::taylor::interpolate);
+    }
     for step in 0..steps {
         let t = t0 + (t1 - t0) * (step as f64 / steps as f64);
         let t_next = if step + 1 == steps {
@@ -39,8 +49,19 @@ pub(crate) fn integrate<M: Model>(
                 partial: Box::new(solution),
             });
         }
-        let blocks: Vec<&[f64]> = derivatives.chunks(n).take(order).collect();
-        taylor_step(&y, &blocks, t_next - t, &mut next);
+        let h = t_next - t;
+        taylor_step(&y, &derivatives[..order * n], h, &mut next);
+        if keep_dense {
+            for i in 0..n {
+                let c = &mut dense[i * (order + 1)..(i + 1) * (order + 1)];
+                c[0] = y[i];
+                let mut scale = 1.0;
+                for j in 1..=order {
+                    scale *= h / j as f64;
+                    c[j] = scale * derivatives[(j - 1) * n + i];
+                }
+            }
+        }
         std::mem::swap(&mut y, &mut next);
         if let Some(i) = y.iter().position(|v| !v.is_finite()) {
             return Err(Error::NonFinite {
@@ -50,11 +71,15 @@ pub(crate) fn integrate<M: Model>(
             });
         }
         project_onto_constraints!(projector, t_next, &mut y, solution);
-        solution.push(t_next, &y);
+        if keep_dense {
+            solution.push_dense(t_next, &y, &dense);
+        } else {
+            solution.push(t_next, &y);
+        }
         let stats = solution.stats_mut();
         stats.steps += 1;
         stats.rhs_evals += 1;
-        stop_at_terminal_event!(events, solution);
+        after_accepted_step!(events, solution);
     }
     Ok(solution)
 }

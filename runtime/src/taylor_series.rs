@@ -5,21 +5,24 @@
 /// rule (`y + h(y' + h/2 (y'' + h/3 (y''' + …)))`), which needs no factorials
 /// and loses less accuracy than summing powers of `h`.
 ///
-/// Each `derivatives[k-1]` is `y⁽ᵏ⁾` and has the length of `y`.
+/// `derivatives` holds `y'`, `y''`, … `y⁽ᵖ⁾` one after another, each as
+/// long as `y` (the layout the generated `taylor_derivatives` writes).
 ///
 /// ```
 /// use daegen_runtime::taylor_series::taylor_step;
 /// // y' = y, y(0) = 1: every derivative is 1; order 3 gives 1 + h + h²/2 + h³/6.
 /// let mut out = [0.0];
-/// taylor_step(&[1.0], &[&[1.0], &[1.0], &[1.0]], 0.5, &mut out);
+/// taylor_step(&[1.0], &[1.0, 1.0, 1.0], 0.5, &mut out);
 /// let expected = 1.0 + 0.5 + 0.5f64.powi(2) / 2.0 + 0.5f64.powi(3) / 6.0;
 /// assert!((out[0] - expected).abs() < 1e-15);
 /// ```
-pub fn taylor_step(y: &[f64], derivatives: &[&[f64]], h: f64, out: &mut [f64]) {
-    for (i, o) in out.iter_mut().enumerate().take(y.len()) {
+pub fn taylor_step(y: &[f64], derivatives: &[f64], h: f64, out: &mut [f64]) {
+    let n = y.len();
+    let p = if n == 0 { 0 } else { derivatives.len() / n };
+    for (i, o) in out.iter_mut().enumerate().take(n) {
         let mut acc = 0.0;
-        for k in (1..=derivatives.len()).rev() {
-            acc = h / k as f64 * (derivatives[k - 1][i] + acc);
+        for k in (1..=p).rev() {
+            acc = h / k as f64 * (derivatives[(k - 1) * n + i] + acc);
         }
         *o = y[i] + acc;
     }
@@ -34,7 +37,7 @@ mod tests {
         // y = 1 + 2t + 3t² + 4t³ at t = 0: y' = 2, y'' = 6, y''' = 24.
         let mut out = [0.0];
         let h = 0.75;
-        taylor_step(&[1.0], &[&[2.0], &[6.0], &[24.0]], h, &mut out);
+        taylor_step(&[1.0], &[2.0, 6.0, 24.0], h, &mut out);
         assert_eq!(out[0], 1.0 + 2.0 * h + 3.0 * h * h + 4.0 * h * h * h);
     }
 
@@ -43,10 +46,9 @@ mod tests {
         // y' = y, y(0) = 1: the step of order p misses exactly Σ_{k>p} h^k/k!.
         let h = 0.1;
         for p in 1..=6 {
-            let ones = vec![[1.0]; p];
-            let derivatives: Vec<&[f64]> = ones.iter().map(|d| &d[..]).collect();
+            let ones = vec![1.0; p];
             let mut out = [0.0];
-            taylor_step(&[1.0], &derivatives, h, &mut out);
+            taylor_step(&[1.0], &ones, h, &mut out);
             let tail: f64 = (p + 1..30)
                 .map(|k| h.powi(k as i32) / (1..=k).map(|j| j as f64).product::<f64>())
                 .sum();
@@ -61,7 +63,7 @@ mod tests {
     #[test]
     fn each_component_uses_its_own_derivatives() {
         let mut out = [0.0; 2];
-        taylor_step(&[1.0, 2.0], &[&[1.0, -1.0]], 0.5, &mut out);
+        taylor_step(&[1.0, 2.0], &[1.0, -1.0], 0.5, &mut out);
         assert_eq!(out, [1.5, 1.5]);
     }
 }

@@ -256,7 +256,7 @@ mod tests {
     #[test]
     fn opposite_rows_combine_into_an_algebraic_equation() {
         let mut g = Graph::new();
-        let c = g.parameter("c").unwrap();
+        g.parameter("c").unwrap();
         let y1 = g.state("y1").unwrap();
         let y2 = g.state("y2").unwrap();
         let (s1, s2) = (g.as_symbol(y1).unwrap(), g.as_symbol(y2).unwrap());
