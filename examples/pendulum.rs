@@ -1,5 +1,6 @@
 //! The main job: a pendulum at large amplitudes, written in the model
-//! language, integrated with RK4, and checked against its exact period
+//! language, integrated with RK4, its swings timed by an event on θ, and
+//! checked against its exact period
 //! T = 4 √(l/g) K(sin(θ₀/2)) (K the complete elliptic integral of the first
 //! kind, computed here by the arithmetic–geometric mean).
 //!
@@ -7,13 +8,14 @@
 //! coordinates (x² + y² = l², the multiplier λ as an algebraic variable),
 //! with its swings timed by an event on x and its constraint drift shown.
 //!
+//! Last, one swing at 170° is printed as a table, written as CSV, and
+//! drawn as a time series and a phase portrait (SVG), all under
+//! `target/example-output/`.
+//!
 //! Run: `cargo run --release --example pendulum`
 
 use daegen::prelude::*;
-use daegen_workprecision::Series;
-
-#[path = "support/output.rs"]
-mod output;
+use std::path::PathBuf;
 
 /// Planar pendulum in its angle θ (the contract's pendulum, as an ODE).
 #[dae_model]
@@ -28,6 +30,8 @@ fn pendulum() {
     der(der(theta)) == -g / l * sin(theta);
     /// Energy per unit mass (J/kg), conserved.
     let energy = output(0.5 * l * l * der(theta) * der(theta) - g * l * cos(theta));
+    /// The bob passes under the pivot.
+    let swing = event(theta);
 }
 
 /// The contract's pendulum: an index-3 DAE in Cartesian coordinates.
@@ -63,14 +67,21 @@ fn elliptic_k(k: f64) -> f64 {
     std::f64::consts::PI / (2.0 * a)
 }
 
-/// Times where θ changes sign, by linear interpolation between steps.
-fn zero_crossings(sol: &Solution) -> Vec<f64> {
-    let t = sol.times();
-    let theta = |k: usize| sol.state(k).map_or(f64::NAN, |y| y[0]);
-    (1..t.len())
-        .filter(|&k| theta(k - 1) * theta(k) < 0.0)
-        .map(|k| t[k - 1] + (t[k] - t[k - 1]) * theta(k - 1) / (theta(k - 1) - theta(k)))
-        .collect()
+/// The period from the crossings of the vertical: two per period.
+fn period(crossings: &[f64]) -> f64 {
+    match crossings {
+        [first, .., last] if crossings.len() >= 3 => {
+            (last - first) / ((crossings.len() - 1) as f64 / 2.0)
+        }
+        _ => f64::NAN,
+    }
+}
+
+/// Where the example writes its files: `target/example-output/`.
+fn output_dir() -> std::io::Result<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/example-output");
+    std::fs::create_dir_all(&dir)?;
+    Ok(dir)
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -88,13 +99,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             4.0 * exact,
             &Options::new().method(Method::Rk4).step(1e-4),
         )?;
-        let crossings = zero_crossings(&sol);
-        let period = match crossings.as_slice() {
-            [first, .., last] if crossings.len() >= 3 => {
-                (last - first) / ((crossings.len() - 1) as f64 / 2.0)
-            }
-            _ => f64::NAN,
-        };
+        let period = period(&sol.event_times("swing")?);
         let e0 = -model.g * model.l * theta0.cos();
         // Relative to g·l, the energy scale (E₀ itself is 0 at 90°).
         let drift = (sol.last("energy")? - e0).abs() / (model.g * model.l);
@@ -127,12 +132,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .atol(1e-10);
         let sol = model.simulate(0.0, 4.0 * exact, &opts)?;
         let crossings = sol.event_times("under_the_pivot")?;
-        let period = match crossings.as_slice() {
-            [first, .., last] if crossings.len() >= 3 => {
-                (last - first) / ((crossings.len() - 1) as f64 / 2.0)
-            }
-            _ => f64::NAN,
-        };
+        let period = period(&crossings);
         // At the bottom the rod carries the weight and the centripetal force.
         let bottom = crossings.first().copied().unwrap_or(f64::NAN);
         let lambda = sol.at(bottom, "lambda")? * model.l;
@@ -144,42 +144,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
 
-    // θ(t) over two seconds at three amplitudes, sampled on RK4's steps.
-    let amplitudes = [30.0, 90.0, 170.0];
-    let runs = amplitudes
-        .iter()
-        .map(|&d| {
-            let model = Pendulum {
-                theta0: f64::to_radians(d),
-                ..Pendulum::default()
-            };
-            model.simulate(0.0, 4.0, &Options::new().method(Method::Rk4).step(1e-3))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let times: Vec<f64> = (0..=400).map(|k| 0.01 * k as f64).collect();
-    let mut rows = Vec::with_capacity(times.len());
-    for &t in &times {
-        let mut row = vec![t];
-        for sol in &runs {
-            row.push(sol.at(t, "theta")?);
-        }
-        rows.push(row);
-    }
-    let names = ["θ₀ = 30°", "θ₀ = 90°", "θ₀ = 170°"];
-    let series: Vec<Series> = names
-        .iter()
-        .enumerate()
-        .map(|(k, name)| Series {
-            name,
-            points: rows.iter().map(|r| (r[0], r[k + 1])).collect(),
-        })
-        .collect();
-    output::write(
-        "pendulum",
-        &["t", "theta_30deg", "theta_90deg", "theta_170deg"],
-        &rows,
-        ("Pendulum, l = 1 m: angle (rad)", "t (s)", "θ (rad)"),
-        &series,
-    )?;
+    // One swing at 170°, through RK4's cubic Hermite interpolant.
+    let model = Pendulum {
+        theta0: f64::to_radians(170.0),
+        ..Pendulum::default()
+    };
+    let sol = model.simulate(0.0, 6.0, &Options::new().method(Method::Rk4).step(1e-3))?;
+    let grid: Vec<f64> = (0..=12).map(|k| 0.5 * k as f64).collect();
+    println!("\nθ₀ = 170°, RK4 with h = 1e-3 s:\n");
+    println!("{}", sol.sample(&["theta", "der(theta)", "energy"], &grid)?);
+    let dir = output_dir()?;
+    let csv = std::fs::File::create(dir.join("pendulum.csv"))?;
+    sol.write_csv(csv, &sol.names())?;
+    daegen::plot::time_series(&sol, &["theta", "der(theta)"], dir.join("pendulum.svg"))?;
+    daegen::plot::phase_portrait(&sol, "theta", "der(theta)", dir.join("pendulum-phase.svg"))?;
+    println!(
+        "\nwrote pendulum.csv, pendulum.svg and pendulum-phase.svg in {}",
+        dir.display()
+    );
     Ok(())
 }

@@ -3,15 +3,16 @@
 //! slider on a horizontal guide, gravity, and a motor torque on the crank.
 //! The macro writes the DAE (global formulation), finds index 3, and the run
 //! keeps the joints closed by projection; the same scene in the recursive
-//! formulation (joint coordinates) is run next to it.
+//! formulation (joint coordinates) is run next to it. Both answer to the
+//! same names: the bodies' coordinates (`crank.theta`, `slider.x`), the
+//! joints' coordinates (`revolute1.q`, `prismatic3.q`) and reactions
+//! (`rod[0]`). The run is written as CSV and drawn as SVG under
+//! `target/example-output/`.
 //!
 //! Run: `cargo run --release --example slider_crank`
 
 use daegen::prelude::*;
-use daegen_workprecision::Series;
-
-#[path = "support/output.rs"]
-mod output;
+use std::path::PathBuf;
 
 macro_rules! slider_crank {
     ($name:ident, $($attr:tt)*) => {
@@ -35,11 +36,6 @@ macro_rules! slider_crank {
             prismatic(ground, vec3(0.0, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0));
             gravity(vec3(0.0, -g, 0.0));
             torque(crank, motor);
-            let pin = position(crank, vec3(0.5 * r, 0.0, 0.0));
-            /// Crank angle (rad), from the pin's position.
-            let crank_angle = output(atan2(pin[1], pin[0]));
-            /// Slider position (m).
-            let slider_x = output(position(slider, vec3(0.0, 0.0, 0.0))[0]);
         }
     };
 }
@@ -61,13 +57,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         SliderCrankRecursive::STATES,
         global.degrees_of_freedom().unwrap_or(0),
     );
-    println!("\n  t (s)   crank (rad)   slider x (m)   rod multiplier   |x_global − x_recursive|");
-    for k in 0..=10 {
-        let t = 0.2 * k as f64;
-        let (angle, x) = (global.at(t, "crank_angle")?, global.at(t, "slider_x")?);
-        let rod = global.at(t, "rod[0]")?;
-        let difference = (x - recursive.at(t, "slider_x")?).abs();
-        println!("  {t:4.1}   {angle:11.6}   {x:12.6}   {rod:14.6}   {difference:.1e}");
+    let grid: Vec<f64> = (0..=10).map(|k| 0.2 * k as f64).collect();
+    let names = ["crank.theta", "slider.x", "rod[0]", "prismatic3.q"];
+    println!("\nglobal formulation:\n{}", global.sample(&names, &grid)?);
+    let largest = |name: &str| -> Result<f64, daegen::Error> {
+        let (a, b) = (
+            global.sample(&[name], &grid)?,
+            recursive.sample(&[name], &grid)?,
+        );
+        let (a, b) = (a.column(name).unwrap_or(&[]), b.column(name).unwrap_or(&[]));
+        Ok(a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max))
+    };
+    println!("\nlargest difference from the recursive formulation on that grid:");
+    for name in names {
+        println!("  {name:13} {:.1e}", largest(name)?);
     }
     println!(
         "\nmax |Φ| over the run: {:.1e} (global), {:.1e} (recursive); {} and {} steps",
@@ -76,30 +82,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         global.stats().steps,
         recursive.stats().steps
     );
-    let rows: Vec<Vec<f64>> = (0..=400)
-        .map(|k| {
-            let t = 2.0 * k as f64 / 400.0;
-            Ok(vec![
-                t,
-                global.at(t, "crank_angle")?,
-                global.at(t, "slider_x")?,
-                global.at(t, "rod[0]")?,
-            ])
-        })
-        .collect::<Result<_, daegen::Error>>()?;
-    output::write(
-        "slider_crank",
-        &["t", "crank_angle", "slider_x", "rod_multiplier"],
-        &rows,
-        (
-            "Slider-crank driven by a motor torque",
-            "t (s)",
-            "slider x (m)",
-        ),
-        &[Series {
-            name: "slider x (global formulation)",
-            points: rows.iter().map(|r| (r[0], r[2])).collect(),
-        }],
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/example-output");
+    std::fs::create_dir_all(&dir)?;
+    global.write_csv(
+        std::fs::File::create(dir.join("slider_crank.csv"))?,
+        &global.names(),
     )?;
+    daegen::plot::time_series(
+        &global,
+        &["slider.x", "revolute1.q"],
+        dir.join("slider_crank.svg"),
+    )?;
+    println!(
+        "wrote slider_crank.csv and slider_crank.svg in {}",
+        dir.display()
+    );
     Ok(())
 }

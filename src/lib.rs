@@ -38,9 +38,11 @@ pub use daegen_runtime::{
     Table,
 };
 
-/// Everything a model file needs: `use daegen::prelude::*;`.
 pub mod guide;
+#[cfg(feature = "plot")]
+pub mod plot;
 
+/// Everything a model file needs: `use daegen::prelude::*;`.
 pub mod prelude {
     pub use crate::{dae_model, Error, Formulation, Method, Model, Options, Solution};
 }

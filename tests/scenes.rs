@@ -573,3 +573,122 @@ fn a_welded_body_adds_no_joint_coordinate_and_both_formulations_agree() {
         }
     }
 }
+
+/// A pendulum whose hinge names the ground second (`revolute(rod, .., ground,
+/// ..)`): the recursive formulation reaches the joint from its second frame.
+macro_rules! hinge_written_backwards {
+    ($name:ident, $($attr:tt)*) => {
+        #[dae_model($($attr)*)]
+        fn $name() {
+            let ground = ground();
+            let rod = body(1.0, 1.0 / 12.0, [0.5 * cos(-0.3), 0.5 * sin(-0.3), -0.3]);
+            let hinge = revolute(rod, vec3(-0.5, 0.0, 0.0), ground, vec3(0.0, 0.0, 0.0));
+            gravity(vec3(0.0, -9.81, 0.0));
+        }
+    };
+}
+hinge_written_backwards!(backwards_global, scene = global);
+hinge_written_backwards!(backwards_recursive, scene = recursive);
+
+/// Every name the two solutions share agrees at `times` within `tol`.
+fn same_values_by_name(a: &Solution, b: &Solution, times: &[f64], tol: f64) -> usize {
+    let shared: Vec<&str> = a
+        .names()
+        .into_iter()
+        .filter(|n| b.names().contains(n))
+        .collect();
+    for &t in times {
+        for name in &shared {
+            let (x, y) = (a.at(t, name).unwrap(), b.at(t, name).unwrap());
+            assert!((x - y).abs() <= tol, "t = {t}: {name} {x} against {y}");
+        }
+    }
+    shared.len()
+}
+
+/// Both formulations answer to the same names: the global one adds each
+/// revolute and prismatic joint's coordinate `joint.q` (θ_b − θ_a, or the
+/// slide along the axis) and its rate as outputs, the recursive one each
+/// body's `body.x`, `body.y`, `body.theta` and their rates.
+#[test]
+fn both_formulations_answer_to_the_same_names() {
+    let tol = 1e-10;
+    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let times = [0.0, 0.5, 1.0, 2.0];
+
+    let global = SliderCrankGlobal::default()
+        .simulate(0.0, 2.0, &opts)
+        .unwrap();
+    let recursive = SliderCrankRecursive::default()
+        .simulate(0.0, 2.0, &opts)
+        .unwrap();
+    let shared = same_values_by_name(&global, &recursive, &times, 1e-7);
+    // Six body coordinates and their rates, two joint coordinates and their
+    // rates, the rod's multiplier and the output.
+    assert_eq!(shared, 12 + 4 + 2, "{:?}", recursive.names());
+    // The crank's joint angle is its body angle (the ground does not turn).
+    let q = global.column("revolute1.q").unwrap();
+    assert_eq!(q, global.column("crank.theta").unwrap());
+
+    let global = FourBar::default().simulate(0.0, 2.0, &opts).unwrap();
+    let recursive = FourBarRecursive::default()
+        .simulate(0.0, 2.0, &opts)
+        .unwrap();
+    // Three bodies' coordinates and rates, four joints' coordinates and
+    // rates (the cut joint's from the body poses), the cut joint's two
+    // multipliers and the output.
+    assert_eq!(
+        same_values_by_name(&global, &recursive, &times, 1e-6),
+        18 + 8 + 2 + 1
+    );
+
+    let global = BackwardsGlobal::default()
+        .simulate(0.0, 2.0, &opts)
+        .unwrap();
+    let recursive = BackwardsRecursive::default()
+        .simulate(0.0, 2.0, &opts)
+        .unwrap();
+    assert_eq!(
+        same_values_by_name(&global, &recursive, &times, 1e-7),
+        6 + 2
+    );
+    // θ_ground − θ_rod: the opposite of the rod's angle.
+    for t in times {
+        let (q, theta) = (
+            recursive.at(t, "hinge.q").unwrap(),
+            recursive.at(t, "rod.theta").unwrap(),
+        );
+        assert!((q + theta).abs() <= 1e-12, "t = {t}: {q} {theta}");
+    }
+}
+
+/// Ten coupled rods solve a 10 × 10 (recursive) or a KKT (global) linear
+/// system at run time: Method::Taylor has no closed form to differentiate
+/// in either formulation, and says which method to use instead.
+#[test]
+fn taylor_on_a_chain_of_rods_says_what_to_use_instead() {
+    let opts = Options::new().method(Method::Taylor);
+    let refusals = [
+        TenRodChain::default().simulate(0.0, 0.1, &opts).map(|_| ()),
+        TenRodChainRecursive::default()
+            .simulate(0.0, 0.1, &opts)
+            .map(|_| ()),
+    ];
+    for refusal in refusals {
+        match refusal {
+            Err(Error::InvalidOptions { message }) => {
+                assert!(
+                    message.contains("linear system of more than three coupled unknowns"),
+                    "{message}"
+                );
+                assert!(message.contains("Use Method::Dop853"), "{message}");
+            }
+            other => panic!("expected InvalidOptions, got {other:?}"),
+        }
+    }
+    // And Dop853 runs it.
+    let dop853 = Options::new().method(Method::Dop853).rtol(1e-8).atol(1e-8);
+    assert!(TenRodChainRecursive::default()
+        .simulate(0.0, 0.1, &dop853)
+        .is_ok());
+}

@@ -146,6 +146,12 @@ fn a_revolute_and_a_fixed_joint_make_a_compound_pendulum() {
             "t = {t}: scene {a}, one coordinate {b}"
         );
         assert!(scene.at(t, "twist").unwrap().abs() <= 1e-10);
+        // The hinge's coordinate: its turn about y since the start (θ0 = 1).
+        let hinge = scene.at(t, "hinge.q").unwrap();
+        assert!(
+            (hinge - (b - 1.0)).abs() <= 1e-8,
+            "t = {t}: hinge.q {hinge}"
+        );
         // The motion stays in the x–z plane.
         assert!(scene.at(t, "upper.y").unwrap().abs() <= 1e-10);
         assert!(scene.at(t, "lower.q1").unwrap().abs() <= 1e-10);
@@ -204,6 +210,12 @@ fn a_prismatic_joint_on_a_slope_follows_the_exact_solution() {
                 exact[k]
             );
         }
+        // The joint's coordinate: the slide along the slope.
+        let slide = sol.at(t, "slide.q").unwrap();
+        assert!(
+            (slide - s).abs() <= 1e-8,
+            "t = {t}: slide.q {slide}, exact {s}"
+        );
         for k in 0..4 {
             let q = sol.at(t, &format!("block.q{k}")).unwrap();
             assert!((q - q0[k]).abs() <= 1e-9, "attitude drifts: q{k} = {q}");
@@ -380,6 +392,9 @@ fn a_force_at_a_body_point_turns_the_bar_as_its_one_coordinate_says() {
             (a - b).abs() <= 1e-8,
             "t = {t}: scene {a}, one coordinate {b}"
         );
+        // An unnamed joint is named by its kind and place among the joints.
+        let q = scene.at(t, "revolute1.q").unwrap();
+        assert!((q - b).abs() <= 1e-8, "t = {t}: revolute1.q {q}");
     }
 }
 

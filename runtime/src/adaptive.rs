@@ -428,6 +428,7 @@ mod tests {
             name: "Kepler",
             doc: "",
             states: &["q1", "q2", "p1", "p2"],
+            state_docs: &[],
             parameters: &[],
             parameter_docs: &[],
             outputs: &[],
@@ -435,6 +436,7 @@ mod tests {
             equations: 4,
             events: &[],
             algebraics: &[],
+            algebraic_docs: &[],
         };
         const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[];
         fn initial_state(&self, y: &mut [f64]) {

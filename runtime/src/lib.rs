@@ -11,6 +11,7 @@ pub mod band_lu;
 pub mod bench;
 mod checks;
 pub mod dense_lu;
+mod describe;
 pub mod dop853;
 pub mod dopri5;
 pub mod error;

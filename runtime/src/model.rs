@@ -133,6 +133,9 @@ pub struct ModelInfo {
     /// States in solution order: declared states, then (for each state of
     /// order k ≥ 2) its derivatives `der(x)` … `der^(k-1)(x)` right after it.
     pub states: &'static [&'static str],
+    /// Each state's doc comment (for `der(x)`, what it is the rate of; for
+    /// a scene's coordinates, what they are).
+    pub state_docs: &'static [&'static str],
     /// Parameters in declaration order.
     pub parameters: &'static [&'static str],
     /// Each parameter's doc comment.
@@ -148,6 +151,8 @@ pub struct ModelInfo {
     /// Algebraic variables (`let z = algebraic(guess)`), computed from the
     /// states at each point; read them by name like outputs.
     pub algebraics: &'static [&'static str],
+    /// Each algebraic variable's doc comment.
+    pub algebraic_docs: &'static [&'static str],
 }
 
 /// A constraint, or a derivative of one, that the integrated index-1 form
@@ -220,6 +225,14 @@ pub trait Model {
     fn parameter(&self, index: usize) -> f64 {
         let _ = index;
         0.0
+    }
+
+    /// A description of the model for people: its doc comment, then its
+    /// states, parameters (with this instance's values), algebraic
+    /// variables, outputs and events, each with its doc comment; every
+    /// name a [`crate::Solution`] answers to is listed.
+    fn describe(&self) -> String {
+        crate::describe::describe(&Self::INFO, Some(&|k| self.parameter(k)))
     }
 
     /// Writes `dy = f(t, y)`. `y` and `dy` have [`Model::STATES`] entries.

@@ -723,6 +723,7 @@ mod mass_matrix_tests {
             name: "GglPendulum",
             doc: "",
             states: &["x", "y", "u", "v", "lambda", "mu"],
+            state_docs: &[],
             parameters: &[],
             parameter_docs: &[],
             outputs: &[],
@@ -730,6 +731,7 @@ mod mass_matrix_tests {
             equations: 6,
             events: &[],
             algebraics: &[],
+            algebraic_docs: &[],
         };
         const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[];
         const MASS: &'static [f64] = &[1.0, 1.0, 1.0, 1.0, 0.0, 0.0];

@@ -107,15 +107,22 @@ impl fmt::Display for Table {
 
 /// `x` in six significant digits, positional where that is short.
 fn significant(x: f64) -> String {
-    let a = x.abs();
-    if a == 0.0 || !a.is_finite() {
+    if x == 0.0 || !x.is_finite() {
         return format!("{x}");
     }
-    if !(1e-4..1e6).contains(&a) {
-        return format!("{x:.5e}");
+    // The exponent after rounding to six digits (0.9999996 is 1.00000e0).
+    let scientific = format!("{x:.5e}");
+    let exponent: i32 = scientific
+        .rsplit('e')
+        .next()
+        .and_then(|e| e.parse().ok())
+        .unwrap_or(0);
+    if (-4..6).contains(&exponent) {
+        let decimals = (5 - exponent).max(0) as usize;
+        format!("{x:.decimals$}")
+    } else {
+        scientific
     }
-    let decimals = (5 - a.log10().floor() as i32).max(0) as usize;
-    format!("{x:.decimals$}")
 }
 
 #[cfg(test)]
@@ -151,6 +158,9 @@ mod tests {
         assert!(lines[1].contains("1.00000"), "{text}");
         assert!(lines[1].contains("-2.50000e-7"), "{text}");
         assert!(lines[2].contains("1.23457e6"), "{text}");
+        assert_eq!(significant(0.99999996), "1.00000");
+        assert_eq!(significant(100000.0), "100000");
+        assert_eq!(significant(2.5e-5), "2.50000e-5");
     }
 
     #[test]

@@ -275,7 +275,7 @@ pub(crate) fn integrate<M: Model>(
         };
         return Err(Error::InvalidOptions {
             message: format!(
-                "Method::Taylor is not available for {}: {reason}; use Method::Auto, or Method::Radau5 for a stiff or implicit model",
+                "Method::Taylor is not available for {}: {reason}. Use Method::Dop853 for a non-stiff run at tight tolerances (Method::Auto switches to Radau5 where it turns stiff), or Method::Radau5 for a stiff model",
                 M::INFO.name
             ),
         });

@@ -25,7 +25,7 @@ pub use arithmetic::{function_operations, taylor_jet_operations};
 pub use daegen::runtime::bench::{Bench, Benchmark, Reference};
 pub use expansion::{expansion_cost, ExpansionCost};
 pub use peer::{Peer, PeerProblem};
-pub use plot::{line_chart_svg, work_precision_svg, Series};
+pub use plot::work_precision_svg;
 pub use record::{parse_csv, to_csv, Record};
 pub use runner::{Problem, Runner};
 pub use summary::{matched_ratio, summary_markdown, time_at_error};

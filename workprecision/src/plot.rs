@@ -6,16 +6,7 @@ use crate::summary::curves;
 use crate::Record;
 use plotters::prelude::*;
 
-const COLOURS: [RGBColor; 8] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
-    RGBColor(255, 127, 14),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(23, 190, 207),
-];
+use daegen::plot::PALETTE as COLOURS;
 
 /// The SVG text of the diagram; `Err` if there is nothing finite to draw
 /// or plotters fails.
@@ -98,81 +89,6 @@ pub fn work_precision_svg(title: &str, records: &[Record]) -> Result<String, Str
                 .draw(&Text::new(method, (34, y - 7), ("sans-serif", 13)))
                 .map_err(draw)?;
             row += 1;
-        }
-        root.present().map_err(draw)?;
-    }
-    Ok(svg)
-}
-
-/// One named curve of a line chart.
-pub struct Series<'a> {
-    /// Legend entry.
-    pub name: &'a str,
-    /// Points (x, y), drawn in order.
-    pub points: Vec<(f64, f64)>,
-}
-
-/// A line chart of trajectories as SVG (linear axes, the ranges from the
-/// data): what the examples write next to their CSV.
-pub fn line_chart_svg(
-    title: &str,
-    x_desc: &str,
-    y_desc: &str,
-    series: &[Series],
-) -> Result<String, String> {
-    let finite = |p: &&(f64, f64)| p.0.is_finite() && p.1.is_finite();
-    let all: Vec<&(f64, f64)> = series
-        .iter()
-        .flat_map(|s| s.points.iter().filter(finite))
-        .collect();
-    if all.is_empty() {
-        return Err(format!("{title}: no finite point to draw"));
-    }
-    let span = |f: fn(&(f64, f64)) -> f64| {
-        let lo = all.iter().map(|p| f(p)).fold(f64::INFINITY, f64::min);
-        let hi = all.iter().map(|p| f(p)).fold(f64::NEG_INFINITY, f64::max);
-        let pad = if hi > lo { 0.05 * (hi - lo) } else { 1.0 };
-        (lo - pad, hi + pad)
-    };
-    let (x0, x1) = span(|p| p.0);
-    let (y0, y1) = span(|p| p.1);
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (880, 480)).into_drawing_area();
-        let draw = |e: DrawingAreaErrorKind<_>| format!("{title}: {e:?}");
-        root.fill(&WHITE).map_err(draw)?;
-        let (plot, legend) = root.split_horizontally(660);
-        let mut chart = ChartBuilder::on(&plot)
-            .caption(title, ("sans-serif", 18))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(draw)?;
-        chart
-            .configure_mesh()
-            .x_desc(x_desc)
-            .y_desc(y_desc)
-            .draw()
-            .map_err(draw)?;
-        for (k, s) in series.iter().enumerate() {
-            let colour = COLOURS[k % COLOURS.len()];
-            let style = ShapeStyle::from(&colour).stroke_width(2);
-            let points: Vec<(f64, f64)> = s.points.iter().copied().filter(|p| finite(&p)).collect();
-            chart
-                .draw_series(LineSeries::new(points, style))
-                .map_err(draw)?;
-            let y = 48 + 22 * k as i32;
-            legend
-                .draw(&PathElement::new(vec![(4, y), (28, y)], style))
-                .map_err(draw)?;
-            legend
-                .draw(&Text::new(
-                    s.name.to_string(),
-                    (34, y - 7),
-                    ("sans-serif", 13),
-                ))
-                .map_err(draw)?;
         }
         root.present().map_err(draw)?;
     }

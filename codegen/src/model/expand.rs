@@ -72,7 +72,7 @@ fn explicit_rhs(sys: &FirstOrder) -> crate::Result<Vec<Id>> {
             SlotDerivative::Explicit(e) => Ok(*e),
             SlotDerivative::Block { .. } | SlotDerivative::AfterSolve(_) => {
                 Err(crate::Error::Unsupported {
-                    message: "`taylor = p` needs an explicit ODE; this model solves a mass matrix at run time".into(),
+                    message: "`taylor = p` needs an explicit ODE; this model solves a linear system of more than three coupled unknowns at run time (its mass matrix, or the constraint block of a mechanism), so its derivatives have no closed form".into(),
                 })
             }
         })
@@ -1097,6 +1097,8 @@ fn info_with(ir: &ModelIr, states: &[&str], algebraics: &[&str]) -> TokenStream 
     let param_docs: Vec<&str> = ir.params.iter().map(|p| p.doc.as_str()).collect();
     let outputs: Vec<&str> = ir.outputs.iter().map(|o| o.name.as_str()).collect();
     let output_docs: Vec<&str> = ir.outputs.iter().map(|o| o.doc.as_str()).collect();
+    let state_docs: Vec<String> = states.iter().map(|s| value_doc(ir, s)).collect();
+    let algebraic_docs: Vec<String> = algebraics.iter().map(|s| value_doc(ir, s)).collect();
     let equations = index(ir.equations.len());
     let events = ir.events.iter().map(|e| {
         let name = &e.name;
@@ -1123,12 +1125,35 @@ fn info_with(ir: &ModelIr, states: &[&str], algebraics: &[&str]) -> TokenStream 
             states: &[#(#states),*],
             parameters: &[#(#params),*],
             parameter_docs: &[#(#param_docs),*],
+            state_docs: &[#(#state_docs),*],
             outputs: &[#(#outputs),*],
-                        output_docs: &[#(#output_docs),*],
+            output_docs: &[#(#output_docs),*],
             equations: #equations,
             events: &[#(#events),*],
             algebraics: &[#(#algebraics),*],
+            algebraic_docs: &[#(#algebraic_docs),*],
         }
+    }
+}
+
+/// The doc comment of a state or algebraic variable; for `der(x)`, a
+/// state reducing a higher derivative, what it is the derivative of.
+fn value_doc(ir: &ModelIr, name: &str) -> String {
+    let declared = ir
+        .states
+        .iter()
+        .map(|s| (&s.name, &s.doc))
+        .chain(ir.algebraics.iter().map(|a| (&a.name, &a.doc)))
+        .find(|(n, _)| *n == name);
+    if let Some((_, doc)) = declared {
+        return doc.clone();
+    }
+    match name.strip_prefix("der(").and_then(|r| r.strip_suffix(')')) {
+        Some(inner) => format!("rate of `{inner}`"),
+        None if name.starts_with("mu[") => {
+            "multiplier of the index-2 form, zero on the solution".to_string()
+        }
+        None => String::new(),
     }
 }
 
@@ -1148,8 +1173,8 @@ pub fn stub(ir: &ModelIr) -> TokenStream {
             type State = [f64; 0];
             const INDEX: usize = 0;
             const INFO: ::daegen::ModelInfo = ::daegen::ModelInfo {
-                name: #name_str, doc: "", states: &[], parameters: &[], parameter_docs: &[],
-                                outputs: &[], output_docs: &[], equations: 0, events: &[], algebraics: &[],
+                name: #name_str, doc: "", states: &[], state_docs: &[], parameters: &[], parameter_docs: &[],
+                outputs: &[], output_docs: &[], equations: 0, events: &[], algebraics: &[], algebraic_docs: &[],
             };
             const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[];
             fn initial_state(&self, y: &mut [f64]) {}

@@ -26,6 +26,8 @@ pub struct StateDecl {
     pub origin: TokenStream,
     /// `state(x0).fixed()`: consistent initialization keeps the value.
     pub fixed: bool,
+    /// Its doc comment (for a scene's coordinates, what they are).
+    pub doc: String,
 }
 
 /// `let z = algebraic(guess);`
@@ -39,6 +41,8 @@ pub struct AlgebraicDecl {
     pub init: Id,
     /// The declaration, for errors.
     pub origin: TokenStream,
+    /// Its doc comment (for a joint's reactions, what they are).
+    pub doc: String,
 }
 
 /// `let e = output(value);`

@@ -12,6 +12,7 @@ use super::names::did_you_mean;
 
 mod recursive;
 mod scene;
+mod scene_names;
 mod spatial;
 mod tensor;
 mod topology;
@@ -562,6 +563,7 @@ impl Lower<'_> {
                             init,
                             origin,
                             fixed: false,
+                            doc,
                         });
                         self.bind(ident, Binding::State(symbol));
                     }
@@ -606,6 +608,7 @@ impl Lower<'_> {
                         init,
                         origin: origin.clone(),
                         fixed: false,
+                        doc: doc.clone(),
                     });
                     symbols.push(symbol);
                 }
@@ -645,6 +648,7 @@ impl Lower<'_> {
                             symbol,
                             init,
                             origin,
+                            doc,
                         });
                         self.bind(ident, Binding::Algebraic(id));
                     }

@@ -435,10 +435,10 @@ pub fn emit_mass_form(
         impl ::daegen::Model for #form_name {
             const INDEX: usize = 2;
             const INFO: ::daegen::ModelInfo = ::daegen::ModelInfo {
-                name: #name_str, doc: #doc, states: &[#(#names),*], parameters: &[], parameter_docs: &[],
+                name: #name_str, doc: #doc, states: &[#(#names),*], state_docs: &[], parameters: &[], parameter_docs: &[],
                 outputs: <#name as ::daegen::Model>::INFO.outputs,
                 output_docs: <#name as ::daegen::Model>::INFO.output_docs,
-                equations: #n, events: &[], algebraics: &[],
+                equations: #n, events: &[], algebraics: &[], algebraic_docs: &[],
             };
             // The model's constraints, measured at every step but never
             // projected onto: the form keeps them itself.

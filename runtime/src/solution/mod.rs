@@ -242,6 +242,11 @@ impl Solution {
         &self.end_y
     }
 
+    /// The name of the model that ran.
+    pub fn model_name(&self) -> &'static str {
+        self.names.model
+    }
+
     /// The time the run ended at.
     pub fn final_time(&self) -> f64 {
         self.end_t

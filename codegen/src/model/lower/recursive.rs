@@ -10,6 +10,7 @@
 //! constraints read them unchanged.
 
 use super::scene::Frame;
+use super::scene_names::rotate;
 use super::Lower;
 use crate::{FxHashMap, Id, SymbolId, VectorField};
 use quote::ToTokens;
@@ -139,7 +140,18 @@ impl Lower<'_> {
                 let relative0 = g.sub(ct0, parent_start[2])?;
                 if rec.kind == "revolute" {
                     // θ_child = θ_parent + q; the child hangs from the joint.
-                    let theta = g.add(parent_pose[2], q_node)?;
+                    // q is always θ_b − θ_a, as in the global formulation:
+                    // for a joint the tree reaches from b, the child is a.
+                    let theta = if child_is_b {
+                        g.add(parent_pose[2], q_node)?
+                    } else {
+                        g.sub(parent_pose[2], q_node)?
+                    };
+                    let relative0 = if child_is_b {
+                        relative0
+                    } else {
+                        g.neg(relative0)?
+                    };
                     let arm = rotate(g, parent_pose[2], p_parent)?;
                     let jx = g.add(parent_pose[0], arm[0])?;
                     let jy = g.add(parent_pose[1], arm[1])?;
@@ -207,7 +219,12 @@ impl Lower<'_> {
             let rate = (|| -> crate::Result<Id> {
                 let g = &mut self.g;
                 if rec.kind == "revolute" {
-                    return g.sub(child_velocity[2], parent_velocity[2]);
+                    let (b, a) = if child_is_b {
+                        (child_velocity[2], parent_velocity[2])
+                    } else {
+                        (parent_velocity[2], child_velocity[2])
+                    };
+                    return g.sub(b, a);
                 }
                 // v + ω k × (R(θ) p) of each joint point, along the axis.
                 let point_velocity = |g: &mut crate::Graph,
@@ -285,6 +302,11 @@ impl Lower<'_> {
             }
             velocity.push(v);
         }
+        self.body_coordinates(&pose, &velocity, &origin);
+        let cut_joints: Vec<usize> = (0..records.len())
+            .filter(|r| !tree.iter().any(|t| t.0 == *r))
+            .collect();
+        self.planar_joint_coordinates(&cut_joints, &origin);
         // Out: the tree joints' constraints and multipliers, the body states.
         let mut drop_equations = std::collections::HashSet::new();
         let mut drop_algebraics = std::collections::HashSet::new();
@@ -316,12 +338,17 @@ impl Lower<'_> {
             .collect();
         self.states.retain(|s| !body_symbols.contains(&s.symbol));
         for ((q, q0, name), &rate) in coordinates.iter().zip(&joint_rates) {
+            let kind = records
+                .iter()
+                .find(|r| format!("{}.q", r.name) == *name)
+                .map_or("revolute", |r| r.kind);
             self.states.push(super::StateDecl {
                 name: name.clone(),
                 symbol: *q,
                 init: *q0,
                 origin: origin.clone(),
                 fixed: false,
+                doc: super::scene_names::planar_joint_doc(kind).to_string(),
             });
             if self.g.as_number(rate).is_some_and(|v| v.is_zero()) {
                 continue;
@@ -464,15 +491,4 @@ impl Lower<'_> {
             cut.len()
         ));
     }
-}
-
-/// `R(angle) p` in the plane.
-fn rotate(g: &mut crate::Graph, angle: Id, p: [Id; 2]) -> crate::Result<[Id; 2]> {
-    let (c, s) = (
-        g.call(crate::Func::Cos, angle)?,
-        g.call(crate::Func::Sin, angle)?,
-    );
-    let (a1, a2) = (g.mul(c, p[0])?, g.mul(s, p[1])?);
-    let (b1, b2) = (g.mul(s, p[0])?, g.mul(c, p[1])?);
-    Ok([g.sub(a1, a2)?, g.add(b1, b2)?])
 }

@@ -15,7 +15,6 @@
 //! gravity(vec3(0.0, -g, 0.0));
 //! force(body, point, f);  torque(body, tau);
 //! spring(a, pa, b, pb, k, rest_length, damping);  // along the line of the points
-//! spring(a, pa, b, pb, k, rest_length, damping);  // along the line of the points
 //! let p = position(crank, point);                 // world position of a body point
 //! ```
 
@@ -177,6 +176,7 @@ impl Lower<'_> {
                 init: position[k],
                 origin: origin.clone(),
                 fixed: false,
+                doc: super::scene_names::body_coordinate_doc(coordinate).to_string(),
             });
             if let Some(v) = &velocity {
                 let Ok(d) = self.g.derivative(symbol, 1) else {
@@ -561,6 +561,9 @@ impl Lower<'_> {
                 symbol,
                 init: zero,
                 origin: e.to_token_stream(),
+                doc: format!(
+                    "multiplier of row {k} of the joint's constraints Φ (its reaction is −Φ_qᵀλ)"
+                ),
             });
             self.equations.push(super::Equation {
                 lhs: row,
@@ -858,5 +861,7 @@ impl Lower<'_> {
                 }
             }
         }
+        let every: Vec<usize> = (0..self.scene.records.len()).collect();
+        self.planar_joint_coordinates(&every, &origin);
     }
 }

@@ -267,6 +267,7 @@ impl Lower<'_> {
                 init,
                 origin: origin.clone(),
                 fixed: false,
+                doc: super::scene_names::body_coordinate_doc(coordinate).to_string(),
             });
             Some(symbol)
         };
@@ -444,7 +445,8 @@ impl Lower<'_> {
             _ => None,
         };
         let axis_values = extra.map(|u| u.map(|x| self.numeric(x)));
-        let rows = (|| -> crate::Result<Vec<Id>> {
+        // The rows, and the joint's coordinate (revolute and prismatic).
+        let rows = (|| -> crate::Result<(Vec<Id>, Option<Id>)> {
             let pa = self.pose(a)?;
             let pb = self.pose(b)?;
             let g = &mut self.g;
@@ -455,7 +457,7 @@ impl Lower<'_> {
             // The relative attitude kept at its initial value: with
             // D = R_aᵀ R_b (R_a0ᵀ R_b0)ᵀ, which is I + [θ]× near it, the
             // rows are the three components of θ (twice).
-            let attitude = |g: &mut Graph| -> crate::Result<Vec<Id>> {
+            let relative = |g: &mut Graph| -> crate::Result<[Id; 9]> {
                 let mut d = [pa.rot[0]; 9];
                 let mut c0 = [pa.rot[0]; 9];
                 for i in 0..3 {
@@ -473,12 +475,27 @@ impl Lower<'_> {
                         d[3 * i + j] = dot3(g, col_a, turned)?;
                     }
                 }
+                Ok(d)
+            };
+            let attitude = |g: &mut Graph| -> crate::Result<Vec<Id>> {
+                let d = relative(g)?;
                 Ok(vec![
                     g.sub(d[7], d[5])?,
                     g.sub(d[2], d[6])?,
                     g.sub(d[3], d[1])?,
                 ])
             };
+            // |u| for a unit axis.
+            let unit = |g: &mut Graph, u: Vec3| -> crate::Result<Vec3> {
+                let length = dot3(g, u, u)?;
+                let length = g.sqrt(length)?;
+                Ok([
+                    g.div(u[0], length)?,
+                    g.div(u[1], length)?,
+                    g.div(u[2], length)?,
+                ])
+            };
+            let mut coordinate = None;
             match kind {
                 "spherical" => rows.extend(gap),
                 "fixed" => {
@@ -494,6 +511,16 @@ impl Lower<'_> {
                 "revolute" => {
                     let u = extra.unwrap_or([g.zero(); 3]);
                     rows.extend(gap);
+                    // D = R_aᵀ R_b C0ᵀ turns about u by the joint angle q:
+                    // its axial vector is sin q · u, its trace 1 + 2 cos q.
+                    let d = relative(g)?;
+                    let axial = [g.sub(d[7], d[5])?, g.sub(d[2], d[6])?, g.sub(d[3], d[1])?];
+                    let u_hat = unit(g, u)?;
+                    let twice_sin = dot3(g, u_hat, axial)?;
+                    let trace = g.sum(&[d[0], d[4], d[8]])?;
+                    let one = g.one();
+                    let twice_cos = g.sub(trace, one)?;
+                    coordinate = Some(g.atan2(twice_sin, twice_cos)?);
                     // u in b's axes at the start, then in the world now:
                     // it stays normal to the two normals of u in a.
                     let u_world0 = mat_vec(g, &pa.rot0, u)?;
@@ -511,13 +538,22 @@ impl Lower<'_> {
                         rows.push(dot3(g, n_world, gap)?);
                     }
                     rows.extend(attitude(g)?);
+                    let u_hat = unit(g, u)?;
+                    let u_world = mat_vec(g, &pa.rot, u_hat)?;
+                    coordinate = Some(dot3(g, u_world, gap)?);
                 }
             }
-            Ok(rows)
+            Ok((rows, coordinate))
         })();
         match rows {
-            Ok(rows) => {
-                self.add_joint_rows(kind, name, rows, e);
+            Ok((rows, coordinate)) => {
+                if self.add_joint_rows(kind, name, rows, e).is_none() {
+                    return;
+                }
+                if let (Some(q), Some((joint, ..))) = (coordinate, self.scene.joint_rows.last()) {
+                    let joint = joint.clone();
+                    self.spatial_joint_coordinate(joint, q, kind, &e.to_token_stream());
+                }
             }
             Err(err) => self.cx.error_at(e, err),
         }

@@ -1,0 +1,138 @@
+//! How a model describes itself to people: [`crate::Model::describe`] and
+//! the `Display` of [`ModelInfo`], which list every name with its doc
+//! comment.
+
+use crate::model::{EventDirection, ModelInfo};
+use std::fmt::Write;
+
+/// The description of a model: with `parameter` (a parameter's value by
+/// index), the parameters' values too.
+pub(crate) fn describe(info: &ModelInfo, parameter: Option<&dyn Fn(usize) -> f64>) -> String {
+    let mut out = String::new();
+    let summary = info.doc.lines().map(str::trim).find(|l| !l.is_empty());
+    match summary {
+        Some(line) => {
+            let _ = writeln!(out, "{}: {line}", info.name);
+        }
+        None => {
+            let _ = writeln!(out, "{}", info.name);
+        }
+    }
+    let parameters: Vec<String> = info
+        .parameters
+        .iter()
+        .enumerate()
+        .map(|(k, name)| match parameter {
+            Some(value) => format!("{name} = {}", value(k)),
+            None => name.to_string(),
+        })
+        .collect();
+    let events: Vec<String> = info
+        .events
+        .iter()
+        .map(|e| {
+            let direction = match e.direction {
+                EventDirection::Any => "",
+                EventDirection::Rising => ", rising",
+                EventDirection::Falling => ", falling",
+            };
+            let terminal = if e.terminal { ", terminal" } else { "" };
+            format!("{}{direction}{terminal}", e.name)
+        })
+        .collect();
+    let event_docs: Vec<&str> = info.events.iter().map(|e| e.doc).collect();
+    let sections: [(&str, Vec<String>, &[&str]); 5] = [
+        ("states", owned(info.states), info.state_docs),
+        ("parameters", parameters, info.parameter_docs),
+        (
+            "algebraic variables",
+            owned(info.algebraics),
+            info.algebraic_docs,
+        ),
+        ("outputs", owned(info.outputs), info.output_docs),
+        ("events", events, &event_docs),
+    ];
+    let width = sections
+        .iter()
+        .flat_map(|(_, names, _)| names.iter().map(|n| n.chars().count()))
+        .max()
+        .unwrap_or(0);
+    for (title, names, docs) in &sections {
+        if names.is_empty() {
+            continue;
+        }
+        let _ = writeln!(out, "{title}:");
+        for (k, name) in names.iter().enumerate() {
+            let doc = docs.get(k).map_or("", |d| first_line(d));
+            let pad = width - name.chars().count();
+            let _ = writeln!(out, "  {name}{:pad$}  {doc}", "");
+        }
+    }
+    // No trailing spaces on lines without a doc comment.
+    out.lines()
+        .map(str::trim_end)
+        .collect::<Vec<_>>()
+        .join("\n")
+        + "\n"
+}
+
+fn owned(names: &[&str]) -> Vec<String> {
+    names.iter().map(|s| s.to_string()).collect()
+}
+
+fn first_line(doc: &str) -> &str {
+    doc.lines()
+        .map(str::trim)
+        .find(|l| !l.is_empty())
+        .unwrap_or("")
+}
+
+/// The model's names and their doc comments (parameters without values:
+/// [`crate::Model::describe`] adds those).
+impl std::fmt::Display for ModelInfo {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&describe(self, None))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::EventInfo;
+
+    const INFO: ModelInfo = ModelInfo {
+        name: "Pendulum",
+        doc: "\n A pendulum.\n More.",
+        states: &["theta", "der(theta)"],
+        state_docs: &["Angle (rad).", "rate of `theta`"],
+        parameters: &["l"],
+        parameter_docs: &["Length (m)."],
+        outputs: &["energy"],
+        output_docs: &[""],
+        equations: 1,
+        events: &[EventInfo {
+            name: "swing",
+            direction: EventDirection::Rising,
+            terminal: false,
+            doc: "Passes under the pivot.",
+        }],
+        algebraics: &[],
+        algebraic_docs: &[],
+    };
+
+    #[test]
+    fn every_name_with_its_doc_and_the_parameter_values() {
+        let text = describe(&INFO, Some(&|_| 2.5));
+        assert_eq!(
+            text,
+            "Pendulum: A pendulum.\n\
+             states:\n  theta          Angle (rad).\n  der(theta)     rate of `theta`\n\
+             parameters:\n  l = 2.5        Length (m).\n\
+             outputs:\n  energy\n\
+             events:\n  swing, rising  Passes under the pivot.\n"
+        );
+        assert!(INFO
+            .to_string()
+            .contains("\n  l              Length (m).\n"));
+    }
+}
