@@ -44,5 +44,10 @@ pub mod plot;
 
 /// Everything a model file needs: `use daegen::prelude::*;`.
 pub mod prelude {
-    pub use crate::{dae_model, Error, Formulation, Method, Model, Options, Solution};
+    pub use crate::{dae_model, Error, Flow, Formulation, Method, Model, Options, Solution, Step};
 }
+
+/// The README's code, compiled with the doctests so that it cannot rot.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -382,3 +382,30 @@ fn a_sampled_table_prints_aligned() {
     assert!(lines.iter().all(|l| l.len() == lines[0].len()), "{text}");
     assert!(lines[2].contains(&format!("{:.5}", 0.5f64.cos())), "{text}");
 }
+
+/// `describe` lists every name with its doc comment and the parameters'
+/// values; `progress(true)` changes nothing in the result (a run shorter
+/// than a second draws no bar).
+#[test]
+fn describe_lists_every_name_and_progress_changes_no_result() {
+    let text = Oscillator::default().describe();
+    for line in [
+        "states:",
+        "\n  x\n",
+        "  der(x)  ",
+        "rate of `x`",
+        "algebraic variables:",
+        "The square of x, as an algebraic variable: z = x².",
+        "outputs:",
+        "Twice the energy.",
+    ] {
+        assert!(text.contains(line), "{line:?} missing from:\n{text}");
+    }
+    let plain = Options::new().method(Method::Dop853);
+    let a = Oscillator::default().simulate(0.0, 5.0, &plain).unwrap();
+    let b = Oscillator::default()
+        .simulate(0.0, 5.0, &plain.progress(true))
+        .unwrap();
+    assert_eq!(a.times(), b.times());
+    assert_eq!(a.final_state(), b.final_state());
+}

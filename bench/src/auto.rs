@@ -96,7 +96,9 @@ fn compare<M: Model + Clone + Send + Sync + 'static>(
             v[v.len() / 2]
         };
         let best = (0..finishing.len())
-            .min_by(|&a, &b| median(&mut times[a].clone()).total_cmp(&median(&mut times[b].clone())))
+            .min_by(|&a, &b| {
+                median(&mut times[a].clone()).total_cmp(&median(&mut times[b].clone()))
+            })
             .map(|k| finishing[k])
             .unwrap_or(Method::Radau5);
         let best_error = run(best).map(|s| error(&s)).unwrap_or(f64::NAN);
@@ -123,9 +125,7 @@ pub fn stiff_probe(method: &str, detect: bool) {
     } else {
         Method::Dopri5
     };
-    let options = Options::new()
-        .method(method)
-        .stiffness_detection(detect);
+    let options = Options::new().method(method).stiffness_detection(detect);
     let start = std::time::Instant::now();
     let result = Robertson::default().simulate(0.0, 1e5, &options);
     let seconds = start.elapsed().as_secs_f64();
@@ -158,20 +158,93 @@ pub fn stiff_probe(method: &str, detect: bool) {
 pub fn auto_section() {
     let rounds = 5;
     let mut rows = Vec::new();
-    rows.extend(compare(Kepler::default(), "kepler (e = 0.9, 10 orbits)", 20.0 * std::f64::consts::PI, &kepler_exact(20.0 * std::f64::consts::PI), 1.0, rounds));
-    rows.extend(compare(Arenstorf::default(), "arenstorf (one period)", ARENSTORF_T, &ARENSTORF_Y0, 1.0, rounds));
-    rows.extend(compare(Lorenz::default(), "lorenz (t = 20)", 20.0, &LORENZ_AT_20, 1.0, rounds));
-    rows.extend(compare(OuterSolarSystem::default(), "outer solar system (20 000 days)", 20000.0, &OSS_REFERENCE, 1.0, rounds));
+    rows.extend(compare(
+        Kepler::default(),
+        "kepler (e = 0.9, 10 orbits)",
+        20.0 * std::f64::consts::PI,
+        &kepler_exact(20.0 * std::f64::consts::PI),
+        1.0,
+        rounds,
+    ));
+    rows.extend(compare(
+        Arenstorf::default(),
+        "arenstorf (one period)",
+        ARENSTORF_T,
+        &ARENSTORF_Y0,
+        1.0,
+        rounds,
+    ));
+    rows.extend(compare(
+        Lorenz::default(),
+        "lorenz (t = 20)",
+        20.0,
+        &LORENZ_AT_20,
+        1.0,
+        rounds,
+    ));
+    rows.extend(compare(
+        OuterSolarSystem::default(),
+        "outer solar system (20 000 days)",
+        20000.0,
+        &OSS_REFERENCE,
+        1.0,
+        rounds,
+    ));
     let filter = LowPass::default();
     let exact = [low_pass_exact(1.0, filter.tau, filter.omega)];
-    rows.extend(compare(filter, "low-pass filter (τ = 2e-4, 5 Hz, t = 1)", 1.0, &exact, 1.0, rounds));
-    let rc = LowPass { tau: 1e-4, omega: 2.0 * std::f64::consts::PI };
+    rows.extend(compare(
+        filter,
+        "low-pass filter (τ = 2e-4, 5 Hz, t = 1)",
+        1.0,
+        &exact,
+        1.0,
+        rounds,
+    ));
+    let rc = LowPass {
+        tau: 1e-4,
+        omega: 2.0 * std::f64::consts::PI,
+    };
     let exact = [low_pass_exact(2.0, rc.tau, rc.omega)];
-    rows.extend(compare(rc, "RC circuit (RC = 1e-4, 1 Hz, t = 2)", 2.0, &exact, 1.0, rounds));
-    rows.extend(compare(VanDerPol::default(), "van der Pol (ε = 1e-6, t = 2)", 2.0, &VDP_AT_2, 1.0, rounds));
-    rows.extend(compare(Robertson::default(), "robertson (t = 1e11, atol = 1e-6·rtol)", 1e11, &ROBER_AT_1E11, 1e-6, rounds));
-    rows.extend(compare(Hires::default(), "hires", 321.8122, &HIRES_AT_END, 1.0, rounds));
-    rows.extend(compare(Orego::default(), "orego (t = 360)", 360.0, &OREGO_AT_360, 1.0, rounds));
+    rows.extend(compare(
+        rc,
+        "RC circuit (RC = 1e-4, 1 Hz, t = 2)",
+        2.0,
+        &exact,
+        1.0,
+        rounds,
+    ));
+    rows.extend(compare(
+        VanDerPol::default(),
+        "van der Pol (ε = 1e-6, t = 2)",
+        2.0,
+        &VDP_AT_2,
+        1.0,
+        rounds,
+    ));
+    rows.extend(compare(
+        Robertson::default(),
+        "robertson (t = 1e11, atol = 1e-6·rtol)",
+        1e11,
+        &ROBER_AT_1E11,
+        1e-6,
+        rounds,
+    ));
+    rows.extend(compare(
+        Hires::default(),
+        "hires",
+        321.8122,
+        &HIRES_AT_END,
+        1.0,
+        rounds,
+    ));
+    rows.extend(compare(
+        Orego::default(),
+        "orego (t = 360)",
+        360.0,
+        &OREGO_AT_360,
+        1.0,
+        rounds,
+    ));
     eprintln!("\r\x1b[2Kauto: explicit pairs on Robertson");
     let mut text = format!(
         "# `Method::Auto` against the single methods\n\nMachine: {}. Written by `cd bench && cargo run --release -- --auto` (bench/src/auto.rs).\n\n",
@@ -179,7 +252,11 @@ pub fn auto_section() {
     );
     text.push_str("## Auto against the best single method\n\nAt equal tolerance (rtol = atol = tol, Robertson atol = 1e-6·tol), the single methods being DOPRI5, DOP853 and RADAU5 (those `Auto` chooses among; an explicit pair that stops with `Error::Stiff` takes no part). Time ratio: Auto's median solve over the fastest single method's, per round of all methods, median (range) over 5 rounds. Errors are max |y − ref| / max(1, |ref|) at the end against the published or exact solution. Goal: ≤ 2×.\n\n| problem | tol | Auto ran | Auto time | best single | ratio (range) | Auto error | best's error |\n|---|---|---|---|---|---|---|---|\n");
     for r in &rows {
-        let (lo, mid, hi) = (r.ratios[0], r.ratios[r.ratios.len() / 2], r.ratios[r.ratios.len() - 1]);
+        let (lo, mid, hi) = (
+            r.ratios[0],
+            r.ratios[r.ratios.len() / 2],
+            r.ratios[r.ratios.len() - 1],
+        );
         text.push_str(&format!(
             "| {} | {:.0e} | {} | {:.3} ms | {:?} | {}{mid:.2}× ({lo:.2}–{hi:.2}){} | {:.1e} | {:.1e} |\n",
             r.problem,
@@ -193,7 +270,10 @@ pub fn auto_section() {
             r.best_error,
         ));
     }
-    let within = rows.iter().filter(|r| r.ratios[r.ratios.len() / 2] <= 2.0).count();
+    let within = rows
+        .iter()
+        .filter(|r| r.ratios[r.ratios.len() / 2] <= 2.0)
+        .count();
     text.push_str(&format!("\n{within} of {} rows within 2×.\n", rows.len()));
     text.push_str("\n## An explicit pair on a stiff problem\n\nRobertson from t = 0 to 1e5 at the default tolerances (rtol 1e-6, atol 1e-9), each run in a child process: its steps, time and peak resident memory (VmHWM, the whole process). With stiffness detection (the default) the pair stops with `Error::Stiff`; without it (`Options::stiffness_detection(false)`), as before, it runs into the 10⁷-step limit.\n\n| method | stiffness detection | steps | time | peak memory | end |\n|---|---|---|---|---|---|\n");
     let exe = std::env::current_exe().expect("the benchmark's own path");

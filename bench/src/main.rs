@@ -17,8 +17,9 @@
 //! (`results/auto.md`);
 //! `--versus-heyoka` times our Taylor method and heyoka in alternation,
 //! `results/versus_heyoka.md`; with `--only name`, one problem, printed
-//! only). Writes
-//! `results/results.csv`, one SVG per problem and `results/summary.md`.
+//! only); `--readme` rewrites `README.md` from the results there. Writes
+//! `results/results.csv`, one SVG per problem, `results/summary.md` and
+//! `README.md`.
 //!
 //! Errors are max |y − ref| / max(1, |ref|) at the end time against exact or
 //! published references (../shared/notes/reference-problems.md).
@@ -31,6 +32,7 @@
 mod auto;
 mod dae;
 mod peers;
+mod readme;
 mod tape_cost;
 mod versus;
 
@@ -500,6 +502,13 @@ fn main() {
         auto::auto_section();
         return;
     }
+    if has("--readme") {
+        if let Err(e) = readme::write_readme(Path::new(env!("CARGO_MANIFEST_DIR"))) {
+            eprintln!("cannot write README.md: {e}");
+            std::process::exit(1);
+        }
+        return;
+    }
     if has("--dae") {
         dae::dae_section(&(4..=10).map(|k| 10f64.powi(-k)).collect::<Vec<_>>());
         return;
@@ -575,4 +584,9 @@ fn main() {
     summary.push_str(&std::fs::read_to_string(out.join("summary.md")).unwrap_or_default());
     let _ = std::fs::write(out.join("summary.md"), &summary);
     println!("{summary}");
+    if only.is_none() && args.iter().all(|a| a != "--out") {
+        if let Err(e) = readme::write_readme(Path::new(env!("CARGO_MANIFEST_DIR"))) {
+            eprintln!("cannot write README.md: {e}");
+        }
+    }
 }

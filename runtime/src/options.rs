@@ -361,8 +361,11 @@ impl Options {
     /// covers it by the method's own continuous extension (cubic Hermite
     /// for the fixed-step methods); the steps themselves are not kept, so
     /// memory stays that of the times asked for. The times must lie in the
-    /// interval, in its direction. `at` then answers at these times only;
-    /// `last` and `final_state` give the end of the run.
+    /// interval, strictly ordered in its direction; not with `keep_every`
+    /// or `dense_output(false)` (the run is refused). `at` then answers at
+    /// these times only ([`crate::Error::NotStored`] elsewhere); `last`
+    /// and `final_state` give the end of the run. Events are still located
+    /// on every step.
     pub fn output_times(&self, times: Vec<f64>) -> Options {
         Options {
             output_times: Some(times.into()),
@@ -370,11 +373,12 @@ impl Options {
         }
     }
 
-    /// Calls `callback` after every accepted step with the time and state
-    /// ([`Step`]); returning [`Flow::Stop`] ends the run there (a success:
-    /// [`crate::Solution::cancelled_at`] says where). With
-    /// [`Options::output_times`] (or `keep_every`) a run of any length
-    /// keeps constant memory while the callback streams the steps.
+    /// Calls `callback` after every accepted step (after its events) with
+    /// the time and state ([`Step`]); returning [`Flow::Stop`] ends the run
+    /// there (a success: [`crate::Solution::cancelled_at`] says where).
+    /// With [`Options::output_times`] (or `keep_every`) a run of any length
+    /// keeps constant memory while the callback streams the steps. Copies
+    /// of these options share the one callback.
     pub fn on_step(&self, callback: impl FnMut(&Step<'_>) -> Flow + Send + 'static) -> Options {
         Options {
             on_step: Some(Arc::new(Mutex::new(callback))),

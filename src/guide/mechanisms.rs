@@ -32,6 +32,9 @@
 //! assert_eq!(sol.degrees_of_freedom(), Some(2));
 //! assert!(sol.last("tip_y")? < 0.0); // it fell
 //! assert!(sol.max_constraint_residual() < 1e-12);
+//! // The second joint's angle is the lower rod's relative to the upper.
+//! let bend = sol.last("lower.theta")? - sol.last("upper.theta")?;
+//! assert!((sol.last("revolute2.q")? - bend).abs() < 1e-12);
 //! # Ok::<(), daegen::Error>(())
 //! ```
 //!
@@ -41,10 +44,28 @@
 //! of freedom as n − rank Φ_q at the initial configuration, and a joint
 //! whose rows follow from the others is a compile error on that joint.
 //!
+//! Both formulations answer to the same names:
+//!
+//! | name | what |
+//! |---|---|
+//! | `upper.x`, `upper.y`, `upper.theta`, `der(upper.x)`, … | a body's centre of mass (m), angle (rad) and their rates |
+//! | `pin.q`, `der(pin.q)` | a revolute joint's angle θ_b − θ_a (rad); a prismatic joint's slide along its axis (m) |
+//! | `pin[0]`, `pin[1]` | the multipliers of the joint's constraint rows (its reaction is −Φ_qᵀλ) |
+//! | `revolute2.q`, `revolute2[0]` | an unnamed joint, by its kind and place among the joints |
+//!
+//! In the global formulation the body coordinates are states and the joint
+//! coordinates outputs; in the recursive one the other way round (only
+//! the cut joints keep multipliers there). `println!("{}", model.describe())`
+//! lists them all with what they are.
+//!
 //! Spatial scenes: `spatial_body(m, inertia, [x, y, z], [q0, q1, q2, q3],
 //! [v]?, [ω]?)` with a unit quaternion and body rates as states, joints
 //! `spherical`, `revolute(a, pa, b, pb, axis)`, `prismatic`, `fixed`,
-//! `distance`, loads in world axes, `orientation(b)` for R(q):
+//! `distance`, loads in world axes, `orientation(b)` for R(q). A spatial
+//! body answers to `bob.x`, `bob.y`, `bob.z` (centre of mass, world axes),
+//! `bob.q0` … `bob.q3` (attitude, body to world) and `bob.wx` … `bob.wz`
+//! (angular velocity, body axes); a revolute joint's `q` is its turn about
+//! the axis since the start, a prismatic joint's the slide along it:
 //!
 //! ```
 //! use daegen::prelude::*;

@@ -5,18 +5,21 @@
 //!    outputs, events, arrays and loops, vectors and rotations).
 //! 2. [`running`]: the run API, the methods and when to use each, the
 //!    solution, and the errors a run can return.
-//! 3. [`daes`]: constraints and algebraic variables, what the macro does
+//! 3. [`results`]: values by name, columns, samples on a grid, output
+//!    times, CSV, plots, streaming a run and stopping it, progress.
+//! 4. [`daes`]: constraints and algebraic variables, what the macro does
 //!    with them (index reduction, projection), and the two formulations.
-//! 4. [`mechanisms`]: multibody scenes, planar and spatial, global and
-//!    recursive.
-//! 5. [`kinematics`]: rotations, angle sequences, quaternions, angular
+//! 5. [`mechanisms`]: multibody scenes, planar and spatial, global and
+//!    recursive, and the names they answer to.
+//! 6. [`kinematics`]: rotations, angle sequences, quaternions, angular
 //!    velocities and frames, in the model language and numerically.
-//! 6. [`work_precision`]: registering a model in the benchmarks and
+//! 7. [`work_precision`]: registering a model in the benchmarks and
 //!    reading a work-precision diagram.
 
 pub mod daes;
 pub mod kinematics;
 pub mod language;
 pub mod mechanisms;
+pub mod results;
 pub mod running;
 pub mod work_precision;

@@ -19,7 +19,8 @@
 //! `final_state()`, `last(name)` and `at(t, name)` for any state,
 //! `der(x)`, algebraic variable or output (with each method's continuous
 //! output), `stats()` (steps, rejections, evaluations; for `Taylor` the
-//! order it chose and whether it ran unrolled), `events()`.
+//! order it chose and whether it ran unrolled), `events()`; columns,
+//! grids, CSV and plots in [`super::results`].
 //!
 //! `Taylor` chooses its order from the tolerance and the model's cost per
 //! order (higher than Jorba & Zou's for small models, theirs when the
