@@ -418,17 +418,3 @@ fn the_order_follows_the_model_and_can_be_fixed() {
         "{err}"
     );
 }
-
-/// Component `i` at `t` by the cubic Hermite polynomial through the stored
-/// steps around `t`, with component `di` as its derivative.
-fn hermite_between_steps(sol: &daegen::Solution, t: f64, i: usize, di: usize) -> f64 {
-    let k = sol.times().partition_point(|&s| s < t);
-    let (t0, t1) = (sol.times()[k - 1], sol.times()[k]);
-    let (a, b) = (sol.state(k - 1).unwrap(), sol.state(k).unwrap());
-    let (h, s) = (t1 - t0, (t - t0) / (t1 - t0));
-    let (s2, s3) = (s * s, s * s * s);
-    (2.0 * s3 - 3.0 * s2 + 1.0) * a[i]
-        + (s3 - 2.0 * s2 + s) * h * a[di]
-        + (3.0 * s2 - 2.0 * s3) * b[i]
-        + (s3 - s2) * h * b[di]
-}
