@@ -77,6 +77,7 @@ fn a_streamed_run_uses_the_same_memory_for_a_hundred_times_the_steps() {
         small, large,
         "peak bytes alive: {small} for 1e5 steps, {large} for 1e7"
     );
+    println!("peak bytes alive: {small} for 1e5 steps, {large} for 1e7");
     // And little of it: the solution, the model and the scratch vectors.
     assert!(large < 64 * 1024, "{large} bytes");
 }
