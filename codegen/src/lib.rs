@@ -32,6 +32,10 @@
 //! # Ok::<(), daegen_codegen::Error>(())
 //! ```
 
+// The symbolic kernels index several arrays by one position (y, f, scale, …):
+// an index loop says so more plainly than zipped iterators.
+#![allow(clippy::needless_range_loop)]
+
 mod build;
 mod diff;
 mod display;

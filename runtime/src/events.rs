@@ -289,7 +289,8 @@ pub(crate) fn bracketed_root(
             } else {
                 t
             };
-            if !((probe - lo) * (hi - probe) > 0.0) {
+            let inside = (probe - lo) * (hi - probe);
+            if inside <= 0.0 || inside.is_nan() {
                 break;
             }
             let value = f(probe);

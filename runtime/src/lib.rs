@@ -3,6 +3,10 @@
 //! [`Solution`], [`Error`]), the integrators, and small numerical helpers the
 //! generated code calls.
 
+// The numerical kernels index several arrays by one position (y, f, scale, …):
+// an index loop says so more plainly than zipped iterators.
+#![allow(clippy::needless_range_loop)]
+
 mod adaptive;
 pub mod algebraic;
 mod auto;

@@ -270,17 +270,8 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
         Method::Dop853 => explicit_pair::<M, Dop853>(model, t0, t1, &y0, options, solution),
         Method::Radau5 => radau5::integrate(model, t0, t1, &y0, options, solution),
         Method::Taylor => taylor::integrate(model, t0, t1, &y0, options, solution),
-        Method::TaylorFixed { order, step } => {
-            let steps = ((t1 - t0).abs() / step).ceil().max(1.0);
-            if steps > options.max_steps as f64 {
-                return Err(Error::MaxSteps {
-                    t: t0,
-                    max_steps: options.max_steps,
-                    partial: Box::new(solution),
-                });
-            }
-            let steps = steps as usize;
-            taylor_fixed::integrate(model, t0, t1, &y0, order, steps, options, solution)
+        Method::TaylorFixed { .. } => {
+            taylor_fixed::integrate(model, t0, t1, &y0, options, solution)
         }
         fixed => {
             let step = options.step.unwrap_or((t1 - t0).abs() / 1000.0);

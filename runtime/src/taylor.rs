@@ -23,20 +23,20 @@ use crate::taylor_tape::{mul_add, TaylorWork};
 const EVENT_SAMPLES: usize = 8;
 
 /// The position of the first NaN or infinity in `c`, if any. The common
-/// case, all finite, is one pass of four independent sums of `x − x`
-/// (zero for finite x, NaN otherwise).
+/// case, all finite, is one pass of four independent sums of `0·x` (zero
+/// for finite x, NaN otherwise).
 fn first_non_finite(c: &[f64]) -> Option<usize> {
     let mut lanes = [0.0f64; 4];
     let chunks = c.chunks_exact(4);
     let tail = chunks.remainder();
     for x in chunks {
         for l in 0..4 {
-            lanes[l] += x[l] - x[l];
+            lanes[l] += 0.0 * x[l];
         }
     }
     let total = tail
         .iter()
-        .fold(lanes.iter().sum::<f64>(), |s, x| s + (x - x));
+        .fold(lanes.iter().sum::<f64>(), |s, x| s + 0.0 * x);
     if total == 0.0 {
         return None;
     }
@@ -145,9 +145,9 @@ fn horner(rows: &[f64], w: usize, h: f64, y: &mut [f64], carried: &mut [f64]) {
 
 /// Floating-point operations per state of one step of order `order`
 /// besides the jet, for work models (the benchmark's arithmetic per
-/// solve): the series summed by [`horner`] (a multiply-add per
+/// solve): the series summed by `horner` (a multiply-add per
 /// coefficient after the first, one more to join Estrin's halves), the
-/// compensated addition of [`add_increment`] (ten) and the three norms
+/// compensated addition of `add_increment` (ten) and the three norms
 /// that set the step (an absolute value and a comparison each).
 pub fn update_operations_per_state(order: usize) -> usize {
     order + 1 + 10 + 3 * 2
@@ -362,11 +362,12 @@ pub(crate) fn integrate<M: Model>(
         // A polynomial solution has an infinite radius: the step is then
         // limited by the interval and max_step only.
         let mut h = (rho * safety).min(hmax);
-        let last = !(h < remaining);
+        // A NaN step ends the run here too, and is caught just below.
+        let last = h >= remaining || h.is_nan();
         if last {
             h = remaining;
         }
-        if !(h > t.abs().max(1e-300) * f64::EPSILON) {
+        if h <= t.abs().max(1e-300) * f64::EPSILON || h.is_nan() {
             // Non-finite coefficients make the step collapse: say which.
             if let Some(at) = first_non_finite(&coefficients[..n * w]) {
                 let state = if by_coefficient { at % n } else { at / w };

@@ -7,22 +7,35 @@
 use crate::error::Error;
 use crate::events::{after_accepted_step, EventWatch};
 use crate::model::Model;
-use crate::options::Options;
+use crate::options::{Method, Options};
 use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
 use crate::taylor_series::taylor_step;
 
-/// Integrates with `steps` equal steps of the scheme of order `order`.
+/// Integrates with the order and step of `Method::TaylorFixed` in
+/// `options`, in equal steps that end at `t1`.
 pub(crate) fn integrate<M: Model>(
     model: &M,
     t0: f64,
     t1: f64,
     y0: &[f64],
-    order: usize,
-    steps: usize,
     options: &Options,
     mut solution: Solution,
 ) -> Result<Solution, Error> {
+    let Method::TaylorFixed { order, step } = options.method else {
+        return Err(Error::MethodNotAvailable {
+            method: options.method,
+        });
+    };
+    let steps = ((t1 - t0).abs() / step).ceil().max(1.0);
+    if steps > options.max_steps as f64 {
+        return Err(Error::MaxSteps {
+            t: t0,
+            max_steps: options.max_steps,
+            partial: Box::new(solution),
+        });
+    }
+    let steps = steps as usize;
     let n = M::STATES;
     let (mut y, mut next) = (y0.to_vec(), vec![0.0; n]);
     // The generated code writes all TAYLOR_ORDER blocks' room; only `order` are filled.

@@ -18,7 +18,7 @@
 /// ```
 pub fn taylor_step(y: &[f64], derivatives: &[f64], h: f64, out: &mut [f64]) {
     let n = y.len();
-    let p = if n == 0 { 0 } else { derivatives.len() / n };
+    let p = derivatives.len().checked_div(n).unwrap_or(0);
     for (i, o) in out.iter_mut().enumerate().take(n) {
         let mut acc = 0.0;
         for k in (1..=p).rev() {

@@ -274,7 +274,7 @@ pub fn advance(rows: &mut [f64], w: usize, k: usize, v: usize, step: Step) {
         Step::Square(a) => {
             // Σ_j a_j a_{k−j} = 2 Σ_{j<k−j} a_j a_{k−j} + a_{k/2}² (k even).
             let a = row(a);
-            let half = (k + 1) / 2;
+            let half = k.div_ceil(2);
             let twice = 2.0 * convolution(&a[..half], &a[k + 1 - half..]);
             let middle = if k % 2 == 0 { a[k / 2] * a[k / 2] } else { 0.0 };
             (twice + middle, 0.0)

@@ -270,7 +270,7 @@ fn point_velocity_and_acceleration_match_differences() {
             0.2 - 0.5 * t * t,
         ]
     };
-    let du = |t: f64| [1.1 + 0.4 * t, 0.7, -1.0 * t];
+    let du = |t: f64| [1.1 + 0.4 * t, 0.7, -t];
     let p0 = |t: f64| Vector3::new(t * t, (2.0 * t).sin(), 1.0 - t);
     let p = |t: f64| Vector3::new(0.5 + 0.1 * t, -0.2 * t * t, 0.3);
     let world = |t: f64| p0(t) + sequence(axes, u(t)) * p(t);

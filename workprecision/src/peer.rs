@@ -28,10 +28,13 @@ pub struct PeerProblem<'a> {
     /// The reference at `t_end`.
     pub reference: &'a [f64],
     /// `f(t, y)`; NaN where the model's evaluation fails.
-    pub rhs: &'a (dyn Fn(f64, &[f64], &mut [f64]) + Sync),
+    pub rhs: &'a VectorFunction<'a>,
     /// `∂f/∂y`, dense, row-major.
-    pub jacobian: &'a (dyn Fn(f64, &[f64], &mut [f64]) + Sync),
+    pub jacobian: &'a VectorFunction<'a>,
 }
+
+/// A function of `(t, y)` writing into its third argument.
+pub type VectorFunction<'a> = dyn Fn(f64, &[f64], &mut [f64]) + Sync + 'a;
 
 /// A peer solver.
 pub trait Peer {

@@ -57,6 +57,40 @@ pub fn did_you_mean<'a>(name: &str, known: impl Iterator<Item = &'a str>) -> Opt
         .map(|(_, k)| k)
 }
 
+/// The user's tokens as compact source text for messages and docs:
+/// `der (x) == u` becomes `der(x) == u`, `a * (b + c)` stays as it is.
+pub fn source_text(tokens: &proc_macro2::TokenStream) -> String {
+    let text = tokens.to_string();
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = String::with_capacity(text.len());
+    for (i, &c) in chars.iter().enumerate() {
+        if c == ' ' {
+            let before = out.chars().last();
+            let after = chars.get(i + 1).copied();
+            let call_or_index = matches!(after, Some('(' | '['))
+                && before.is_some_and(|b| b.is_alphanumeric() || b == '_' || b == ')' || b == ']');
+            // A unary minus: `-` after an operator, an opening bracket or
+            // nothing, as in `== - k` (written `== -k`).
+            let unary_minus = before == Some('-')
+                && out
+                    .trim_end_matches('-')
+                    .trim_end()
+                    .chars()
+                    .last()
+                    .is_none_or(|p| "([,=*/+-!<>".contains(p));
+            let drop = call_or_index
+                || unary_minus
+                || matches!(before, Some('(' | '[' | '.'))
+                || matches!(after, Some(')' | ']' | ',' | '.' | ';'));
+            if drop {
+                continue;
+            }
+        }
+        out.push(c);
+    }
+    out.trim_end_matches(';').trim().to_string()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -90,38 +124,4 @@ mod tests {
         assert_eq!(text("f (a , - b)"), "f(a, -b)");
         assert_eq!(did_you_mean("y", ["k", "x"].into_iter()), None);
     }
-}
-
-/// The user's tokens as compact source text for messages and docs:
-/// `der (x) == u` becomes `der(x) == u`, `a * (b + c)` stays as it is.
-pub fn source_text(tokens: &proc_macro2::TokenStream) -> String {
-    let text = tokens.to_string();
-    let chars: Vec<char> = text.chars().collect();
-    let mut out = String::with_capacity(text.len());
-    for (i, &c) in chars.iter().enumerate() {
-        if c == ' ' {
-            let before = out.chars().last();
-            let after = chars.get(i + 1).copied();
-            let call_or_index = matches!(after, Some('(' | '['))
-                && before.is_some_and(|b| b.is_alphanumeric() || b == '_' || b == ')' || b == ']');
-            // A unary minus: `-` after an operator, an opening bracket or
-            // nothing, as in `== - k` (written `== -k`).
-            let unary_minus = before == Some('-')
-                && out
-                    .trim_end_matches('-')
-                    .trim_end()
-                    .chars()
-                    .last()
-                    .is_none_or(|p| "([,=*/+-!<>".contains(p));
-            let drop = call_or_index
-                || unary_minus
-                || matches!(before, Some('(' | '[' | '.'))
-                || matches!(after, Some(')' | ']' | ',' | '.' | ';'));
-            if drop {
-                continue;
-            }
-        }
-        out.push(c);
-    }
-    out.trim_end_matches(';').trim().to_string()
 }

@@ -29,6 +29,9 @@ use super::taylor_lanes::{schedule, shape, Lanes, Node, Shape};
 use super::taylor_tape::{Operand, Tape};
 use std::collections::BTreeMap;
 
+/// A seed class: the rows' shape and the kinds of their operands.
+type Class = (Shape, Vec<u8>);
+
 /// Finds the lane groups of the rows of `tape` under `folding`; `known[i]`
 /// is constant i's value when it is a number (lanes reading different
 /// constants of one value read them as one).
@@ -51,7 +54,7 @@ pub fn group_lanes(tape: &Tape, folding: &Folding, known: &[Option<f64>]) -> Lan
     let mut lanes = Lanes::default();
     // Seeds: every nonlinear row of one shape whose operands are of the
     // same kinds (rows, states, constants), in tape order.
-    let mut classes: Vec<((Shape, Vec<u8>), Vec<Node>)> = Vec::new();
+    let mut classes: Vec<(Class, Vec<Node>)> = Vec::new();
     for &(v, _) in &tape.recurrences {
         let n = Node::Var(v);
         let Some((s, ops)) = shapes.get(&n) else {

@@ -710,7 +710,7 @@ const SINGLE_FUNCTION_TERMS: usize = 5_000;
 /// of `n` states) and the constants `c0, c1, …` (`known[i]` is constant i's
 /// value when it is a number) and writes state i's normalised coefficient k
 /// to `out[i·(order+1) + k]` (an array). One function per order, not
-/// inlined, for large jets (see [`SINGLE_FUNCTION_TERMS`]): they run
+/// inlined, for large jets (see `SINGLE_FUNCTION_TERMS`): they run
 /// faster so, and rustc's time on one function of thousands of live
 /// values grows much faster than linearly (the outer solar system at three
 /// orders took over five minutes as one function, 1.5 minutes split).
