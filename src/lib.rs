@@ -34,8 +34,8 @@ pub use daegen_macros::dae_model;
 pub use daegen_runtime as runtime;
 pub use daegen_runtime::{
     ConstraintInfo, Error, EvalError, EventDirection, EventInfo, Flow, Formulation,
-    InitialCorrection, Method, Model, ModelInfo, Options, ProjectionLevel, Solution, Stats, Step,
-    Table,
+    InitialCorrection, Method, Model, ModelInfo, Options, ProjectionLevel, Simulate, Solution,
+    Stats, Step, Table,
 };
 
 pub mod guide;
@@ -44,7 +44,9 @@ pub mod plot;
 
 /// Everything a model file needs: `use daegen::prelude::*;`.
 pub mod prelude {
-    pub use crate::{dae_model, Error, Flow, Formulation, Method, Model, Options, Solution, Step};
+    pub use crate::{
+        dae_model, Error, Flow, Formulation, Method, Model, Options, Simulate, Solution, Step,
+    };
 }
 
 /// The README's code, compiled with the doctests so that it cannot rot.

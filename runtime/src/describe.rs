@@ -2,7 +2,7 @@
 //! the `Display` of [`ModelInfo`], which list every name with its doc
 //! comment.
 
-use crate::model::{EventDirection, ModelInfo};
+use crate::info::{EventDirection, ModelInfo};
 use std::fmt::Write;
 
 /// The description of a model: with `parameter` (a parameter's value by
@@ -98,7 +98,7 @@ impl std::fmt::Display for ModelInfo {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::EventInfo;
+    use crate::info::EventInfo;
 
     const INFO: ModelInfo = ModelInfo {
         name: "Pendulum",

@@ -2,53 +2,44 @@
 //! `#[dae_model]` implements, the run API ([`Options`], [`Method`],
 //! [`Solution`], [`Error`]), the integrators, and small numerical helpers the
 //! generated code calls.
+//!
+//! Layout: [`model`] and [`info`] are what a model gives; `run` checks a
+//! request and hands it to one of the `methods`, which advance with the
+//! helpers of `step` (step-size control, events, projection, Jacobians)
+//! and [`linalg`], and fill a [`Solution`].
 
 // The numerical kernels index several arrays by one position (y, f, scale, …):
 // an index loop says so more plainly than zipped iterators.
 #![allow(clippy::needless_range_loop)]
 
-mod adaptive;
 pub mod algebraic;
-mod auto;
-mod backward_euler;
-pub mod band_lu;
 pub mod bench;
-mod checks;
-pub mod dense_lu;
 mod describe;
-pub mod dop853;
-pub mod dopri5;
 pub mod error;
-mod events;
-pub mod explicit_rk;
-pub mod implicit_tableau;
-mod jacobian;
+pub mod info;
 pub mod kinematics;
 pub mod linalg;
-mod model;
+mod methods;
+pub mod model;
 mod options;
-mod projection;
-mod radau5;
-mod simulate;
+mod run;
 mod solution;
-pub mod step_control;
-mod stiffness;
-mod table;
-pub mod taylor;
-mod taylor_fixed;
-pub mod taylor_order;
-pub mod taylor_series;
-pub mod taylor_tape;
+mod step;
+
+// The methods' public helpers, where users and generated code find them.
+pub use linalg::{band_lu, dense_lu};
+pub use methods::taylor::tape as taylor_tape;
+pub use methods::taylor::{self as taylor, order as taylor_order, series as taylor_series};
+pub use methods::{dop853, dopri5, explicit_rk, implicit_tableau};
+pub use step::control as step_control;
 
 pub use error::Error;
-pub use model::{
-    ConstraintInfo, EvalError, EventDirection, EventInfo, Model, ModelInfo, ProjectionLevel,
-    StateVector,
-};
+pub use info::{ConstraintInfo, EvalError, EventDirection, EventInfo, ModelInfo, ProjectionLevel};
+pub use model::{Model, StateVector};
 /// The linear-algebra crate of [`kinematics`], re-exported so users get the
 /// same version.
 pub use nalgebra;
 pub use options::{Flow, Formulation, Method, Options, Step};
-pub use simulate::{simulate, simulate_from};
+pub use run::{simulate, simulate_from, Simulate};
+pub use solution::table::Table;
 pub use solution::{EventHit, InitialCorrection, Solution, Stats};
-pub use table::Table;

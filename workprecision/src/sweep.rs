@@ -3,7 +3,7 @@
 
 use crate::{median_time, Record, Settings};
 use daegen::runtime::bench::{Bench, Benchmark, Reference};
-use daegen::{Method, Options};
+use daegen::{Method, Options, Simulate};
 
 /// max |y − ref| / max(1, |ref|): relative where the reference is large,
 /// absolute where it is small (the IVP test set's mixed error).

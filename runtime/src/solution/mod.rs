@@ -3,15 +3,16 @@
 //!
 //! `record.rs` is how a run fills a solution step by step (which steps it
 //! keeps, the last step it always keeps, the output times it interpolates);
-//! `stream.rs` the callback and progress bar that watch it; this file what
-//! a user asks of the result.
+//! `stream.rs` the callback and progress bar that watch it; `query.rs`
+//! what a user asks of the result; this file the data and its plain
+//! accessors.
 
+mod query;
 mod record;
 mod stream;
+pub mod table;
 
-use crate::error::Error;
-use crate::model::Model;
-use crate::table::Table;
+use crate::info::{EventInfo, ModelInfo};
 use record::{LastStep, Storage};
 use std::sync::Arc;
 use stream::Stream;
@@ -58,6 +59,15 @@ pub struct InitialCorrection {
     pub used: f64,
 }
 
+/// The largest constraint residuals at one point, by level.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Residuals {
+    /// |Φ| of the constraints as written.
+    pub(crate) position: f64,
+    /// |Φ̇|: the constraints differentiated once.
+    pub(crate) velocity: f64,
+}
+
 /// A crossing of an event function, located to machine precision.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
@@ -77,33 +87,34 @@ pub struct EventHit {
 /// What a solution needs of its model after the run (outputs by name, and
 /// the derivative that fixed-step methods interpolate with), so that
 /// `Solution` has no type parameter.
-trait Observables: Send + Sync {
+pub(crate) trait Observables: Send + Sync {
     fn output(&self, index: usize, t: f64, y: &[f64]) -> f64;
     /// y' at `(t, y)`; `false` where the model has none to give (a mass
     /// matrix, or a failed evaluation).
     fn derivative(&self, t: f64, y: &[f64], dy: &mut [f64]) -> bool;
 }
 
-struct ModelObservables<M>(M);
-
-impl<M: Model + Send + Sync> Observables for ModelObservables<M> {
-    fn output(&self, index: usize, t: f64, y: &[f64]) -> f64 {
-        self.0.output(index, t, y)
-    }
-
-    fn derivative(&self, t: f64, y: &[f64], dy: &mut [f64]) -> bool {
-        !crate::model::has_mass_matrix::<M>() && self.0.rhs(t, y, dy).is_ok()
-    }
-}
-
 /// The names of a model's values, fixed at compile time.
 #[derive(Clone, Copy)]
-struct Names {
+pub(crate) struct Names {
     model: &'static str,
     states: &'static [&'static str],
     outputs: &'static [&'static str],
     algebraics: &'static [&'static str],
-    events: &'static [crate::model::EventInfo],
+    events: &'static [EventInfo],
+}
+
+impl Names {
+    /// The names in a model's [`ModelInfo`].
+    pub(crate) fn of(info: &ModelInfo) -> Names {
+        Names {
+            model: info.name,
+            states: info.states,
+            outputs: info.outputs,
+            algebraics: info.algebraics,
+            events: info.events,
+        }
+    }
 }
 
 /// The stored steps of a run, and its end.
@@ -184,26 +195,19 @@ impl std::fmt::Debug for Solution {
 }
 
 impl Solution {
-    pub(crate) fn new<M: Model + Clone + Send + Sync + 'static>(
-        model: &M,
-        capacity: usize,
-    ) -> Solution {
+    /// An empty solution of a model with these names and observables, for
+    /// `n` states.
+    pub(crate) fn new(names: Names, observables: Arc<dyn Observables>, n: usize) -> Solution {
         Solution {
-            n: M::STATES,
-            names: Names {
-                model: M::INFO.name,
-                states: M::INFO.states,
-                outputs: M::INFO.outputs,
-                algebraics: M::INFO.algebraics,
-                events: M::INFO.events,
-            },
-            observables: Arc::new(ModelObservables(model.clone())),
-            times: Vec::with_capacity(capacity),
-            states: Vec::with_capacity(capacity * M::STATES),
+            n,
+            names,
+            observables,
+            times: Vec::with_capacity(1024),
+            states: Vec::with_capacity(1024 * n),
             dense: Vec::new(),
             segments: Vec::new(),
             storage: Storage::All,
-            last: LastStep::new(M::STATES),
+            last: LastStep::new(n),
             end_t: f64::NAN,
             end_y: Vec::new(),
             steps: 0,
@@ -257,22 +261,6 @@ impl Solution {
         &self.events
     }
 
-    /// The times of the crossings of the event called `name`.
-    pub fn event_times(&self, name: &str) -> Result<Vec<f64>, Error> {
-        let Some(info) = self.names.events.iter().position(|e| e.name == name) else {
-            return Err(Error::UnknownName {
-                name: name.to_string(),
-                known: self.names.events.iter().map(|e| e.name).collect(),
-            });
-        };
-        Ok(self
-            .events
-            .iter()
-            .filter(|e| e.index == info)
-            .map(|e| e.t)
-            .collect())
-    }
-
     /// The terminal event the run stopped at, if it did.
     pub fn stopped_by(&self) -> Option<&EventHit> {
         self.cut_from.and(self.events.last())
@@ -314,7 +302,7 @@ impl Solution {
     }
 
     /// Records the constraint residuals at an accepted step.
-    pub(crate) fn note_constraint_residuals(&mut self, r: crate::projection::Residuals) {
+    pub(crate) fn note_constraint_residuals(&mut self, r: Residuals) {
         self.constraint_residual = self.constraint_residual.max(r.position);
         self.velocity_residual = self.velocity_residual.max(r.velocity);
     }
@@ -334,242 +322,5 @@ impl Solution {
     /// The degrees of freedom found at the start, if any.
     pub(crate) fn degrees_of_freedom_found(&self) -> Option<usize> {
         self.degrees_of_freedom
-    }
-
-    /// Every name a value can be read by, in order: the states (declared
-    /// states, each followed by the derivatives `der(x)`, … a higher-order
-    /// state brings), the algebraic variables, the outputs.
-    pub fn names(&self) -> Vec<&'static str> {
-        self.names
-            .states
-            .iter()
-            .chain(self.names.algebraics)
-            .chain(self.names.outputs)
-            .copied()
-            .collect()
-    }
-
-    /// The values of `name` at the stored times ([`Solution::times`]).
-    pub fn column(&self, name: &str) -> Result<Vec<f64>, Error> {
-        let value = self.reader(name)?;
-        Ok((0..self.times.len())
-            .map(|k| value.read(self, self.times[k], self.stored_state(k)))
-            .collect())
-    }
-
-    /// `names` at `times`, by the method's continuous extension (DOPRI5's
-    /// of order 4, DOP853's of order 7, RADAU5's collocation polynomial,
-    /// the Taylor polynomial of the step; cubic Hermite from y' at the
-    /// ends of the step for the other fixed-step methods). A solution that
-    /// stores only some times (`keep_every`, `output_times`) answers at
-    /// those only. Each time must lie in the integrated interval.
-    pub fn sample(&self, names: &[&str], times: &[f64]) -> Result<Table, Error> {
-        let readers = names
-            .iter()
-            .map(|name| self.reader(name))
-            .collect::<Result<Vec<_>, Error>>()?;
-        let mut columns = vec![Vec::with_capacity(times.len()); names.len()];
-        let mut y = vec![0.0; self.n];
-        for &t in times {
-            self.state_at(t, &mut y)?;
-            for (column, value) in columns.iter_mut().zip(&readers) {
-                column.push(value.read(self, t, &y));
-            }
-        }
-        Ok(Table::new(
-            names.iter().map(|s| s.to_string()).collect(),
-            times.to_vec(),
-            columns,
-        ))
-    }
-
-    /// `names` at every stored time, as a [`Table`].
-    pub fn table(&self, names: &[&str]) -> Result<Table, Error> {
-        let columns = names
-            .iter()
-            .map(|name| self.column(name))
-            .collect::<Result<Vec<_>, Error>>()?;
-        Ok(Table::new(
-            names.iter().map(|s| s.to_string()).collect(),
-            self.times.clone(),
-            columns,
-        ))
-    }
-
-    /// Writes `names` at every stored time as CSV: a header row (`t` and
-    /// the names), then one row per stored time. `&sol.names()` writes
-    /// every value.
-    pub fn write_csv<W: std::io::Write>(&self, writer: W, names: &[&str]) -> Result<(), Error> {
-        self.table(names)?.write_csv(writer)
-    }
-
-    /// A state, algebraic variable or output at the end of the run.
-    pub fn last(&self, name: &str) -> Result<f64, Error> {
-        if self.end_y.is_empty() {
-            return Err(Error::OutOfRange {
-                t: f64::NAN,
-                interval: (f64::NAN, f64::NAN),
-            });
-        }
-        Ok(self.reader(name)?.read(self, self.end_t, &self.end_y))
-    }
-
-    /// A state, algebraic variable or output at time `t`. Adaptive methods
-    /// interpolate with their own continuous extension (order 4 for
-    /// DOPRI5, 7 for DOP853, RADAU5's collocation polynomial, the Taylor
-    /// polynomial); the fixed-step methods by the cubic Hermite polynomial
-    /// through both ends of the step and their derivatives (linear for a
-    /// model with a mass matrix, and for runs with `dense_output(false)`).
-    /// A solution thinned by [`crate::Options::keep_every`] or stored at
-    /// [`crate::Options::output_times`] answers only at its stored times
-    /// ([`Error::Thinned`], [`Error::NotStored`] elsewhere).
-    pub fn at(&self, t: f64, name: &str) -> Result<f64, Error> {
-        let value = self.reader(name)?;
-        let mut y = vec![0.0; self.n];
-        self.state_at(t, &mut y)?;
-        Ok(value.read(self, t, &y))
-    }
-
-    /// The stored state at `k` (the end state for the last entry of a run
-    /// that stores every step).
-    fn stored_state(&self, k: usize) -> &[f64] {
-        &self.states[k * self.n..(k + 1) * self.n]
-    }
-
-    /// The interval the solution covers, in the direction of the run.
-    fn interval(&self) -> Option<(f64, f64)> {
-        let first = *self.times.first()?;
-        Some((first, self.end_t))
-    }
-
-    /// The state at `t` into `y`.
-    fn state_at(&self, t: f64, y: &mut [f64]) -> Result<(), Error> {
-        let Some((first, end)) = self.interval() else {
-            return Err(Error::OutOfRange {
-                t,
-                interval: (f64::NAN, f64::NAN),
-            });
-        };
-        if !(first.min(end)..=first.max(end)).contains(&t) {
-            return Err(Error::OutOfRange {
-                t,
-                interval: (first, end),
-            });
-        }
-        if t == end {
-            y.copy_from_slice(&self.end_y);
-            return Ok(());
-        }
-        match self.storage {
-            Storage::All => {}
-            _ => {
-                // Only the stored times are known; between them nothing is.
-                return match self.times.iter().position(|&s| s == t) {
-                    Some(k) => {
-                        y.copy_from_slice(self.stored_state(k));
-                        Ok(())
-                    }
-                    None => Err(self.storage.not_stored(t)),
-                };
-            }
-        }
-        if self.times.len() == 1 {
-            y.copy_from_slice(self.stored_state(0));
-            return Ok(());
-        }
-        let forward = first <= end;
-        let k = self
-            .times
-            .partition_point(|&s| if forward { s < t } else { s > t })
-            .clamp(1, self.times.len() - 1);
-        self.interpolate_stored(k, t, y);
-        Ok(())
-    }
-
-    /// The state at `t` within stored step `k` (from `times[k - 1]` to
-    /// `times[k]`), by the step's interpolant.
-    fn interpolate_stored(&self, k: usize, t: f64, y: &mut [f64]) {
-        let n = self.n;
-        let t0 = self.times[k - 1];
-        let is_last = k == self.times.len() - 1;
-        // The step as computed: a cut last step keeps its computed end.
-        let (t1, y1) = match self.cut_from {
-            Some(end) if is_last => (end, &self.last.y_new[..]),
-            _ => (self.times[k], self.stored_state(k)),
-        };
-        let y0 = self.stored_state(k - 1);
-        let s = if t1 == t0 { 0.0 } else { (t - t0) / (t1 - t0) };
-        match self.segments.iter().rev().find(|seg| seg.first <= k) {
-            Some(seg) => {
-                let width = seg.width * n;
-                let start = seg.offset + (k - seg.first) * width;
-                let c = &self.dense[start..start + width];
-                for (i, yi) in y.iter_mut().enumerate() {
-                    *yi = (seg.interpolant)(c, n, i, s);
-                }
-            }
-            None => {
-                let (mut f0, mut f1) = (vec![0.0; n], vec![0.0; n]);
-                let slopes = self.observables.derivative(t0, y0, &mut f0)
-                    && self.observables.derivative(t1, y1, &mut f1);
-                record::hermite_or_linear(y0, y1, slopes.then_some((&f0, &f1)), t1 - t0, s, y);
-            }
-        }
-    }
-
-    /// How to read `name`: a state, an output or an algebraic variable.
-    fn reader(&self, name: &str) -> Result<Reader, Error> {
-        if let Some(i) = self.names.states.iter().position(|n| *n == name) {
-            return Ok(Reader::State(i));
-        }
-        self.names
-            .outputs
-            .iter()
-            .chain(self.names.algebraics)
-            .position(|n| *n == name)
-            .map(Reader::Observable)
-            .ok_or_else(|| self.unknown_name(name))
-    }
-
-    /// The error for a name the model does not have.
-    fn unknown_name(&self, name: &str) -> Error {
-        Error::UnknownName {
-            name: name.to_string(),
-            known: self.names(),
-        }
-    }
-}
-
-/// Where a named value comes from.
-#[derive(Clone, Copy)]
-enum Reader {
-    State(usize),
-    /// Outputs, then algebraic variables (the generated `output` numbers them so).
-    Observable(usize),
-}
-
-impl Reader {
-    fn read(self, solution: &Solution, t: f64, y: &[f64]) -> f64 {
-        match self {
-            Reader::State(i) => y[i],
-            Reader::Observable(o) => solution.observables.output(o, t, y),
-        }
-    }
-}
-
-#[cfg(feature = "serde")]
-impl serde::Serialize for Solution {
-    /// The stored times, every named value at them, the statistics and
-    /// the events.
-    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        use serde::ser::{Error as _, SerializeStruct};
-        let table = self.table(&self.names()).map_err(S::Error::custom)?;
-        let mut s = serializer.serialize_struct("Solution", 5)?;
-        s.serialize_field("model", self.names.model)?;
-        s.serialize_field("table", &table)?;
-        s.serialize_field("stats", &self.stats)?;
-        s.serialize_field("events", &self.events)?;
-        s.serialize_field("initial_corrections", &self.initial_corrections)?;
-        s.end()
     }
 }

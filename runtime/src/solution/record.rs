@@ -5,7 +5,6 @@
 
 use super::stream::Stream;
 use super::{Interpolant, Segment, Solution};
-use crate::error::Error;
 use crate::options::Options;
 use std::sync::Arc;
 
@@ -21,16 +20,6 @@ pub(super) enum Storage {
     /// Only these times, each interpolated in the step that covers it;
     /// `next` is the first not yet reached.
     OutputTimes { times: Arc<[f64]>, next: usize },
-}
-
-impl Storage {
-    /// The error for a time this storage did not keep.
-    pub(super) fn not_stored(&self, t: f64) -> Error {
-        match self {
-            Storage::KeepEvery { k, .. } => Error::Thinned { t, keep_every: *k },
-            _ => Error::NotStored { t },
-        }
-    }
 }
 
 /// The latest accepted step, from `(t_old, y_old)` to `(t_new, y_new)` as

@@ -14,22 +14,22 @@
 //!   the fraction grows
 //!   with `K`, from 0.1 where RADAU5 is as cheap as the pair (a pair held
 //!   well inside its stability region by the error of a stiff component,
-//!   [`crate::stiffness`]) to 0.9, Hairer's own test, where it is dear.
+//!   [`crate::methods::stiffness`]) to 0.9, Hairer's own test, where it is dear.
 //! - RADAU5 hands back, once its step has settled, when it is no longer
 //!   `K` times the pair's (compared as h·ρ, so a change of ρ counts).
 //! - A hand-over that RADAU5 gives back within [`TRIAL_STEPS`] steps did
 //!   not pay (a non-stiff problem at a loose tolerance); the pair then waits
 //!   for Hairer's own test before trying again.
 
-use crate::adaptive::{self, EmbeddedPair, Stiffness};
-use crate::dop853::Dop853;
-use crate::dopri5::Dopri5;
 use crate::error::Error;
+use crate::methods::adaptive::{self, EmbeddedPair, Stiffness};
+use crate::methods::dop853::Dop853;
+use crate::methods::dopri5::Dopri5;
+use crate::methods::radau5;
+use crate::methods::stiffness::{Finish, NonStiffWatch, StiffnessTest};
 use crate::model::Model;
 use crate::options::Options;
-use crate::radau5;
 use crate::solution::Solution;
-use crate::stiffness::{Finish, NonStiffWatch, StiffnessTest};
 
 /// Steps with h·ρ above the threshold that decide the pair is held back.
 pub(crate) const CONFIRMATIONS: usize = 8;

@@ -18,7 +18,8 @@
 //! one where g decreases along the integration.
 
 use crate::error::Error;
-use crate::model::{EventDirection, Model};
+use crate::info::EventDirection;
+use crate::model::Model;
 use crate::solution::{EventHit, Solution};
 
 /// Watches a run's steps for events.
@@ -60,7 +61,7 @@ macro_rules! after_accepted_step {
     ($events:ident, $solution:ident) => {
         if $events.is_some() {
             let stop;
-            ($solution, stop) = $crate::events::stop_after_step(&mut $events, $solution)?;
+            ($solution, stop) = $crate::step::events::stop_after_step(&mut $events, $solution)?;
             if stop {
                 break;
             }

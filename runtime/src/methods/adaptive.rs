@@ -4,13 +4,14 @@
 //! of a real run (Hairer, Nørsett, Wanner, *Solving ODEs I*, §II.4–§II.6).
 
 use crate::error::Error;
-use crate::events::{after_accepted_step, EventWatch};
-use crate::model::{EvalError, Model, StateVector};
+use crate::info::EvalError;
+use crate::methods::stiffness::{stage_quotient, Finish, StiffnessTest};
+use crate::model::{Model, StateVector};
 use crate::options::Options;
-use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
-use crate::step_control::{initial_step, scale, Controller, PiState};
-use crate::stiffness::{stage_quotient, Finish, StiffnessTest};
+use crate::step::control::{initial_step, scale, Controller, PiState};
+use crate::step::events::{after_accepted_step, EventWatch};
+use crate::step::projection::{project_onto_constraints, Projector};
 
 /// What the driver needs from one embedded pair.
 pub trait EmbeddedPair {
@@ -411,9 +412,9 @@ fn finish_stats(solution: &mut Solution, steps: usize, rejected: usize, evals: u
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dop853::Dop853;
-    use crate::dopri5::Dopri5;
-    use crate::model::ModelInfo;
+    use crate::info::ModelInfo;
+    use crate::methods::dop853::Dop853;
+    use crate::methods::dopri5::Dopri5;
 
     /// Kepler problem with e = 0.5 written by hand (the runtime cannot use
     /// the macro): q'' = -q/|q|³.

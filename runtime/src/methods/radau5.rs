@@ -9,16 +9,17 @@
 // Published coefficients are kept digit for digit as printed.
 #![allow(clippy::excessive_precision)]
 
-use crate::band_lu::{BandNewton, BandOrdering};
-use crate::dense_lu::{ComplexLu, RealLu};
 use crate::error::Error;
-use crate::events::{after_accepted_step, EventWatch};
-use crate::jacobian::DenseJacobian;
-use crate::model::{has_mass_matrix, EvalError, Model};
+use crate::info::EvalError;
+use crate::linalg::band_lu::{BandNewton, BandOrdering};
+use crate::linalg::dense_lu::{ComplexLu, RealLu};
+use crate::methods::stiffness::{Finish, NonStiffWatch};
+use crate::model::{has_mass_matrix, Model};
 use crate::options::Options;
-use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
-use crate::stiffness::{Finish, NonStiffWatch};
+use crate::step::events::{after_accepted_step, EventWatch};
+use crate::step::jacobian::DenseJacobian;
+use crate::step::projection::{project_onto_constraints, Projector};
 
 const SQ6: f64 = 2.449_489_742_783_178;
 const C1: f64 = (4.0 - SQ6) / 10.0;
@@ -706,7 +707,7 @@ fn finish<M: Model>(solution: &mut Solution, steps: usize, rejected: usize, w: &
 #[cfg(test)]
 mod mass_matrix_tests {
     use super::*;
-    use crate::model::ModelInfo;
+    use crate::info::ModelInfo;
 
     /// Cash's pendulum (g = 1) in the Gear–Gupta–Leimkuhler index-2 form,
     /// written by hand: w = (x, y, u, v, λ, μ), M = diag(1, 1, 1, 1, 0, 0),
@@ -782,13 +783,13 @@ mod mass_matrix_tests {
     #[test]
     fn only_radau5_integrates_a_singular_mass_matrix() {
         let opts = Options::new().method(crate::Method::Dop853);
-        let err = crate::simulate::simulate(&GglPendulum, 0.0, 1.0, &opts).unwrap_err();
+        let err = crate::run::simulate(&GglPendulum, 0.0, 1.0, &opts).unwrap_err();
         let message = err.to_string();
         assert!(
             message.contains("Method::Radau5") && message.contains("lambda, mu"),
             "{message}"
         );
-        let auto = crate::simulate::simulate(&GglPendulum, 0.0, 1.0, &Options::new()).unwrap();
+        let auto = crate::run::simulate(&GglPendulum, 0.0, 1.0, &Options::new()).unwrap();
         assert!(auto.stats().method.contains("Radau5"));
     }
 
@@ -802,7 +803,7 @@ mod mass_matrix_tests {
                 .atol(tol);
             let mut y0 = [0.0; 6];
             model.initial_state(&mut y0);
-            let sol = crate::simulate::simulate(&model, 0.0, 10.0, &opts).unwrap();
+            let sol = crate::run::simulate(&model, 0.0, 10.0, &opts).unwrap();
             for (t, reference) in [(1.0, AT_1), (10.0, AT_10)] {
                 let errs: Vec<f64> = ["x", "y", "u", "v", "lambda"]
                     .iter()

@@ -13,8 +13,9 @@
 //! position level converges quadratically from the O(tol) error of a step.
 
 use crate::error::Error;
-use crate::model::{Model, ProjectionLevel};
-use crate::solution::Solution;
+use crate::info::ProjectionLevel;
+use crate::model::Model;
+use crate::solution::{Residuals, Solution};
 
 /// Gauss–Newton iterations per level after a step (design notes: ≤ 3).
 pub(crate) const STEP_ITERATIONS: usize = 3;
@@ -289,15 +290,6 @@ fn solve_symmetric(a: &mut [f64], n: usize, b: &mut [f64]) -> Result<(), usize> 
     Ok(())
 }
 
-/// The largest constraint residuals at one point, by level.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct Residuals {
-    /// |Φ| of the constraints as written.
-    pub(crate) position: f64,
-    /// |Φ̇|: the constraints differentiated once.
-    pub(crate) velocity: f64,
-}
-
 /// Makes the initial values consistent: projects them onto every
 /// constraint level, then checks that the constraints hold.
 pub(crate) fn consistent_initial_values<M: Model>(
@@ -367,7 +359,7 @@ macro_rules! project_onto_constraints {
     ($projector:ident, $t:expr, $y:expr, $solution:ident) => {
         match $projector.as_mut() {
             None => false,
-            Some(p) => match p.project($t, $y, $crate::projection::STEP_ITERATIONS, None) {
+            Some(p) => match p.project($t, $y, $crate::step::projection::STEP_ITERATIONS, None) {
                 Ok(residuals) => {
                     $solution.note_constraint_residuals(residuals);
                     !M::PROJECTION.is_empty()

@@ -3,10 +3,10 @@
 //! §II.1). The tableaux are data; one stepping routine serves them all.
 
 use crate::error::Error;
-use crate::events::{after_accepted_step, EventWatch};
 use crate::model::Model;
-use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
+use crate::step::events::{after_accepted_step, EventWatch};
+use crate::step::projection::{project_onto_constraints, Projector};
 
 /// An explicit Butcher tableau: `a` strictly lower triangular (row i has i
 /// entries), weights `b`, nodes `c`.

@@ -1,18 +1,46 @@
 //! Checks a run's request and hands it to the method.
 
-use crate::adaptive::{self, EmbeddedPair, Stiffness};
-use crate::auto;
-use crate::backward_euler;
-use crate::dop853::Dop853;
-use crate::dopri5::Dopri5;
+mod checks;
+mod observables;
+
 use crate::error::Error;
-use crate::explicit_rk;
+use crate::methods::adaptive::{self, EmbeddedPair, Stiffness};
+use crate::methods::auto;
+use crate::methods::backward_euler;
+use crate::methods::dop853::Dop853;
+use crate::methods::dopri5::Dopri5;
+use crate::methods::explicit_rk;
+use crate::methods::radau5;
+use crate::methods::taylor;
+use crate::methods::taylor::fixed as taylor_fixed;
 use crate::model::{has_mass_matrix, Model};
 use crate::options::{Method, Options};
-use crate::radau5;
 use crate::solution::{InitialCorrection, Solution};
-use crate::taylor;
-use crate::taylor_fixed;
+
+/// Running a model: `model.simulate(t0, t1, &options)`, for every
+/// [`Model`] (brought into scope by `daegen::prelude`).
+pub trait Simulate: Model + Clone + Send + Sync + 'static {
+    /// Integrates from the model's initial state at `t0` to `t1`; see
+    /// [`crate::Options`] and [`crate::Solution`].
+    fn simulate(&self, t0: f64, t1: f64, options: &Options) -> Result<Solution, Error> {
+        simulate(self, t0, t1, options)
+    }
+
+    /// Integrates from the state `y0` (ordered as
+    /// [`crate::ModelInfo::states`]) at `t0` to `t1`: to continue after a
+    /// terminal event from a changed state.
+    fn simulate_from(
+        &self,
+        t0: f64,
+        y0: &[f64],
+        t1: f64,
+        options: &Options,
+    ) -> Result<Solution, Error> {
+        simulate_from(self, t0, y0, t1, options)
+    }
+}
+
+impl<M: Model + Clone + Send + Sync + 'static> Simulate for M {}
 
 /// Integrates `model` from its initial state at `t0` to `t1` with `options`.
 pub fn simulate<M: Model + Clone + Send + Sync + 'static>(
@@ -189,7 +217,7 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     t1: f64,
     options: &Options,
 ) -> Result<Solution, Error> {
-    crate::checks::check_request(model, t0, y0, t1, options)?;
+    crate::run::checks::check_request(model, t0, y0, t1, options)?;
     // A thinned run keeps no dense output: it could not serve between the
     // stored steps.
     let thinned = options.dense_output(false);
@@ -198,13 +226,14 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     } else {
         options
     };
-    let mut solution = Solution::new(model, 1024);
+    let mut solution = observables::solution_of(model);
     solution.configure(options, t0, t1);
     let mut y0 = y0.to_vec();
     let given = y0.clone();
-    let solution = crate::projection::consistent_initial_values(model, t0, &mut y0, solution)?;
+    let solution =
+        crate::step::projection::consistent_initial_values(model, t0, &mut y0, solution)?;
     let mut solution =
-        crate::projection::consistent_algebraic_components(model, t0, &mut y0, solution)?;
+        crate::step::projection::consistent_algebraic_components(model, t0, &mut y0, solution)?;
     let corrections = initial_corrections::<M>(&given, &y0, options);
     if options.strict_initial_values && !corrections.is_empty() {
         return Err(inconsistent_start(
@@ -252,7 +281,7 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
             };
         }
     }
-    if let Some(mut p) = crate::projection::Projector::new(model) {
+    if let Some(mut p) = crate::step::projection::Projector::new(model) {
         if let Ok(r) = p.project(t0, &mut y0, 0, None) {
             solution.note_constraint_residuals(r);
         }

@@ -277,7 +277,7 @@ impl BandNewton {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dense_lu::{ComplexLu, RealLu};
+    use crate::linalg::dense_lu::{ComplexLu, RealLu};
 
     /// A deterministic pseudo-random number in [-1, 1).
     fn uniform(seed: &mut u64) -> f64 {

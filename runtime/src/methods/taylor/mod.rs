@@ -9,14 +9,19 @@
 //! rejected. Time is summed with compensation, and each step's polynomial
 //! is the dense output.
 
+pub(crate) mod fixed;
+pub mod order;
+pub mod series;
+pub mod tape;
+
 use crate::error::Error;
-use crate::events::{after_accepted_step, EventWatch};
+use crate::methods::taylor::order::{choose_order, step_factor, JetCost};
+use crate::methods::taylor::tape::{mul_add, TaylorWork};
 use crate::model::Model;
 use crate::options::Options;
-use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
-use crate::taylor_order::{choose_order, step_factor, JetCost};
-use crate::taylor_tape::{mul_add, TaylorWork};
+use crate::step::events::{after_accepted_step, EventWatch};
+use crate::step::projection::{project_onto_constraints, Projector};
 
 /// Sub-intervals of each step on which event functions are checked for a
 /// sign change.

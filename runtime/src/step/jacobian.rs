@@ -2,7 +2,8 @@
 //! methods' Newton matrices: the generated sparse one scattered, or forward
 //! differences with `radau5.f`'s increments where the model has none.
 
-use crate::model::{EvalError, Model};
+use crate::info::EvalError;
+use crate::model::Model;
 
 /// A dense n × n Jacobian and the scratch it is evaluated in.
 pub(crate) struct DenseJacobian {
@@ -106,7 +107,7 @@ impl DenseJacobian {
         let n = M::STATES;
         if self.analytic {
             let values = &self.values;
-            crate::stiffness::spectral_radius(v, w, |v, w| {
+            crate::methods::stiffness::spectral_radius(v, w, |v, w| {
                 w.fill(0.0);
                 for (&(r, c), &value) in M::JACOBIAN_PATTERN.iter().zip(values) {
                     w[r] += value * v[c];
@@ -114,7 +115,7 @@ impl DenseJacobian {
             })
         } else {
             let matrix = &self.matrix;
-            crate::stiffness::spectral_radius(v, w, |v, w| {
+            crate::methods::stiffness::spectral_radius(v, w, |v, w| {
                 for (i, wi) in w.iter_mut().enumerate() {
                     *wi = matrix[i * n..(i + 1) * n]
                         .iter()

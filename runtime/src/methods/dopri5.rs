@@ -3,9 +3,9 @@
 //! code `dopri5.f`). Seven stages, the last one evaluated at the new point
 //! and reused as the first of the next step (FSAL).
 
-use crate::adaptive::EmbeddedPair;
+use crate::methods::adaptive::EmbeddedPair;
 use crate::model::StateVector;
-use crate::step_control::Controller;
+use crate::step::control::Controller;
 
 /// The DOPRI5 pair.
 pub struct Dopri5;

@@ -2,6 +2,9 @@
 //! cannot solve symbolically (`M(q) q'' = f` with `M` full and
 //! configuration-dependent). Stack arrays, no allocation.
 
+pub mod band_lu;
+pub mod dense_lu;
+
 /// Solves `a x = b` in place (`b` becomes `x`) by Gaussian elimination with
 /// partial pivoting; `a` is row-major `N × N` and is destroyed. Returns
 /// `false` when a pivot is zero or not finite (a singular matrix).

@@ -6,9 +6,9 @@
 // Published coefficients are kept digit for digit as printed.
 #![allow(clippy::excessive_precision)]
 
-use crate::adaptive::EmbeddedPair;
+use crate::methods::adaptive::EmbeddedPair;
 use crate::model::StateVector;
-use crate::step_control::Controller;
+use crate::step::control::Controller;
 
 /// The DOP853 method.
 pub struct Dop853;

@@ -23,14 +23,15 @@
 //! - a step that still cannot be taken, or whose local error is far too
 //!   large, is taken in halves ([`integrate`]).
 
-use crate::dense_lu::RealLu;
 use crate::error::Error;
-use crate::events::{after_accepted_step, EventWatch};
-use crate::jacobian::DenseJacobian;
-use crate::model::{EvalError, Model};
+use crate::info::EvalError;
+use crate::linalg::dense_lu::RealLu;
+use crate::model::Model;
 use crate::options::Options;
-use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
+use crate::step::events::{after_accepted_step, EventWatch};
+use crate::step::jacobian::DenseJacobian;
+use crate::step::projection::{project_onto_constraints, Projector};
 
 /// Iterations with one Newton matrix before it is refreshed.
 const ITERATIONS_PER_MATRIX: usize = 10;

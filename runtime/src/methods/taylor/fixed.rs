@@ -5,12 +5,12 @@
 //! scheme's order.
 
 use crate::error::Error;
-use crate::events::{after_accepted_step, EventWatch};
+use crate::methods::taylor::series::taylor_step;
 use crate::model::Model;
 use crate::options::{Method, Options};
-use crate::projection::{project_onto_constraints, Projector};
 use crate::solution::Solution;
-use crate::taylor_series::taylor_step;
+use crate::step::events::{after_accepted_step, EventWatch};
+use crate::step::projection::{project_onto_constraints, Projector};
 
 /// Integrates with the order and step of `Method::TaylorFixed` in
 /// `options`, in equal steps that end at `t1`.
@@ -46,7 +46,7 @@ pub(crate) fn integrate<M: Model>(
     let mut dense = vec![0.0; (order + 1) * n];
     let keep_dense = options.dense_output || events.is_some();
     if keep_dense {
-        solution.set_interpolant(order + 1, crate::taylor::interpolate);
+        solution.set_interpolant(order + 1, crate::methods::taylor::interpolate);
     }
     for step in 0..steps {
         let t = t0 + (t1 - t0) * (step as f64 / steps as f64);

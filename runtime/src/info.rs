@@ -1,0 +1,151 @@
+//! What a model says about itself at compile time: the names and docs of
+//! its values ([`ModelInfo`], [`EventInfo`]), its constraints
+//! ([`ConstraintInfo`], [`ProjectionLevel`]), and why it could not be
+//! evaluated at a point ([`EvalError`]).
+
+/// Why a model could not be evaluated at a point.
+#[derive(Clone, Debug, PartialEq)]
+pub enum EvalError {
+    /// A block of the mass matrix `E(t, y)` in `E y' = g` is singular here.
+    SingularMassMatrix {
+        /// The derivatives of the block, by name.
+        unknowns: Vec<&'static str>,
+    },
+    /// The model has no analytic Jacobian (its mass matrix is solved at run time).
+    JacobianUnavailable,
+    /// Newton's method on the model's nonlinear algebraic equations failed:
+    /// ∂g/∂z singular (`singular`: the equations do not determine the
+    /// variables there, the DAE is not of index 1 at this point), or no
+    /// convergence from the last solution nor from the guesses.
+    NonlinearAlgebraic {
+        /// The equations, as written.
+        equations: Vec<&'static str>,
+        /// The variables they determine.
+        unknowns: Vec<&'static str>,
+        /// Whether ∂g/∂z was singular.
+        singular: bool,
+    },
+    /// The model has no Taylor derivatives of this order: expand it with
+    /// `#[dae_model(taylor = p)]`, p ≥ the order asked for.
+    TaylorUnavailable {
+        /// The order asked for.
+        order: usize,
+    },
+}
+
+impl std::fmt::Display for EvalError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            EvalError::SingularMassMatrix { unknowns } => write!(
+                f,
+                "the equations do not determine {} here (their coefficient matrix is singular at this point): the model passes through a singular configuration, or its equations are dependent there",
+                unknowns.join(", ")
+            ),
+            EvalError::NonlinearAlgebraic {
+                equations,
+                unknowns,
+                singular: true,
+            } => write!(
+                f,
+                "the equations `{}` do not determine `{}` here: their Jacobian in {} is singular, so the DAE is not of index 1 at this point (a turning point of the algebraic equations, or variables the equations do not fix)",
+                equations.join("`, `"),
+                unknowns.join("`, `"),
+                unknowns.join(", ")
+            ),
+            EvalError::NonlinearAlgebraic {
+                equations, unknowns, ..
+            } => write!(
+                f,
+                "Newton's method on `{}` did not converge for `{}`, neither from the last solution nor from the guesses given with algebraic(..): the equations may have no solution near there, or the guesses are too far",
+                equations.join("`, `"),
+                unknowns.join("`, `")
+            ),
+            EvalError::JacobianUnavailable => write!(
+                f,
+                "the model has no analytic Jacobian (its mass matrix is solved at run time)"
+            ),
+            EvalError::TaylorUnavailable { order } => write!(
+                f,
+                "Taylor derivatives of order {order} were not generated; expand the model with #[dae_model(taylor = {order})] or higher"
+            ),
+        }
+    }
+}
+
+/// Which zero crossings of an event function fire the event.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EventDirection {
+    /// Every crossing.
+    Any,
+    /// From negative to positive (`event(g).rising()`).
+    Rising,
+    /// From positive to negative (`event(g).falling()`).
+    Falling,
+}
+
+/// An event declared with `let name = event(g)`: the run notes the times
+/// where `g(t, y)` crosses zero (and stops at the first if it is terminal).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EventInfo {
+    /// The `let` name.
+    pub name: &'static str,
+    /// Which crossings count.
+    pub direction: EventDirection,
+    /// The run stops at the first crossing.
+    pub terminal: bool,
+    /// The event's doc comment.
+    pub doc: &'static str,
+}
+
+/// Names and documentation of a model, known at compile time.
+#[derive(Clone, Copy, Debug)]
+pub struct ModelInfo {
+    /// The generated type's name.
+    pub name: &'static str,
+    /// The model's doc comment.
+    pub doc: &'static str,
+    /// States in solution order: declared states, then (for each state of
+    /// order k ≥ 2) its derivatives `der(x)` … `der^(k-1)(x)` right after it.
+    pub states: &'static [&'static str],
+    /// Each state's doc comment (for `der(x)`, what it is the rate of; for
+    /// a scene's coordinates, what they are).
+    pub state_docs: &'static [&'static str],
+    /// Parameters in declaration order.
+    pub parameters: &'static [&'static str],
+    /// Each parameter's doc comment.
+    pub parameter_docs: &'static [&'static str],
+    /// Named outputs (`let e = output(...)`).
+    pub outputs: &'static [&'static str],
+    /// Each output's doc comment.
+    pub output_docs: &'static [&'static str],
+    /// Number of equations the user wrote (after unrolling loops).
+    pub equations: usize,
+    /// Events (`let e = event(g)`), in declaration order.
+    pub events: &'static [EventInfo],
+    /// Algebraic variables (`let z = algebraic(guess)`), computed from the
+    /// states at each point; read them by name like outputs.
+    pub algebraics: &'static [&'static str],
+    /// Each algebraic variable's doc comment.
+    pub algebraic_docs: &'static [&'static str],
+}
+
+/// A constraint, or a derivative of one, that the integrated index-1 form
+/// no longer enforces and that the runtime projects onto after each step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ConstraintInfo {
+    /// The user's equation, as written.
+    pub equation: &'static str,
+    /// How often it was differentiated (0: the constraint itself; 1: the
+    /// velocity level of a position constraint).
+    pub level: usize,
+}
+
+/// The invariants of one differentiation level and the states a projection
+/// onto them corrects (positions for level 0, velocities for level 1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ProjectionLevel {
+    /// Indices into [`Model::CONSTRAINTS`].
+    pub rows: &'static [usize],
+    /// Indices of the corrected states, ascending.
+    pub slots: &'static [usize],
+}
