@@ -2,7 +2,7 @@
 //!
 //! Write a model as a function in the model language under `#[dae_model]`;
 //! the macro differentiates it symbolically, shares common subexpressions
-//! and emits a type implementing [`Model`], which [`Model::simulate`] runs.
+//! and emits a type implementing [`Model`], which [`Simulate::simulate`] runs.
 //!
 //! ```
 //! use daegen::prelude::*;

@@ -144,7 +144,7 @@ pub struct ConstraintInfo {
 /// onto them corrects (positions for level 0, velocities for level 1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ProjectionLevel {
-    /// Indices into [`Model::CONSTRAINTS`].
+    /// Indices into [`crate::Model::CONSTRAINTS`].
     pub rows: &'static [usize],
     /// Indices of the corrected states, ascending.
     pub slots: &'static [usize],
