@@ -1,16 +1,21 @@
 //! `daegen-codegen`: daegen's symbolic engine, a plain library that the
 //! `#[dae_model]` macro calls and that tests use directly.
 //!
-//! The pipeline, one pass per module:
+//! The pipeline is [`expand_dae_model`], one folder per stage:
 //!
-//! 1. [`Graph`] (`graph.rs`, `build.rs`): a hash-consed DAG of canonical
-//!    nodes with exact rational constants; smart constructors simplify
-//!    without changing values.
-//! 2. Differentiation (`diff.rs`, `jacobian.rs`): partial and total time
-//!    derivatives in forward mode over the DAG, sparse Jacobians.
-//! 3. Scheduling (`schedule.rs`): common-subexpression elimination across all
-//!    outputs into a straight-line [`Program`].
-//! 4. Emission (`emit.rs`): the program as Rust tokens.
+//! 1. `front/`: the attribute's arguments, the model function lowered into
+//!    the model IR, every mistake collected with the user's tokens;
+//!    `mechanics/` lowers scenes of bodies and joints into equations.
+//! 2. `dae/`: index reduction, the unknowns solved block by block, the
+//!    first-order system (and the mass-matrix form).
+//! 3. `taylor/`: the Taylor methods' derivatives, tape and unrolled jets.
+//! 4. `emit/`: common-subexpression elimination into straight-line
+//!    programs ([`Program`]) and the model's items as Rust tokens.
+//!
+//! Under all of them, `expr/`: [`Graph`], a hash-consed DAG of canonical
+//! nodes with exact rational constants whose constructors simplify without
+//! changing values, with forward-mode differentiation, substitution and
+//! evaluation.
 //!
 //! ```
 //! use daegen_codegen::{Graph, emit_program};
@@ -36,33 +41,94 @@
 // an index loop says so more plainly than zipped iterators.
 #![allow(clippy::needless_range_loop)]
 
-mod build;
-mod diff;
-mod display;
-mod economic_taylor;
-mod emit;
+pub mod dae;
+pub mod emit;
 mod error;
-mod eval;
-mod graph;
-mod jacobian;
-pub mod model;
-mod node;
-mod number;
-mod parse;
-mod rational;
-mod schedule;
-mod substitute;
+pub mod expr;
+pub mod front;
+pub mod mechanics;
+pub mod taylor;
 
-pub use diff::VectorField;
-pub use display::Show;
-pub use economic_taylor::economic_taylor_derivatives;
-pub use emit::{emit_program, token_count};
+pub use emit::program::{emit_program, token_count};
+pub use emit::schedule::{Program, Temp, MAX_INLINE_DEPTH};
 pub use error::{Error, Result};
-pub use graph::FxHashMap;
-pub use graph::Graph;
-pub use jacobian::SparseJacobian;
-pub use model::expand_dae_model;
-pub use node::{sign, Func, Id, Node, Symbol, SymbolId, SymbolKind};
-pub use number::{pow_f64, Number};
-pub use rational::Rational;
-pub use schedule::{Program, Temp, MAX_INLINE_DEPTH};
+pub use expr::diff::VectorField;
+pub use expr::display::Show;
+pub use expr::graph::{FxHashMap, Graph};
+pub use expr::jacobian::SparseJacobian;
+pub use expr::node::{sign, Func, Id, Node, Symbol, SymbolId, SymbolKind};
+pub use expr::number::{pow_f64, Number};
+pub use expr::rational::Rational;
+pub use taylor::economic::economic_taylor_derivatives;
+
+use front::attributes::Attributes;
+use front::ctxt::Ctxt;
+use proc_macro2::TokenStream;
+
+/// Expands `#[dae_model(attr)] item`.
+pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
+    let mut cx = Ctxt::default();
+    let attributes = front::attributes::attributes(&mut cx, attr);
+    let item: syn::ItemFn = match syn::parse2(item) {
+        Ok(item) => item,
+        Err(e) => {
+            return syn::Error::new(
+                e.span(),
+                "`#[dae_model]` goes on a function: `fn pendulum() { ... }`",
+            )
+            .to_compile_error()
+        }
+    };
+    let mut ir = front::lower::lower_with(&mut cx, &item, attributes.recursive);
+    let system = if cx.is_ok() {
+        dae::reduce::reduce(&mut cx, &mut ir)
+    } else {
+        None
+    };
+    if let (Some(system), true) = (&system, cx.is_ok()) {
+        match emit::model::expand(&mut ir, system, &attributes) {
+            Ok(mut tokens) => {
+                tokens.extend(emit::benchmark::benchmark_impl(&item, &ir, &attributes));
+                tokens.extend(front::warnings::odd_unrolled_orders(
+                    &attributes.odd_unrolled,
+                ));
+                return tokens;
+            }
+            Err(e @ crate::Error::NotSmooth { node, .. }) => {
+                // The call itself when the right-hand side kept the node the
+                // user wrote; else the first such call.
+                let call = ir
+                    .non_smooth_calls
+                    .iter()
+                    .find(|(id, _)| *id == node)
+                    .or(ir.non_smooth_calls.first());
+                match call {
+                    Some((_, tokens)) => cx.error_at(tokens, e),
+                    None => cx.error_at(&item.sig.ident, e),
+                }
+            }
+            Err(e) => cx.error_at(&item.sig.ident, e),
+        }
+    }
+    let mut out = cx.to_compile_errors();
+    out.extend(emit::model::stub(&ir));
+    out
+}
+
+/// The errors `expand_dae_model` would report, as messages: for tests of
+/// diagnostics without compiling a macro.
+pub fn diagnostics(item: TokenStream) -> Vec<String> {
+    let mut cx = Ctxt::default();
+    let Ok(item) = syn::parse2::<syn::ItemFn>(item) else {
+        return vec!["not a function".to_string()];
+    };
+    let mut ir = front::lower::lower(&mut cx, &item);
+    if cx.is_ok() {
+        if let Some(system) = dae::reduce::reduce(&mut cx, &mut ir) {
+            if let Err(e) = emit::model::expand(&mut ir, &system, &Attributes::default()) {
+                cx.error_at(&item.sig.ident, e);
+            }
+        }
+    }
+    cx.messages()
+}

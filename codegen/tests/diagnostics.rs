@@ -1,8 +1,8 @@
 //! Diagnostics of the front end, tested without compiling a macro: each bad
 //! model yields the expected messages, all of them at once.
 
+use daegen_codegen::diagnostics;
 use daegen_codegen::expand_dae_model;
-use daegen_codegen::model::diagnostics;
 use quote::quote;
 
 fn messages(item: proc_macro2::TokenStream) -> Vec<String> {

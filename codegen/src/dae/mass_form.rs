@@ -1,0 +1,485 @@
+//! The mass-matrix form of a DAE, for RADAU5 with a singular mass matrix:
+//! `M w' = F(t, w)` with `w = (y, λ, μ)`, `M = diag(1, …, 1, 0, …, 0)`.
+//!
+//! For a mechanism (constraints differentiated twice) this is the
+//! Gear–Gupta–Leimkuhler index-2 form (Gear, Leimkuhler, Gupta 1985;
+//! Hairer & Wanner II §VII.1): `q' = v − Φ_qᵀ μ`, `M v' = f − Φ_qᵀ λ`,
+//! `0 = Φ`, `0 = Φ_q v + Φ_t`, where μ vanishes on the solution and keeps
+//! the positions on `Φ = 0` without projection. A velocity-level
+//! constraint (differentiated once) stays as it is (index 2); an algebraic
+//! equation in λ stays as it is (index 1). The differential equations are
+//! solved for the highest derivatives with λ known; only when that solve
+//! is symbolic is the form emitted.
+
+use crate::dae::constraints::Emit;
+use crate::dae::reduce::{FirstOrder, SlotDerivative};
+use crate::{FxHashMap, Graph, Id, SymbolId, SymbolKind};
+use proc_macro2::{Literal, TokenStream};
+use quote::{format_ident, quote};
+
+/// The mass-matrix form's components and right-hand side.
+pub struct MassForm {
+    /// One row per component: slots, then the algebraic rows.
+    pub rows: Vec<Id>,
+    /// The components: slots, algebraic variables, multipliers μ.
+    pub components: Vec<SymbolId>,
+    /// Their names.
+    pub names: Vec<String>,
+    /// Number of differential components (the slots).
+    pub differential: usize,
+    /// Components that are index-2 variables.
+    pub index2: Vec<usize>,
+    /// A general mass matrix `(row, column, entry)`, entries of the
+    /// parameters; `None`: diagonal, 1 on the differential components.
+    pub general: Option<Vec<(usize, usize, Id)>>,
+}
+
+/// The mass-matrix form of `sys`, if it has algebraic variables and its
+/// differential equations solve symbolically for the highest derivatives.
+pub fn mass_form(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Option<MassForm>> {
+    if !sys.combined.is_empty() {
+        return linearly_implicit(g, sys);
+    }
+    if sys.algebraic_symbols.is_empty() {
+        return Ok(None);
+    }
+    let z = &sys.highest;
+    let is_z = |s: &SymbolId| z.contains(s);
+    let mut differential = Vec::new();
+    let mut algebraic = Vec::new();
+    let mut constraints = Vec::new();
+    for (e, &r) in sys.residuals.iter().enumerate() {
+        if sys.differentiations[e] > 0 {
+            constraints.push(e);
+        } else if g.free_symbols(r).iter().any(is_z) {
+            differential.push(e);
+        } else {
+            algebraic.push(e);
+        }
+    }
+    if differential.len() != z.len() {
+        return Ok(None);
+    }
+    // E z = g(t, y, λ), solved with λ known.
+    let zero = g.zero();
+    let replace_zero: FxHashMap<SymbolId, Id> = z.iter().map(|&s| (s, zero)).collect();
+    let mut e_rows = Vec::with_capacity(z.len());
+    let mut rhs = Vec::with_capacity(z.len());
+    for &e in &differential {
+        let r = sys.residuals[e];
+        let mut row = Vec::new();
+        for (j, &s) in z.iter().enumerate() {
+            let c = g.partial(r, s)?;
+            if g.free_symbols(c).iter().any(is_z) {
+                return Ok(None);
+            }
+            if c != zero {
+                row.push((j, c));
+            }
+        }
+        let r0 = g.substitute(r, &replace_zero)?;
+        rhs.push(g.negate_terms(r0)?);
+        e_rows.push(row);
+    }
+    let Some(owner) = perfect_matching(&e_rows, z.len()) else {
+        return Ok(None);
+    };
+    let names: Vec<String> = z.iter().map(|&s| g.symbol(s).name.clone()).collect();
+    let Ok(solved) =
+        crate::dae::solve_unknowns::solve_unknowns(g, &e_rows, &rhs, &owner, z, &names)
+    else {
+        return Ok(None);
+    };
+    if !solved.blocks.is_empty() || solved.after_solve.iter().any(Option::is_some) {
+        return Ok(None);
+    }
+    // Slot rows: the next slot, or the solved highest derivative.
+    let mut rows = Vec::new();
+    for (slot, derivative) in sys.slots.iter().zip(&sys.derivatives) {
+        // A top slot's derivative with λ as a component (not the index-1
+        // form's, which eliminated it); a lower slot's is the next slot.
+        let row = match (
+            z.iter().position(|&s| is_next(g, slot.symbol, s)),
+            derivative,
+        ) {
+            (Some(j), _) => match solved.symbolic[j] {
+                Some(w) => w,
+                None => return Ok(None),
+            },
+            (None, SlotDerivative::Explicit(e)) => *e,
+            (None, SlotDerivative::Block { .. } | SlotDerivative::AfterSolve(_)) => {
+                return Ok(None)
+            }
+        };
+        rows.push(row);
+    }
+    let mut components: Vec<SymbolId> = sys.slots.iter().map(|s| s.symbol).collect();
+    let mut names: Vec<String> = sys.slots.iter().map(|s| s.name.clone()).collect();
+    let differential_count = components.len();
+    for &a in &sys.algebraic_symbols {
+        components.push(a);
+        names.push(g.symbol(a).name.clone());
+    }
+    // Algebraic rows; a multiplier μ for each position-level constraint.
+    let mut algebraic_rows = Vec::new();
+    for &e in &constraints {
+        let levels: Vec<Id> = sys
+            .invariants
+            .iter()
+            .filter(|i| i.equation == e)
+            .map(|i| i.residual)
+            .collect();
+        match sys.differentiations[e] {
+            1 => algebraic_rows.push(levels[0]),
+            2 => {
+                let k = names.len() - differential_count - sys.algebraic_symbols.len();
+                let name = format!("mu[{k}]");
+                let mu = g.add_symbol(&format!("__mu{k}"), SymbolKind::Algebraic)?;
+                let mu_symbol = g.as_symbol(mu).unwrap_or(components[0]);
+                for (i, slot) in sys.slots.iter().enumerate() {
+                    let d = g.partial(levels[0], slot.symbol)?;
+                    if d != zero {
+                        let t = g.mul(d, mu)?;
+                        rows[i] = g.sub(rows[i], t)?;
+                    }
+                }
+                components.push(mu_symbol);
+                names.push(name);
+                algebraic_rows.push(levels[0]);
+                algebraic_rows.push(levels[1]);
+            }
+            _ => return Ok(None),
+        }
+    }
+    for &e in &algebraic {
+        algebraic_rows.push(sys.residuals[e]);
+    }
+    if differential_count + algebraic_rows.len() != components.len() {
+        return Ok(None);
+    }
+    rows.extend(algebraic_rows);
+    let index2 = if constraints.is_empty() {
+        Vec::new()
+    } else {
+        (differential_count..components.len()).collect()
+    };
+    Ok(Some(MassForm {
+        rows,
+        components,
+        names,
+        differential: differential_count,
+        index2,
+        general: None,
+    }))
+}
+
+/// The equations as written, `M w' = F(t, w)` with `w` the slots and the
+/// algebraic variables and `M` the coefficients of the highest
+/// derivatives: a singular matrix of the parameters (a circuit's
+/// capacitances between nodes) that RADAU5 takes as it is, as Hairer's
+/// RADAU5 does. A lower slot's row is `der^k(x)' = der^(k+1)(x)`. `None`
+/// when a coefficient depends on the states or time (RADAU5 needs `M`
+/// constant) or the equations do not square with the components.
+fn linearly_implicit(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Option<MassForm>> {
+    let z = &sys.highest;
+    let zero = g.zero();
+    let one = g.one();
+    let mut components: Vec<SymbolId> = sys.slots.iter().map(|s| s.symbol).collect();
+    let mut names: Vec<String> = sys.slots.iter().map(|s| s.name.clone()).collect();
+    let differential = components.len();
+    for &a in &sys.algebraic_symbols {
+        components.push(a);
+        names.push(g.symbol(a).name.clone());
+    }
+    // The slot each highest derivative is the derivative of.
+    let mut top_slot = vec![usize::MAX; z.len()];
+    let mut rows = Vec::new();
+    let mut entries = Vec::new();
+    for (i, (slot, derivative)) in sys.slots.iter().zip(&sys.derivatives).enumerate() {
+        match z.iter().position(|&s| is_next(g, slot.symbol, s)) {
+            Some(j) => top_slot[j] = i,
+            None => {
+                let SlotDerivative::Explicit(next) = derivative else {
+                    return Ok(None);
+                };
+                entries.push((rows.len(), i, one));
+                rows.push(*next);
+            }
+        }
+    }
+    if top_slot.contains(&usize::MAX) {
+        return Ok(None);
+    }
+    let replace_zero: FxHashMap<SymbolId, Id> = z.iter().map(|&s| (s, zero)).collect();
+    for &r in &sys.written {
+        let row = rows.len();
+        for (j, &s) in z.iter().enumerate() {
+            let c = g.partial(r, s)?;
+            if c == zero {
+                continue;
+            }
+            let constant = g
+                .free_symbols(c)
+                .iter()
+                .all(|&s| matches!(g.symbol(s).kind, SymbolKind::Parameter));
+            if !constant {
+                return Ok(None);
+            }
+            entries.push((row, top_slot[j], c));
+        }
+        let r0 = g.substitute(r, &replace_zero)?;
+        rows.push(g.negate_terms(r0)?);
+    }
+    if rows.len() != components.len() {
+        return Ok(None);
+    }
+    Ok(Some(MassForm {
+        rows,
+        components,
+        names,
+        differential,
+        index2: Vec::new(),
+        general: Some(entries),
+    }))
+}
+
+/// Whether `z` is the derivative of the slot `slot` (`der^(k+1)(x)` of `der^k(x)`).
+fn is_next(g: &Graph, slot: SymbolId, z: SymbolId) -> bool {
+    let level = |s: SymbolId| match g.symbol(s).kind {
+        SymbolKind::Derivative { of, order } => (of, order),
+        _ => (s, 0),
+    };
+    let ((a, k), (b, m)) = (level(slot), level(z));
+    a == b && m == k + 1
+}
+
+/// A perfect matching of rows to columns (Kuhn), as the row of each column.
+fn perfect_matching(rows: &[Vec<(usize, Id)>], n: usize) -> Option<Vec<usize>> {
+    fn augment(
+        r: usize,
+        rows: &[Vec<(usize, Id)>],
+        owner: &mut [Option<usize>],
+        seen: &mut [bool],
+    ) -> bool {
+        for &(c, _) in &rows[r] {
+            if !seen[c] {
+                seen[c] = true;
+                if owner[c].is_none_or(|o| augment(o, rows, owner, seen)) {
+                    owner[c] = Some(r);
+                    return true;
+                }
+            }
+        }
+        false
+    }
+    let mut owner = vec![None; n];
+    for r in 0..rows.len() {
+        if !augment(r, rows, &mut owner, &mut vec![false; n]) {
+            return None;
+        }
+    }
+    owner.into_iter().collect()
+}
+
+/// The `Model` items both uses of the form share: sizes, mass, the
+/// right-hand side and its analytic Jacobian.
+fn model_items(g: &mut Graph, form: &MassForm, emit: Emit<'_>) -> crate::Result<TokenStream> {
+    let index = Literal::usize_unsuffixed;
+    let n = index(form.components.len());
+    let rhs = emit(g, &form.rows, &|i, v| {
+        let i = index(i);
+        quote!(dy[#i] = #v;)
+    });
+    let jacobian = g.jacobian(&form.rows, &form.components)?;
+    let nnz = index(jacobian.entries.len());
+    let pattern = jacobian.entries.iter().map(|&(r, c, _)| {
+        let (r, c) = (index(r), index(c));
+        quote!((#r, #c))
+    });
+    let values = emit(g, &jacobian.expressions(), &|k, v| {
+        let k = index(k);
+        quote!(values[#k] = #v;)
+    });
+    let mass = match &form.general {
+        None => {
+            let diagonal = (0..form.components.len()).map(|i| {
+                if i < form.differential {
+                    quote!(1.0)
+                } else {
+                    quote!(0.0)
+                }
+            });
+            quote!(const MASS: &'static [f64] = &[#(#diagonal),*];)
+        }
+        Some(entries) => {
+            let pattern = entries.iter().map(|&(r, c, _)| {
+                let (r, c) = (index(r), index(c));
+                quote!((#r, #c))
+            });
+            let k = index(entries.len());
+            let ids: Vec<Id> = entries.iter().map(|e| e.2).collect();
+            let values = emit(g, &ids, &|i, v| {
+                let i = index(i);
+                quote!(values[#i] = #v;)
+            });
+            quote! {
+                const MASS_PATTERN: &'static [(usize, usize)] = &[#(#pattern),*];
+                fn mass_values(&self, values: &mut [f64]) {
+                    let ::core::result::Result::Ok(values) = <&mut [f64; #k]>::try_from(values) else { return };
+                    let t = 0.0f64;
+                    #values
+                }
+            }
+        }
+    };
+    let index2 = form.index2.iter().map(|&i| index(i));
+    Ok(quote! {
+        const STATES: usize = #n;
+        type State = [f64; #n];
+        const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[#(#pattern),*];
+        #mass
+        const INDEX2_COMPONENTS: &'static [usize] = &[#(#index2),*];
+        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
+            let (::core::result::Result::Ok(y), ::core::result::Result::Ok(dy)) =
+                (<&[f64; #n]>::try_from(y), <&mut [f64; #n]>::try_from(dy)) else {
+                return ::core::result::Result::Ok(());
+            };
+            #rhs
+            ::core::result::Result::Ok(())
+        }
+        fn jacobian(&self, t: f64, y: &[f64], values: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
+            let (::core::result::Result::Ok(y), ::core::result::Result::Ok(values)) =
+                (<&[f64; #n]>::try_from(y), <&mut [f64; #nnz]>::try_from(values)) else {
+                return ::core::result::Result::Ok(());
+            };
+            #values
+            ::core::result::Result::Ok(())
+        }
+        fn time_derivative(&self, t: f64, y: &[f64], dfdt: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
+            ::core::result::Result::Err(::daegen::EvalError::JacobianUnavailable)
+        }
+    })
+}
+
+/// The items of the model's own `Model` implementation when only the
+/// mass-matrix form exists: initial values (states, then the algebraic
+/// variables' guesses, then μ = 0) and outputs read from the components.
+pub fn primary_items(
+    g: &mut Graph,
+    form: &MassForm,
+    inits: &[Id],
+    outputs: &[Id],
+    emit: Emit<'_>,
+) -> crate::Result<TokenStream> {
+    let index = Literal::usize_unsuffixed;
+    let n = index(form.components.len());
+    let items = model_items(g, form, emit)?;
+    let initial = emit(g, inits, &|i, v| {
+        let i = index(i);
+        quote!(y[#i] = #v;)
+    });
+    let arms: Vec<TokenStream> = outputs
+        .iter()
+        .enumerate()
+        .map(|(k, &o)| {
+            let body = emit(g, &[o], &|_, v| v);
+            let k = index(k);
+            quote!(#k => { #body })
+        })
+        .collect();
+    Ok(quote! {
+        #items
+        fn initial_state(&self, y: &mut [f64]) {
+            let ::core::result::Result::Ok(y) = <&mut [f64; #n]>::try_from(y) else { return };
+            *y = [0.0; #n];
+            #initial
+        }
+        fn output(&self, index: usize, t: f64, y: &[f64]) -> f64 {
+            let ::core::result::Result::Ok(y) = <&[f64; #n]>::try_from(y) else { return f64::NAN };
+            match index {
+                #(#arms)*
+                _ => f64::NAN,
+            }
+        }
+    })
+}
+
+/// The generated `{Name}MassForm` type and what the model needs to reach it.
+pub fn emit_mass_form(
+    g: &mut Graph,
+    form: &MassForm,
+    name: &syn::Ident,
+    vis: &syn::Visibility,
+    params: &[syn::Ident],
+    emit: Emit<'_>,
+) -> crate::Result<(TokenStream, TokenStream)> {
+    let index = Literal::usize_unsuffixed;
+    let form_name = format_ident!("{}MassForm", name);
+    let n = index(form.components.len());
+    let items = model_items(g, form, emit)?;
+    let names = &form.names;
+    let name_str = form_name.to_string();
+    let differential = index(form.differential);
+    let doc = if form.general.is_some() {
+        format!("The mass-matrix form of [`{name}`] for RADAU5: its equations as written, M w' = F(t, w), with the singular mass matrix M of their derivatives' coefficients.")
+    } else if form.index2.is_empty() {
+        format!("The mass-matrix form of [`{name}`] for RADAU5 with a singular mass matrix: its states, then its algebraic variables, their equations kept as written.")
+    } else {
+        format!("The mass-matrix form of [`{name}`] for RADAU5 with a singular mass matrix: states, algebraic variables and the Gear–Gupta–Leimkuhler multipliers `mu[k]`, which vanish on the solution.")
+    };
+    let form_type = quote! {
+        #[doc = #doc]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        #vis struct #form_name { #(#[doc = "Parameter, as in the model."] pub #params: f64,)* }
+
+        #[allow(unused_variables, unused_mut, clippy::all, clippy::pedantic)]
+        impl ::daegen::Model for #form_name {
+            const INDEX: usize = 2;
+            const INFO: ::daegen::ModelInfo = ::daegen::ModelInfo {
+                name: #name_str, doc: #doc, states: &[#(#names),*], state_docs: &[], parameters: &[], parameter_docs: &[],
+                outputs: <#name as ::daegen::Model>::INFO.outputs,
+                output_docs: <#name as ::daegen::Model>::INFO.output_docs,
+                equations: #n, events: &[], algebraics: &[], algebraic_docs: &[],
+            };
+            // The model's constraints, measured at every step but never
+            // projected onto: the form keeps them itself.
+            const CONSTRAINTS: &'static [::daegen::ConstraintInfo] = <#name as ::daegen::Model>::CONSTRAINTS;
+            #items
+            fn initial_state(&self, y: &mut [f64]) {
+                y.iter_mut().for_each(|v| *v = 0.0);
+            }
+            fn constraints(&self, t: f64, y: &[f64], out: &mut [f64]) {
+                let model = #name { #(#params: self.#params,)* };
+                ::daegen::Model::constraints(&model, t, &y[..#differential], out)
+            }
+            fn output(&self, index: usize, t: f64, y: &[f64]) -> f64 {
+                let model = #name { #(#params: self.#params,)* };
+                ::daegen::Model::output(&model, index, t, &y[..#differential])
+            }
+        }
+    };
+    let algebraic_count = index(form.components.len() - form.differential);
+    let method = quote! {
+        fn simulate_mass_form(
+            &self,
+            t0: f64,
+            y0: &[f64],
+            t1: f64,
+            options: &::daegen::Options,
+        ) -> ::core::option::Option<::core::result::Result<::daegen::Solution, ::daegen::Error>> {
+            let form = #form_name { #(#params: self.#params,)* };
+            // The algebraic variables from the index-1 form at the start;
+            // the multipliers μ are zero on the solution.
+            let mut w0 = [0.0f64; #n];
+            for (w, y) in w0[..#differential].iter_mut().zip(y0) {
+                *w = *y;
+            }
+            let outputs = <Self as ::daegen::Model>::INFO.outputs.len();
+            for k in 0..(<Self as ::daegen::Model>::INFO.algebraics.len()).min(#algebraic_count) {
+                w0[#differential + k] = ::daegen::Model::output(self, outputs + k, t0, y0);
+            }
+            ::core::option::Option::Some(::daegen::runtime::simulate_from(&form, t0, &w0, t1, options))
+        }
+    };
+    Ok((form_type, method))
+}

@@ -1,0 +1,14 @@
+//! From the model IR to a first-order system: equations whose highest
+//! derivatives cancel combined (`derivative_free`), the index reduced
+//! (`index_reduction`, `linear_pencil`), the unknowns solved block by block
+//! (`reduce`, `solve_unknowns`, `newton_block`), the constraints to project
+//! onto (`constraints`), and the mass-matrix form (`mass_form`).
+
+pub mod constraints;
+pub mod derivative_free;
+pub mod index_reduction;
+pub mod linear_pencil;
+pub mod mass_form;
+pub mod newton_block;
+pub mod reduce;
+pub mod solve_unknowns;

@@ -1,0 +1,616 @@
+//! Reduction to a first-order explicit system `y' = f(t, y)` (course notes
+//! Example 1.1): each state of order k becomes k states `x, der(x), …,
+//! der^(k-1)(x)`. The unknowns at a point are the highest derivatives `z`
+//! and the algebraic variables `λ`; constraints are differentiated until
+//! they involve one (`index_reduction`). The equations, then linear in the
+//! unknowns (`E(t, y) (z, λ) = g(t, y)`), are solved block by block —
+//! symbolically when a block is one equation or has constant coefficients,
+//! by a dense solve at run time otherwise (the KKT system of a mechanism).
+
+use crate::front::ctxt::Ctxt;
+use crate::front::ir::ModelIr;
+use crate::{FxHashMap, Id, SymbolId, SymbolKind};
+use proc_macro2::TokenStream;
+
+/// One first-order state of the reduced system.
+pub struct Slot {
+    /// `x`, `der(x)`, `q[1]`, ...
+    pub name: String,
+    /// The symbol it reads as.
+    pub symbol: SymbolId,
+    /// Its initial value (constants and parameters).
+    pub init: Id,
+    /// Kept by consistent initialization (`state(x0).fixed()`).
+    pub fixed: bool,
+    /// The slot's derivative is determined by the dynamics (a velocity),
+    /// not by another slot or an explicit `der(x) == u` (a position).
+    pub velocity_like: bool,
+}
+
+/// How a slot's derivative is computed.
+pub enum SlotDerivative {
+    /// `f_i` as an expression.
+    Explicit(Id),
+    /// An expression of the state and of run-time block unknowns (an
+    /// acceleration eliminated from a KKT block), evaluated after the solve.
+    AfterSolve(Id),
+    /// Unknown `row` of mass block `block`, solved at run time.
+    Block {
+        /// Which block.
+        block: usize,
+        /// Which of its unknowns.
+        row: usize,
+    },
+}
+
+pub use crate::dae::solve_unknowns::MassBlock;
+
+/// How an algebraic variable's value is computed.
+pub type AlgebraicValue = SlotDerivative;
+
+/// The reduced system.
+pub struct FirstOrder {
+    /// Each algebraic variable's value at `(t, y)`, in declaration order.
+    pub algebraics: Vec<AlgebraicValue>,
+    /// Constraints and hidden constraints to project onto.
+    pub invariants: Vec<crate::dae::index_reduction::Invariant>,
+    /// The differentiation index.
+    pub index: usize,
+    /// Unknowns solved at run time: symbol, block, row.
+    pub block_unknowns: Vec<(SymbolId, usize, usize)>,
+    /// The user's equations as residuals `lhs − rhs`, before index
+    /// reduction (a combination free of the highest derivatives in place
+    /// of an equation it made dependent).
+    pub residuals: Vec<Id>,
+    /// Equations replaced by such a combination, each with the equations
+    /// it combines.
+    pub combined: Vec<(usize, Vec<usize>)>,
+    /// The user's equations as residuals, as written.
+    pub written: Vec<Id>,
+    /// Pivots of that combination: expressions of the parameters a run
+    /// must not make zero.
+    pub rank_conditions: Vec<crate::dae::derivative_free::RankCondition>,
+    /// How often index reduction differentiated each equation.
+    pub differentiations: Vec<usize>,
+    /// The highest derivative of each state.
+    pub highest: Vec<SymbolId>,
+    /// The algebraic variables.
+    pub algebraic_symbols: Vec<SymbolId>,
+    /// Only the mass-matrix form exists (an algebraic equation is
+    /// nonlinear in the algebraic variables, and they do not close into a
+    /// Newton block): the model is emitted as it.
+    pub mass_only: bool,
+    /// Algebraic equations nonlinear in their variables, solved by Newton
+    /// at each evaluation; their variables are read as run-time block
+    /// `blocks.len()` (after the linear blocks).
+    pub newton: Option<crate::dae::newton_block::NewtonBlock>,
+    /// States in solution order.
+    pub slots: Vec<Slot>,
+    /// `dy_i` for each slot.
+    pub derivatives: Vec<SlotDerivative>,
+    /// Blocks solved at run time.
+    pub blocks: Vec<MassBlock>,
+    /// Output values, with highest derivatives replaced by their solutions.
+    pub outputs: Vec<Id>,
+    /// Event functions, likewise.
+    pub events: Vec<Id>,
+}
+
+struct Equation {
+    residual: Id,
+    unknowns: Vec<usize>,
+    origin: TokenStream,
+    /// Its position among the model's equations.
+    index: usize,
+}
+
+/// Reduces the model, or reports why it cannot.
+pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
+    let g = &mut ir.graph;
+    // Order of each state: the highest derivative any equation uses.
+    let mut order = vec![0u32; ir.states.len()];
+    let state_of: FxHashMap<SymbolId, usize> = ir
+        .states
+        .iter()
+        .enumerate()
+        .map(|(i, s)| (s.symbol, i))
+        .collect();
+    let mut residuals = Vec::with_capacity(ir.equations.len());
+    for eq in &ir.equations {
+        let r = match g.sub(eq.lhs, eq.rhs) {
+            Ok(r) => r,
+            Err(e) => {
+                cx.error_at(&eq.origin, e);
+                return None;
+            }
+        };
+        for s in g.free_symbols(r) {
+            if let SymbolKind::Derivative { of, order: k } = g.symbol(s).kind {
+                if let Some(&i) = state_of.get(&of) {
+                    order[i] = order[i].max(k);
+                }
+            }
+        }
+        residuals.push(r);
+    }
+    let mut ok = true;
+    // An algebraic variable no equation reads has nothing to determine it
+    // (a constraint force left out of the dynamics).
+    for a in &ir.algebraics {
+        if !residuals
+            .iter()
+            .any(|&r| g.free_symbols(r).contains(&a.symbol))
+        {
+            let name = &a.name;
+            cx.error_at(&a.origin, format!("algebraic variable `{name}` appears in no equation: use it where its constraint acts (a pendulum's `der(u) == -{name} * x;`), or remove it"));
+            ok = false;
+        }
+    }
+    for (i, s) in ir.states.iter().enumerate() {
+        if order[i] == 0 {
+            let name = &s.name;
+            cx.error_at(
+                &s.origin,
+                format!(
+                    "state `{name}` has no equation for its derivative: add `der({name}) == ...;`"
+                ),
+            );
+            ok = false;
+        }
+    }
+    if !ok {
+        return None;
+    }
+    // The unknowns z: highest derivatives, one per state.
+    let mut z_symbols = Vec::with_capacity(ir.states.len() + ir.algebraics.len());
+    for (i, s) in ir.states.iter().enumerate() {
+        let id = g.derivative(s.symbol, order[i]).ok()?;
+        z_symbols.push(g.as_symbol(id)?);
+    }
+    let n_states = z_symbols.len();
+    let algebraic_symbols: Vec<SymbolId> = ir.algebraics.iter().map(|a| a.symbol).collect();
+    let state_orders: Vec<(SymbolId, u32)> = ir
+        .states
+        .iter()
+        .zip(&order)
+        .map(|(s, &k)| (s.symbol, k))
+        .collect();
+    let origins: Vec<TokenStream> = ir.equations.iter().map(|e| e.origin.clone()).collect();
+    // Equations whose highest derivatives cancel in a combination become
+    // that combination (a circuit's node equations: `0 == f1 + f2`).
+    let texts: Vec<String> = origins
+        .iter()
+        .map(crate::front::names::source_text)
+        .collect();
+    let z_names: Vec<String> = z_symbols
+        .iter()
+        .map(|&s| g.symbol(s).name.clone())
+        .collect();
+    // Only a square system (as many equations as unknowns) is separated: in
+    // another, a repeated or missing equation is the mistake to report.
+    let square = residuals.len() == z_symbols.len() + ir.algebraics.len();
+    let separated = if !square {
+        Ok(crate::dae::derivative_free::Separated {
+            residuals: residuals.clone(),
+            combined: Vec::new(),
+            conditions: Vec::new(),
+        })
+    } else {
+        crate::dae::derivative_free::separate(g, &residuals, &z_symbols, &texts, &z_names)
+    };
+    let separated = match separated {
+        Ok(separated) => separated,
+        Err(crate::dae::derivative_free::Failure::Dependent { equation, of }) => {
+            let others: Vec<String> = of.iter().map(|&i| format!("`{}`", texts[i])).collect();
+            cx.error_at(
+                    &origins[equation],
+                    format!(
+                        "this equation is a combination of {}: it adds nothing; remove it or state what it was meant to add",
+                        others.join(" and ")
+                    ),
+                );
+            return None;
+        }
+        Err(crate::dae::derivative_free::Failure::Graph(e)) => {
+            cx.error_at(&origins[0], e);
+            return None;
+        }
+    };
+    let written = std::mem::replace(&mut residuals, separated.residuals);
+    let reduction = crate::dae::index_reduction::reduce_index(
+        cx,
+        g,
+        &crate::dae::index_reduction::Unknowns {
+            time: ir.time,
+            states: &state_orders,
+            z: &z_symbols,
+            algebraics: &algebraic_symbols,
+        },
+        &residuals,
+        &origins,
+    )?;
+    // Algebraic equations nonlinear in their variables: a Newton block,
+    // its variables known to the rest of the reduction.
+    let candidates: Vec<(SymbolId, String, Id)> = ir
+        .algebraics
+        .iter()
+        .map(|a| (a.symbol, a.name.clone(), a.init))
+        .collect();
+    let newton = match crate::dae::newton_block::find(
+        g,
+        &crate::dae::newton_block::Candidates {
+            residuals: &reduction.residuals,
+            differentiations: &reduction.differentiations,
+            highest: &z_symbols,
+            algebraics: &candidates,
+            texts: &texts,
+        },
+    ) {
+        Ok(newton) => newton,
+        Err(e) => {
+            cx.error_at(&origins[0], e);
+            return None;
+        }
+    };
+    let in_newton = |s: &SymbolId| newton.as_ref().is_some_and(|b| b.unknowns.contains(s));
+    // The unknowns: z, then λ (but for the Newton block's).
+    let linear_algebraics: Vec<crate::front::ir::AlgebraicDecl> = ir
+        .algebraics
+        .iter()
+        .filter(|a| !in_newton(&a.symbol))
+        .cloned()
+        .collect();
+    z_symbols.extend(linear_algebraics.iter().map(|a| a.symbol));
+    let z_index: FxHashMap<SymbolId, usize> =
+        z_symbols.iter().enumerate().map(|(j, &s)| (s, j)).collect();
+    let mut equations = Vec::with_capacity(residuals.len());
+    for (e, (eq, &r)) in ir.equations.iter().zip(&reduction.residuals).enumerate() {
+        if newton.as_ref().is_some_and(|b| b.equations.contains(&e)) {
+            continue;
+        }
+        let unknowns: Vec<usize> = g
+            .free_symbols(r)
+            .into_iter()
+            .filter_map(|s| z_index.get(&s).copied())
+            .collect();
+        equations.push(Equation {
+            residual: r,
+            unknowns,
+            origin: eq.origin.clone(),
+            index: e,
+        });
+    }
+    let owner = matched(
+        cx,
+        g,
+        &ir.states,
+        &linear_algebraics,
+        &equations,
+        &z_symbols,
+    )?;
+    // Linear in z: E_ij = ∂r_i/∂z_j must not contain z; g = -r|_{z=0}.
+    let n = z_symbols.len();
+    let zero = g.zero();
+    let mut e_matrix: Vec<Vec<(usize, Id)>> = Vec::with_capacity(n);
+    let z_zero: FxHashMap<SymbolId, Id> = z_symbols.iter().map(|&s| (s, zero)).collect();
+    let mut g_vec = Vec::with_capacity(n);
+    // An algebraic equation (no derivative, not a differentiated
+    // constraint) nonlinear in the algebraic variables has no index-1 form
+    // here: the model is integrated in its mass-matrix form instead.
+    let mut mass_only = false;
+    for eq in &equations {
+        let mut row = Vec::new();
+        let algebraic_equation =
+            reduction.differentiations[eq.index] == 0 && eq.unknowns.iter().all(|&j| j >= n_states);
+        for &j in &eq.unknowns {
+            let c = g.partial(eq.residual, z_symbols[j]).ok()?;
+            if let Some(bad) = g
+                .free_symbols(c)
+                .into_iter()
+                .find(|s| z_index.contains_key(s))
+            {
+                if algebraic_equation && ir.events.is_empty() {
+                    mass_only = true;
+                    continue;
+                }
+                let name = g.symbol(bad).name.clone();
+                let message = if ir.algebraics.iter().any(|a| a.symbol == bad) {
+                    format!("this equation is not linear in the algebraic variable `{name}`: daegen needs the algebraic variables to enter linearly (Newton on a nonlinear algebraic equation is not there yet); solve the equation for `{name}` by hand or make `{name}` an output")
+                } else {
+                    format!("this equation is not linear in `{name}`: daegen needs the form `E(t, y) * der(..) == g(t, y)`")
+                };
+                cx.error_at(&eq.origin, message);
+                return None;
+            }
+            if c != zero {
+                row.push((j, c));
+            }
+        }
+        let r0 = g.substitute(eq.residual, &z_zero).ok()?;
+        g_vec.push(g.negate_terms(r0).ok()?);
+        e_matrix.push(row);
+    }
+    let names: Vec<String> = z_symbols
+        .iter()
+        .map(|&s| g.symbol(s).name.clone())
+        .collect();
+    let solved = if mass_only {
+        Ok(crate::dae::solve_unknowns::Solved {
+            symbolic: vec![None; n],
+            block_of: vec![None; n],
+            blocks: Vec::new(),
+            after_solve: vec![None; n],
+        })
+    } else {
+        crate::dae::solve_unknowns::solve_unknowns(g, &e_matrix, &g_vec, &owner, &z_symbols, &names)
+    };
+    let solved = match solved {
+        Ok(solved) => solved,
+        Err(crate::dae::solve_unknowns::Unsolvable::Dependent { equation, unknowns }) => {
+            let names: Vec<String> = unknowns
+                .iter()
+                .map(|&j| format!("`{}`", names[j]))
+                .collect();
+            cx.error_at(
+                &equations[equation].origin,
+                format!(
+                    "the equations for {} are linearly dependent: one of them repeats the others",
+                    names.join(", ")
+                ),
+            );
+            return None;
+        }
+        Err(crate::dae::solve_unknowns::Unsolvable::Graph(e)) => {
+            cx.error_at(&equations[0].origin, e);
+            return None;
+        }
+    };
+    let (solution, block_of, mass_blocks, after_solve) = (
+        solved.symbolic,
+        solved.block_of,
+        solved.blocks,
+        solved.after_solve,
+    );
+    // Slots: x, der(x), ..., der^(k-1)(x) per state; dy of the last is z.
+    let mut slots = Vec::new();
+    let mut derivatives = Vec::new();
+    let init_of: FxHashMap<SymbolId, Id> = ir.inits.iter().map(|i| (i.target, i.value)).collect();
+    for (i, s) in ir.states.iter().enumerate() {
+        for k in 0..order[i] {
+            let id = g.derivative(s.symbol, k).ok()?;
+            let symbol = g.as_symbol(id)?;
+            let init = if k == 0 {
+                s.init
+            } else {
+                init_of.get(&symbol).copied().unwrap_or(zero)
+            };
+            slots.push(Slot {
+                name: g.symbol(symbol).name.clone(),
+                symbol,
+                init,
+                fixed: k == 0 && s.fixed,
+                velocity_like: k + 1 == order[i] && !reduction.explicit_highest[i],
+            });
+            derivatives.push(if k + 1 < order[i] {
+                SlotDerivative::Explicit(g.derivative(s.symbol, k + 1).ok()?)
+            } else {
+                match (solution[i], block_of[i]) {
+                    (Some(z), _) => SlotDerivative::Explicit(z),
+                    (None, Some((block, row))) => SlotDerivative::Block { block, row },
+                    (None, None) if after_solve[i].is_some() => {
+                        SlotDerivative::AfterSolve(after_solve[i]?)
+                    }
+                    // The mass-matrix form computes it with λ as a component.
+                    (None, None) if mass_only => SlotDerivative::Explicit(zero),
+                    (None, None) => return None,
+                }
+            });
+        }
+    }
+    for init in &ir.inits {
+        let valid = slots.iter().any(|s| s.symbol == init.target)
+            && !ir.states.iter().any(|s| s.symbol == init.target);
+        if !valid {
+            let name = g.symbol(init.target).name.clone();
+            cx.error_at(&init.origin, format!("`{name}` follows from its equation, so it takes no initial value: `init` is for derivatives below the highest one the equations use"));
+            ok = false;
+        }
+    }
+    // Outputs may read highest derivatives: replace them by their solutions.
+    let replace: FxHashMap<SymbolId, Id> = z_symbols
+        .iter()
+        .enumerate()
+        .filter_map(|(j, &s)| solution[j].map(|z| (s, z)))
+        .collect();
+    let mut observe = |value: Id, origin: &TokenStream, what: &str| -> Option<Id> {
+        let v = g.substitute(value, &replace).ok()?;
+        if what == "output" {
+            // Outputs may solve the blocks they read (λ of a mechanism).
+            return Some(v);
+        }
+        if let Some(s) = g
+            .free_symbols(v)
+            .into_iter()
+            .find(|s| z_index.contains_key(s) || in_newton(s))
+        {
+            let name = g.symbol(s).name.clone();
+            cx.error_at(origin, format!("this {what} reads `{name}`, which is only known after a numerical solve; compute it from the states instead"));
+            ok = false;
+        }
+        Some(v)
+    };
+    let mut outputs = Vec::with_capacity(ir.outputs.len());
+    for o in &ir.outputs {
+        outputs.push(observe(o.value, &o.origin, "output")?);
+    }
+    let mut events = Vec::with_capacity(ir.events.len());
+    for e in &ir.events {
+        events.push(observe(e.value, &e.origin, "event")?);
+    }
+    // Each algebraic variable in declaration order: from the linear solve,
+    // or from the Newton block (read as block `mass_blocks.len()`).
+    let newton_block_index = mass_blocks.len();
+    let mut algebraics = Vec::with_capacity(ir.algebraics.len());
+    for a in &ir.algebraics {
+        if let Some(k) = newton
+            .as_ref()
+            .and_then(|b| b.unknowns.iter().position(|&s| s == a.symbol))
+        {
+            algebraics.push(SlotDerivative::Block {
+                block: newton_block_index,
+                row: k,
+            });
+            continue;
+        }
+        let j = *z_index.get(&a.symbol)?;
+        algebraics.push(match (solution[j], block_of[j]) {
+            (Some(v), _) => SlotDerivative::Explicit(v),
+            (None, Some((block, row))) => SlotDerivative::Block { block, row },
+            (None, None) if after_solve[j].is_some() => SlotDerivative::AfterSolve(after_solve[j]?),
+            (None, None) if mass_only => SlotDerivative::Explicit(g.symbol_node(z_symbols[j])),
+            (None, None) => return None,
+        });
+    }
+    // The user's invariants: functions of the states, projected onto.
+    let mut invariants = reduction.invariants;
+    for inv in &ir.invariants {
+        if let Some(s) = g
+            .free_symbols(inv.value)
+            .into_iter()
+            .find(|s| z_index.contains_key(s))
+        {
+            let name = g.symbol(s).name.clone();
+            cx.error_at(&inv.origin, format!("an invariant is a function of the states, and this one reads `{name}`: write it without derivatives or algebraic variables"));
+            ok = false;
+        }
+        invariants.push(crate::dae::index_reduction::Invariant {
+            equation: usize::MAX,
+            level: 0,
+            residual: inv.value,
+            text: crate::front::names::source_text(&inv.origin),
+        });
+    }
+    let mut block_unknowns: Vec<(SymbolId, usize, usize)> = z_symbols
+        .iter()
+        .enumerate()
+        .filter_map(|(j, &s)| block_of[j].map(|(b, r)| (s, b, r)))
+        .collect();
+    if let Some(b) = &newton {
+        for (k, &s) in b.unknowns.iter().enumerate() {
+            block_unknowns.push((s, newton_block_index, k));
+        }
+    }
+    ok.then_some(FirstOrder {
+        slots,
+        derivatives,
+        blocks: mass_blocks,
+        outputs,
+        events,
+        algebraics,
+        invariants,
+        index: reduction.index,
+        block_unknowns,
+        residuals,
+        combined: separated.combined,
+        written,
+        rank_conditions: separated.conditions,
+        differentiations: reduction.differentiations,
+        highest: z_symbols[..n_states].to_vec(),
+        algebraic_symbols,
+        mass_only,
+        newton,
+    })
+}
+
+/// A perfect matching of equations to unknowns (highest derivatives, then
+/// algebraic variables; Kuhn's augmenting paths). An equation left over is
+/// reported with the structurally singular subsystem it belongs to (the
+/// equations reached by alternating paths, which share fewer unknowns than
+/// they number); an unknown left over has no equation.
+fn matched(
+    cx: &mut Ctxt,
+    g: &crate::Graph,
+    states: &[crate::front::ir::StateDecl],
+    algebraics: &[crate::front::ir::AlgebraicDecl],
+    equations: &[Equation],
+    unknowns: &[SymbolId],
+) -> Option<Vec<usize>> {
+    let n = unknowns.len();
+    let mut owner: Vec<Option<usize>> = vec![None; n];
+    fn augment(e: usize, eqs: &[Equation], owner: &mut [Option<usize>], seen: &mut [bool]) -> bool {
+        for &j in &eqs[e].unknowns {
+            if !seen[j] {
+                seen[j] = true;
+                if owner[j].is_none_or(|other| augment(other, eqs, owner, seen)) {
+                    owner[j] = Some(e);
+                    return true;
+                }
+            }
+        }
+        false
+    }
+    let name = |j: usize| format!("`{}`", g.symbol(unknowns[j]).name);
+    let text = |e: usize| {
+        format!(
+            "`{}`",
+            crate::front::names::source_text(&equations[e].origin)
+        )
+    };
+    let mut ok = true;
+    for e in 0..equations.len() {
+        let mut seen = vec![false; n];
+        if augment(e, equations, &mut owner, &mut seen) {
+            continue;
+        }
+        ok = false;
+        let reached: Vec<usize> = (0..n).filter(|&j| seen[j]).collect();
+        let mut subsystem: Vec<usize> = reached.iter().filter_map(|&j| owner[j]).collect();
+        subsystem.sort_unstable();
+        if let ([j], [other]) = (&reached[..], &subsystem[..]) {
+            let name = name(*j);
+            cx.error_at(&equations[e].origin, format!("{name} already has an equation: remove one of the two (or there are more equations than unknowns)"));
+            cx.error_at(
+                &equations[*other].origin,
+                format!("the other equation that determines {name}"),
+            );
+            continue;
+        }
+        let listed: Vec<String> = subsystem.iter().map(|&k| text(k)).collect();
+        let unknown_names: Vec<String> = reached.iter().map(|&j| name(j)).collect();
+        let message = if reached.is_empty() {
+            "this equation determines no unknown: it involves no highest derivative and no algebraic variable, and differentiating it does not help".to_string()
+        } else {
+            format!(
+                "the system is structurally singular: this equation and {} determine only {} ({} equations for {} unknowns); remove an equation or add an algebraic variable",
+                listed.join(", "),
+                unknown_names.join(", "),
+                subsystem.len() + 1,
+                reached.len()
+            )
+        };
+        cx.error_at(&equations[e].origin, message);
+    }
+    for (j, o) in owner.iter().enumerate() {
+        if o.is_some() {
+            continue;
+        }
+        ok = false;
+        let name = name(j);
+        match states.get(j) {
+            Some(state) => {
+                // unknowns[j] is the highest derivative of state j.
+                let message = format!("no equation determines {name}: add `{} == ...;` (there are fewer equations than unknowns)", &name[1..name.len() - 1]);
+                cx.error_at(&state.origin, message);
+            }
+            None => {
+                let a = &algebraics[j - states.len()];
+                cx.error_at(&a.origin, format!("no equation determines the algebraic variable {name}: add an equation or a constraint that involves it (there are fewer equations than unknowns)"));
+            }
+        }
+    }
+    if ok {
+        owner.into_iter().collect()
+    } else {
+        None
+    }
+}

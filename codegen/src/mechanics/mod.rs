@@ -1,0 +1,109 @@
+//! Multibody scenes lowered into equations (course notes §4.2): bodies
+//! and joints of a planar scene in the global formulation (`planar`) or
+//! the recursive one (`recursive`, on the spanning tree of `topology`),
+//! spatial scenes (`spatial`), and the names a scene answers to (`names`).
+//! Each is part of lowering: its statements are methods of
+//! `front::lower::Lower`, and the scene's data lives here.
+
+pub mod names;
+pub mod planar;
+pub mod recursive;
+pub mod spatial;
+pub mod topology;
+
+use crate::{Id, SymbolId};
+use proc_macro2::TokenStream;
+
+/// A planar rigid body: its coordinates and inertia.
+#[derive(Clone)]
+pub(crate) struct Body {
+    pub name: String,
+    pub x: SymbolId,
+    pub y: SymbolId,
+    pub theta: SymbolId,
+    pub mass: Id,
+    pub inertia: Id,
+}
+
+/// What a scene has collected by the end of the model.
+#[derive(Default)]
+pub(crate) struct Scene {
+    pub bodies: Vec<Body>,
+    pub ground: bool,
+    pub first_body: Option<TokenStream>,
+    /// Joint constraint rows and their multipliers.
+    pub rows: Vec<(Id, Id)>,
+    /// Applied forces: body, world force (x, y), torque.
+    pub loads: Vec<(usize, Id, Id, Id)>,
+    pub gravity: Option<(Id, Id)>,
+    pub joints: usize,
+    /// A line for the generated type's documentation.
+    pub summary: String,
+    /// `#[dae_model(scene = recursive)]`: relative joint coordinates.
+    pub recursive: bool,
+    /// Every joint, for the recursive formulation.
+    pub records: Vec<JointRecord>,
+    /// The bodies of a spatial scene (then `bodies` is empty).
+    pub spatial: Vec<SpatialBody>,
+    /// Applied loads in a spatial scene: body, world force, body-axes torque.
+    pub spatial_loads: Vec<(usize, [Id; 3], [Id; 3])>,
+    /// Gravity of a spatial scene.
+    pub gravity_vector: Option<[Id; 3]>,
+    /// Every joint's name, rows and statement, for reporting redundancy.
+    pub joint_rows: Vec<(String, std::ops::Range<usize>, TokenStream)>,
+    /// A `spatial_body` was declared (even one with an error).
+    pub spatial_declared: bool,
+}
+
+impl Scene {
+    /// Whether joints and loads are spatial.
+    pub(crate) fn is_spatial(&self) -> bool {
+        self.spatial_declared
+    }
+}
+
+/// A joint as declared: what the recursive formulation needs to place the
+/// child from the parent, and which equations and multipliers it added.
+#[derive(Clone)]
+pub(crate) struct JointRecord {
+    pub kind: &'static str,
+    pub name: String,
+    pub a: Frame,
+    pub b: Frame,
+    pub local_a: [Id; 2],
+    pub local_b: [Id; 2],
+    pub axis: Option<[Id; 2]>,
+    pub equations: std::ops::Range<usize>,
+    pub algebraics: std::ops::Range<usize>,
+    pub rows: std::ops::Range<usize>,
+}
+
+/// Joint statements, which may be named by a `let`.
+pub(crate) const JOINTS: [&str; 5] = ["revolute", "distance", "prismatic", "fixed", "spherical"];
+/// What `force` takes, in the plane and in space.
+pub(crate) const FORCE_USAGE: &str =
+    "a body, the point of application in its coordinates and the force in world axes";
+
+/// Load statements.
+pub(crate) const LOADS: [&str; 4] = ["gravity", "force", "torque", "spring"];
+
+/// A body or the ground, as a joint sees it.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Frame {
+    Ground,
+    Body(usize),
+}
+
+/// A spatial rigid body: its coordinates and inertia.
+#[derive(Clone)]
+pub(crate) struct SpatialBody {
+    /// Centre of mass in world axes.
+    pub position: [SymbolId; 3],
+    /// Attitude, q0 = cos(θ/2) first; body to world.
+    pub quaternion: [SymbolId; 4],
+    /// Angular velocity in body axes.
+    pub rates: [SymbolId; 3],
+    pub mass: Id,
+    /// Inertia tensor about the centre of mass in body axes, row-major.
+    pub inertia: [Id; 9],
+}

@@ -1,0 +1,788 @@
+//! Planar multibody scenes in the global formulation (course notes
+//! §4.2.2): each body is free, `(x, y, θ)` of its centre of mass, and each
+//! joint is a set of constraints on those coordinates with its reaction as
+//! algebraic variables. At the end of the model the macro writes each
+//! body's Newton–Euler equations `M q'' = f − Φ_qᵀ λ`, with Φ_q the
+//! symbolic partial derivatives of the joints' constraints; the DAE
+//! pipeline does the rest (index 3, the KKT system, projection).
+//!
+//! ```text
+//! let ground = ground();
+//! let crank = body(m, j, [x0, y0, theta0]);      // optional 4th: [vx, vy, omega]
+//! let pin = revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5 * r, 0.0, 0.0));
+//! distance(crank, a, slider, b, l);               // a massless rod
+//! prismatic(ground, p, slider, q, vec3(1.0, 0.0, 0.0));
+//! gravity(vec3(0.0, -g, 0.0));
+//! force(body, point, f);  torque(body, tau);
+//! spring(a, pa, b, pb, k, rest_length, damping);  // along the line of the points
+//! let p = position(crank, point);                 // world position of a body point
+//! ```
+
+use super::{Body, Frame, JointRecord, FORCE_USAGE};
+use crate::front::lower::Binding;
+use crate::front::lower::Lower;
+use crate::{Id, SymbolId};
+use quote::ToTokens;
+use syn::Expr;
+
+impl Lower<'_> {
+    /// `let b = body(m, j, [x, y, θ])` or `let g = ground()`.
+    pub(crate) fn scene_declaration(
+        &mut self,
+        ident: &syn::Ident,
+        kind: &str,
+        call: &syn::ExprCall,
+        local: &syn::Local,
+    ) {
+        if kind == "ground" {
+            if !self.arity(call, "ground", 0) {
+                return;
+            }
+            if self.scene.ground {
+                return self
+                    .cx
+                    .error_at(local, "a scene has one ground: remove this one");
+            }
+            self.scene.ground = true;
+            return self.bind(ident, Binding::Ground);
+        }
+        if self.scene.is_spatial() {
+            self.bind(ident, Binding::BrokenBody);
+            return self.cx.error_at(local, "a scene is planar (`body`) or spatial (`spatial_body`), not both: declare every body with `body(m, j, [x, y, theta])`");
+        }
+        if !(3..=4).contains(&call.args.len()) {
+            return self.cx.error_at(call, "`body` takes a mass, an inertia about the centre of mass, the initial `[x, y, theta]` and optionally the initial `[vx, vy, omega]`");
+        }
+        let (Some(mass), Some(inertia)) = (self.value(&call.args[0]), self.value(&call.args[1]))
+        else {
+            return;
+        };
+        let triple = |this: &mut Self, e: &Expr| -> Option<Vec<Id>> {
+            match e {
+                Expr::Array(a) if a.elems.len() == 3 => {
+                    a.elems.iter().map(|v| this.initial_value(v)).collect()
+                }
+                other => {
+                    this.cx
+                        .error_at(other, "write three values: `[x, y, theta]`");
+                    None
+                }
+            }
+        };
+        let Some(position) = triple(self, &call.args[2]) else {
+            return;
+        };
+        let velocity = match call.args.get(3) {
+            Some(v) => match triple(self, v) {
+                Some(v) => Some(v),
+                None => return,
+            },
+            None => None,
+        };
+        let name = ident.to_string();
+        let origin = local.to_token_stream();
+        let mut symbols = Vec::with_capacity(3);
+        for (k, coordinate) in ["x", "y", "theta"].iter().enumerate() {
+            let state = format!("{name}.{coordinate}");
+            let id = match self.g.state(&state) {
+                Ok(id) => id,
+                Err(e) => return self.cx.error_at(ident, e),
+            };
+            let Some(symbol) = self.g.as_symbol(id) else {
+                return;
+            };
+            self.states.push(crate::front::ir::StateDecl {
+                name: state,
+                symbol,
+                init: position[k],
+                origin: origin.clone(),
+                fixed: false,
+                doc: crate::mechanics::names::body_coordinate_doc(coordinate).to_string(),
+            });
+            if let Some(v) = &velocity {
+                let Ok(d) = self.g.derivative(symbol, 1) else {
+                    return;
+                };
+                if let Some(target) = self.g.as_symbol(d) {
+                    self.inits.push(crate::front::ir::Init {
+                        target,
+                        value: v[k],
+                        origin: origin.clone(),
+                    });
+                }
+            }
+            symbols.push(symbol);
+        }
+        if self.scene.first_body.is_none() {
+            self.scene.first_body = Some(origin);
+        }
+        self.scene.bodies.push(Body {
+            name: name.clone(),
+            x: symbols[0],
+            y: symbols[1],
+            theta: symbols[2],
+            mass,
+            inertia,
+        });
+        self.bind(ident, Binding::Body(self.scene.bodies.len() - 1));
+    }
+
+    pub(crate) fn frame(&mut self, e: &Expr) -> Option<Frame> {
+        let name = match e {
+            Expr::Path(p) => p.path.get_ident().map(|i| i.to_string()),
+            _ => None,
+        };
+        let Some(name) = name else {
+            self.cx.error_at(e, "name a body or the ground here");
+            return None;
+        };
+        match self.lookup(&name).cloned() {
+            Some(Binding::Body(b)) => Some(Frame::Body(b)),
+            Some(Binding::Ground) => Some(Frame::Ground),
+            Some(Binding::BrokenBody) => None,
+            Some(other) => {
+                let what = other.describe();
+                self.cx.error_at(e, format!("`{name}` is {what}, not a body: declare it with `let {name} = body(m, j, [x, y, theta]);`"));
+                None
+            }
+            None => {
+                self.unknown_name(e, &name);
+                None
+            }
+        }
+    }
+
+    /// A body-fixed point given in body coordinates, as (x, y) in the world.
+    fn world_point(&mut self, frame: Frame, p: &Expr, at: &Expr) -> Option<[Id; 2]> {
+        let t = self.tensor(p)?;
+        if (t.rows, t.cols) != (3, 1) {
+            self.cx.error_at(
+                p,
+                format!(
+                    "a point is a 3-vector in body coordinates (z ignored in the plane), not a {}",
+                    t.shape()
+                ),
+            );
+            return None;
+        }
+        let (px, py) = (t.data[0], t.data[1]);
+        match frame {
+            Frame::Ground => Some([px, py]),
+            Frame::Body(b) => {
+                let body = self.scene.bodies[b].clone();
+                let r = (|| -> crate::Result<[Id; 2]> {
+                    let g = &mut self.g;
+                    let theta = g.symbol_node(body.theta);
+                    let c = g.call(crate::Func::Cos, theta)?;
+                    let s = g.call(crate::Func::Sin, theta)?;
+                    let (x, y) = (g.symbol_node(body.x), g.symbol_node(body.y));
+                    let cx = g.mul(c, px)?;
+                    let sy = g.mul(s, py)?;
+                    let sx = g.mul(s, px)?;
+                    let cy = g.mul(c, py)?;
+                    let wx = g.add(x, cx)?;
+                    let wx = g.sub(wx, sy)?;
+                    let wy = g.add(y, sx)?;
+                    let wy = g.add(wy, cy)?;
+                    Ok([wx, wy])
+                })();
+                self.graph_result_pair(r, at)
+            }
+        }
+    }
+
+    /// `crank.theta`, `top.q0`: a coordinate of a body, as a value.
+    pub(crate) fn body_coordinate(&mut self, f: &syn::ExprField, e: &Expr) -> Option<Id> {
+        let base = match &*f.base {
+            Expr::Path(p) => p.path.get_ident().map(|i| i.to_string()),
+            _ => None,
+        };
+        let body = match base.as_deref().map(|n| self.lookup(n).cloned()) {
+            Some(Some(Binding::Body(b))) => b,
+            _ => {
+                self.cx.error_at(e, "fields are not part of the model language, except the coordinates of a body (`crank.theta`)");
+                return None;
+            }
+        };
+        let member = match &f.member {
+            syn::Member::Named(i) => i.to_string(),
+            syn::Member::Unnamed(i) => i.index.to_string(),
+        };
+        let (names, symbols): (&[&str], Vec<SymbolId>) = if self.scene.spatial.is_empty() {
+            let b = &self.scene.bodies[body];
+            (&["x", "y", "theta"], vec![b.x, b.y, b.theta])
+        } else {
+            let b = &self.scene.spatial[body];
+            let mut s = b.position.to_vec();
+            s.extend(b.quaternion);
+            s.extend(b.rates);
+            (
+                &["x", "y", "z", "q0", "q1", "q2", "q3", "wx", "wy", "wz"],
+                s,
+            )
+        };
+        match names.iter().position(|n| *n == member) {
+            Some(k) => Some(self.g.symbol_node(symbols[k])),
+            None => {
+                let list = names.join("`, `");
+                self.cx.error_at(
+                    &f.member,
+                    format!("a body's coordinates are `{list}`, not `{member}`"),
+                );
+                None
+            }
+        }
+    }
+
+    fn graph_result_pair(&mut self, r: crate::Result<[Id; 2]>, at: &Expr) -> Option<[Id; 2]> {
+        match r {
+            Ok(v) => Some(v),
+            Err(e) => {
+                self.cx.error_at(at, e);
+                None
+            }
+        }
+    }
+
+    /// `position(body, p)`: the world position of a body point, a 3-vector.
+    pub(crate) fn position(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<[Id; 2]> {
+        if c.args.len() != 2 {
+            self.cx.error_at(c, "`position` takes a body and a point in its coordinates: `position(crank, vec3(0.5, 0.0, 0.0))`");
+            return None;
+        }
+        let frame = self.frame(&c.args[0])?;
+        self.world_point(frame, &c.args[1], e)
+    }
+
+    fn angle(&mut self, frame: Frame) -> Id {
+        match frame {
+            Frame::Ground => self.g.zero(),
+            Frame::Body(b) => self.g.symbol_node(self.scene.bodies[b].theta),
+        }
+    }
+
+    /// A joint statement; `name` names its reactions (`name[0]`, ...).
+    pub(crate) fn joint(
+        &mut self,
+        kind: &str,
+        name: Option<&syn::Ident>,
+        c: &syn::ExprCall,
+        e: &Expr,
+    ) {
+        if self.scene.is_spatial() {
+            return self.spatial_joint(kind, name, c, e);
+        }
+        if kind == "spherical" {
+            return self.cx.error_at(c, "a planar scene has no spherical joint: use `revolute`, or declare the bodies with `spatial_body`");
+        }
+        let extra = match kind {
+            "distance" => Some("length"),
+            "prismatic" => Some("axis_in_a"),
+            _ => None,
+        };
+        let Some((a, b)) = self.joint_frames(kind, c, extra) else {
+            return;
+        };
+        let (Some(pa), Some(pb)) = (
+            self.world_point(a, &c.args[1], e),
+            self.world_point(b, &c.args[3], e),
+        ) else {
+            return;
+        };
+        let initial = |this: &Self, f: Frame| match f {
+            Frame::Ground => None,
+            Frame::Body(k) => this
+                .states
+                .iter()
+                .find(|s| s.symbol == this.scene.bodies[k].theta)
+                .map(|s| s.init),
+        };
+        let rows: crate::Result<Vec<Id>> = match kind {
+            "revolute" => (0..2).map(|k| self.g.sub(pa[k], pb[k])).collect(),
+            "fixed" => {
+                // Welded: the points coincide and the relative angle keeps
+                // its initial value.
+                let (ta, tb) = (self.angle(a), self.angle(b));
+                let (ia, ib) = (initial(self, a), initial(self, b));
+                (|| {
+                    let g = &mut self.g;
+                    let zero = g.zero();
+                    let relative = g.sub(tb, ta)?;
+                    let start = g.sub(ib.unwrap_or(zero), ia.unwrap_or(zero))?;
+                    Ok(vec![
+                        g.sub(pa[0], pb[0])?,
+                        g.sub(pa[1], pb[1])?,
+                        g.sub(relative, start)?,
+                    ])
+                })()
+            }
+            "distance" => {
+                let Some(l) = self.value(&c.args[4]) else {
+                    return;
+                };
+                (|| {
+                    let g = &mut self.g;
+                    let dx = g.sub(pb[0], pa[0])?;
+                    let dy = g.sub(pb[1], pa[1])?;
+                    let dx2 = g.mul(dx, dx)?;
+                    let dy2 = g.mul(dy, dy)?;
+                    let l2 = g.mul(l, l)?;
+                    let s = g.add(dx2, dy2)?;
+                    Ok(vec![g.sub(s, l2)?])
+                })()
+            }
+            _ => {
+                // B's point stays on the line through A's point along A's
+                // axis, and the relative angle keeps its initial value.
+                let Some(axis) = self.tensor(&c.args[4]) else {
+                    return;
+                };
+                if (axis.rows, axis.cols) != (3, 1) {
+                    return self
+                        .cx
+                        .error_at(&c.args[4], "the axis is a 3-vector in A's coordinates");
+                }
+                let (ta, tb) = (self.angle(a), self.angle(b));
+                let (ia, ib) = (initial(self, a), initial(self, b));
+                (|| {
+                    let g = &mut self.g;
+                    let (c_, s_) = (g.call(crate::Func::Cos, ta)?, g.call(crate::Func::Sin, ta)?);
+                    let (ax, ay) = (axis.data[0], axis.data[1]);
+                    // The axis in the world: R(θa) (ax, ay).
+                    let t1 = g.mul(c_, ax)?;
+                    let t2 = g.mul(s_, ay)?;
+                    let wx = g.sub(t1, t2)?;
+                    let t3 = g.mul(s_, ax)?;
+                    let t4 = g.mul(c_, ay)?;
+                    let wy = g.add(t3, t4)?;
+                    let dx = g.sub(pb[0], pa[0])?;
+                    let dy = g.sub(pb[1], pa[1])?;
+                    let cross1 = g.mul(dx, wy)?;
+                    let cross2 = g.mul(dy, wx)?;
+                    let along = g.sub(cross1, cross2)?;
+                    let zero = g.zero();
+                    let relative = g.sub(tb, ta)?;
+                    let start = g.sub(ib.unwrap_or(zero), ia.unwrap_or(zero))?;
+                    Ok(vec![along, g.sub(relative, start)?])
+                })()
+            }
+        };
+        let rows = match rows {
+            Ok(r) => r,
+            Err(err) => return self.cx.error_at(e, err),
+        };
+        let local = |this: &mut Self, arg: &Expr| -> Option<[Id; 2]> {
+            let t = this.tensor(arg)?;
+            Some([t.data[0], t.data[1]])
+        };
+        let (Some(local_a), Some(local_b)) = (local(self, &c.args[1]), local(self, &c.args[3]))
+        else {
+            return;
+        };
+        let axis = if kind == "prismatic" {
+            local(self, &c.args[4])
+        } else {
+            None
+        };
+        let Some((equations, algebraics, rows)) = self.add_joint_rows(kind, name, rows, e) else {
+            return;
+        };
+        let kind = match kind {
+            "revolute" => "revolute",
+            "distance" => "distance",
+            "fixed" => "fixed",
+            _ => "prismatic",
+        };
+        let name = self
+            .scene
+            .joint_rows
+            .last()
+            .map(|j| j.0.clone())
+            .unwrap_or_default();
+        self.scene.records.push(JointRecord {
+            kind,
+            name,
+            a,
+            b,
+            local_a,
+            local_b,
+            axis,
+            equations,
+            algebraics,
+            rows,
+        });
+    }
+
+    /// Checks a joint's arguments `(a, point_in_a, b, point_in_b[, extra])`
+    /// and resolves its two frames, which must differ (a joint from a frame
+    /// to itself constrains nothing).
+    pub(crate) fn joint_frames(
+        &mut self,
+        kind: &str,
+        c: &syn::ExprCall,
+        extra: Option<&str>,
+    ) -> Option<(Frame, Frame)> {
+        let arity = if extra.is_some() { 5 } else { 4 };
+        if c.args.len() != arity {
+            let tail = extra.map_or(String::new(), |e| format!(", {e}"));
+            self.cx.error_at(
+                c,
+                format!("`{kind}` takes {arity} arguments: `{kind}(a, point_in_a, b, point_in_b{tail})`"),
+            );
+            return None;
+        }
+        let (a, b) = (self.frame(&c.args[0]), self.frame(&c.args[2]));
+        let (a, b) = (a?, b?);
+        if a == b {
+            let name = c.args[0].to_token_stream().to_string();
+            self.cx.error_at(c, format!("this joint joins `{name}` to itself: name two different bodies (or a body and the ground)"));
+            return None;
+        }
+        Some((a, b))
+    }
+
+    /// A joint's constraint rows, each with its reaction `name[k]` as an
+    /// algebraic variable; returns the ranges of equations, algebraic
+    /// variables and scene rows it added.
+    pub(crate) fn add_joint_rows(
+        &mut self,
+        kind: &str,
+        name: Option<&syn::Ident>,
+        rows: Vec<Id>,
+        e: &Expr,
+    ) -> Option<(
+        std::ops::Range<usize>,
+        std::ops::Range<usize>,
+        std::ops::Range<usize>,
+    )> {
+        let (equations_start, algebraics_start, rows_start) = (
+            self.equations.len(),
+            self.algebraics.len(),
+            self.scene.rows.len(),
+        );
+        self.scene.joints += 1;
+        let base = match name {
+            Some(n) => n.to_string(),
+            None => format!("{kind}{}", self.scene.joints),
+        };
+        let zero = self.g.zero();
+        let mut multipliers = Vec::with_capacity(rows.len());
+        for (k, &row) in rows.iter().enumerate() {
+            let lambda_name = format!("{base}[{k}]");
+            let lambda = match self.g.algebraic(&lambda_name) {
+                Ok(id) => id,
+                Err(err) => {
+                    self.cx.error_at(e, err);
+                    return None;
+                }
+            };
+            let symbol = self.g.as_symbol(lambda)?;
+            self.algebraics.push(crate::front::ir::AlgebraicDecl {
+                name: lambda_name,
+                symbol,
+                init: zero,
+                origin: e.to_token_stream(),
+                doc: format!(
+                    "multiplier of row {k} of the joint's constraints Φ (its reaction is −Φ_qᵀλ)"
+                ),
+            });
+            self.equations.push(crate::front::ir::Equation {
+                lhs: row,
+                rhs: zero,
+                origin: e.to_token_stream(),
+                is_constraint: true,
+            });
+            self.scene.rows.push((row, lambda));
+            multipliers.push(lambda);
+        }
+        if let Some(n) = name {
+            let t = crate::front::tensor::Tensor::from_vector(multipliers);
+            self.bind(n, Binding::Tensor(t));
+        }
+        self.scene
+            .joint_rows
+            .push((base, rows_start..self.scene.rows.len(), e.to_token_stream()));
+        Some((
+            equations_start..self.equations.len(),
+            algebraics_start..self.algebraics.len(),
+            rows_start..self.scene.rows.len(),
+        ))
+    }
+
+    /// The body a `force` or `torque` (the call's name) acts on: checks the
+    /// number of arguments (`usage` says what they are) and that the first
+    /// names a body.
+    pub(crate) fn loaded_body(
+        &mut self,
+        c: &syn::ExprCall,
+        arity: usize,
+        usage: &str,
+    ) -> Option<usize> {
+        let kind = c.func.to_token_stream().to_string();
+        if c.args.len() != arity {
+            self.cx.error_at(c, format!("`{kind}` takes {usage}"));
+            return None;
+        }
+        match self.frame(&c.args[0])? {
+            Frame::Body(b) => Some(b),
+            Frame::Ground => {
+                self.cx.error_at(
+                    &c.args[0],
+                    format!("a {kind} acts on a body, not on the ground"),
+                );
+                None
+            }
+        }
+    }
+
+    /// `spring(a, pa, b, pb, k, l0, c)`: its two frames and stiffness, rest
+    /// length and damping (the points are read by the caller, in the plane
+    /// or in space).
+    pub(crate) fn spring_arguments(
+        &mut self,
+        c: &syn::ExprCall,
+    ) -> Option<(Frame, Frame, [Id; 3])> {
+        if c.args.len() != 7 {
+            self.cx.error_at(c, "`spring` takes `spring(a, point_in_a, b, point_in_b, stiffness, rest_length, damping)`");
+            return None;
+        }
+        let (a, b) = (self.frame(&c.args[0]), self.frame(&c.args[2]));
+        let values = [4, 5, 6].map(|i| self.value(&c.args[i]));
+        let (a, b) = (a?, b?);
+        let [k, l0, damping] = values;
+        Some((a, b, [k?, l0?, damping?]))
+    }
+
+    /// `gravity(g)`, `force(body, point, f)`, `torque(body, tau)`.
+    pub(crate) fn load(&mut self, kind: &str, c: &syn::ExprCall, e: &Expr) {
+        if self.scene.is_spatial() {
+            return self.spatial_load(kind, c, e);
+        }
+        let zero = self.g.zero();
+        match kind {
+            "gravity" => {
+                if c.args.len() != 1 {
+                    return self.cx.error_at(c, "`gravity` takes the acceleration of gravity as a 3-vector: `gravity(vec3(0.0, -g, 0.0))`");
+                }
+                let Some(t) = self.tensor(&c.args[0]) else {
+                    return;
+                };
+                if (t.rows, t.cols) != (3, 1) {
+                    return self.cx.error_at(&c.args[0], "gravity is a 3-vector");
+                }
+                self.scene.gravity = Some((t.data[0], t.data[1]));
+            }
+            "force" => {
+                let Some(b) = self.loaded_body(c, 3, FORCE_USAGE) else {
+                    return;
+                };
+                let Some(f) = self.tensor(&c.args[2]) else {
+                    return;
+                };
+                if (f.rows, f.cols) != (3, 1) {
+                    return self
+                        .cx
+                        .error_at(&c.args[2], "a force is a 3-vector in world axes");
+                }
+                let Some(p) = self.world_point(Frame::Body(b), &c.args[1], e) else {
+                    return;
+                };
+                // Its moment about the centre of mass: (P − c) × f.
+                self.apply(b, p, f.data[0], f.data[1], e);
+            }
+            "spring" => self.spring(c, e),
+            _ => {
+                let Some(b) =
+                    self.loaded_body(c, 2, "a body and the torque about its centre of mass")
+                else {
+                    return;
+                };
+                let Some(tau) = self.value(&c.args[1]) else {
+                    return;
+                };
+                self.scene.loads.push((b, zero, zero, tau));
+            }
+        }
+    }
+
+    /// A world force `(fx, fy)` at the world point `p` of body `b`: the force
+    /// and its moment `(p − c) × f` about the centre of mass.
+    fn apply(&mut self, b: usize, p: [Id; 2], fx: Id, fy: Id, e: &Expr) {
+        let body = self.scene.bodies[b].clone();
+        let moment = (|| {
+            let g = &mut self.g;
+            let (x, y) = (g.symbol_node(body.x), g.symbol_node(body.y));
+            let rx = g.sub(p[0], x)?;
+            let ry = g.sub(p[1], y)?;
+            let m1 = g.mul(rx, fy)?;
+            let m2 = g.mul(ry, fx)?;
+            g.sub(m1, m2)
+        })();
+        if let Some(moment) = self.graph_result(moment, e) {
+            self.scene.loads.push((b, fx, fy, moment));
+        }
+    }
+
+    /// `spring(a, pa, b, pb, k, l0, c)`: a spring–damper between two points,
+    /// tension `k (d − l0) + c ḋ` along the line from one to the other.
+    fn spring(&mut self, c: &syn::ExprCall, e: &Expr) {
+        let Some((a, b, [k, l0, damping])) = self.spring_arguments(c) else {
+            return;
+        };
+        let (Some(pa), Some(pb)) = (
+            self.world_point(a, &c.args[1], e),
+            self.world_point(b, &c.args[3], e),
+        ) else {
+            return;
+        };
+        // ḋ along the motion: each coordinate's derivative is its der().
+        let mut field = crate::VectorField::new();
+        for body in self.scene.bodies.clone() {
+            for s in [body.x, body.y, body.theta] {
+                if let Ok(d) = self.g.derivative(s, 1) {
+                    field.set(s, d);
+                }
+            }
+        }
+        let forces = (|| -> crate::Result<[Id; 4]> {
+            let g = &mut self.g;
+            let dx = g.sub(pb[0], pa[0])?;
+            let dy = g.sub(pb[1], pa[1])?;
+            let dx2 = g.mul(dx, dx)?;
+            let dy2 = g.mul(dy, dy)?;
+            let d2 = g.add(dx2, dy2)?;
+            let d = g.sqrt(d2)?;
+            let d_dot = g.total_derivative(d, &mut field)?;
+            let stretch = g.sub(d, l0)?;
+            let elastic = g.mul(k, stretch)?;
+            let viscous = g.mul(damping, d_dot)?;
+            let tension = g.add(elastic, viscous)?;
+            // On A towards B, on B towards A.
+            let ux = g.div(dx, d)?;
+            let uy = g.div(dy, d)?;
+            let fx = g.mul(tension, ux)?;
+            let fy = g.mul(tension, uy)?;
+            Ok([fx, fy, g.neg(fx)?, g.neg(fy)?])
+        })();
+        let forces = match forces {
+            Ok(f) => f,
+            Err(err) => return self.cx.error_at(e, err),
+        };
+        for (frame, p, fx, fy) in [(a, pa, forces[0], forces[1]), (b, pb, forces[2], forces[3])] {
+            if let Frame::Body(i) = frame {
+                self.apply(i, p, fx, fy, e);
+            }
+        }
+    }
+
+    /// The Newton–Euler equations of every body, `M q'' = f − Φ_qᵀ λ`.
+    pub(crate) fn scene_equations(&mut self, item: &syn::ItemFn) {
+        if self.scene.bodies.is_empty() && self.scene.spatial.is_empty() {
+            return;
+        }
+        let at = self
+            .scene
+            .first_body
+            .clone()
+            .unwrap_or_else(|| item.sig.ident.to_token_stream());
+        if !self.scene.ground {
+            return self.cx.error_at(at, "a scene needs a ground to hold it: add `let ground = ground();` and attach a body to it with a joint");
+        }
+        let spatial = !self.scene.spatial.is_empty();
+        let n = self.scene.bodies.len() + self.scene.spatial.len();
+        let m = self.scene.rows.len();
+        let coordinates = if spatial { 6 * n } else { 3 * n };
+        // DOF = n − rank Φ_q at the start (eq. 4.23); Grübler's count when
+        // Φ_q cannot be evaluated there.
+        let mobility = self.mobility();
+        let (rank, how) = match &mobility {
+            Some(mob) => (mob.rank, "rank Φ_q at the initial configuration"),
+            None => (m, "Grübler's count"),
+        };
+        let dof = coordinates as i64 - rank as i64;
+        if dof <= 0 {
+            return self.cx.error_at(at, format!("this scene cannot move: {n} bodies have {coordinates} coordinates and the joints constrain {rank} of them ({how}, {m} rows), {dof} degrees of freedom; it is a structure, not a mechanism: remove a joint"));
+        }
+        if let Some(&row) = mobility.as_ref().and_then(|mob| mob.redundant.first()) {
+            if let Some((name, _, origin)) = self.joint_of_row(row) {
+                let rows: Vec<String> = mobility
+                    .iter()
+                    .flat_map(|mob| &mob.redundant)
+                    .filter_map(|&r| self.joint_of_row(r))
+                    .filter(|(n, _, _)| *n == name)
+                    .map(|(_, k, _)| k.to_string())
+                    .collect();
+                let which = match rows.as_slice() {
+                    [one] => format!("its row {one} follows"),
+                    [init @ .., last] => format!("its rows {} and {last} follow", init.join(", ")),
+                    [] => String::new(),
+                };
+                let remedy = if spatial {
+                    "remove it, or use a joint that constrains less (`spherical` for `revolute`, `distance` for `spherical`)"
+                } else {
+                    "remove it, or use a joint that constrains less (`distance` for `revolute`)"
+                };
+                return self.cx.error_at(origin, format!("joint `{name}` is redundant at the initial configuration: {which} from the joints declared before it (rank Φ_q = {rank} for {m} rows), so the reactions are undetermined; {remedy}"));
+            }
+        }
+        let loops = self.scene.joints as i64 - n as i64;
+        self.scene.summary = format!(
+            "{} scene ({} formulation): {n} bodies, {} joints with {m} constraint rows, {} independent loop(s) (joints − bodies), {dof} degrees of freedom ({coordinates} coordinates − {how} {rank}).",
+            if spatial { "Spatial" } else { "Planar" },
+            if self.scene.recursive { "recursive" } else { "global" },
+            self.scene.joints,
+            loops.max(0)
+        );
+        if spatial {
+            let origin = item.sig.ident.to_token_stream();
+            return self.spatial_equations(&origin);
+        }
+        if self.scene.recursive {
+            return self.recursive_equations(item);
+        }
+        let bodies = self.scene.bodies.clone();
+        let rows = self.scene.rows.clone();
+        let loads = self.scene.loads.clone();
+        let gravity = self.scene.gravity;
+        let origin = item.sig.ident.to_token_stream();
+        for (b, body) in bodies.iter().enumerate() {
+            for (k, coordinate) in [body.x, body.y, body.theta].into_iter().enumerate() {
+                let equation = (|| -> crate::Result<(Id, Id)> {
+                    let g = &mut self.g;
+                    let inertia = if k < 2 { body.mass } else { body.inertia };
+                    let acceleration = g.derivative(coordinate, 2)?;
+                    let lhs = g.mul(inertia, acceleration)?;
+                    let mut terms = Vec::new();
+                    if let (Some((gx, gy)), true) = (gravity, k < 2) {
+                        terms.push(g.mul(body.mass, if k == 0 { gx } else { gy })?);
+                    }
+                    for &(on, fx, fy, tau) in &loads {
+                        if on == b {
+                            terms.push([fx, fy, tau][k]);
+                        }
+                    }
+                    for &(row, lambda) in &rows {
+                        let d = g.partial(row, coordinate)?;
+                        if g.as_number(d).is_some_and(|v| v.is_zero()) {
+                            continue;
+                        }
+                        let t = g.mul(d, lambda)?;
+                        terms.push(g.neg(t)?);
+                    }
+                    Ok((lhs, g.sum(&terms)?))
+                })();
+                match equation {
+                    Ok((lhs, rhs)) => self.equations.push(crate::front::ir::Equation {
+                        lhs,
+                        rhs,
+                        origin: origin.clone(),
+                        is_constraint: false,
+                    }),
+                    Err(e) => self.cx.error_at(&origin, e),
+                }
+            }
+        }
+        let every: Vec<usize> = (0..self.scene.records.len()).collect();
+        self.planar_joint_coordinates(&every, &origin);
+    }
+}

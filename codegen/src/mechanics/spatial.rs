@@ -1,0 +1,835 @@
+//! Spatial multibody scenes in the global formulation (course notes §4.2,
+//! with quaternion attitudes, §4.1.3): each body is free, the position of
+//! its centre of mass `r`, a unit quaternion `q` and its angular velocity
+//! `ω` in body axes; each joint is a set of constraints on `(r, q)` with its
+//! reaction as algebraic variables. At the end of the model the macro writes
+//!
+//! ```text
+//! m r'' = m g + F − Φ_rᵀ λ
+//! q'    = ½ q ⊗ (0, ω)                         (|q| = 1 projected onto)
+//! J ω' = τ − ω × J ω − Lᵀ Φ_qᵀ λ,   L = ∂q/∂π = ½ [−q_vᵀ; q0 I + [q_v]×]
+//! ```
+//!
+//! where π is the virtual rotation in body axes, so `Lᵀ Φ_qᵀ λ` is the
+//! constraint torque in body axes. Joints (`x` a point, `u` an axis, both
+//! in the coordinates of the body named before them):
+//!
+//! ```text
+//! let top = spatial_body(m, vec3(a, a, c), [x, y, z], [q0, q1, q2, q3]);  // optional [v], [ω]
+//! spherical(a, pa, b, pb);          // 3 rows: the points coincide
+//! revolute(a, pa, b, pb, u);        // 5 rows: and u stays along its initial direction in b
+//! prismatic(a, pa, b, pb, u);       // 5 rows: pb on the line (pa, u), relative attitude kept
+//! fixed(a, pa, b, pb);              // 6 rows: welded in the initial relative attitude
+//! distance(a, pa, b, pb, l);        // 1 row: a massless rod with ball joints
+//! ```
+
+use super::SpatialBody;
+use crate::front::lower::Binding;
+use crate::front::lower::Lower;
+use crate::{Graph, Id, SymbolId};
+use quote::ToTokens;
+use syn::Expr;
+
+/// A 3 × 3 matrix, row-major.
+type Mat3 = [Id; 9];
+type Vec3 = [Id; 3];
+
+fn add3(g: &mut Graph, a: Vec3, b: Vec3) -> crate::Result<Vec3> {
+    Ok([g.add(a[0], b[0])?, g.add(a[1], b[1])?, g.add(a[2], b[2])?])
+}
+
+fn sub3(g: &mut Graph, a: Vec3, b: Vec3) -> crate::Result<Vec3> {
+    Ok([g.sub(a[0], b[0])?, g.sub(a[1], b[1])?, g.sub(a[2], b[2])?])
+}
+
+fn scale3(g: &mut Graph, s: Id, a: Vec3) -> crate::Result<Vec3> {
+    Ok([g.mul(s, a[0])?, g.mul(s, a[1])?, g.mul(s, a[2])?])
+}
+
+fn dot3(g: &mut Graph, a: Vec3, b: Vec3) -> crate::Result<Id> {
+    let t = [g.mul(a[0], b[0])?, g.mul(a[1], b[1])?, g.mul(a[2], b[2])?];
+    g.sum(&t)
+}
+
+fn cross3(g: &mut Graph, a: Vec3, b: Vec3) -> crate::Result<Vec3> {
+    let mut c = [a[0]; 3];
+    for k in 0..3 {
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        let p = g.mul(a[i], b[j])?;
+        let m = g.mul(a[j], b[i])?;
+        c[k] = g.sub(p, m)?;
+    }
+    Ok(c)
+}
+
+fn mat_vec(g: &mut Graph, m: &Mat3, v: Vec3) -> crate::Result<Vec3> {
+    let mut r = v;
+    for (i, out) in r.iter_mut().enumerate() {
+        *out = dot3(g, [m[3 * i], m[3 * i + 1], m[3 * i + 2]], v)?;
+    }
+    Ok(r)
+}
+
+fn mat_t_vec(g: &mut Graph, m: &Mat3, v: Vec3) -> crate::Result<Vec3> {
+    let mut r = v;
+    for (i, out) in r.iter_mut().enumerate() {
+        *out = dot3(g, [m[i], m[3 + i], m[6 + i]], v)?;
+    }
+    Ok(r)
+}
+
+/// R(q) of eq. 4.19 (body to world) for a unit quaternion.
+fn rotation(g: &mut Graph, q: [Id; 4]) -> crate::Result<Mat3> {
+    let [q0, q1, q2, q3] = q;
+    let mut entry = |terms: [(Id, Id, i64); 2], constant: i64| -> crate::Result<Id> {
+        let mut parts = Vec::with_capacity(3);
+        for (x, y, sign) in terms {
+            let p = g.mul(x, y)?;
+            let k = g.int(2 * sign);
+            parts.push(g.mul(k, p)?);
+        }
+        parts.push(g.int(constant));
+        g.sum(&parts)
+    };
+    Ok([
+        entry([(q0, q0, 1), (q1, q1, 1)], -1)?,
+        entry([(q1, q2, 1), (q0, q3, -1)], 0)?,
+        entry([(q0, q2, 1), (q1, q3, 1)], 0)?,
+        entry([(q0, q3, 1), (q1, q2, 1)], 0)?,
+        entry([(q0, q0, 1), (q2, q2, 1)], -1)?,
+        entry([(q2, q3, 1), (q0, q1, -1)], 0)?,
+        entry([(q1, q3, 1), (q0, q2, -1)], 0)?,
+        entry([(q0, q1, 1), (q2, q3, 1)], 0)?,
+        entry([(q1, q1, -1), (q2, q2, -1)], 1)?,
+    ])
+}
+
+/// `q' = ½ q ⊗ (0, ω)`: `(−½ q_v·ω, ½ (q0 ω + q_v × ω))`.
+fn quaternion_rates(g: &mut Graph, q: [Id; 4], w: Vec3) -> crate::Result<[Id; 4]> {
+    let half = g.rational(1, 2)?;
+    let qv = [q[1], q[2], q[3]];
+    let d = dot3(g, qv, w)?;
+    let d = g.mul(half, d)?;
+    let q0w = scale3(g, q[0], w)?;
+    let c = cross3(g, qv, w)?;
+    let v = add3(g, q0w, c)?;
+    let v = scale3(g, half, v)?;
+    Ok([g.neg(d)?, v[0], v[1], v[2]])
+}
+
+/// The frame of three points in natural coordinates (course notes §4.1.5,
+/// in space): origin P1, x axis along P1P2, z axis normal to the plane of
+/// the three points, y = z × x. Columns of the rotation matrix.
+pub(crate) fn natural_frame(g: &mut Graph, p1: Vec3, p2: Vec3, p3: Vec3) -> crate::Result<Mat3> {
+    let unit = |g: &mut Graph, v: Vec3| -> crate::Result<Vec3> {
+        let n2 = dot3(g, v, v)?;
+        let n = g.sqrt(n2)?;
+        Ok([g.div(v[0], n)?, g.div(v[1], n)?, g.div(v[2], n)?])
+    };
+    let a = sub3(g, p2, p1)?;
+    let b = sub3(g, p3, p1)?;
+    let i = unit(g, a)?;
+    let normal = cross3(g, a, b)?;
+    let k = unit(g, normal)?;
+    let j = cross3(g, k, i)?;
+    Ok([i[0], j[0], k[0], i[1], j[1], k[1], i[2], j[2], k[2]])
+}
+
+/// Two vectors that span the plane normal to `u`: `u × e_k` for the axis
+/// `e_k` least aligned with `u` (by its value at the defaults), then `u × n1`.
+/// Polynomial in `u`, so exact for symbolic axes too.
+fn normals(g: &mut Graph, u: Vec3, values: [f64; 3]) -> crate::Result<[Vec3; 2]> {
+    let k = (0..3)
+        .min_by(|&i, &j| values[i].abs().total_cmp(&values[j].abs()))
+        .unwrap_or(0);
+    let (zero, one) = (g.zero(), g.one());
+    let mut e = [zero; 3];
+    e[k] = one;
+    let n1 = cross3(g, u, e)?;
+    let n2 = cross3(g, u, n1)?;
+    Ok([n1, n2])
+}
+
+/// What a joint needs of one of its two frames: where it is and how it is
+/// turned, now and at the start.
+#[derive(Clone, Copy)]
+struct Pose {
+    r: Vec3,
+    rot: Mat3,
+    rot0: Mat3,
+}
+
+/// Spatial joints and their number of rows.
+pub(crate) const SPATIAL_JOINTS: [(&str, usize); 5] = [
+    ("spherical", 3),
+    ("revolute", 5),
+    ("prismatic", 5),
+    ("fixed", 6),
+    ("distance", 1),
+];
+
+impl Lower<'_> {
+    /// `let b = spatial_body(m, inertia, [x, y, z], [q0, q1, q2, q3])`, with
+    /// optional initial `[vx, vy, vz]` and `[ωx, ωy, ωz]` (body axes).
+    pub(crate) fn spatial_declaration(
+        &mut self,
+        ident: &syn::Ident,
+        call: &syn::ExprCall,
+        local: &syn::Local,
+    ) {
+        // Until it is declared, later statements see a body whose
+        // declaration failed, and stay quiet about it.
+        self.scene.spatial_declared = true;
+        self.bind(ident, Binding::BrokenBody);
+        if !self.scene.bodies.is_empty() {
+            return self.cx.error_at(local, "a scene is planar (`body`) or spatial (`spatial_body`), not both: declare every body with `spatial_body(m, inertia, [x, y, z], [q0, q1, q2, q3])`");
+        }
+        if self.scene.recursive {
+            return self.cx.error_at(local, "the recursive formulation is planar: remove `scene = recursive` to use the global formulation for spatial bodies");
+        }
+        if !(4..=6).contains(&call.args.len()) {
+            return self.cx.error_at(call, "`spatial_body` takes a mass, the inertia about the centre of mass in body axes (`vec3` of principal moments or a `mat3`), the initial `[x, y, z]` and `[q0, q1, q2, q3]`, and optionally the initial `[vx, vy, vz]` and body rates `[wx, wy, wz]`");
+        }
+        let Some(mass) = self.value(&call.args[0]) else {
+            return;
+        };
+        let Some(j) = self.tensor(&call.args[1]) else {
+            return;
+        };
+        let zero = self.g.zero();
+        let inertia: Mat3 = match (j.rows, j.cols) {
+            (3, 1) => [
+                j.data[0], zero, zero, zero, j.data[1], zero, zero, zero, j.data[2],
+            ],
+            (3, 3) => std::array::from_fn(|k| j.data[k]),
+            _ => {
+                return self.cx.error_at(&call.args[1], format!("the inertia is a `vec3` of principal moments or a `mat3` in body axes, not a {}", j.shape()));
+            }
+        };
+        let array = |this: &mut Self, e: &Expr, n: usize, what: &str| -> Option<Vec<Id>> {
+            match e {
+                Expr::Array(a) if a.elems.len() == n => {
+                    a.elems.iter().map(|v| this.initial_value(v)).collect()
+                }
+                other => {
+                    this.cx
+                        .error_at(other, format!("write {n} values: `{what}`"));
+                    None
+                }
+            }
+        };
+        let Some(position) = array(self, &call.args[2], 3, "[x, y, z]") else {
+            return;
+        };
+        let Some(attitude) = array(self, &call.args[3], 4, "[q0, q1, q2, q3]") else {
+            return;
+        };
+        let velocity = match call.args.get(4) {
+            Some(v) => match array(self, v, 3, "[vx, vy, vz]") {
+                Some(v) => v,
+                None => return,
+            },
+            None => vec![zero; 3],
+        };
+        let rates = match call.args.get(5) {
+            Some(v) => match array(self, v, 3, "[wx, wy, wz]") {
+                Some(v) => v,
+                None => return,
+            },
+            None => vec![zero; 3],
+        };
+        let name = ident.to_string();
+        let origin = local.to_token_stream();
+        let declare = |this: &mut Self, coordinate: &str, init: Id| -> Option<SymbolId> {
+            let id = match this.g.state(&format!("{name}.{coordinate}")) {
+                Ok(id) => id,
+                Err(e) => {
+                    this.cx.error_at(ident, e);
+                    return None;
+                }
+            };
+            let symbol = this.g.as_symbol(id)?;
+            this.states.push(crate::front::ir::StateDecl {
+                name: format!("{name}.{coordinate}"),
+                symbol,
+                init,
+                origin: origin.clone(),
+                fixed: false,
+                doc: crate::mechanics::names::body_coordinate_doc(coordinate).to_string(),
+            });
+            Some(symbol)
+        };
+        let mut symbols = Vec::with_capacity(10);
+        for (k, c) in ["x", "y", "z"].iter().enumerate() {
+            symbols.push(declare(self, c, position[k]));
+        }
+        for (k, c) in ["q0", "q1", "q2", "q3"].iter().enumerate() {
+            symbols.push(declare(self, c, attitude[k]));
+        }
+        for (k, c) in ["wx", "wy", "wz"].iter().enumerate() {
+            symbols.push(declare(self, c, rates[k]));
+        }
+        let Some(symbols) = symbols.into_iter().collect::<Option<Vec<SymbolId>>>() else {
+            return;
+        };
+        if call.args.len() > 4 {
+            for k in 0..3 {
+                let Ok(d) = self.g.derivative(symbols[k], 1) else {
+                    return;
+                };
+                if let Some(target) = self.g.as_symbol(d) {
+                    self.inits.push(crate::front::ir::Init {
+                        target,
+                        value: velocity[k],
+                        origin: origin.clone(),
+                    });
+                }
+            }
+        }
+        // |q|² − 1, kept at zero by projection (course notes §4.1.3).
+        let norm = (|| {
+            let g = &mut self.g;
+            let mut terms = Vec::with_capacity(5);
+            for &s in &symbols[3..7] {
+                let q = g.symbol_node(s);
+                terms.push(g.mul(q, q)?);
+            }
+            terms.push(g.int(-1));
+            g.sum(&terms)
+        })();
+        match norm {
+            Ok(value) => self.invariants.push(crate::front::ir::UserInvariant {
+                value,
+                origin: origin.clone(),
+            }),
+            Err(e) => return self.cx.error_at(ident, e),
+        }
+        if self.scene.first_body.is_none() {
+            self.scene.first_body = Some(origin);
+        }
+        self.scene.spatial.push(SpatialBody {
+            position: [symbols[0], symbols[1], symbols[2]],
+            quaternion: [symbols[3], symbols[4], symbols[5], symbols[6]],
+            rates: [symbols[7], symbols[8], symbols[9]],
+            mass,
+            inertia,
+        });
+        self.rebind(ident, Binding::Body(self.scene.spatial.len() - 1));
+    }
+
+    /// `orientation(body)`: R(q), body axes to world axes.
+    pub(crate) fn orientation(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<Mat3> {
+        if c.args.len() != 1 {
+            self.cx
+                .error_at(c, "`orientation` takes a spatial body: `orientation(top)`");
+            return None;
+        }
+        let frame = self.frame(&c.args[0])?;
+        match self.pose(frame) {
+            Ok(pose) => Some(pose.rot),
+            Err(err) => {
+                self.cx.error_at(e, err);
+                None
+            }
+        }
+    }
+
+    /// The pose of a frame, with its initial attitude for joints that keep it.
+    fn pose(&mut self, frame: crate::mechanics::Frame) -> crate::Result<Pose> {
+        let g = &mut self.g;
+        let (zero, one) = (g.zero(), g.one());
+        let identity = [one, zero, zero, zero, one, zero, zero, zero, one];
+        match frame {
+            crate::mechanics::Frame::Ground => Ok(Pose {
+                r: [zero; 3],
+                rot: identity,
+                rot0: identity,
+            }),
+            crate::mechanics::Frame::Body(b) => {
+                let body = self.scene.spatial[b].clone();
+                let q = body.quaternion.map(|s| self.g.symbol_node(s));
+                let q0 = body.quaternion.map(|s| {
+                    self.states
+                        .iter()
+                        .find(|d| d.symbol == s)
+                        .map_or(zero, |d| d.init)
+                });
+                let g = &mut self.g;
+                Ok(Pose {
+                    r: body.position.map(|s| g.symbol_node(s)),
+                    rot: rotation(g, q)?,
+                    rot0: rotation(g, q0)?,
+                })
+            }
+        }
+    }
+
+    /// A 3-vector argument.
+    fn vec3_arg(&mut self, e: &Expr, what: &str) -> Option<Vec3> {
+        let t = self.tensor(e)?;
+        if (t.rows, t.cols) != (3, 1) {
+            self.cx
+                .error_at(e, format!("{what} is a 3-vector, not a {}", t.shape()));
+            return None;
+        }
+        Some([t.data[0], t.data[1], t.data[2]])
+    }
+
+    /// `position(body, p)` in a spatial scene: `r + R(q) p`.
+    pub(crate) fn spatial_position(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<Vec3> {
+        let frame = self.frame(&c.args[0])?;
+        let p = self.vec3_arg(&c.args[1], "a point in body coordinates")?;
+        let r = self
+            .pose(frame)
+            .and_then(|pose| Self::place(&mut self.g, &pose, p));
+        match r {
+            Ok(v) => Some(v),
+            Err(err) => {
+                self.cx.error_at(e, err);
+                None
+            }
+        }
+    }
+
+    fn place(g: &mut Graph, pose: &Pose, p: Vec3) -> crate::Result<Vec3> {
+        let turned = mat_vec(g, &pose.rot, p)?;
+        add3(g, pose.r, turned)
+    }
+
+    /// A joint of a spatial scene: its constraint rows.
+    pub(crate) fn spatial_joint(
+        &mut self,
+        kind: &str,
+        name: Option<&syn::Ident>,
+        c: &syn::ExprCall,
+        e: &Expr,
+    ) {
+        let Some(&(kind, _)) = SPATIAL_JOINTS.iter().find(|(k, _)| *k == kind) else {
+            return self.cx.error_at(c, format!("`{kind}` is not a spatial joint: use `spherical`, `revolute`, `prismatic`, `fixed` or `distance`"));
+        };
+        let extra = match kind {
+            "distance" => Some("length"),
+            "revolute" | "prismatic" => Some("axis_in_a"),
+            _ => None,
+        };
+        let Some((a, b)) = self.joint_frames(kind, c, extra) else {
+            return;
+        };
+        let (Some(sa), Some(sb)) = (
+            self.vec3_arg(&c.args[1], "a point in body coordinates"),
+            self.vec3_arg(&c.args[3], "a point in body coordinates"),
+        ) else {
+            return;
+        };
+        let extra = match kind {
+            "distance" => match self.value(&c.args[4]) {
+                Some(l) => Some([l, l, l]),
+                None => return,
+            },
+            "revolute" | "prismatic" => match self.vec3_arg(&c.args[4], "the axis") {
+                Some(u) => Some(u),
+                None => return,
+            },
+            _ => None,
+        };
+        let axis_values = extra.map(|u| u.map(|x| self.numeric(x)));
+        // The rows, and the joint's coordinate (revolute and prismatic).
+        let rows = (|| -> crate::Result<(Vec<Id>, Option<Id>)> {
+            let pa = self.pose(a)?;
+            let pb = self.pose(b)?;
+            let g = &mut self.g;
+            let xa = Self::place(g, &pa, sa)?;
+            let xb = Self::place(g, &pb, sb)?;
+            let gap = sub3(g, xb, xa)?;
+            let mut rows = Vec::with_capacity(6);
+            // The relative attitude kept at its initial value: with
+            // D = R_aᵀ R_b (R_a0ᵀ R_b0)ᵀ, which is I + [θ]× near it, the
+            // rows are the three components of θ (twice).
+            let relative = |g: &mut Graph| -> crate::Result<[Id; 9]> {
+                let mut d = [pa.rot[0]; 9];
+                let mut c0 = [pa.rot[0]; 9];
+                for i in 0..3 {
+                    for j in 0..3 {
+                        let col = |m: &Mat3, k: usize| [m[k], m[3 + k], m[6 + k]];
+                        c0[3 * i + j] = dot3(g, col(&pa.rot0, i), col(&pb.rot0, j))?;
+                    }
+                }
+                // D = R_aᵀ R_b C0ᵀ: entry (i, j) = (R_a e_i) · (R_b C0ᵀ e_j).
+                for j in 0..3 {
+                    let c0_row = [c0[3 * j], c0[3 * j + 1], c0[3 * j + 2]];
+                    let turned = mat_vec(g, &pb.rot, c0_row)?;
+                    for i in 0..3 {
+                        let col_a = [pa.rot[i], pa.rot[3 + i], pa.rot[6 + i]];
+                        d[3 * i + j] = dot3(g, col_a, turned)?;
+                    }
+                }
+                Ok(d)
+            };
+            let attitude = |g: &mut Graph| -> crate::Result<Vec<Id>> {
+                let d = relative(g)?;
+                Ok(vec![
+                    g.sub(d[7], d[5])?,
+                    g.sub(d[2], d[6])?,
+                    g.sub(d[3], d[1])?,
+                ])
+            };
+            // |u| for a unit axis.
+            let unit = |g: &mut Graph, u: Vec3| -> crate::Result<Vec3> {
+                let length = dot3(g, u, u)?;
+                let length = g.sqrt(length)?;
+                Ok([
+                    g.div(u[0], length)?,
+                    g.div(u[1], length)?,
+                    g.div(u[2], length)?,
+                ])
+            };
+            let mut coordinate = None;
+            match kind {
+                "spherical" => rows.extend(gap),
+                "fixed" => {
+                    rows.extend(gap);
+                    rows.extend(attitude(g)?);
+                }
+                "distance" => {
+                    let l = extra.map_or(g.zero(), |l| l[0]);
+                    let d2 = dot3(g, gap, gap)?;
+                    let l2 = g.mul(l, l)?;
+                    rows.push(g.sub(d2, l2)?);
+                }
+                "revolute" => {
+                    let u = extra.unwrap_or([g.zero(); 3]);
+                    rows.extend(gap);
+                    // D = R_aᵀ R_b C0ᵀ turns about u by the joint angle q:
+                    // its axial vector is sin q · u, its trace 1 + 2 cos q.
+                    let d = relative(g)?;
+                    let axial = [g.sub(d[7], d[5])?, g.sub(d[2], d[6])?, g.sub(d[3], d[1])?];
+                    let u_hat = unit(g, u)?;
+                    let twice_sin = dot3(g, u_hat, axial)?;
+                    let trace = g.sum(&[d[0], d[4], d[8]])?;
+                    let one = g.one();
+                    let twice_cos = g.sub(trace, one)?;
+                    coordinate = Some(g.atan2(twice_sin, twice_cos)?);
+                    // u in b's axes at the start, then in the world now:
+                    // it stays normal to the two normals of u in a.
+                    let u_world0 = mat_vec(g, &pa.rot0, u)?;
+                    let u_b = mat_t_vec(g, &pb.rot0, u_world0)?;
+                    let u_b_world = mat_vec(g, &pb.rot, u_b)?;
+                    for n in normals(g, u, axis_values.unwrap_or([1.0; 3]))? {
+                        let n_world = mat_vec(g, &pa.rot, n)?;
+                        rows.push(dot3(g, n_world, u_b_world)?);
+                    }
+                }
+                _ => {
+                    let u = extra.unwrap_or([g.zero(); 3]);
+                    for n in normals(g, u, axis_values.unwrap_or([1.0; 3]))? {
+                        let n_world = mat_vec(g, &pa.rot, n)?;
+                        rows.push(dot3(g, n_world, gap)?);
+                    }
+                    rows.extend(attitude(g)?);
+                    let u_hat = unit(g, u)?;
+                    let u_world = mat_vec(g, &pa.rot, u_hat)?;
+                    coordinate = Some(dot3(g, u_world, gap)?);
+                }
+            }
+            Ok((rows, coordinate))
+        })();
+        match rows {
+            Ok((rows, coordinate)) => {
+                if self.add_joint_rows(kind, name, rows, e).is_none() {
+                    return;
+                }
+                if let (Some(q), Some((joint, ..))) = (coordinate, self.scene.joint_rows.last()) {
+                    let joint = joint.clone();
+                    self.spatial_joint_coordinate(joint, q, kind, &e.to_token_stream());
+                }
+            }
+            Err(err) => self.cx.error_at(e, err),
+        }
+    }
+
+    /// `gravity`, `force`, `torque`, `spring` in a spatial scene; forces and
+    /// torques in world axes, points in body coordinates.
+    pub(crate) fn spatial_load(&mut self, kind: &str, c: &syn::ExprCall, e: &Expr) {
+        use crate::mechanics::Frame;
+        match kind {
+            "gravity" => {
+                if c.args.len() != 1 {
+                    return self.cx.error_at(c, "`gravity` takes the acceleration of gravity as a 3-vector: `gravity(vec3(0.0, 0.0, -g))`");
+                }
+                if let Some(v) = self.vec3_arg(&c.args[0], "gravity") {
+                    self.scene.gravity_vector = Some(v);
+                }
+            }
+            "force" => {
+                let Some(b) = self.loaded_body(c, 3, crate::mechanics::FORCE_USAGE) else {
+                    return;
+                };
+                let (Some(s), Some(f)) = (
+                    self.vec3_arg(&c.args[1], "a point in body coordinates"),
+                    self.vec3_arg(&c.args[2], "a force"),
+                ) else {
+                    return;
+                };
+                // Its moment about the centre of mass in body axes: s × Rᵀ f.
+                let r = (|| {
+                    let pose = self.pose(Frame::Body(b))?;
+                    let g = &mut self.g;
+                    let local = mat_t_vec(g, &pose.rot, f)?;
+                    cross3(g, s, local)
+                })();
+                match r {
+                    Ok(tau) => self.scene.spatial_loads.push((b, f, tau)),
+                    Err(err) => self.cx.error_at(e, err),
+                }
+            }
+            "torque" => {
+                let Some(b) =
+                    self.loaded_body(c, 2, "a body and the torque in world axes (a 3-vector)")
+                else {
+                    return;
+                };
+                let Some(tau) = self.vec3_arg(&c.args[1], "a torque") else {
+                    return;
+                };
+                let r = (|| {
+                    let pose = self.pose(Frame::Body(b))?;
+                    mat_t_vec(&mut self.g, &pose.rot, tau)
+                })();
+                let zero = self.g.zero();
+                match r {
+                    Ok(local) => self.scene.spatial_loads.push((b, [zero; 3], local)),
+                    Err(err) => self.cx.error_at(e, err),
+                }
+            }
+            _ => self.spatial_spring(c, e),
+        }
+    }
+
+    /// `spring(a, pa, b, pb, k, l0, c)` between two points of a spatial scene.
+    fn spatial_spring(&mut self, c: &syn::ExprCall, e: &Expr) {
+        use crate::mechanics::Frame;
+        let Some((a, b, [k, l0, damping])) = self.spring_arguments(c) else {
+            return;
+        };
+        let (Some(sa), Some(sb)) = (
+            self.vec3_arg(&c.args[1], "a point in body coordinates"),
+            self.vec3_arg(&c.args[3], "a point in body coordinates"),
+        ) else {
+            return;
+        };
+        let mut field = self.spatial_field();
+        let r = (|| -> crate::Result<(Vec3, Vec3, Vec3)> {
+            let pa = self.pose(a)?;
+            let pb = self.pose(b)?;
+            let g = &mut self.g;
+            let xa = Self::place(g, &pa, sa)?;
+            let xb = Self::place(g, &pb, sb)?;
+            let gap = sub3(g, xb, xa)?;
+            let d2 = dot3(g, gap, gap)?;
+            let d = g.sqrt(d2)?;
+            let d_dot = g.total_derivative(d, &mut field)?;
+            let stretch = g.sub(d, l0)?;
+            let elastic = g.mul(k, stretch)?;
+            let viscous = g.mul(damping, d_dot)?;
+            let tension = g.add(elastic, viscous)?;
+            let over = g.div(tension, d)?;
+            // On a towards b; on b the opposite.
+            let f = scale3(g, over, gap)?;
+            let on_a = mat_t_vec(g, &pa.rot, f)?;
+            let on_b = mat_t_vec(g, &pb.rot, f)?;
+            Ok((f, cross3(g, sa, on_a)?, cross3(g, sb, on_b)?))
+        })();
+        let (f, tau_a, tau_b) = match r {
+            Ok(v) => v,
+            Err(err) => return self.cx.error_at(e, err),
+        };
+        if let Frame::Body(i) = a {
+            self.scene.spatial_loads.push((i, f, tau_a));
+        }
+        if let Frame::Body(i) = b {
+            let minus = (|| {
+                let g = &mut self.g;
+                Ok::<_, crate::Error>((
+                    [g.neg(f[0])?, g.neg(f[1])?, g.neg(f[2])?],
+                    [g.neg(tau_b[0])?, g.neg(tau_b[1])?, g.neg(tau_b[2])?],
+                ))
+            })();
+            match minus {
+                Ok((f, tau)) => self.scene.spatial_loads.push((i, f, tau)),
+                Err(err) => self.cx.error_at(e, err),
+            }
+        }
+    }
+
+    /// The motion as a vector field on the coordinates: `r' = v`, `q' = ½ q ⊗ ω`.
+    fn spatial_field(&mut self) -> crate::VectorField {
+        let mut field = crate::VectorField::new();
+        for body in self.scene.spatial.clone() {
+            for s in body.position {
+                if let Ok(d) = self.g.derivative(s, 1) {
+                    field.set(s, d);
+                }
+            }
+            let q = body.quaternion.map(|s| self.g.symbol_node(s));
+            let w = body.rates.map(|s| self.g.symbol_node(s));
+            if let Ok(rates) = quaternion_rates(&mut self.g, q, w) {
+                for (s, d) in body.quaternion.into_iter().zip(rates) {
+                    field.set(s, d);
+                }
+            }
+        }
+        field
+    }
+
+    /// The numerical columns of Φ_q for one spatial body at a point: three
+    /// translations, then three rotations about the body axes (Φ_q L).
+    pub(crate) fn spatial_jacobian_columns(
+        &mut self,
+        b: usize,
+        row: Id,
+        value: &dyn Fn(&Graph, Id) -> f64,
+    ) -> crate::Result<[f64; 6]> {
+        let body = self.scene.spatial[b].clone();
+        let mut out = [0.0; 6];
+        for k in 0..3 {
+            let d = self.g.partial(row, body.position[k])?;
+            out[k] = value(&self.g, d);
+        }
+        let mut dq = [0.0; 4];
+        for k in 0..4 {
+            let d = self.g.partial(row, body.quaternion[k])?;
+            dq[k] = value(&self.g, d);
+        }
+        let q = body.quaternion.map(|s| {
+            let n = self.g.symbol_node(s);
+            value(&self.g, n)
+        });
+        let l = rotation_map(q);
+        for k in 0..3 {
+            out[3 + k] = (0..4).map(|i| dq[i] * l[i][k]).sum();
+        }
+        Ok(out)
+    }
+
+    /// The equations of motion of every spatial body.
+    pub(crate) fn spatial_equations(&mut self, origin: &proc_macro2::TokenStream) {
+        let bodies = self.scene.spatial.clone();
+        let rows = self.scene.rows.clone();
+        let loads = self.scene.spatial_loads.clone();
+        let gravity = self.scene.gravity_vector;
+        let r = (|| -> crate::Result<Vec<(Id, Id)>> {
+            let mut equations = Vec::with_capacity(13 * bodies.len());
+            for (b, body) in bodies.iter().enumerate() {
+                let g = &mut self.g;
+                // Translation: m r'' = m g + F − Φ_rᵀ λ.
+                for k in 0..3 {
+                    let acceleration = g.derivative(body.position[k], 2)?;
+                    let lhs = g.mul(body.mass, acceleration)?;
+                    let mut terms = Vec::new();
+                    if let Some(gv) = gravity {
+                        terms.push(g.mul(body.mass, gv[k])?);
+                    }
+                    for (on, f, _) in &loads {
+                        if *on == b {
+                            terms.push(f[k]);
+                        }
+                    }
+                    for &(row, lambda) in &rows {
+                        let d = g.partial(row, body.position[k])?;
+                        if g.as_number(d).is_some_and(|v| v.is_zero()) {
+                            continue;
+                        }
+                        let t = g.mul(d, lambda)?;
+                        terms.push(g.neg(t)?);
+                    }
+                    equations.push((lhs, g.sum(&terms)?));
+                }
+                // Attitude: q' = ½ q ⊗ (0, ω).
+                let q = body.quaternion.map(|s| g.symbol_node(s));
+                let w = body.rates.map(|s| g.symbol_node(s));
+                let rates = quaternion_rates(g, q, w)?;
+                for k in 0..4 {
+                    equations.push((g.derivative(body.quaternion[k], 1)?, rates[k]));
+                }
+                // Rotation: J ω' = τ − ω × J ω − Lᵀ Φ_qᵀ λ.
+                let mut dw = [w[0]; 3];
+                for k in 0..3 {
+                    dw[k] = g.derivative(body.rates[k], 1)?;
+                }
+                let lhs = mat_vec(g, &body.inertia, dw)?;
+                let jw = mat_vec(g, &body.inertia, w)?;
+                let gyroscopic = cross3(g, w, jw)?;
+                let half = g.rational(1, 2)?;
+                // Columns of L = ½ [−q_vᵀ; q0 I + [q_v]×]: L[i][k].
+                let l = |g: &mut Graph, i: usize, k: usize| -> crate::Result<Id> {
+                    let entry = match i {
+                        0 => g.neg(q[1 + k])?,
+                        _ if i - 1 == k => q[0],
+                        _ => {
+                            // [q_v]× row i−1, column k.
+                            let (r, c) = (i - 1, k);
+                            let m = 3 - r - c;
+                            if (r + 1) % 3 == c {
+                                g.neg(q[1 + m])?
+                            } else {
+                                q[1 + m]
+                            }
+                        }
+                    };
+                    g.mul(half, entry)
+                };
+                for k in 0..3 {
+                    let mut terms = vec![g.neg(gyroscopic[k])?];
+                    for (on, _, tau) in &loads {
+                        if *on == b {
+                            terms.push(tau[k]);
+                        }
+                    }
+                    for &(row, lambda) in &rows {
+                        let mut generalized = Vec::with_capacity(4);
+                        for i in 0..4 {
+                            let d = g.partial(row, body.quaternion[i])?;
+                            if g.as_number(d).is_some_and(|v| v.is_zero()) {
+                                continue;
+                            }
+                            let lik = l(g, i, k)?;
+                            generalized.push(g.mul(d, lik)?);
+                        }
+                        if generalized.is_empty() {
+                            continue;
+                        }
+                        let s = g.sum(&generalized)?;
+                        let t = g.mul(s, lambda)?;
+                        terms.push(g.neg(t)?);
+                    }
+                    equations.push((lhs[k], g.sum(&terms)?));
+                }
+            }
+            Ok(equations)
+        })();
+        match r {
+            Ok(equations) => {
+                for (lhs, rhs) in equations {
+                    self.equations.push(crate::front::ir::Equation {
+                        lhs,
+                        rhs,
+                        origin: origin.clone(),
+                        is_constraint: false,
+                    });
+                }
+            }
+            Err(e) => self.cx.error_at(origin, e),
+        }
+    }
+}
+
+/// L = ∂q/∂π = ½ [−q_vᵀ; q0 I + [q_v]×] at a numerical quaternion, 4 × 3.
+fn rotation_map(q: [f64; 4]) -> [[f64; 3]; 4] {
+    let [q0, q1, q2, q3] = q;
+    [
+        [-0.5 * q1, -0.5 * q2, -0.5 * q3],
+        [0.5 * q0, -0.5 * q3, 0.5 * q2],
+        [0.5 * q3, 0.5 * q0, -0.5 * q1],
+        [-0.5 * q2, 0.5 * q1, 0.5 * q0],
+    ]
+}

@@ -1,0 +1,14 @@
+//! The Taylor methods' code: the economic scheme's derivatives
+//! (`economic`), the adaptive method's AD tape (`tape`), and its unrolled
+//! jets (`unrolled`, the pass manager over `folding`, `factoring`,
+//! `layout`, `lanes`, `groups` and `sharing`).
+
+pub mod economic;
+pub mod factoring;
+pub mod folding;
+pub mod groups;
+pub mod lanes;
+pub mod layout;
+pub mod sharing;
+pub mod tape;
+pub mod unrolled;
