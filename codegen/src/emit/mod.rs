@@ -1,8 +1,18 @@
 //! Emission: common-subexpression elimination into straight-line programs
-//! (`schedule`), programs as Rust tokens (`program`), and the items of a
-//! model type (`model`, `benchmark`).
+//! (`schedule`), programs as Rust tokens (`program`) reading symbols as
+//! `layout` says, and the items of a model type: `model` assembles them
+//! from one emitter per item (`rhs`, `jacobian`, `events`, `outputs`,
+//! `taylor_items`, `newton`, `docs`), and `benchmark` registers it.
 
 pub mod benchmark;
+pub mod docs;
+pub mod events;
+pub mod jacobian;
+pub mod layout;
 pub mod model;
+pub mod newton;
+pub mod outputs;
 pub mod program;
+pub mod rhs;
 pub mod schedule;
+pub mod taylor_items;

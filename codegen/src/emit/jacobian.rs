@@ -1,0 +1,60 @@
+//! `Model::jacobian` and `Model::time_derivative`: the sparse Jacobian
+//! ∂f/∂y and ∂f/∂t, symbolic when f is explicit, else refused at run time.
+
+use crate::emit::layout::{fixed_size_body, index, program, Layout};
+use crate::{Graph, Id, SymbolId};
+use proc_macro2::TokenStream;
+use quote::quote;
+
+/// `JACOBIAN_PATTERN` and the bodies of `jacobian` and `time_derivative`.
+pub(crate) fn jacobian_items(
+    g: &mut Graph,
+    layout: &Layout,
+    slots: &[SymbolId],
+    time: SymbolId,
+    explicit: Option<Vec<Id>>,
+) -> crate::Result<(TokenStream, TokenStream, TokenStream)> {
+    let n = slots.len();
+    Ok(match explicit {
+        Some(f) => {
+            let wrt: Vec<SymbolId> = slots.to_vec();
+            let j = g.jacobian(&f, &wrt)?;
+            let nnz = index(j.entries.len());
+            let nn = index(n);
+            let pattern: Vec<TokenStream> = j
+                .entries
+                .iter()
+                .map(|&(r, c, _)| {
+                    let (r, c) = (index(r), index(c));
+                    quote!((#r, #c))
+                })
+                .collect();
+            let values = program(g, layout, &j.expressions(), &|k, v| {
+                let k = index(k);
+                quote!(values[#k] = #v;)
+            });
+            let dfdt: Vec<Id> = f
+                .iter()
+                .map(|&e| g.partial(e, time))
+                .collect::<crate::Result<_>>()?;
+            let time = program(g, layout, &dfdt, &|i, v| {
+                let i = index(i);
+                quote!(dfdt[#i] = #v;)
+            });
+            (
+                quote!(&[#(#pattern),*]),
+                fixed_size_body(&nn, "values", &nnz, values),
+                fixed_size_body(&nn, "dfdt", &nn, time),
+            )
+        }
+        None => (
+            quote!(&[]),
+            quote!(::core::result::Result::Err(
+                ::daegen::EvalError::JacobianUnavailable
+            )),
+            quote!(::core::result::Result::Err(
+                ::daegen::EvalError::JacobianUnavailable
+            )),
+        ),
+    })
+}

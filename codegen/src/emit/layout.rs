@@ -1,0 +1,117 @@
+//! How generated code reads each symbol (states from `y`, parameters
+//! from `self`, time from `t`, run-time unknowns from their solve's
+//! arrays), and straight-line programs written with it.
+
+use crate::dae::reduce::FirstOrder;
+use crate::{emit_program, Graph, Id, SymbolId, SymbolKind};
+use proc_macro2::{Literal, TokenStream};
+use quote::{format_ident, quote};
+
+/// How generated code reads each symbol: states from `y`, parameters from
+/// `self`, time from `t`.
+pub(crate) struct Layout {
+    pub(crate) slot_of: crate::FxHashMap<SymbolId, usize>,
+    /// Unknowns solved at run time, read after the solve: symbol -> (block, row).
+    pub(crate) block_of: crate::FxHashMap<SymbolId, (usize, usize)>,
+    /// Taylor coefficients read by higher orders: symbol -> index in `out`.
+    pub(crate) taylor_of: crate::FxHashMap<SymbolId, usize>,
+}
+
+impl Layout {
+    /// The first-order system's slots read from `y`, and the Newton
+    /// block's variables (known throughout the right-hand side) from the
+    /// array its solve returns.
+    pub(crate) fn of_system(sys: &FirstOrder) -> Layout {
+        let mut layout = Layout {
+            slot_of: sys
+                .slots
+                .iter()
+                .enumerate()
+                .map(|(i, s)| (s.symbol, i))
+                .collect(),
+            block_of: Default::default(),
+            taylor_of: Default::default(),
+        };
+        if let Some(newton) = &sys.newton {
+            for (k, &s) in newton.unknowns.iter().enumerate() {
+                layout.block_of.insert(s, (sys.blocks.len(), k));
+            }
+        }
+        layout
+    }
+
+    /// Component `i` of the state read as `y[i]`.
+    pub(crate) fn of_components(components: &[SymbolId]) -> Layout {
+        Layout {
+            slot_of: components
+                .iter()
+                .enumerate()
+                .map(|(i, &s)| (s, i))
+                .collect(),
+            block_of: Default::default(),
+            taylor_of: Default::default(),
+        }
+    }
+
+    pub(crate) fn tokens(&self, g: &Graph, s: SymbolId) -> TokenStream {
+        if let Some(&i) = self.slot_of.get(&s) {
+            let i = Literal::usize_unsuffixed(i);
+            return quote!(y[#i]);
+        }
+        if let Some(&i) = self.taylor_of.get(&s) {
+            let i = Literal::usize_unsuffixed(i);
+            return quote!(out[#i]);
+        }
+        if let Some(&(b, row)) = self.block_of.get(&s) {
+            let (gv, row) = (format_ident!("rhs{}", b), Literal::usize_unsuffixed(row));
+            return quote!(#gv[#row]);
+        }
+        match g.symbol(s).kind {
+            SymbolKind::Parameter => {
+                let field = format_ident!("{}", g.symbol(s).name);
+                quote!(self.#field)
+            }
+            SymbolKind::Time => quote!(t),
+            // Reduction replaced every other symbol; NaN would surface at run time.
+            _ => quote!(f64::NAN),
+        }
+    }
+}
+
+/// The body of a method that reads `y` (`n` states) and writes the slice
+/// `out` (`len` entries): both become arrays first, so every index in `code`
+/// is checked at compile time and the method cannot panic. The runtime
+/// always passes the right lengths; were it not to, nothing is written.
+pub(crate) fn fixed_size_body(
+    n: &Literal,
+    out: &str,
+    len: &Literal,
+    code: TokenStream,
+) -> TokenStream {
+    let out = format_ident!("{}", out);
+    quote! {
+        let (::core::result::Result::Ok(y), ::core::result::Result::Ok(#out)) =
+            (<&[f64; #n]>::try_from(y), <&mut [f64; #len]>::try_from(#out))
+        else {
+            return ::core::result::Result::Ok(());
+        };
+        #code
+        ::core::result::Result::Ok(())
+    }
+}
+
+pub(crate) fn index(i: usize) -> Literal {
+    Literal::usize_unsuffixed(i)
+}
+
+/// Straight-line code computing `outputs` and handing each to `assign`.
+pub(crate) fn program(
+    g: &mut Graph,
+    layout: &Layout,
+    outputs: &[Id],
+    assign: &dyn Fn(usize, TokenStream) -> TokenStream,
+) -> TokenStream {
+    let program = g.schedule(outputs);
+    let g = &*g;
+    emit_program(g, &program, &|s| layout.tokens(g, s), assign)
+}
