@@ -8,8 +8,8 @@
 //! by a dense solve at run time otherwise (the KKT system of a mechanism).
 
 use crate::front::ctxt::Ctxt;
-use crate::front::ir::ModelIr;
-use crate::{FxHashMap, Id, SymbolId, SymbolKind};
+use crate::front::ir::{AlgebraicDecl, Init, ModelIr, StateDecl, UserInvariant};
+use crate::{FxHashMap, Graph, Id, SymbolId, SymbolKind};
 use proc_macro2::TokenStream;
 
 /// One first-order state of the reduced system.
@@ -104,10 +104,251 @@ struct Equation {
     index: usize,
 }
 
-/// Reduces the model, or reports why it cannot.
+/// Reduces the model, or reports why it cannot: each pass below in turn,
+/// every mistake reported on the user's tokens.
 pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
+    let (mut residuals, order) = residuals_and_orders(cx, ir)?;
     let g = &mut ir.graph;
-    // Order of each state: the highest derivative any equation uses.
+    // The unknowns z: highest derivatives, one per state.
+    let mut z_symbols = Vec::with_capacity(ir.states.len() + ir.algebraics.len());
+    for (i, s) in ir.states.iter().enumerate() {
+        let id = g.derivative(s.symbol, order[i]).ok()?;
+        z_symbols.push(g.as_symbol(id)?);
+    }
+    let n_states = z_symbols.len();
+    let algebraic_symbols: Vec<SymbolId> = ir.algebraics.iter().map(|a| a.symbol).collect();
+    let state_orders: Vec<(SymbolId, u32)> = ir
+        .states
+        .iter()
+        .zip(&order)
+        .map(|(s, &k)| (s.symbol, k))
+        .collect();
+    let origins: Vec<TokenStream> = ir.equations.iter().map(|e| e.origin.clone()).collect();
+    let texts: Vec<String> = origins
+        .iter()
+        .map(crate::front::names::source_text)
+        .collect();
+    // Only a square system (as many equations as unknowns) is separated: in
+    // another, a repeated or missing equation is the mistake to report.
+    let square = residuals.len() == z_symbols.len() + ir.algebraics.len();
+    let separated = derivative_free(cx, g, &residuals, &z_symbols, &texts, &origins, square)?;
+    let written = std::mem::replace(&mut residuals, separated.residuals);
+    let reduction = crate::dae::index_reduction::reduce_index(
+        cx,
+        g,
+        &crate::dae::index_reduction::Unknowns {
+            time: ir.time,
+            states: &state_orders,
+            z: &z_symbols,
+            algebraics: &algebraic_symbols,
+        },
+        &residuals,
+        &origins,
+    )?;
+    let newton = newton_block(
+        cx,
+        g,
+        &ir.algebraics,
+        &reduction,
+        &z_symbols,
+        &texts,
+        &origins,
+    )?;
+    let in_newton = |s: &SymbolId| newton.as_ref().is_some_and(|b| b.unknowns.contains(s));
+    // The unknowns: z, then λ (but for the Newton block's).
+    let linear_algebraics: Vec<crate::front::ir::AlgebraicDecl> = ir
+        .algebraics
+        .iter()
+        .filter(|a| !in_newton(&a.symbol))
+        .cloned()
+        .collect();
+    z_symbols.extend(linear_algebraics.iter().map(|a| a.symbol));
+    let z_index: FxHashMap<SymbolId, usize> =
+        z_symbols.iter().enumerate().map(|(j, &s)| (s, j)).collect();
+    let equations = equations_in_unknowns(
+        g,
+        &ir.equations,
+        &reduction.residuals,
+        newton.as_ref(),
+        &z_index,
+    );
+    let owner = matched(
+        cx,
+        g,
+        &ir.states,
+        &linear_algebraics,
+        &equations,
+        &z_symbols,
+    )?;
+    let unknowns = Unknowns {
+        z: &z_symbols,
+        index: &z_index,
+        states: n_states,
+    };
+    let linear = linear_system(
+        cx,
+        g,
+        (&ir.algebraics, !ir.events.is_empty()),
+        &equations,
+        &unknowns,
+        &reduction.differentiations,
+    )?;
+    let solved = solve(cx, g, &linear, &owner, &equations, &z_symbols)?;
+    let mut ok = true;
+    let (slots, derivatives) = slots(
+        g,
+        (&ir.states, &ir.inits),
+        &order,
+        &reduction.explicit_highest,
+        &solved,
+        linear.mass_only,
+    )?;
+    ok &= inits_are_below_the_highest_derivatives(cx, g, (&ir.states, &ir.inits), &slots);
+    let (outputs, events, observed) = observables(
+        cx,
+        g,
+        (&ir.outputs, &ir.events),
+        &z_symbols,
+        &solved,
+        &z_index,
+        newton.as_ref(),
+    )?;
+    ok &= observed;
+    let algebraics = algebraic_values(
+        g,
+        &ir.algebraics,
+        &unknowns,
+        &solved,
+        newton.as_ref(),
+        linear.mass_only,
+    )?;
+    let (invariants, invariants_ok) =
+        invariants(cx, g, &ir.invariants, &z_index, reduction.invariants);
+    ok &= invariants_ok;
+    // Run-time unknowns: the linear blocks', then the Newton block's.
+    let newton_block_index = solved.blocks.len();
+    let mut block_unknowns: Vec<(SymbolId, usize, usize)> = z_symbols
+        .iter()
+        .enumerate()
+        .filter_map(|(j, &s)| solved.block_of[j].map(|(b, r)| (s, b, r)))
+        .collect();
+    if let Some(b) = &newton {
+        for (k, &s) in b.unknowns.iter().enumerate() {
+            block_unknowns.push((s, newton_block_index, k));
+        }
+    }
+    ok.then_some(FirstOrder {
+        slots,
+        derivatives,
+        blocks: solved.blocks,
+        outputs,
+        events,
+        algebraics,
+        invariants,
+        index: reduction.index,
+        block_unknowns,
+        residuals,
+        combined: separated.combined,
+        written,
+        rank_conditions: separated.conditions,
+        differentiations: reduction.differentiations,
+        highest: z_symbols[..n_states].to_vec(),
+        algebraic_symbols,
+        mass_only: linear.mass_only,
+        newton,
+    })
+}
+
+/// Each equation left to the linear solve (not the Newton block's) with
+/// the unknowns it involves.
+fn equations_in_unknowns(
+    g: &Graph,
+    written: &[crate::front::ir::Equation],
+    residuals: &[Id],
+    newton: Option<&crate::dae::newton_block::NewtonBlock>,
+    z_index: &FxHashMap<SymbolId, usize>,
+) -> Vec<Equation> {
+    let mut equations = Vec::with_capacity(residuals.len());
+    for (e, (eq, &r)) in written.iter().zip(residuals).enumerate() {
+        if newton.is_some_and(|b| b.equations.contains(&e)) {
+            continue;
+        }
+        let unknowns: Vec<usize> = g
+            .free_symbols(r)
+            .into_iter()
+            .filter_map(|s| z_index.get(&s).copied())
+            .collect();
+        equations.push(Equation {
+            residual: r,
+            unknowns,
+            origin: eq.origin.clone(),
+            index: e,
+        });
+    }
+    equations
+}
+
+/// The outputs and event functions with the highest derivatives replaced
+/// by their solutions; an event that reads an unknown solved at run time
+/// is an error (`false`), an output may solve the blocks it reads.
+fn observables(
+    cx: &mut Ctxt,
+    g: &mut Graph,
+    (declared_outputs, declared_events): (&[crate::front::ir::Output], &[crate::front::ir::Event]),
+    z: &[SymbolId],
+    solved: &crate::dae::solve_unknowns::Solved,
+    z_index: &FxHashMap<SymbolId, usize>,
+    newton: Option<&crate::dae::newton_block::NewtonBlock>,
+) -> Option<(Vec<Id>, Vec<Id>, bool)> {
+    let in_newton = |s: &SymbolId| newton.is_some_and(|b| b.unknowns.contains(s));
+    let replace: FxHashMap<SymbolId, Id> = z
+        .iter()
+        .enumerate()
+        .filter_map(|(j, &s)| solved.symbolic[j].map(|v| (s, v)))
+        .collect();
+    let mut ok = true;
+    let mut observe = |value: Id, origin: &TokenStream, what: &str| -> Option<Id> {
+        let v = g.substitute(value, &replace).ok()?;
+        if what == "output" {
+            // Outputs may solve the blocks they read (λ of a mechanism).
+            return Some(v);
+        }
+        if let Some(s) = g
+            .free_symbols(v)
+            .into_iter()
+            .find(|s| z_index.contains_key(s) || in_newton(s))
+        {
+            let name = g.symbol(s).name.clone();
+            cx.error_at(origin, format!("this {what} reads `{name}`, which is only known after a numerical solve; compute it from the states instead"));
+            ok = false;
+        }
+        Some(v)
+    };
+    let mut outputs = Vec::with_capacity(declared_outputs.len());
+    for o in declared_outputs {
+        outputs.push(observe(o.value, &o.origin, "output")?);
+    }
+    let mut events = Vec::with_capacity(declared_events.len());
+    for e in declared_events {
+        events.push(observe(e.value, &e.origin, "event")?);
+    }
+    Some((outputs, events, ok))
+}
+
+/// The unknowns at a point: the highest derivatives (the first `states`),
+/// then the algebraic variables solved linearly.
+struct Unknowns<'a> {
+    z: &'a [SymbolId],
+    index: &'a FxHashMap<SymbolId, usize>,
+    states: usize,
+}
+
+/// The equations as residuals `lhs − rhs`, and each state's order (the
+/// highest derivative any equation uses); an algebraic variable no
+/// equation reads, or a state without an equation for its derivative, is
+/// an error.
+fn residuals_and_orders(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<(Vec<Id>, Vec<u32>)> {
+    let g = &mut ir.graph;
     let mut order = vec![0u32; ir.states.len()];
     let state_of: FxHashMap<SymbolId, usize> = ir
         .states
@@ -158,163 +399,134 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
             ok = false;
         }
     }
-    if !ok {
-        return None;
-    }
-    // The unknowns z: highest derivatives, one per state.
-    let mut z_symbols = Vec::with_capacity(ir.states.len() + ir.algebraics.len());
-    for (i, s) in ir.states.iter().enumerate() {
-        let id = g.derivative(s.symbol, order[i]).ok()?;
-        z_symbols.push(g.as_symbol(id)?);
-    }
-    let n_states = z_symbols.len();
-    let algebraic_symbols: Vec<SymbolId> = ir.algebraics.iter().map(|a| a.symbol).collect();
-    let state_orders: Vec<(SymbolId, u32)> = ir
-        .states
-        .iter()
-        .zip(&order)
-        .map(|(s, &k)| (s.symbol, k))
-        .collect();
-    let origins: Vec<TokenStream> = ir.equations.iter().map(|e| e.origin.clone()).collect();
-    // Equations whose highest derivatives cancel in a combination become
-    // that combination (a circuit's node equations: `0 == f1 + f2`).
-    let texts: Vec<String> = origins
-        .iter()
-        .map(crate::front::names::source_text)
-        .collect();
-    let z_names: Vec<String> = z_symbols
-        .iter()
-        .map(|&s| g.symbol(s).name.clone())
-        .collect();
-    // Only a square system (as many equations as unknowns) is separated: in
-    // another, a repeated or missing equation is the mistake to report.
-    let square = residuals.len() == z_symbols.len() + ir.algebraics.len();
+    ok.then_some((residuals, order))
+}
+
+/// Equations whose highest derivatives cancel in a combination become that
+/// combination (a circuit's node equations: `0 == f1 + f2`); a dependent
+/// equation is an error.
+fn derivative_free(
+    cx: &mut Ctxt,
+    g: &mut Graph,
+    residuals: &[Id],
+    z: &[SymbolId],
+    texts: &[String],
+    origins: &[TokenStream],
+    square: bool,
+) -> Option<crate::dae::derivative_free::Separated> {
+    let z_names: Vec<String> = z.iter().map(|&s| g.symbol(s).name.clone()).collect();
     let separated = if !square {
         Ok(crate::dae::derivative_free::Separated {
-            residuals: residuals.clone(),
+            residuals: residuals.to_vec(),
             combined: Vec::new(),
             conditions: Vec::new(),
         })
     } else {
-        crate::dae::derivative_free::separate(g, &residuals, &z_symbols, &texts, &z_names)
+        crate::dae::derivative_free::separate(g, residuals, z, texts, &z_names)
     };
-    let separated = match separated {
-        Ok(separated) => separated,
+    match separated {
+        Ok(separated) => Some(separated),
         Err(crate::dae::derivative_free::Failure::Dependent { equation, of }) => {
             let others: Vec<String> = of.iter().map(|&i| format!("`{}`", texts[i])).collect();
             cx.error_at(
-                    &origins[equation],
-                    format!(
-                        "this equation is a combination of {}: it adds nothing; remove it or state what it was meant to add",
-                        others.join(" and ")
-                    ),
-                );
-            return None;
+                &origins[equation],
+                format!(
+                    "this equation is a combination of {}: it adds nothing; remove it or state what it was meant to add",
+                    others.join(" and ")
+                ),
+            );
+            None
         }
         Err(crate::dae::derivative_free::Failure::Graph(e)) => {
             cx.error_at(&origins[0], e);
-            return None;
+            None
         }
-    };
-    let written = std::mem::replace(&mut residuals, separated.residuals);
-    let reduction = crate::dae::index_reduction::reduce_index(
-        cx,
-        g,
-        &crate::dae::index_reduction::Unknowns {
-            time: ir.time,
-            states: &state_orders,
-            z: &z_symbols,
-            algebraics: &algebraic_symbols,
-        },
-        &residuals,
-        &origins,
-    )?;
-    // Algebraic equations nonlinear in their variables: a Newton block,
-    // its variables known to the rest of the reduction.
-    let candidates: Vec<(SymbolId, String, Id)> = ir
-        .algebraics
+    }
+}
+
+/// Algebraic equations nonlinear in their variables: a Newton block, its
+/// variables known to the rest of the reduction (`Some(None)`: there is
+/// none; `None`: an error was reported).
+fn newton_block(
+    cx: &mut Ctxt,
+    g: &mut Graph,
+    algebraics: &[AlgebraicDecl],
+    reduction: &crate::dae::index_reduction::IndexReduction,
+    z: &[SymbolId],
+    texts: &[String],
+    origins: &[TokenStream],
+) -> Option<Option<crate::dae::newton_block::NewtonBlock>> {
+    let candidates: Vec<(SymbolId, String, Id)> = algebraics
         .iter()
         .map(|a| (a.symbol, a.name.clone(), a.init))
         .collect();
-    let newton = match crate::dae::newton_block::find(
+    let found = crate::dae::newton_block::find(
         g,
         &crate::dae::newton_block::Candidates {
             residuals: &reduction.residuals,
             differentiations: &reduction.differentiations,
-            highest: &z_symbols,
+            highest: z,
             algebraics: &candidates,
-            texts: &texts,
+            texts,
         },
-    ) {
-        Ok(newton) => newton,
+    );
+    match found {
+        Ok(newton) => Some(newton),
         Err(e) => {
             cx.error_at(&origins[0], e);
-            return None;
+            None
         }
-    };
-    let in_newton = |s: &SymbolId| newton.as_ref().is_some_and(|b| b.unknowns.contains(s));
-    // The unknowns: z, then λ (but for the Newton block's).
-    let linear_algebraics: Vec<crate::front::ir::AlgebraicDecl> = ir
-        .algebraics
-        .iter()
-        .filter(|a| !in_newton(&a.symbol))
-        .cloned()
-        .collect();
-    z_symbols.extend(linear_algebraics.iter().map(|a| a.symbol));
-    let z_index: FxHashMap<SymbolId, usize> =
-        z_symbols.iter().enumerate().map(|(j, &s)| (s, j)).collect();
-    let mut equations = Vec::with_capacity(residuals.len());
-    for (e, (eq, &r)) in ir.equations.iter().zip(&reduction.residuals).enumerate() {
-        if newton.as_ref().is_some_and(|b| b.equations.contains(&e)) {
-            continue;
-        }
-        let unknowns: Vec<usize> = g
-            .free_symbols(r)
-            .into_iter()
-            .filter_map(|s| z_index.get(&s).copied())
-            .collect();
-        equations.push(Equation {
-            residual: r,
-            unknowns,
-            origin: eq.origin.clone(),
-            index: e,
-        });
     }
-    let owner = matched(
-        cx,
-        g,
-        &ir.states,
-        &linear_algebraics,
-        &equations,
-        &z_symbols,
-    )?;
-    // Linear in z: E_ij = ∂r_i/∂z_j must not contain z; g = -r|_{z=0}.
-    let n = z_symbols.len();
+}
+
+/// The equations as `E (z, λ) = g`, linear in the unknowns.
+struct LinearSystem {
+    /// `E`'s nonzero entries, row by row: (unknown, coefficient).
+    e: Vec<Vec<(usize, Id)>>,
+    /// `g = −r|_{z=0}`.
+    g: Vec<Id>,
+    /// An algebraic equation is nonlinear in the algebraic variables: the
+    /// model has only its mass-matrix form.
+    mass_only: bool,
+}
+
+/// `E_ij = ∂r_i/∂z_j`, which must not contain z, and `g = −r|_{z=0}`; an
+/// equation nonlinear in a highest derivative is an error.
+/// `model` is the algebraic variables and whether the model has events.
+fn linear_system(
+    cx: &mut Ctxt,
+    g: &mut Graph,
+    (algebraics, has_events): (&[AlgebraicDecl], bool),
+    equations: &[Equation],
+    unknowns: &Unknowns,
+    differentiations: &[usize],
+) -> Option<LinearSystem> {
+    let n = unknowns.z.len();
     let zero = g.zero();
     let mut e_matrix: Vec<Vec<(usize, Id)>> = Vec::with_capacity(n);
-    let z_zero: FxHashMap<SymbolId, Id> = z_symbols.iter().map(|&s| (s, zero)).collect();
+    let z_zero: FxHashMap<SymbolId, Id> = unknowns.z.iter().map(|&s| (s, zero)).collect();
     let mut g_vec = Vec::with_capacity(n);
     // An algebraic equation (no derivative, not a differentiated
     // constraint) nonlinear in the algebraic variables has no index-1 form
     // here: the model is integrated in its mass-matrix form instead.
     let mut mass_only = false;
-    for eq in &equations {
+    for eq in equations {
         let mut row = Vec::new();
         let algebraic_equation =
-            reduction.differentiations[eq.index] == 0 && eq.unknowns.iter().all(|&j| j >= n_states);
+            differentiations[eq.index] == 0 && eq.unknowns.iter().all(|&j| j >= unknowns.states);
         for &j in &eq.unknowns {
-            let c = g.partial(eq.residual, z_symbols[j]).ok()?;
+            let c = g.partial(eq.residual, unknowns.z[j]).ok()?;
             if let Some(bad) = g
                 .free_symbols(c)
                 .into_iter()
-                .find(|s| z_index.contains_key(s))
+                .find(|s| unknowns.index.contains_key(s))
             {
-                if algebraic_equation && ir.events.is_empty() {
+                if algebraic_equation && !has_events {
                     mass_only = true;
                     continue;
                 }
                 let name = g.symbol(bad).name.clone();
-                let message = if ir.algebraics.iter().any(|a| a.symbol == bad) {
+                let message = if algebraics.iter().any(|a| a.symbol == bad) {
                     format!("this equation is not linear in the algebraic variable `{name}`: daegen needs the algebraic variables to enter linearly (Newton on a nonlinear algebraic equation is not there yet); solve the equation for `{name}` by hand or make `{name}` an output")
                 } else {
                     format!("this equation is not linear in `{name}`: daegen needs the form `E(t, y) * der(..) == g(t, y)`")
@@ -330,11 +542,26 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         g_vec.push(g.negate_terms(r0).ok()?);
         e_matrix.push(row);
     }
-    let names: Vec<String> = z_symbols
-        .iter()
-        .map(|&s| g.symbol(s).name.clone())
-        .collect();
-    let solved = if mass_only {
+    Some(LinearSystem {
+        e: e_matrix,
+        g: g_vec,
+        mass_only,
+    })
+}
+
+/// The unknowns solved block by block (nothing for a mass-matrix-only
+/// model); linearly dependent equations are an error.
+fn solve(
+    cx: &mut Ctxt,
+    g: &mut Graph,
+    linear: &LinearSystem,
+    owner: &[usize],
+    equations: &[Equation],
+    z: &[SymbolId],
+) -> Option<crate::dae::solve_unknowns::Solved> {
+    let n = z.len();
+    let names: Vec<String> = z.iter().map(|&s| g.symbol(s).name.clone()).collect();
+    let solved = if linear.mass_only {
         Ok(crate::dae::solve_unknowns::Solved {
             symbolic: vec![None; n],
             block_of: vec![None; n],
@@ -342,10 +569,10 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
             after_solve: vec![None; n],
         })
     } else {
-        crate::dae::solve_unknowns::solve_unknowns(g, &e_matrix, &g_vec, &owner, &z_symbols, &names)
+        crate::dae::solve_unknowns::solve_unknowns(g, &linear.e, &linear.g, owner, z, &names)
     };
-    let solved = match solved {
-        Ok(solved) => solved,
+    match solved {
+        Ok(solved) => Some(solved),
         Err(crate::dae::solve_unknowns::Unsolvable::Dependent { equation, unknowns }) => {
             let names: Vec<String> = unknowns
                 .iter()
@@ -358,24 +585,30 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
                     names.join(", ")
                 ),
             );
-            return None;
+            None
         }
         Err(crate::dae::solve_unknowns::Unsolvable::Graph(e)) => {
             cx.error_at(&equations[0].origin, e);
-            return None;
+            None
         }
-    };
-    let (solution, block_of, mass_blocks, after_solve) = (
-        solved.symbolic,
-        solved.block_of,
-        solved.blocks,
-        solved.after_solve,
-    );
-    // Slots: x, der(x), ..., der^(k-1)(x) per state; dy of the last is z.
+    }
+}
+
+/// The slots `x, der(x), …, der^(k-1)(x)` per state and their derivatives;
+/// the last one's is the solved highest derivative.
+fn slots(
+    g: &mut Graph,
+    (states, inits): (&[StateDecl], &[Init]),
+    order: &[u32],
+    explicit_highest: &[bool],
+    solved: &crate::dae::solve_unknowns::Solved,
+    mass_only: bool,
+) -> Option<(Vec<Slot>, Vec<SlotDerivative>)> {
+    let zero = g.zero();
     let mut slots = Vec::new();
     let mut derivatives = Vec::new();
-    let init_of: FxHashMap<SymbolId, Id> = ir.inits.iter().map(|i| (i.target, i.value)).collect();
-    for (i, s) in ir.states.iter().enumerate() {
+    let init_of: FxHashMap<SymbolId, Id> = inits.iter().map(|i| (i.target, i.value)).collect();
+    for (i, s) in states.iter().enumerate() {
         for k in 0..order[i] {
             let id = g.derivative(s.symbol, k).ok()?;
             let symbol = g.as_symbol(id)?;
@@ -389,16 +622,16 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
                 symbol,
                 init,
                 fixed: k == 0 && s.fixed,
-                velocity_like: k + 1 == order[i] && !reduction.explicit_highest[i],
+                velocity_like: k + 1 == order[i] && !explicit_highest[i],
             });
             derivatives.push(if k + 1 < order[i] {
                 SlotDerivative::Explicit(g.derivative(s.symbol, k + 1).ok()?)
             } else {
-                match (solution[i], block_of[i]) {
+                match (solved.symbolic[i], solved.block_of[i]) {
                     (Some(z), _) => SlotDerivative::Explicit(z),
                     (None, Some((block, row))) => SlotDerivative::Block { block, row },
-                    (None, None) if after_solve[i].is_some() => {
-                        SlotDerivative::AfterSolve(after_solve[i]?)
+                    (None, None) if solved.after_solve[i].is_some() => {
+                        SlotDerivative::AfterSolve(solved.after_solve[i]?)
                     }
                     // The mass-matrix form computes it with λ as a component.
                     (None, None) if mass_only => SlotDerivative::Explicit(zero),
@@ -407,73 +640,76 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
             });
         }
     }
-    for init in &ir.inits {
+    Some((slots, derivatives))
+}
+
+/// `init(der(x), v)` is for a derivative below the highest one the
+/// equations use (which follows from them); reports the others.
+fn inits_are_below_the_highest_derivatives(
+    cx: &mut Ctxt,
+    g: &Graph,
+    (states, inits): (&[StateDecl], &[Init]),
+    slots: &[Slot],
+) -> bool {
+    let mut ok = true;
+    for init in inits {
         let valid = slots.iter().any(|s| s.symbol == init.target)
-            && !ir.states.iter().any(|s| s.symbol == init.target);
+            && !states.iter().any(|s| s.symbol == init.target);
         if !valid {
             let name = g.symbol(init.target).name.clone();
             cx.error_at(&init.origin, format!("`{name}` follows from its equation, so it takes no initial value: `init` is for derivatives below the highest one the equations use"));
             ok = false;
         }
     }
-    // Outputs may read highest derivatives: replace them by their solutions.
-    let replace: FxHashMap<SymbolId, Id> = z_symbols
-        .iter()
-        .enumerate()
-        .filter_map(|(j, &s)| solution[j].map(|z| (s, z)))
-        .collect();
-    let mut observe = |value: Id, origin: &TokenStream, what: &str| -> Option<Id> {
-        let v = g.substitute(value, &replace).ok()?;
-        if what == "output" {
-            // Outputs may solve the blocks they read (λ of a mechanism).
-            return Some(v);
-        }
-        if let Some(s) = g
-            .free_symbols(v)
-            .into_iter()
-            .find(|s| z_index.contains_key(s) || in_newton(s))
-        {
-            let name = g.symbol(s).name.clone();
-            cx.error_at(origin, format!("this {what} reads `{name}`, which is only known after a numerical solve; compute it from the states instead"));
-            ok = false;
-        }
-        Some(v)
-    };
-    let mut outputs = Vec::with_capacity(ir.outputs.len());
-    for o in &ir.outputs {
-        outputs.push(observe(o.value, &o.origin, "output")?);
-    }
-    let mut events = Vec::with_capacity(ir.events.len());
-    for e in &ir.events {
-        events.push(observe(e.value, &e.origin, "event")?);
-    }
-    // Each algebraic variable in declaration order: from the linear solve,
-    // or from the Newton block (read as block `mass_blocks.len()`).
-    let newton_block_index = mass_blocks.len();
-    let mut algebraics = Vec::with_capacity(ir.algebraics.len());
-    for a in &ir.algebraics {
-        if let Some(k) = newton
-            .as_ref()
-            .and_then(|b| b.unknowns.iter().position(|&s| s == a.symbol))
-        {
+    ok
+}
+
+/// Each algebraic variable in declaration order: from the linear solve, or
+/// from the Newton block (read as block `solved.blocks.len()`).
+fn algebraic_values(
+    g: &mut Graph,
+    declared: &[AlgebraicDecl],
+    unknowns: &Unknowns,
+    solved: &crate::dae::solve_unknowns::Solved,
+    newton: Option<&crate::dae::newton_block::NewtonBlock>,
+    mass_only: bool,
+) -> Option<Vec<AlgebraicValue>> {
+    let newton_block_index = solved.blocks.len();
+    let mut algebraics = Vec::with_capacity(declared.len());
+    for a in declared {
+        if let Some(k) = newton.and_then(|b| b.unknowns.iter().position(|&s| s == a.symbol)) {
             algebraics.push(SlotDerivative::Block {
                 block: newton_block_index,
                 row: k,
             });
             continue;
         }
-        let j = *z_index.get(&a.symbol)?;
-        algebraics.push(match (solution[j], block_of[j]) {
+        let j = *unknowns.index.get(&a.symbol)?;
+        algebraics.push(match (solved.symbolic[j], solved.block_of[j]) {
             (Some(v), _) => SlotDerivative::Explicit(v),
             (None, Some((block, row))) => SlotDerivative::Block { block, row },
-            (None, None) if after_solve[j].is_some() => SlotDerivative::AfterSolve(after_solve[j]?),
-            (None, None) if mass_only => SlotDerivative::Explicit(g.symbol_node(z_symbols[j])),
+            (None, None) if solved.after_solve[j].is_some() => {
+                SlotDerivative::AfterSolve(solved.after_solve[j]?)
+            }
+            (None, None) if mass_only => SlotDerivative::Explicit(g.symbol_node(unknowns.z[j])),
             (None, None) => return None,
         });
     }
-    // The user's invariants: functions of the states, projected onto.
-    let mut invariants = reduction.invariants;
-    for inv in &ir.invariants {
+    Some(algebraics)
+}
+
+/// The constraints index reduction found, then the user's invariants
+/// (functions of the states, projected onto); an invariant that reads a
+/// derivative or an algebraic variable is an error (`false`).
+fn invariants(
+    cx: &mut Ctxt,
+    g: &Graph,
+    user: &[UserInvariant],
+    z_index: &FxHashMap<SymbolId, usize>,
+    mut invariants: Vec<crate::dae::index_reduction::Invariant>,
+) -> (Vec<crate::dae::index_reduction::Invariant>, bool) {
+    let mut ok = true;
+    for inv in user {
         if let Some(s) = g
             .free_symbols(inv.value)
             .into_iter()
@@ -490,36 +726,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
             text: crate::front::names::source_text(&inv.origin),
         });
     }
-    let mut block_unknowns: Vec<(SymbolId, usize, usize)> = z_symbols
-        .iter()
-        .enumerate()
-        .filter_map(|(j, &s)| block_of[j].map(|(b, r)| (s, b, r)))
-        .collect();
-    if let Some(b) = &newton {
-        for (k, &s) in b.unknowns.iter().enumerate() {
-            block_unknowns.push((s, newton_block_index, k));
-        }
-    }
-    ok.then_some(FirstOrder {
-        slots,
-        derivatives,
-        blocks: mass_blocks,
-        outputs,
-        events,
-        algebraics,
-        invariants,
-        index: reduction.index,
-        block_unknowns,
-        residuals,
-        combined: separated.combined,
-        written,
-        rank_conditions: separated.conditions,
-        differentiations: reduction.differentiations,
-        highest: z_symbols[..n_states].to_vec(),
-        algebraic_symbols,
-        mass_only,
-        newton,
-    })
+    (invariants, ok)
 }
 
 /// A perfect matching of equations to unknowns (highest derivatives, then
