@@ -79,6 +79,8 @@ pub fn separate(
     texts: &[String],
     z_names: &[String],
 ) -> Result<Separated, Failure> {
+    // Gaussian elimination with its pivot choice and the bookkeeping of which equations each
+    // row combines, kept together so the invariants between them are in view.
     let mut out = Separated {
         residuals: residuals.to_vec(),
         combined: Vec::new(),

@@ -62,6 +62,8 @@ pub fn solve_unknowns(
     symbols: &[SymbolId],
     names: &[String],
 ) -> Result<Solved, Unsolvable> {
+    // Block-triangular ordering, then each block solved symbolically or left to run time, with
+    // the KKT elimination: the blocks' bookkeeping is shared.
     let n = owner.len();
     let mut unknown_of = vec![0; n];
     for (j, &i) in owner.iter().enumerate() {

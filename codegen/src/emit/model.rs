@@ -27,6 +27,7 @@ pub fn expand(
     sys: &FirstOrder,
     attributes: &crate::front::attributes::Attributes,
 ) -> crate::Result<TokenStream> {
+    // Most of its length is the quoted `Model` implementation the items fill.
     // `unroll` alone implies the Taylor tape (and the first-order scheme).
     let taylor = match (attributes.taylor, attributes.unroll.is_empty()) {
         (None, false) => Some(1),

@@ -511,6 +511,8 @@ impl Lower<'_> {
         doc: String,
         local: &syn::Local,
     ) {
+        // One match arm per declaration of the language (`param`, `state`, `algebraic`, …):
+        // long because the language is, each arm short.
         let name = ident.to_string();
         if self.already_declared(ident) {
             return;

@@ -280,6 +280,8 @@ impl Lower<'_> {
     }
 
     fn tensor_call(&mut self, c: &syn::ExprCall, name: &str, e: &Expr) -> Option<Tensor> {
+        // One match arm per vector function of the language: long because the language is, each
+        // arm short.
         let g = |this: &mut Self, r: crate::Result<Id>| this.graph_result(r, e);
         let zero = self.g.zero();
         let one = self.g.one();

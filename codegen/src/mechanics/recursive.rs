@@ -11,57 +11,61 @@
 
 use crate::front::lower::Lower;
 use crate::mechanics::names::rotate;
-use crate::mechanics::Frame;
-use crate::{FxHashMap, Id, SymbolId, VectorField};
+use crate::mechanics::{Frame, JointRecord};
+use crate::{FxHashMap, Graph, Id, SymbolId, VectorField};
+use proc_macro2::TokenStream;
 use quote::ToTokens;
 
 impl Lower<'_> {
     /// Replaces the global coordinates of a scene by joint coordinates and
-    /// writes Lagrange's equations.
+    /// writes Lagrange's equations: the spanning tree, the bodies placed
+    /// along it, their motion, the tree joints replaced by coordinates,
+    /// everything rewritten in them, and one equation per coordinate.
     pub(crate) fn recursive_equations(&mut self, item: &syn::ItemFn) {
         let origin = item.sig.ident.to_token_stream();
-        let n = self.scene.bodies.len();
         let records = self.scene.records.clone();
-        // The spanning tree, in the order the joints place the bodies.
-        let mut placed = vec![false; n];
-        let mut tree: Vec<(usize, Frame, usize, bool)> = Vec::new();
-        loop {
-            let mut changed = false;
-            for (r, rec) in records.iter().enumerate() {
-                if rec.kind == "distance" || tree.iter().any(|t| t.0 == r) {
-                    continue;
-                }
-                let is_placed = |f: Frame| match f {
-                    Frame::Ground => true,
-                    Frame::Body(i) => placed[i],
-                };
-                match (is_placed(rec.a), is_placed(rec.b), rec.b, rec.a) {
-                    (true, false, Frame::Body(child), _) => {
-                        tree.push((r, rec.a, child, true));
-                        placed[child] = true;
-                        changed = true;
-                    }
-                    (false, true, _, Frame::Body(child)) if rec.kind == "revolute" => {
-                        tree.push((r, rec.b, child, false));
-                        placed[child] = true;
-                        changed = true;
-                    }
-                    _ => {}
-                }
+        let tree = match spanning_tree(&records, self.scene.bodies.len()) {
+            Ok(tree) => tree,
+            Err(i) => {
+                let name = self.scene.bodies[i].name.clone();
+                return self.cx.error_at(&origin, format!("the recursive formulation needs every body on a tree of revolute, prismatic and fixed joints from the ground, and `{name}` is not: join it, or use the global formulation"));
             }
-            if !changed {
-                break;
-            }
-        }
-        if let Some(i) = placed.iter().position(|p| !p) {
-            let name = self.scene.bodies[i].name.clone();
-            return self.cx.error_at(&origin, format!("the recursive formulation needs every body on a tree of revolute, prismatic and fixed joints from the ground, and `{name}` is not: join it, or use the global formulation"));
-        }
-        // Initial body velocities become initial joint rates: a revolute
-        // joint's is the relative angular velocity, a prismatic joint's the
-        // relative speed of its points along its axis (a body without
-        // velocities starts at rest). Linear velocities that disagree with
-        // these are not used.
+        };
+        let rates = self.body_rates();
+        let Some(placement) = self.place_bodies(&tree, &records, &rates, &origin) else {
+            return;
+        };
+        let Some((field, replace, velocity)) = self.body_motion(&placement, &origin) else {
+            return;
+        };
+        self.body_coordinates(&placement.pose, &velocity, &origin);
+        let cut_joints: Vec<usize> = (0..records.len())
+            .filter(|r| !tree.iter().any(|t| t.0 == *r))
+            .collect();
+        self.planar_joint_coordinates(&cut_joints, &origin);
+        let Some(drop_rows) = self.tree_joints_to_coordinates(&tree, &records, &placement, &origin)
+        else {
+            return;
+        };
+        let Some((loads, cut)) = self.rewrite_in_joint_coordinates(&replace, &drop_rows, &origin)
+        else {
+            return;
+        };
+        let mut field = field;
+        self.lagrange_equations(&placement, &velocity, &mut field, &loads, &cut, &origin);
+        self.scene.summary.push_str(&format!(
+            " Recursive formulation: {} joint coordinates on the spanning tree, {} cut-joint constraint rows.",
+            placement.coordinates.len(),
+            cut.len()
+        ));
+    }
+
+    /// Initial body velocities become initial joint rates: a revolute
+    /// joint's is the relative angular velocity, a prismatic joint's the
+    /// relative speed of its points along its axis (a body without
+    /// velocities starts at rest). Linear velocities that disagree with
+    /// these are not used. Takes the bodies' `init`s out of the model.
+    fn body_rates(&mut self) -> FxHashMap<SymbolId, Id> {
         let mut rates: FxHashMap<SymbolId, Id> = FxHashMap::default();
         let mut kept_inits = Vec::with_capacity(self.inits.len());
         for init in std::mem::take(&mut self.inits) {
@@ -78,206 +82,176 @@ impl Lower<'_> {
             }
         }
         self.inits = kept_inits;
-        let rate_of = |this: &mut Self, s: SymbolId| -> Id {
-            rates.get(&s).copied().unwrap_or_else(|| this.g.zero())
+        rates
+    }
+
+    /// The rate a body coordinate started with (0 if none was given).
+    fn body_rate(&mut self, rates: &FxHashMap<SymbolId, Id>, s: SymbolId) -> Id {
+        rates.get(&s).copied().unwrap_or_else(|| self.g.zero())
+    }
+
+    /// The initial value of a state.
+    fn state_initial_value(&self, s: SymbolId) -> Option<Id> {
+        self.states.iter().find(|d| d.symbol == s).map(|d| d.init)
+    }
+
+    /// Poses [x, y, θ] of the bodies in joint coordinates, joint by joint
+    /// along the tree, with each joint's coordinate, initial value and rate.
+    fn place_bodies(
+        &mut self,
+        tree: &[TreeEdge],
+        records: &[JointRecord],
+        rates: &FxHashMap<SymbolId, Id>,
+        origin: &TokenStream,
+    ) -> Option<Placement> {
+        let n = self.scene.bodies.len();
+        let mut placement = Placement {
+            pose: vec![None; n],
+            start: vec![None; n],
+            coordinates: Vec::new(),
+            joint_rates: Vec::new(),
         };
-        let mut joint_rates: Vec<Id> = Vec::new();
-        let init_of =
-            |this: &Self, s: SymbolId| this.states.iter().find(|d| d.symbol == s).map(|d| d.init);
-        // Poses [x, y, θ] of the bodies, in joint coordinates.
-        let zero = self.g.zero();
-        let mut pose: Vec<Option<[Id; 3]>> = vec![None; n];
-        let mut start: Vec<Option<[Id; 3]>> = vec![None; n];
-        let mut coordinates: Vec<(SymbolId, Id, String)> = Vec::new();
-        for &(r, parent, child, child_is_b) in &tree {
-            let rec = &records[r];
-            let (p_parent, p_child) = if child_is_b {
-                (rec.local_a, rec.local_b)
-            } else {
-                (rec.local_b, rec.local_a)
-            };
-            let body = self.scene.bodies[child].clone();
-            let (parent_pose, parent_start) = match parent {
-                Frame::Ground => ([zero; 3], [zero; 3]),
-                Frame::Body(p) => match (pose[p], start[p]) {
-                    (Some(a), Some(b)) => (a, b),
-                    _ => return,
-                },
-            };
-            let (Some(cx0), Some(cy0), Some(ct0)) = (
-                init_of(self, body.x),
-                init_of(self, body.y),
-                init_of(self, body.theta),
-            ) else {
-                return;
-            };
-            if rec.kind == "fixed" {
-                // Welded: the child moves with the parent and adds no
-                // coordinate, no state and no equation.
-                let welded = (|| -> crate::Result<[Id; 3]> {
-                    let g = &mut self.g;
-                    let relative0 = g.sub(ct0, parent_start[2])?;
-                    let theta = g.add(parent_pose[2], relative0)?;
-                    let arm = rotate(g, parent_pose[2], p_parent)?;
-                    let back = rotate(g, theta, p_child)?;
-                    let x = g.add(parent_pose[0], arm[0])?;
-                    let y = g.add(parent_pose[1], arm[1])?;
-                    Ok([g.sub(x, back[0])?, g.sub(y, back[1])?, theta])
-                })();
-                match welded {
-                    Ok(p) => {
-                        pose[child] = Some(p);
-                        start[child] = Some([cx0, cy0, ct0]);
-                    }
-                    Err(err) => return self.cx.error_at(&origin, err),
-                }
-                continue;
-            }
-            let name = format!("{}.q", rec.name);
-            let built = (|| -> crate::Result<(Id, [Id; 3], [Id; 3], Id)> {
-                let g = &mut self.g;
-                let q_node = g.state(&name)?;
-                let relative0 = g.sub(ct0, parent_start[2])?;
-                if rec.kind == "revolute" {
-                    // θ_child = θ_parent + q; the child hangs from the joint.
-                    // q is always θ_b − θ_a, as in the global formulation:
-                    // for a joint the tree reaches from b, the child is a.
-                    let theta = if child_is_b {
-                        g.add(parent_pose[2], q_node)?
-                    } else {
-                        g.sub(parent_pose[2], q_node)?
-                    };
-                    let relative0 = if child_is_b {
-                        relative0
-                    } else {
-                        g.neg(relative0)?
-                    };
-                    let arm = rotate(g, parent_pose[2], p_parent)?;
-                    let jx = g.add(parent_pose[0], arm[0])?;
-                    let jy = g.add(parent_pose[1], arm[1])?;
-                    let back = rotate(g, theta, p_child)?;
-                    let x = g.sub(jx, back[0])?;
-                    let y = g.sub(jy, back[1])?;
-                    Ok((q_node, [x, y, theta], [cx0, cy0, ct0], relative0))
-                } else {
-                    // The child slides along the parent's axis at a constant
-                    // relative angle; q is the slide from the parent's point.
-                    let axis = rec.axis.unwrap_or([zero, zero]);
-                    let a2 = {
-                        let (xx, yy) = (g.mul(axis[0], axis[0])?, g.mul(axis[1], axis[1])?);
-                        let s = g.add(xx, yy)?;
-                        g.sqrt(s)?
-                    };
-                    let unit = [g.div(axis[0], a2)?, g.div(axis[1], a2)?];
-                    let theta = g.add(parent_pose[2], relative0)?;
-                    let arm = rotate(g, parent_pose[2], p_parent)?;
-                    let dir = rotate(g, parent_pose[2], unit)?;
-                    let jx = g.add(parent_pose[0], arm[0])?;
-                    let jy = g.add(parent_pose[1], arm[1])?;
-                    let (sx, sy) = (g.mul(q_node, dir[0])?, g.mul(q_node, dir[1])?);
-                    let px = g.add(jx, sx)?;
-                    let py = g.add(jy, sy)?;
-                    let back = rotate(g, theta, p_child)?;
-                    let x = g.sub(px, back[0])?;
-                    let y = g.sub(py, back[1])?;
-                    // s0: the child's point from the parent's, along the axis, at the start.
-                    let arm0 = rotate(g, parent_start[2], p_parent)?;
-                    let j0x = g.add(parent_start[0], arm0[0])?;
-                    let j0y = g.add(parent_start[1], arm0[1])?;
-                    let tip0 = rotate(g, ct0, p_child)?;
-                    let b0x = g.add(cx0, tip0[0])?;
-                    let b0y = g.add(cy0, tip0[1])?;
-                    let d0x = g.sub(b0x, j0x)?;
-                    let d0y = g.sub(b0y, j0y)?;
-                    let dir0 = rotate(g, parent_start[2], unit)?;
-                    let s1 = g.mul(d0x, dir0[0])?;
-                    let s2 = g.mul(d0y, dir0[1])?;
-                    let s0 = g.add(s1, s2)?;
-                    Ok((q_node, [x, y, theta], [cx0, cy0, ct0], s0))
-                }
-            })();
-            let (q_node, child_pose, child_start, q0) = match built {
-                Ok(v) => v,
-                Err(err) => return self.cx.error_at(&origin, err),
-            };
-            let child_velocity = [
-                rate_of(self, body.x),
-                rate_of(self, body.y),
-                rate_of(self, body.theta),
-            ];
-            let parent_velocity = match parent {
-                Frame::Ground => [zero; 3],
-                Frame::Body(p) => {
-                    let b = self.scene.bodies[p].clone();
-                    [
-                        rate_of(self, b.x),
-                        rate_of(self, b.y),
-                        rate_of(self, b.theta),
-                    ]
-                }
-            };
-            let rate = (|| -> crate::Result<Id> {
-                let g = &mut self.g;
-                if rec.kind == "revolute" {
-                    let (b, a) = if child_is_b {
-                        (child_velocity[2], parent_velocity[2])
-                    } else {
-                        (parent_velocity[2], child_velocity[2])
-                    };
-                    return g.sub(b, a);
-                }
-                // v + ω k × (R(θ) p) of each joint point, along the axis.
-                let point_velocity = |g: &mut crate::Graph,
-                                      v: [Id; 3],
-                                      angle: Id,
-                                      p: [Id; 2]|
-                 -> crate::Result<[Id; 2]> {
-                    let [rx, ry] = rotate(g, angle, p)?;
-                    let wy = g.mul(v[2], ry)?;
-                    let wx = g.mul(v[2], rx)?;
-                    Ok([g.sub(v[0], wy)?, g.add(v[1], wx)?])
-                };
-                let vb = point_velocity(g, child_velocity, child_start[2], p_child)?;
-                let vj = point_velocity(g, parent_velocity, parent_start[2], p_parent)?;
-                let axis = rec.axis.unwrap_or([zero, zero]);
-                let dir = rotate(g, parent_start[2], axis)?;
-                let (xx, yy) = (g.mul(axis[0], axis[0])?, g.mul(axis[1], axis[1])?);
-                let len2 = g.add(xx, yy)?;
-                let len = g.sqrt(len2)?;
-                let dx = g.sub(vb[0], vj[0])?;
-                let dy = g.sub(vb[1], vj[1])?;
-                let p1 = g.mul(dx, dir[0])?;
-                let p2 = g.mul(dy, dir[1])?;
-                let along = g.add(p1, p2)?;
-                g.div(along, len)
-            })();
-            match rate {
-                Ok(r) => joint_rates.push(r),
-                Err(err) => return self.cx.error_at(&origin, err),
-            }
-            let Some(q) = self.g.as_symbol(q_node) else {
-                return;
-            };
-            pose[child] = Some(child_pose);
-            start[child] = Some(child_start);
-            coordinates.push((q, q0, name));
+        for &edge in tree {
+            self.place_child(edge, &records[edge.0], rates, &mut placement, origin)?;
         }
+        Some(placement)
+    }
+
+    /// Places the child of one tree joint from its parent: welded, turned
+    /// by a revolute joint's angle, or slid along a prismatic joint's axis.
+    fn place_child(
+        &mut self,
+        (_, parent, child, child_is_b): TreeEdge,
+        rec: &JointRecord,
+        rates: &FxHashMap<SymbolId, Id>,
+        placement: &mut Placement,
+        origin: &TokenStream,
+    ) -> Option<()> {
+        let zero = self.g.zero();
+        let Placement {
+            pose,
+            start,
+            coordinates,
+            joint_rates,
+        } = placement;
+        let (p_parent, p_child) = if child_is_b {
+            (rec.local_a, rec.local_b)
+        } else {
+            (rec.local_b, rec.local_a)
+        };
+        let body = self.scene.bodies[child].clone();
+        let (parent_pose, parent_start) = match parent {
+            Frame::Ground => ([zero; 3], [zero; 3]),
+            Frame::Body(p) => match (pose[p], start[p]) {
+                (Some(a), Some(b)) => (a, b),
+                _ => return None,
+            },
+        };
+        let (Some(cx0), Some(cy0), Some(ct0)) = (
+            self.state_initial_value(body.x),
+            self.state_initial_value(body.y),
+            self.state_initial_value(body.theta),
+        ) else {
+            return None;
+        };
+        if rec.kind == "fixed" {
+            // Welded: the child moves with the parent and adds no
+            // coordinate, no state and no equation.
+            let welded = (|| -> crate::Result<[Id; 3]> {
+                let g = &mut self.g;
+                let relative0 = g.sub(ct0, parent_start[2])?;
+                let theta = g.add(parent_pose[2], relative0)?;
+                let arm = rotate(g, parent_pose[2], p_parent)?;
+                let back = rotate(g, theta, p_child)?;
+                let x = g.add(parent_pose[0], arm[0])?;
+                let y = g.add(parent_pose[1], arm[1])?;
+                Ok([g.sub(x, back[0])?, g.sub(y, back[1])?, theta])
+            })();
+            match welded {
+                Ok(p) => {
+                    pose[child] = Some(p);
+                    start[child] = Some([cx0, cy0, ct0]);
+                }
+                Err(err) => {
+                    self.cx.error_at(origin, err);
+                    return None;
+                }
+            }
+            return Some(());
+        }
+        let name = format!("{}.q", rec.name);
+        let geometry = JointGeometry {
+            rec,
+            child_is_b,
+            p_parent,
+            p_child,
+            parent_pose,
+            parent_start,
+            child_start: [cx0, cy0, ct0],
+        };
+        let built = joint_pose(&mut self.g, &geometry, &name);
+        let (q_node, child_pose, child_start, q0) = match built {
+            Ok(v) => v,
+            Err(err) => {
+                self.cx.error_at(origin, err);
+                return None;
+            }
+        };
+        let child_velocity = [
+            self.body_rate(rates, body.x),
+            self.body_rate(rates, body.y),
+            self.body_rate(rates, body.theta),
+        ];
+        let parent_velocity = match parent {
+            Frame::Ground => [zero; 3],
+            Frame::Body(p) => {
+                let b = self.scene.bodies[p].clone();
+                [
+                    self.body_rate(rates, b.x),
+                    self.body_rate(rates, b.y),
+                    self.body_rate(rates, b.theta),
+                ]
+            }
+        };
+        let rate = joint_rate(&mut self.g, &geometry, child_velocity, parent_velocity);
+        match rate {
+            Ok(r) => joint_rates.push(r),
+            Err(err) => {
+                self.cx.error_at(origin, err);
+                return None;
+            }
+        }
+        let q = self.g.as_symbol(q_node)?;
+        pose[child] = Some(child_pose);
+        start[child] = Some(child_start);
+        coordinates.push((q, q0, name));
+        Some(())
+    }
+
+    /// The bodies' velocities in joint coordinates, and the substitution of
+    /// every body coordinate and its derivatives by the poses'.
+    #[allow(clippy::type_complexity)]
+    fn body_motion(
+        &mut self,
+        placement: &Placement,
+        origin: &TokenStream,
+    ) -> Option<(VectorField, FxHashMap<SymbolId, Id>, Vec<[Id; 3]>)> {
+        let (n, zero) = (self.scene.bodies.len(), self.g.zero());
+        let (pose, coordinates) = (&placement.pose, &placement.coordinates);
         // Substitution: body coordinates and their derivatives.
         let mut field = VectorField::new();
-        for &(q, _, _) in &coordinates {
+        for &(q, _, _) in coordinates {
             let (Ok(d1), Ok(d2)) = (self.g.derivative(q, 1), self.g.derivative(q, 2)) else {
-                return;
+                return None;
             };
-            let Some(s1) = self.g.as_symbol(d1) else {
-                return;
-            };
+            let s1 = self.g.as_symbol(d1)?;
             field.set(q, d1);
             field.set(s1, d2);
         }
         let mut replace: FxHashMap<SymbolId, Id> = FxHashMap::default();
         let mut velocity: Vec<[Id; 3]> = Vec::with_capacity(n);
         for (b, body) in self.scene.bodies.clone().iter().enumerate() {
-            let Some(p) = pose[b] else { return };
+            let p = pose[b]?;
             let mut v = [zero; 3];
             for (k, s) in [body.x, body.y, body.theta].into_iter().enumerate() {
                 let derived = (|| -> crate::Result<(Id, Id, Id, Id)> {
@@ -287,9 +261,9 @@ impl Lower<'_> {
                     Ok((d1, d2, g.derivative(s, 1)?, g.derivative(s, 2)?))
                 })();
                 let Ok((d1, d2, s1, s2)) = derived else {
-                    return self
-                        .cx
-                        .error_at(&origin, "the body poses could not be differentiated");
+                    self.cx
+                        .error_at(origin, "the body poses could not be differentiated");
+                    return None;
                 };
                 replace.insert(s, p[k]);
                 if let Some(s1) = self.g.as_symbol(s1) {
@@ -302,16 +276,24 @@ impl Lower<'_> {
             }
             velocity.push(v);
         }
-        self.body_coordinates(&pose, &velocity, &origin);
-        let cut_joints: Vec<usize> = (0..records.len())
-            .filter(|r| !tree.iter().any(|t| t.0 == *r))
-            .collect();
-        self.planar_joint_coordinates(&cut_joints, &origin);
-        // Out: the tree joints' constraints and multipliers, the body states.
+        Some((field, replace, velocity))
+    }
+
+    /// Out: the tree joints' constraints and multipliers and the body
+    /// states; in: the joint coordinates with their initial values and
+    /// rates. Returns the constraint rows left out.
+    fn tree_joints_to_coordinates(
+        &mut self,
+        tree: &[TreeEdge],
+        records: &[JointRecord],
+        placement: &Placement,
+        origin: &TokenStream,
+    ) -> Option<std::collections::HashSet<usize>> {
+        let (coordinates, joint_rates) = (&placement.coordinates, &placement.joint_rates);
         let mut drop_equations = std::collections::HashSet::new();
         let mut drop_algebraics = std::collections::HashSet::new();
         let mut drop_rows = std::collections::HashSet::new();
-        for &(r, ..) in &tree {
+        for &(r, ..) in tree {
             drop_equations.extend(records[r].equations.clone());
             drop_algebraics.extend(records[r].algebraics.clone());
             drop_rows.extend(records[r].rows.clone());
@@ -337,7 +319,7 @@ impl Lower<'_> {
             .map(|(_, a)| a)
             .collect();
         self.states.retain(|s| !body_symbols.contains(&s.symbol));
-        for ((q, q0, name), &rate) in coordinates.iter().zip(&joint_rates) {
+        for ((q, q0, name), &rate) in coordinates.iter().zip(joint_rates) {
             let kind = records
                 .iter()
                 .find(|r| format!("{}.q", r.name) == *name)
@@ -353,24 +335,33 @@ impl Lower<'_> {
             if self.g.as_number(rate).is_some_and(|v| v.is_zero()) {
                 continue;
             }
-            let Some(target) = self
+            let target = self
                 .g
                 .derivative(*q, 1)
                 .ok()
-                .and_then(|d| self.g.as_symbol(d))
-            else {
-                return;
-            };
+                .and_then(|d| self.g.as_symbol(d))?;
             self.inits.push(crate::front::ir::Init {
                 target,
                 value: rate,
                 origin: origin.clone(),
             });
         }
-        // Everything that read the body coordinates reads the poses.
+        Some(drop_rows)
+    }
+
+    /// Everything that read the body coordinates reads the poses: the
+    /// equations, outputs, events, invariants, loads and the cut joints'
+    /// rows (returned with their multipliers).
+    #[allow(clippy::type_complexity)]
+    fn rewrite_in_joint_coordinates(
+        &mut self,
+        replace: &FxHashMap<SymbolId, Id>,
+        drop_rows: &std::collections::HashSet<usize>,
+        origin: &TokenStream,
+    ) -> Option<(Vec<(usize, Id, Id, Id)>, Vec<(Id, Id)>)> {
         let mut ok = true;
         let mut sub = |g: &mut crate::Graph, id: Id| -> Id {
-            match g.substitute(id, &replace) {
+            match g.substitute(id, replace) {
                 Ok(v) => v,
                 Err(_) => {
                     ok = false;
@@ -413,15 +404,31 @@ impl Lower<'_> {
             .map(|(_, &(row, l))| (sub(&mut self.g, row), l))
             .collect();
         if !ok {
-            return self.cx.error_at(
-                &origin,
+            self.cx.error_at(
+                origin,
                 "the scene could not be rewritten in joint coordinates",
             );
+            return None;
         }
-        // Lagrange's equations, one per joint coordinate.
+        Some((loads, cut))
+    }
+
+    /// Lagrange's equations, one per joint coordinate:
+    /// d/dt ∂T/∂q̇ − ∂T/∂q = Q − Φ_qᵀ λ.
+    fn lagrange_equations(
+        &mut self,
+        placement: &Placement,
+        velocity: &[[Id; 3]],
+        field: &mut VectorField,
+        loads: &[(usize, Id, Id, Id)],
+        cut: &[(Id, Id)],
+        origin: &TokenStream,
+    ) {
+        let (pose, coordinates) = (&placement.pose, &placement.coordinates);
+        let zero = self.g.zero();
         let bodies = self.scene.bodies.clone();
         let gravity = self.scene.gravity;
-        for &(q, _, _) in &coordinates {
+        for &(q, _, _) in coordinates {
             let equation = (|| -> crate::Result<(Id, Id)> {
                 let g = &mut self.g;
                 let mut kinetic = Vec::new();
@@ -443,7 +450,7 @@ impl Lower<'_> {
                     message: "a joint rate".into(),
                 })?;
                 let momentum = g.partial(t, rate)?;
-                let d_momentum = g.total_derivative(momentum, &mut field)?;
+                let d_momentum = g.total_derivative(momentum, field)?;
                 let dt_dq = g.partial(t, q)?;
                 let lhs = g.sub(d_momentum, dt_dq)?;
                 // Generalised forces: Σ F·∂c/∂q + τ ∂θ/∂q, gravity included.
@@ -460,7 +467,7 @@ impl Lower<'_> {
                         forces.push(g.mul(wx, dx)?);
                         forces.push(g.mul(wy, dy)?);
                     }
-                    for &(on, fx, fy, tau) in &loads {
+                    for &(on, fx, fy, tau) in loads {
                         if on == b {
                             forces.push(g.mul(fx, dx)?);
                             forces.push(g.mul(fy, dy)?);
@@ -468,7 +475,7 @@ impl Lower<'_> {
                         }
                     }
                 }
-                for &(row, lambda) in &cut {
+                for &(row, lambda) in cut {
                     let d = g.partial(row, q)?;
                     let t = g.mul(d, lambda)?;
                     forces.push(g.neg(t)?);
@@ -482,13 +489,188 @@ impl Lower<'_> {
                     origin: origin.clone(),
                     is_constraint: false,
                 }),
-                Err(err) => return self.cx.error_at(&origin, err),
+                Err(err) => return self.cx.error_at(origin, err),
             }
         }
-        self.scene.summary.push_str(&format!(
-            " Recursive formulation: {} joint coordinates on the spanning tree, {} cut-joint constraint rows.",
-            coordinates.len(),
-            cut.len()
-        ));
     }
+}
+
+/// A joint of the spanning tree: its record, the parent frame, the child
+/// body, and whether the child is the joint's second frame.
+type TreeEdge = (usize, Frame, usize, bool);
+
+/// The bodies placed along the tree.
+struct Placement {
+    /// Each body's [x, y, θ] in joint coordinates.
+    pose: Vec<Option<[Id; 3]>>,
+    /// Each body's initial [x, y, θ].
+    start: Vec<Option<[Id; 3]>>,
+    /// Each joint coordinate, its initial value and its name.
+    coordinates: Vec<(SymbolId, Id, String)>,
+    /// Each joint coordinate's initial rate.
+    joint_rates: Vec<Id>,
+}
+
+/// The spanning tree grown from the ground, in the order the joints place
+/// the bodies (`Err`: a body it does not reach).
+fn spanning_tree(records: &[JointRecord], n: usize) -> Result<Vec<TreeEdge>, usize> {
+    let mut placed = vec![false; n];
+    let mut tree: Vec<(usize, Frame, usize, bool)> = Vec::new();
+    loop {
+        let mut changed = false;
+        for (r, rec) in records.iter().enumerate() {
+            if rec.kind == "distance" || tree.iter().any(|t| t.0 == r) {
+                continue;
+            }
+            let is_placed = |f: Frame| match f {
+                Frame::Ground => true,
+                Frame::Body(i) => placed[i],
+            };
+            match (is_placed(rec.a), is_placed(rec.b), rec.b, rec.a) {
+                (true, false, Frame::Body(child), _) => {
+                    tree.push((r, rec.a, child, true));
+                    placed[child] = true;
+                    changed = true;
+                }
+                (false, true, _, Frame::Body(child)) if rec.kind == "revolute" => {
+                    tree.push((r, rec.b, child, false));
+                    placed[child] = true;
+                    changed = true;
+                }
+                _ => {}
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    match placed.iter().position(|p| !p) {
+        Some(i) => Err(i),
+        None => Ok(tree),
+    }
+}
+
+/// One tree joint as its child sees it: the joint's points in the parent
+/// and the child, and where both started.
+struct JointGeometry<'a> {
+    rec: &'a JointRecord,
+    child_is_b: bool,
+    p_parent: [Id; 2],
+    p_child: [Id; 2],
+    parent_pose: [Id; 3],
+    parent_start: [Id; 3],
+    child_start: [Id; 3],
+}
+
+/// The joint's coordinate `name`, the child's pose in it, the child's
+/// initial pose, and the coordinate's initial value.
+fn joint_pose(
+    g: &mut Graph,
+    j: &JointGeometry,
+    name: &str,
+) -> crate::Result<(Id, [Id; 3], [Id; 3], Id)> {
+    let (rec, child_is_b, p_parent, p_child) = (j.rec, j.child_is_b, j.p_parent, j.p_child);
+    let (parent_pose, parent_start) = (j.parent_pose, j.parent_start);
+    let [cx0, cy0, ct0] = j.child_start;
+    let zero = g.zero();
+    let q_node = g.state(name)?;
+    let relative0 = g.sub(ct0, parent_start[2])?;
+    if rec.kind == "revolute" {
+        // θ_child = θ_parent + q; the child hangs from the joint.
+        // q is always θ_b − θ_a, as in the global formulation:
+        // for a joint the tree reaches from b, the child is a.
+        let theta = if child_is_b {
+            g.add(parent_pose[2], q_node)?
+        } else {
+            g.sub(parent_pose[2], q_node)?
+        };
+        let relative0 = if child_is_b {
+            relative0
+        } else {
+            g.neg(relative0)?
+        };
+        let arm = rotate(g, parent_pose[2], p_parent)?;
+        let jx = g.add(parent_pose[0], arm[0])?;
+        let jy = g.add(parent_pose[1], arm[1])?;
+        let back = rotate(g, theta, p_child)?;
+        let x = g.sub(jx, back[0])?;
+        let y = g.sub(jy, back[1])?;
+        Ok((q_node, [x, y, theta], [cx0, cy0, ct0], relative0))
+    } else {
+        // The child slides along the parent's axis at a constant
+        // relative angle; q is the slide from the parent's point.
+        let axis = rec.axis.unwrap_or([zero, zero]);
+        let a2 = {
+            let (xx, yy) = (g.mul(axis[0], axis[0])?, g.mul(axis[1], axis[1])?);
+            let s = g.add(xx, yy)?;
+            g.sqrt(s)?
+        };
+        let unit = [g.div(axis[0], a2)?, g.div(axis[1], a2)?];
+        let theta = g.add(parent_pose[2], relative0)?;
+        let arm = rotate(g, parent_pose[2], p_parent)?;
+        let dir = rotate(g, parent_pose[2], unit)?;
+        let jx = g.add(parent_pose[0], arm[0])?;
+        let jy = g.add(parent_pose[1], arm[1])?;
+        let (sx, sy) = (g.mul(q_node, dir[0])?, g.mul(q_node, dir[1])?);
+        let px = g.add(jx, sx)?;
+        let py = g.add(jy, sy)?;
+        let back = rotate(g, theta, p_child)?;
+        let x = g.sub(px, back[0])?;
+        let y = g.sub(py, back[1])?;
+        // s0: the child's point from the parent's, along the axis, at the start.
+        let arm0 = rotate(g, parent_start[2], p_parent)?;
+        let j0x = g.add(parent_start[0], arm0[0])?;
+        let j0y = g.add(parent_start[1], arm0[1])?;
+        let tip0 = rotate(g, ct0, p_child)?;
+        let b0x = g.add(cx0, tip0[0])?;
+        let b0y = g.add(cy0, tip0[1])?;
+        let d0x = g.sub(b0x, j0x)?;
+        let d0y = g.sub(b0y, j0y)?;
+        let dir0 = rotate(g, parent_start[2], unit)?;
+        let s1 = g.mul(d0x, dir0[0])?;
+        let s2 = g.mul(d0y, dir0[1])?;
+        let s0 = g.add(s1, s2)?;
+        Ok((q_node, [x, y, theta], [cx0, cy0, ct0], s0))
+    }
+}
+
+/// The joint coordinate's initial rate from the bodies' initial velocities.
+fn joint_rate(
+    g: &mut Graph,
+    j: &JointGeometry,
+    child_velocity: [Id; 3],
+    parent_velocity: [Id; 3],
+) -> crate::Result<Id> {
+    let (rec, child_is_b, p_parent, p_child) = (j.rec, j.child_is_b, j.p_parent, j.p_child);
+    let (parent_start, child_start) = (j.parent_start, j.child_start);
+    let zero = g.zero();
+    if rec.kind == "revolute" {
+        let (b, a) = if child_is_b {
+            (child_velocity[2], parent_velocity[2])
+        } else {
+            (parent_velocity[2], child_velocity[2])
+        };
+        return g.sub(b, a);
+    }
+    // v + ω k × (R(θ) p) of each joint point, along the axis.
+    let point_velocity =
+        |g: &mut crate::Graph, v: [Id; 3], angle: Id, p: [Id; 2]| -> crate::Result<[Id; 2]> {
+            let [rx, ry] = rotate(g, angle, p)?;
+            let wy = g.mul(v[2], ry)?;
+            let wx = g.mul(v[2], rx)?;
+            Ok([g.sub(v[0], wy)?, g.add(v[1], wx)?])
+        };
+    let vb = point_velocity(g, child_velocity, child_start[2], p_child)?;
+    let vj = point_velocity(g, parent_velocity, parent_start[2], p_parent)?;
+    let axis = rec.axis.unwrap_or([zero, zero]);
+    let dir = rotate(g, parent_start[2], axis)?;
+    let (xx, yy) = (g.mul(axis[0], axis[0])?, g.mul(axis[1], axis[1])?);
+    let len2 = g.add(xx, yy)?;
+    let len = g.sqrt(len2)?;
+    let dx = g.sub(vb[0], vj[0])?;
+    let dy = g.sub(vb[1], vj[1])?;
+    let p1 = g.mul(dx, dir[0])?;
+    let p2 = g.mul(dy, dir[1])?;
+    let along = g.add(p1, p2)?;
+    g.div(along, len)
 }

@@ -369,6 +369,7 @@ impl Builder<'_> {
 
     /// The operand of `id`, its operands being done (ascending ids).
     fn node(&mut self, id: Id, time_dependent: bool) -> crate::Result<Operand> {
+        // One match arm per node kind of the expression DAG, each its Taylor recurrence.
         if !time_dependent {
             return Ok(self.constant(id));
         }

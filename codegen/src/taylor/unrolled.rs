@@ -731,6 +731,8 @@ fn jet_in(
     known: &[Option<f64>],
     single_function_terms: usize,
 ) -> UnrolledJet {
+    // The pass manager of an unrolled jet: each pass is a call below, in the order that fixes
+    // the emitted code; the length is the order of the passes, written out.
     let known = known_constants(tape, known);
     let mut folding = fold_linear(tape, &known);
     factor_shared_operands(&mut folding, tape);

@@ -175,6 +175,8 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
     stiffness: Stiffness,
     mut solution: Solution,
 ) -> Result<(Solution, Finish), Error> {
+    // One function, as dopri5.f's and dop853.f's step loops are: step control, stiffness
+    // detection, events and projection act on the same step.
     let n = M::STATES;
     let (rtol, atol) = (options.rtol, options.atol);
     let mut test = match stiffness {

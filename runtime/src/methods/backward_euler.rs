@@ -267,6 +267,8 @@ impl Newton {
         atol: f64,
         effort: &mut Effort,
     ) -> Result<(), Trouble> {
+        // One Newton iteration with its damping, matrix reuse and convergence tests, which
+        // share the iterates; splitting it would pass them each way.
         for (w, v) in self.weights.iter_mut().zip(y) {
             *w = atol + rtol * v.abs();
         }

@@ -228,6 +228,9 @@ pub(crate) fn integrate_watching<M: Model>(
     watch: Option<NonStiffWatch>,
     mut solution: Solution,
 ) -> Result<(Solution, Finish), Error> {
+    // One function, as radau5.f's step loop is: the Newton iteration, the error estimate and
+    // the step-size control share its state (the LU, the last step's stages, θ), and splitting
+    // them would pass a dozen values each way.
     let n = M::STATES;
     // radau5.f tightens the user's tolerances: rtol' = 0.1 rtol^(2/3).
     let rtol = 0.1 * options.rtol.max(1e-15).powf(2.0 / 3.0);

@@ -272,6 +272,8 @@ pub(crate) fn integrate<M: Model>(
     options: &Options,
     mut solution: Solution,
 ) -> Result<Solution, Error> {
+    // One function for the step loop: the order, the step-size rule, the compensated time and
+    // the dense output act on the same step.
     let Some((tape, outputs)) = model.taylor_tape() else {
         let reason = if M::TAYLOR_UNAVAILABLE.is_empty() {
             "it has no Taylor tape"
