@@ -1,0 +1,373 @@
+//! One harness for every method on every reference problem: a table of
+//! problems, each with the methods that apply, its tolerances, its
+//! reference (exact, or published: ../shared/notes/reference-problems.md)
+//! and an error bound, run through each method in turn.
+//!
+//! The bound is the problem's condition, not the method's: a sound error
+//! controller keeps the global error within a problem-dependent multiple
+//! of the tolerance (Shampine's tolerance proportionality; HNW I §II.4),
+//! large where the problem amplifies errors (eccentric orbits, a chaotic
+//! flow) and small where it damps them (stiff problems). Each problem's
+//! solver statistics are pinned by an inline snapshot, so a change in the
+//! steps any method takes is reviewed like a change in code.
+
+use daegen::prelude::*;
+
+include!("models/arenstorf.rs");
+include!("models/kepler.rs");
+include!("models/lorenz.rs");
+include!("models/pendulum.rs");
+include!("models/stiff.rs");
+
+arenstorf_model!();
+kepler_model!();
+lorenz_model!([-8.0, 8.0, 27.0],);
+cash_pendulum_model!();
+van_der_pol_model!();
+robertson_model!();
+hires_model!();
+low_pass_model!();
+
+/// A reference problem: how to run it, how far a run is from its
+/// reference, and what may run it at which tolerances within which bound.
+struct Problem {
+    name: &'static str,
+    run: fn(&Options) -> Result<Solution, Error>,
+    /// The error of a solution against the reference at the end.
+    error: fn(&Solution) -> f64,
+    methods: &'static [Method],
+    tolerances: &'static [f64],
+    /// `atol` is `rtol` times this (1 for most; below the smallest
+    /// component for chemistry).
+    atol_scale: f64,
+    /// The error stays below `bound · tol`.
+    bound: f64,
+}
+
+/// max |y − ref| / max(1, |ref|) over the components.
+fn mixed_error(y: &[f64], reference: &[f64]) -> f64 {
+    y.iter()
+        .zip(reference)
+        .map(|(a, b)| (a - b).abs() / b.abs().max(1.0))
+        .fold(0.0, f64::max)
+}
+
+/// max |y − ref| / |ref|: for components far below 1 (chemistry).
+fn relative_error(y: &[f64], reference: &[f64]) -> f64 {
+    y.iter()
+        .zip(reference)
+        .map(|(a, b)| ((a - b) / b).abs())
+        .fold(0.0, f64::max)
+}
+
+fn problems() -> Vec<Problem> {
+    use Method::*;
+    vec![
+        Problem {
+            name: "kepler",
+            run: |o| Kepler::default().simulate(0.0, 2.0 * std::f64::consts::PI, o),
+            error: |s| mixed_error(s.final_state(), &kepler_exact(2.0 * std::f64::consts::PI)),
+            methods: &[Dopri5, Dop853, Radau5, Taylor, Auto],
+            tolerances: &[1e-6, 1e-8, 1e-10],
+            atol_scale: 1.0,
+            // An eccentric orbit (e = 0.9): the pericentre passage, 19 times
+            // faster than the apocentre, amplifies the local errors and an
+            // energy error shifts the phase along the orbit (10²–10⁵).
+            bound: 1e5,
+        },
+        Problem {
+            name: "arenstorf",
+            run: |o| Arenstorf::default().simulate(0.0, ARENSTORF_T, o),
+            error: |s| mixed_error(s.final_state(), &ARENSTORF_Y0),
+            methods: &[Dopri5, Dop853, Taylor, Auto],
+            tolerances: &[1e-7, 1e-9, 1e-11],
+            atol_scale: 1.0,
+            // Two close approaches to the Moon per period.
+            bound: 1e5,
+        },
+        Problem {
+            name: "lorenz",
+            run: |o| Lorenz::default().simulate(0.0, 16.0, o),
+            error: |s| mixed_error(s.final_state(), &LORENZ_HNW_AT_16),
+            methods: &[Dopri5, Dop853, Taylor],
+            tolerances: &[1e-8, 1e-10, 1e-12],
+            atol_scale: 1.0,
+            // Chaotic: errors grow as e^(0.9 t), 2e6 by t = 16, times the
+            // local error constant of each step.
+            bound: 1e8,
+        },
+        Problem {
+            name: "cash_pendulum",
+            run: |o| CashPendulum::default().simulate(0.0, 10.0, o),
+            error: |s| {
+                let y = s.final_state();
+                let lambda = s.last("lambda").unwrap_or(f64::NAN);
+                mixed_error(&[y[0], y[1], y[2], y[3], lambda], &CASH_PENDULUM_AT_10)
+            },
+            methods: &[Dopri5, Dop853, Radau5, Taylor, Auto],
+            tolerances: &[1e-6, 1e-8, 1e-10],
+            atol_scale: 1.0,
+            // A pendulum over ten swings, projected onto its constraints.
+            bound: 1e3,
+        },
+        Problem {
+            name: "van_der_pol",
+            run: |o| VanDerPol::default().simulate(0.0, 2.0, o),
+            error: |s| mixed_error(s.final_state(), &VDP_AT_2),
+            methods: &[Radau5, Auto],
+            tolerances: &[1e-5, 1e-7, 1e-9],
+            atol_scale: 1.0,
+            // Stiff: the slow manifold damps errors, but the solution
+            // jumps between its branches once before t = 2.
+            bound: 1e2,
+        },
+        Problem {
+            name: "robertson",
+            run: |o| Robertson::default().simulate(0.0, 1e11, o),
+            error: |s| relative_error(s.final_state(), &ROBER_AT_1E11),
+            methods: &[Radau5, Auto],
+            tolerances: &[1e-6, 1e-8, 1e-10],
+            // y2 falls to 1e-13: its absolute tolerance lies far below it.
+            atol_scale: 1e-10,
+            bound: 1e2,
+        },
+        Problem {
+            name: "hires",
+            run: |o| Hires::default().simulate(0.0, 321.8122, o),
+            error: |s| relative_error(s.final_state(), &HIRES_AT_END),
+            methods: &[Radau5, Auto],
+            tolerances: &[1e-6, 1e-8, 1e-10],
+            atol_scale: 1e-4,
+            bound: 1e2,
+        },
+        Problem {
+            name: "low_pass",
+            run: |o| LowPass::default().simulate(0.0, 0.5, o),
+            error: |s| {
+                let m = LowPass::default();
+                let exact = low_pass_exact(0.5, m.tau, m.omega);
+                mixed_error(s.final_state(), &[exact])
+            },
+            methods: &[Dopri5, Dop853, Radau5, Auto],
+            tolerances: &[1e-6, 1e-8, 1e-10],
+            atol_scale: 1.0,
+            // Stiff and damped: the error forgets its past.
+            bound: 1e2,
+        },
+    ]
+}
+
+/// Every method that applies on every problem, each error within the
+/// problem's bound; the statistics of every run, for the snapshots.
+fn run_all() -> Vec<(&'static str, String)> {
+    let mut tables = Vec::new();
+    let mut beyond = Vec::new();
+    for problem in problems() {
+        let mut table = String::new();
+        for &method in problem.methods {
+            for &tol in problem.tolerances {
+                let opts = Options::new()
+                    .method(method)
+                    .rtol(tol)
+                    .atol(tol * problem.atol_scale);
+                let sol = match (problem.run)(&opts) {
+                    Ok(sol) => sol,
+                    Err(e) => panic!("{} with {method:?} at {tol:e}: {e}", problem.name),
+                };
+                let error = (problem.error)(&sol);
+                if !(error <= problem.bound * tol) {
+                    beyond.push(format!(
+                        "{} with {method:?} at {tol:e}: error {error:e} = {:.1e} tol, above {:e}",
+                        problem.name,
+                        error / tol,
+                        problem.bound * tol
+                    ));
+                }
+                let s = sol.stats();
+                let asked = format!("{method:?}");
+                let ran = if asked == s.method {
+                    asked
+                } else {
+                    format!("{asked} ({})", s.method)
+                };
+                let tol = format!("{tol:.0e}");
+                table.push_str(&format!(
+                    "{ran:<21} {tol:<6} {:>5} steps {:>4} rejected {:>6} f {:>4} J\n",
+                    s.steps, s.rejected, s.rhs_evals, s.jacobian_evals
+                ));
+            }
+        }
+        tables.push((problem.name, table));
+    }
+    assert!(beyond.is_empty(), "{}", beyond.join("\n"));
+    tables
+}
+
+#[test]
+fn every_method_meets_every_reference_within_its_bound() {
+    let tables = run_all();
+    for (name, table) in &tables {
+        println!("{name}\n{table}");
+    }
+    let table = |name: &str| {
+        tables
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, t)| t.clone())
+            .unwrap_or_default()
+    };
+    insta::assert_snapshot!(table("kepler"), @r"
+Dopri5                1e-6      52 steps   17 rejected    416 f    0 J
+Dopri5                1e-8     118 steps    9 rejected    764 f    0 J
+Dopri5                1e-10    294 steps    1 rejected   1772 f    0 J
+Dop853                1e-6      27 steps   11 rejected    539 f    0 J
+Dop853                1e-8      42 steps   17 rejected    836 f    0 J
+Dop853                1e-10     70 steps   30 rejected   1412 f    0 J
+Radau5                1e-6      87 steps    0 rejected    597 f   82 J
+Radau5                1e-8     182 steps    1 rejected   1268 f   72 J
+Radau5                1e-10    390 steps    0 rejected   2718 f   42 J
+Taylor                1e-6      50 steps    0 rejected     50 f    0 J
+Taylor                1e-8      49 steps    0 rejected     49 f    0 J
+Taylor                1e-10     51 steps    0 rejected     51 f    0 J
+Auto (Dopri5)         1e-6      52 steps   17 rejected    416 f    0 J
+Auto (Dop853)         1e-8      42 steps   17 rejected    836 f    0 J
+Auto (Dop853)         1e-10     70 steps   30 rejected   1412 f    0 J
+    ");
+    insta::assert_snapshot!(table("arenstorf"), @r"
+Dopri5                1e-7     216 steps   24 rejected   1442 f    0 J
+Dopri5                1e-9     530 steps    5 rejected   3212 f    0 J
+Dopri5                1e-11   1333 steps    2 rejected   8012 f    0 J
+Dop853                1e-7      83 steps   33 rejected   1643 f    0 J
+Dop853                1e-9     136 steps   50 rejected   2642 f    0 J
+Dop853                1e-11    229 steps   69 rejected   4265 f    0 J
+Taylor                1e-7     138 steps    0 rejected    138 f    0 J
+Taylor                1e-9     145 steps    0 rejected    145 f    0 J
+Taylor                1e-11    125 steps    0 rejected    125 f    0 J
+Auto (Dopri5)         1e-7     216 steps   24 rejected   1442 f    0 J
+Auto (Dop853)         1e-9     136 steps   50 rejected   2642 f    0 J
+Auto (Dop853)         1e-11    229 steps   69 rejected   4265 f    0 J
+    ");
+    insta::assert_snapshot!(table("lorenz"), @r"
+Dopri5                1e-8    1713 steps    3 rejected  10298 f    0 J
+Dopri5                1e-10   4279 steps    0 rejected  25676 f    0 J
+Dopri5                1e-12  10731 steps    0 rejected  64388 f    0 J
+Dop853                1e-8     401 steps  112 rejected   7361 f    0 J
+Dop853                1e-10    693 steps   62 rejected  11141 f    0 J
+Dop853                1e-12   1228 steps   46 rejected  18974 f    0 J
+Taylor                1e-8     352 steps    0 rejected    352 f    0 J
+Taylor                1e-10    364 steps    0 rejected    364 f    0 J
+Taylor                1e-12    374 steps    0 rejected    374 f    0 J
+    ");
+    insta::assert_snapshot!(table("cash_pendulum"), @r"
+Dopri5                1e-6      60 steps    4 rejected    446 f    0 J
+Dopri5                1e-8     144 steps    0 rejected   1010 f    0 J
+Dopri5                1e-10    359 steps    0 rejected   2515 f    0 J
+Dop853                1e-6      22 steps    6 rejected    426 f    0 J
+Dop853                1e-8      37 steps    6 rejected    666 f    0 J
+Dop853                1e-10     63 steps   10 rejected   1130 f    0 J
+Radau5                1e-6      93 steps    0 rejected    636 f   86 J
+Radau5                1e-8     192 steps    0 rejected   1329 f  163 J
+Radau5                1e-10    410 steps    0 rejected   2858 f  111 J
+Taylor                1e-6      42 steps    0 rejected     42 f    0 J
+Taylor                1e-8      36 steps    0 rejected     36 f    0 J
+Taylor                1e-10     37 steps    0 rejected     37 f    0 J
+Auto (Dopri5)         1e-6      60 steps    4 rejected    446 f    0 J
+Auto (Dop853)         1e-8      37 steps    6 rejected    666 f    0 J
+Auto (Dop853)         1e-10     63 steps   10 rejected   1130 f    0 J
+    ");
+    insta::assert_snapshot!(table("van_der_pol"), @r"
+Radau5                1e-5     339 steps    8 rejected   2962 f  222 J
+Radau5                1e-7     711 steps    8 rejected   5735 f  434 J
+Radau5                1e-9    1538 steps    4 rejected  11908 f  530 J
+Auto (Dopri5⇄Radau5)  1e-5     264 steps   50 rejected   2552 f   62 J
+Auto (Dopri5⇄Radau5)  1e-7     623 steps   19 rejected   4758 f  114 J
+Auto (Dop853⇄Radau5)  1e-9     522 steps   86 rejected   7781 f  269 J
+    ");
+    insta::assert_snapshot!(table("robertson"), @r"
+Radau5                1e-6     299 steps    2 rejected   2222 f  279 J
+Radau5                1e-8     620 steps    2 rejected   4655 f  376 J
+Radau5                1e-10   1326 steps    2 rejected   9960 f  499 J
+Auto (Dopri5→Radau5)  1e-6     299 steps    1 rejected   2189 f  253 J
+Auto (Dop853→Radau5)  1e-8     566 steps    4 rejected   4552 f  357 J
+Auto (Dop853→Radau5)  1e-10   1193 steps    3 rejected   9369 f  485 J
+    ");
+    insta::assert_snapshot!(table("hires"), @r"
+Radau5                1e-6     117 steps    2 rejected   1140 f   73 J
+Radau5                1e-8     235 steps    1 rejected   2050 f  134 J
+Radau5                1e-10    501 steps    1 rejected   4110 f  229 J
+Auto (Dopri5→Radau5)  1e-6     328 steps    2 rejected   2299 f   24 J
+Auto (Dop853→Radau5)  1e-8     181 steps    4 rejected   2089 f   79 J
+Auto (Dop853→Radau5)  1e-10    473 steps    6 rejected   5692 f  124 J
+    ");
+    insta::assert_snapshot!(table("low_pass"), @r"
+Dopri5                1e-6    1361 steps    4 rejected   8192 f    0 J
+Dopri5                1e-8    3116 steps    6 rejected  18734 f    0 J
+Dopri5                1e-10   7504 steps    7 rejected  45068 f    0 J
+Dop853                1e-6     485 steps   54 rejected   7925 f    0 J
+Dop853                1e-8    1317 steps    8 rejected  19853 f    0 J
+Dop853                1e-10   2953 steps    6 rejected  44369 f    0 J
+Radau5                1e-6      45 steps    7 rejected    238 f    8 J
+Radau5                1e-8      97 steps    8 rejected    493 f    9 J
+Radau5                1e-10    222 steps    8 rejected   1127 f    9 J
+Auto (Dopri5→Radau5)  1e-6      61 steps    9 rejected    352 f   10 J
+Auto (Dop853→Radau5)  1e-8     101 steps    7 rejected    714 f    8 J
+Auto (Dop853→Radau5)  1e-10    223 steps    4 rejected   1424 f    5 J
+    ");
+}
+
+/// Course notes, Example 1.1's system has no closed form; its reference
+/// is SciPy's DOP853 at rtol 1e-13 (tests/models.rs). The fixed-step
+/// methods converge on the oscillator x'' = −x, whose solution is cos t,
+/// at their orders: the error falls by 2^p as the step halves.
+#[test]
+fn every_fixed_step_method_converges_at_its_order() {
+    #[dae_model(taylor = 6)]
+    fn oscillator() {
+        let x = state(1.0);
+        let v = state(0.0);
+        der(x) == v;
+        der(v) == -x;
+    }
+    let methods: [(Method, f64, f64); 9] = [
+        (Method::Euler, 1.0, 1e-3),
+        (Method::BackwardEuler, 1.0, 1e-3),
+        (Method::Midpoint, 2.0, 5e-3),
+        (Method::Heun, 2.0, 5e-3),
+        (Method::Ralston, 2.0, 5e-3),
+        (Method::Rk4, 4.0, 2e-2),
+        (Method::Rk38, 4.0, 2e-2),
+        (
+            Method::TaylorFixed {
+                order: 4,
+                step: 0.0,
+            },
+            4.0,
+            2e-2,
+        ),
+        (
+            Method::TaylorFixed {
+                order: 6,
+                step: 0.0,
+            },
+            6.0,
+            1e-1,
+        ),
+    ];
+    for (method, order, h) in methods {
+        let error = |h: f64| {
+            let opts = match method {
+                Method::TaylorFixed { order, .. } => {
+                    Options::new().method(Method::TaylorFixed { order, step: h })
+                }
+                m => Options::new().method(m).step(h),
+            };
+            let sol = Oscillator::default().simulate(0.0, 2.0, &opts).unwrap();
+            (sol.last("x").unwrap() - 2f64.cos()).abs()
+        };
+        let rate = (error(h) / error(h / 2.0)).log2();
+        assert!(
+            (rate - order).abs() < 0.15,
+            "{method:?}: observed order {rate:.3}, expected {order}"
+        );
+    }
+}
