@@ -1,117 +1,244 @@
-//! Snapshots of the full `#[dae_model]` expansion, formatted with
-//! prettyplease: every change to the generated models is reviewed here.
+//! Snapshots of the generated code of small models, one per generated
+//! item (`rhs`, `jacobian`, the Taylor jet, the constraints, …), each
+//! formatted alone with prettyplease and short enough to review: every
+//! change to what a model expands to is read here.
 
 use daegen::codegen::expand_dae_model;
 use quote::quote;
+use std::collections::BTreeMap;
 
-fn expand(item: proc_macro2::TokenStream) -> String {
-    expand_with(proc_macro2::TokenStream::new(), item)
+/// The longest snapshot a reviewer is asked to read.
+const MAX_LINES: usize = 80;
+
+/// The whole expansion as text, for tests that search it.
+fn expand_with(attr: proc_macro2::TokenStream, item: proc_macro2::TokenStream) -> String {
+    prettyplease::unparse(&parsed(attr, item))
 }
 
-fn expand_with(attr: proc_macro2::TokenStream, item: proc_macro2::TokenStream) -> String {
+fn parsed(attr: proc_macro2::TokenStream, item: proc_macro2::TokenStream) -> syn::File {
     let tokens = expand_dae_model(attr, item);
     match syn::parse2::<syn::File>(tokens.clone()) {
-        Ok(file) => prettyplease::unparse(&file),
+        Ok(file) => file,
         Err(e) => panic!("expansion does not parse: {e}\n{tokens}"),
+    }
+}
+
+/// Each generated item, formatted alone, by `Type::item`: the methods and
+/// constants of every `impl` (the `Model` implementation, the mass-matrix
+/// form's, inherent ones), and each struct by its name.
+fn items(
+    attr: proc_macro2::TokenStream,
+    item: proc_macro2::TokenStream,
+) -> BTreeMap<String, String> {
+    let file = parsed(attr, item);
+    let alone = |item: syn::Item| {
+        prettyplease::unparse(&syn::File {
+            shebang: None,
+            attrs: Vec::new(),
+            items: vec![item],
+        })
+    };
+    let mut out = BTreeMap::new();
+    for item in &file.items {
+        match item {
+            syn::Item::Struct(s) => {
+                out.insert(s.ident.to_string(), alone(item.clone()));
+            }
+            syn::Item::Impl(i) => {
+                let ty = match &*i.self_ty {
+                    syn::Type::Path(p) => p.path.segments.last().map(|s| s.ident.to_string()),
+                    _ => None,
+                }
+                .unwrap_or_default();
+                for member in &i.items {
+                    let name = match member {
+                        syn::ImplItem::Fn(f) => f.sig.ident.to_string(),
+                        syn::ImplItem::Const(c) => c.ident.to_string(),
+                        syn::ImplItem::Type(t) => t.ident.to_string(),
+                        _ => continue,
+                    };
+                    // The item alone, without the impl's lint attributes.
+                    let mut one = i.clone();
+                    one.attrs.clear();
+                    one.items = vec![member.clone()];
+                    out.insert(format!("{ty}::{name}"), alone(syn::Item::Impl(one)));
+                }
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+/// Snapshots the items `keys` of a model's expansion, each at most
+/// `MAX_LINES` long, as `{test}__{Type}__{item}`.
+fn snapshot(test: &str, items: &BTreeMap<String, String>, keys: &[&str]) {
+    for key in keys {
+        let Some(text) = items.get(*key) else {
+            panic!(
+                "no item `{key}`; there are {:?}",
+                items.keys().collect::<Vec<_>>()
+            );
+        };
+        let lines = text.lines().count();
+        assert!(
+            lines <= MAX_LINES,
+            "`{key}` is {lines} lines: snapshot a smaller model"
+        );
+        let name = format!("{test}__{}", key.replace("::", "__"));
+        insta::assert_snapshot!(name.as_str(), text);
     }
 }
 
 #[test]
 fn pendulum_in_its_angle() {
-    insta::assert_snapshot!(expand(quote! {
-        /// Planar pendulum in its angle: the contract's pendulum as an ODE.
-        fn pendulum() {
-            /// Length (m).
-            let l = param(1.0);
-            /// Gravity (m/s²).
-            let g = param(9.81);
-            let theta = state(1.0);
-            init(der(theta), 0.0);
-            der(der(theta)) == -g / l * sin(theta);
-            /// Energy per unit mass (J/kg).
-            let energy = output(0.5 * l * l * der(theta) * der(theta) - g * l * cos(theta));
-        }
-    }));
+    let items = items(
+        proc_macro2::TokenStream::new(),
+        quote! {
+            /// Planar pendulum in its angle: the contract's pendulum as an ODE.
+            fn pendulum() {
+                /// Length (m).
+                let l = param(1.0);
+                /// Gravity (m/s²).
+                let g = param(9.81);
+                let theta = state(1.0);
+                init(der(theta), 0.0);
+                der(der(theta)) == -g / l * sin(theta);
+                /// Energy per unit mass (J/kg).
+                let energy = output(0.5 * l * l * der(theta) * der(theta) - g * l * cos(theta));
+            }
+        },
+    );
+    snapshot(
+        "pendulum_in_its_angle",
+        &items,
+        &[
+            "Pendulum::rhs",
+            "Pendulum::jacobian",
+            "Pendulum::output",
+            "Pendulum::INFO",
+        ],
+    );
 }
 
 #[test]
 fn harmonic_oscillator_with_second_derivative() {
-    insta::assert_snapshot!(expand(quote! {
-        fn oscillator() {
-            let omega = param(2.0);
-            let x = state(1.0);
-            der(der(x)) == -omega.powi(2) * x;
-        }
-    }));
+    let items = items(
+        proc_macro2::TokenStream::new(),
+        quote! {
+            fn oscillator() {
+                let omega = param(2.0);
+                let x = state(1.0);
+                der(der(x)) == -omega.powi(2) * x;
+            }
+        },
+    );
+    snapshot(
+        "harmonic_oscillator_with_second_derivative",
+        &items,
+        &["Oscillator::rhs", "Oscillator::taylor_tape"],
+    );
 }
 
 #[test]
 fn example_1_1_third_order_system() {
-    insta::assert_snapshot!(expand(quote! {
-        /// Course notes, Example 1.1.
-        fn example_1_1() {
-            let t = time();
-            let x = state(0.0);
-            let y = state(0.0);
-            init(der(x), 0.0);
-            init(der(der(x)), 2.0);
-            init(der(y), 2.0);
-            der(der(der(x))) + der(y) == x * x + t;
-            der(der(y)) + x == t * t + 1.0;
-        }
-    }));
+    let items = items(
+        proc_macro2::TokenStream::new(),
+        quote! {
+            /// Course notes, Example 1.1.
+            fn example_1_1() {
+                let t = time();
+                let x = state(0.0);
+                let y = state(0.0);
+                init(der(x), 0.0);
+                init(der(der(x)), 2.0);
+                init(der(y), 2.0);
+                der(der(der(x))) + der(y) == x * x + t;
+                der(der(y)) + x == t * t + 1.0;
+            }
+        },
+    );
+    snapshot(
+        "example_1_1_third_order_system",
+        &items,
+        &[
+            "Example11::rhs",
+            "Example11::initial_state",
+            "Example11::time_derivative",
+        ],
+    );
 }
 
 #[test]
 fn three_body_with_state_arrays_and_loops() {
-    insta::assert_snapshot!(expand(quote! {
-        fn three_body() {
-            const N: usize = 3;
-            let gm = param(1.0);
-            let x = state_array([1.0, -0.5, -0.5]);
-            let y = state_array([0.0, 0.8660254037844386, -0.8660254037844386]);
-            let u = state_array([0.0; N]);
-            let v = state_array([0.0; N]);
-            for i in 0..N {
-                der(x[i]) == u[i];
-                der(y[i]) == v[i];
-                let mut ax = 0.0;
-                let mut ay = 0.0;
-                for j in 0..N {
-                    if j != i {
-                        let dx = x[j] - x[i];
-                        let dy = y[j] - y[i];
-                        let r3 = (dx * dx + dy * dy).powf(-1.5);
-                        ax += gm * dx * r3;
-                        ay += gm * dy * r3;
+    let items = items(
+        proc_macro2::TokenStream::new(),
+        quote! {
+            fn three_body() {
+                const N: usize = 3;
+                let gm = param(1.0);
+                let x = state_array([1.0, -0.5, -0.5]);
+                let y = state_array([0.0, 0.8660254037844386, -0.8660254037844386]);
+                let u = state_array([0.0; N]);
+                let v = state_array([0.0; N]);
+                for i in 0..N {
+                    der(x[i]) == u[i];
+                    der(y[i]) == v[i];
+                    let mut ax = 0.0;
+                    let mut ay = 0.0;
+                    for j in 0..N {
+                        if j != i {
+                            let dx = x[j] - x[i];
+                            let dy = y[j] - y[i];
+                            let r3 = (dx * dx + dy * dy).powf(-1.5);
+                            ax += gm * dx * r3;
+                            ay += gm * dy * r3;
+                        }
                     }
+                    der(u[i]) == ax;
+                    der(v[i]) == ay;
                 }
-                der(u[i]) == ax;
-                der(v[i]) == ay;
             }
-        }
-    }));
+        },
+    );
+    snapshot(
+        "three_body_with_state_arrays_and_loops",
+        &items,
+        &[
+            "ThreeBody::rhs",
+            "ThreeBody::taylor_tape",
+            "ThreeBody::JACOBIAN_PATTERN",
+        ],
+    );
 }
 
 #[test]
 fn double_pendulum_with_a_mass_matrix_solved_symbolically() {
-    insta::assert_snapshot!(expand(quote! {
-        fn double_pendulum() {
-            let g = param(9.81);
-            let a = state(1.0);
-            let b = state(-0.5);
-            let c = cos(a - b);
-            let s = sin(a - b);
-            2.0 * der(der(a)) + c * der(der(b)) == -s * der(b) * der(b) - 2.0 * g * sin(a);
-            c * der(der(a)) + der(der(b)) == s * der(a) * der(a) - g * sin(b);
-        }
-    }));
+    let items = items(
+        proc_macro2::TokenStream::new(),
+        quote! {
+            fn double_pendulum() {
+                let g = param(9.81);
+                let a = state(1.0);
+                let b = state(-0.5);
+                let c = cos(a - b);
+                let s = sin(a - b);
+                2.0 * der(der(a)) + c * der(der(b)) == -s * der(b) * der(b) - 2.0 * g * sin(a);
+                c * der(der(a)) + der(der(b)) == s * der(a) * der(a) - g * sin(b);
+            }
+        },
+    );
+    snapshot(
+        "double_pendulum_with_a_mass_matrix_solved_symbolically",
+        &items,
+        &["DoublePendulum::rhs", "DoublePendulum::jacobian"],
+    );
 }
 
 /// Course notes Example 1.4 with the economic Taylor derivatives of order 4.
 #[test]
 fn example_1_4_with_taylor_derivatives_of_order_4() {
-    insta::assert_snapshot!(expand_with(
+    let items = items(
         quote!(taylor = 4),
         quote! {
             fn example_1_4() {
@@ -119,35 +246,52 @@ fn example_1_4_with_taylor_derivatives_of_order_4() {
                 let y = state(1.0);
                 der(y) == x * y + x;
             }
-        }
-    ));
+        },
+    );
+    snapshot(
+        "example_1_4_with_taylor_derivatives_of_order_4",
+        &items,
+        &["Example14::taylor_derivatives"],
+    );
 }
 
 #[test]
 fn bouncing_ball_with_a_terminal_event() {
     // The event function and its rate along the solution (for crossings
     // hidden between two samples), each emitted once for all events.
-    insta::assert_snapshot!(expand(quote! {
-        fn bouncing_ball() {
-            let g = param(9.81);
-            let height = state(10.0);
-            der(der(height)) == -g;
-            /// The ball reaches the ground.
-            let impact = event(height).falling().terminal();
-            let apex = event(der(height) * height);
-        }
-    }));
+    let items = items(
+        proc_macro2::TokenStream::new(),
+        quote! {
+            fn bouncing_ball() {
+                let g = param(9.81);
+                let height = state(10.0);
+                der(der(height)) == -g;
+                /// The ball reaches the ground.
+                let impact = event(height).falling().terminal();
+                let apex = event(der(height) * height);
+            }
+        },
+    );
+    snapshot(
+        "bouncing_ball_with_a_terminal_event",
+        &items,
+        &[
+            "BouncingBall::events",
+            "BouncingBall::event_rates",
+            "BouncingBall::INFO",
+        ],
+    );
 }
 
-/// The unrolled Taylor recurrences of order 3 for a forced logistic
+/// The unrolled Taylor recurrences of order 2 for a forced logistic
 /// equation: a product, a sine/cosine pair of the time and a constant, each
 /// coefficient one slot of `r`, one function per order; the negation and
 /// `1 − x` are one folded sum, and `k·x·(1 − x)` is folded into the output
 /// with its weight `k` computed once (`taylor_folding`).
 #[test]
-fn logistic_with_unrolled_taylor_recurrences_of_order_3() {
-    insta::assert_snapshot!(expand_with(
-        quote!(unroll = [3]),
+fn logistic_with_unrolled_taylor_recurrences_of_order_2() {
+    let items = items(
+        quote!(unroll = [2]),
         quote! {
             fn forced_logistic() {
                 let t = time();
@@ -155,8 +299,13 @@ fn logistic_with_unrolled_taylor_recurrences_of_order_3() {
                 let x = state(0.5);
                 der(x) == k * x * (1.0 - x) + sin(t);
             }
-        }
-    ));
+        },
+    );
+    snapshot(
+        "logistic_with_unrolled_taylor_recurrences_of_order_2",
+        &items,
+        &["ForcedLogistic::taylor_jet_unrolled"],
+    );
 }
 
 /// Products that differ only by constant factors share one convolution on
@@ -215,60 +364,86 @@ fn taylor_tape_shares_a_product_with_a_negated_difference() {
 
 #[test]
 fn cartesian_pendulum_as_an_index_3_dae() {
-    insta::assert_snapshot!(expand(quote! {
-        /// The contract's pendulum: index 3, the KKT system solved at run
-        /// time, position and velocity constraints projected onto.
-        fn pendulum() {
-            let m = param(1.0);
-            let l = param(1.0);
-            let g = param(9.81);
-            let x = state(1.0);
-            let y = state(0.0);
-            let u = state(0.0);
-            let v = state(0.0);
-            let lambda = algebraic(0.0);
-            der(x) == u;
-            der(y) == v;
-            m * der(u) == -lambda * x;
-            m * der(v) == -lambda * y - m * g;
-            constraint(x * x + y * y - l * l);
-            let energy = output(0.5 * m * (u * u + v * v) + m * g * y);
-        }
-    }));
+    let items = items(
+        proc_macro2::TokenStream::new(),
+        quote! {
+            /// The contract's pendulum: index 3, the KKT system solved at run
+            /// time, position and velocity constraints projected onto.
+            fn pendulum() {
+                let m = param(1.0);
+                let l = param(1.0);
+                let g = param(9.81);
+                let x = state(1.0);
+                let y = state(0.0);
+                let u = state(0.0);
+                let v = state(0.0);
+                let lambda = algebraic(0.0);
+                der(x) == u;
+                der(y) == v;
+                m * der(u) == -lambda * x;
+                m * der(v) == -lambda * y - m * g;
+                constraint(x * x + y * y - l * l);
+                let energy = output(0.5 * m * (u * u + v * v) + m * g * y);
+            }
+        },
+    );
+    snapshot(
+        "cartesian_pendulum_as_an_index_3_dae",
+        &items,
+        &[
+            "Pendulum::rhs",
+            "Pendulum::constraints",
+            "Pendulum::constraint_jacobian",
+            "Pendulum::CONSTRAINTS",
+            "PendulumMassForm::rhs",
+        ],
+    );
 }
 
 #[test]
 fn cartesian_double_pendulum_reduces_its_kkt_system_to_the_multipliers() {
-    insta::assert_snapshot!(expand(quote! {
-        /// Two point masses on massless rods: a 6 × 6 KKT system whose four
-        /// accelerations have constant pivots, leaving the 2 × 2 Schur
-        /// complement in the multipliers, solved symbolically.
-        fn double_pendulum_cartesian() {
-            let g = param(9.81);
-            let x1 = state(1.0);
-            let y1 = state(0.0);
-            let x2 = state(2.0);
-            let y2 = state(0.0);
-            let l1 = algebraic(0.0);
-            let l2 = algebraic(0.0);
-            der(der(x1)) == -l1 * x1 + l2 * (x2 - x1);
-            der(der(y1)) == -l1 * y1 + l2 * (y2 - y1) - g;
-            der(der(x2)) == -l2 * (x2 - x1);
-            der(der(y2)) == -l2 * (y2 - y1) - g;
-            constraint(x1 * x1 + y1 * y1 - 1.0);
-            constraint((x2 - x1) * (x2 - x1) + (y2 - y1) * (y2 - y1) - 1.0);
-        }
-    }));
+    let items = items(
+        proc_macro2::TokenStream::new(),
+        quote! {
+            /// Two point masses on massless rods: a 6 × 6 KKT system whose four
+            /// accelerations have constant pivots, leaving the 2 × 2 Schur
+            /// complement in the multipliers, solved symbolically.
+            fn double_pendulum_cartesian() {
+                let g = param(9.81);
+                let x1 = state(1.0);
+                let y1 = state(0.0);
+                let x2 = state(2.0);
+                let y2 = state(0.0);
+                let l1 = algebraic(0.0);
+                let l2 = algebraic(0.0);
+                der(der(x1)) == -l1 * x1 + l2 * (x2 - x1);
+                der(der(y1)) == -l1 * y1 + l2 * (y2 - y1) - g;
+                der(der(x2)) == -l2 * (x2 - x1);
+                der(der(y2)) == -l2 * (y2 - y1) - g;
+                constraint(x1 * x1 + y1 * y1 - 1.0);
+                constraint((x2 - x1) * (x2 - x1) + (y2 - y1) * (y2 - y1) - 1.0);
+            }
+        },
+    );
+    snapshot(
+        "cartesian_double_pendulum_reduces_its_kkt_system_to_the_multipliers",
+        &items,
+        &[
+            "DoublePendulumCartesian::rhs",
+            "DoublePendulumCartesian::output",
+            "DoublePendulumCartesian::constraints",
+        ],
+    );
 }
 
 /// Two products sharing the factor x, once shifted by a constant, at order
-/// 3 (`taylor_factoring`): `(x + 1)·sin y + x·cos y` is written as its heads
+/// 2 (`taylor_factoring`): `(x + 1)·sin y + x·cos y` is written as its heads
 /// `(x + 1)^[0]·sin^[k]` and `x^[0]·cos^[k]` plus one convolution
 /// `Σ_{j≥1} x^[j]·e^[k−j]` on the row `e = sin y + cos y`.
 #[test]
-fn products_sharing_a_factor_with_unrolled_taylor_recurrences_of_order_3() {
-    insta::assert_snapshot!(expand_with(
-        quote!(unroll = [3]),
+fn products_sharing_a_factor_with_unrolled_taylor_recurrences_of_order_2() {
+    let items = items(
+        quote!(unroll = [2]),
         quote! {
             fn shared_factor() {
                 let x = state(0.5);
@@ -276,32 +451,38 @@ fn products_sharing_a_factor_with_unrolled_taylor_recurrences_of_order_3() {
                 der(x) == (x + 1.0) * sin(y) + x * cos(y);
                 der(y) == -x;
             }
-        }
-    ));
+        },
+    );
+    snapshot(
+        "products_sharing_a_factor_with_unrolled_taylor_recurrences_of_order_2",
+        &items,
+        &["SharedFactor::taylor_jet_unrolled"],
+    );
 }
 
-/// Kepler's problem unrolled at order 2: x and y, and their velocities, are
-/// lane pairs (`taylor_lanes`) — their rows interleaved in `r`, written side
-/// by side and copied to `seeds` for the vectoriser — the squares of
-/// x² + y² are a pair of sums inside one row, and the power r⁻³ is read by
-/// both lanes.
+/// Two symmetric rows unrolled at order 2, x' = −x s, y' = −y s with
+/// s = x + y (Kepler's shape in first order, without the power): x and y
+/// are a lane pair (`taylor_lanes`) — their rows interleaved in `r`,
+/// written side by side and copied to `seeds` for the vectoriser — and the
+/// shared s is one row read by both lanes.
 #[test]
-fn kepler_with_lane_pairs_at_order_2() {
-    insta::assert_snapshot!(expand_with(
+fn symmetric_rows_as_a_lane_pair_at_order_2() {
+    let items = items(
         quote!(unroll = [2]),
         quote! {
-            fn kepler() {
+            fn central() {
                 let x = state(0.5);
-                let y = state(0.0);
-                let u = state(0.0);
-                let v = state(1.5);
-                der(x) == u;
-                der(y) == v;
-                der(u) == -x * (x * x + y * y).powf(-1.5);
-                der(v) == -y * (x * x + y * y).powf(-1.5);
+                let y = state(0.25);
+                der(x) == -x * (x + y);
+                der(y) == -y * (x + y);
             }
-        }
-    ));
+        },
+    );
+    snapshot(
+        "symmetric_rows_as_a_lane_pair_at_order_2",
+        &items,
+        &["Central::taylor_jet_unrolled"],
+    );
 }
 
 /// A capacitor between two nodes written at both: the rows of the node
@@ -312,16 +493,29 @@ fn kepler_with_lane_pairs_at_order_2() {
 /// matrix as written (`MASS_PATTERN`).
 #[test]
 fn a_capacitor_between_two_nodes_combines_their_equations() {
-    insta::assert_snapshot!(expand(quote! {
-        fn two_nodes() {
-            let c = param(1e-6);
-            let r = param(1000.0);
-            let v1 = state(1.0);
-            let v2 = state(0.0);
-            c * der(v1) - c * der(v2) == -v1 / r;
-            -c * der(v1) + c * der(v2) == -v2 / r + v1 / r;
-        }
-    }));
+    let items = items(
+        proc_macro2::TokenStream::new(),
+        quote! {
+            fn two_nodes() {
+                let c = param(1e-6);
+                let r = param(1000.0);
+                let v1 = state(1.0);
+                let v2 = state(0.0);
+                c * der(v1) - c * der(v2) == -v1 / r;
+                -c * der(v1) + c * der(v2) == -v2 / r + v1 / r;
+            }
+        },
+    );
+    snapshot(
+        "a_capacitor_between_two_nodes_combines_their_equations",
+        &items,
+        &[
+            "TwoNodes::rhs",
+            "TwoNodes::degenerate_parameters",
+            "TwoNodes::CONSTRAINTS",
+            "TwoNodesMassForm::mass_values",
+        ],
+    );
 }
 
 /// An algebraic equation quadratic in its variable: the model solves it by
@@ -329,12 +523,24 @@ fn a_capacitor_between_two_nodes_combines_their_equations() {
 /// and ∂g/∂z generated), and the rest reads z from that solve.
 #[test]
 fn a_nonlinear_algebraic_equation_is_solved_by_newton() {
-    insta::assert_snapshot!(expand(quote! {
-        fn quadratic() {
-            let y = state(2.0);
-            let z = algebraic(1.0);
-            der(y) == -z;
-            0.0 == z * z + z - y;
-        }
-    }));
+    let items = items(
+        proc_macro2::TokenStream::new(),
+        quote! {
+            fn quadratic() {
+                let y = state(2.0);
+                let z = algebraic(1.0);
+                der(y) == -z;
+                0.0 == z * z + z - y;
+            }
+        },
+    );
+    snapshot(
+        "a_nonlinear_algebraic_equation_is_solved_by_newton",
+        &items,
+        &[
+            "Quadratic::__daegen_algebraics",
+            "Quadratic::rhs",
+            "Quadratic::output",
+        ],
+    );
 }

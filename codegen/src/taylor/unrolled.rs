@@ -1014,6 +1014,35 @@ mod tests {
             }
         };
         let file: syn::File = syn::parse2(tokens).expect("the jet parses");
-        insta::assert_snapshot!(prettyplease::unparse(&file));
+        // One snapshot per function of the jet, each short enough to read:
+        // the functions it defines, then what is left of it.
+        let syn::Item::Fn(mut jet) = file.items[0].clone() else {
+            panic!("the jet is a function")
+        };
+        let mut pieces = Vec::new();
+        jet.block.stmts.retain(|stmt| match stmt {
+            syn::Stmt::Item(syn::Item::Fn(f)) => {
+                pieces.push((f.sig.ident.to_string(), syn::Item::Fn(f.clone())));
+                false
+            }
+            _ => true,
+        });
+        pieces.push(("driver".to_string(), syn::Item::Fn(jet)));
+        for (name, item) in pieces {
+            let text = prettyplease::unparse(&syn::File {
+                shebang: None,
+                attrs: Vec::new(),
+                items: vec![item],
+            });
+            assert!(
+                text.lines().count() <= 80,
+                "{name}: {} lines",
+                text.lines().count()
+            );
+            insta::assert_snapshot!(
+                format!("three_bodies_in_lane_groups_at_order_3__{name}"),
+                text
+            );
+        }
     }
 }
