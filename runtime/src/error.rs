@@ -206,37 +206,34 @@ pub enum Error {
     },
 }
 
+/// The errors of a run, which keep the solution up to the failure: one
+/// list for both borrows of it.
+macro_rules! with_partial {
+    ($error:expr, $partial:ident => $found:expr) => {
+        match $error {
+            Error::NonFinite { $partial, .. }
+            | Error::Evaluation { $partial, .. }
+            | Error::MaxSteps { $partial, .. }
+            | Error::Stiff { $partial, .. }
+            | Error::StepSizeUnderflow { $partial, .. }
+            | Error::NewtonFailure { $partial, .. }
+            | Error::SingularMatrix { $partial, .. }
+            | Error::EventChatter { $partial, .. }
+            | Error::Constraint { $partial, .. } => Some($found),
+            _ => None,
+        }
+    };
+}
+
 impl Error {
     /// The partial solution, to label it.
     pub(crate) fn partial_solution_mut(&mut self) -> Option<&mut Solution> {
-        match self {
-            Error::NonFinite { partial, .. }
-            | Error::Evaluation { partial, .. }
-            | Error::MaxSteps { partial, .. }
-            | Error::Stiff { partial, .. }
-            | Error::StepSizeUnderflow { partial, .. }
-            | Error::NewtonFailure { partial, .. }
-            | Error::SingularMatrix { partial, .. }
-            | Error::EventChatter { partial, .. }
-            | Error::Constraint { partial, .. } => Some(partial),
-            _ => None,
-        }
+        with_partial!(self, partial => &mut **partial)
     }
 
     /// The solution computed before the failure, if the run got that far.
     pub fn partial_solution(&self) -> Option<&Solution> {
-        match self {
-            Error::NonFinite { partial, .. }
-            | Error::Evaluation { partial, .. }
-            | Error::MaxSteps { partial, .. }
-            | Error::Stiff { partial, .. }
-            | Error::StepSizeUnderflow { partial, .. }
-            | Error::NewtonFailure { partial, .. }
-            | Error::SingularMatrix { partial, .. }
-            | Error::EventChatter { partial, .. }
-            | Error::Constraint { partial, .. } => Some(partial),
-            _ => None,
-        }
+        with_partial!(self, partial => &**partial)
     }
 }
 

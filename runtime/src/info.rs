@@ -129,6 +129,32 @@ pub struct ModelInfo {
     pub algebraic_docs: &'static [&'static str],
 }
 
+#[cfg(test)]
+impl ModelInfo {
+    /// The names of a model written by hand in a unit test: its states, no
+    /// docs, parameters, outputs or events.
+    pub(crate) const fn bare(
+        name: &'static str,
+        states: &'static [&'static str],
+        equations: usize,
+    ) -> ModelInfo {
+        ModelInfo {
+            name,
+            doc: "",
+            states,
+            state_docs: &[],
+            parameters: &[],
+            parameter_docs: &[],
+            outputs: &[],
+            output_docs: &[],
+            equations,
+            events: &[],
+            algebraics: &[],
+            algebraic_docs: &[],
+        }
+    }
+}
+
 /// A constraint, or a derivative of one, that the integrated index-1 form
 /// no longer enforces and that the runtime projects onto after each step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

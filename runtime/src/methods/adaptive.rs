@@ -427,20 +427,7 @@ mod tests {
         const STATES: usize = 4;
         type State = [f64; 4];
         const INDEX: usize = 0;
-        const INFO: ModelInfo = ModelInfo {
-            name: "Kepler",
-            doc: "",
-            states: &["q1", "q2", "p1", "p2"],
-            state_docs: &[],
-            parameters: &[],
-            parameter_docs: &[],
-            outputs: &[],
-            output_docs: &[],
-            equations: 4,
-            events: &[],
-            algebraics: &[],
-            algebraic_docs: &[],
-        };
+        const INFO: ModelInfo = ModelInfo::bare("Kepler", &["q1", "q2", "p1", "p2"], 4);
         const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[];
         fn initial_state(&self, y: &mut [f64]) {
             y.copy_from_slice(&exact(0.0));

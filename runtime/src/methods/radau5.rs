@@ -723,20 +723,8 @@ mod mass_matrix_tests {
         const STATES: usize = 6;
         type State = [f64; 6];
         const INDEX: usize = 2;
-        const INFO: ModelInfo = ModelInfo {
-            name: "GglPendulum",
-            doc: "",
-            states: &["x", "y", "u", "v", "lambda", "mu"],
-            state_docs: &[],
-            parameters: &[],
-            parameter_docs: &[],
-            outputs: &[],
-            output_docs: &[],
-            equations: 6,
-            events: &[],
-            algebraics: &[],
-            algebraic_docs: &[],
-        };
+        const INFO: ModelInfo =
+            ModelInfo::bare("GglPendulum", &["x", "y", "u", "v", "lambda", "mu"], 6);
         const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[];
         const MASS: &'static [f64] = &[1.0, 1.0, 1.0, 1.0, 0.0, 0.0];
         const INDEX2_COMPONENTS: &'static [usize] = &[4, 5];
