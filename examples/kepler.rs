@@ -50,7 +50,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("  method   tol      steps   f evals   max error at t1   energy drift");
     for tol in [1e-8, 1e-11, 1e-14] {
         for method in [Method::Dop853, Method::Taylor] {
-            let opts = Options::new().method(method).rtol(tol).atol(tol);
+            let opts = Options::new().method(method).tolerance(tol);
             let sol = model.simulate(0.0, t1, &opts)?;
             let error = sol
                 .final_state()
@@ -78,8 +78,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let times: Vec<f64> = (0..=64).map(|k| 2.0 * PI * k as f64 / 64.0).collect();
     let opts = Options::new()
         .method(Method::Taylor)
-        .rtol(1e-12)
-        .atol(1e-12)
+        .tolerance(1e-12)
         .output_times(times);
     let sol = model.simulate(0.0, 2.0 * PI, &opts)?;
     let worst = sol

@@ -126,10 +126,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             ..PendulumDae::default()
         };
         let exact = 4.0 * (model.l / model.g).sqrt() * elliptic_k((theta0 / 2.0).sin());
-        let opts = Options::new()
-            .method(Method::Dop853)
-            .rtol(1e-10)
-            .atol(1e-10);
+        let opts = Options::new().method(Method::Dop853).tolerance(1e-10);
         let sol = model.simulate(0.0, 4.0 * exact, &opts)?;
         let crossings = sol.event_times("under_the_pivot")?;
         let period = period(&crossings);

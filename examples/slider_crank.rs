@@ -43,10 +43,7 @@ slider_crank!(slider_crank_global, scene = global);
 slider_crank!(slider_crank_recursive, scene = recursive);
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let opts = Options::new()
-        .method(Method::Dop853)
-        .rtol(1e-10)
-        .atol(1e-10);
+    let opts = Options::new().method(Method::Dop853).tolerance(1e-10);
     let global = SliderCrankGlobal::default().simulate(0.0, 2.0, &opts)?;
     let recursive = SliderCrankRecursive::default().simulate(0.0, 2.0, &opts)?;
     println!(

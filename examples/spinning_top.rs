@@ -53,7 +53,7 @@ fn spinning_top() {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let tol = 1e-15;
-    let opts = Options::new().method(Method::Taylor).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Taylor).tolerance(tol);
     let sol = SpinningTop::default().simulate(0.0, 300.0, &opts)?;
     println!(
         "Spinning top: index {}, {} states, {} degrees of freedom; {} Taylor steps over 300 s",

@@ -50,10 +50,7 @@ fn the_cartesian_pendulum_has_index_three() {
 
 /// The angle form at a tolerance far below the DAE runs' as the reference.
 fn angle_reference(t: f64) -> (f64, f64) {
-    let opts = Options::new()
-        .method(Method::Dop853)
-        .rtol(1e-13)
-        .atol(1e-13);
+    let opts = Options::new().method(Method::Dop853).tolerance(1e-13);
     let sol = PendulumAngle::default()
         .simulate(0.0, t, &opts)
         .expect("the angle form integrates");
@@ -72,7 +69,7 @@ fn the_dae_pendulum_follows_the_angle_form_and_keeps_its_constraints() {
         Method::Taylor,
     ] {
         let tol = 1e-10;
-        let opts = Options::new().method(method).rtol(tol).atol(tol);
+        let opts = Options::new().method(method).tolerance(tol);
         let sol = model
             .simulate(0.0, 100.0, &opts)
             .expect("the pendulum runs");
@@ -150,7 +147,7 @@ fn over_a_hundred_seconds_the_dae_drifts_in_energy_like_the_angle_form() {
     };
     for tol in [1e-8, 1e-10, 1e-12] {
         for method in [Method::Dop853, Method::Dopri5, Method::Radau5] {
-            let opts = Options::new().method(method).rtol(tol).atol(tol);
+            let opts = Options::new().method(method).tolerance(tol);
             let angle = PendulumAngle::default()
                 .simulate(0.0, 100.0, &opts)
                 .unwrap();
@@ -256,7 +253,7 @@ fn pendul3_run(method: Method, tol: f64, step: f64, t_end: f64) -> Solution {
         g: 1.0,
         ..Pendulum::default()
     };
-    let opts = Options::new().method(method).rtol(tol).atol(tol);
+    let opts = Options::new().method(method).tolerance(tol);
     // A step only for the fixed-step methods (0: none given).
     let opts = if step > 0.0 { opts.step(step) } else { opts };
     model
@@ -309,7 +306,7 @@ include!("models/slider_crank.rs");
 fn slider_crank_in_global_coordinates_follows_its_crank_angle_ode() {
     assert_eq!(<SliderCrank as Model>::INDEX, 3);
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let sol = SliderCrank::default()
         .simulate(0.0, 5.0, &opts)
         .expect("runs");
@@ -328,10 +325,7 @@ fn slider_crank_in_global_coordinates_follows_its_crank_angle_ode() {
     .simulate(
         0.0,
         5.0,
-        &Options::new()
-            .method(Method::Dop853)
-            .rtol(1e-13)
-            .atol(1e-13),
+        &Options::new().method(Method::Dop853).tolerance(1e-13),
     )
     .expect("the angle form runs");
     for t in [0.5, 1.0, 2.0, 5.0] {
@@ -470,7 +464,7 @@ fn linear_daes_of_kronecker_index_1_2_3_match_the_closed_form() {
     assert_eq!(<LinearIndex2 as Model>::INDEX, 2);
     assert_eq!(<LinearIndex3 as Model>::INDEX, 3);
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let sol = LinearIndex1::default()
         .simulate(0.0, 5.0, &opts)
         .expect("index 1 runs");
@@ -509,10 +503,7 @@ fn pendulum_fixed_abscissa() {
 
 #[test]
 fn initialization_keeps_fixed_values_and_reports_the_degrees_of_freedom() {
-    let opts = Options::new()
-        .method(Method::Dop853)
-        .rtol(1e-10)
-        .atol(1e-10);
+    let opts = Options::new().method(Method::Dop853).tolerance(1e-10);
     let sol = PendulumFixedAbscissa::default()
         .simulate(0.0, 1.0, &opts)
         .unwrap();
@@ -550,7 +541,7 @@ fn initialization_keeps_fixed_values_and_reports_the_degrees_of_freedom() {
         stats.formulation
     );
     let auto = Pendulum::default()
-        .simulate(0.0, 1.0, &Options::new().rtol(1e-6).atol(1e-6))
+        .simulate(0.0, 1.0, &Options::new().tolerance(1e-6))
         .unwrap();
     assert_eq!(auto.stats().method, "Dopri5");
 }
@@ -664,7 +655,7 @@ fn shaken_pendulum_angle() {
 fn a_pendulum_on_a_moving_support_follows_its_angle_form() {
     assert_eq!(<PendulumOnAShakingSupport as Model>::INDEX, 3);
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let sol = PendulumOnAShakingSupport::default()
         .simulate(0.0, 5.0, &opts)
         .unwrap();
@@ -682,10 +673,7 @@ fn a_pendulum_on_a_moving_support_follows_its_angle_form() {
     .simulate(
         0.0,
         5.0,
-        &Options::new()
-            .method(Method::Dop853)
-            .rtol(1e-13)
-            .atol(1e-13),
+        &Options::new().method(Method::Dop853).tolerance(1e-13),
     )
     .unwrap();
     for t in [1.0, 3.0, 5.0] {
@@ -730,7 +718,7 @@ fn a_knife_edge_follows_its_closed_form() {
     // It corrects the velocities, not the heading.
     assert_eq!(KnifeEdge::PROJECTION[0].slots, &[3, 4]);
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let sol = KnifeEdge::default().simulate(0.0, 10.0, &opts).unwrap();
     // φ = ω t and the speed along the blade V − (g sin α/ω) sin ω t give
     // x = (V/ω) sin ωt − g sin α/(2ω²) sin² ωt,
@@ -756,8 +744,7 @@ fn the_taylor_method_integrates_the_index_1_form_with_projection() {
         for tol in [1e-10, 1e-14] {
             let opts = Options::new()
                 .method(Method::Taylor)
-                .rtol(tol)
-                .atol(tol)
+                .tolerance(tol)
                 .taylor_compact(compact);
             let sol = CashPendulum::default().simulate(0.0, 10.0, &opts).unwrap();
             let e = pendul3_errors(&sol, 10.0);
@@ -782,8 +769,7 @@ fn the_gear_gupta_leimkuhler_form_with_radau5_matches_the_references() {
     for tol in [1e-6, 1e-8, 1e-10] {
         let opts = Options::new()
             .method(Method::Radau5)
-            .rtol(tol)
-            .atol(tol)
+            .tolerance(tol)
             .formulation(Formulation::MassMatrix);
         let sol = CashPendulum::default().simulate(0.0, 10.0, &opts).unwrap();
         for (t, reference) in &PENDUL3[..2] {
@@ -805,8 +791,7 @@ fn the_gear_gupta_leimkuhler_form_with_radau5_matches_the_references() {
     assert_eq!(SliderCrankMassForm::STATES, 18);
     let opts = Options::new()
         .method(Method::Radau5)
-        .rtol(1e-9)
-        .atol(1e-9)
+        .tolerance(1e-9)
         .formulation(Formulation::MassMatrix);
     let sol = SliderCrank::default().simulate(0.0, 2.0, &opts).unwrap();
     let s0 = sol.state(0).unwrap();
@@ -817,10 +802,7 @@ fn the_gear_gupta_leimkuhler_form_with_radau5_matches_the_references() {
     .simulate(
         0.0,
         2.0,
-        &Options::new()
-            .method(Method::Dop853)
-            .rtol(1e-13)
-            .atol(1e-13),
+        &Options::new().method(Method::Dop853).tolerance(1e-13),
     )
     .unwrap();
     for t in [0.5, 1.0, 2.0] {
@@ -867,7 +849,7 @@ fn an_algebraic_equation_nonlinear_in_its_variable_runs_with_every_method() {
     assert_eq!(SquareRootDecayMassForm::MASS, &[1.0, 0.0]);
     let exact = |t: f64| ((1.0 - t / 2.0) * (1.0 - t / 2.0), 1.0 - t / 2.0);
     for tol in [1e-6, 1e-9] {
-        let base = Options::new().rtol(tol).atol(tol);
+        let base = Options::new().tolerance(tol);
         for (options, what) in [
             (base.method(Method::Dopri5), "Dopri5"),
             (base.method(Method::Dop853), "Dop853"),
@@ -937,7 +919,7 @@ fn double_pendulum_angles() {
 fn the_cartesian_double_pendulum_follows_its_angle_form() {
     // Chaotic: compared over 2 s, where both runs agree to their tolerance.
     let tol = 1e-11;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let sol = DoublePendulumCartesian::default()
         .simulate(0.0, 2.0, &opts)
         .unwrap();
@@ -945,10 +927,7 @@ fn the_cartesian_double_pendulum_follows_its_angle_form() {
         .simulate(
             0.0,
             2.0,
-            &Options::new()
-                .method(Method::Dop853)
-                .rtol(1e-13)
-                .atol(1e-13),
+            &Options::new().method(Method::Dop853).tolerance(1e-13),
         )
         .unwrap();
     for t in [0.5, 1.0, 2.0] {
@@ -987,7 +966,7 @@ fn explicit_definitions_may_have_parameter_coefficients() {
     assert_eq!(<PendulumMomentum as Model>::INDEX, 3);
     // Cash's pendulum again (unit speed, g = 1), whatever the mass.
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let sol = PendulumMomentum::default()
         .simulate(0.0, 1.0, &opts)
         .unwrap();
@@ -1005,7 +984,7 @@ fn explicit_definitions_may_have_parameter_coefficients() {
 #[test]
 fn every_formulation_reports_its_names_residuals_and_degrees_of_freedom() {
     let tol = 1e-8;
-    let base = Options::new().method(Method::Radau5).rtol(tol).atol(tol);
+    let base = Options::new().method(Method::Radau5).tolerance(tol);
     let projected = Pendulum::default().simulate(0.0, 3.0, &base).unwrap();
     let mass = Pendulum::default()
         .simulate(0.0, 3.0, &base.formulation(Formulation::MassMatrix))

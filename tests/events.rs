@@ -58,7 +58,7 @@ fn impact_times(h: f64, g: f64, e: f64, bounces: usize) -> Vec<f64> {
 /// with the velocity reversed and scaled by `restitution`.
 fn bounce(method: Method, restitution: f64, bounces: usize) -> Vec<(f64, Vec<f64>)> {
     let ball = BouncingBall::default();
-    let opts = Options::new().method(method).rtol(1e-12).atol(1e-12);
+    let opts = Options::new().method(method).tolerance(1e-12);
     let (mut t, mut y) = (0.0, vec![ball.h, 0.0]);
     let mut impacts = Vec::new();
     for _ in 0..bounces {
@@ -133,7 +133,7 @@ fn poincare_sections_of_the_kepler_orbit_fall_where_keplers_equation_puts_them()
         big_e - e * big_e.sin()
     };
     for method in [Method::Taylor, Method::Dop853] {
-        let opts = Options::new().method(method).rtol(1e-13).atol(1e-13);
+        let opts = Options::new().method(method).tolerance(1e-13);
         let sol = KeplerSections::default()
             .simulate(0.0, t_end, &opts)
             .expect("runs");
@@ -265,7 +265,7 @@ fn a_backward_run_finds_the_crossings_in_reverse_with_their_directions_in_time()
         [1.0 - e, 0.0, 0.0, p2]
     };
     for method in [Method::Taylor, Method::Dop853] {
-        let opts = Options::new().method(method).rtol(1e-13).atol(1e-13);
+        let opts = Options::new().method(method).tolerance(1e-13);
         let sol = KeplerSections::default()
             .simulate_from(two_pi, &start, 0.0, &opts)
             .expect("runs");
@@ -301,7 +301,7 @@ fn restarting_at_accumulating_bounces_ends_in_a_chatter_error_at_the_zeno_time()
     let ball = BouncingBall::default();
     let zeno = 3.0 * (2.0 * ball.h / ball.g).sqrt();
     for method in [Method::Taylor, Method::Dop853] {
-        let opts = Options::new().method(method).rtol(1e-12).atol(1e-12);
+        let opts = Options::new().method(method).tolerance(1e-12);
         let (mut t, mut y) = (0.0, vec![ball.h, 0.0]);
         let mut bounces = 0;
         let err = loop {

@@ -71,7 +71,7 @@ fn error(got: &[f64], reference: &[f64]) -> f64 {
 fn the_transistor_amplifier_as_written_matches_the_test_set() {
     assert_eq!(<TransistorAmplifier as Model>::INDEX, 1);
     for tol in [1e-5, 1e-7] {
-        let base = Options::new().rtol(tol).atol(tol);
+        let base = Options::new().tolerance(tol);
         for (options, what) in [
             (base.method(Method::Radau5), "Radau5"),
             (base.clone(), "Auto"),
@@ -167,10 +167,7 @@ fn one_transistor_amplifier() {
 /// `Auto`, stay within 1e3 × tol of it.
 #[test]
 fn the_one_transistor_amplifier_agrees_in_both_formulations() {
-    let tight = Options::new()
-        .method(Method::Radau5)
-        .rtol(1e-11)
-        .atol(1e-11);
+    let tight = Options::new().method(Method::Radau5).tolerance(1e-11);
     let t1 = 0.05;
     let projected = OneTransistorAmplifier::default()
         .simulate(0.0, t1, &tight)
@@ -189,7 +186,7 @@ fn the_one_transistor_amplifier_agrees_in_both_formulations() {
         });
     assert!(swing.1 - swing.0 > 2.0, "node 5 swings over {swing:?}");
     for tol in [1e-5, 1e-7] {
-        let base = Options::new().rtol(tol).atol(tol);
+        let base = Options::new().tolerance(tol);
         for options in [
             base.method(Method::Radau5),
             base.clone(),
@@ -235,7 +232,7 @@ fn newton_on_a_quadratic_algebraic_equation_serves_every_method() {
     assert_eq!(QuadraticAlgebraic::INFO.states, &["y"]);
     let (y, z) = quadratic_exact(1.0);
     for tol in [1e-6, 1e-9] {
-        let base = Options::new().rtol(tol).atol(tol);
+        let base = Options::new().tolerance(tol);
         for options in [
             base.method(Method::Dopri5),
             base.method(Method::Dop853),
@@ -299,7 +296,7 @@ fn quasi_steady_state_solved() {
 fn a_quasi_steady_state_follows_its_hand_solved_form() {
     let reference = QuasiSteadyState_reference();
     for tol in [1e-6, 1e-9] {
-        let base = Options::new().rtol(tol).atol(tol);
+        let base = Options::new().tolerance(tol);
         for options in [
             base.method(Method::Dop853),
             base.method(Method::Radau5),
@@ -324,10 +321,7 @@ fn QuasiSteadyState_reference() -> f64 {
         .simulate(
             0.0,
             5.0,
-            &Options::new()
-                .method(Method::Dop853)
-                .rtol(1e-13)
-                .atol(1e-13),
+            &Options::new().method(Method::Dop853).tolerance(1e-13),
         )
         .unwrap()
         .last("a")
@@ -388,7 +382,7 @@ fn nonlinear_capacitor() {
 #[test]
 fn mass_matrices_that_depend_on_the_state_run_in_the_index_one_form() {
     for tol in [1e-6, 1e-9] {
-        let base = Options::new().rtol(tol).atol(tol);
+        let base = Options::new().tolerance(tol);
         for options in [
             base.method(Method::Dop853),
             base.method(Method::Radau5),

@@ -134,7 +134,7 @@ fn spherical_pendulum_angles() {
 fn a_spherical_pendulum_written_with_vectors_follows_its_angles() {
     assert_eq!(<SphericalPendulum as Model>::INDEX, 3);
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let sol = SphericalPendulum::default()
         .simulate(0.0, 3.0, &opts)
         .unwrap();
@@ -142,10 +142,7 @@ fn a_spherical_pendulum_written_with_vectors_follows_its_angles() {
         .simulate(
             0.0,
             3.0,
-            &Options::new()
-                .method(Method::Dop853)
-                .rtol(1e-13)
-                .atol(1e-13),
+            &Options::new().method(Method::Dop853).tolerance(1e-13),
         )
         .unwrap();
     for t in [0.5, 1.0, 3.0] {
@@ -178,7 +175,7 @@ include!("models/heavy_top.rs");
 fn a_heavy_top_with_quaternions_conserves_energy_and_unit_norm() {
     assert_eq!(HeavyTop::CONSTRAINTS.len(), 1, "the quaternion's unit norm");
     let tol = 1e-15;
-    let opts = Options::new().method(Method::Taylor).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Taylor).tolerance(tol);
     let sol = HeavyTop::default().simulate(0.0, 450.0, &opts).unwrap();
     let steps = sol.times().len();
     let (e0, l0) = (sol.at(0.0, "energy").unwrap(), sol.at(0.0, "lz").unwrap());

@@ -43,8 +43,7 @@ fn a_million_steps_keep_a_thousand_states() {
 fn keep_every_thins_the_stored_steps_and_at_refuses_between_them() {
     let opts = Options::new()
         .method(Method::Dop853)
-        .rtol(1e-12)
-        .atol(1e-12)
+        .tolerance(1e-12)
         .keep_every(7);
     let thin = Oscillator::default().simulate(0.0, 100.0, &opts).unwrap();
     let full = Oscillator::default()

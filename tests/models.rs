@@ -297,7 +297,7 @@ fn bad_requests_are_errors_not_panics() {
         "max_step(0.001) is below min_step(0.01)",
     );
     refused(Options::new().max_steps(0), "max_steps(0)");
-    refused(Options::new().rtol(0.0).atol(0.0), "rtol(0) with atol(0)");
+    refused(Options::new().tolerance(0.0), "rtol(0) with atol(0)");
     refused(Options::new().rtol(-1e-6), "rtol(-0.000001)");
     refused(Options::new().atol(f64::NAN), "atol(NaN)");
     refused(Options::new().rtol(f64::INFINITY), "rtol(inf)");
@@ -372,10 +372,7 @@ mod readme {
 #[test]
 fn radau5_works_without_an_analytic_jacobian() {
     let model = DoublePendulum::default();
-    let options = Options::new()
-        .method(Method::Radau5)
-        .rtol(1e-10)
-        .atol(1e-10);
+    let options = Options::new().method(Method::Radau5).tolerance(1e-10);
     let sol = model.simulate(0.0, 5.0, &options).unwrap();
     let e0 = -2.0 * 9.81 * 1f64.cos() - 9.81 * (-0.5f64).cos();
     let drift = (sol.last("energy").unwrap() - e0).abs();

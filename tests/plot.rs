@@ -76,10 +76,7 @@ fn a_time_series_holds_one_line_per_name() {
 /// differently), centred in the plot.
 #[test]
 fn a_phase_portrait_draws_the_orbit() {
-    let opts = Options::new()
-        .method(Method::Dop853)
-        .rtol(1e-10)
-        .atol(1e-10);
+    let opts = Options::new().method(Method::Dop853).tolerance(1e-10);
     let sol = Oscillator::default().simulate(0.0, 6.3, &opts).unwrap();
     let path = temp("phase.svg");
     phase_portrait(&sol, "x", "der(x)", &path).unwrap();

@@ -43,10 +43,7 @@ fn names_list_states_then_algebraics_then_outputs() {
 
 #[test]
 fn columns_hold_the_values_at_the_stored_times() {
-    let opts = Options::new()
-        .method(Method::Dop853)
-        .rtol(1e-12)
-        .atol(1e-12);
+    let opts = Options::new().method(Method::Dop853).tolerance(1e-12);
     let sol = Oscillator::default()
         .simulate(0.0, 2.0 * PI, &opts)
         .unwrap();
@@ -152,7 +149,7 @@ fn adaptive_samples_follow_the_exact_solution() {
         Method::Taylor,
         Method::Auto,
     ] {
-        let opts = Options::new().method(method).rtol(1e-10).atol(1e-10);
+        let opts = Options::new().method(method).tolerance(1e-10);
         let error = sampled_error(&opts);
         assert!(error < 1e-8, "{method:?}: {error:e}");
     }
@@ -162,11 +159,7 @@ fn adaptive_samples_follow_the_exact_solution() {
 fn output_times_store_those_times_at_the_methods_order() {
     let times: Vec<f64> = (0..=30).map(|k| 0.1 * k as f64).collect();
     for method in [Method::Dop853, Method::Radau5, Method::Taylor, Method::Rk4] {
-        let full = Options::new()
-            .method(method)
-            .rtol(1e-10)
-            .atol(1e-10)
-            .step(1e-3);
+        let full = Options::new().method(method).tolerance(1e-10).step(1e-3);
         let only = full.output_times(times.clone());
         let a = Oscillator::default().simulate(0.0, 3.0, &full).unwrap();
         let b = Oscillator::default().simulate(0.0, 3.0, &only).unwrap();
@@ -216,10 +209,7 @@ fn output_times_run_backwards_and_stop_at_a_terminal_event() {
             3.0,
             &[3f64.cos(), -3f64.sin()],
             0.0,
-            &Options::new()
-                .rtol(1e-10)
-                .atol(1e-10)
-                .output_times(back.clone()),
+            &Options::new().tolerance(1e-10).output_times(back.clone()),
         )
         .unwrap();
     assert_eq!(sol.times(), &back[..]);
@@ -372,7 +362,7 @@ fn a_failing_writer_is_an_error_not_a_panic() {
 #[test]
 fn a_sampled_table_prints_aligned() {
     let sol = Oscillator::default()
-        .simulate(0.0, 1.0, &Options::new().rtol(1e-10).atol(1e-10))
+        .simulate(0.0, 1.0, &Options::new().tolerance(1e-10))
         .unwrap();
     let table = sol.sample(&["x", "der(x)"], &[0.0, 0.5, 1.0]).unwrap();
     let text = table.to_string();

@@ -43,7 +43,7 @@ fn slider_crank_scene() {
 fn a_slider_crank_scene_matches_the_hand_written_model() {
     assert_eq!(<SliderCrankScene as Model>::INDEX, 3);
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let scene = SliderCrankScene::default()
         .simulate(0.0, 2.0, &opts)
         .unwrap();
@@ -112,7 +112,7 @@ four_bar_model!(four_bar, scene = global);
 #[test]
 fn a_four_bar_linkage_has_one_degree_of_freedom_and_keeps_its_energy() {
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let sol = FourBar::default().simulate(0.0, 3.0, &opts).unwrap();
     assert_eq!(sol.degrees_of_freedom(), Some(1));
     assert!(sol.max_constraint_residual() <= 1e-12);
@@ -182,16 +182,13 @@ fn double_rod_angles() {
 #[test]
 fn a_double_pendulum_scene_follows_its_lagrange_equations() {
     let tol = 1e-11;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let sol = DoubleRodScene::default().simulate(0.0, 2.0, &opts).unwrap();
     let reference = DoubleRodAngles::default()
         .simulate(
             0.0,
             2.0,
-            &Options::new()
-                .method(Method::Dop853)
-                .rtol(1e-13)
-                .atol(1e-13),
+            &Options::new().method(Method::Dop853).tolerance(1e-13),
         )
         .unwrap();
     assert_eq!(sol.degrees_of_freedom(), Some(2));
@@ -235,7 +232,7 @@ fn a_spring_damper_in_a_scene_gives_the_damped_oscillation() {
         .simulate(
             0.0,
             3.0,
-            &Options::new().method(Method::Dop853).rtol(tol).atol(tol),
+            &Options::new().method(Method::Dop853).tolerance(tol),
         )
         .unwrap();
     let (m, k, c, l0, g) = (2.0f64, 40.0f64, 2.0f64, 1.0f64, 9.81f64);
@@ -262,7 +259,7 @@ rod_chain_model!(ten_rod_chain_recursive, scene = recursive);
 #[test]
 fn a_ten_rod_chain_keeps_its_constraints_and_energy() {
     let tol = 1e-9;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let sol = TenRodChain::default().simulate(0.0, 1.0, &opts).unwrap();
     assert_eq!(sol.degrees_of_freedom(), Some(10));
     assert!(sol.max_constraint_residual() <= 1e-12);
@@ -292,7 +289,7 @@ fn the_recursive_double_rod_is_an_ode_in_its_joint_angles() {
     assert_eq!(<DoubleRodRecursive as Model>::INDEX, 0);
     assert_eq!(DoubleRodRecursive::INFO.states.len(), 4);
     let tol = 1e-11;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let sol = DoubleRodRecursive::default()
         .simulate(0.0, 2.0, &opts)
         .unwrap();
@@ -300,10 +297,7 @@ fn the_recursive_double_rod_is_an_ode_in_its_joint_angles() {
         .simulate(
             0.0,
             2.0,
-            &Options::new()
-                .method(Method::Dop853)
-                .rtol(1e-13)
-                .atol(1e-13),
+            &Options::new().method(Method::Dop853).tolerance(1e-13),
         )
         .unwrap();
     for t in [0.5, 1.0, 2.0] {
@@ -336,7 +330,7 @@ four_bar_model!(four_bar_recursive, scene = recursive);
 fn the_recursive_four_bar_matches_the_global_one() {
     assert_eq!(<FourBarRecursive as Model>::INDEX, 3);
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let recursive = FourBarRecursive::default()
         .simulate(0.0, 3.0, &opts)
         .unwrap();
@@ -384,7 +378,7 @@ fn the_slider_crank_agrees_in_both_formulations() {
     assert_eq!(SliderCrankRecursive::INFO.states.len(), 4);
     assert_eq!(SliderCrankGlobal::INFO.states.len(), 12);
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let a = SliderCrankRecursive::default()
         .simulate(0.0, 2.0, &opts)
         .unwrap();
@@ -405,7 +399,7 @@ fn the_slider_crank_agrees_in_both_formulations() {
 fn the_ten_rod_chain_agrees_in_both_formulations() {
     assert_eq!(TenRodChainRecursive::INFO.states.len(), 20);
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let a = TenRodChain::default().simulate(0.0, 0.5, &opts).unwrap();
     let b = TenRodChainRecursive::default()
         .simulate(0.0, 0.5, &opts)
@@ -448,7 +442,7 @@ sprung_double_rod!(sprung_recursive, scene = recursive);
 #[test]
 fn springs_and_torques_agree_in_both_formulations() {
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let a = SprungGlobal::default().simulate(0.0, 2.0, &opts).unwrap();
     let b = SprungRecursive::default()
         .simulate(0.0, 2.0, &opts)
@@ -509,7 +503,7 @@ slider_crank_moving!(moving_crank_recursive, scene = recursive);
 #[test]
 fn initial_body_velocities_become_joint_rates_in_the_recursive_formulation() {
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let a = MovingCrankRecursive::default()
         .simulate(0.0, 1.0, &opts)
         .unwrap();
@@ -559,7 +553,7 @@ fn a_welded_body_adds_no_joint_coordinate_and_both_formulations_agree() {
     assert_eq!(BentRecursive::INFO.states.len(), 2);
     assert_eq!(BentGlobal::INFO.states.len(), 12);
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let a = BentGlobal::default().simulate(0.0, 2.0, &opts).unwrap();
     let b = BentRecursive::default().simulate(0.0, 2.0, &opts).unwrap();
     assert_eq!(a.degrees_of_freedom(), Some(1));
@@ -613,7 +607,7 @@ fn same_values_by_name(a: &Solution, b: &Solution, times: &[f64], tol: f64) -> u
 #[test]
 fn both_formulations_answer_to_the_same_names() {
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let times = [0.0, 0.5, 1.0, 2.0];
 
     let global = SliderCrankGlobal::default()
@@ -687,7 +681,7 @@ fn taylor_on_a_chain_of_rods_says_what_to_use_instead() {
         }
     }
     // And Dop853 runs it.
-    let dop853 = Options::new().method(Method::Dop853).rtol(1e-8).atol(1e-8);
+    let dop853 = Options::new().method(Method::Dop853).tolerance(1e-8);
     assert!(TenRodChainRecursive::default()
         .simulate(0.0, 0.1, &dop853)
         .is_ok());

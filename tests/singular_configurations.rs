@@ -32,7 +32,7 @@ fn fast_pendulum_angle() {
 fn a_pendulum_with_a_large_multiplier_follows_its_angle() {
     let tol = 1e-10;
     for method in [Method::Dop853, Method::Radau5] {
-        let opts = Options::new().method(method).rtol(tol).atol(tol);
+        let opts = Options::new().method(method).tolerance(tol);
         let dae = FastPendulum::default().simulate(0.0, 5.0, &opts).unwrap();
         let ode = FastPendulumAngle::default()
             .simulate(0.0, 5.0, &opts)
@@ -88,10 +88,7 @@ fn isosceles_crank() {
 
 #[test]
 fn a_mechanism_reaching_a_singular_configuration_stops_there_with_an_error() {
-    let opts = Options::new()
-        .method(Method::Dop853)
-        .rtol(1e-10)
-        .atol(1e-10);
+    let opts = Options::new().method(Method::Dop853).tolerance(1e-10);
     match IsoscelesCrank::default().simulate(0.0, 2.0, &opts) {
         Ok(sol) => {
             // Through it: the joints must still hold and the angle must

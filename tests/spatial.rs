@@ -43,7 +43,7 @@ fn heavy_top_scene() {
 fn a_heavy_top_scene_matches_the_hand_written_quaternion_model() {
     assert_eq!(<HeavyTopScene as Model>::INDEX, 3);
     let tol = 1e-12;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let scene = HeavyTopScene::default().simulate(0.0, 10.0, &opts).unwrap();
     let hand = HeavyTop::default().simulate(0.0, 10.0, &opts).unwrap();
     assert_eq!(scene.degrees_of_freedom(), Some(3));
@@ -130,7 +130,7 @@ fn compound_pendulum() {
 fn a_revolute_and_a_fixed_joint_make_a_compound_pendulum() {
     assert_eq!(<WeldedPendulum as Model>::INDEX, 3);
     let tol = 1e-11;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let scene = WeldedPendulum::default().simulate(0.0, 3.0, &opts).unwrap();
     let minimal = CompoundPendulum::default()
         .simulate(0.0, 3.0, &opts)
@@ -189,7 +189,7 @@ fn block_on_a_slope() {
 #[test]
 fn a_prismatic_joint_on_a_slope_follows_the_exact_solution() {
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let sol = BlockOnASlope::default().simulate(0.0, 2.0, &opts).unwrap();
     assert_eq!(sol.degrees_of_freedom(), Some(1));
     let (g, alpha) = (9.81f64, 0.3f64);
@@ -249,7 +249,7 @@ fn a_distance_joint_keeps_the_conical_pendulum_on_its_circle() {
     let period = 2.0 * std::f64::consts::PI / omega;
     for method in [Method::Dop853, Method::Radau5, Method::Taylor] {
         let tol = 1e-11;
-        let opts = Options::new().method(method).rtol(tol).atol(tol);
+        let opts = Options::new().method(method).tolerance(tol);
         let sol = ConicalPendulum::default()
             .simulate(0.0, 3.0 * period, &opts)
             .unwrap();
@@ -302,7 +302,7 @@ fn damped_block() {
 #[test]
 fn a_spring_damper_gives_the_damped_oscillator() {
     let tol = 1e-11;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let sol = DampedBlock::default().simulate(0.0, 5.0, &opts).unwrap();
     // x − 1 = A e^{−ζω t} (cos ω_d t + ζ/√(1−ζ²) sin ω_d t), ω = 2, ζ = 0.1.
     let (omega, zeta, a) = (2.0f64, 0.1f64, 0.3f64);
@@ -335,7 +335,7 @@ fn spun_body() {
 #[test]
 fn a_constant_torque_about_a_principal_axis_spins_a_body_up() {
     let tol = 1e-12;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let sol = SpunBody::default().simulate(0.0, 2.0, &opts).unwrap();
     for t in [0.5, 1.0, 2.0] {
         // ψ = ½ (τ / J_z) t², q = (cos ψ/2, 0, 0, sin ψ/2).
@@ -383,7 +383,7 @@ fn pulled_bar_angle() {
 #[test]
 fn a_force_at_a_body_point_turns_the_bar_as_its_one_coordinate_says() {
     let tol = 1e-11;
-    let opts = Options::new().method(Method::Dop853).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let scene = PulledBar::default().simulate(0.0, 3.0, &opts).unwrap();
     let minimal = PulledBarAngle::default().simulate(0.0, 3.0, &opts).unwrap();
     for t in [0.5, 1.5, 3.0] {
@@ -401,7 +401,7 @@ fn a_force_at_a_body_point_turns_the_bar_as_its_one_coordinate_says() {
 #[test]
 fn the_heavy_top_scene_conserves_energy_and_unit_norm_over_a_thousand_taylor_steps() {
     let tol = 1e-15;
-    let opts = Options::new().method(Method::Taylor).rtol(tol).atol(tol);
+    let opts = Options::new().method(Method::Taylor).tolerance(tol);
     let sol = HeavyTopScene::default()
         .simulate(0.0, 450.0, &opts)
         .unwrap();

@@ -157,7 +157,7 @@ fn backward_euler_is_stable_where_explicit_euler_explodes() {
 fn auto_switches_to_radau5_when_the_problem_turns_stiff() {
     for tol in [1e-6, 1e-8] {
         let sol = VanDerPol::default()
-            .simulate(0.0, 2.0, &Options::new().rtol(tol).atol(tol))
+            .simulate(0.0, 2.0, &Options::new().tolerance(tol))
             .unwrap();
         assert!(sol.stats().jacobian_evals > 0, "RADAU5 took over");
         assert!(sol.stats().method.contains("Radau5") && sol.stats().switches >= 1);
@@ -167,7 +167,7 @@ fn auto_switches_to_radau5_when_the_problem_turns_stiff() {
     }
     // A non-stiff problem never switches.
     let osc = Oscillator::default()
-        .simulate(0.0, 10.0, &Options::new().rtol(1e-8).atol(1e-8))
+        .simulate(0.0, 10.0, &Options::new().tolerance(1e-8))
         .unwrap();
     assert_eq!(osc.stats().jacobian_evals, 0);
     assert_eq!((osc.stats().method, osc.stats().switches), ("Dop853", 0));
@@ -205,7 +205,7 @@ fn an_explicit_pair_stops_where_the_problem_turns_stiff() {
 #[test]
 fn auto_hands_a_stiff_filter_to_radau5_early() {
     for tol in [1e-6, 1e-9] {
-        let opts = Options::new().rtol(tol).atol(tol);
+        let opts = Options::new().tolerance(tol);
         let auto = LowPass::default().simulate(0.0, 1.0, &opts).unwrap();
         let radau = LowPass::default()
             .simulate(0.0, 1.0, &opts.method(Method::Radau5))
@@ -251,7 +251,7 @@ fn fading_stiffness() {
 fn auto_switches_back_where_the_stiffness_fades() {
     for tol in [1e-6, 1e-9] {
         let sol = FadingStiffness::default()
-            .simulate(0.0, 10.0, &Options::new().rtol(tol).atol(tol))
+            .simulate(0.0, 10.0, &Options::new().tolerance(tol))
             .unwrap();
         let stats = sol.stats();
         assert_eq!(stats.switches, 2, "{stats:?}");

@@ -28,7 +28,7 @@ fn final_state(sol: &Solution) -> Vec<f64> {
 fn errors_fall_with_the_tolerance_on_kepler_and_arenstorf() {
     let t1 = 20.0 * std::f64::consts::PI;
     let run = |tol: f64| {
-        let o = Options::new().method(Method::Taylor).rtol(tol).atol(tol);
+        let o = Options::new().method(Method::Taylor).tolerance(tol);
         // Kepler's orders 10 and 24 are emitted unrolled, and chosen here:
         // both layouts must follow the exact orbit equally well.
         let k = Kepler::default().simulate(0.0, t1, &o).unwrap();
@@ -85,8 +85,7 @@ fn lorenz_follows_its_reference_within_the_growth_of_errors() {
     let run = |tol: f64, compact: bool| {
         let o = Options::new()
             .method(Method::Taylor)
-            .rtol(tol)
-            .atol(tol)
+            .tolerance(tol)
             .taylor_compact(compact);
         let sol = Lorenz::default().simulate(0.0, 16.0, &o).unwrap();
         // Order 18 is unrolled, and chosen at 1e-14 unless compact.
@@ -108,10 +107,7 @@ fn dense_output_is_the_step_polynomial() {
         .simulate(
             0.0,
             two_pi,
-            &Options::new()
-                .method(Method::Taylor)
-                .rtol(1e-14)
-                .atol(1e-14),
+            &Options::new().method(Method::Taylor).tolerance(1e-14),
         )
         .unwrap();
     let names = ["q1", "q2", "p1", "p2"];
@@ -158,10 +154,7 @@ fn integrates_backwards_and_refuses_models_without_a_tape() {
         .simulate(
             two_pi,
             0.0,
-            &Options::new()
-                .method(Method::Taylor)
-                .rtol(1e-12)
-                .atol(1e-12),
+            &Options::new().method(Method::Taylor).tolerance(1e-12),
         )
         .unwrap();
     assert!(max_error(&final_state(&back), &kepler_exact(0.0)) < 1e-8);
@@ -175,10 +168,7 @@ fn integrates_backwards_and_refuses_models_without_a_tape() {
         .simulate(
             0.0,
             1.0,
-            &Options::new()
-                .method(Method::Taylor)
-                .rtol(1e-12)
-                .atol(1e-12),
+            &Options::new().method(Method::Taylor).tolerance(1e-12),
         )
         .unwrap();
     assert!((sol.last("x").unwrap() - (-1f64).exp()).abs() < 1e-12);
@@ -230,8 +220,7 @@ fn swinging() {
 fn at_machine_precision() -> Options {
     Options::new()
         .method(Method::Taylor)
-        .rtol(f64::EPSILON)
-        .atol(f64::EPSILON)
+        .tolerance(f64::EPSILON)
 }
 
 /// heyoka's pendulum returns to its start within 3.8e-16 after a forward
@@ -330,10 +319,7 @@ fn blow_up() {
 /// most 1e-9 while 1 − t ≥ 1e-3.
 #[test]
 fn a_finite_time_blow_up_is_an_error_at_the_pole() {
-    let options = Options::new()
-        .method(Method::Taylor)
-        .rtol(1e-12)
-        .atol(1e-12);
+    let options = Options::new().method(Method::Taylor).tolerance(1e-12);
     let err = BlowUp::default().simulate(0.0, 2.0, &options).unwrap_err();
     let t = match &err {
         daegen::Error::StepSizeUnderflow { t, .. } | daegen::Error::NonFinite { t, .. } => *t,
@@ -361,10 +347,7 @@ fn a_finite_time_blow_up_is_an_error_at_the_pole() {
 #[test]
 fn taylor_without_dense_output_takes_the_same_steps() {
     let t1 = 4.0 * std::f64::consts::PI;
-    let with = Options::new()
-        .method(Method::Taylor)
-        .rtol(1e-15)
-        .atol(1e-15);
+    let with = Options::new().method(Method::Taylor).tolerance(1e-15);
     let a = Kepler::default().simulate(0.0, t1, &with).unwrap();
     let b = Kepler::default()
         .simulate(0.0, t1, &with.dense_output(false))
@@ -385,10 +368,7 @@ fn taylor_without_dense_output_takes_the_same_steps() {
 fn the_order_follows_the_model_and_can_be_fixed() {
     use daegen::runtime::taylor_order::{jorba_zou_order, order_to_unroll};
     let t1 = 2.0 * std::f64::consts::PI;
-    let o = Options::new()
-        .method(Method::Taylor)
-        .rtol(1e-12)
-        .atol(1e-12);
+    let o = Options::new().method(Method::Taylor).tolerance(1e-12);
     let chosen = Kepler::default().simulate(0.0, t1, &o).unwrap();
     let theirs = Kepler::default()
         .simulate(0.0, t1, &o.taylor_order(jorba_zou_order(1e-12)))

@@ -375,8 +375,7 @@ fn a_jet_written_order_by_order_steps_as_the_tape_does() {
     assert!(model.taylor_jet_by_coefficient(18));
     let options = Options::new()
         .method(Method::Taylor)
-        .rtol(1e-12)
-        .atol(1e-12)
+        .tolerance(1e-12)
         .taylor_order(18)
         .dense_output(true);
     let unrolled = model.simulate(0.0, 2.0, &options).unwrap();

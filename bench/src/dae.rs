@@ -68,8 +68,7 @@ fn pendulum_run<M: Model + Clone + Send + Sync + 'static>(
 ) -> (Point, usize) {
     let options = Options::new()
         .method(method)
-        .rtol(tol)
-        .atol(tol)
+        .tolerance(tol)
         .dense_output(false)
         .formulation(formulation);
     let (d, sol) = time(|| model.simulate(0.0, 10.0, &options));
@@ -113,18 +112,14 @@ fn slider_crank_against_ode() {
         .simulate(
             0.0,
             2.0,
-            &Options::new()
-                .method(Method::Dop853)
-                .rtol(1e-13)
-                .atol(1e-13),
+            &Options::new().method(Method::Dop853).tolerance(1e-13),
         )
         .and_then(|s| s.last("phi"))
         .unwrap_or(f64::NAN);
     for tol in [1e-6, 1e-9, 1e-12] {
         let options = Options::new()
             .method(Method::Dop853)
-            .rtol(tol)
-            .atol(tol)
+            .tolerance(tol)
             .dense_output(false);
         let (da, a) = time(|| dae.simulate(0.0, 2.0, &options));
         let (db, b) = time(|| ode.simulate(0.0, 2.0, &options));
@@ -175,8 +170,7 @@ fn formulations() {
     let source: proc_macro2::TokenStream = rod_chain_source(10).parse().expect("the chain parses");
     let options = Options::new()
         .method(Method::Dop853)
-        .rtol(1e-8)
-        .atol(1e-8)
+        .tolerance(1e-8)
         .dense_output(false);
     for (name, attr) in [
         ("global", "scene = global"),

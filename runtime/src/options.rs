@@ -242,6 +242,12 @@ impl Options {
         }
     }
 
+    /// Both tolerances at once: `rtol(tol).atol(tol)`, the usual choice for
+    /// solutions of order 1.
+    pub fn tolerance(&self, tol: f64) -> Options {
+        self.rtol(tol).atol(tol)
+    }
+
     /// Step size of fixed-step methods (default: the interval over 1000).
     pub fn step(&self, step: f64) -> Options {
         Options {

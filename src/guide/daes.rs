@@ -30,7 +30,7 @@
 //! }
 //!
 //! assert_eq!(<Pendulum as Model>::INDEX, 3);
-//! let opts = Options::new().method(Method::Dop853).rtol(1e-10).atol(1e-10);
+//! let opts = Options::new().method(Method::Dop853).tolerance(1e-10);
 //! let sol = Pendulum::default().simulate(0.0, 10.0, &opts)?;
 //! assert!(sol.max_constraint_residual() < 1e-12);
 //! // The multiplier is the rod's tension per unit mass: u² + v² − y.

@@ -44,7 +44,7 @@
 //!     let gap = output(x[1] - x[0]);
 //! }
 //!
-//! let sol = Coupled { c: 0.0 }.simulate(0.0, 10.0, &Options::new().rtol(1e-10).atol(1e-10))?;
+//! let sol = Coupled { c: 0.0 }.simulate(0.0, 10.0, &Options::new().tolerance(1e-10))?;
 //! // Without damping, x0 − x1 oscillates at √2: x1 − x0 = −cos(√2 t).
 //! assert!((sol.last("gap")? + (10.0 * 2f64.sqrt()).cos()).abs() < 1e-8);
 //! # Ok::<(), daegen::Error>(())

@@ -27,7 +27,7 @@
 //!     let tip_y = output(tip[1]);
 //! }
 //!
-//! let opts = Options::new().method(Method::Dop853).rtol(1e-10).atol(1e-10);
+//! let opts = Options::new().method(Method::Dop853).tolerance(1e-10);
 //! let sol = DoubleRod::default().simulate(0.0, 1.0, &opts)?;
 //! assert_eq!(sol.degrees_of_freedom(), Some(2));
 //! assert!(sol.last("tip_y")? < 0.0); // it fell
@@ -87,7 +87,7 @@
 //!     gravity(vec3(0.0, 0.0, -g));
 //! }
 //!
-//! let opts = Options::new().method(Method::Dop853).rtol(1e-10).atol(1e-10);
+//! let opts = Options::new().method(Method::Dop853).tolerance(1e-10);
 //! let sol = Conical::default().simulate(0.0, 1.0, &opts)?;
 //! // It stays at its height.
 //! assert!((sol.last("bob.z")? + 0.6f64.cos()).abs() < 1e-8);

@@ -41,7 +41,7 @@
 //!
 //! let model = Damped::default();
 //! assert!(model.describe().contains("zeta = 0.1"));
-//! let sol = model.simulate(0.0, 10.0, &Options::new().rtol(1e-8).atol(1e-8))?;
+//! let sol = model.simulate(0.0, 10.0, &Options::new().tolerance(1e-8))?;
 //! assert_eq!(sol.names(), ["x", "der(x)", "energy"]);
 //!
 //! // On a grid, printed as a table.

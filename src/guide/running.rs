@@ -43,7 +43,7 @@
 //!     der(y2) == ((1.0 - y1 * y1) * y2 - y1) / eps;
 //! }
 //!
-//! let opts = Options::new().method(Method::Radau5).rtol(1e-8).atol(1e-8);
+//! let opts = Options::new().method(Method::Radau5).tolerance(1e-8);
 //! let sol = VanDerPol::default().simulate(0.0, 2.0, &opts)?;
 //! assert!(sol.stats().steps < 2_000);
 //! // Stored steps; `at` reads the collocation polynomial between them,
