@@ -76,10 +76,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     // One orbit at 64 times, from the Taylor polynomials of the steps.
     let times: Vec<f64> = (0..=64).map(|k| 2.0 * PI * k as f64 / 64.0).collect();
-    let opts = Options::new()
-        .method(Method::Taylor)
-        .tolerance(1e-12)
-        .output_times(times);
+    let opts = Options::new().method(Method::Taylor).tolerance(1e-12).output_times(times);
     let sol = model.simulate(0.0, 2.0 * PI, &opts)?;
     let worst = sol
         .times()
@@ -87,10 +84,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .enumerate()
         .map(|(k, &t)| {
             let y = sol.state(k).unwrap_or(&[]);
-            y.iter()
-                .zip(exact(t, model.e))
-                .map(|(a, b)| (a - b).abs())
-                .fold(0.0, f64::max)
+            y.iter().zip(exact(t, model.e)).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max)
         })
         .fold(0.0, f64::max);
     println!("\nOne orbit, Taylor with tol 1e-12, every eighth of 64 output times:\n");

@@ -89,16 +89,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("  θ₀ (deg)   period (s)          exact (s)           rel. error   small-angle (s)   energy drift / gl");
     for degrees in [5.0, 30.0, 60.0, 90.0, 120.0, 150.0, 170.0, 179.0] {
         let theta0 = f64::to_radians(degrees);
-        let model = Pendulum {
-            theta0,
-            ..Pendulum::default()
-        };
+        let model = Pendulum { theta0, ..Pendulum::default() };
         let exact = 4.0 * (model.l / model.g).sqrt() * elliptic_k((theta0 / 2.0).sin());
-        let sol = model.simulate(
-            0.0,
-            4.0 * exact,
-            &Options::new().method(Method::Rk4).step(1e-4),
-        )?;
+        let sol =
+            model.simulate(0.0, 4.0 * exact, &Options::new().method(Method::Rk4).step(1e-4))?;
         let period = period(&sol.event_times("swing")?);
         let e0 = -model.g * model.l * theta0.cos();
         // Relative to g·l, the energy scale (E₀ itself is 0 at 90°).
@@ -120,11 +114,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     for degrees in [5.0, 60.0, 120.0, 170.0] {
         let theta0 = f64::to_radians(degrees);
-        let model = PendulumDae {
-            x0: theta0.sin(),
-            y0: -theta0.cos(),
-            ..PendulumDae::default()
-        };
+        let model = PendulumDae { x0: theta0.sin(), y0: -theta0.cos(), ..PendulumDae::default() };
         let exact = 4.0 * (model.l / model.g).sqrt() * elliptic_k((theta0 / 2.0).sin());
         let opts = Options::new().method(Method::Dop853).tolerance(1e-10);
         let sol = model.simulate(0.0, 4.0 * exact, &opts)?;
@@ -142,10 +132,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
 
     // One swing at 170°, through RK4's cubic Hermite interpolant.
-    let model = Pendulum {
-        theta0: f64::to_radians(170.0),
-        ..Pendulum::default()
-    };
+    let model = Pendulum { theta0: f64::to_radians(170.0), ..Pendulum::default() };
     let sol = model.simulate(0.0, 6.0, &Options::new().method(Method::Rk4).step(1e-3))?;
     let grid: Vec<f64> = (0..=12).map(|k| 0.5 * k as f64).collect();
     println!("\nθ₀ = 170°, RK4 with h = 1e-3 s:\n");
@@ -155,9 +142,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     sol.write_csv(csv, &sol.names())?;
     daegen::plot::time_series(&sol, &["theta", "der(theta)"], dir.join("pendulum.svg"))?;
     daegen::plot::phase_portrait(&sol, "theta", "der(theta)", dir.join("pendulum-phase.svg"))?;
-    println!(
-        "\nwrote pendulum.csv, pendulum.svg and pendulum-phase.svg in {}",
-        dir.display()
-    );
+    println!("\nwrote pendulum.csv, pendulum.svg and pendulum-phase.svg in {}", dir.display());
     Ok(())
 }

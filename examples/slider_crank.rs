@@ -58,15 +58,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let names = ["crank.theta", "slider.x", "rod[0]", "prismatic3.q"];
     println!("\nglobal formulation:\n{}", global.sample(&names, &grid)?);
     let largest = |name: &str| -> Result<f64, daegen::Error> {
-        let (a, b) = (
-            global.sample(&[name], &grid)?,
-            recursive.sample(&[name], &grid)?,
-        );
+        let (a, b) = (global.sample(&[name], &grid)?, recursive.sample(&[name], &grid)?);
         let (a, b) = (a.column(name).unwrap_or(&[]), b.column(name).unwrap_or(&[]));
-        Ok(a.iter()
-            .zip(b)
-            .map(|(x, y)| (x - y).abs())
-            .fold(0.0, f64::max))
+        Ok(a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max))
     };
     println!("\nlargest difference from the recursive formulation on that grid:");
     for name in names {
@@ -81,18 +75,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/example-output");
     std::fs::create_dir_all(&dir)?;
-    global.write_csv(
-        std::fs::File::create(dir.join("slider_crank.csv"))?,
-        &global.names(),
-    )?;
-    daegen::plot::time_series(
-        &global,
-        &["slider.x", "revolute1.q"],
-        dir.join("slider_crank.svg"),
-    )?;
-    println!(
-        "wrote slider_crank.csv and slider_crank.svg in {}",
-        dir.display()
-    );
+    global.write_csv(std::fs::File::create(dir.join("slider_crank.csv"))?, &global.names())?;
+    daegen::plot::time_series(&global, &["slider.x", "revolute1.q"], dir.join("slider_crank.svg"))?;
+    println!("wrote slider_crank.csv and slider_crank.svg in {}", dir.display());
     Ok(())
 }

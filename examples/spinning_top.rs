@@ -40,9 +40,7 @@ fn spinning_top() {
     let tip_x = output(axis[0]);
     let tip_y = output(axis[1]);
     /// Magnitude of the pivot's reaction force (N).
-    let pivot_force = output(sqrt(
-        pivot[0] * pivot[0] + pivot[1] * pivot[1] + pivot[2] * pivot[2],
-    ));
+    let pivot_force = output(sqrt(pivot[0] * pivot[0] + pivot[1] * pivot[1] + pivot[2] * pivot[2]));
     /// Kinetic plus potential energy (J).
     let energy = output(
         0.5 * m * (der(top.x) * der(top.x) + der(top.y) * der(top.y) + der(top.z) * der(top.z))
@@ -64,15 +62,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     let grid: Vec<f64> = (0..=10).map(|k| 0.5 * k as f64).collect();
     println!();
-    println!(
-        "{}",
-        sol.sample(&["tilt", "azimuth", "pivot_force"], &grid)?
-    );
+    println!("{}", sol.sample(&["tilt", "azimuth", "pivot_force"], &grid)?);
     let energy = sol.column("energy")?;
-    let drift = energy
-        .iter()
-        .map(|e| (e - energy[0]).abs())
-        .fold(0.0, f64::max);
+    let drift = energy.iter().map(|e| (e - energy[0]).abs()).fold(0.0, f64::max);
     println!(
         "\nenergy {:.12} J, largest drift {drift:.1e} J over the steps; max |Φ| {:.1e}",
         energy[0],
@@ -83,14 +75,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/example-output");
     std::fs::create_dir_all(&dir)?;
     let csv = std::fs::File::create(dir.join("spinning_top.csv"))?;
-    first.write_csv(
-        csv,
-        &["tip_x", "tip_y", "tilt", "azimuth", "pivot_force", "energy"],
-    )?;
+    first.write_csv(csv, &["tip_x", "tip_y", "tilt", "azimuth", "pivot_force", "energy"])?;
     daegen::plot::phase_portrait(&first, "tip_x", "tip_y", dir.join("spinning_top.svg"))?;
-    println!(
-        "wrote spinning_top.csv and spinning_top.svg in {}",
-        dir.display()
-    );
+    println!("wrote spinning_top.csv and spinning_top.svg in {}", dir.display());
     Ok(())
 }

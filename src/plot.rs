@@ -77,15 +77,10 @@ pub fn phase_portrait(
     path: impl AsRef<Path>,
 ) -> Result<(), Error> {
     let table = curve_points(sol, &[x, y])?;
-    let (xs, ys) = (
-        table.column(x).unwrap_or(&[]),
-        table.column(y).unwrap_or(&[]),
-    );
+    let (xs, ys) = (table.column(x).unwrap_or(&[]), table.column(y).unwrap_or(&[]));
     let name = format!("{y} against {x}");
-    let series = [Series {
-        name: &name,
-        points: xs.iter().copied().zip(ys.iter().copied()).collect(),
-    }];
+    let series =
+        [Series { name: &name, points: xs.iter().copied().zip(ys.iter().copied()).collect() }];
     let svg = line_chart_svg(&title(sol), x, y, &series)?;
     write(path.as_ref(), &svg)
 }
@@ -124,9 +119,8 @@ fn curve_points(sol: &Solution, names: &[&str]) -> Result<Table, Error> {
 }
 
 fn write(path: &Path, svg: &str) -> Result<(), Error> {
-    std::fs::write(path, svg).map_err(|e| Error::Io {
-        message: format!("writing {} failed: {e}", path.display()),
-    })
+    std::fs::write(path, svg)
+        .map_err(|e| Error::Io { message: format!("writing {} failed: {e}", path.display()) })
 }
 
 /// A line chart as SVG text (linear axes, the ranges from the data, the
@@ -139,14 +133,10 @@ pub fn line_chart_svg(
     series: &[Series],
 ) -> Result<String, Error> {
     let finite = |p: &&(f64, f64)| p.0.is_finite() && p.1.is_finite();
-    let all: Vec<&(f64, f64)> = series
-        .iter()
-        .flat_map(|s| s.points.iter().filter(finite))
-        .collect();
+    let all: Vec<&(f64, f64)> =
+        series.iter().flat_map(|s| s.points.iter().filter(finite)).collect();
     if all.is_empty() {
-        return Err(Error::Io {
-            message: format!("plotting {title}: no finite point to draw"),
-        });
+        return Err(Error::Io { message: format!("plotting {title}: no finite point to draw") });
     }
     let span = |f: fn(&(f64, f64)) -> f64| {
         let lo = all.iter().map(|p| f(p)).fold(f64::INFINITY, f64::min);
@@ -159,9 +149,8 @@ pub fn line_chart_svg(
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (880, 480)).into_drawing_area();
-        let draw = |e: DrawingAreaErrorKind<_>| Error::Io {
-            message: format!("plotting {title}: {e:?}"),
-        };
+        let draw =
+            |e: DrawingAreaErrorKind<_>| Error::Io { message: format!("plotting {title}: {e:?}") };
         root.fill(&WHITE).map_err(draw)?;
         // The legend beside the chart, where it hides no point.
         let (plot, legend) = root.split_horizontally(660);
@@ -172,30 +161,19 @@ pub fn line_chart_svg(
             .y_label_area_size(60)
             .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(draw)?;
-        chart
-            .configure_mesh()
-            .x_desc(x_desc)
-            .y_desc(y_desc)
-            .draw()
-            .map_err(draw)?;
+        chart.configure_mesh().x_desc(x_desc).y_desc(y_desc).draw().map_err(draw)?;
         for (k, s) in series.iter().enumerate() {
             let colour = PALETTE[k % PALETTE.len()];
             let style = ShapeStyle::from(&colour).stroke_width(2);
             let points: Vec<(f64, f64)> = s.points.iter().copied().filter(|p| finite(&p)).collect();
-            chart
-                .draw_series(LineSeries::new(points, style))
-                .map_err(draw)?;
+            chart.draw_series(LineSeries::new(points, style)).map_err(draw)?;
             // A filled swatch, so the curve is the series' only line.
             let y = 48 + 22 * k as i32;
             legend
                 .draw(&Rectangle::new([(4, y - 3), (28, y + 3)], colour.filled()))
                 .map_err(draw)?;
             legend
-                .draw(&Text::new(
-                    s.name.to_string(),
-                    (34, y - 7),
-                    ("sans-serif", 13),
-                ))
+                .draw(&Text::new(s.name.to_string(), (34, y - 7), ("sans-serif", 13)))
                 .map_err(draw)?;
         }
         root.present().map_err(draw)?;

@@ -73,10 +73,7 @@ fn a_streamed_run_uses_the_same_memory_for_a_hundred_times_the_steps() {
     // largest at t = 3π, after 3π/h steps.
     let amplitude = (1.0 + 1e-12f64).powf(0.5 * 3.0 * std::f64::consts::PI / 1e-6);
     assert!((largest - amplitude).abs() < 1e-9, "{largest}");
-    assert_eq!(
-        small, large,
-        "peak bytes alive: {small} for 1e5 steps, {large} for 1e7"
-    );
+    assert_eq!(small, large, "peak bytes alive: {small} for 1e5 steps, {large} for 1e7");
     println!("peak bytes alive: {small} for 1e5 steps, {large} for 1e7");
     // And little of it: the solution, the model and the scratch vectors.
     assert!(large < 64 * 1024, "{large} bytes");

@@ -42,18 +42,13 @@ fn the_cartesian_pendulum_has_index_three() {
     // The position constraint and its velocity level are projected onto.
     let levels: Vec<usize> = Pendulum::CONSTRAINTS.iter().map(|c| c.level).collect();
     assert_eq!(levels, [0, 1]);
-    assert_eq!(
-        Pendulum::CONSTRAINTS[0].equation,
-        "constraint(x * x + y * y - l * l)"
-    );
+    assert_eq!(Pendulum::CONSTRAINTS[0].equation, "constraint(x * x + y * y - l * l)");
 }
 
 /// The angle form at a tolerance far below the DAE runs' as the reference.
 fn angle_reference(t: f64) -> (f64, f64) {
     let opts = Options::new().method(Method::Dop853).tolerance(1e-13);
-    let sol = PendulumAngle::default()
-        .simulate(0.0, t, &opts)
-        .expect("the angle form integrates");
+    let sol = PendulumAngle::default().simulate(0.0, t, &opts).expect("the angle form integrates");
     let theta = sol.last("theta").expect("theta");
     (theta.sin(), -theta.cos())
 }
@@ -62,17 +57,10 @@ fn angle_reference(t: f64) -> (f64, f64) {
 fn the_dae_pendulum_follows_the_angle_form_and_keeps_its_constraints() {
     let model = Pendulum::default();
     let (m, g, l) = (model.m, model.g, model.l);
-    for method in [
-        Method::Dop853,
-        Method::Dopri5,
-        Method::Radau5,
-        Method::Taylor,
-    ] {
+    for method in [Method::Dop853, Method::Dopri5, Method::Radau5, Method::Taylor] {
         let tol = 1e-10;
         let opts = Options::new().method(method).tolerance(tol);
-        let sol = model
-            .simulate(0.0, 100.0, &opts)
-            .expect("the pendulum runs");
+        let sol = model.simulate(0.0, 100.0, &opts).expect("the pendulum runs");
         let mut drift_100 = 0.0f64;
         for k in 0..sol.times().len() {
             let s = sol.state(k).expect("a step");
@@ -109,10 +97,7 @@ fn the_dae_pendulum_follows_the_angle_form_and_keeps_its_constraints() {
         // global error per tolerance is larger: its angle form drifts 1.4e-8
         // too, and the comparison with the angle form below covers it).
         if !matches!(method, Method::Dopri5) {
-            assert!(
-                energy <= 10.0 * tol * m * g * l,
-                "{method:?}: energy drift {energy:e}"
-            );
+            assert!(energy <= 10.0 * tol * m * g * l, "{method:?}: energy drift {energy:e}");
         }
         // λ from the acceleration level agrees with the closed form that
         // follows from the constraint: λ l² = m |v|² − m g y.
@@ -148,9 +133,7 @@ fn over_a_hundred_seconds_the_dae_drifts_in_energy_like_the_angle_form() {
     for tol in [1e-8, 1e-10, 1e-12] {
         for method in [Method::Dop853, Method::Dopri5, Method::Radau5] {
             let opts = Options::new().method(method).tolerance(tol);
-            let angle = PendulumAngle::default()
-                .simulate(0.0, 100.0, &opts)
-                .unwrap();
+            let angle = PendulumAngle::default().simulate(0.0, 100.0, &opts).unwrap();
             let dae = Pendulum::default().simulate(0.0, 100.0, &opts).unwrap();
             let reference = energy_drift(&angle, &|s| 0.5 * s[1] * s[1] - 9.81 * s[0].cos());
             let drift = energy_drift(&dae, &|s| 0.5 * (s[2] * s[2] + s[3] * s[3]) + 9.81 * s[1]);
@@ -176,23 +159,12 @@ fn robertson_as_an_index_1_dae_reaches_the_published_solution() {
     assert!(RobertsonDae::CONSTRAINTS.is_empty());
     assert!(!RobertsonDae::JACOBIAN_PATTERN.is_empty());
     for tol in [1e-6, 1e-8, 1e-10] {
-        let opts = Options::new()
-            .method(Method::Radau5)
-            .rtol(tol)
-            .atol(1e-6 * tol);
+        let opts = Options::new().method(Method::Radau5).rtol(tol).atol(1e-6 * tol);
         let sol = RobertsonDae::default().simulate(0.0, 1e11, &opts).unwrap();
-        let got = [
-            sol.last("y1").unwrap(),
-            sol.last("y2").unwrap(),
-            sol.last("y3").unwrap(),
-        ];
+        let got = [sol.last("y1").unwrap(), sol.last("y2").unwrap(), sol.last("y3").unwrap()];
         for (k, (g, r)) in got.iter().zip(ROBER_AT_1E11).enumerate() {
             let e = (g - r).abs() / r.abs();
-            assert!(
-                e <= 10.0 * tol,
-                "tol {tol:e}: y{} relative error {e:e}",
-                k + 1
-            );
+            assert!(e <= 10.0 * tol, "tol {tol:e}: y{} relative error {e:e}", k + 1);
         }
     }
 }
@@ -249,16 +221,11 @@ fn pendul3_errors(sol: &Solution, t_end: f64) -> Vec<f64> {
 }
 
 fn pendul3_run(method: Method, tol: f64, step: f64, t_end: f64) -> Solution {
-    let model = Pendulum {
-        g: 1.0,
-        ..Pendulum::default()
-    };
+    let model = Pendulum { g: 1.0, ..Pendulum::default() };
     let opts = Options::new().method(method).tolerance(tol);
     // A step only for the fixed-step methods (0: none given).
     let opts = if step > 0.0 { opts.step(step) } else { opts };
-    model
-        .simulate_from(0.0, &[1.0, 0.0, 0.0, 1.0], t_end, &opts)
-        .expect("the pendulum runs")
+    model.simulate_from(0.0, &[1.0, 0.0, 0.0, 1.0], t_end, &opts).expect("the pendulum runs")
 }
 
 #[test]
@@ -268,20 +235,13 @@ fn cash_index_3_pendulum_matches_the_reference_including_lambda() {
     for method in [Method::Dop853, Method::Dopri5, Method::Radau5] {
         for tol in [1e-6, 1e-8, 1e-10] {
             let e = pendul3_errors(&pendul3_run(method, tol, 0.0, 1.0), 1.0)[0];
-            assert!(
-                e <= 20.0 * tol,
-                "{method:?} tol {tol:e}: error {e:e} at t = 1"
-            );
+            assert!(e <= 20.0 * tol, "{method:?} tol {tol:e}: error {e:e} at t = 1");
         }
     }
     // Twelve periods: the phase error grows, the constraints do not.
     let sol = pendul3_run(Method::Dop853, 1e-12, 0.0, 100.0);
     let e = pendul3_errors(&sol, 100.0);
-    assert!(
-        e[2] <= 1000.0 * 1e-12,
-        "DOP853 at 1e-12: error {:e} at t = 100",
-        e[2]
-    );
+    assert!(e[2] <= 1000.0 * 1e-12, "DOP853 at 1e-12: error {:e} at t = 100", e[2]);
     assert!(sol.max_constraint_residual() <= 1e-14);
 }
 
@@ -293,10 +253,7 @@ fn rk4_on_the_index_1_form_with_projection_converges_with_order_four() {
         .collect();
     for pair in errors.windows(2) {
         let order = (pair[0] / pair[1]).log2();
-        assert!(
-            (3.7..4.4).contains(&order),
-            "observed order {order} from {errors:?}"
-        );
+        assert!((3.7..4.4).contains(&order), "observed order {order} from {errors:?}");
     }
 }
 
@@ -307,9 +264,7 @@ fn slider_crank_in_global_coordinates_follows_its_crank_angle_ode() {
     assert_eq!(<SliderCrank as Model>::INDEX, 3);
     let tol = 1e-10;
     let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = SliderCrank::default()
-        .simulate(0.0, 5.0, &opts)
-        .expect("runs");
+    let sol = SliderCrank::default().simulate(0.0, 5.0, &opts).expect("runs");
     // Consistent initialization put the guesses on the joints.
     let s0 = sol.state(0).expect("the initial state");
     let (r, l) = (0.15, 0.4);
@@ -318,16 +273,9 @@ fn slider_crank_in_global_coordinates_follows_its_crank_angle_ode() {
     assert!((s0[2] - 0.5 * r * phi0.sin()).abs() < 1e-12);
     assert!(s0[8].abs() < 1e-12, "ys = {}", s0[8]);
     assert!(sol.max_constraint_residual() <= 1e-12);
-    let reference = SliderCrankAngle {
-        phi0,
-        ..SliderCrankAngle::default()
-    }
-    .simulate(
-        0.0,
-        5.0,
-        &Options::new().method(Method::Dop853).tolerance(1e-13),
-    )
-    .expect("the angle form runs");
+    let reference = SliderCrankAngle { phi0, ..SliderCrankAngle::default() }
+        .simulate(0.0, 5.0, &Options::new().method(Method::Dop853).tolerance(1e-13))
+        .expect("the angle form runs");
     for t in [0.5, 1.0, 2.0, 5.0] {
         let phi = reference.at(t, "phi").unwrap();
         let theta = sol.at(t, "theta1").unwrap();
@@ -335,14 +283,8 @@ fn slider_crank_in_global_coordinates_follows_its_crank_angle_ode() {
         let xs = sol.at(t, "xs").unwrap();
         // 100 × tol: the global error of about two crank revolutions
         // (measured 2.5e-9 at t = 5).
-        assert!(
-            (theta - phi).abs() <= 100.0 * tol,
-            "t = {t}: θ1 = {theta}, φ = {phi}"
-        );
-        assert!(
-            (xs - xs_ref).abs() <= 100.0 * tol,
-            "t = {t}: xs = {xs}, from φ {xs_ref}"
-        );
+        assert!((theta - phi).abs() <= 100.0 * tol, "t = {t}: θ1 = {theta}, φ = {phi}");
+        assert!((xs - xs_ref).abs() <= 100.0 * tol, "t = {t}: xs = {xs}, from φ {xs_ref}");
     }
 }
 
@@ -450,10 +392,7 @@ fn check_linear_dae(sol: &Solution, alpha: &dyn Fn(f64) -> [f64; 3], tol: f64) {
         let want = linear_closed_form(alpha(t), beta0, t);
         for (i, w) in want.iter().enumerate() {
             let got = sol.at(t, &format!("y[{i}]")).expect("in range");
-            assert!(
-                (got - w).abs() <= 100.0 * tol,
-                "t = {t}: y[{i}] = {got}, closed form {w}"
-            );
+            assert!((got - w).abs() <= 100.0 * tol, "t = {t}: y[{i}] = {got}, closed form {w}");
         }
     }
 }
@@ -465,22 +404,12 @@ fn linear_daes_of_kronecker_index_1_2_3_match_the_closed_form() {
     assert_eq!(<LinearIndex3 as Model>::INDEX, 3);
     let tol = 1e-10;
     let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = LinearIndex1::default()
-        .simulate(0.0, 5.0, &opts)
-        .expect("index 1 runs");
+    let sol = LinearIndex1::default().simulate(0.0, 5.0, &opts).expect("index 1 runs");
     check_linear_dae(&sol, &|t: f64| [t.sin(), t.cos(), t * t], tol);
-    let sol = LinearIndex2::default()
-        .simulate(0.0, 5.0, &opts)
-        .expect("index 2 runs");
+    let sol = LinearIndex2::default().simulate(0.0, 5.0, &opts).expect("index 2 runs");
     check_linear_dae(&sol, &|t: f64| [2.0 * t.sin(), t.cos(), t * t], tol);
-    let sol = LinearIndex3::default()
-        .simulate(0.0, 5.0, &opts)
-        .expect("index 3 runs");
-    check_linear_dae(
-        &sol,
-        &|t: f64| [2.0 * t.sin() + 2.0, t.cos() - 2.0 * t, t * t],
-        tol,
-    );
+    let sol = LinearIndex3::default().simulate(0.0, 5.0, &opts).expect("index 3 runs");
+    check_linear_dae(&sol, &|t: f64| [2.0 * t.sin() + 2.0, t.cos() - 2.0 * t, t * t], tol);
 }
 
 /// The pendulum with its abscissa fixed at 0.6 and a rough guess for the
@@ -504,9 +433,7 @@ fn pendulum_fixed_abscissa() {
 #[test]
 fn initialization_keeps_fixed_values_and_reports_the_degrees_of_freedom() {
     let opts = Options::new().method(Method::Dop853).tolerance(1e-10);
-    let sol = PendulumFixedAbscissa::default()
-        .simulate(0.0, 1.0, &opts)
-        .unwrap();
+    let sol = PendulumFixedAbscissa::default().simulate(0.0, 1.0, &opts).unwrap();
     let s = sol.state(0).unwrap();
     assert_eq!(s[0], 0.6);
     assert!((s[1] + 0.8).abs() <= 1e-14, "y0 = {}", s[1]);
@@ -514,35 +441,20 @@ fn initialization_keeps_fixed_values_and_reports_the_degrees_of_freedom() {
     // removes the radial part: (u, v) = 0.3 (1 − x²) , −0.3 x y... exactly
     // the tangential projection of (0.3, 0) onto (−y, x)/l = (0.8, 0.6).
     let (u, v) = (0.3 * 0.8 * 0.8, 0.3 * 0.8 * 0.6);
-    assert!(
-        (s[2] - u).abs() <= 1e-14 && (s[3] - v).abs() <= 1e-14,
-        "{s:?}"
-    );
+    assert!((s[2] - u).abs() <= 1e-14 && (s[3] - v).abs() <= 1e-14, "{s:?}");
     assert_eq!(sol.degrees_of_freedom(), Some(1));
     assert_eq!(
-        SliderCrank::default()
-            .simulate(0.0, 0.1, &opts)
-            .unwrap()
-            .degrees_of_freedom(),
+        SliderCrank::default().simulate(0.0, 0.1, &opts).unwrap().degrees_of_freedom(),
         Some(1)
     );
     assert_eq!(
-        PendulumAngle::default()
-            .simulate(0.0, 0.1, &opts)
-            .unwrap()
-            .degrees_of_freedom(),
+        PendulumAngle::default().simulate(0.0, 0.1, &opts).unwrap().degrees_of_freedom(),
         None
     );
     let stats = sol.stats();
     assert_eq!(stats.method, "Dop853");
-    assert!(
-        stats.formulation.contains("projected"),
-        "{}",
-        stats.formulation
-    );
-    let auto = Pendulum::default()
-        .simulate(0.0, 1.0, &Options::new().tolerance(1e-6))
-        .unwrap();
+    assert!(stats.formulation.contains("projected"), "{}", stats.formulation);
+    let auto = Pendulum::default().simulate(0.0, 1.0, &Options::new().tolerance(1e-6)).unwrap();
     assert_eq!(auto.stats().method, "Dopri5");
 }
 
@@ -581,37 +493,24 @@ fn doubled_constraint() {
 #[test]
 fn unrepairable_or_redundant_constraints_are_errors_that_name_the_constraint() {
     let opts = Options::new().method(Method::Dop853);
-    let err = ImpossibleCircle::default()
-        .simulate(0.0, 1.0, &opts)
-        .unwrap_err();
+    let err = ImpossibleCircle::default().simulate(0.0, 1.0, &opts).unwrap_err();
     let message = err.to_string();
-    assert!(
-        message.contains("constraint(x * x + y * y + 1.0)"),
-        "{message}"
-    );
+    assert!(message.contains("constraint(x * x + y * y + 1.0)"), "{message}");
     assert!(
         message.contains("cannot be made consistent") || message.contains("rank-deficient"),
         "{message}"
     );
     assert!(matches!(err, Error::Constraint { t, .. } if t == 0.0));
     assert!(err.partial_solution().is_some());
-    let err = DoubledConstraint::default()
-        .simulate(0.0, 1.0, &opts)
-        .unwrap_err();
+    let err = DoubledConstraint::default().simulate(0.0, 1.0, &opts).unwrap_err();
     let message = err.to_string();
     assert!(message.contains("redundant"), "{message}");
-    assert!(
-        message.contains("constraint(2.0 * x * x + 2.0 * y * y - 2.0)"),
-        "{message}"
-    );
+    assert!(message.contains("constraint(2.0 * x * x + 2.0 * y * y - 2.0)"), "{message}");
     // Both fixed: nothing left to correct.
     let err = PendulumFixedAbscissa::default()
         .simulate_from(0.0, &[2.0, 0.0, 0.0, 0.0], 1.0, &opts)
         .unwrap_err();
-    assert!(
-        err.to_string().contains("cannot be made consistent"),
-        "{err}"
-    );
+    assert!(err.to_string().contains("cannot be made consistent"), "{err}");
 }
 
 /// A rheonomic constraint (course notes §4.2): a pendulum whose support
@@ -656,32 +555,20 @@ fn a_pendulum_on_a_moving_support_follows_its_angle_form() {
     assert_eq!(<PendulumOnAShakingSupport as Model>::INDEX, 3);
     let tol = 1e-10;
     let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = PendulumOnAShakingSupport::default()
-        .simulate(0.0, 5.0, &opts)
-        .unwrap();
+    let sol = PendulumOnAShakingSupport::default().simulate(0.0, 5.0, &opts).unwrap();
     let (a, w, l) = (0.1, 3.0, 1.0);
     // The consistent start (the velocity constraint involves s'(0) = a ω).
     let s0 = sol.state(0).unwrap();
     // States in order x, y, u, v; s(0) = 0, s'(0) = a ω.
     let theta0 = s0[0].atan2(-s0[1]);
     let omega0 = (s0[2] - a * w) / (l * theta0.cos());
-    let reference = ShakenPendulumAngle {
-        theta0,
-        omega0,
-        ..ShakenPendulumAngle::default()
-    }
-    .simulate(
-        0.0,
-        5.0,
-        &Options::new().method(Method::Dop853).tolerance(1e-13),
-    )
-    .unwrap();
+    let reference = ShakenPendulumAngle { theta0, omega0, ..ShakenPendulumAngle::default() }
+        .simulate(0.0, 5.0, &Options::new().method(Method::Dop853).tolerance(1e-13))
+        .unwrap();
     for t in [1.0, 3.0, 5.0] {
         let theta = reference.at(t, "theta").unwrap();
         let (x, y) = (a * (w * t).sin() + l * theta.sin(), -l * theta.cos());
-        let e = (sol.at(t, "x").unwrap() - x)
-            .abs()
-            .max((sol.at(t, "y").unwrap() - y).abs());
+        let e = (sol.at(t, "x").unwrap() - x).abs().max((sol.at(t, "y").unwrap() - y).abs());
         assert!(e <= 100.0 * tol, "t = {t}: error {e:e}");
     }
     assert!(sol.max_constraint_residual() <= 1e-12);
@@ -726,9 +613,7 @@ fn a_knife_edge_follows_its_closed_form() {
     for t in [1.0f64, 5.0, 10.0] {
         let x = t.sin() - 0.5 * t.sin().powi(2);
         let y = (1.0 - t.cos()) - (t / 2.0 - (2.0 * t).sin() / 4.0);
-        let e = (sol.at(t, "x").unwrap() - x)
-            .abs()
-            .max((sol.at(t, "y").unwrap() - y).abs());
+        let e = (sol.at(t, "x").unwrap() - x).abs().max((sol.at(t, "y").unwrap() - y).abs());
         assert!(e <= 100.0 * tol, "t = {t}: error {e:e}");
     }
 }
@@ -742,19 +627,12 @@ cash_pendulum_model!(taylor = 1, unroll = [12, 16]);
 fn the_taylor_method_integrates_the_index_1_form_with_projection() {
     for compact in [false, true] {
         for tol in [1e-10, 1e-14] {
-            let opts = Options::new()
-                .method(Method::Taylor)
-                .tolerance(tol)
-                .taylor_compact(compact);
+            let opts = Options::new().method(Method::Taylor).tolerance(tol).taylor_compact(compact);
             let sol = CashPendulum::default().simulate(0.0, 10.0, &opts).unwrap();
             let e = pendul3_errors(&sol, 10.0);
             // 10 × tol at t = 1, and the global error of a period at t = 10.
             assert!(e[0] <= 10.0 * tol, "tol {tol:e}: error {:e} at t = 1", e[0]);
-            assert!(
-                e[1] <= 1000.0 * tol,
-                "tol {tol:e}: error {:e} at t = 10",
-                e[1]
-            );
+            assert!(e[1] <= 1000.0 * tol, "tol {tol:e}: error {:e} at t = 10", e[1]);
             assert!(sol.max_constraint_residual() <= 1e-14);
         }
     }
@@ -781,48 +659,29 @@ fn the_gear_gupta_leimkuhler_form_with_radau5_matches_the_references() {
             let bound = if *t == 1.0 { 20.0 } else { 1000.0 } * tol;
             assert!(e <= bound, "tol {tol:e}, t = {t}: error {e:e}");
         }
-        let mu = (0..sol.times().len())
-            .map(|k| sol.state(k).unwrap()[5].abs())
-            .fold(0.0, f64::max);
+        let mu = (0..sol.times().len()).map(|k| sol.state(k).unwrap()[5].abs()).fold(0.0, f64::max);
         let h_mean = 10.0 / sol.stats().steps as f64;
         assert!(mu <= 1000.0 * tol / h_mean, "max |μ| = {mu:e}");
     }
     // The slider-crank: four joint forces, four multipliers.
     assert_eq!(SliderCrankMassForm::STATES, 18);
-    let opts = Options::new()
-        .method(Method::Radau5)
-        .tolerance(1e-9)
-        .formulation(Formulation::MassMatrix);
+    let opts =
+        Options::new().method(Method::Radau5).tolerance(1e-9).formulation(Formulation::MassMatrix);
     let sol = SliderCrank::default().simulate(0.0, 2.0, &opts).unwrap();
     let s0 = sol.state(0).unwrap();
-    let reference = SliderCrankAngle {
-        phi0: s0[4],
-        ..SliderCrankAngle::default()
-    }
-    .simulate(
-        0.0,
-        2.0,
-        &Options::new().method(Method::Dop853).tolerance(1e-13),
-    )
-    .unwrap();
+    let reference = SliderCrankAngle { phi0: s0[4], ..SliderCrankAngle::default() }
+        .simulate(0.0, 2.0, &Options::new().method(Method::Dop853).tolerance(1e-13))
+        .unwrap();
     for t in [0.5, 1.0, 2.0] {
-        let (phi, theta) = (
-            reference.at(t, "phi").unwrap(),
-            sol.at(t, "theta1").unwrap(),
-        );
-        assert!(
-            (theta - phi).abs() <= 1e-6,
-            "t = {t}: θ1 = {theta}, φ = {phi}"
-        );
+        let (phi, theta) = (reference.at(t, "phi").unwrap(), sol.at(t, "theta1").unwrap());
+        assert!((theta - phi).abs() <= 1e-6, "t = {t}: θ1 = {theta}, φ = {phi}");
     }
     // Other methods are refused with a message that says what to do.
     let err = CashPendulum::default()
         .simulate(
             0.0,
             1.0,
-            &Options::new()
-                .method(Method::Dop853)
-                .formulation(Formulation::MassMatrix),
+            &Options::new().method(Method::Dop853).formulation(Formulation::MassMatrix),
         )
         .unwrap_err();
     assert!(err.to_string().contains("Method::Radau5"), "{err}");
@@ -855,20 +714,13 @@ fn an_algebraic_equation_nonlinear_in_its_variable_runs_with_every_method() {
             (base.method(Method::Dop853), "Dop853"),
             (base.method(Method::Radau5), "Radau5"),
             (base.clone(), "Auto"),
-            (
-                base.method(Method::Radau5)
-                    .formulation(Formulation::MassMatrix),
-                "mass-matrix form",
-            ),
+            (base.method(Method::Radau5).formulation(Formulation::MassMatrix), "mass-matrix form"),
         ] {
-            let sol = SquareRootDecay::default()
-                .simulate(0.0, 1.5, &options)
-                .unwrap();
+            let sol = SquareRootDecay::default().simulate(0.0, 1.5, &options).unwrap();
             for t in [0.5, 1.0, 1.5] {
                 let (y, z) = exact(t);
-                let e = (sol.at(t, "y").unwrap() - y)
-                    .abs()
-                    .max((sol.at(t, "z").unwrap() - z).abs());
+                let e =
+                    (sol.at(t, "y").unwrap() - y).abs().max((sol.at(t, "z").unwrap() - z).abs());
                 assert!(e <= 10.0 * tol, "{what}, tol {tol:e}, t = {t}: error {e:e}");
                 // `rate` solves for z anew from y (in the mass-matrix form,
                 // z is a component, consistent to the tolerance).
@@ -920,22 +772,14 @@ fn the_cartesian_double_pendulum_follows_its_angle_form() {
     // Chaotic: compared over 2 s, where both runs agree to their tolerance.
     let tol = 1e-11;
     let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = DoublePendulumCartesian::default()
-        .simulate(0.0, 2.0, &opts)
-        .unwrap();
+    let sol = DoublePendulumCartesian::default().simulate(0.0, 2.0, &opts).unwrap();
     let reference = DoublePendulumAngles::default()
-        .simulate(
-            0.0,
-            2.0,
-            &Options::new().method(Method::Dop853).tolerance(1e-13),
-        )
+        .simulate(0.0, 2.0, &Options::new().method(Method::Dop853).tolerance(1e-13))
         .unwrap();
     for t in [0.5, 1.0, 2.0] {
         let (a, b) = (reference.at(t, "a").unwrap(), reference.at(t, "b").unwrap());
         let (x2, y2) = (a.sin() + b.sin(), -a.cos() - b.cos());
-        let e = (sol.at(t, "x2").unwrap() - x2)
-            .abs()
-            .max((sol.at(t, "y2").unwrap() - y2).abs());
+        let e = (sol.at(t, "x2").unwrap() - x2).abs().max((sol.at(t, "y2").unwrap() - y2).abs());
         assert!(e <= 1000.0 * tol, "t = {t}: error {e:e}");
     }
     // Energy: 0 at the start (both rods horizontal, at rest).
@@ -967,9 +811,7 @@ fn explicit_definitions_may_have_parameter_coefficients() {
     // Cash's pendulum again (unit speed, g = 1), whatever the mass.
     let tol = 1e-10;
     let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = PendulumMomentum::default()
-        .simulate(0.0, 1.0, &opts)
-        .unwrap();
+    let sol = PendulumMomentum::default().simulate(0.0, 1.0, &opts).unwrap();
     let e = (sol.last("x").unwrap() - PENDUL3[0].1[0])
         .abs()
         .max((sol.last("y").unwrap() - PENDUL3[0].1[1]).abs());
@@ -986,16 +828,11 @@ fn every_formulation_reports_its_names_residuals_and_degrees_of_freedom() {
     let tol = 1e-8;
     let base = Options::new().method(Method::Radau5).tolerance(tol);
     let projected = Pendulum::default().simulate(0.0, 3.0, &base).unwrap();
-    let mass = Pendulum::default()
-        .simulate(0.0, 3.0, &base.formulation(Formulation::MassMatrix))
-        .unwrap();
+    let mass =
+        Pendulum::default().simulate(0.0, 3.0, &base.formulation(Formulation::MassMatrix)).unwrap();
     for (sol, what) in [(&projected, "projected"), (&mass, "mass-matrix")] {
         let stats = sol.stats();
-        assert!(
-            stats.formulation.contains(what),
-            "{what}: {}",
-            stats.formulation
-        );
+        assert!(stats.formulation.contains(what), "{what}: {}", stats.formulation);
         assert_eq!(sol.degrees_of_freedom(), Some(1), "{what}");
         // The output and the multiplier by name, at a step and between.
         // Released at rest level with the pivot: the energy stays 0.
@@ -1003,15 +840,9 @@ fn every_formulation_reports_its_names_residuals_and_degrees_of_freedom() {
         assert!(energy.abs() < 1e-4, "{what}: energy {energy}");
         assert!(sol.at(1.234, "energy").unwrap().is_finite(), "{what}");
         let lambda = sol.at(1.5, "lambda").unwrap();
-        assert!(
-            lambda.is_finite() && lambda.abs() > 1.0,
-            "{what}: λ = {lambda}"
-        );
+        assert!(lambda.is_finite() && lambda.abs() > 1.0, "{what}: λ = {lambda}");
         // Measured, not assumed: above zero, below the tolerance's reach.
-        let (p, v) = (
-            sol.max_constraint_residual(),
-            sol.max_velocity_constraint_residual(),
-        );
+        let (p, v) = (sol.max_constraint_residual(), sol.max_velocity_constraint_residual());
         assert!(p > 0.0 && v > 0.0, "{what}: residuals {p:e}, {v:e}");
         assert!(p < 1e-6 && v < 1e-4, "{what}: residuals {p:e}, {v:e}");
     }
@@ -1031,9 +862,7 @@ fn moved_initial_values_are_reported_or_refused() {
     let opts = Options::new().method(Method::Radau5);
     // |(1.1, 0)| = 1.1 on a pendulum of length 1: x moves to 1 (the
     // minimum-norm correction along Φ_q = (2x, 2y)); y, u, v stay.
-    let sol = model
-        .simulate_from(0.0, &[1.1, 0.0, 0.0, 0.0], 1.0, &opts)
-        .unwrap();
+    let sol = model.simulate_from(0.0, &[1.1, 0.0, 0.0, 0.0], 1.0, &opts).unwrap();
     let moved = sol.initial_corrections();
     assert_eq!(moved.len(), 1, "{moved:?}");
     assert_eq!((moved[0].name, moved[0].given), ("x", 1.1));
@@ -1044,36 +873,23 @@ fn moved_initial_values_are_reported_or_refused() {
     let strict = opts.strict_initial_values(true);
     assert!(model.simulate(0.0, 1.0, &strict).is_ok());
     // Strict: the move is an error naming the constraint and the values.
-    let err = model
-        .simulate_from(0.0, &[1.1, 0.0, 0.0, 0.0], 1.0, &strict)
-        .unwrap_err();
+    let err = model.simulate_from(0.0, &[1.1, 0.0, 0.0, 0.0], 1.0, &strict).unwrap_err();
     let message = err.to_string();
     assert!(
         matches!(
             err,
-            Error::Constraint {
-                constraint: "constraint(x * x + y * y - l * l)",
-                level: 0,
-                ..
-            }
+            Error::Constraint { constraint: "constraint(x * x + y * y - l * l)", level: 0, .. }
         ),
         "{message}"
     );
     assert!(message.contains("`x` from 1.1 to 1"), "{message}");
     // The mass-matrix formulation reports the same moves.
     let mass = model
-        .simulate_from(
-            0.0,
-            &[1.1, 0.0, 0.0, 0.0],
-            1.0,
-            &opts.formulation(Formulation::MassMatrix),
-        )
+        .simulate_from(0.0, &[1.1, 0.0, 0.0, 0.0], 1.0, &opts.formulation(Formulation::MassMatrix))
         .unwrap();
     assert_eq!(mass.initial_corrections(), sol.initial_corrections());
     // An algebraic variable's guess is no initial value: Newton starts
     // from it, and nothing is reported moved.
-    let decay = SquareRootDecay::default()
-        .simulate(0.0, 1.0, &Options::new())
-        .unwrap();
+    let decay = SquareRootDecay::default().simulate(0.0, 1.0, &Options::new()).unwrap();
     assert!(decay.initial_corrections().is_empty());
 }

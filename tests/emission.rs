@@ -12,11 +12,8 @@ use quote::{format_ident, quote};
 fn layout(g: &Graph) -> impl Fn(SymbolId) -> TokenStream + '_ {
     move |s| {
         let index_among = |kind: fn(&SymbolKind) -> bool, s: SymbolId| {
-            let i = g
-                .symbols()
-                .filter(|(_, sym)| kind(&sym.kind))
-                .position(|(id, _)| id == s)
-                .unwrap();
+            let i =
+                g.symbols().filter(|(_, sym)| kind(&sym.kind)).position(|(id, _)| id == s).unwrap();
             Literal::usize_unsuffixed(i)
         };
         match g.symbol(s).kind {
@@ -86,31 +83,14 @@ fn states(g: &mut Graph, names: &[&str]) -> Vec<SymbolId> {
 fn rhs_and_jacobian(g: &mut Graph, s: &[SymbolId], f: &[&str]) -> String {
     let f: Vec<Id> = f.iter().map(|e| g.parse(e).unwrap()).collect();
     let j = g.jacobian(&f, s).unwrap();
-    let mut outputs: Vec<(Id, TokenStream)> = f
-        .iter()
-        .enumerate()
-        .map(|(i, &e)| (e, indexed("dy", i)))
-        .collect();
-    outputs.extend(
-        j.entries
-            .iter()
-            .enumerate()
-            .map(|(k, &(_, _, e))| (e, indexed("jac", k))),
-    );
-    let (n, nnz) = (
-        Literal::usize_unsuffixed(f.len()),
-        Literal::usize_unsuffixed(j.entries.len()),
-    );
+    let mut outputs: Vec<(Id, TokenStream)> =
+        f.iter().enumerate().map(|(i, &e)| (e, indexed("dy", i))).collect();
+    outputs.extend(j.entries.iter().enumerate().map(|(k, &(_, _, e))| (e, indexed("jac", k))));
+    let (n, nnz) = (Literal::usize_unsuffixed(f.len()), Literal::usize_unsuffixed(j.entries.len()));
     let np = Literal::usize_unsuffixed(
-        g.symbols()
-            .filter(|(_, s)| s.kind == SymbolKind::Parameter)
-            .count(),
+        g.symbols().filter(|(_, s)| s.kind == SymbolKind::Parameter).count(),
     );
-    let pattern: Vec<String> = j
-        .entries
-        .iter()
-        .map(|(r, c, _)| format!("({r},{c})"))
-        .collect();
+    let pattern: Vec<String> = j.entries.iter().map(|(r, c, _)| format!("({r},{c})")).collect();
     let signature =
         quote!(y: &[f64; #n], p: &[f64; #np], dy: &mut [f64; #n], jac: &mut [f64; #nnz]);
     format!(
@@ -139,12 +119,7 @@ fn kepler_right_hand_side_and_jacobian() {
     let mut g = Graph::new();
     g.parameter("mu").unwrap();
     let s = states(&mut g, &["q1", "q2", "p1", "p2"]);
-    let f = [
-        "p1",
-        "p2",
-        "-mu*q1*(q1^2 + q2^2)^(-3/2)",
-        "-mu*q2*(q1^2 + q2^2)^(-3/2)",
-    ];
+    let f = ["p1", "p2", "-mu*q1*(q1^2 + q2^2)^(-3/2)", "-mu*q2*(q1^2 + q2^2)^(-3/2)"];
     insta::assert_snapshot!(rhs_and_jacobian(&mut g, &s, &f));
 }
 

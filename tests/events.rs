@@ -33,12 +33,7 @@ fn kepler_sections() {
     let apsis = event(q1 * p1 + q2 * p2);
 }
 
-const ADAPTIVE: [Method; 4] = [
-    Method::Taylor,
-    Method::Dop853,
-    Method::Dopri5,
-    Method::Radau5,
-];
+const ADAPTIVE: [Method; 4] = [Method::Taylor, Method::Dop853, Method::Dopri5, Method::Radau5];
 
 /// The impact times of the bouncing ball: a drop of sqrt(2h/g), then flights
 /// of 2·eᵏ·v₁/g with v₁ = sqrt(2gh).
@@ -62,12 +57,9 @@ fn bounce(method: Method, restitution: f64, bounces: usize) -> Vec<(f64, Vec<f64
     let (mut t, mut y) = (0.0, vec![ball.h, 0.0]);
     let mut impacts = Vec::new();
     for _ in 0..bounces {
-        let sol = ball
-            .simulate_from(t, &y, 100.0, &opts)
-            .unwrap_or_else(|e| panic!("{method:?}: {e}"));
-        let hit = sol
-            .stopped_by()
-            .unwrap_or_else(|| panic!("{method:?}: the ball never landed"));
+        let sol =
+            ball.simulate_from(t, &y, 100.0, &opts).unwrap_or_else(|e| panic!("{method:?}: {e}"));
+        let hit = sol.stopped_by().unwrap_or_else(|| panic!("{method:?}: the ball never landed"));
         assert_eq!(hit.name, "impact");
         assert!(!hit.rising);
         assert_eq!(sol.times().last(), Some(&hit.t));
@@ -88,10 +80,7 @@ fn bouncing_ball_lands_when_the_parabola_says_for_every_adaptive_method() {
             // The parabola is reproduced by every continuous extension
             // (all are exact for quadratics), so the impact is found to
             // rounding: the restarts add a few ulps each.
-            assert!(
-                (t - want).abs() <= 1e-13 * want,
-                "{method:?}: impact at {t}, exact {want}"
-            );
+            assert!((t - want).abs() <= 1e-13 * want, "{method:?}: impact at {t}, exact {want}");
             assert!(y[0].abs() <= 1e-12, "{method:?}: height {} at impact", y[0]);
         }
     }
@@ -134,28 +123,20 @@ fn poincare_sections_of_the_kepler_orbit_fall_where_keplers_equation_puts_them()
     };
     for method in [Method::Taylor, Method::Dop853] {
         let opts = Options::new().method(method).tolerance(1e-13);
-        let sol = KeplerSections::default()
-            .simulate(0.0, t_end, &opts)
-            .expect("runs");
+        let sol = KeplerSections::default().simulate(0.0, t_end, &opts).expect("runs");
         // Perihelion passages at 2πk (the start itself, on the section, does not count).
         let perihelia = sol.event_times("perihelion").expect("declared");
         assert_eq!(perihelia.len(), periods, "{method:?}");
         for (k, t) in perihelia.iter().enumerate() {
             let want = two_pi * (k + 1) as f64;
-            assert!(
-                (t - want).abs() <= 1e-9,
-                "{method:?}: perihelion {k} at {t}, exact {want}"
-            );
+            assert!((t - want).abs() <= 1e-9, "{method:?}: perihelion {k} at {t}, exact {want}");
         }
         // Apsides at πk: both directions of r·v.
         let apsides = sol.event_times("apsis").expect("declared");
         assert_eq!(apsides.len(), 2 * periods, "{method:?}");
         for (k, t) in apsides.iter().enumerate() {
             let want = std::f64::consts::PI * (k + 1) as f64;
-            assert!(
-                (t - want).abs() <= 1e-9,
-                "{method:?}: apsis {k} at {t}, exact {want}"
-            );
+            assert!((t - want).abs() <= 1e-9, "{method:?}: apsis {k} at {t}, exact {want}");
         }
         // Crossings of the y axis, alternately leaving and entering q1 > 0.
         let crossings: Vec<_> = sol.events().iter().filter(|h| h.name == "y_axis").collect();
@@ -203,9 +184,7 @@ fn event_metadata_and_names() {
     let ball = <BouncingBall as Model>::INFO.events[0];
     assert!(ball.terminal && ball.direction == daegen::EventDirection::Falling);
     assert_eq!(ball.doc, "The ball reaches the ground.");
-    let sol = BouncingBall::default()
-        .simulate(0.0, 0.1, &Options::new())
-        .expect("runs");
+    let sol = BouncingBall::default().simulate(0.0, 0.1, &Options::new()).expect("runs");
     assert!(sol.event_times("impact").expect("declared").is_empty());
     let err = sol.event_times("impakt").unwrap_err().to_string();
     assert!(err.contains("impakt") && err.contains("impact"), "{err}");
@@ -226,11 +205,7 @@ fn a_non_finite_event_function_is_an_error_naming_the_event() {
             .simulate(0.0, 3.0, &Options::new().method(method).step(0.25))
             .unwrap_err();
         match &err {
-            daegen::Error::NonFinite {
-                t,
-                variable,
-                partial,
-            } => {
+            daegen::Error::NonFinite { t, variable, partial } => {
                 assert_eq!(*variable, "low");
                 assert!(*t >= 1.0 - 1e-9 && *t <= 3.0, "{t}");
                 assert!(partial.times().last().is_some_and(|&tp| tp <= *t));
@@ -266,9 +241,8 @@ fn a_backward_run_finds_the_crossings_in_reverse_with_their_directions_in_time()
     };
     for method in [Method::Taylor, Method::Dop853] {
         let opts = Options::new().method(method).tolerance(1e-13);
-        let sol = KeplerSections::default()
-            .simulate_from(two_pi, &start, 0.0, &opts)
-            .expect("runs");
+        let sol =
+            KeplerSections::default().simulate_from(two_pi, &start, 0.0, &opts).expect("runs");
         let axis: Vec<_> = sol.events().iter().filter(|h| h.name == "y_axis").collect();
         assert_eq!(axis.len(), 2, "{method:?}");
         // First met going back: the rising crossing at 2π − m, then the
@@ -285,10 +259,7 @@ fn a_backward_run_finds_the_crossings_in_reverse_with_their_directions_in_time()
         );
         // Only rising (in time) perihelion passages count: none inside (0, 2π).
         assert!(
-            sol.event_times("perihelion")
-                .expect("declared")
-                .iter()
-                .all(|&t| t.abs() < 1e-9),
+            sol.event_times("perihelion").expect("declared").iter().all(|&t| t.abs() < 1e-9),
             "{method:?}"
         );
     }
@@ -317,9 +288,7 @@ fn restarting_at_accumulating_bounces_ends_in_a_chatter_error_at_the_zeno_time()
             }
         };
         match &err {
-            daegen::Error::EventChatter {
-                t, event, after, ..
-            } => {
+            daegen::Error::EventChatter { t, event, after, .. } => {
                 assert_eq!(*event, "impact");
                 assert!(*after < 1e-12);
                 assert!((t - zeno).abs() <= 1e-9, "{method:?}: {t} vs {zeno}");
@@ -329,9 +298,6 @@ fn restarting_at_accumulating_bounces_ends_in_a_chatter_error_at_the_zeno_time()
             }
         }
         assert!(err.to_string().contains("Zeno"));
-        assert!(
-            (30..100).contains(&bounces),
-            "{method:?}: {bounces} bounces"
-        );
+        assert!((30..100).contains(&bounces), "{method:?}: {bounces} bounces");
     }
 }

@@ -32,11 +32,7 @@ fn items(
 ) -> BTreeMap<String, String> {
     let file = parsed(attr, item);
     let alone = |item: syn::Item| {
-        prettyplease::unparse(&syn::File {
-            shebang: None,
-            attrs: Vec::new(),
-            items: vec![item],
-        })
+        prettyplease::unparse(&syn::File { shebang: None, attrs: Vec::new(), items: vec![item] })
     };
     let mut out = BTreeMap::new();
     for item in &file.items {
@@ -75,16 +71,10 @@ fn items(
 fn snapshot(test: &str, items: &BTreeMap<String, String>, keys: &[&str]) {
     for key in keys {
         let Some(text) = items.get(*key) else {
-            panic!(
-                "no item `{key}`; there are {:?}",
-                items.keys().collect::<Vec<_>>()
-            );
+            panic!("no item `{key}`; there are {:?}", items.keys().collect::<Vec<_>>());
         };
         let lines = text.lines().count();
-        assert!(
-            lines <= MAX_LINES,
-            "`{key}` is {lines} lines: snapshot a smaller model"
-        );
+        assert!(lines <= MAX_LINES, "`{key}` is {lines} lines: snapshot a smaller model");
         let name = format!("{test}__{}", key.replace("::", "__"));
         insta::assert_snapshot!(name.as_str(), text);
     }
@@ -112,12 +102,7 @@ fn pendulum_in_its_angle() {
     snapshot(
         "pendulum_in_its_angle",
         &items,
-        &[
-            "Pendulum::rhs",
-            "Pendulum::jacobian",
-            "Pendulum::output",
-            "Pendulum::INFO",
-        ],
+        &["Pendulum::rhs", "Pendulum::jacobian", "Pendulum::output", "Pendulum::INFO"],
     );
 }
 
@@ -161,11 +146,7 @@ fn example_1_1_third_order_system() {
     snapshot(
         "example_1_1_third_order_system",
         &items,
-        &[
-            "Example11::rhs",
-            "Example11::initial_state",
-            "Example11::time_derivative",
-        ],
+        &["Example11::rhs", "Example11::initial_state", "Example11::time_derivative"],
     );
 }
 
@@ -204,11 +185,7 @@ fn three_body_with_state_arrays_and_loops() {
     snapshot(
         "three_body_with_state_arrays_and_loops",
         &items,
-        &[
-            "ThreeBody::rhs",
-            "ThreeBody::taylor_tape",
-            "ThreeBody::JACOBIAN_PATTERN",
-        ],
+        &["ThreeBody::rhs", "ThreeBody::taylor_tape", "ThreeBody::JACOBIAN_PATTERN"],
     );
 }
 
@@ -275,11 +252,7 @@ fn bouncing_ball_with_a_terminal_event() {
     snapshot(
         "bouncing_ball_with_a_terminal_event",
         &items,
-        &[
-            "BouncingBall::events",
-            "BouncingBall::event_rates",
-            "BouncingBall::INFO",
-        ],
+        &["BouncingBall::events", "BouncingBall::event_rates", "BouncingBall::INFO"],
     );
 }
 
@@ -478,11 +451,7 @@ fn symmetric_rows_as_a_lane_pair_at_order_2() {
             }
         },
     );
-    snapshot(
-        "symmetric_rows_as_a_lane_pair_at_order_2",
-        &items,
-        &["Central::taylor_jet_unrolled"],
-    );
+    snapshot("symmetric_rows_as_a_lane_pair_at_order_2", &items, &["Central::taylor_jet_unrolled"]);
 }
 
 /// A capacitor between two nodes written at both: the rows of the node
@@ -537,10 +506,6 @@ fn a_nonlinear_algebraic_equation_is_solved_by_newton() {
     snapshot(
         "a_nonlinear_algebraic_equation_is_solved_by_newton",
         &items,
-        &[
-            "Quadratic::__daegen_algebraics",
-            "Quadratic::rhs",
-            "Quadratic::output",
-        ],
+        &["Quadratic::__daegen_algebraics", "Quadratic::rhs", "Quadratic::output"],
     );
 }

@@ -61,10 +61,7 @@ const TRANSAMP_AT_0_2: [f64; 8] = [
 
 /// max |y − ref| / max(1, |ref|).
 fn error(got: &[f64], reference: &[f64]) -> f64 {
-    got.iter()
-        .zip(reference)
-        .map(|(g, r)| (g - r).abs() / r.abs().max(1.0))
-        .fold(0.0, f64::max)
+    got.iter().zip(reference).map(|(g, r)| (g - r).abs() / r.abs().max(1.0)).fold(0.0, f64::max)
 }
 
 #[test]
@@ -75,26 +72,17 @@ fn the_transistor_amplifier_as_written_matches_the_test_set() {
         for (options, what) in [
             (base.method(Method::Radau5), "Radau5"),
             (base.clone(), "Auto"),
-            (
-                base.method(Method::Radau5)
-                    .formulation(Formulation::MassMatrix),
-                "M y' = f",
-            ),
+            (base.method(Method::Radau5).formulation(Formulation::MassMatrix), "M y' = f"),
             (base.formulation(Formulation::MassMatrix), "Auto, M y' = f"),
         ] {
-            let sol = TransistorAmplifier::default()
-                .simulate(0.0, 0.2, &options)
-                .unwrap();
+            let sol = TransistorAmplifier::default().simulate(0.0, 0.2, &options).unwrap();
             let e = error(sol.final_state(), &TRANSAMP_AT_0_2);
             assert!(e <= 1e3 * tol, "{what}, tol {tol:e}: error {e:e}");
             // The three combinations of node equations hold all along.
             assert!(sol.max_constraint_residual() <= 1e3 * tol, "{what}");
             let formulation = sol.stats().formulation;
             if what.contains("M y'") {
-                assert!(
-                    formulation.contains("singular mass matrix as written"),
-                    "{formulation}"
-                );
+                assert!(formulation.contains("singular mass matrix as written"), "{formulation}");
             } else {
                 assert!(formulation.contains("index-1 form"), "{formulation}");
             }
@@ -105,9 +93,7 @@ fn the_transistor_amplifier_as_written_matches_the_test_set() {
         .simulate(
             0.0,
             0.2,
-            &Options::new()
-                .method(Method::Dop853)
-                .formulation(Formulation::MassMatrix),
+            &Options::new().method(Method::Dop853).formulation(Formulation::MassMatrix),
         )
         .unwrap_err();
     assert!(err.to_string().contains("RADAU5 only"), "{err}");
@@ -115,20 +101,11 @@ fn the_transistor_amplifier_as_written_matches_the_test_set() {
 
 #[test]
 fn a_capacitance_of_zero_changes_the_rank_and_is_refused() {
-    let model = TransistorAmplifier {
-        c1: 0.0,
-        ..TransistorAmplifier::default()
-    };
+    let model = TransistorAmplifier { c1: 0.0, ..TransistorAmplifier::default() };
     let err = model.simulate(0.0, 0.2, &Options::new()).unwrap_err();
     let message = err.to_string();
-    assert!(
-        matches!(err, Error::DegenerateParameters { .. }),
-        "{message}"
-    );
-    assert!(
-        message.contains("der(y1)") || message.contains("der(y2)"),
-        "{message}"
-    );
+    assert!(matches!(err, Error::DegenerateParameters { .. }), "{message}");
+    assert!(message.contains("der(y1)") || message.contains("der(y2)"), "{message}");
     assert!(message.contains("nonzero"), "{message}");
 }
 
@@ -169,9 +146,7 @@ fn one_transistor_amplifier() {
 fn the_one_transistor_amplifier_agrees_in_both_formulations() {
     let tight = Options::new().method(Method::Radau5).tolerance(1e-11);
     let t1 = 0.05;
-    let projected = OneTransistorAmplifier::default()
-        .simulate(0.0, t1, &tight)
-        .unwrap();
+    let projected = OneTransistorAmplifier::default().simulate(0.0, t1, &tight).unwrap();
     let mass = OneTransistorAmplifier::default()
         .simulate(0.0, t1, &tight.formulation(Formulation::MassMatrix))
         .unwrap();
@@ -181,27 +156,18 @@ fn the_one_transistor_amplifier_agrees_in_both_formulations() {
     // The output is amplified: node 5 swings far wider than the input's ±0.4.
     let swing = (0..=100)
         .map(|k| projected.at(t1 * k as f64 / 100.0, "u5").unwrap())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-            (lo.min(v), hi.max(v))
-        });
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
     assert!(swing.1 - swing.0 > 2.0, "node 5 swings over {swing:?}");
     for tol in [1e-5, 1e-7] {
         let base = Options::new().tolerance(tol);
         for options in [
             base.method(Method::Radau5),
             base.clone(),
-            base.method(Method::Radau5)
-                .formulation(Formulation::MassMatrix),
+            base.method(Method::Radau5).formulation(Formulation::MassMatrix),
         ] {
-            let sol = OneTransistorAmplifier::default()
-                .simulate(0.0, t1, &options)
-                .unwrap();
+            let sol = OneTransistorAmplifier::default().simulate(0.0, t1, &options).unwrap();
             let e = error(sol.final_state(), &reference);
-            assert!(
-                e <= 1e3 * tol,
-                "{:?}, tol {tol:e}: error {e:e}",
-                sol.stats().method
-            );
+            assert!(e <= 1e3 * tol, "{:?}, tol {tol:e}: error {e:e}", sol.stats().method);
         }
     }
 }
@@ -238,29 +204,18 @@ fn newton_on_a_quadratic_algebraic_equation_serves_every_method() {
             base.method(Method::Dop853),
             base.method(Method::Radau5),
             base.clone(),
-            base.method(Method::Radau5)
-                .formulation(Formulation::MassMatrix),
+            base.method(Method::Radau5).formulation(Formulation::MassMatrix),
         ] {
-            let sol = QuadraticAlgebraic::default()
-                .simulate(0.0, 1.0, &options)
-                .unwrap();
-            let e = (sol.last("y").unwrap() - y)
-                .abs()
-                .max((sol.last("z").unwrap() - z).abs());
-            assert!(
-                e <= 1e3 * tol,
-                "{}: tol {tol:e}, error {e:e}",
-                sol.stats().method
-            );
+            let sol = QuadraticAlgebraic::default().simulate(0.0, 1.0, &options).unwrap();
+            let e = (sol.last("y").unwrap() - y).abs().max((sol.last("z").unwrap() - z).abs());
+            assert!(e <= 1e3 * tol, "{}: tol {tol:e}, error {e:e}", sol.stats().method);
         }
     }
     // A fixed-step method converges with its order: RK4's error falls
     // sixteenfold when the step halves.
     let rk4 = |h: f64| {
         let options = Options::new().method(Method::Rk4).step(h);
-        let sol = QuadraticAlgebraic::default()
-            .simulate(0.0, 1.0, &options)
-            .unwrap();
+        let sol = QuadraticAlgebraic::default().simulate(0.0, 1.0, &options).unwrap();
         (sol.last("y").unwrap() - y).abs()
     };
     let ratio = rk4(0.1) / rk4(0.05);
@@ -297,20 +252,10 @@ fn a_quasi_steady_state_follows_its_hand_solved_form() {
     let reference = QuasiSteadyState_reference();
     for tol in [1e-6, 1e-9] {
         let base = Options::new().tolerance(tol);
-        for options in [
-            base.method(Method::Dop853),
-            base.method(Method::Radau5),
-            base,
-        ] {
-            let sol = QuasiSteadyState::default()
-                .simulate(0.0, 5.0, &options)
-                .unwrap();
+        for options in [base.method(Method::Dop853), base.method(Method::Radau5), base] {
+            let sol = QuasiSteadyState::default().simulate(0.0, 5.0, &options).unwrap();
             let e = (sol.last("a").unwrap() - reference).abs();
-            assert!(
-                e <= 1e3 * tol,
-                "{}: tol {tol:e}, error {e:e}",
-                sol.stats().method
-            );
+            assert!(e <= 1e3 * tol, "{}: tol {tol:e}, error {e:e}", sol.stats().method);
         }
     }
 }
@@ -318,11 +263,7 @@ fn a_quasi_steady_state_follows_its_hand_solved_form() {
 #[allow(non_snake_case)]
 fn QuasiSteadyState_reference() -> f64 {
     QuasiSteadyStateSolved::default()
-        .simulate(
-            0.0,
-            5.0,
-            &Options::new().method(Method::Dop853).tolerance(1e-13),
-        )
+        .simulate(0.0, 5.0, &Options::new().method(Method::Dop853).tolerance(1e-13))
         .unwrap()
         .last("a")
         .unwrap()
@@ -350,10 +291,7 @@ fn a_singular_algebraic_jacobian_at_the_start_names_the_equation() {
         "{message}"
     );
     // A sentence, not a debug dump.
-    assert!(
-        !message.contains('{') && !message.contains("NonlinearAlgebraic"),
-        "{message}"
-    );
+    assert!(!message.contains('{') && !message.contains("NonlinearAlgebraic"), "{message}");
 }
 
 /// A mass matrix that depends on the state, M(y) y' = f(t, y), built so
@@ -383,33 +321,17 @@ fn nonlinear_capacitor() {
 fn mass_matrices_that_depend_on_the_state_run_in_the_index_one_form() {
     for tol in [1e-6, 1e-9] {
         let base = Options::new().tolerance(tol);
-        for options in [
-            base.method(Method::Dop853),
-            base.method(Method::Radau5),
-            base,
-        ] {
-            let sol = StateDependentMass::default()
-                .simulate(0.0, 2.0, &options)
-                .unwrap();
+        for options in [base.method(Method::Dop853), base.method(Method::Radau5), base] {
+            let sol = StateDependentMass::default().simulate(0.0, 2.0, &options).unwrap();
             let e = (sol.last("y1").unwrap() - (-2f64).exp())
                 .abs()
                 .max((sol.last("y2").unwrap() - 2f64.cos()).abs());
-            assert!(
-                e <= 1e3 * tol,
-                "{}: tol {tol:e}, error {e:e}",
-                sol.stats().method
-            );
-            let sol = NonlinearCapacitor::default()
-                .simulate(0.0, 2.0, &options)
-                .unwrap();
+            assert!(e <= 1e3 * tol, "{}: tol {tol:e}, error {e:e}", sol.stats().method);
+            let sol = NonlinearCapacitor::default().simulate(0.0, 2.0, &options).unwrap();
             let e = (sol.last("y1").unwrap() - 2.0)
                 .abs()
                 .max((sol.last("y2").unwrap() - 2f64.sin()).abs());
-            assert!(
-                e <= 1e3 * tol,
-                "{}: tol {tol:e}, error {e:e}",
-                sol.stats().method
-            );
+            assert!(e <= 1e3 * tol, "{}: tol {tol:e}, error {e:e}", sol.stats().method);
         }
     }
     assert_eq!(<NonlinearCapacitor as Model>::INDEX, 1);

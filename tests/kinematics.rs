@@ -71,22 +71,12 @@ fn language_rotations_match_the_runtime_kinematics() {
         (["e0", "e1", "e2"], k::euler_313(psi, theta, phi)),
         (["b0", "b1", "b2"], k::bryan_123(psi, theta, phi)),
         (["r0", "r1", "r2"], k::axis_angle(&n, theta)),
-        (
-            ["u0", "u1", "u2"],
-            k::quaternion_to_matrix([0.5, 0.5, -0.5, 0.5]),
-        ),
-        (
-            ["p0", "p1", "p2"],
-            k::sequence([k::Axis::X, k::Axis::Y, k::Axis::Z], [psi, theta, phi]),
-        ),
+        (["u0", "u1", "u2"], k::quaternion_to_matrix([0.5, 0.5, -0.5, 0.5])),
+        (["p0", "p1", "p2"], k::sequence([k::Axis::X, k::Axis::Y, k::Axis::Z], [psi, theta, phi])),
     ];
     for (names, r) in cases {
         let got = get(names);
-        assert!(
-            (got - r * w).norm() <= 1e-15,
-            "{names:?}: {got} vs {}",
-            r * w
-        );
+        assert!((got - r * w).norm() <= 1e-15, "{names:?}: {got} vs {}", r * w);
     }
     assert!((get(["t0", "t1", "t2"]) - w).norm() <= 1e-15);
     assert!(sol.last("c0").unwrap() <= 1e-16);
@@ -135,32 +125,16 @@ fn a_spherical_pendulum_written_with_vectors_follows_its_angles() {
     assert_eq!(<SphericalPendulum as Model>::INDEX, 3);
     let tol = 1e-10;
     let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = SphericalPendulum::default()
-        .simulate(0.0, 3.0, &opts)
-        .unwrap();
+    let sol = SphericalPendulum::default().simulate(0.0, 3.0, &opts).unwrap();
     let reference = SphericalPendulumAngles::default()
-        .simulate(
-            0.0,
-            3.0,
-            &Options::new().method(Method::Dop853).tolerance(1e-13),
-        )
+        .simulate(0.0, 3.0, &Options::new().method(Method::Dop853).tolerance(1e-13))
         .unwrap();
     for t in [0.5, 1.0, 3.0] {
-        let (theta, phi) = (
-            reference.at(t, "theta").unwrap(),
-            reference.at(t, "phi").unwrap(),
-        );
-        let want = [
-            theta.sin() * phi.cos(),
-            theta.sin() * phi.sin(),
-            -theta.cos(),
-        ];
+        let (theta, phi) = (reference.at(t, "theta").unwrap(), reference.at(t, "phi").unwrap());
+        let want = [theta.sin() * phi.cos(), theta.sin() * phi.sin(), -theta.cos()];
         for (name, w) in ["x", "y", "z"].iter().zip(want) {
             let got = sol.at(t, name).unwrap();
-            assert!(
-                (got - w).abs() <= 100.0 * tol,
-                "t = {t}: {name} = {got}, from the angles {w}"
-            );
+            assert!((got - w).abs() <= 100.0 * tol, "t = {t}: {name} = {got}, from the angles {w}");
         }
     }
     // L_z = m l² sin²θ φ' = sin²(1) · 2 at the start, conserved.
@@ -190,14 +164,8 @@ fn a_heavy_top_with_quaternions_conserves_energy_and_unit_norm() {
     // Measured over 1021 steps (the order chosen for the model's cost,
     // `taylor_order.rs`): 1.8e-15, 2.2e-15 and 2.2e-16.
     assert!(steps >= 1000, "{steps} steps");
-    assert!(
-        energy <= 1e-12 * e0.abs().max(1.0),
-        "energy drift {energy:e}"
-    );
-    assert!(
-        momentum <= 1e-12 * l0.abs().max(1.0),
-        "L_z drift {momentum:e}"
-    );
+    assert!(energy <= 1e-12 * e0.abs().max(1.0), "energy drift {energy:e}");
+    assert!(momentum <= 1e-12 * l0.abs().max(1.0), "L_z drift {momentum:e}");
     assert!(norm <= 1e-15, "|q|² − 1 = {norm:e}");
     // ω3 of a symmetric top is constant.
     let w3: Vec<f64> = (0..steps).map(|k| sol.state(k).unwrap()[6]).collect();

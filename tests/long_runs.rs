@@ -28,10 +28,7 @@ fn a_million_steps_keep_a_thousand_states() {
     let end = sol.final_state();
     let energy = end[0] * end[0] + end[1] * end[1];
     let predicted = 1.0 - n as f64 * h.powi(6) / 72.0;
-    assert!(
-        (energy - predicted).abs() <= 1e-3 * (1.0 - predicted),
-        "{energy} vs {predicted}"
-    );
+    assert!((energy - predicted).abs() <= 1e-3 * (1.0 - predicted), "{energy} vs {predicted}");
     // Every stored state is on the circle to that accuracy, at its time.
     for (k, &t) in sol.times().iter().enumerate() {
         let s = sol.state(k).unwrap();
@@ -41,20 +38,12 @@ fn a_million_steps_keep_a_thousand_states() {
 
 #[test]
 fn keep_every_thins_the_stored_steps_and_at_refuses_between_them() {
-    let opts = Options::new()
-        .method(Method::Dop853)
-        .tolerance(1e-12)
-        .keep_every(7);
+    let opts = Options::new().method(Method::Dop853).tolerance(1e-12).keep_every(7);
     let thin = Oscillator::default().simulate(0.0, 100.0, &opts).unwrap();
-    let full = Oscillator::default()
-        .simulate(0.0, 100.0, &opts.keep_every(1))
-        .unwrap();
+    let full = Oscillator::default().simulate(0.0, 100.0, &opts.keep_every(1)).unwrap();
     let steps = full.times().len() - 1;
     assert_eq!(thin.stats().steps, steps);
-    assert_eq!(
-        thin.times().len(),
-        steps / 7 + 1 + usize::from(steps % 7 != 0)
-    );
+    assert_eq!(thin.times().len(), steps / 7 + 1 + usize::from(steps % 7 != 0));
     assert_eq!(thin.final_state(), full.final_state());
     assert!((thin.last("x").unwrap() - 100f64.cos()).abs() <= 1e-9);
     // At a kept step `at` answers; between kept steps it says it cannot,

@@ -30,20 +30,14 @@ const EXAMPLE_1_1_AT_2: [(&str, f64); 5] = [
 
 #[test]
 fn example_1_1_is_reduced_like_the_notes_and_matches_the_reference() {
-    assert_eq!(
-        <Example11 as Model>::INFO.states,
-        ["x", "der(x)", "der(der(x))", "y", "der(y)"]
-    );
+    assert_eq!(<Example11 as Model>::INFO.states, ["x", "der(x)", "der(der(x))", "y", "der(y)"]);
     assert_eq!(<Example11 as Model>::INDEX, 0);
     let sol = Example11::default()
         .simulate(0.0, 2.0, &Options::new().method(Method::Rk4).step(1e-3))
         .unwrap();
     for (name, reference) in EXAMPLE_1_1_AT_2 {
         let got = sol.last(name).unwrap();
-        assert!(
-            (got - reference).abs() < 1e-10,
-            "{name}(2) = {got}, reference {reference}"
-        );
+        assert!((got - reference).abs() < 1e-10, "{name}(2) = {got}, reference {reference}");
     }
     assert_eq!(sol.stats().steps, 2000);
     assert_eq!(sol.stats().rhs_evals, 8000);
@@ -62,9 +56,7 @@ fn oscillator() {
 #[test]
 fn oscillator_follows_its_exact_solution() {
     let model = Oscillator { omega: 3.0 };
-    let sol = model
-        .simulate(0.0, 5.0, &Options::new().method(Method::Rk4).step(1e-3))
-        .unwrap();
+    let sol = model.simulate(0.0, 5.0, &Options::new().method(Method::Rk4).step(1e-3)).unwrap();
     let t: f64 = 5.0;
     assert!((sol.last("x").unwrap() - (3.0 * t).cos()).abs() < 1e-10);
     assert!((sol.last("der(x)").unwrap() + 3.0 * (3.0 * t).sin()).abs() < 1e-9);
@@ -92,11 +84,7 @@ fn three_body() {
         -0.8660254037844386 * 0.7598356856515925,
         0.8660254037844386 * 0.7598356856515925,
     ]);
-    let v = state_array([
-        0.7598356856515925,
-        -0.5 * 0.7598356856515925,
-        -0.5 * 0.7598356856515925,
-    ]);
+    let v = state_array([0.7598356856515925, -0.5 * 0.7598356856515925, -0.5 * 0.7598356856515925]);
     for i in 0..N {
         der(x[i]) == u[i];
         der(y[i]) == v[i];
@@ -129,10 +117,7 @@ fn lagrange_triangle_rotates_rigidly() {
     let t = 10.0;
     for (i, phase) in [0.0, 2.0, 4.0].iter().enumerate() {
         let angle = omega * t + phase * std::f64::consts::PI / 3.0;
-        let (x, y) = (
-            sol.last(&format!("x[{i}]")).unwrap(),
-            sol.last(&format!("y[{i}]")).unwrap(),
-        );
+        let (x, y) = (sol.last(&format!("x[{i}]")).unwrap(), sol.last(&format!("y[{i}]")).unwrap());
         assert!(
             (x - angle.cos()).abs() < 1e-9 && (y - angle.sin()).abs() < 1e-9,
             "body {i}: ({x}, {y})"
@@ -160,10 +145,7 @@ fn constant_coefficients_are_solved_symbolically() {
     assert_eq!(dy, [(y - x) / 2.0, (y + x) / 2.0]);
     let mut jac = [0.0; 4];
     model.jacobian(0.0, &[x, y], &mut jac).unwrap();
-    assert_eq!(
-        <ConstantMassMatrix as Model>::JACOBIAN_PATTERN,
-        [(0, 0), (0, 1), (1, 0), (1, 1)]
-    );
+    assert_eq!(<ConstantMassMatrix as Model>::JACOBIAN_PATTERN, [(0, 0), (0, 1), (1, 0), (1, 1)]);
     assert_eq!(jac, [-0.5, 0.5, 0.5, 0.5]);
 }
 
@@ -190,9 +172,7 @@ fn double_pendulum() {
 #[test]
 fn double_pendulum_conserves_energy_through_its_solved_mass_matrix() {
     let model = DoublePendulum::default();
-    let sol = model
-        .simulate(0.0, 5.0, &Options::new().method(Method::Rk4).step(1e-3))
-        .unwrap();
+    let sol = model.simulate(0.0, 5.0, &Options::new().method(Method::Rk4).step(1e-3)).unwrap();
     let e0 = -2.0 * 9.81 * 1f64.cos() - 9.81 * (-0.5f64).cos();
     let drift = (sol.last("energy").unwrap() - e0).abs();
     assert!(drift < 1e-8, "energy drift {drift:e}");
@@ -232,18 +212,12 @@ fn a_run_that_breaks_down_says_where_and_keeps_the_partial_solution() {
         .simulate(0.0, 3.0, &Options::new().method(Method::Rk4).step(1e-3))
         .unwrap_err();
     match &err {
-        Error::NonFinite {
-            t,
-            variable,
-            partial,
-        } => {
+        Error::NonFinite { t, variable, partial } => {
             assert_eq!(*variable, "x");
             assert!(*t > 1.9 && *t < 2.1, "t = {t}");
             assert!(partial.times().len() > 1900);
-            let (t_last, x_last) = (
-                partial.times()[partial.times().len() - 1],
-                partial.last("x").unwrap(),
-            );
+            let (t_last, x_last) =
+                (partial.times()[partial.times().len() - 1], partial.last("x").unwrap());
             assert!(
                 (x_last - (1.0 - t_last / 2.0).powi(2)).abs() < 1e-6,
                 "the partial solution is the exact one up to the failure"
@@ -257,9 +231,7 @@ fn a_run_that_breaks_down_says_where_and_keeps_the_partial_solution() {
 
 #[test]
 fn bad_requests_are_errors_not_panics() {
-    let sol = Oscillator::default()
-        .simulate(0.0, 1.0, &Options::new())
-        .unwrap();
+    let sol = Oscillator::default().simulate(0.0, 1.0, &Options::new()).unwrap();
     assert!(matches!(sol.last("z"), Err(Error::UnknownName { .. })));
     assert!(matches!(sol.at(2.0, "x"), Err(Error::OutOfRange { .. })));
     // The fixed-step Taylor scheme needs the derivatives of
@@ -267,10 +239,7 @@ fn bad_requests_are_errors_not_panics() {
     let taylor = Oscillator::default().simulate(
         0.0,
         1.0,
-        &Options::new().method(Method::TaylorFixed {
-            order: 4,
-            step: 0.1,
-        }),
+        &Options::new().method(Method::TaylorFixed { order: 4, step: 0.1 }),
     );
     assert!(
         matches!(&taylor, Err(Error::InvalidOptions { message }) if message.contains("taylor = 4"))
@@ -303,37 +272,14 @@ fn bad_requests_are_errors_not_panics() {
     refused(Options::new().rtol(f64::INFINITY), "rtol(inf)");
     // A NaN or infinite parameter or initial value, by name.
     for value in [f64::NAN, f64::INFINITY] {
-        let err = Oscillator { omega: value }
-            .simulate(0.0, 1.0, &Options::new())
-            .unwrap_err();
-        assert!(
-            matches!(
-                err,
-                Error::NonFiniteParameter {
-                    parameter: "omega",
-                    ..
-                }
-            ),
-            "{err:?}"
-        );
+        let err = Oscillator { omega: value }.simulate(0.0, 1.0, &Options::new()).unwrap_err();
+        assert!(matches!(err, Error::NonFiniteParameter { parameter: "omega", .. }), "{err:?}");
         assert!(err.to_string().contains("parameter `omega`"), "{err}");
         let err = Oscillator::default()
             .simulate_from(0.0, &[1.0, value], 1.0, &Options::new())
             .unwrap_err();
-        assert!(
-            matches!(
-                err,
-                Error::NonFiniteInitialValue {
-                    variable: "der(x)",
-                    ..
-                }
-            ),
-            "{err:?}"
-        );
-        assert!(
-            err.to_string().contains("initial value of `der(x)`"),
-            "{err}"
-        );
+        assert!(matches!(err, Error::NonFiniteInitialValue { variable: "der(x)", .. }), "{err:?}");
+        assert!(err.to_string().contains("initial value of `der(x)`"), "{err}");
     }
 }
 
@@ -354,10 +300,7 @@ mod readme {
 
     #[test]
     fn readme_model_runs_and_conserves_energy() -> Result<(), daegen::Error> {
-        let model = Pendulum {
-            l: 2.0,
-            ..Pendulum::default()
-        };
+        let model = Pendulum { l: 2.0, ..Pendulum::default() };
         let sol = model.simulate(0.0, 10.0, &Options::new().method(Method::Rk4).step(1e-3))?;
         let e0 = -9.81 * 2.0 * 1f64.cos();
         assert!((sol.last("energy")? - e0).abs() < 1e-9);

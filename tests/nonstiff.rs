@@ -28,10 +28,7 @@ const ARENSTORF_PERIOD: f64 = 17.0652165601579625588917206249;
 const ARENSTORF_START: [f64; 4] = [0.994, 0.0, 0.0, -2.00158510637908252240537862224];
 
 fn max_error(got: &[f64], want: &[f64]) -> f64 {
-    got.iter()
-        .zip(want)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max)
+    got.iter().zip(want).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max)
 }
 
 fn final_state(sol: &Solution) -> Vec<f64> {
@@ -44,24 +41,12 @@ fn final_state(sol: &Solution) -> Vec<f64> {
 /// compares with dopri5.f). Same algorithm, same controller, same numbers.
 #[test]
 fn dopri5_reproduces_hairers_statistics_on_arenstorf() {
-    let options = Options::new()
-        .method(Method::Dopri5)
-        .tolerance(1e-7)
-        .initial_step(1e-4);
-    let sol = Arenstorf::default()
-        .simulate(0.0, ARENSTORF_PERIOD, &options)
-        .unwrap();
+    let options = Options::new().method(Method::Dopri5).tolerance(1e-7).initial_step(1e-4);
+    let sol = Arenstorf::default().simulate(0.0, ARENSTORF_PERIOD, &options).unwrap();
     let stats = sol.stats();
-    assert_eq!(
-        (stats.steps, stats.rejected, stats.rhs_evals),
-        (217, 21, 1429)
-    );
-    let reference = [
-        0.9940021704037415,
-        9.040893396741956e-06,
-        0.0014597586885445324,
-        -2.0012455157289244,
-    ];
+    assert_eq!((stats.steps, stats.rejected, stats.rhs_evals), (217, 21, 1429));
+    let reference =
+        [0.9940021704037415, 9.040893396741956e-06, 0.0014597586885445324, -2.0012455157289244];
     let y = final_state(&sol); // ordered y1, der(y1), y2, der(y2)
     let got = [y[0], y[2], y[1], y[3]];
     assert!(max_error(&got, &reference) < 1e-9, "{got:?}");
@@ -92,9 +77,7 @@ fn global_error_is_proportional_to_the_tolerance() {
             let o = Options::new().method(method).tolerance(tol);
             let sol = Kepler::default().simulate(0.0, two_pi, &o).unwrap();
             kepler.push((tol, max_error(&final_state(&sol), &kepler_exact(two_pi))));
-            let sol = Arenstorf::default()
-                .simulate(0.0, ARENSTORF_PERIOD, &o)
-                .unwrap();
+            let sol = Arenstorf::default().simulate(0.0, ARENSTORF_PERIOD, &o).unwrap();
             let y = final_state(&sol);
             arenstorf.push((tol, max_error(&[y[0], y[2], y[1], y[3]], &ARENSTORF_START)));
         }
@@ -123,9 +106,7 @@ fn dense_output_adds_no_error_to_the_steps() {
             .map(|j| {
                 let t = two_pi * j as f64 / 1000.0;
                 let exact = kepler_exact(t);
-                (0..4)
-                    .map(|i| (sol.at(t, names[i]).unwrap() - exact[i]).abs())
-                    .fold(0.0, f64::max)
+                (0..4).map(|i| (sol.at(t, names[i]).unwrap() - exact[i]).abs()).fold(0.0, f64::max)
             })
             .fold(0.0, f64::max);
         assert!(
@@ -152,10 +133,7 @@ fn integrates_backwards_in_time() {
         max_error(&final_state(&forward), &kepler_exact(0.0)),
         max_error(&final_state(&backward), &kepler_exact(0.0)),
     );
-    assert!(
-        eb < 10.0 * ef && ef < 10.0 * eb,
-        "forward {ef:e}, backward {eb:e}"
-    );
+    assert!(eb < 10.0 * ef && ef < 10.0 * eb, "forward {ef:e}, backward {eb:e}");
     assert!(backward.at(1.0, "q1").is_ok());
 }
 
@@ -169,9 +147,7 @@ fn blow_up() {
 #[test]
 fn a_singularity_stops_the_run_with_an_error_and_the_partial_solution() {
     for method in [Method::Dopri5, Method::Dop853] {
-        let err = BlowUp::default()
-            .simulate(0.0, 2.0, &Options::new().method(method))
-            .unwrap_err();
+        let err = BlowUp::default().simulate(0.0, 2.0, &Options::new().method(method)).unwrap_err();
         let (t, partial) = match &err {
             Error::StepSizeUnderflow { t, partial, .. } | Error::NonFinite { t, partial, .. } => {
                 (*t, partial)
@@ -218,22 +194,10 @@ fn a_stiff_problem_hits_the_step_limit_with_a_clear_error() {
         .simulate(
             0.0,
             2.0,
-            &Options::new()
-                .method(Method::Dopri5)
-                .stiffness_detection(false)
-                .max_steps(2000),
+            &Options::new().method(Method::Dopri5).stiffness_detection(false).max_steps(2000),
         )
         .unwrap_err();
-    assert!(
-        matches!(
-            err,
-            Error::MaxSteps {
-                max_steps: 2000,
-                ..
-            }
-        ),
-        "{err}"
-    );
+    assert!(matches!(err, Error::MaxSteps { max_steps: 2000, .. }), "{err}");
     assert!(err.partial_solution().is_some_and(|p| p.times().len() > 1));
     assert!(err.to_string().contains("Method::Radau5"), "{err}");
 }
@@ -261,14 +225,8 @@ fn runs_without_dense_output_take_the_same_steps_for_less_work() {
         // Cubic Hermite between the two steps around t = 1, from q1 and
         // its derivative p1 at both.
         let hermite = hermite_between_steps(&b, 1.0, 0, 2);
-        assert!(
-            (b.at(1.0, "q1").unwrap() - hermite).abs() <= 1e-14,
-            "{method:?}"
-        );
-        assert!(
-            (a.at(1.0, "q1").unwrap() - kepler_exact(1.0)[0]).abs() < 1e-7,
-            "{method:?}"
-        );
+        assert!((b.at(1.0, "q1").unwrap() - hermite).abs() <= 1e-14, "{method:?}");
+        assert!((a.at(1.0, "q1").unwrap() - kepler_exact(1.0)[0]).abs() < 1e-7, "{method:?}");
     }
 }
 
@@ -293,9 +251,7 @@ fn every_accepted_step_is_within_ten_times_the_tolerance_of_the_exact_step() {
                 let (t0, t1) = (w[0], w[1]);
                 let start = kepler_exact(t0);
                 let one = o.initial_step(t1 - t0).max_step(t1 - t0);
-                let step = Kepler::default()
-                    .simulate_from(t0, &start, t1, &one)
-                    .unwrap();
+                let step = Kepler::default().simulate_from(t0, &start, t1, &one).unwrap();
                 let exact = kepler_exact(t1);
                 for (got, want) in final_state(&step).iter().zip(&exact) {
                     worst = worst.max((got - want).abs() / (tol + tol * want.abs()));

@@ -48,9 +48,8 @@ fn temp(name: &str) -> std::path::PathBuf {
 
 #[test]
 fn a_time_series_holds_one_line_per_name() {
-    let sol = Oscillator::default()
-        .simulate(0.0, 10.0, &Options::new().method(Method::Taylor))
-        .unwrap();
+    let sol =
+        Oscillator::default().simulate(0.0, 10.0, &Options::new().method(Method::Taylor)).unwrap();
     let path = temp("series.svg");
     time_series(&sol, &["x", "der(x)", "energy"], &path).unwrap();
     let svg = std::fs::read_to_string(&path).unwrap();
@@ -59,11 +58,7 @@ fn a_time_series_holds_one_line_per_name() {
         assert_eq!(lines.len(), 1, "series {k}");
         // Drawn from the Taylor polynomials at a thousand points, not only
         // at the method's few long steps.
-        assert!(
-            lines[0].len() > 1000,
-            "series {k}: {} points",
-            lines[0].len()
-        );
+        assert!(lines[0].len() > 1000, "series {k}: {} points", lines[0].len());
     }
     assert!(polylines(&svg, &stroke(3)).is_empty());
     for name in ["x", "der(x)", "energy", "Oscillator"] {
@@ -84,18 +79,12 @@ fn a_phase_portrait_draws_the_orbit() {
     let lines = polylines(&svg, &stroke(0));
     assert_eq!(lines.len(), 1);
     let points = &lines[0];
-    let (xmin, xmax) = points
-        .iter()
-        .fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.0), b.max(p.0)));
-    let (ymin, ymax) = points
-        .iter()
-        .fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.1), b.max(p.1)));
-    let (cx, cy, rx, ry) = (
-        (xmin + xmax) / 2.0,
-        (ymin + ymax) / 2.0,
-        (xmax - xmin) / 2.0,
-        (ymax - ymin) / 2.0,
-    );
+    let (xmin, xmax) =
+        points.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.0), b.max(p.0)));
+    let (ymin, ymax) =
+        points.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.1), b.max(p.1)));
+    let (cx, cy, rx, ry) =
+        ((xmin + xmax) / 2.0, (ymin + ymax) / 2.0, (xmax - xmin) / 2.0, (ymax - ymin) / 2.0);
     for &(x, y) in points {
         let r = ((x - cx) / rx).powi(2) + ((y - cy) / ry).powi(2);
         // Within a pixel of the ellipse.
@@ -106,17 +95,13 @@ fn a_phase_portrait_draws_the_orbit() {
 #[test]
 fn plots_of_thinned_runs_draw_the_stored_times_and_bad_names_are_errors() {
     let times: Vec<f64> = (0..=20).map(|k| 0.5 * k as f64).collect();
-    let sol = Oscillator::default()
-        .simulate(0.0, 10.0, &Options::new().output_times(times))
-        .unwrap();
+    let sol =
+        Oscillator::default().simulate(0.0, 10.0, &Options::new().output_times(times)).unwrap();
     let path = temp("stored.svg");
     time_series(&sol, &["x"], &path).unwrap();
     let svg = std::fs::read_to_string(&path).unwrap();
     assert_eq!(polylines(&svg, &stroke(0))[0].len(), 21);
-    assert!(matches!(
-        time_series(&sol, &["y"], temp("bad.svg")),
-        Err(Error::UnknownName { .. })
-    ));
+    assert!(matches!(time_series(&sol, &["y"], temp("bad.svg")), Err(Error::UnknownName { .. })));
     match time_series(&sol, &["x"], "/nonexistent-dir/x.svg") {
         Err(Error::Io { message }) => {
             assert!(message.contains("/nonexistent-dir/x.svg"), "{message}")
@@ -128,24 +113,9 @@ fn plots_of_thinned_runs_draw_the_stored_times_and_bad_names_are_errors() {
 #[test]
 fn a_line_chart_leaves_out_non_finite_points_and_refuses_an_empty_one() {
     let line = vec![(-1.0, 0.0), (1.0, 0.0), (f64::NAN, 1.0)];
-    let svg = line_chart_svg(
-        "axis",
-        "x",
-        "y",
-        &[Series {
-            name: "axis",
-            points: line,
-        }],
-    )
-    .unwrap();
+    let svg = line_chart_svg("axis", "x", "y", &[Series { name: "axis", points: line }]).unwrap();
     assert_eq!(polylines(&svg, &stroke(0))[0].len(), 2);
     assert!(!svg.contains("NaN"));
-    let empty = [Series {
-        name: "e",
-        points: vec![],
-    }];
-    assert!(matches!(
-        line_chart_svg("none", "x", "y", &empty),
-        Err(Error::Io { .. })
-    ));
+    let empty = [Series { name: "e", points: vec![] }];
+    assert!(matches!(line_chart_svg("none", "x", "y", &empty), Err(Error::Io { .. })));
 }

@@ -46,18 +46,12 @@ struct Problem {
 
 /// max |y − ref| / max(1, |ref|) over the components.
 fn mixed_error(y: &[f64], reference: &[f64]) -> f64 {
-    y.iter()
-        .zip(reference)
-        .map(|(a, b)| (a - b).abs() / b.abs().max(1.0))
-        .fold(0.0, f64::max)
+    y.iter().zip(reference).map(|(a, b)| (a - b).abs() / b.abs().max(1.0)).fold(0.0, f64::max)
 }
 
 /// max |y − ref| / |ref|: for components far below 1 (chemistry).
 fn relative_error(y: &[f64], reference: &[f64]) -> f64 {
-    y.iter()
-        .zip(reference)
-        .map(|(a, b)| ((a - b) / b).abs())
-        .fold(0.0, f64::max)
+    y.iter().zip(reference).map(|(a, b)| ((a - b) / b).abs()).fold(0.0, f64::max)
 }
 
 fn problems() -> Vec<Problem> {
@@ -166,10 +160,7 @@ fn run_all() -> Vec<(&'static str, String)> {
         let mut table = String::new();
         for &method in problem.methods {
             for &tol in problem.tolerances {
-                let opts = Options::new()
-                    .method(method)
-                    .rtol(tol)
-                    .atol(tol * problem.atol_scale);
+                let opts = Options::new().method(method).rtol(tol).atol(tol * problem.atol_scale);
                 let sol = match (problem.run)(&opts) {
                     Ok(sol) => sol,
                     Err(e) => panic!("{} with {method:?} at {tol:e}: {e}", problem.name),
@@ -185,11 +176,7 @@ fn run_all() -> Vec<(&'static str, String)> {
                 }
                 let s = sol.stats();
                 let asked = format!("{method:?}");
-                let ran = if asked == s.method {
-                    asked
-                } else {
-                    format!("{asked} ({})", s.method)
-                };
+                let ran = if asked == s.method { asked } else { format!("{asked} ({})", s.method) };
                 let tol = format!("{tol:.0e}");
                 table.push_str(&format!(
                     "{ran:<21} {tol:<6} {:>5} steps {:>4} rejected {:>6} f {:>4} J\n",
@@ -210,11 +197,7 @@ fn every_method_meets_every_reference_within_its_bound() {
         println!("{name}\n{table}");
     }
     let table = |name: &str| {
-        tables
-            .iter()
-            .find(|(n, _)| *n == name)
-            .map(|(_, t)| t.clone())
-            .unwrap_or_default()
+        tables.iter().find(|(n, _)| *n == name).map(|(_, t)| t.clone()).unwrap_or_default()
     };
     insta::assert_snapshot!(table("kepler"), @r"
 Dopri5                1e-6      52 steps   17 rejected    416 f    0 J
@@ -336,22 +319,8 @@ fn every_fixed_step_method_converges_at_its_order() {
         (Method::Ralston, 2.0, 5e-3),
         (Method::Rk4, 4.0, 2e-2),
         (Method::Rk38, 4.0, 2e-2),
-        (
-            Method::TaylorFixed {
-                order: 4,
-                step: 0.0,
-            },
-            4.0,
-            2e-2,
-        ),
-        (
-            Method::TaylorFixed {
-                order: 6,
-                step: 0.0,
-            },
-            6.0,
-            1e-1,
-        ),
+        (Method::TaylorFixed { order: 4, step: 0.0 }, 4.0, 2e-2),
+        (Method::TaylorFixed { order: 6, step: 0.0 }, 6.0, 1e-1),
     ];
     for (method, order, h) in methods {
         let error = |h: f64| {

@@ -31,9 +31,7 @@ fn falling() {
 
 #[test]
 fn names_list_states_then_algebraics_then_outputs() {
-    let sol = Oscillator::default()
-        .simulate(0.0, 1.0, &Options::new())
-        .unwrap();
+    let sol = Oscillator::default().simulate(0.0, 1.0, &Options::new()).unwrap();
     assert_eq!(sol.names(), ["x", "der(x)", "z", "energy"]);
     for name in sol.names() {
         assert!(sol.last(name).is_ok(), "{name}");
@@ -44,14 +42,9 @@ fn names_list_states_then_algebraics_then_outputs() {
 #[test]
 fn columns_hold_the_values_at_the_stored_times() {
     let opts = Options::new().method(Method::Dop853).tolerance(1e-12);
-    let sol = Oscillator::default()
-        .simulate(0.0, 2.0 * PI, &opts)
-        .unwrap();
-    let (x, z, energy) = (
-        sol.column("x").unwrap(),
-        sol.column("z").unwrap(),
-        sol.column("energy").unwrap(),
-    );
+    let sol = Oscillator::default().simulate(0.0, 2.0 * PI, &opts).unwrap();
+    let (x, z, energy) =
+        (sol.column("x").unwrap(), sol.column("z").unwrap(), sol.column("energy").unwrap());
     for (k, &t) in sol.times().iter().enumerate() {
         assert!((x[k] - t.cos()).abs() < 1e-10, "x at {t}");
         assert!((z[k] - t.cos().powi(2)).abs() < 1e-10, "z at {t}");
@@ -73,10 +66,7 @@ fn sampled_error(opts: &Options) -> f64 {
     let table = sol.sample(&["x", "der(x)"], &grid).unwrap();
     assert_eq!(table.times(), &grid[..]);
     let x = table.column("x").unwrap();
-    grid.iter()
-        .zip(x)
-        .map(|(t, x)| (x - t.cos()).abs())
-        .fold(0.0, f64::max)
+    grid.iter().zip(x).map(|(t, x)| (x - t.cos()).abs()).fold(0.0, f64::max)
 }
 
 /// Between the steps each fixed-step method is interpolated at its own
@@ -97,14 +87,8 @@ fn samples_between_steps_converge_at_the_methods_order() {
         (Method::Rk4, Method::Rk4, 4.0),
         (Method::Rk38, Method::Rk38, 4.0),
         (
-            Method::TaylorFixed {
-                order: 6,
-                step: 3.0 / 64.0,
-            },
-            Method::TaylorFixed {
-                order: 6,
-                step: 3.0 / 128.0,
-            },
+            Method::TaylorFixed { order: 6, step: 3.0 / 64.0 },
+            Method::TaylorFixed { order: 6, step: 3.0 / 128.0 },
             6.0,
         ),
         (Method::Euler, Method::Euler, 1.0),
@@ -115,16 +99,8 @@ fn samples_between_steps_converge_at_the_methods_order() {
             if matches!(method, Method::TaylorFixed { .. }) {
                 let sol = Oscillator6::default().simulate(0.0, 3.0, &opts).unwrap();
                 let grid: Vec<f64> = (0..=96).map(|k| 3.0 * k as f64 / 96.0).collect();
-                let x = sol
-                    .sample(&["x"], &grid)
-                    .unwrap()
-                    .column("x")
-                    .unwrap()
-                    .to_vec();
-                grid.iter()
-                    .zip(x)
-                    .map(|(t, x)| (x - t.cos()).abs())
-                    .fold(0.0, f64::max)
+                let x = sol.sample(&["x"], &grid).unwrap().column("x").unwrap().to_vec();
+                grid.iter().zip(x).map(|(t, x)| (x - t.cos()).abs()).fold(0.0, f64::max)
             } else {
                 sampled_error(&opts)
             }
@@ -142,13 +118,7 @@ fn samples_between_steps_converge_at_the_methods_order() {
 /// multiple of the tolerance.
 #[test]
 fn adaptive_samples_follow_the_exact_solution() {
-    for method in [
-        Method::Dopri5,
-        Method::Dop853,
-        Method::Radau5,
-        Method::Taylor,
-        Method::Auto,
-    ] {
+    for method in [Method::Dopri5, Method::Dop853, Method::Radau5, Method::Taylor, Method::Auto] {
         let opts = Options::new().method(method).tolerance(1e-10);
         let error = sampled_error(&opts);
         assert!(error < 1e-8, "{method:?}: {error:e}");
@@ -170,21 +140,10 @@ fn output_times_store_those_times_at_the_methods_order() {
         let x = b.column("x").unwrap();
         let energy = b.column("energy").unwrap();
         for k in 0..times.len() {
-            let (sx, se) = (
-                sampled.column("x").unwrap()[k],
-                sampled.column("energy").unwrap()[k],
-            );
+            let (sx, se) = (sampled.column("x").unwrap()[k], sampled.column("energy").unwrap()[k]);
             assert!((x[k] - sx).abs() <= 1e-15, "{method:?} at {}", times[k]);
-            assert!(
-                (energy[k] - se).abs() <= 1e-14,
-                "{method:?} at {}",
-                times[k]
-            );
-            assert!(
-                (x[k] - times[k].cos()).abs() < 1e-8,
-                "{method:?} at {}",
-                times[k]
-            );
+            assert!((energy[k] - se).abs() <= 1e-14, "{method:?} at {}", times[k]);
+            assert!((x[k] - times[k].cos()).abs() < 1e-8, "{method:?} at {}", times[k]);
         }
         // Asked at a stored time it answers; elsewhere it says what was stored.
         assert_eq!(b.at(0.5, "x").unwrap(), x[5]);
@@ -192,11 +151,7 @@ fn output_times_store_those_times_at_the_methods_order() {
             Err(Error::NotStored { t }) => assert_eq!(t, 0.55),
             other => panic!("{method:?}: expected NotStored, got {other:?}"),
         }
-        assert!(b
-            .at(0.55, "x")
-            .unwrap_err()
-            .to_string()
-            .contains("output_times"));
+        assert!(b.at(0.55, "x").unwrap_err().to_string().contains("output_times"));
         assert_eq!(b.last("x").unwrap(), a.last("x").unwrap());
     }
 }
@@ -217,9 +172,7 @@ fn output_times_run_backwards_and_stop_at_a_terminal_event() {
         assert!((x - t.cos()).abs() < 1e-8, "{t}");
     }
     let grid: Vec<f64> = (0..=10).map(|k| 0.1 * k as f64).collect();
-    let opts = Options::new()
-        .method(Method::Dop853)
-        .output_times(grid.clone());
+    let opts = Options::new().method(Method::Dop853).output_times(grid.clone());
     let sol = Falling::default().simulate(0.0, 1.0, &opts).unwrap();
     let impact = (2.0f64 / 9.81).sqrt();
     let kept: Vec<f64> = grid.iter().copied().filter(|&t| t <= impact).collect();
@@ -234,22 +187,10 @@ fn output_times_run_backwards_and_stop_at_a_terminal_event() {
 fn bad_output_times_are_refused_with_what_to_write() {
     let model = Oscillator::default();
     let cases = [
-        (
-            Options::new().output_times(vec![0.0, 2.0]),
-            "outside the interval",
-        ),
-        (
-            Options::new().output_times(vec![0.5, 0.2]),
-            "strictly increasing",
-        ),
-        (
-            Options::new().output_times(vec![0.5]).keep_every(3),
-            "use one",
-        ),
-        (
-            Options::new().output_times(vec![0.5]).dense_output(false),
-            "drop dense_output(false)",
-        ),
+        (Options::new().output_times(vec![0.0, 2.0]), "outside the interval"),
+        (Options::new().output_times(vec![0.5, 0.2]), "strictly increasing"),
+        (Options::new().output_times(vec![0.5]).keep_every(3), "use one"),
+        (Options::new().output_times(vec![0.5]).dense_output(false), "drop dense_output(false)"),
     ];
     for (opts, expected) in cases {
         match model.simulate(0.0, 1.0, &opts) {
@@ -271,14 +212,10 @@ fn bad_output_times_are_refused_with_what_to_write() {
 fn on_step_sees_every_accepted_step_and_can_stop_the_run() {
     let seen = Arc::new(Mutex::new(Vec::new()));
     let log = seen.clone();
-    let opts = Options::new()
-        .method(Method::Dopri5)
-        .on_step(move |step: &Step| {
-            log.lock()
-                .unwrap()
-                .push((step.t, step.get("x").unwrap(), step.steps));
-            Flow::Continue
-        });
+    let opts = Options::new().method(Method::Dopri5).on_step(move |step: &Step| {
+        log.lock().unwrap().push((step.t, step.get("x").unwrap(), step.steps));
+        Flow::Continue
+    });
     let sol = Oscillator::default().simulate(0.0, 2.0, &opts).unwrap();
     let seen = seen.lock().unwrap();
     assert_eq!(seen.len(), sol.stats().steps);
@@ -290,16 +227,13 @@ fn on_step_sees_every_accepted_step_and_can_stop_the_run() {
     }
 
     // Stop at the first step past t = 1: the run ends there, successfully.
-    let opts = Options::new()
-        .method(Method::Rk4)
-        .step(0.01)
-        .on_step(|step: &Step| {
-            if step.t >= 1.0 {
-                Flow::Stop
-            } else {
-                Flow::Continue
-            }
-        });
+    let opts = Options::new().method(Method::Rk4).step(0.01).on_step(|step: &Step| {
+        if step.t >= 1.0 {
+            Flow::Stop
+        } else {
+            Flow::Continue
+        }
+    });
     let sol = Oscillator::default().simulate(0.0, 5.0, &opts).unwrap();
     let end = sol.cancelled_at().expect("stopped by the callback");
     assert!((1.0..1.0 + 0.011).contains(&end), "{end}");
@@ -326,13 +260,8 @@ fn csv_has_a_header_and_one_row_per_stored_time() {
     }
     let mut all = Vec::new();
     sol.write_csv(&mut all, &sol.names()).unwrap();
-    assert!(String::from_utf8(all)
-        .unwrap()
-        .starts_with("t,x,der(x),z,energy\n"));
-    assert!(matches!(
-        sol.write_csv(Vec::new(), &["nope"]),
-        Err(Error::UnknownName { .. })
-    ));
+    assert!(String::from_utf8(all).unwrap().starts_with("t,x,der(x),z,energy\n"));
+    assert!(matches!(sol.write_csv(Vec::new(), &["nope"]), Err(Error::UnknownName { .. })));
 }
 
 /// A writer that always fails, as a full disk does.
@@ -349,9 +278,7 @@ impl std::io::Write for FullDisk {
 
 #[test]
 fn a_failing_writer_is_an_error_not_a_panic() {
-    let sol = Oscillator::default()
-        .simulate(0.0, 1.0, &Options::new())
-        .unwrap();
+    let sol = Oscillator::default().simulate(0.0, 1.0, &Options::new()).unwrap();
     match sol.write_csv(FullDisk, &["x"]) {
         Err(Error::Io { message }) => assert!(message.contains("no space left"), "{message}"),
         other => panic!("expected Io, got {other:?}"),
@@ -361,9 +288,7 @@ fn a_failing_writer_is_an_error_not_a_panic() {
 /// Printing a sampled table shows a header and one aligned row per time.
 #[test]
 fn a_sampled_table_prints_aligned() {
-    let sol = Oscillator::default()
-        .simulate(0.0, 1.0, &Options::new().tolerance(1e-10))
-        .unwrap();
+    let sol = Oscillator::default().simulate(0.0, 1.0, &Options::new().tolerance(1e-10)).unwrap();
     let table = sol.sample(&["x", "der(x)"], &[0.0, 0.5, 1.0]).unwrap();
     let text = table.to_string();
     let lines: Vec<&str> = text.lines().collect();
@@ -393,9 +318,7 @@ fn describe_lists_every_name_and_progress_changes_no_result() {
     }
     let plain = Options::new().method(Method::Dop853);
     let a = Oscillator::default().simulate(0.0, 5.0, &plain).unwrap();
-    let b = Oscillator::default()
-        .simulate(0.0, 5.0, &plain.progress(true))
-        .unwrap();
+    let b = Oscillator::default().simulate(0.0, 5.0, &plain.progress(true)).unwrap();
     assert_eq!(a.times(), b.times());
     assert_eq!(a.final_state(), b.final_state());
 }

@@ -20,20 +20,8 @@ fn slider_crank_scene() {
     let crank = body(m1, m1 * r * r / 12.0, [0.04, 0.06, 1.0]);
     let slider = body(m2, 1.0, [0.45, 0.0, 0.0]);
     let pivot = revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5 * r, 0.0, 0.0));
-    let rod = distance(
-        crank,
-        vec3(0.5 * r, 0.0, 0.0),
-        slider,
-        vec3(0.0, 0.0, 0.0),
-        l,
-    );
-    prismatic(
-        ground,
-        vec3(0.0, 0.0, 0.0),
-        slider,
-        vec3(0.0, 0.0, 0.0),
-        vec3(1.0, 0.0, 0.0),
-    );
+    let rod = distance(crank, vec3(0.5 * r, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), l);
+    prismatic(ground, vec3(0.0, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0));
     gravity(vec3(0.0, -g, 0.0));
     let pin = position(crank, vec3(0.5 * r, 0.0, 0.0));
     let pin_x = output(pin[0]);
@@ -44,25 +32,14 @@ fn a_slider_crank_scene_matches_the_hand_written_model() {
     assert_eq!(<SliderCrankScene as Model>::INDEX, 3);
     let tol = 1e-10;
     let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let scene = SliderCrankScene::default()
-        .simulate(0.0, 2.0, &opts)
-        .unwrap();
+    let scene = SliderCrankScene::default().simulate(0.0, 2.0, &opts).unwrap();
     let hand = SliderCrank::default().simulate(0.0, 2.0, &opts).unwrap();
     assert_eq!(scene.degrees_of_freedom(), Some(1));
     for t in [0.0, 0.5, 1.0, 2.0] {
-        let (a, b) = (
-            scene.at(t, "crank.theta").unwrap(),
-            hand.at(t, "theta1").unwrap(),
-        );
-        assert!(
-            (a - b).abs() <= 100.0 * tol,
-            "t = {t}: scene θ {a}, hand-written {b}"
-        );
+        let (a, b) = (scene.at(t, "crank.theta").unwrap(), hand.at(t, "theta1").unwrap());
+        assert!((a - b).abs() <= 100.0 * tol, "t = {t}: scene θ {a}, hand-written {b}");
         let (a, b) = (scene.at(t, "slider.x").unwrap(), hand.at(t, "xs").unwrap());
-        assert!(
-            (a - b).abs() <= 100.0 * tol,
-            "t = {t}: scene xs {a}, hand-written {b}"
-        );
+        assert!((a - b).abs() <= 100.0 * tol, "t = {t}: scene xs {a}, hand-written {b}");
     }
     // The reactions are named: the pivot carries the crank's weight on average.
     assert!(scene.last("pivot[1]").unwrap().is_finite());
@@ -135,11 +112,7 @@ fn a_four_bar_linkage_has_one_degree_of_freedom_and_keeps_its_energy() {
     };
     let e0 = energy(0.0);
     for t in [0.5, 1.0, 2.0, 3.0] {
-        assert!(
-            (energy(t) - e0).abs() <= 1e-7 * e0.abs(),
-            "t = {t}: {} vs {e0}",
-            energy(t)
-        );
+        assert!((energy(t) - e0).abs() <= 1e-7 * e0.abs(), "t = {t}: {} vs {e0}", energy(t));
     }
     // It moves: the crank turns.
     assert!((sol.last("crank.theta").unwrap() - sol.at(0.0, "crank.theta").unwrap()).abs() > 0.1);
@@ -185,11 +158,7 @@ fn a_double_pendulum_scene_follows_its_lagrange_equations() {
     let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let sol = DoubleRodScene::default().simulate(0.0, 2.0, &opts).unwrap();
     let reference = DoubleRodAngles::default()
-        .simulate(
-            0.0,
-            2.0,
-            &Options::new().method(Method::Dop853).tolerance(1e-13),
-        )
+        .simulate(0.0, 2.0, &Options::new().method(Method::Dop853).tolerance(1e-13))
         .unwrap();
     assert_eq!(sol.degrees_of_freedom(), Some(2));
     let half_pi = std::f64::consts::FRAC_PI_2;
@@ -197,10 +166,7 @@ fn a_double_pendulum_scene_follows_its_lagrange_equations() {
         for (body, angle) in [("upper", "a"), ("lower", "b")] {
             let got = sol.at(t, &format!("{body}.theta")).unwrap() + half_pi;
             let want = reference.at(t, angle).unwrap();
-            assert!(
-                (got - want).abs() <= 1000.0 * tol,
-                "t = {t}: {body} {got} vs {want}"
-            );
+            assert!((got - want).abs() <= 1000.0 * tol, "t = {t}: {body} {got} vs {want}");
         }
     }
 }
@@ -212,15 +178,7 @@ fn hanging_block() {
     let g = param(9.81);
     let ground = ground();
     let block = body(2.0, 0.1, [0.0, -1.8, 0.0]);
-    spring(
-        ground,
-        vec3(0.0, 0.0, 0.0),
-        block,
-        vec3(0.0, 0.0, 0.0),
-        40.0,
-        1.0,
-        2.0,
-    );
+    spring(ground, vec3(0.0, 0.0, 0.0), block, vec3(0.0, 0.0, 0.0), 40.0, 1.0, 2.0);
     gravity(vec3(0.0, -g, 0.0));
 }
 
@@ -229,11 +187,7 @@ fn a_spring_damper_in_a_scene_gives_the_damped_oscillation() {
     assert_eq!(<HangingBlock as Model>::INDEX, 0);
     let tol = 1e-11;
     let sol = HangingBlock::default()
-        .simulate(
-            0.0,
-            3.0,
-            &Options::new().method(Method::Dop853).tolerance(tol),
-        )
+        .simulate(0.0, 3.0, &Options::new().method(Method::Dop853).tolerance(tol))
         .unwrap();
     let (m, k, c, l0, g) = (2.0f64, 40.0f64, 2.0f64, 1.0f64, 9.81f64);
     let y_eq = -l0 - m * g / k;
@@ -244,10 +198,7 @@ fn a_spring_damper_in_a_scene_gives_the_damped_oscillation() {
         let want = y_eq
             + a0 * (-sigma * t).exp() * ((omega * t).cos() + sigma / omega * (omega * t).sin());
         let got = sol.at(t, "block.y").unwrap();
-        assert!(
-            (got - want).abs() <= 100.0 * tol,
-            "t = {t}: {got} vs {want}"
-        );
+        assert!((got - want).abs() <= 100.0 * tol, "t = {t}: {got} vs {want}");
         assert!(sol.at(t, "block.x").unwrap().abs() <= 1e-15);
     }
 }
@@ -290,33 +241,17 @@ fn the_recursive_double_rod_is_an_ode_in_its_joint_angles() {
     assert_eq!(DoubleRodRecursive::INFO.states.len(), 4);
     let tol = 1e-11;
     let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = DoubleRodRecursive::default()
-        .simulate(0.0, 2.0, &opts)
-        .unwrap();
+    let sol = DoubleRodRecursive::default().simulate(0.0, 2.0, &opts).unwrap();
     let reference = DoubleRodAngles::default()
-        .simulate(
-            0.0,
-            2.0,
-            &Options::new().method(Method::Dop853).tolerance(1e-13),
-        )
+        .simulate(0.0, 2.0, &Options::new().method(Method::Dop853).tolerance(1e-13))
         .unwrap();
     for t in [0.5, 1.0, 2.0] {
         // θ_upper − π/2 is the first joint angle; the second is relative.
-        let (q1, q2) = (
-            sol.at(t, "revolute1.q").unwrap(),
-            sol.at(t, "revolute2.q").unwrap(),
-        );
+        let (q1, q2) = (sol.at(t, "revolute1.q").unwrap(), sol.at(t, "revolute2.q").unwrap());
         let (a, b) = (reference.at(t, "a").unwrap(), reference.at(t, "b").unwrap());
         let half_pi = std::f64::consts::FRAC_PI_2;
-        assert!(
-            (q1 + half_pi - a).abs() <= 1000.0 * tol,
-            "t = {t}: {q1} vs {a}"
-        );
-        assert!(
-            (q1 + q2 + half_pi - b).abs() <= 1000.0 * tol,
-            "t = {t}: {} vs {b}",
-            q1 + q2
-        );
+        assert!((q1 + half_pi - a).abs() <= 1000.0 * tol, "t = {t}: {q1} vs {a}");
+        assert!((q1 + q2 + half_pi - b).abs() <= 1000.0 * tol, "t = {t}: {} vs {b}", q1 + q2);
         // Outputs read body coordinates, rewritten in joint angles.
         assert!((sol.at(t, "upper_angle").unwrap() - a.sin()).abs() <= 1000.0 * tol);
     }
@@ -331,9 +266,7 @@ fn the_recursive_four_bar_matches_the_global_one() {
     assert_eq!(<FourBarRecursive as Model>::INDEX, 3);
     let tol = 1e-10;
     let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let recursive = FourBarRecursive::default()
-        .simulate(0.0, 3.0, &opts)
-        .unwrap();
+    let recursive = FourBarRecursive::default().simulate(0.0, 3.0, &opts).unwrap();
     let global = FourBar::default().simulate(0.0, 3.0, &opts).unwrap();
     assert_eq!(recursive.degrees_of_freedom(), Some(1));
     for t in [0.0, 1.0, 2.0, 3.0] {
@@ -379,18 +312,11 @@ fn the_slider_crank_agrees_in_both_formulations() {
     assert_eq!(SliderCrankGlobal::INFO.states.len(), 12);
     let tol = 1e-10;
     let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let a = SliderCrankRecursive::default()
-        .simulate(0.0, 2.0, &opts)
-        .unwrap();
-    let b = SliderCrankGlobal::default()
-        .simulate(0.0, 2.0, &opts)
-        .unwrap();
+    let a = SliderCrankRecursive::default().simulate(0.0, 2.0, &opts).unwrap();
+    let b = SliderCrankGlobal::default().simulate(0.0, 2.0, &opts).unwrap();
     for t in [0.0, 0.5, 1.0, 2.0] {
         let (x, y) = (a.at(t, "slider_x").unwrap(), b.at(t, "slider_x").unwrap());
-        assert!(
-            (x - y).abs() <= 100.0 * tol,
-            "t = {t}: recursive {x}, global {y}"
-        );
+        assert!((x - y).abs() <= 100.0 * tol, "t = {t}: recursive {x}, global {y}");
     }
     assert_eq!(a.degrees_of_freedom(), Some(1));
 }
@@ -401,16 +327,11 @@ fn the_ten_rod_chain_agrees_in_both_formulations() {
     let tol = 1e-10;
     let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let a = TenRodChain::default().simulate(0.0, 0.5, &opts).unwrap();
-    let b = TenRodChainRecursive::default()
-        .simulate(0.0, 0.5, &opts)
-        .unwrap();
+    let b = TenRodChainRecursive::default().simulate(0.0, 0.5, &opts).unwrap();
     for t in [0.1, 0.25, 0.5] {
         for name in ["tip_x", "tip_y"] {
             let (x, y) = (a.at(t, name).unwrap(), b.at(t, name).unwrap());
-            assert!(
-                (x - y).abs() <= 1e-6,
-                "t = {t}: {name} global {x}, recursive {y}"
-            );
+            assert!((x - y).abs() <= 1e-6, "t = {t}: {name} global {x}, recursive {y}");
         }
     }
 }
@@ -444,16 +365,11 @@ fn springs_and_torques_agree_in_both_formulations() {
     let tol = 1e-10;
     let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let a = SprungGlobal::default().simulate(0.0, 2.0, &opts).unwrap();
-    let b = SprungRecursive::default()
-        .simulate(0.0, 2.0, &opts)
-        .unwrap();
+    let b = SprungRecursive::default().simulate(0.0, 2.0, &opts).unwrap();
     for t in [0.5, 1.0, 2.0] {
         for name in ["tip_x", "tip_y"] {
             let (x, y) = (a.at(t, name).unwrap(), b.at(t, name).unwrap());
-            assert!(
-                (x - y).abs() <= 1000.0 * tol,
-                "t = {t}: {name} global {x}, recursive {y}"
-            );
+            assert!((x - y).abs() <= 1000.0 * tol, "t = {t}: {name} global {x}, recursive {y}");
         }
     }
 }
@@ -504,20 +420,13 @@ slider_crank_moving!(moving_crank_recursive, scene = recursive);
 fn initial_body_velocities_become_joint_rates_in_the_recursive_formulation() {
     let tol = 1e-10;
     let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let a = MovingCrankRecursive::default()
-        .simulate(0.0, 1.0, &opts)
-        .unwrap();
-    let b = MovingCrankGlobal::default()
-        .simulate(0.0, 1.0, &opts)
-        .unwrap();
+    let a = MovingCrankRecursive::default().simulate(0.0, 1.0, &opts).unwrap();
+    let b = MovingCrankGlobal::default().simulate(0.0, 1.0, &opts).unwrap();
     assert!((a.at(0.0, "crank_rate").unwrap() - 2.0).abs() <= 1e-15);
     for t in [0.0, 0.25, 0.5, 1.0] {
         for name in ["slider_x", "crank_rate"] {
             let (x, y) = (a.at(t, name).unwrap(), b.at(t, name).unwrap());
-            assert!(
-                (x - y).abs() <= 1000.0 * tol,
-                "t = {t}: {name} recursive {x}, global {y}"
-            );
+            assert!((x - y).abs() <= 1000.0 * tol, "t = {t}: {name} recursive {x}, global {y}");
         }
     }
 }
@@ -560,10 +469,7 @@ fn a_welded_body_adds_no_joint_coordinate_and_both_formulations_agree() {
     for t in [0.5, 1.0, 2.0] {
         for name in ["tip_x", "tip_y"] {
             let (x, y) = (a.at(t, name).unwrap(), b.at(t, name).unwrap());
-            assert!(
-                (x - y).abs() <= 1000.0 * tol,
-                "t = {t}: {name} global {x}, recursive {y}"
-            );
+            assert!((x - y).abs() <= 1000.0 * tol, "t = {t}: {name} global {x}, recursive {y}");
         }
     }
 }
@@ -586,11 +492,7 @@ hinge_written_backwards!(backwards_recursive, scene = recursive);
 
 /// Every name the two solutions share agrees at `times` within `tol`.
 fn same_values_by_name(a: &Solution, b: &Solution, times: &[f64], tol: f64) -> usize {
-    let shared: Vec<&str> = a
-        .names()
-        .into_iter()
-        .filter(|n| b.names().contains(n))
-        .collect();
+    let shared: Vec<&str> = a.names().into_iter().filter(|n| b.names().contains(n)).collect();
     for &t in times {
         for name in &shared {
             let (x, y) = (a.at(t, name).unwrap(), b.at(t, name).unwrap());
@@ -610,12 +512,8 @@ fn both_formulations_answer_to_the_same_names() {
     let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let times = [0.0, 0.5, 1.0, 2.0];
 
-    let global = SliderCrankGlobal::default()
-        .simulate(0.0, 2.0, &opts)
-        .unwrap();
-    let recursive = SliderCrankRecursive::default()
-        .simulate(0.0, 2.0, &opts)
-        .unwrap();
+    let global = SliderCrankGlobal::default().simulate(0.0, 2.0, &opts).unwrap();
+    let recursive = SliderCrankRecursive::default().simulate(0.0, 2.0, &opts).unwrap();
     let shared = same_values_by_name(&global, &recursive, &times, 1e-7);
     // Six body coordinates and their rates, two joint coordinates and their
     // rates, the rod's multiplier and the output.
@@ -625,33 +523,19 @@ fn both_formulations_answer_to_the_same_names() {
     assert_eq!(q, global.column("crank.theta").unwrap());
 
     let global = FourBar::default().simulate(0.0, 2.0, &opts).unwrap();
-    let recursive = FourBarRecursive::default()
-        .simulate(0.0, 2.0, &opts)
-        .unwrap();
+    let recursive = FourBarRecursive::default().simulate(0.0, 2.0, &opts).unwrap();
     // Three bodies' coordinates and rates, four joints' coordinates and
     // rates (the cut joint's from the body poses), the cut joint's two
     // multipliers and the output.
-    assert_eq!(
-        same_values_by_name(&global, &recursive, &times, 1e-6),
-        18 + 8 + 2 + 1
-    );
+    assert_eq!(same_values_by_name(&global, &recursive, &times, 1e-6), 18 + 8 + 2 + 1);
 
-    let global = BackwardsGlobal::default()
-        .simulate(0.0, 2.0, &opts)
-        .unwrap();
-    let recursive = BackwardsRecursive::default()
-        .simulate(0.0, 2.0, &opts)
-        .unwrap();
-    assert_eq!(
-        same_values_by_name(&global, &recursive, &times, 1e-7),
-        6 + 2
-    );
+    let global = BackwardsGlobal::default().simulate(0.0, 2.0, &opts).unwrap();
+    let recursive = BackwardsRecursive::default().simulate(0.0, 2.0, &opts).unwrap();
+    assert_eq!(same_values_by_name(&global, &recursive, &times, 1e-7), 6 + 2);
     // θ_ground − θ_rod: the opposite of the rod's angle.
     for t in times {
-        let (q, theta) = (
-            recursive.at(t, "hinge.q").unwrap(),
-            recursive.at(t, "rod.theta").unwrap(),
-        );
+        let (q, theta) =
+            (recursive.at(t, "hinge.q").unwrap(), recursive.at(t, "rod.theta").unwrap());
         assert!((q + theta).abs() <= 1e-12, "t = {t}: {q} {theta}");
     }
 }
@@ -664,9 +548,7 @@ fn taylor_on_a_chain_of_rods_says_what_to_use_instead() {
     let opts = Options::new().method(Method::Taylor);
     let refusals = [
         TenRodChain::default().simulate(0.0, 0.1, &opts).map(|_| ()),
-        TenRodChainRecursive::default()
-            .simulate(0.0, 0.1, &opts)
-            .map(|_| ()),
+        TenRodChainRecursive::default().simulate(0.0, 0.1, &opts).map(|_| ()),
     ];
     for refusal in refusals {
         match refusal {
@@ -682,7 +564,5 @@ fn taylor_on_a_chain_of_rods_says_what_to_use_instead() {
     }
     // And Dop853 runs it.
     let dop853 = Options::new().method(Method::Dop853).tolerance(1e-8);
-    assert!(TenRodChainRecursive::default()
-        .simulate(0.0, 0.1, &dop853)
-        .is_ok());
+    assert!(TenRodChainRecursive::default().simulate(0.0, 0.1, &dop853).is_ok());
 }

@@ -20,10 +20,7 @@ fn a_solution_serializes_with_every_name_its_stats_and_events() {
     let sol = Falling::default().simulate(0.0, 1.0, &opts).unwrap();
     let json: serde_json::Value = serde_json::to_value(&sol).unwrap();
     assert_eq!(json["model"], "Falling");
-    assert_eq!(
-        json["table"]["names"],
-        serde_json::json!(["h", "der(h)", "above"])
-    );
+    assert_eq!(json["table"]["names"], serde_json::json!(["h", "der(h)", "above"]));
     assert_eq!(json["table"]["times"], serde_json::json!([0.0, 0.1, 0.2]));
     let h = json["table"]["columns"][0].as_array().unwrap();
     let above = json["table"]["columns"][2].as_array().unwrap();
@@ -38,8 +35,5 @@ fn a_solution_serializes_with_every_name_its_stats_and_events() {
     assert!((json["events"][0]["t"].as_f64().unwrap() - impact).abs() < 1e-14);
     let table = sol.sample(&["h"], &[0.1]).unwrap();
     let text = serde_json::to_string(&table).unwrap();
-    assert!(
-        text.starts_with(r#"{"names":["h"],"times":[0.1],"columns":[["#),
-        "{text}"
-    );
+    assert!(text.starts_with(r#"{"names":["h"],"times":[0.1],"columns":[["#), "{text}");
 }

@@ -34,9 +34,7 @@ fn a_pendulum_with_a_large_multiplier_follows_its_angle() {
     for method in [Method::Dop853, Method::Radau5] {
         let opts = Options::new().method(method).tolerance(tol);
         let dae = FastPendulum::default().simulate(0.0, 5.0, &opts).unwrap();
-        let ode = FastPendulumAngle::default()
-            .simulate(0.0, 5.0, &opts)
-            .unwrap();
+        let ode = FastPendulumAngle::default().simulate(0.0, 5.0, &opts).unwrap();
         for t in [1.0, 2.5, 5.0] {
             let theta = ode.at(t, "theta").unwrap();
             let (x, y) = (dae.at(t, "x").unwrap(), dae.at(t, "y").unwrap());
@@ -63,27 +61,10 @@ fn isosceles_crank() {
         [0.5 * r * cos(1.0), 0.5 * r * sin(1.0), 1.0],
         [-1.5 * r * sin(1.0), 1.5 * r * cos(1.0), 3.0],
     );
-    let slider = body(
-        0.5,
-        1.0,
-        [2.0 * r * cos(1.0), 0.0, 0.0],
-        [-6.0 * r * sin(1.0), 0.0, 0.0],
-    );
+    let slider = body(0.5, 1.0, [2.0 * r * cos(1.0), 0.0, 0.0], [-6.0 * r * sin(1.0), 0.0, 0.0]);
     revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5 * r, 0.0, 0.0));
-    distance(
-        crank,
-        vec3(0.5 * r, 0.0, 0.0),
-        slider,
-        vec3(0.0, 0.0, 0.0),
-        r,
-    );
-    prismatic(
-        ground,
-        vec3(0.0, 0.0, 0.0),
-        slider,
-        vec3(0.0, 0.0, 0.0),
-        vec3(1.0, 0.0, 0.0),
-    );
+    distance(crank, vec3(0.5 * r, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), r);
+    prismatic(ground, vec3(0.0, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0));
 }
 
 #[test]

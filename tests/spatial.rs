@@ -72,11 +72,7 @@ fn a_heavy_top_scene_matches_the_hand_written_quaternion_model() {
     // The centre sits at l R e3 from the pivot.
     for t in [1.0, 10.0] {
         let (tilt, z) = (scene.at(t, "tilt").unwrap(), scene.at(t, "top.z").unwrap());
-        assert!(
-            (tilt - z / 0.5).abs() <= 1e-11,
-            "t = {t}: {tilt} vs {}",
-            z / 0.5
-        );
+        assert!((tilt - z / 0.5).abs() <= 1e-11, "t = {t}: {tilt} vs {}", z / 0.5);
     }
     assert!(scene.max_constraint_residual() <= 1e-12);
 }
@@ -100,13 +96,8 @@ fn welded_pendulum() {
         [-1.25 * sin(1.0), 0.0, -1.25 * cos(1.0)],
         [cos(0.5), 0.0, sin(0.5), 0.0],
     );
-    let hinge = revolute(
-        ground,
-        vec3(0.0, 0.0, 0.0),
-        upper,
-        vec3(0.0, 0.0, 0.5),
-        vec3(0.0, 1.0, 0.0),
-    );
+    let hinge =
+        revolute(ground, vec3(0.0, 0.0, 0.0), upper, vec3(0.0, 0.0, 0.5), vec3(0.0, 1.0, 0.0));
     let weld = fixed(upper, vec3(0.0, 0.0, -0.5), lower, vec3(0.0, 0.0, 0.25));
     gravity(vec3(0.0, 0.0, -g));
     /// The rotation about y.
@@ -132,26 +123,15 @@ fn a_revolute_and_a_fixed_joint_make_a_compound_pendulum() {
     let tol = 1e-11;
     let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let scene = WeldedPendulum::default().simulate(0.0, 3.0, &opts).unwrap();
-    let minimal = CompoundPendulum::default()
-        .simulate(0.0, 3.0, &opts)
-        .unwrap();
+    let minimal = CompoundPendulum::default().simulate(0.0, 3.0, &opts).unwrap();
     assert_eq!(scene.degrees_of_freedom(), Some(1));
     for t in [0.5, 1.0, 2.0, 3.0] {
-        let (a, b) = (
-            scene.at(t, "angle").unwrap(),
-            minimal.at(t, "theta").unwrap(),
-        );
-        assert!(
-            (a - b).abs() <= 1e-8,
-            "t = {t}: scene {a}, one coordinate {b}"
-        );
+        let (a, b) = (scene.at(t, "angle").unwrap(), minimal.at(t, "theta").unwrap());
+        assert!((a - b).abs() <= 1e-8, "t = {t}: scene {a}, one coordinate {b}");
         assert!(scene.at(t, "twist").unwrap().abs() <= 1e-10);
         // The hinge's coordinate: its turn about y since the start (θ0 = 1).
         let hinge = scene.at(t, "hinge.q").unwrap();
-        assert!(
-            (hinge - (b - 1.0)).abs() <= 1e-8,
-            "t = {t}: hinge.q {hinge}"
-        );
+        assert!((hinge - (b - 1.0)).abs() <= 1e-8, "t = {t}: hinge.q {hinge}");
         // The motion stays in the x–z plane.
         assert!(scene.at(t, "upper.y").unwrap().abs() <= 1e-10);
         assert!(scene.at(t, "lower.q1").unwrap().abs() <= 1e-10);
@@ -169,12 +149,7 @@ fn block_on_a_slope() {
         2.0,
         vec3(0.1, 0.2, 0.3),
         [0.0, 0.0, 0.0],
-        [
-            cos(0.35),
-            sin(0.35) / sqrt(3.0),
-            sin(0.35) / sqrt(3.0),
-            sin(0.35) / sqrt(3.0),
-        ],
+        [cos(0.35), sin(0.35) / sqrt(3.0), sin(0.35) / sqrt(3.0), sin(0.35) / sqrt(3.0)],
     );
     let slide = prismatic(
         ground,
@@ -204,18 +179,11 @@ fn a_prismatic_joint_on_a_slope_follows_the_exact_solution() {
         let exact = [s * alpha.cos(), 0.0, -s * alpha.sin()];
         for (k, c) in ["x", "y", "z"].iter().enumerate() {
             let v = sol.at(t, &format!("block.{c}")).unwrap();
-            assert!(
-                (v - exact[k]).abs() <= 1e-8,
-                "t = {t}: block.{c} = {v}, exact {}",
-                exact[k]
-            );
+            assert!((v - exact[k]).abs() <= 1e-8, "t = {t}: block.{c} = {v}, exact {}", exact[k]);
         }
         // The joint's coordinate: the slide along the slope.
         let slide = sol.at(t, "slide.q").unwrap();
-        assert!(
-            (slide - s).abs() <= 1e-8,
-            "t = {t}: slide.q {slide}, exact {s}"
-        );
+        assert!((slide - s).abs() <= 1e-8, "t = {t}: slide.q {slide}, exact {s}");
         for k in 0..4 {
             let q = sol.at(t, &format!("block.q{k}")).unwrap();
             assert!((q - q0[k]).abs() <= 1e-9, "attitude drifts: q{k} = {q}");
@@ -250,9 +218,7 @@ fn a_distance_joint_keeps_the_conical_pendulum_on_its_circle() {
     for method in [Method::Dop853, Method::Radau5, Method::Taylor] {
         let tol = 1e-11;
         let opts = Options::new().method(method).tolerance(tol);
-        let sol = ConicalPendulum::default()
-            .simulate(0.0, 3.0 * period, &opts)
-            .unwrap();
+        let sol = ConicalPendulum::default().simulate(0.0, 3.0 * period, &opts).unwrap();
         assert_eq!(sol.degrees_of_freedom(), Some(5));
         for k in 1..=6 {
             let t = 0.5 * k as f64 * period;
@@ -274,28 +240,9 @@ fn a_distance_joint_keeps_the_conical_pendulum_on_its_circle() {
 #[dae_model]
 fn damped_block() {
     let ground = ground();
-    let block = spatial_body(
-        1.0,
-        vec3(0.1, 0.1, 0.1),
-        [1.3, 0.0, 0.0],
-        [1.0, 0.0, 0.0, 0.0],
-    );
-    prismatic(
-        ground,
-        vec3(0.0, 0.0, 0.0),
-        block,
-        vec3(0.0, 0.0, 0.0),
-        vec3(1.0, 0.0, 0.0),
-    );
-    spring(
-        ground,
-        vec3(0.0, 0.0, 0.0),
-        block,
-        vec3(0.0, 0.0, 0.0),
-        4.0,
-        1.0,
-        0.4,
-    );
+    let block = spatial_body(1.0, vec3(0.1, 0.1, 0.1), [1.3, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0]);
+    prismatic(ground, vec3(0.0, 0.0, 0.0), block, vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0));
+    spring(ground, vec3(0.0, 0.0, 0.0), block, vec3(0.0, 0.0, 0.0), 4.0, 1.0, 0.4);
     gravity(vec3(0.0, 0.0, -9.81));
 }
 
@@ -321,12 +268,7 @@ fn a_spring_damper_gives_the_damped_oscillator() {
 #[dae_model]
 fn spun_body() {
     let ground = ground();
-    let rotor = spatial_body(
-        3.0,
-        vec3(0.1, 0.15, 0.2),
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0, 0.0],
-    );
+    let rotor = spatial_body(3.0, vec3(0.1, 0.15, 0.2), [0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0]);
     spherical(ground, vec3(0.0, 0.0, 0.0), rotor, vec3(0.0, 0.0, 0.0));
     torque(rotor, vec3(0.0, 0.0, 0.3));
     gravity(vec3(0.0, 0.0, -9.81));
@@ -340,10 +282,7 @@ fn a_constant_torque_about_a_principal_axis_spins_a_body_up() {
     for t in [0.5, 1.0, 2.0] {
         // ψ = ½ (τ / J_z) t², q = (cos ψ/2, 0, 0, sin ψ/2).
         let psi = 0.5 * 1.5 * t * t;
-        let (q0, q3) = (
-            sol.at(t, "rotor.q0").unwrap(),
-            sol.at(t, "rotor.q3").unwrap(),
-        );
+        let (q0, q3) = (sol.at(t, "rotor.q0").unwrap(), sol.at(t, "rotor.q3").unwrap());
         assert!((q0 - (psi / 2.0).cos()).abs() <= 1e-9, "t = {t}: q0 = {q0}");
         assert!((q3 - (psi / 2.0).sin()).abs() <= 1e-9, "t = {t}: q3 = {q3}");
         assert!((sol.at(t, "rotor.wz").unwrap() - 1.5 * t).abs() <= 1e-9);
@@ -356,19 +295,8 @@ fn a_constant_torque_about_a_principal_axis_spins_a_body_up() {
 #[dae_model]
 fn pulled_bar() {
     let ground = ground();
-    let bar = spatial_body(
-        1.0,
-        vec3(0.05, 0.5, 0.5),
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0, 0.0],
-    );
-    revolute(
-        ground,
-        vec3(0.0, 0.0, 0.0),
-        bar,
-        vec3(0.0, 0.0, 0.0),
-        vec3(0.0, 1.0, 0.0),
-    );
+    let bar = spatial_body(1.0, vec3(0.05, 0.5, 0.5), [0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0]);
+    revolute(ground, vec3(0.0, 0.0, 0.0), bar, vec3(0.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0));
     force(bar, vec3(1.0, 0.0, 0.0), vec3(0.0, 0.0, -2.0));
     let psi = output(2.0 * atan2(bar.q2, bar.q0));
 }
@@ -388,10 +316,7 @@ fn a_force_at_a_body_point_turns_the_bar_as_its_one_coordinate_says() {
     let minimal = PulledBarAngle::default().simulate(0.0, 3.0, &opts).unwrap();
     for t in [0.5, 1.5, 3.0] {
         let (a, b) = (scene.at(t, "psi").unwrap(), minimal.at(t, "psi").unwrap());
-        assert!(
-            (a - b).abs() <= 1e-8,
-            "t = {t}: scene {a}, one coordinate {b}"
-        );
+        assert!((a - b).abs() <= 1e-8, "t = {t}: scene {a}, one coordinate {b}");
         // An unnamed joint is named by its kind and place among the joints.
         let q = scene.at(t, "revolute1.q").unwrap();
         assert!((q - b).abs() <= 1e-8, "t = {t}: revolute1.q {q}");
@@ -402,17 +327,13 @@ fn a_force_at_a_body_point_turns_the_bar_as_its_one_coordinate_says() {
 fn the_heavy_top_scene_conserves_energy_and_unit_norm_over_a_thousand_taylor_steps() {
     let tol = 1e-15;
     let opts = Options::new().method(Method::Taylor).tolerance(tol);
-    let sol = HeavyTopScene::default()
-        .simulate(0.0, 450.0, &opts)
-        .unwrap();
+    let sol = HeavyTopScene::default().simulate(0.0, 450.0, &opts).unwrap();
     let steps = sol.times().len();
     let e0 = sol.at(0.0, "energy").unwrap();
     let (mut energy, mut norm) = (0.0f64, 0.0f64);
     for &t in sol.times() {
         energy = energy.max((sol.at(t, "energy").unwrap() - e0).abs());
-        let q: f64 = (0..4)
-            .map(|i| sol.at(t, &format!("top.q{i}")).unwrap().powi(2))
-            .sum();
+        let q: f64 = (0..4).map(|i| sol.at(t, &format!("top.q{i}")).unwrap().powi(2)).sum();
         norm = norm.max((q - 1.0).abs());
     }
     // Measured: 1227 steps, 8.9e-16 and 6.7e-16 (the hand-written model of

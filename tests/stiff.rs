@@ -18,10 +18,7 @@ fn last_state(sol: &Solution) -> Vec<f64> {
 
 /// Largest error relative to max(|reference|, atol/rtol floor).
 fn mixed_error(got: &[f64], reference: &[f64], floor: f64) -> f64 {
-    got.iter()
-        .zip(reference)
-        .map(|(g, r)| (g - r).abs() / r.abs().max(floor))
-        .fold(0.0, f64::max)
+    got.iter().zip(reference).map(|(g, r)| (g - r).abs() / r.abs().max(floor)).fold(0.0, f64::max)
 }
 
 const TOLERANCES: [f64; 5] = [1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
@@ -33,9 +30,7 @@ fn radau(tol: f64, atol: f64) -> Options {
 #[test]
 fn van_der_pol_reaches_the_published_solution() {
     for tol in TOLERANCES {
-        let sol = VanDerPol::default()
-            .simulate(0.0, 2.0, &radau(tol, tol))
-            .unwrap();
+        let sol = VanDerPol::default().simulate(0.0, 2.0, &radau(tol, tol)).unwrap();
         let e = mixed_error(&last_state(&sol), &VDP_AT_2, 1.0);
         assert!(e <= 10.0 * tol, "tol {tol:e}: mixed error {e:e}");
         assert!(
@@ -53,13 +48,9 @@ fn van_der_pol_reaches_the_published_solution() {
 fn van_der_pol_at_t_1_from_steps_and_from_dense_output() {
     let at_1 = [-0.1863646254808130e1, 0.7535430865435460];
     for tol in [1e-6, 1e-8, 1e-10] {
-        let run = VanDerPol::default()
-            .simulate(0.0, 1.0, &radau(tol, tol))
-            .unwrap();
+        let run = VanDerPol::default().simulate(0.0, 1.0, &radau(tol, tol)).unwrap();
         assert!(mixed_error(&last_state(&run), &at_1, 1.0) <= 10.0 * tol);
-        let longer = VanDerPol::default()
-            .simulate(0.0, 2.0, &radau(tol, tol))
-            .unwrap();
+        let longer = VanDerPol::default().simulate(0.0, 2.0, &radau(tol, tol)).unwrap();
         let dense = [longer.at(1.0, "y1").unwrap(), longer.at(1.0, "y2").unwrap()];
         let e = mixed_error(&dense, &at_1, 1.0);
         assert!(e <= 100.0 * tol, "tol {tol:e}: dense output error {e:e}");
@@ -73,15 +64,10 @@ fn van_der_pol_at_t_1_from_steps_and_from_dense_output() {
 #[test]
 fn robertson_reaches_t_1e11_with_every_component_accurate() {
     for tol in TOLERANCES {
-        let sol = Robertson::default()
-            .simulate(0.0, 1e11, &radau(tol, 1e-6 * tol))
-            .unwrap();
+        let sol = Robertson::default().simulate(0.0, 1e11, &radau(tol, 1e-6 * tol)).unwrap();
         let y = last_state(&sol);
         let e = mixed_error(&y, &ROBER_AT_1E11, 0.0);
-        assert!(
-            e <= 10.0 * tol,
-            "tol {tol:e}: relative error {e:e}, y = {y:?}"
-        );
+        assert!(e <= 10.0 * tol, "tol {tol:e}: relative error {e:e}, y = {y:?}");
         assert!((y[0] + y[1] + y[2] - 1.0).abs() < 1e-13);
     }
 }
@@ -89,9 +75,7 @@ fn robertson_reaches_t_1e11_with_every_component_accurate() {
 #[test]
 fn hires_reaches_the_published_solution() {
     for tol in TOLERANCES {
-        let sol = Hires::default()
-            .simulate(0.0, 321.8122, &radau(tol, tol))
-            .unwrap();
+        let sol = Hires::default().simulate(0.0, 321.8122, &radau(tol, tol)).unwrap();
         let e = mixed_error(&last_state(&sol), &HIRES_AT_END, 1.0);
         assert!(e <= 10.0 * tol, "tol {tol:e}: mixed error {e:e}");
     }
@@ -108,9 +92,7 @@ fn oscillator() {
 #[test]
 fn radau5_integrates_backwards() {
     for tol in [1e-6, 1e-9] {
-        let back = Oscillator::default()
-            .simulate(0.0, -3.0, &radau(tol, tol))
-            .unwrap();
+        let back = Oscillator::default().simulate(0.0, -3.0, &radau(tol, tol)).unwrap();
         assert_eq!(*back.times().last().unwrap(), -3.0);
         let e = (back.last("x").unwrap() - 3f64.cos()).abs();
         assert!(e <= 10.0 * tol, "tol {tol:e}: error {e:e}");
@@ -131,22 +113,14 @@ fn prothero_robinson() {
 #[test]
 fn backward_euler_is_stable_where_explicit_euler_explodes() {
     let model = ProtheroRobinson::default();
-    let sol = model
-        .simulate(
-            0.0,
-            2.0,
-            &Options::new().method(Method::BackwardEuler).step(0.01),
-        )
-        .unwrap();
+    let sol =
+        model.simulate(0.0, 2.0, &Options::new().method(Method::BackwardEuler).step(0.01)).unwrap();
     let e = (sol.last("y").unwrap() - 2f64.sin()).abs();
     // Local error h²|y''|/2 damped by 1/(1 − hλ): about h|y''|/|λ| = 1e-8.
     assert!(e < 1e-7, "error {e:e}");
     assert_eq!((sol.stats().steps, sol.stats().rejected), (200, 0));
     let explicit = model.simulate(0.0, 2.0, &Options::new().method(Method::Euler).step(0.01));
-    assert!(
-        matches!(explicit, Err(Error::NonFinite { .. })),
-        "{explicit:?}"
-    );
+    assert!(matches!(explicit, Err(Error::NonFinite { .. })), "{explicit:?}");
 }
 
 /// `Method::Auto` starts explicit, detects stiffness and switches to
@@ -156,9 +130,7 @@ fn backward_euler_is_stable_where_explicit_euler_explodes() {
 #[test]
 fn auto_switches_to_radau5_when_the_problem_turns_stiff() {
     for tol in [1e-6, 1e-8] {
-        let sol = VanDerPol::default()
-            .simulate(0.0, 2.0, &Options::new().tolerance(tol))
-            .unwrap();
+        let sol = VanDerPol::default().simulate(0.0, 2.0, &Options::new().tolerance(tol)).unwrap();
         assert!(sol.stats().jacobian_evals > 0, "RADAU5 took over");
         assert!(sol.stats().method.contains("Radau5") && sol.stats().switches >= 1);
         let e = mixed_error(&last_state(&sol), &VDP_AT_2, 1.0);
@@ -166,9 +138,7 @@ fn auto_switches_to_radau5_when_the_problem_turns_stiff() {
         assert!(sol.at(1.0, "y1").is_ok() && sol.at(1e-9, "y2").is_ok());
     }
     // A non-stiff problem never switches.
-    let osc = Oscillator::default()
-        .simulate(0.0, 10.0, &Options::new().tolerance(1e-8))
-        .unwrap();
+    let osc = Oscillator::default().simulate(0.0, 10.0, &Options::new().tolerance(1e-8)).unwrap();
     assert_eq!(osc.stats().jacobian_evals, 0);
     assert_eq!((osc.stats().method, osc.stats().switches), ("Dop853", 0));
     assert!((osc.last("x").unwrap() - 10f64.cos()).abs() < 1e-6);
@@ -180,9 +150,8 @@ fn auto_switches_to_radau5_when_the_problem_turns_stiff() {
 #[test]
 fn an_explicit_pair_stops_where_the_problem_turns_stiff() {
     for method in [Method::Dopri5, Method::Dop853] {
-        let err = Robertson::default()
-            .simulate(0.0, 1e5, &Options::new().method(method))
-            .unwrap_err();
+        let err =
+            Robertson::default().simulate(0.0, 1e5, &Options::new().method(method)).unwrap_err();
         let message = err.to_string();
         let Error::Stiff { t, onset, .. } = err else {
             panic!("{method:?}: {message}");
@@ -207,14 +176,8 @@ fn auto_hands_a_stiff_filter_to_radau5_early() {
     for tol in [1e-6, 1e-9] {
         let opts = Options::new().tolerance(tol);
         let auto = LowPass::default().simulate(0.0, 1.0, &opts).unwrap();
-        let radau = LowPass::default()
-            .simulate(0.0, 1.0, &opts.method(Method::Radau5))
-            .unwrap();
-        assert!(
-            auto.stats().method.ends_with("→Radau5"),
-            "{:?}",
-            auto.stats()
-        );
+        let radau = LowPass::default().simulate(0.0, 1.0, &opts.method(Method::Radau5)).unwrap();
+        assert!(auto.stats().method.ends_with("→Radau5"), "{:?}", auto.stats());
         assert_eq!(auto.stats().switches, 1);
         let (a, r) = (auto.stats().steps, radau.stats().steps);
         assert!(a <= 2 * r, "Auto {a} steps, Radau5 {r}");
@@ -230,10 +193,7 @@ fn auto_hands_a_stiff_filter_to_radau5_early() {
                 .fold(0.0, f64::max)
         };
         let (e_auto, e_radau) = (error(&auto), error(&radau));
-        assert!(
-            e_auto <= 3.0 * e_radau + tol,
-            "tol {tol:e}: Auto {e_auto:e}, Radau5 {e_radau:e}"
-        );
+        assert!(e_auto <= 3.0 * e_radau + tol, "tol {tol:e}: Auto {e_auto:e}, Radau5 {e_radau:e}");
     }
 }
 
@@ -250,9 +210,8 @@ fn fading_stiffness() {
 #[test]
 fn auto_switches_back_where_the_stiffness_fades() {
     for tol in [1e-6, 1e-9] {
-        let sol = FadingStiffness::default()
-            .simulate(0.0, 10.0, &Options::new().tolerance(tol))
-            .unwrap();
+        let sol =
+            FadingStiffness::default().simulate(0.0, 10.0, &Options::new().tolerance(tol)).unwrap();
         let stats = sol.stats();
         assert_eq!(stats.switches, 2, "{stats:?}");
         assert!(
@@ -280,11 +239,7 @@ fn newton_failures_are_reported_with_the_time_and_what_was_tried() {
     // of the exact y(1/4) = 4/3, so the backward Euler solution blows up
     // before the exact pole at t = 1, and the halved steps end there.
     let err = Quadratic::default()
-        .simulate(
-            0.0,
-            1.0,
-            &Options::new().method(Method::BackwardEuler).step(1.0),
-        )
+        .simulate(0.0, 1.0, &Options::new().method(Method::BackwardEuler).step(1.0))
         .unwrap_err();
     let message = err.to_string();
     match &err {
@@ -294,10 +249,7 @@ fn newton_failures_are_reported_with_the_time_and_what_was_tried() {
         }
         other => panic!("expected a Newton failure, got {other}"),
     }
-    assert!(
-        message.contains("Options::step") && message.contains("Method::Radau5"),
-        "{message}"
-    );
+    assert!(message.contains("Options::step") && message.contains("Method::Radau5"), "{message}");
     let partial = err.partial_solution().unwrap();
     assert!(partial.times().len() > 2 && partial.stats().rejected >= 30);
     // RADAU5 runs into the pole at t = 1 and stops there with an error.
@@ -318,9 +270,7 @@ fn newton_failures_are_reported_with_the_time_and_what_was_tried() {
 /// (7.1583e-01, 9.1855e-06, 2.8416e-01): RADAU5 at tight tolerances as the
 /// reference, checked against those digits.
 fn robertson_at_40() -> Vec<f64> {
-    let reference = Robertson::default()
-        .simulate(0.0, 40.0, &radau(1e-12, 1e-18))
-        .unwrap();
+    let reference = Robertson::default().simulate(0.0, 40.0, &radau(1e-12, 1e-18)).unwrap();
     let y = last_state(&reference);
     let printed = [7.1583e-01, 9.1855e-06, 2.8416e-01];
     assert!(mixed_error(&y, &printed, 0.0) < 1e-4, "{y:?}");
@@ -335,11 +285,7 @@ fn backward_euler_integrates_robertson_to_first_order() {
     let reference = robertson_at_40();
     let error = |h: f64| {
         let sol = Robertson::default()
-            .simulate(
-                0.0,
-                40.0,
-                &Options::new().method(Method::BackwardEuler).step(h),
-            )
+            .simulate(0.0, 40.0, &Options::new().method(Method::BackwardEuler).step(h))
             .unwrap();
         mixed_error(&last_state(&sol), &reference, 0.0)
     };
@@ -360,11 +306,7 @@ fn backward_euler_follows_van_der_pol_across_its_relaxation_jumps() {
     let mut last = f64::INFINITY;
     for (h, bound) in [(1e-2, 0.3), (1e-3, 0.08)] {
         let sol = VanDerPol::default()
-            .simulate(
-                0.0,
-                2.0,
-                &Options::new().method(Method::BackwardEuler).step(h),
-            )
+            .simulate(0.0, 2.0, &Options::new().method(Method::BackwardEuler).step(h))
             .unwrap();
         let e = mixed_error(&last_state(&sol), &VDP_AT_2, 1.0);
         assert!(e < bound && e < last, "h = {h:e}: error {e:e}");
@@ -374,10 +316,7 @@ fn backward_euler_follows_van_der_pol_across_its_relaxation_jumps() {
         let times = sol.times();
         for k in 0..=(2.0 / h).round() as usize {
             let t = (k as f64 * h).min(2.0);
-            assert!(
-                times.iter().any(|&s| (s - t).abs() <= 1e-12),
-                "t = {t} missing"
-            );
+            assert!(times.iter().any(|&s| (s - t).abs() <= 1e-12), "t = {t} missing");
         }
     }
 }
@@ -385,11 +324,7 @@ fn backward_euler_follows_van_der_pol_across_its_relaxation_jumps() {
 #[test]
 fn a_minimum_step_stops_the_run_early() {
     let err = Quadratic::default()
-        .simulate(
-            0.0,
-            2.0,
-            &Options::new().method(Method::Dopri5).min_step(1e-6),
-        )
+        .simulate(0.0, 2.0, &Options::new().method(Method::Dopri5).min_step(1e-6))
         .unwrap_err();
     match err {
         Error::StepSizeUnderflow { t, h, .. } => assert!(t < 1.0 && h.abs() < 1e-6),
@@ -423,10 +358,7 @@ fn a_banded_newton_solve_follows_the_exact_damped_mode() {
     let n = <DampedString as Model>::STATES;
     let ordering =
         BandOrdering::reverse_cuthill_mckee(n, <DampedString as Model>::JACOBIAN_PATTERN);
-    assert!(
-        ordering.pays(),
-        "the banded path is the one tested: {ordering:?}"
-    );
+    assert!(ordering.pays(), "the banded path is the one tested: {ordering:?}");
     // Start in the first mode v_j = sin(jπ/51) at rest: it stays in that
     // mode, q(t) = v·(A e^(s1 t) + B e^(s2 t)) with s² + c s − λ = 0,
     // λ = −4·51²·sin²(π/102), A = −s2/(s1 − s2), B = s1/(s1 − s2).
@@ -442,14 +374,10 @@ fn a_banded_newton_solve_follows_the_exact_damped_mode() {
     }
     let t1 = 0.5;
     for tol in [1e-6, 1e-9] {
-        let sol = DampedString::default()
-            .simulate_from(0.0, &y0, t1, &radau(tol, tol))
-            .unwrap();
+        let sol = DampedString::default().simulate_from(0.0, &y0, t1, &radau(tol, tol)).unwrap();
         let y = last_state(&sol);
         let amplitude = a * (s1 * t1).exp() + b * (s2 * t1).exp();
-        let error = (0..m)
-            .map(|j| (y[2 * j] - mode(j) * amplitude).abs())
-            .fold(0.0, f64::max);
+        let error = (0..m).map(|j| (y[2 * j] - mode(j) * amplitude).abs()).fold(0.0, f64::max);
         assert!(error <= 10.0 * tol, "tol {tol:e}: error {error:e}");
     }
 }
@@ -531,15 +459,9 @@ fn radau5_is_as_accurate_between_steps_as_at_them() {
     }
     for tol in [1e-6, 1e-8] {
         let (ends, middles) = errors::<VanDerPol>(2.0, tol, tol);
-        assert!(
-            middles <= 10.0 * ends,
-            "VdP tol {tol:e}: {middles:e} vs {ends:e}"
-        );
+        assert!(middles <= 10.0 * ends, "VdP tol {tol:e}: {middles:e} vs {ends:e}");
         let (ends, middles) = errors::<Hires>(321.8122, tol, tol);
-        assert!(
-            middles <= 10.0 * ends,
-            "HIRES tol {tol:e}: {middles:e} vs {ends:e}"
-        );
+        assert!(middles <= 10.0 * ends, "HIRES tol {tol:e}: {middles:e} vs {ends:e}");
         let (ends, middles) = errors::<Robertson>(40.0, tol, 1e-6 * tol);
         assert!(
             middles <= 10.0 * tol && middles <= 30.0 * ends,

@@ -14,10 +14,7 @@ arenstorf_model!(taylor = 1);
 lorenz_model!([-8.0, 8.0, 27.0], taylor = 1, unroll = [18]);
 
 fn max_error(got: &[f64], want: &[f64]) -> f64 {
-    got.iter()
-        .zip(want)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max)
+    got.iter().zip(want).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max)
 }
 
 fn final_state(sol: &Solution) -> Vec<f64> {
@@ -45,22 +42,13 @@ fn errors_fall_with_the_tolerance_on_kepler_and_arenstorf() {
         // are at the rounding floor (checked below), which differs by a
         // factor of a few between any two summation orders.
         if tol >= 1e-9 {
-            assert!(
-                (eu - ec).abs() <= 0.1 * ec,
-                "tol {tol:e}: unrolled {eu:e}, compact {ec:e}"
-            );
+            assert!((eu - ec).abs() <= 0.1 * ec, "tol {tol:e}: unrolled {eu:e}, compact {ec:e}");
         } else {
-            assert!(
-                eu < 1e-9 && ec < 1e-9,
-                "tol {tol:e}: unrolled {eu:e}, compact {ec:e}"
-            );
+            assert!(eu < 1e-9 && ec < 1e-9, "tol {tol:e}: unrolled {eu:e}, compact {ec:e}");
         }
         let k = Kepler::default().simulate(0.0, t1, &o).unwrap();
         let a = Arenstorf::default().simulate(0.0, ARENSTORF_T, &o).unwrap();
-        (
-            max_error(&final_state(&k), &kepler_exact(t1)),
-            max_error(&final_state(&a), &ARENSTORF_Y0),
-        )
+        (max_error(&final_state(&k), &kepler_exact(t1)), max_error(&final_state(&a), &ARENSTORF_Y0))
     };
     let (k6, a6) = run(1e-6);
     let (k15, a15) = run(1e-15);
@@ -83,10 +71,7 @@ fn errors_fall_with_the_tolerance_on_kepler_and_arenstorf() {
 fn lorenz_follows_its_reference_within_the_growth_of_errors() {
     let growth = (0.9f64 * 16.0).exp();
     let run = |tol: f64, compact: bool| {
-        let o = Options::new()
-            .method(Method::Taylor)
-            .tolerance(tol)
-            .taylor_compact(compact);
+        let o = Options::new().method(Method::Taylor).tolerance(tol).taylor_compact(compact);
         let sol = Lorenz::default().simulate(0.0, 16.0, &o).unwrap();
         // Order 18 is unrolled, and chosen at 1e-14 unless compact.
         assert_eq!(sol.stats().taylor_unrolled, tol == 1e-14 && !compact);
@@ -104,11 +89,7 @@ fn lorenz_follows_its_reference_within_the_growth_of_errors() {
 fn dense_output_is_the_step_polynomial() {
     let two_pi = 2.0 * std::f64::consts::PI;
     let sol = Kepler::default()
-        .simulate(
-            0.0,
-            two_pi,
-            &Options::new().method(Method::Taylor).tolerance(1e-14),
-        )
+        .simulate(0.0, two_pi, &Options::new().method(Method::Taylor).tolerance(1e-14))
         .unwrap();
     let names = ["q1", "q2", "p1", "p2"];
     let at_steps = (0..sol.times().len())
@@ -118,15 +99,10 @@ fn dense_output_is_the_step_polynomial() {
         .map(|j| {
             let t = two_pi * j as f64 / 500.0;
             let e = kepler_exact(t);
-            (0..4)
-                .map(|i| (sol.at(t, names[i]).unwrap() - e[i]).abs())
-                .fold(0.0, f64::max)
+            (0..4).map(|i| (sol.at(t, names[i]).unwrap() - e[i]).abs()).fold(0.0, f64::max)
         })
         .fold(0.0, f64::max);
-    assert!(
-        between <= 2.0 * at_steps + 1e-14,
-        "{between:e} between steps, {at_steps:e} at steps"
-    );
+    assert!(between <= 2.0 * at_steps + 1e-14, "{between:e} between steps, {at_steps:e} at steps");
 }
 
 /// y' = 2t: the solution t² is a polynomial, so the series has an infinite
@@ -140,9 +116,8 @@ fn parabola() {
 
 #[test]
 fn polynomial_solutions_are_one_exact_step() {
-    let sol = Parabola::default()
-        .simulate(0.0, 3.0, &Options::new().method(Method::Taylor))
-        .unwrap();
+    let sol =
+        Parabola::default().simulate(0.0, 3.0, &Options::new().method(Method::Taylor)).unwrap();
     assert_eq!(sol.stats().steps, 1);
     assert_eq!(sol.last("y").unwrap(), 9.0);
 }
@@ -151,11 +126,7 @@ fn polynomial_solutions_are_one_exact_step() {
 fn integrates_backwards_and_refuses_models_without_a_tape() {
     let two_pi = 2.0 * std::f64::consts::PI;
     let back = Kepler::default()
-        .simulate(
-            two_pi,
-            0.0,
-            &Options::new().method(Method::Taylor).tolerance(1e-12),
-        )
+        .simulate(two_pi, 0.0, &Options::new().method(Method::Taylor).tolerance(1e-12))
         .unwrap();
     assert!(max_error(&final_state(&back), &kepler_exact(0.0)) < 1e-8);
     // Every smooth explicit model has the tape without an attribute.
@@ -165,11 +136,7 @@ fn integrates_backwards_and_refuses_models_without_a_tape() {
         der(x) == -x;
     }
     let sol = Plain::default()
-        .simulate(
-            0.0,
-            1.0,
-            &Options::new().method(Method::Taylor).tolerance(1e-12),
-        )
+        .simulate(0.0, 1.0, &Options::new().method(Method::Taylor).tolerance(1e-12))
         .unwrap();
     assert!((sol.last("x").unwrap() - (-1f64).exp()).abs() < 1e-12);
     // Where the tape cannot be made, the run is refused with the reason
@@ -195,10 +162,7 @@ fn integrates_backwards_and_refuses_models_without_a_tape() {
         ),
     ] {
         let message = err.unwrap_err().to_string();
-        assert!(
-            message.contains(reason) && message.contains("Method::Auto"),
-            "{message}"
-        );
+        assert!(message.contains(reason) && message.contains("Method::Auto"), "{message}");
     }
     assert!(Kinked::TAYLOR_UNAVAILABLE.contains("`abs` is not smooth"));
 }
@@ -218,9 +182,7 @@ fn swinging() {
 }
 
 fn at_machine_precision() -> Options {
-    Options::new()
-        .method(Method::Taylor)
-        .tolerance(f64::EPSILON)
+    Options::new().method(Method::Taylor).tolerance(f64::EPSILON)
 }
 
 /// heyoka's pendulum returns to its start within 3.8e-16 after a forward
@@ -232,18 +194,11 @@ fn forward_then_backward_returns_to_the_start() {
     for compact in [false, true] {
         let options = at_machine_precision().taylor_compact(compact);
         let forward = Swinging::default().simulate(0.0, t1, &options).unwrap();
-        let end = Swinging {
-            x0: forward.last("x").unwrap(),
-            v0: forward.last("v").unwrap(),
-        };
+        let end = Swinging { x0: forward.last("x").unwrap(), v0: forward.last("v").unwrap() };
         let back = end.simulate(t1, 0.0, &options).unwrap();
-        let error = (back.last("x").unwrap() - 0.05)
-            .abs()
-            .max((back.last("v").unwrap() - 0.025).abs());
-        assert!(
-            error <= 3.8e-15,
-            "compact {compact}: returned to within {error:e}"
-        );
+        let error =
+            (back.last("x").unwrap() - 0.05).abs().max((back.last("v").unwrap() - 0.025).abs());
+        assert!(error <= 3.8e-15, "compact {compact}: returned to within {error:e}");
     }
 }
 
@@ -256,18 +211,13 @@ fn forward_then_backward_returns_to_the_start() {
 fn pendulum_energy_over_ten_thousand_periods() {
     // Small-amplitude period 2π; at this amplitude it is longer by < 0.02%.
     let t1 = 1e4 * 2.0 * std::f64::consts::PI;
-    let sol = Swinging::default()
-        .simulate(0.0, t1, &at_machine_precision())
-        .unwrap();
+    let sol = Swinging::default().simulate(0.0, t1, &at_machine_precision()).unwrap();
     let energy = |t| sol.at(t, "energy").unwrap();
     let e0 = 0.5 * 0.025f64.powi(2) - 0.05f64.cos();
     let steps = sol.stats().steps as f64;
     let bound = 4.0 * steps.sqrt() * f64::EPSILON * e0.abs();
     let drift = (energy(t1) - e0).abs().max((energy(t1 / 2.0) - e0).abs());
-    assert!(
-        drift <= bound,
-        "energy drift {drift:e} over {steps} steps, bound {bound:e}"
-    );
+    assert!(drift <= bound, "energy drift {drift:e} over {steps} steps, bound {bound:e}");
 }
 
 include!("models/outer_solar_system.rs");
@@ -279,28 +229,19 @@ outer_solar_system_model!(taylor = 1);
 #[test]
 fn outer_solar_system_reaches_the_reference_positions() {
     let reference: [[f64; 3]; 6] = [
-        [
-            0.12333221241422681,
-            -0.058616808987360333,
-            -0.028723538220436226,
-        ],
+        [0.12333221241422681, -0.058616808987360333, -0.028723538220436226],
         [-0.77177837187818308, 4.6105538900447587, 1.9942337301316609],
         [3.9051292289435341, -8.565631984033054, -3.706141337200349],
         [-17.492834464533909, 4.3435345226942765, 2.1482606925001127],
         [18.051465002804877, 22.146025676860077, 8.6134820030396807],
         [37.285949448705704, -10.728138680006204, -14.554583801118436],
     ];
-    let sol = OuterSolarSystem::default()
-        .simulate(0.0, 20000.0, &at_machine_precision())
-        .unwrap();
+    let sol = OuterSolarSystem::default().simulate(0.0, 20000.0, &at_machine_precision()).unwrap();
     for (i, body) in reference.iter().enumerate() {
         for (axis, want) in ["x", "y", "z"].iter().zip(body) {
             let got = sol.last(&format!("{axis}[{i}]")).unwrap();
             let scale = body.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-            assert!(
-                (got - want).abs() <= 2e-12 * scale,
-                "{axis}[{i}] = {got}, reference {want}"
-            );
+            assert!((got - want).abs() <= 2e-12 * scale, "{axis}[{i}] = {got}, reference {want}");
         }
     }
 }
@@ -349,9 +290,7 @@ fn taylor_without_dense_output_takes_the_same_steps() {
     let t1 = 4.0 * std::f64::consts::PI;
     let with = Options::new().method(Method::Taylor).tolerance(1e-15);
     let a = Kepler::default().simulate(0.0, t1, &with).unwrap();
-    let b = Kepler::default()
-        .simulate(0.0, t1, &with.dense_output(false))
-        .unwrap();
+    let b = Kepler::default().simulate(0.0, t1, &with.dense_output(false)).unwrap();
     assert_eq!(a.times(), b.times());
     assert_eq!(final_state(&a), final_state(&b));
     let t = 1.0;
@@ -370,19 +309,13 @@ fn the_order_follows_the_model_and_can_be_fixed() {
     let t1 = 2.0 * std::f64::consts::PI;
     let o = Options::new().method(Method::Taylor).tolerance(1e-12);
     let chosen = Kepler::default().simulate(0.0, t1, &o).unwrap();
-    let theirs = Kepler::default()
-        .simulate(0.0, t1, &o.taylor_order(jorba_zou_order(1e-12)))
-        .unwrap();
+    let theirs =
+        Kepler::default().simulate(0.0, t1, &o.taylor_order(jorba_zou_order(1e-12))).unwrap();
     let (c, j) = (chosen.stats(), theirs.stats());
     assert_eq!((c.taylor_order, c.taylor_unrolled), (18, true));
     assert_eq!(order_to_unroll(&Kepler::default(), 1e-12), Some(18));
     assert_eq!((j.taylor_order, j.taylor_unrolled), (15, false));
-    assert!(
-        c.steps * 4 < j.steps * 3,
-        "{} against {} steps",
-        c.steps,
-        j.steps
-    );
+    assert!(c.steps * 4 < j.steps * 3, "{} against {} steps", c.steps, j.steps);
     let (ec, ej) = (
         max_error(&final_state(&chosen), &kepler_exact(t1)),
         max_error(&final_state(&theirs), &kepler_exact(t1)),
@@ -390,9 +323,7 @@ fn the_order_follows_the_model_and_can_be_fixed() {
     // Measured: 54 steps and 4.1e-11, against 73 and 6.5e-11; one orbit
     // of e = 0.9 amplifies the local errors, 100 × tol allows for it.
     assert!(ec < 1e-10 && ej < 1e-10, "{ec:e}, {ej:e}");
-    let err = Kepler::default()
-        .simulate(0.0, t1, &o.taylor_order(1))
-        .unwrap_err();
+    let err = Kepler::default().simulate(0.0, t1, &o.taylor_order(1)).unwrap_err();
     assert!(
         matches!(&err, daegen::Error::InvalidOptions { message } if message.contains("taylor_order(1)")),
         "{err}"

@@ -158,9 +158,7 @@ fn shared_factors() {
 
 /// A deterministic pseudo-random number in [lo, hi) (a 64-bit LCG).
 fn uniform(seed: &mut u64, lo: f64, hi: f64) -> f64 {
-    *seed = seed
-        .wrapping_mul(6364136223846793005)
-        .wrapping_add(1442695040888963407);
+    *seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
     lo + (hi - lo) * ((*seed >> 11) as f64 / (1u64 << 53) as f64)
 }
 
@@ -183,13 +181,8 @@ fn agree<M: Model>(model: &M, boxes: &[(f64, f64)], points: usize) {
     let mut seed = 2026;
     for _ in 0..points {
         let t = uniform(&mut seed, -1.0, 1.0);
-        let y: Vec<f64> = boxes
-            .iter()
-            .map(|&(lo, hi)| uniform(&mut seed, lo, hi))
-            .collect();
-        model
-            .taylor_derivatives(t, &y, p, &mut symbolic)
-            .expect("derivatives");
+        let y: Vec<f64> = boxes.iter().map(|&(lo, hi)| uniform(&mut seed, lo, hi)).collect();
+        model.taylor_derivatives(t, &y, p, &mut symbolic).expect("derivatives");
         work.compute(t, &y);
         assert!(model.taylor_jet_unrolled(t, &y, p, &mut jet));
         let mut factorial = 1.0;
@@ -224,24 +217,16 @@ fn unrolled_agrees_with_the_tape<M: Model>(model: &M, order: usize, boxes: &[(f6
     let mut seed = 7;
     for _ in 0..200 {
         let t = uniform(&mut seed, -1.0, 1.0);
-        let y: Vec<f64> = boxes
-            .iter()
-            .map(|&(lo, hi)| uniform(&mut seed, lo, hi))
-            .collect();
+        let y: Vec<f64> = boxes.iter().map(|&(lo, hi)| uniform(&mut seed, lo, hi)).collect();
         work.compute(t, &y);
         assert!(model.taylor_jet_unrolled(t, &y, order, &mut jet));
         // The whole buffer, the lanes that pad lane groups to whole
         // vectors included (they start from 1, not from the buffer's 0).
         if let Some(at) = jet.iter().position(|v| !v.is_finite()) {
-            panic!(
-                "slot {at} of the buffer is {} at t = {t}, y = {y:?}",
-                jet[at]
-            );
+            panic!("slot {at} of the buffer is {} at t = {t}, y = {y:?}", jet[at]);
         }
         for k in 0..=order {
-            let scale = (0..n)
-                .map(|i| work.state(i)[k].abs())
-                .fold(1e-300, f64::max);
+            let scale = (0..n).map(|i| work.state(i)[k].abs()).fold(1e-300, f64::max);
             for i in 0..n {
                 let (a, b) = (work.state(i)[k], jet[at(model, order, i, k)]);
                 assert!(
@@ -300,11 +285,7 @@ fn lane_groups_agree_with_the_interpreted_tape() {
         [0.1, 0.9, 0.2, -0.4, 0.6],
         [0.0, 0.1, 0.0, -0.1, 0.2],
     ];
-    let boxes: Vec<(f64, f64)> = start
-        .iter()
-        .flatten()
-        .map(|&s| (s - 0.1, s + 0.1))
-        .collect();
+    let boxes: Vec<(f64, f64)> = start.iter().flatten().map(|&s| (s - 0.1, s + 0.1)).collect();
     // Jets split per order (five bodies at 18, three at 34) write their
     // states' coefficients order by order; one function (three bodies at
     // 10), state by state.
@@ -335,13 +316,7 @@ fn a_lane_read_by_every_lane_is_written_before_the_loop_that_reads_it() {
 #[test]
 fn products_sharing_a_factor_agree_with_the_tape_and_the_symbolic_scheme() {
     // Away from both primaries (at x = −μ and x = μ′, y = 0).
-    let boxes = [
-        (-0.6, 0.6),
-        (0.2, 0.8),
-        (-1.0, 1.0),
-        (-1.0, 1.0),
-        (-1.0, 1.0),
-    ];
+    let boxes = [(-0.6, 0.6), (0.2, 0.8), (-1.0, 1.0), (-1.0, 1.0), (-1.0, 1.0)];
     assert!(!SharedFactors::default().taylor_jet_by_coefficient(4));
     assert!(SharedFactors::default().taylor_jet_by_coefficient(30));
     for order in [4, 30] {
@@ -352,11 +327,7 @@ fn products_sharing_a_factor_agree_with_the_tape_and_the_symbolic_scheme() {
 
 #[test]
 fn trigonometric_hyperbolic_and_inverse_functions() {
-    agree(
-        &Trigonometric::default(),
-        &[(-0.9, 0.9), (-0.9, 0.9), (0.5, 2.0)],
-        200,
-    );
+    agree(&Trigonometric::default(), &[(-0.9, 0.9), (-0.9, 0.9), (0.5, 2.0)], 200);
 }
 
 #[test]
@@ -373,15 +344,10 @@ fn powers_quotients_and_atan2_in_every_quadrant() {
 fn a_jet_written_order_by_order_steps_as_the_tape_does() {
     let model = FiveBodies::default();
     assert!(model.taylor_jet_by_coefficient(18));
-    let options = Options::new()
-        .method(Method::Taylor)
-        .tolerance(1e-12)
-        .taylor_order(18)
-        .dense_output(true);
+    let options =
+        Options::new().method(Method::Taylor).tolerance(1e-12).taylor_order(18).dense_output(true);
     let unrolled = model.simulate(0.0, 2.0, &options).unwrap();
-    let tape = model
-        .simulate(0.0, 2.0, &options.taylor_compact(true))
-        .unwrap();
+    let tape = model.simulate(0.0, 2.0, &options.taylor_compact(true)).unwrap();
     assert!(unrolled.stats().taylor_unrolled && !tape.stats().taylor_unrolled);
     assert_eq!(unrolled.stats().steps, tape.stats().steps);
     assert!(unrolled.stats().steps > 5, "{}", unrolled.stats().steps);

@@ -21,20 +21,10 @@ include!("../../tests/models/outer_solar_system.rs");
 include!("../../tests/models/lorenz.rs");
 
 // Jorba & Zou's orders and those `Method::Taylor` picks, 1e-9 … 1e-15.
-kepler_model!(
-    taylor = 1,
-    unroll = [12, 13, 14, 15, 16, 17, 18, 19, 20, 22, 24]
-);
-arenstorf_model!(
-    taylor = 1,
-    unroll = [12, 13, 14, 15, 16, 17, 18, 19, 20, 22, 24]
-);
+kepler_model!(taylor = 1, unroll = [12, 13, 14, 15, 16, 17, 18, 19, 20, 22, 24]);
+arenstorf_model!(taylor = 1, unroll = [12, 13, 14, 15, 16, 17, 18, 19, 20, 22, 24]);
 outer_solar_system_model!(taylor = 1, unroll = [12, 14, 15, 16, 18, 20, 22]);
-lorenz_model!(
-    [1.0, 0.0, 0.0],
-    taylor = 1,
-    unroll = [12, 13, 14, 15, 16, 17, 18, 19, 20, 22, 24]
-);
+lorenz_model!([1.0, 0.0, 0.0], taylor = 1, unroll = [12, 13, 14, 15, 16, 17, 18, 19, 20, 22, 24]);
 
 const USAGE: &str = "usage: profile MODEL METHOD TOL [REPEATS] | profile tape MODEL | profile orders MODEL \
                      (MODEL: kepler, arenstorf, oss, lorenz; METHOD: taylor, taylor:ORDER, taylor-compact, dop853, dopri5)";
@@ -56,17 +46,10 @@ fn run<M: Model + Clone + Send + Sync + 'static>(
     let sol = last.ok_or("REPEATS must be at least 1")?;
     let per = start.elapsed().as_secs_f64() / repeats as f64;
     let steps = sol.stats().steps;
-    println!(
-        "{per:.3e} s per solve, {steps} steps, {:.3e} s per step",
-        per / steps as f64
-    );
+    println!("{per:.3e} s per solve, {steps} steps, {:.3e} s per step", per / steps as f64);
     if let Some(reference) = reference {
-        let error = sol
-            .final_state()
-            .iter()
-            .zip(reference)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
+        let error =
+            sol.final_state().iter().zip(reference).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
         println!("error at t1 {error:.2e}");
     }
     Ok(())
@@ -88,10 +71,7 @@ fn print_orders<M: Model>(model: &M) {
     for k in 3..=16 {
         let tol = 10f64.powi(-k);
         let best = order_to_unroll(model, tol).unwrap_or(0);
-        println!(
-            "tol {tol:.0e}: order {best} (Jorba & Zou {})",
-            jorba_zou_order(tol)
-        );
+        println!("tol {tol:.0e}: order {best} (Jorba & Zou {})", jorba_zou_order(tol));
     }
 }
 
@@ -141,21 +121,9 @@ fn main() -> Result<(), String> {
             let exact = kepler_exact(t1);
             run(&Kepler::default(), t1, Some(&exact), &opts, repeats)
         }
-        "arenstorf" => run(
-            &Arenstorf::default(),
-            ARENSTORF_T,
-            Some(&ARENSTORF_Y0),
-            &opts,
-            repeats,
-        ),
+        "arenstorf" => run(&Arenstorf::default(), ARENSTORF_T, Some(&ARENSTORF_Y0), &opts, repeats),
         "oss" => run(&OuterSolarSystem::default(), 20000.0, None, &opts, repeats),
-        "lorenz" => run(
-            &Lorenz::default(),
-            20.0,
-            Some(&LORENZ_AT_20),
-            &opts,
-            repeats,
-        ),
+        "lorenz" => run(&Lorenz::default(), 20.0, Some(&LORENZ_AT_20), &opts, repeats),
         _ => Err(USAGE.into()),
     }
 }

@@ -7,10 +7,7 @@ include!("../../tests/models/kepler.rs");
 kepler_model!();
 
 fn main() -> Result<(), daegen::Error> {
-    let options = Options::new()
-        .method(Method::Dopri5)
-        .rtol(1e-12)
-        .atol(1e-12);
+    let options = Options::new().method(Method::Dopri5).rtol(1e-12).atol(1e-12);
     let start = std::time::Instant::now();
     let mut steps = 0;
     for _ in 0..300 {

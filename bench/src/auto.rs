@@ -25,11 +25,7 @@ fn orego() {
 }
 
 /// Published at t = 360 (test set orego.f; reference-problems.md §12a).
-const OREGO_AT_360: [f64; 3] = [
-    0.1000814870318523e1,
-    0.1228178521549917e4,
-    0.1320554942846706e3,
-];
+const OREGO_AT_360: [f64; 3] = [0.1000814870318523e1, 0.1228178521549917e4, 0.1320554942846706e3];
 
 const METHODS: [Method; 3] = [Method::Dopri5, Method::Dop853, Method::Radau5];
 
@@ -81,10 +77,8 @@ fn compare<M: Model + Clone + Send + Sync + 'static>(
         let (mut ratios, mut auto_times) = (Vec::new(), Vec::new());
         for _ in 0..rounds {
             let (a, _) = median_time(&settings, || run(Method::Auto));
-            let singles: Vec<f64> = finishing
-                .iter()
-                .map(|&m| median_time(&settings, || run(m)).0)
-                .collect();
+            let singles: Vec<f64> =
+                finishing.iter().map(|&m| median_time(&settings, || run(m)).0).collect();
             for (k, t) in singles.iter().enumerate() {
                 times[k].push(*t);
             }
@@ -120,11 +114,7 @@ fn compare<M: Model + Clone + Send + Sync + 'static>(
 /// An explicit pair on Robertson to t = 1e5, in a child process so its
 /// peak memory is its own: steps, time, peak resident memory and the end.
 pub fn stiff_probe(method: &str, detect: bool) {
-    let method = if method == "Dop853" {
-        Method::Dop853
-    } else {
-        Method::Dopri5
-    };
+    let method = if method == "Dop853" { Method::Dop853 } else { Method::Dopri5 };
     let options = Options::new().method(method).stiffness_detection(detect);
     let start = std::time::Instant::now();
     let result = Robertson::default().simulate(0.0, 1e5, &options);
@@ -174,14 +164,7 @@ pub fn auto_section() {
         1.0,
         rounds,
     ));
-    rows.extend(compare(
-        Lorenz::default(),
-        "lorenz (t = 20)",
-        20.0,
-        &LORENZ_AT_20,
-        1.0,
-        rounds,
-    ));
+    rows.extend(compare(Lorenz::default(), "lorenz (t = 20)", 20.0, &LORENZ_AT_20, 1.0, rounds));
     rows.extend(compare(
         OuterSolarSystem::default(),
         "outer solar system (20 000 days)",
@@ -200,19 +183,9 @@ pub fn auto_section() {
         1.0,
         rounds,
     ));
-    let rc = LowPass {
-        tau: 1e-4,
-        omega: 2.0 * std::f64::consts::PI,
-    };
+    let rc = LowPass { tau: 1e-4, omega: 2.0 * std::f64::consts::PI };
     let exact = [low_pass_exact(2.0, rc.tau, rc.omega)];
-    rows.extend(compare(
-        rc,
-        "RC circuit (RC = 1e-4, 1 Hz, t = 2)",
-        2.0,
-        &exact,
-        1.0,
-        rounds,
-    ));
+    rows.extend(compare(rc, "RC circuit (RC = 1e-4, 1 Hz, t = 2)", 2.0, &exact, 1.0, rounds));
     rows.extend(compare(
         VanDerPol::default(),
         "van der Pol (ε = 1e-6, t = 2)",
@@ -229,22 +202,8 @@ pub fn auto_section() {
         1e-6,
         rounds,
     ));
-    rows.extend(compare(
-        Hires::default(),
-        "hires",
-        321.8122,
-        &HIRES_AT_END,
-        1.0,
-        rounds,
-    ));
-    rows.extend(compare(
-        Orego::default(),
-        "orego (t = 360)",
-        360.0,
-        &OREGO_AT_360,
-        1.0,
-        rounds,
-    ));
+    rows.extend(compare(Hires::default(), "hires", 321.8122, &HIRES_AT_END, 1.0, rounds));
+    rows.extend(compare(Orego::default(), "orego (t = 360)", 360.0, &OREGO_AT_360, 1.0, rounds));
     eprintln!("\r\x1b[2Kauto: explicit pairs on Robertson");
     let mut text = format!(
         "# `Method::Auto` against the single methods\n\nMachine: {}. Written by `cd bench && cargo run --release -- --auto` (bench/src/auto.rs).\n\n",
@@ -252,11 +211,8 @@ pub fn auto_section() {
     );
     text.push_str("## Auto against the best single method\n\nAt equal tolerance (rtol = atol = tol, Robertson atol = 1e-6·tol), the single methods being DOPRI5, DOP853 and RADAU5 (those `Auto` chooses among; an explicit pair that stops with `Error::Stiff` takes no part). Time ratio: Auto's median solve over the fastest single method's, per round of all methods, median (range) over 5 rounds. Errors are max |y − ref| / max(1, |ref|) at the end against the published or exact solution. Goal: ≤ 2×.\n\n| problem | tol | Auto ran | Auto time | best single | ratio (range) | Auto error | best's error |\n|---|---|---|---|---|---|---|---|\n");
     for r in &rows {
-        let (lo, mid, hi) = (
-            r.ratios[0],
-            r.ratios[r.ratios.len() / 2],
-            r.ratios[r.ratios.len() - 1],
-        );
+        let (lo, mid, hi) =
+            (r.ratios[0], r.ratios[r.ratios.len() / 2], r.ratios[r.ratios.len() - 1]);
         text.push_str(&format!(
             "| {} | {:.0e} | {} | {:.3} ms | {:?} | {}{mid:.2}× ({lo:.2}–{hi:.2}){} | {:.1e} | {:.1e} |\n",
             r.problem,
@@ -270,10 +226,7 @@ pub fn auto_section() {
             r.best_error,
         ));
     }
-    let within = rows
-        .iter()
-        .filter(|r| r.ratios[r.ratios.len() / 2] <= 2.0)
-        .count();
+    let within = rows.iter().filter(|r| r.ratios[r.ratios.len() / 2] <= 2.0).count();
     text.push_str(&format!("\n{within} of {} rows within 2×.\n", rows.len()));
     text.push_str("\n## An explicit pair on a stiff problem\n\nRobertson from t = 0 to 1e5 at the default tolerances (rtol 1e-6, atol 1e-9), each run in a child process: its steps, time and peak resident memory (VmHWM, the whole process). With stiffness detection (the default) the pair stops with `Error::Stiff`; without it (`Options::stiffness_detection(false)`), as before, it runs into the 10⁷-step limit.\n\n| method | stiffness detection | steps | time | peak memory | end |\n|---|---|---|---|---|---|\n");
     let exe = std::env::current_exe().expect("the benchmark's own path");
@@ -300,9 +253,7 @@ pub fn auto_section() {
             }
         }
     }
-    let out = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("results")
-        .join("auto.md");
+    let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join("auto.md");
     let _ = std::fs::write(&out, &text);
     eprintln!("\r\x1b[2Kdone");
     println!("{text}");

@@ -8,10 +8,7 @@ use super::*;
 use std::time::{Duration, Instant};
 
 fn mixed_error(got: &[f64], reference: &[f64]) -> f64 {
-    got.iter()
-        .zip(reference)
-        .map(|(g, r)| (g - r).abs() / r.abs().max(1.0))
-        .fold(0.0, f64::max)
+    got.iter().zip(reference).map(|(g, r)| (g - r).abs() / r.abs().max(1.0)).fold(0.0, f64::max)
 }
 
 /// Median wall time of `run` over repeats (after one warm-up), and its result.
@@ -41,10 +38,8 @@ struct Point {
 /// A peer's time at `error`, by log–log interpolation on its curve (None
 /// outside the range it covers).
 fn time_at_error(curve: &[Point], error: f64) -> Option<f64> {
-    let mut pts: Vec<&Point> = curve
-        .iter()
-        .filter(|p| p.error > 0.0 && p.error.is_finite())
-        .collect();
+    let mut pts: Vec<&Point> =
+        curve.iter().filter(|p| p.error > 0.0 && p.error.is_finite()).collect();
     pts.sort_by(|a, b| b.error.total_cmp(&a.error));
     pts.windows(2).find_map(|w| {
         let (a, b) = (w[0], w[1]);
@@ -66,30 +61,17 @@ fn pendulum_run<M: Model + Clone + Send + Sync + 'static>(
     formulation: Formulation,
     cartesian: &dyn Fn(&[f64]) -> [f64; 4],
 ) -> (Point, usize) {
-    let options = Options::new()
-        .method(method)
-        .tolerance(tol)
-        .dense_output(false)
-        .formulation(formulation);
+    let options =
+        Options::new().method(method).tolerance(tol).dense_output(false).formulation(formulation);
     let (d, sol) = time(|| model.simulate(0.0, 10.0, &options));
     let (error, steps) = match sol {
         Ok(sol) => {
             let got = cartesian(sol.state(sol.times().len() - 1).unwrap_or(&[0.0; 4]));
-            (
-                mixed_error(&got, &CASH_PENDULUM_AT_10[..4]),
-                sol.stats().steps,
-            )
+            (mixed_error(&got, &CASH_PENDULUM_AT_10[..4]), sol.stats().steps)
         }
         Err(_) => (f64::INFINITY, 0),
     };
-    (
-        Point {
-            tol,
-            error,
-            seconds: d.as_secs_f64(),
-        },
-        steps,
-    )
+    (Point { tol, error, seconds: d.as_secs_f64() }, steps)
 }
 
 /// The slider-crank (global coordinates, 15 × 15 KKT system solved at each
@@ -104,23 +86,13 @@ fn slider_crank_against_ode() {
         .simulate(0.0, 2.0, &Options::new().method(Method::Dop853))
         .expect("the slider-crank runs");
     let phi0 = probe.state(0).map_or(1.0, |s| s[4]);
-    let ode = SliderCrankAngle {
-        phi0,
-        ..SliderCrankAngle::default()
-    };
+    let ode = SliderCrankAngle { phi0, ..SliderCrankAngle::default() };
     let reference = ode
-        .simulate(
-            0.0,
-            2.0,
-            &Options::new().method(Method::Dop853).tolerance(1e-13),
-        )
+        .simulate(0.0, 2.0, &Options::new().method(Method::Dop853).tolerance(1e-13))
         .and_then(|s| s.last("phi"))
         .unwrap_or(f64::NAN);
     for tol in [1e-6, 1e-9, 1e-12] {
-        let options = Options::new()
-            .method(Method::Dop853)
-            .tolerance(tol)
-            .dense_output(false);
+        let options = Options::new().method(Method::Dop853).tolerance(tol).dense_output(false);
         let (da, a) = time(|| dae.simulate(0.0, 2.0, &options));
         let (db, b) = time(|| ode.simulate(0.0, 2.0, &options));
         let (Ok(a), Ok(b)) = (a, b) else {
@@ -149,10 +121,7 @@ fn rod_chain_source(n: usize) -> String {
     }
     s += "revolute(ground, vec3(0.0, 0.0, 0.0), rod0, vec3(-0.5, 0.0, 0.0));";
     for i in 1..n {
-        s += &format!(
-            "revolute(rod{}, vec3(0.5, 0.0, 0.0), rod{i}, vec3(-0.5, 0.0, 0.0));",
-            i - 1
-        );
+        s += &format!("revolute(rod{}, vec3(0.5, 0.0, 0.0), rod{i}, vec3(-0.5, 0.0, 0.0));", i - 1);
     }
     s + "gravity(vec3(0.0, -g, 0.0)); }"
 }
@@ -168,32 +137,18 @@ fn formulations() {
     );
     println!("|---|---|---|---|---|---|---|");
     let source: proc_macro2::TokenStream = rod_chain_source(10).parse().expect("the chain parses");
-    let options = Options::new()
-        .method(Method::Dop853)
-        .tolerance(1e-8)
-        .dense_output(false);
-    for (name, attr) in [
-        ("global", "scene = global"),
-        ("recursive", "scene = recursive"),
-    ] {
+    let options = Options::new().method(Method::Dop853).tolerance(1e-8).dense_output(false);
+    for (name, attr) in [("global", "scene = global"), ("recursive", "scene = recursive")] {
         let attr: proc_macro2::TokenStream = attr.parse().expect("the attribute parses");
         let (expansion, tokens) =
             time(|| daegen::codegen::expand_dae_model(attr.clone(), source.clone()));
         let kb = tokens.to_string().len() as f64 / 1e3;
         let (run, steps, states) = if name == "global" {
             let (d, s) = time(|| RodChainGlobal::default().simulate(0.0, 1.0, &options));
-            (
-                d,
-                s.map(|s| s.stats().steps).unwrap_or(0),
-                RodChainGlobal::STATES,
-            )
+            (d, s.map(|s| s.stats().steps).unwrap_or(0), RodChainGlobal::STATES)
         } else {
             let (d, s) = time(|| RodChainRecursive::default().simulate(0.0, 1.0, &options));
-            (
-                d,
-                s.map(|s| s.stats().steps).unwrap_or(0),
-                RodChainRecursive::STATES,
-            )
+            (d, s.map(|s| s.stats().steps).unwrap_or(0), RodChainRecursive::STATES)
         };
         println!(
             "| {name} | {:.1} | {kb:.0} | {states} | {:.2} | {steps} | {:.1} |",
@@ -219,17 +174,11 @@ fn dae_against_ode() {
         ("RADAU5, GGL form", Method::Radau5, Formulation::MassMatrix),
     ] {
         for tol in [1e-6, 1e-9, 1e-12] {
-            let (a, sa) = pendulum_run(&dae, method, tol, formulation, &|s| {
-                [s[0], s[1], s[2], s[3]]
-            });
+            let (a, sa) =
+                pendulum_run(&dae, method, tol, formulation, &|s| [s[0], s[1], s[2], s[3]]);
             let (b, sb) = pendulum_run(&ode, method, tol, Formulation::IndexOneProjected, &|s| {
                 let (theta, omega) = (s[0], s[1]);
-                [
-                    theta.cos(),
-                    theta.sin(),
-                    -omega * theta.sin(),
-                    omega * theta.cos(),
-                ]
+                [theta.cos(), theta.sin(), -omega * theta.sin(), omega * theta.cos()]
             });
             let per_step = |p: &Point, n: usize| p.seconds * 1e6 / n.max(1) as f64;
             println!(
@@ -333,14 +282,7 @@ fn report(problem: &str, ours: &[(&str, Vec<Point>)], peers: &[(&str, Option<Vec
             Some(c) => {
                 let pts: Vec<String> = c
                     .iter()
-                    .map(|p| {
-                        format!(
-                            "{:.0e}: {:.2e} in {:.3} ms",
-                            p.tol,
-                            p.error,
-                            p.seconds * 1e3
-                        )
-                    })
+                    .map(|p| format!("{:.0e}: {:.2e} in {:.3} ms", p.tol, p.error, p.seconds * 1e3))
                     .collect();
                 println!("\n{name}: {}", pts.join("; "));
             }
@@ -372,22 +314,13 @@ pub fn dae_section(stiff_tols: &[f64]) {
                     }
                     Err(_) => f64::INFINITY,
                 };
-                Point {
-                    tol: t,
-                    error,
-                    seconds: d.as_secs_f64(),
-                }
+                Point { tol: t, error, seconds: d.as_secs_f64() }
             })
             .collect(),
     )];
     let rober_dae_peers = vec![(
         "diffsol BDF (mass matrix)",
-        Some(
-            stiff_tols
-                .iter()
-                .map(|&t| diffsol_robertson_dae(t, 1e-6 * t))
-                .collect(),
-        ),
+        Some(stiff_tols.iter().map(|&t| diffsol_robertson_dae(t, 1e-6 * t)).collect()),
     )];
     report(
         "Robertson as an index-1 DAE to t = 1e11, atol = 1e-6·rtol",

@@ -68,10 +68,7 @@ arenstorf_model!(
     taylor = 1,
     unroll = [6, 8, 10, 12, 14, 15, 16, 18, 20, 22, 24],
     bench = Bench::until(ARENSTORF_T)
-        .reference(
-            ARENSTORF_Y0,
-            "periodic orbit: the initial state after one period"
-        )
+        .reference(ARENSTORF_Y0, "periodic orbit: the initial state after one period")
         .methods([Dopri5, Dop853, Taylor])
         .tolerances(3, 15)
         .peer("arenstorf")
@@ -80,10 +77,7 @@ outer_solar_system_model!(
     taylor = 1,
     unroll = [14, 15, 16, 18, 20, 22],
     bench = Bench::until(20000.0)
-        .reference(
-            OSS_REFERENCE,
-            "recomputed 38-digit reference, reference-problems.md §11a"
-        )
+        .reference(OSS_REFERENCE, "recomputed 38-digit reference, reference-problems.md §11a")
         .methods([Dop853, Taylor])
         .tolerances(9, 15)
         .peer("outer_solar_system")
@@ -190,10 +184,7 @@ const OSS_REFERENCE: [f64; 36] = [
 /// compiled as a library against the `daegen` this binary was built with.
 fn rustc_seconds(code: &str, name: &str) -> Result<f64, String> {
     let exe = std::env::current_exe().map_err(|e| e.to_string())?;
-    let deps = exe
-        .parent()
-        .map(|d| d.join("deps"))
-        .ok_or("no target directory")?;
+    let deps = exe.parent().map(|d| d.join("deps")).ok_or("no target directory")?;
     let rlib = std::fs::read_dir(&deps)
         .map_err(|e| e.to_string())?
         .filter_map(|e| e.ok())
@@ -210,16 +201,7 @@ fn rustc_seconds(code: &str, name: &str) -> Result<f64, String> {
     std::fs::write(&source, code).map_err(|e| e.to_string())?;
     let start = Instant::now();
     let out = Command::new("rustc")
-        .args([
-            "--edition",
-            "2021",
-            "--crate-type",
-            "lib",
-            "-C",
-            "opt-level=3",
-            "-A",
-            "warnings",
-        ])
+        .args(["--edition", "2021", "--crate-type", "lib", "-C", "opt-level=3", "-A", "warnings"])
         .arg("--crate-name")
         .arg(format!("generated_{name}"))
         .arg("-L")
@@ -307,15 +289,11 @@ fn targets_markdown(problems: &[Problem]) -> String {
             };
             let pick =
                 |m: &str| -> Vec<&Record> { p.records.iter().filter(|r| r.method == m).collect() };
-            let ours: Vec<&Record> = pick(target.ours)
-                .into_iter()
-                .filter(|r| r.tol <= target.tol_at_most)
-                .collect();
+            let ours: Vec<&Record> =
+                pick(target.ours).into_iter().filter(|r| r.tol <= target.tol_at_most).collect();
             let peer = pick(target.peer);
-            let mut ratios: Vec<f64> = matched_ratio(&ours, &peer)
-                .into_iter()
-                .map(|x| x.1)
-                .collect();
+            let mut ratios: Vec<f64> =
+                matched_ratio(&ours, &peer).into_iter().map(|x| x.1).collect();
             ratios.sort_by(f64::total_cmp);
             let (cell, met) = if peer.is_empty() {
                 ("peer missing".to_string(), "—")
@@ -330,11 +308,7 @@ fn targets_markdown(problems: &[Problem]) -> String {
                         ratios[ratios.len() - 1],
                         ratios.len()
                     ),
-                    if median <= target.max_ratio {
-                        "yes"
-                    } else {
-                        "**no**"
-                    },
+                    if median <= target.max_ratio { "yes" } else { "**no**" },
                 )
             };
             s.push_str(&format!("| {} | {name} | {cell} | {met} |\n", target.what));
@@ -368,15 +342,9 @@ macro_rules! taylor_problems {
     ($run:ident) => {
         [
             (<Kepler as Benchmark>::NAME, versus::$run::<Kepler> as _),
-            (
-                <Arenstorf as Benchmark>::NAME,
-                versus::$run::<Arenstorf> as _,
-            ),
+            (<Arenstorf as Benchmark>::NAME, versus::$run::<Arenstorf> as _),
             (<Lorenz as Benchmark>::NAME, versus::$run::<Lorenz> as _),
-            (
-                <OuterSolarSystem as Benchmark>::NAME,
-                versus::$run::<OuterSolarSystem> as _,
-            ),
+            (<OuterSolarSystem as Benchmark>::NAME, versus::$run::<OuterSolarSystem> as _),
         ]
     };
 }
@@ -408,9 +376,7 @@ fn versus_section<R>(
     }
     let text = markdown(&rows, rounds);
     if only.is_none() {
-        let out = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("results")
-            .join(file);
+        let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join(file);
         let _ = std::fs::write(&out, &text);
     }
     eprintln!("\r\x1b[2Kdone");
@@ -449,11 +415,7 @@ fn main() {
         return;
     }
     // `--only name` runs one of the registered models.
-    let only = args
-        .iter()
-        .position(|a| a == "--only")
-        .and_then(|i| args.get(i + 1))
-        .cloned();
+    let only = args.iter().position(|a| a == "--only").and_then(|i| args.get(i + 1)).cloned();
     if has("--versus-heyoka") {
         // Taylor vs heyoka timed in alternation (see versus.rs).
         versus_section(
@@ -541,16 +503,7 @@ fn main() {
             }
         )*};
     }
-    run!(
-        Example14,
-        Kepler,
-        Arenstorf,
-        Lorenz,
-        OuterSolarSystem,
-        VanDerPol,
-        Robertson,
-        Hires
-    );
+    run!(Example14, Kepler, Arenstorf, Lorenz, OuterSolarSystem, VanDerPol, Robertson, Hires);
 
     for p in runner.problems_mut() {
         if has("--no-rustc") {

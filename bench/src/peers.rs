@@ -50,22 +50,14 @@ impl OdeSolvers {
                 1000, sparse,
             );
             let stats = s.integrate().ok()?;
-            (
-                stats,
-                *s.x_out().last()?,
-                s.y_out().last()?.as_slice().to_vec(),
-            )
+            (stats, *s.x_out().last()?, s.y_out().last()?.as_slice().to_vec())
         } else {
             let mut s = ode_solvers::Dopri5::from_param(
                 system, 0.0, t1, dx, y0, tol, atol, 0.9, 0.04, 0.2, 10.0, t1, 0.0, 10_000_000,
                 1000, sparse,
             );
             let stats = s.integrate().ok()?;
-            (
-                stats,
-                *s.x_out().last()?,
-                s.y_out().last()?.as_slice().to_vec(),
-            )
+            (stats, *s.x_out().last()?, s.y_out().last()?.as_slice().to_vec())
         };
         ((x_end - t1).abs() <= 1e-12 * t1.abs()).then_some((y_end, stats))
     }
@@ -73,10 +65,7 @@ impl OdeSolvers {
 
 impl Peer for OdeSolvers {
     fn name(&self) -> String {
-        format!(
-            "ode_solvers {}",
-            if self.dop853 { "Dop853" } else { "Dopri5" }
-        )
+        format!("ode_solvers {}", if self.dop853 { "Dop853" } else { "Dopri5" })
     }
     fn applies(&self, p: &PeerProblem) -> bool {
         p.nonstiff && matches!(p.y0.len(), 1..=8 | 12 | 36)
@@ -253,9 +242,7 @@ impl Python {
         if let Some(a) = atol {
             cmd.arg("--atol").arg(format!("{a:e}"));
         }
-        let out = cmd
-            .output()
-            .map_err(|e| format!("python3 not found: {e}"))?;
+        let out = cmd.output().map_err(|e| format!("python3 not found: {e}"))?;
         let stderr = String::from_utf8_lossy(&out.stderr);
         if stderr.contains("ModuleNotFoundError") || stderr.contains("No module named") {
             return Err(format!(
@@ -264,10 +251,7 @@ impl Python {
             ));
         }
         if !out.status.success() {
-            return Err(format!(
-                "peer.py failed: {}",
-                stderr.lines().last().unwrap_or("").trim()
-            ));
+            return Err(format!("peer.py failed: {}", stderr.lines().last().unwrap_or("").trim()));
         }
         Ok(String::from_utf8_lossy(&out.stdout).into_owned())
     }
@@ -286,10 +270,7 @@ pub fn array(text: &str, name: &str) -> Option<Vec<f64>> {
     let i = text.find(&format!("\"{name}\""))?;
     let rest = &text[i..];
     let (a, b) = (rest.find('[')?, rest.find(']')?);
-    rest[a + 1..b]
-        .split(',')
-        .map(|v| v.trim().parse().ok())
-        .collect()
+    rest[a + 1..b].split(',').map(|v| v.trim().parse().ok()).collect()
 }
 
 impl Peer for Python {

@@ -64,10 +64,7 @@ fn section(text: &str, heading: &str) -> String {
         return String::new();
     };
     let rest = &text[start + heading.len()..];
-    let end = rest
-        .find("\n## ")
-        .or_else(|| rest.find("\n### "))
-        .unwrap_or(rest.len());
+    let end = rest.find("\n## ").or_else(|| rest.find("\n### ")).unwrap_or(rest.len());
     format!("{heading}{}\n", &rest[..end])
 }
 

@@ -52,14 +52,9 @@ fn measure(name: &str, source: &str, attributes: &str) -> Result<Costs, String> 
     for round in 0..3 {
         let a = expansion_cost(source, attributes, 9)?;
         let b = expansion_cost(source, &off, 9)?;
-        rustc_with = rustc_with.min(rustc_seconds(
-            &a.code,
-            &format!("{crate_name}_tape{round}"),
-        )?);
-        rustc_without = rustc_without.min(rustc_seconds(
-            &b.code,
-            &format!("{crate_name}_none{round}"),
-        )?);
+        rustc_with = rustc_with.min(rustc_seconds(&a.code, &format!("{crate_name}_tape{round}"))?);
+        rustc_without =
+            rustc_without.min(rustc_seconds(&b.code, &format!("{crate_name}_none{round}"))?);
         with = Some(a);
         without = Some(b);
     }
@@ -78,23 +73,11 @@ pub fn tape_cost_section() {
         ("kepler".into(), Kepler::SOURCE.into(), String::new()),
         ("arenstorf".into(), Arenstorf::SOURCE.into(), String::new()),
         ("lorenz".into(), Lorenz::SOURCE.into(), String::new()),
-        (
-            "outer_solar_system".into(),
-            OuterSolarSystem::SOURCE.into(),
-            String::new(),
-        ),
-        (
-            "van_der_pol".into(),
-            VanDerPol::SOURCE.into(),
-            String::new(),
-        ),
+        ("outer_solar_system".into(), OuterSolarSystem::SOURCE.into(), String::new()),
+        ("van_der_pol".into(), VanDerPol::SOURCE.into(), String::new()),
         ("robertson".into(), Robertson::SOURCE.into(), String::new()),
         ("hires".into(), Hires::SOURCE.into(), String::new()),
-        (
-            "example_1_4".into(),
-            Example14::SOURCE.into(),
-            String::new(),
-        ),
+        ("example_1_4".into(), Example14::SOURCE.into(), String::new()),
     ];
     let slider = include_str!("../../tests/models/slider_crank.rs");
     if let Some(s) = function_source(slider, "slider_crank", "slider_crank") {
@@ -102,16 +85,8 @@ pub fn tape_cost_section() {
     }
     let chain = include_str!("../../tests/models/rod_chain.rs");
     if let Some(s) = function_source(chain, "$name", "rod_chain") {
-        models.push((
-            "rod_chain global (DAE scene)".into(),
-            s.clone(),
-            "scene = global".into(),
-        ));
-        models.push((
-            "rod_chain recursive (scene)".into(),
-            s,
-            "scene = recursive".into(),
-        ));
+        models.push(("rod_chain global (DAE scene)".into(), s.clone(), "scene = global".into()));
+        models.push(("rod_chain recursive (scene)".into(), s, "scene = recursive".into()));
     }
     let mut rows = Vec::new();
     for (name, source, attributes) in &models {
@@ -150,9 +125,7 @@ pub fn tape_cost_section() {
         "\nAll models, expansion and rustc together: {total_without:.2} s without the tape, {total_with:.2} s with it ({:+.1} %).\n",
         100.0 * (total_with / total_without - 1.0)
     ));
-    let out = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("results")
-        .join("default_tape.md");
+    let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join("default_tape.md");
     let _ = std::fs::write(&out, &text);
     eprintln!("\r\x1b[2Kdone");
     println!("{text}");

@@ -35,18 +35,13 @@ fn error_grid(
     hi: usize,
     error_at: impl Fn(f64) -> Result<f64, String>,
 ) -> Result<Vec<(f64, f64)>, String> {
-    (lo..=hi)
-        .map(|j| 10f64.powf(-(j as f64) / 4.0))
-        .map(|tol| Ok((tol, error_at(tol)?)))
-        .collect()
+    (lo..=hi).map(|j| 10f64.powf(-(j as f64) / 4.0)).map(|tol| Ok((tol, error_at(tol)?))).collect()
 }
 
 /// The two neighbouring tolerances of the grid whose errors bracket
 /// `error`.
 fn bracket(grid: &[(f64, f64)], error: f64) -> Option<[(f64, f64); 2]> {
-    grid.windows(2)
-        .find(|w| w[0].1 >= error && error >= w[1].1)
-        .map(|w| [w[0], w[1]])
+    grid.windows(2).find(|w| w[0].1 >= error && error >= w[1].1).map(|w| [w[0], w[1]])
 }
 
 /// The peer's time at `error` from its times at the bracket's two
@@ -57,11 +52,7 @@ fn time_at_error(
     time_a: f64,
     time_b: f64,
 ) -> f64 {
-    let s = if err_a == err_b {
-        0.0
-    } else {
-        (error / err_a).ln() / (err_b / err_a).ln()
-    };
+    let s = if err_a == err_b { 0.0 } else { (error / err_a).ln() / (err_b / err_a).ln() };
     (time_a.ln() + s * (time_b / time_a).ln()).exp()
 }
 
@@ -107,9 +98,8 @@ pub fn versus_heyoka<M: Benchmark>(tolerances: &[f64], rounds: usize) -> Result<
         field(&text, "solve_s").ok_or_else(|| "peer.py printed no solve_s".to_string())
     };
     eprint!("\r\x1b[2K{} heyoka's errors on the grid", M::NAME);
-    let grid = error_grid(36, 64, |tol| {
-        Ok(heyoka_error(&heyoka.call(peer, tol, atol(tol), 1)?))
-    })?;
+    let grid =
+        error_grid(36, 64, |tol| Ok(heyoka_error(&heyoka.call(peer, tol, atol(tol), 1)?)))?;
     let model = M::default();
     let settings = Settings::default();
     let mut rows = Vec::new();
@@ -120,11 +110,7 @@ pub fn versus_heyoka<M: Benchmark>(tolerances: &[f64], rounds: usize) -> Result<
             .atol(tol * bench.atol_factor)
             .dense_output(false);
         let same_order = options.taylor_order(jorba_zou_order(tol));
-        let run = |o: &Options| {
-            model
-                .simulate(0.0, bench.t_end, o)
-                .map_err(|e| e.to_string())
-        };
+        let run = |o: &Options| model.simulate(0.0, bench.t_end, o).map_err(|e| e.to_string());
         let (sol, same) = (run(&options)?, run(&same_order)?);
         let text = heyoka.call(peer, tol, atol(tol), 1)?;
         let ours_error = mixed_error(sol.final_state(), &reference);
@@ -143,11 +129,7 @@ pub fn versus_heyoka<M: Benchmark>(tolerances: &[f64], rounds: usize) -> Result<
             heyoka_error: heyoka_error(&text),
         };
         for round in 0..rounds {
-            eprint!(
-                "\r\x1b[2K{} Taylor vs heyoka {tol:.0e}, round {}",
-                M::NAME,
-                round + 1
-            );
+            eprint!("\r\x1b[2K{} Taylor vs heyoka {tol:.0e}, round {}", M::NAME, round + 1);
             let (ours, _) = median_time(&settings, || run(&options));
             let (ours_same, _) = median_time(&settings, || run(&same_order));
             row.same_order_ratios.push(ours_same / heyoka_time(tol)?);
@@ -191,11 +173,7 @@ fn bracket_cell(bracket: Option<[(f64, f64); 2]>) -> String {
 
 /// `median× (least–largest)` of sorted ratios, if there are any.
 fn ratio_cell(ratios: &[f64]) -> Option<String> {
-    let (first, median, last) = (
-        ratios.first()?,
-        ratios.get(ratios.len() / 2)?,
-        ratios.last()?,
-    );
+    let (first, median, last) = (ratios.first()?, ratios.get(ratios.len() / 2)?, ratios.last()?);
     Some(format!("{median:.2}× ({first:.2}–{last:.2})"))
 }
 
@@ -300,22 +278,16 @@ fn ours_versus_dop853<M: Benchmark>(
         rhs: &rhs,
         jacobian: &no_jacobian,
     };
-    let work = expansion_cost(M::SOURCE, M::ATTRIBUTES, 1)
-        .ok()
-        .and_then(|cost| {
-            Some(Work {
-                rhs: function_operations(&cost.code, "rhs")? as f64,
-                code: cost.code,
-                n: M::STATES as f64,
-            })
-        });
+    let work = expansion_cost(M::SOURCE, M::ATTRIBUTES, 1).ok().and_then(|cost| {
+        Some(Work {
+            rhs: function_operations(&cost.code, "rhs")? as f64,
+            code: cost.code,
+            n: M::STATES as f64,
+        })
+    });
     let dop853 = OdeSolvers { dop853: true };
     let settings = Settings::default();
-    let once = Settings {
-        min_repeats: 1,
-        max_repeats: 1,
-        ..Settings::default()
-    };
+    let once = Settings { min_repeats: 1, max_repeats: 1, ..Settings::default() };
     // Dop853's error on the grid 1e-8 … 1e-16, four tolerances a decade,
     // and its runs there for their work.
     let runs: Vec<Record> = (32..=64)
@@ -330,9 +302,7 @@ fn ours_versus_dop853<M: Benchmark>(
             .rtol(tol)
             .atol(tol * bench.atol_factor)
             .dense_output(false);
-        let sol = model
-            .simulate(0.0, bench.t_end, &options)
-            .map_err(|e| e.to_string())?;
+        let sol = model.simulate(0.0, bench.t_end, &options).map_err(|e| e.to_string())?;
         let ours_error = mixed_error(sol.final_state(), &reference);
         let mut row = Dop853Row {
             method: match method {
@@ -365,17 +335,12 @@ fn ours_versus_dop853<M: Benchmark>(
         if let Some(b @ [(tol_a, _), (tol_b, _)]) = row.bracket {
             let mut times = Vec::new();
             for round in 0..rounds {
-                eprint!(
-                    "\r\x1b[2K{} {method:?} vs Dop853 {tol:.0e}, round {}",
-                    M::NAME,
-                    round + 1
-                );
+                eprint!("\r\x1b[2K{} {method:?} vs Dop853 {tol:.0e}, round {}", M::NAME, round + 1);
                 let (ours, _) =
                     median_time(&settings, || model.simulate(0.0, bench.t_end, &options));
                 let time_a = dop853.run(&problem, tol_a, &settings)?.seconds;
                 let time_b = dop853.run(&problem, tol_b, &settings)?.seconds;
-                row.ratios
-                    .push(ours / time_at_error(ours_error, b, time_a, time_b));
+                row.ratios.push(ours / time_at_error(ours_error, b, time_a, time_b));
                 times.push(ours);
             }
             row.ratios.sort_by(f64::total_cmp);
@@ -404,11 +369,7 @@ pub fn dop853_markdown(rows: &[Dop853Row], rounds: usize) -> String {
         let (arithmetic, rate) = match (r.work, median) {
             (Some((ours, theirs)), Some(time)) => (
                 format!("{ours:.2e} / {theirs:.2e} = {:.2}", ours / theirs),
-                format!(
-                    "{:.1}× ({:.1} Gop/s)",
-                    ours / theirs / time,
-                    ours / r.ours_seconds / 1e9
-                ),
+                format!("{:.1}× ({:.1} Gop/s)", ours / theirs / time, ours / r.ours_seconds / 1e9),
             ),
             _ => ("—".into(), "—".into()),
         };

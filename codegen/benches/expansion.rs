@@ -26,15 +26,11 @@ fn sym(g: &mut Graph, id: Id) -> SymbolId {
 /// r_i'' = Σ_{j≠i} m_j (r_j - r_i) |r_j - r_i|^(-3)
 fn n_body(n: usize) -> Model {
     let mut g = Graph::new();
-    let masses: Vec<Id> = (0..n)
-        .map(|i| g.parameter(&format!("m{i}")).unwrap())
-        .collect();
-    let pos: Vec<[Id; 3]> = (0..n)
-        .map(|i| ["x", "y", "z"].map(|c| g.state(&format!("{c}{i}")).unwrap()))
-        .collect();
-    let vel: Vec<[Id; 3]> = (0..n)
-        .map(|i| ["u", "v", "w"].map(|c| g.state(&format!("{c}{i}")).unwrap()))
-        .collect();
+    let masses: Vec<Id> = (0..n).map(|i| g.parameter(&format!("m{i}")).unwrap()).collect();
+    let pos: Vec<[Id; 3]> =
+        (0..n).map(|i| ["x", "y", "z"].map(|c| g.state(&format!("{c}{i}")).unwrap())).collect();
+    let vel: Vec<[Id; 3]> =
+        (0..n).map(|i| ["u", "v", "w"].map(|c| g.state(&format!("{c}{i}")).unwrap())).collect();
     let mut f = Vec::new();
     for v in &vel {
         f.extend_from_slice(v);
@@ -43,9 +39,7 @@ fn n_body(n: usize) -> Model {
     for i in 0..n {
         let mut acc = [Vec::new(), Vec::new(), Vec::new()];
         for j in (0..n).filter(|&j| j != i) {
-            let d: Vec<Id> = (0..3)
-                .map(|c| g.sub(pos[j][c], pos[i][c]).unwrap())
-                .collect();
+            let d: Vec<Id> = (0..3).map(|c| g.sub(pos[j][c], pos[i][c]).unwrap()).collect();
             let squares: Vec<Id> = d.iter().map(|&dc| g.powi(dc, 2).unwrap()).collect();
             let r2 = g.sum(&squares).unwrap();
             let inv_r3 = g.pow(r2, m32).unwrap();
@@ -72,9 +66,7 @@ fn n_body(n: usize) -> Model {
 /// T_k = k_s (|d_k| - l) d_k / |d_k|, d_k = p_k - p_{k-1}.
 fn spring_chain(n: usize) -> Model {
     let mut g = Graph::new();
-    let (ks, l, m, grav) = ["ks", "l", "m", "g"]
-        .map(|p| g.parameter(p).unwrap())
-        .into();
+    let (ks, l, m, grav) = ["ks", "l", "m", "g"].map(|p| g.parameter(p).unwrap()).into();
     let x: Vec<Id> = (0..n).map(|k| g.state(&format!("x{k}")).unwrap()).collect();
     let y: Vec<Id> = (0..n).map(|k| g.state(&format!("y{k}")).unwrap()).collect();
     let u: Vec<Id> = (0..n).map(|k| g.state(&format!("u{k}")).unwrap()).collect();
@@ -106,13 +98,7 @@ fn spring_chain(n: usize) -> Model {
     }
     f.extend(ax);
     f.extend(ay);
-    let states = x
-        .iter()
-        .chain(&y)
-        .chain(&u)
-        .chain(&v)
-        .map(|&s| sym(&mut g, s))
-        .collect();
+    let states = x.iter().chain(&y).chain(&u).chain(&v).map(|&s| sym(&mut g, s)).collect();
     Model { g, states, f }
 }
 
@@ -137,11 +123,7 @@ fn chain_constraints(n: usize) -> Model {
 /// between point k-1 (the origin for k = 0) and point k.
 fn link(g: &mut Graph, x: &[Id], y: &[Id], k: usize) -> (Id, Id, Id) {
     let zero = g.zero();
-    let (px, py) = if k == 0 {
-        (zero, zero)
-    } else {
-        (x[k - 1], y[k - 1])
-    };
+    let (px, py) = if k == 0 { (zero, zero) } else { (x[k - 1], y[k - 1]) };
     let dx = g.sub(x[k], px).unwrap();
     let dy = g.sub(y[k], py).unwrap();
     let dx2 = g.powi(dx, 2).unwrap();
@@ -320,10 +302,7 @@ fn report_models() {
             times.push(start.elapsed());
             tokens = token_count(&out);
         }
-        println!(
-            "{name}: {} , {tokens} tokens of generated code",
-            ms(median(times))
-        );
+        println!("{name}: {} , {tokens} tokens of generated code", ms(median(times)));
     }
 }
 
@@ -340,9 +319,7 @@ fn main() {
     if !flag("--models-only") {
         report("N-body, N = 10 (3D, 60 states)", || n_body(10));
         report("100-link spring chain (400 states)", || spring_chain(100));
-        report("100-link rigid chain, constraint Jacobian Φ_q", || {
-            chain_constraints(100)
-        });
+        report("100-link rigid chain, constraint Jacobian Φ_q", || chain_constraints(100));
     }
     report_models();
 }

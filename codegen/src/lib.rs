@@ -80,18 +80,12 @@ pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
         }
     };
     let mut ir = front::lower::lower_with(&mut cx, &item, attributes.recursive);
-    let system = if cx.is_ok() {
-        dae::reduce::reduce(&mut cx, &mut ir)
-    } else {
-        None
-    };
+    let system = if cx.is_ok() { dae::reduce::reduce(&mut cx, &mut ir) } else { None };
     if let (Some(system), true) = (&system, cx.is_ok()) {
         match emit::model::expand(&mut ir, system, &attributes) {
             Ok(mut tokens) => {
                 tokens.extend(emit::benchmark::benchmark_impl(&item, &ir, &attributes));
-                tokens.extend(front::warnings::odd_unrolled_orders(
-                    &attributes.odd_unrolled,
-                ));
+                tokens.extend(front::warnings::odd_unrolled_orders(&attributes.odd_unrolled));
                 return tokens;
             }
             Err(e @ crate::Error::NotSmooth { node, .. }) => {

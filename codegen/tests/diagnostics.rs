@@ -31,10 +31,7 @@ fn every_mistake_is_reported_in_one_expansion() {
 fn assert_each_reports(cases: &[(proc_macro2::TokenStream, &str)]) {
     for (model, expected) in cases {
         let m = messages(model.clone());
-        assert!(
-            m.iter().any(|s| s.contains(expected)),
-            "{model}\n→ {m:#?}\nexpected `{expected}`"
-        );
+        assert!(m.iter().any(|s| s.contains(expected)), "{model}\n→ {m:#?}\nexpected `{expected}`");
     }
 }
 
@@ -53,10 +50,7 @@ fn structural_mistakes_name_the_derivative() {
             quote! { fn m() { let x = state(1.0); let y = state(1.0); der(x) + der(y) == x; } },
             "no equation determines `der(y)`",
         ),
-        (
-            quote! { fn m() { let x = state(1.0); der(x) * der(x) == x; } },
-            "not linear in `der(x)`",
-        ),
+        (quote! { fn m() { let x = state(1.0); der(x) * der(x) == x; } }, "not linear in `der(x)`"),
         (
             // Twice the same equation: their combination free of the
             // derivatives vanishes identically.
@@ -67,10 +61,7 @@ fn structural_mistakes_name_the_derivative() {
             quote! { fn m() { let x = state(1.0); init(der(x), 1.0); der(x) == x; } },
             "`der(x)` follows from its equation",
         ),
-        (
-            quote! { fn m() { let x = state(1.0); der(x) == x; x == 2.0; } },
-            "algebraic",
-        ),
+        (quote! { fn m() { let x = state(1.0); der(x) == x; x == 2.0; } }, "algebraic"),
     ];
     assert_each_reports(&cases);
 }
@@ -94,10 +85,7 @@ fn language_mistakes_say_how_to_fix_them() {
             quote! { fn m() { let m = param(1.0); let m = state(1.0); der(m) == 1.0; } },
             "`m` is already declared as a parameter",
         ),
-        (
-            quote! { fn m() { let x = state(1.0); der(x) == 1e400; } },
-            "not a finite f64",
-        ),
+        (quote! { fn m() { let x = state(1.0); der(x) == 1e400; } }, "not a finite f64"),
         (
             quote! { fn m() { let x = state(1.0); der(x) == ln(0.0); } },
             "`ln(0)` has no finite value",
@@ -130,10 +118,7 @@ fn a_model_with_errors_still_expands_to_its_type() {
     );
     let text = tokens.to_string();
     assert!(text.contains("compile_error"));
-    assert!(
-        text.contains("struct Decay"),
-        "the stub keeps the type so user code type-checks"
-    );
+    assert!(text.contains("struct Decay"), "the stub keeps the type so user code type-checks");
     assert!(text.contains("pub k : f64"));
     assert!(syn::parse2::<syn::File>(tokens).is_ok());
 }

@@ -19,12 +19,7 @@ fn problem(order: usize) -> Problem {
     let (x, y) = (g.as_symbol(x).unwrap(), g.as_symbol(y).unwrap());
     let f = g.parse("x*y + x").unwrap();
     let d = economic_taylor_derivatives(&mut g, x, &[y], &[f], order).unwrap();
-    Problem {
-        g,
-        x,
-        y,
-        d: d.into_iter().map(|v| v[0]).collect(),
-    }
+    Problem { g, x, y, d: d.into_iter().map(|v| v[0]).collect() }
 }
 
 /// `[y, y', y'', ...]` of the exact solution at `x`.
@@ -87,13 +82,7 @@ fn derivatives_are_those_of_the_notes() {
     ];
     for (k, text) in expected.iter().enumerate() {
         let want = p.g.parse(text).unwrap();
-        assert_eq!(
-            p.d[k],
-            want,
-            "D{}: got `{}`, the notes have `{text}`",
-            k + 1,
-            p.g.show(p.d[k])
-        );
+        assert_eq!(p.d[k], want, "D{}: got `{}`, the notes have `{text}`", k + 1, p.g.show(p.d[k]));
     }
     let _ = p.y;
 }
@@ -122,9 +111,6 @@ fn the_scheme_converges_with_order_p() {
         let p = problem(order);
         let (coarse, fine) = (p.integrate(40), p.integrate(80));
         let rate = ((coarse - y1).abs() / (fine - y1).abs()).log2();
-        assert!(
-            (rate - order as f64).abs() < 0.15,
-            "order {order}: observed rate {rate:.3}"
-        );
+        assert!((rate - order as f64).abs() < 0.15, "order {order}: observed rate {rate:.3}");
     }
 }

@@ -19,10 +19,9 @@ mod support;
 /// thread: `Err` if it panicked or took longer than the limit, else the
 /// expansion as text. Input that does not lex is `Ok(None)`.
 fn expand(attr: &str, body: &str) -> Result<Option<String>, String> {
-    let (Ok(attr), Ok(item)) = (
-        TokenStream::from_str(attr),
-        TokenStream::from_str(&format!("fn m() {{ {body} }}")),
-    ) else {
+    let (Ok(attr), Ok(item)) =
+        (TokenStream::from_str(attr), TokenStream::from_str(&format!("fn m() {{ {body} }}")))
+    else {
         return Ok(None);
     };
     // proc_macro2 token streams are not Send: hand over text.
@@ -47,9 +46,7 @@ fn expand(attr: &str, body: &str) -> Result<Option<String>, String> {
 /// The expansion parses as a Rust file (the model, or errors and a stub).
 fn well_formed(out: &str) -> Result<(), String> {
     let tokens = TokenStream::from_str(out).map_err(|e| format!("{e}: {out:.300}"))?;
-    syn::parse2::<syn::File>(tokens)
-        .map(|_| ())
-        .map_err(|e| format!("{e}: {out:.300}"))
+    syn::parse2::<syn::File>(tokens).map(|_| ()).map_err(|e| format!("{e}: {out:.300}"))
 }
 
 const VOCABULARY: &[&str] = &[
@@ -158,10 +155,7 @@ fn expression(n: usize) -> impl Strategy<Value = String> {
             )
                 .prop_map(|(a, f)| format!("{f}({a})")),
             (inner.clone(), -3i32..4).prop_map(|(a, p)| format!("({a}).powi({p})")),
-            (
-                inner.clone(),
-                prop::sample::select(&["-1.5", "0.5", "1.5", "2.5"][..])
-            )
+            (inner.clone(), prop::sample::select(&["-1.5", "0.5", "1.5", "2.5"][..]))
                 .prop_map(|(a, p)| format!("({a}).powf({p})")),
             (inner.clone(), inner).prop_map(|(a, b)| format!("atan2({a}, {b})")),
         ]
@@ -280,9 +274,8 @@ fn the_generators_reach_past_the_parser() {
     let expanded = |body: &str, attr: &str| -> bool {
         matches!(expand(attr, body), Ok(Some(out)) if !out.contains("compile_error"))
     };
-    let odes = (0..60)
-        .filter(|_| expanded(&ode().new_tree(&mut runner).unwrap().current(), ""))
-        .count();
+    let odes =
+        (0..60).filter(|_| expanded(&ode().new_tree(&mut runner).unwrap().current(), "")).count();
     let scenes = (0..60)
         .filter(|_| {
             let (recursive, body) = scene().new_tree(&mut runner).unwrap().current();
@@ -290,8 +283,5 @@ fn the_generators_reach_past_the_parser() {
         })
         .count();
     // Measured over 300 each: about 42 % and 22 %.
-    assert!(
-        odes >= 12 && scenes >= 6,
-        "of 60 each: {odes} ODEs, {scenes} scenes"
-    );
+    assert!(odes >= 12 && scenes >= 6, "of 60 each: {odes} ODEs, {scenes} scenes");
 }

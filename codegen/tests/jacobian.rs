@@ -23,10 +23,7 @@ fn parse_all(g: &mut Graph, exprs: &[&str]) -> Vec<Id> {
 fn lorenz_jacobian_is_the_textbook_one() {
     let mut g = Graph::new();
     let s = symbols(&mut g, &["x", "y", "z"], &["sigma", "rho", "beta"]);
-    let f = parse_all(
-        &mut g,
-        &["sigma*(y - x)", "x*(rho - z) - y", "x*y - beta*z"],
-    );
+    let f = parse_all(&mut g, &["sigma*(y - x)", "x*(rho - z) - y", "x*y - beta*z"]);
     let j = g.jacobian(&f, &s).unwrap();
     let expected = [
         (0, 0, "-sigma"),
@@ -38,19 +35,10 @@ fn lorenz_jacobian_is_the_textbook_one() {
         (2, 1, "x"),
         (2, 2, "-beta"),
     ];
-    assert_eq!(
-        j.entries.len(),
-        expected.len(),
-        "∂f0/∂z is structurally zero and must be absent"
-    );
+    assert_eq!(j.entries.len(), expected.len(), "∂f0/∂z is structurally zero and must be absent");
     for (&(r, c, e), &(er, ec, text)) in j.entries.iter().zip(&expected) {
         assert_eq!((r, c), (er, ec));
-        assert_eq!(
-            e,
-            g.parse(text).unwrap(),
-            "J[{r}][{c}] = {}, expected {text}",
-            g.show(e)
-        );
+        assert_eq!(e, g.parse(text).unwrap(), "J[{r}][{c}] = {}, expected {text}", g.show(e));
     }
 }
 
@@ -86,12 +74,7 @@ fn jacobian_matches_central_differences_on_kepler() {
     let s = symbols(&mut g, &["q1", "q2", "p1", "p2"], &["mu"]);
     let f = parse_all(
         &mut g,
-        &[
-            "p1",
-            "p2",
-            "-mu*q1*(q1^2 + q2^2)^(-3/2)",
-            "-mu*q2*(q1^2 + q2^2)^(-3/2)",
-        ],
+        &["p1", "p2", "-mu*q1*(q1^2 + q2^2)^(-3/2)", "-mu*q2*(q1^2 + q2^2)^(-3/2)"],
     );
     let j = g.jacobian(&f, &s).unwrap();
     let pattern: Vec<(usize, usize)> = j.entries.iter().map(|e| (e.0, e.1)).collect();
@@ -100,9 +83,7 @@ fn jacobian_matches_central_differences_on_kepler() {
     let names = ["q1", "q2", "p1", "p2", "mu"];
     let at = |point: [f64; 5]| {
         let lookup: Vec<(&str, f64)> = names.iter().copied().zip(point).collect();
-        f.iter()
-            .map(|&e| g.eval_named(e, &lookup))
-            .collect::<Vec<f64>>()
+        f.iter().map(|&e| g.eval_named(e, &lookup)).collect::<Vec<f64>>()
     };
     for &(r, c, e) in &j.entries {
         let h = 1e-6;

@@ -39,11 +39,7 @@ fn recipe() -> impl Strategy<Value = R> {
     ];
     // Every function but `sign`, which only appears as the derivative of `abs`.
     let funcs = prop::sample::select(
-        Func::ALL
-            .iter()
-            .copied()
-            .filter(|&f| f != Func::Sign)
-            .collect::<Vec<_>>(),
+        Func::ALL.iter().copied().filter(|&f| f != Func::Sign).collect::<Vec<_>>(),
     );
     leaf.prop_recursive(5, 48, 3, move |inner| {
         let b = |r: R| Box::new(r);
@@ -137,46 +133,25 @@ struct Dual {
 fn dual(r: &R, point: &[f64; 4], direction: usize, scale: &mut f64) -> Dual {
     let mut e = |r: &R| dual(r, point, direction, scale);
     let out = match r {
-        R::Var(i) => Dual {
-            v: point[*i],
-            d: if *i == direction { 1.0 } else { 0.0 },
-        },
-        R::Int(n) => Dual {
-            v: *n as f64,
-            d: 0.0,
-        },
-        R::Frac(p, q) => Dual {
-            v: *p as f64 / *q as f64,
-            d: 0.0,
-        },
+        R::Var(i) => Dual { v: point[*i], d: if *i == direction { 1.0 } else { 0.0 } },
+        R::Int(n) => Dual { v: *n as f64, d: 0.0 },
+        R::Frac(p, q) => Dual { v: *p as f64 / *q as f64, d: 0.0 },
         R::Float(v) => Dual { v: *v, d: 0.0 },
         R::Add(a, c) => {
             let (a, c) = (e(a), e(c));
-            Dual {
-                v: a.v + c.v,
-                d: a.d + c.d,
-            }
+            Dual { v: a.v + c.v, d: a.d + c.d }
         }
         R::Sub(a, c) => {
             let (a, c) = (e(a), e(c));
-            Dual {
-                v: a.v - c.v,
-                d: a.d - c.d,
-            }
+            Dual { v: a.v - c.v, d: a.d - c.d }
         }
         R::Mul(a, c) => {
             let (a, c) = (e(a), e(c));
-            Dual {
-                v: a.v * c.v,
-                d: a.d * c.v + a.v * c.d,
-            }
+            Dual { v: a.v * c.v, d: a.d * c.v + a.v * c.d }
         }
         R::Div(a, c) => {
             let (a, c) = (e(a), e(c));
-            Dual {
-                v: a.v / c.v,
-                d: (a.d * c.v - a.v * c.d) / (c.v * c.v),
-            }
+            Dual { v: a.v / c.v, d: (a.d * c.v - a.v * c.d) / (c.v * c.v) }
         }
         R::Neg(a) => {
             let a = e(a);
@@ -187,11 +162,7 @@ fn dual(r: &R, point: &[f64; 4], direction: usize, scale: &mut f64) -> Dual {
             let n = *n as i32;
             Dual {
                 v: a.v.powi(n),
-                d: if a.d == 0.0 {
-                    0.0
-                } else {
-                    n as f64 * a.v.powi(n - 1) * a.d
-                },
+                d: if a.d == 0.0 { 0.0 } else { n as f64 * a.v.powi(n - 1) * a.d },
             }
         }
         R::PowHalf(a, k) => {
@@ -214,11 +185,8 @@ fn dual(r: &R, point: &[f64; 4], direction: usize, scale: &mut f64) -> Dual {
         R::Powf(a, c) => {
             let (a, c) = (e(a), e(c));
             // Integer-valued constant exponents are powi in the graph, defined for a < 0.
-            let v = if c.d == 0.0 && c.v.fract() == 0.0 {
-                a.v.powi(c.v as i32)
-            } else {
-                a.v.powf(c.v)
-            };
+            let v =
+                if c.d == 0.0 && c.v.fract() == 0.0 { a.v.powi(c.v as i32) } else { a.v.powf(c.v) };
             // As for half powers: at a zero base an exponent below 1 has no
             // derivative (the chain rule's c·u^(c−1)·u' is ∞·0 even where
             // u ≡ 0 nearby, as for 0^z/t): such points are rejected.
@@ -258,10 +226,7 @@ fn dual(r: &R, point: &[f64; 4], direction: usize, scale: &mut f64) -> Dual {
             // digit, and such points are ill-conditioned, not wrong.
             let amplification = a.v.abs() * (fp.abs() + a.d.abs() * (fp.abs() + v.abs()));
             *scale = scale.max(amplification);
-            Dual {
-                v,
-                d: if a.d == 0.0 { 0.0 } else { fp * a.d },
-            }
+            Dual { v, d: if a.d == 0.0 { 0.0 } else { fp * a.d } }
         }
         R::Atan2(a, c) => {
             let (y, x) = (e(a), e(c));
@@ -270,17 +235,11 @@ fn dual(r: &R, point: &[f64; 4], direction: usize, scale: &mut f64) -> Dual {
             } else {
                 (x.v * y.d - y.v * x.d) / (x.v * x.v + y.v * y.v)
             };
-            Dual {
-                v: y.v.atan2(x.v),
-                d,
-            }
+            Dual { v: y.v.atan2(x.v), d }
         }
     };
     // Real arithmetic has no signed zero; IEEE's -0.0 would flip atan2 by 2π.
-    let out = Dual {
-        v: if out.v == 0.0 { 0.0 } else { out.v },
-        d: out.d,
-    };
+    let out = Dual { v: if out.v == 0.0 { 0.0 } else { out.v }, d: out.d };
     // Values are only promised where no intermediate is infinite or NaN (where
     // `inf^(-3/2)` happens to give 0, say): an infinite scale marks the point unusable.
     *scale = scale.max(out.v.abs()).max(out.d.abs());
@@ -396,18 +355,15 @@ fn scheduled_and_emitted_agree(r: &R, q: &R, at: &[f64; 4]) -> Result<(), TestCa
     let (Some(e), Some(f)) = (build(&mut g, &s, r), build(&mut g, &s, q)) else {
         return Ok(());
     };
-    let (Some(de), Some(df)) = (
-        derivative_or_skip(g.partial(e, s[0]))?,
-        derivative_or_skip(g.partial(f, s[1]))?,
-    ) else {
+    let (Some(de), Some(df)) =
+        (derivative_or_skip(g.partial(e, s[0]))?, derivative_or_skip(g.partial(f, s[1]))?)
+    else {
         return Ok(());
     };
     let outputs = [e, f, de, df];
     let direct = g.eval(&outputs, &|sym| at[sym.index()]);
     let program = g.schedule(&outputs);
-    let scheduled = program
-        .evaluate(&g, &|sym| at[sym.index()])
-        .map_err(TestCaseError::fail)?;
+    let scheduled = program.evaluate(&g, &|sym| at[sym.index()]).map_err(TestCaseError::fail)?;
     let code = emit_program(
         &g,
         &program,
@@ -423,10 +379,7 @@ fn scheduled_and_emitted_agree(r: &R, q: &R, at: &[f64; 4]) -> Result<(), TestCa
     let emitted = interpret(&code, at).map_err(TestCaseError::fail)?;
     // The condition of each expression as written, from the oracle.
     let mut condition = [0.0f64; 2];
-    let written = [
-        dual(r, at, 0, &mut condition[0]),
-        dual(q, at, 1, &mut condition[1]),
-    ];
+    let written = [dual(r, at, 0, &mut condition[0]), dual(q, at, 1, &mut condition[1])];
     for k in 0..outputs.len() {
         // Same operations in the same order: bit-identical (or both NaN).
         prop_assert!(
@@ -438,11 +391,7 @@ fn scheduled_and_emitted_agree(r: &R, q: &R, at: &[f64; 4]) -> Result<(), TestCa
         );
         // Emission reorders (division instead of x^-1, sqrt forms): rounding
         // only, compared where the written expression is well-conditioned.
-        let want = if k < 2 {
-            written[k].v
-        } else {
-            written[k - 2].d
-        };
+        let want = if k < 2 { written[k].v } else { written[k - 2].d };
         let scale = direct[k].abs().max(1.0);
         if direct[k].is_finite() && scale < 1e6 && usable(want, condition[k % 2]) {
             prop_assert!(
@@ -475,10 +424,7 @@ fn an_ill_conditioned_point_is_not_compared_to_rounding() {
     let at = [-0.004438441918562186, 0.5, 0.25, 1.0];
     let mut condition = 0.0;
     let value = dual(&r, &at, 0, &mut condition).v;
-    assert!(
-        value.is_finite() && !usable(value, condition),
-        "condition {condition:e}"
-    );
+    assert!(value.is_finite() && !usable(value, condition), "condition {condition:e}");
     scheduled_and_emitted_agree(&r, &R::Var(1), &at).unwrap();
 }
 
@@ -528,10 +474,7 @@ fn shared_square_roots_are_defined_before_use() {
     let emitted = interpret(&code, &at).unwrap_or_else(|e| panic!("{e}\n{code}"));
     let direct = g.eval(&[f, d], &|sym| at[sym.index()]);
     for k in 0..2 {
-        assert!(
-            (emitted[k] - direct[k]).abs() < 1e-14 * direct[k].abs(),
-            "{code}"
-        );
+        assert!((emitted[k] - direct[k]).abs() < 1e-14 * direct[k].abs(), "{code}");
     }
     assert_eq!(
         code.to_string().matches("sqrt").count(),
@@ -548,11 +491,7 @@ fn partial_derivatives_are_memoised_per_node_and_symbol() {
     let before = g.len();
     let d2 = g.partial(e, s[0]).unwrap();
     assert_eq!(d1, d2);
-    assert_eq!(
-        g.len(),
-        before,
-        "a repeated derivative must not build new nodes"
-    );
+    assert_eq!(g.len(), before, "a repeated derivative must not build new nodes");
     let _ = Number::ONE;
 }
 
@@ -561,11 +500,8 @@ fn partial_derivatives_are_memoised_per_node_and_symbol() {
 fn interpret(code: &TokenStream, at: &[f64; 4]) -> Result<Vec<f64>, String> {
     let block: syn::Block = syn::parse2(quote!({ #code }))
         .map_err(|e| format!("emitted code does not parse: {e}\n{code}"))?;
-    let mut env: Vec<(String, f64)> = NAMES
-        .iter()
-        .zip(at)
-        .map(|(n, v)| (n.to_string(), *v))
-        .collect();
+    let mut env: Vec<(String, f64)> =
+        NAMES.iter().zip(at).map(|(n, v)| (n.to_string(), *v)).collect();
     let mut out = vec![f64::NAN; 4];
     for stmt in &block.stmts {
         match stmt {

@@ -21,13 +21,7 @@ fn p(g: &mut Graph, s: &str) -> Id {
 fn same(a: &str, b: &str) {
     let mut g = graph();
     let (ia, ib) = (p(&mut g, a), p(&mut g, b));
-    assert_eq!(
-        ia,
-        ib,
-        "`{a}` built `{}`, `{b}` built `{}`",
-        g.show(ia),
-        g.show(ib)
-    );
+    assert_eq!(ia, ib, "`{a}` built `{}`, `{b}` built `{}`", g.show(ia), g.show(ib));
 }
 
 fn shows(src: &str, expected: &str) {
@@ -129,14 +123,8 @@ fn folding_to_a_non_finite_value_is_an_error_naming_the_expression() {
     for (src, named, reason) in cases {
         let mut g = graph();
         match g.parse(src) {
-            Err(Error::NotFinite {
-                expression,
-                reason: why,
-            }) => {
-                assert!(
-                    expression.contains(named.trim()),
-                    "{src}: message names `{expression}`"
-                );
+            Err(Error::NotFinite { expression, reason: why }) => {
+                assert!(expression.contains(named.trim()), "{src}: message names `{expression}`");
                 assert!(why.contains(reason), "{src}: reason `{why}`");
             }
             other => panic!("{src}: expected a non-finite error, got {other:?}"),
@@ -170,11 +158,7 @@ fn display_is_readable_and_reads_back() {
         let mut g = graph();
         let id = p(&mut g, src);
         let text = g.show(id).to_string();
-        assert_eq!(
-            p(&mut g, &text),
-            id,
-            "`{src}` shows as `{text}`, which reads back differently"
-        );
+        assert_eq!(p(&mut g, &text), id, "`{src}` shows as `{text}`, which reads back differently");
     }
 }
 

@@ -52,10 +52,7 @@ impl Bench {
     pub fn until(t_end: f64) -> Bench {
         Bench {
             t_end,
-            reference: Reference::Run {
-                method: Method::Dop853,
-                tol: 1e-14,
-            },
+            reference: Reference::Run { method: Method::Dop853, tol: 1e-14 },
             methods: vec![Method::Dopri5, Method::Dop853],
             tolerances: (3..=14).map(|k| 10f64.powi(-k)).collect(),
             atol_factor: 1.0,

@@ -44,11 +44,7 @@ pub(crate) fn describe(info: &ModelInfo, parameter: Option<&dyn Fn(usize) -> f64
     let sections: [(&str, Vec<String>, &[&str]); 5] = [
         ("states", owned(info.states), info.state_docs),
         ("parameters", parameters, info.parameter_docs),
-        (
-            "algebraic variables",
-            owned(info.algebraics),
-            info.algebraic_docs,
-        ),
+        ("algebraic variables", owned(info.algebraics), info.algebraic_docs),
         ("outputs", owned(info.outputs), info.output_docs),
         ("events", events, &event_docs),
     ];
@@ -69,11 +65,7 @@ pub(crate) fn describe(info: &ModelInfo, parameter: Option<&dyn Fn(usize) -> f64
         }
     }
     // No trailing spaces on lines without a doc comment.
-    out.lines()
-        .map(str::trim_end)
-        .collect::<Vec<_>>()
-        .join("\n")
-        + "\n"
+    out.lines().map(str::trim_end).collect::<Vec<_>>().join("\n") + "\n"
 }
 
 fn owned(names: &[&str]) -> Vec<String> {
@@ -81,10 +73,7 @@ fn owned(names: &[&str]) -> Vec<String> {
 }
 
 fn first_line(doc: &str) -> &str {
-    doc.lines()
-        .map(str::trim)
-        .find(|l| !l.is_empty())
-        .unwrap_or("")
+    doc.lines().map(str::trim).find(|l| !l.is_empty()).unwrap_or("")
 }
 
 /// The model's names and their doc comments (parameters without values:
@@ -131,8 +120,6 @@ mod tests {
              outputs:\n  energy\n\
              events:\n  swing, rising  Passes under the pivot.\n"
         );
-        assert!(INFO
-            .to_string()
-            .contains("\n  l              Length (m).\n"));
+        assert!(INFO.to_string().contains("\n  l              Length (m).\n"));
     }
 }

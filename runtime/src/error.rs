@@ -241,9 +241,7 @@ impl Error {
     /// The method that ran, as [`crate::Stats::method`] names it ("" when
     /// the run did not start).
     fn method(&self) -> &'static str {
-        self.partial_solution()
-            .map(|s| s.stats().method)
-            .unwrap_or("")
+        self.partial_solution().map(|s| s.stats().method).unwrap_or("")
     }
 
     /// Whether the method that failed was an implicit one (RADAU5, backward

@@ -75,10 +75,7 @@ pub fn sequence(axes: [Axis; 3], angles: [f64; 3]) -> Matrix3<f64> {
 /// The inverse of a sequence (eq. 4.12): the axes reversed and the angles
 /// negated, `R_k(−c) R_j(−b) R_i(−a) = (R_i(a) R_j(b) R_k(c))ᵀ`.
 pub fn inverse_sequence(axes: [Axis; 3], angles: [f64; 3]) -> Matrix3<f64> {
-    sequence(
-        [axes[2], axes[1], axes[0]],
-        [-angles[2], -angles[1], -angles[0]],
-    )
+    sequence([axes[2], axes[1], axes[0]], [-angles[2], -angles[1], -angles[0]])
 }
 
 /// Euler angles, sequence 3-1-3 (eq. 4.10): ψ about z, then θ about x, then
@@ -134,9 +131,7 @@ pub fn quaternion_to_matrix(q: [f64; 4]) -> Matrix3<f64> {
 pub fn matrix_to_quaternion(r: &Matrix3<f64>) -> [f64; 4] {
     let trace = r.trace();
     let candidates = [trace, r[(0, 0)], r[(1, 1)], r[(2, 2)]];
-    let k = (0..4)
-        .max_by(|&a, &b| candidates[a].total_cmp(&candidates[b]))
-        .unwrap_or(0);
+    let k = (0..4).max_by(|&a, &b| candidates[a].total_cmp(&candidates[b])).unwrap_or(0);
     let q = match k {
         0 => {
             let s = 2.0 * (1.0 + trace).sqrt();
@@ -244,10 +239,7 @@ pub fn angles_of(r: &Matrix3<f64>, axes: [Axis; 3]) -> Result<[[f64; 3]; 2], Gim
         }
     };
     if i == j || axes[1] == axes[2] {
-        return Err(GimbalLock {
-            middle: f64::NAN,
-            combined: f64::NAN,
-        });
+        return Err(GimbalLock { middle: f64::NAN, combined: f64::NAN });
     }
     // The third axis k and the parity s of (i, j, k).
     let k = 3 - i - j;
@@ -263,11 +255,7 @@ pub fn angles_of(r: &Matrix3<f64>, axes: [Axis; 3]) -> Result<[[f64; 3]; 2], Gim
         let c = r[(i, j)].atan2(s * r[(i, k)]);
         Ok([
             [wrap(a), b, wrap(c)],
-            [
-                wrap(a + std::f64::consts::PI),
-                -b,
-                wrap(c + std::f64::consts::PI),
-            ],
+            [wrap(a + std::f64::consts::PI), -b, wrap(c + std::f64::consts::PI)],
         ])
     } else {
         let k = axes[2].index();
@@ -296,10 +284,7 @@ fn locked(r: &Matrix3<f64>, axes: [Axis; 3], b: f64) -> GimbalLock {
     let m = r * rot(axes[1], b).transpose();
     let i = axes[0].index();
     let (n1, n2) = ((i + 1) % 3, (i + 2) % 3);
-    GimbalLock {
-        middle: b,
-        combined: m[(n2, n1)].atan2(m[(n1, n1)]),
-    }
+    GimbalLock { middle: b, combined: m[(n2, n1)].atan2(m[(n1, n1)]) }
 }
 
 /// Body angular velocity of a sequence from its angle rates, `ω = E(u) u̇`

@@ -74,10 +74,7 @@ pub struct Step<'a> {
 impl Step<'_> {
     /// The state called `name`, if there is one.
     pub fn get(&self, name: &str) -> Option<f64> {
-        self.names
-            .iter()
-            .position(|n| *n == name)
-            .and_then(|i| self.y.get(i).copied())
+        self.names.iter().position(|n| *n == name).and_then(|i| self.y.get(i).copied())
     }
 }
 
@@ -220,26 +217,17 @@ impl Options {
 
     /// The integration method.
     pub fn method(&self, method: Method) -> Options {
-        Options {
-            method,
-            ..self.clone()
-        }
+        Options { method, ..self.clone() }
     }
 
     /// Relative tolerance of adaptive methods.
     pub fn rtol(&self, rtol: f64) -> Options {
-        Options {
-            rtol,
-            ..self.clone()
-        }
+        Options { rtol, ..self.clone() }
     }
 
     /// Absolute tolerance of adaptive methods.
     pub fn atol(&self, atol: f64) -> Options {
-        Options {
-            atol,
-            ..self.clone()
-        }
+        Options { atol, ..self.clone() }
     }
 
     /// Both tolerances at once: `rtol(tol).atol(tol)`, the usual choice for
@@ -250,44 +238,29 @@ impl Options {
 
     /// Step size of fixed-step methods (default: the interval over 1000).
     pub fn step(&self, step: f64) -> Options {
-        Options {
-            step: Some(step),
-            ..self.clone()
-        }
+        Options { step: Some(step), ..self.clone() }
     }
 
     /// First step of adaptive methods (default: Hairer's estimate from f and
     /// its change along an Euler step).
     pub fn initial_step(&self, h: f64) -> Options {
-        Options {
-            initial_step: Some(h),
-            ..self.clone()
-        }
+        Options { initial_step: Some(h), ..self.clone() }
     }
 
     /// Largest step of adaptive methods (default: the whole interval).
     pub fn max_step(&self, h: f64) -> Options {
-        Options {
-            max_step: Some(h),
-            ..self.clone()
-        }
+        Options { max_step: Some(h), ..self.clone() }
     }
 
     /// Smallest step adaptive methods may take before stopping with
     /// [`crate::Error::StepSizeUnderflow`] (default 0: only the precision of t limits it).
     pub fn min_step(&self, h: f64) -> Options {
-        Options {
-            min_step: h,
-            ..self.clone()
-        }
+        Options { min_step: h, ..self.clone() }
     }
 
     /// Most steps a run may take before it stops with [`crate::Error::MaxSteps`].
     pub fn max_steps(&self, max_steps: usize) -> Options {
-        Options {
-            max_steps,
-            ..self.clone()
-        }
+        Options { max_steps, ..self.clone() }
     }
 
     /// `Method::Taylor` interprets the model's tape (the compact layout)
@@ -295,10 +268,7 @@ impl Options {
     /// in use (`#[dae_model(unroll = [..])]`, used by default): to compare
     /// the two layouts.
     pub fn taylor_compact(&self, compact: bool) -> Options {
-        Options {
-            taylor_compact: compact,
-            ..self.clone()
-        }
+        Options { taylor_compact: compact, ..self.clone() }
     }
 
     /// Fixes `Method::Taylor`'s order (2 or more) instead of choosing it
@@ -306,10 +276,7 @@ impl Options {
     /// (`daegen::runtime::taylor_order`); the step still follows ρ and the
     /// tolerance. To compare layouts or orders at equal footing.
     pub fn taylor_order(&self, order: usize) -> Options {
-        Options {
-            taylor_order: Some(order),
-            ..self.clone()
-        }
+        Options { taylor_order: Some(order), ..self.clone() }
     }
 
     /// Whether adaptive methods keep each step's continuous extension for
@@ -321,10 +288,7 @@ impl Options {
     /// per step. A model with events keeps it anyway (events are located
     /// on it). Not with [`Options::output_times`], which interpolates on it.
     pub fn dense_output(&self, dense_output: bool) -> Options {
-        Options {
-            dense_output,
-            ..self.clone()
-        }
+        Options { dense_output, ..self.clone() }
     }
 
     /// Stores only every `k`-th accepted step, and always the last one
@@ -334,10 +298,7 @@ impl Options {
     /// between them); `stats()` still counts every step. Events are still
     /// located on every step's continuous extension.
     pub fn keep_every(&self, k: usize) -> Options {
-        Options {
-            keep_every: k,
-            ..self.clone()
-        }
+        Options { keep_every: k, ..self.clone() }
     }
 
     /// Whether `Dopri5` and `Dop853` stop with [`crate::Error::Stiff`] when
@@ -345,10 +306,7 @@ impl Options {
     /// the edge of the stability region for 15 steps. With `false` they go
     /// on with steps held at that edge, as many as the problem takes.
     pub fn stiffness_detection(&self, detect: bool) -> Options {
-        Options {
-            stiffness_detection: detect,
-            ..self.clone()
-        }
+        Options { stiffness_detection: detect, ..self.clone() }
     }
 
     /// Whether inconsistent initial values of a DAE are an error (`true`)
@@ -356,10 +314,7 @@ impl Options {
     /// and listed in [`crate::Solution::initial_corrections`]). The error
     /// is an [`crate::Error::Constraint`] that names the values.
     pub fn strict_initial_values(&self, strict: bool) -> Options {
-        Options {
-            strict_initial_values: strict,
-            ..self.clone()
-        }
+        Options { strict_initial_values: strict, ..self.clone() }
     }
 
     /// Stores the solution at these times only (SciPy's `t_eval`,
@@ -373,10 +328,7 @@ impl Options {
     /// and `final_state` give the end of the run. Events are still located
     /// on every step.
     pub fn output_times(&self, times: Vec<f64>) -> Options {
-        Options {
-            output_times: Some(times.into()),
-            ..self.clone()
-        }
+        Options { output_times: Some(times.into()), ..self.clone() }
     }
 
     /// Calls `callback` after every accepted step (after its events) with
@@ -386,27 +338,18 @@ impl Options {
     /// keeps constant memory while the callback streams the steps. Copies
     /// of these options share the one callback.
     pub fn on_step(&self, callback: impl FnMut(&Step<'_>) -> Flow + Send + 'static) -> Options {
-        Options {
-            on_step: Some(Arc::new(Mutex::new(callback))),
-            ..self.clone()
-        }
+        Options { on_step: Some(Arc::new(Mutex::new(callback))), ..self.clone() }
     }
 
     /// Draws a progress bar on stderr (time reached of the interval, steps,
     /// steps per second) for a run that lasts over a second; off by default.
     pub fn progress(&self, show: bool) -> Options {
-        Options {
-            progress: show,
-            ..self.clone()
-        }
+        Options { progress: show, ..self.clone() }
     }
 
     /// How a DAE is integrated (see [`Formulation`]); ODEs ignore it.
     pub fn formulation(&self, formulation: Formulation) -> Options {
-        Options {
-            formulation,
-            ..self.clone()
-        }
+        Options { formulation, ..self.clone() }
     }
 
     /// The method chosen.

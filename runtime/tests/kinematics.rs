@@ -28,9 +28,7 @@ const ALL_SEQUENCES: [[Axis; 3]; 12] = {
 fn angles(count: usize) -> Vec<[f64; 3]> {
     let mut state = 0x2545_f491_4f6c_dd1du64;
     let mut next = || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
         ((state >> 11) as f64 / (1u64 << 53) as f64) * 2.0 * PI - PI
     };
     (0..count).map(|_| [next(), next(), next()]).collect()
@@ -66,23 +64,14 @@ fn every_constructor_gives_a_rotation() {
         }
     }
     // Not rotations: a reflection, a shear.
-    assert!(!is_rotation(
-        &Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, -1.0),
-        1e-12
-    ));
-    assert!(!is_rotation(
-        &Matrix3::new(1.0, 0.1, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
-        1e-12
-    ));
+    assert!(!is_rotation(&Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, -1.0), 1e-12));
+    assert!(!is_rotation(&Matrix3::new(1.0, 0.1, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0), 1e-12));
 }
 
 #[test]
 fn sequences_are_products_of_primitives_and_inverses_are_transposes() {
     for u in angles(20) {
-        assert_eq!(
-            euler_313(u[0], u[1], u[2]),
-            rot_z(u[2]) * rot_x(u[1]) * rot_z(u[0])
-        );
+        assert_eq!(euler_313(u[0], u[1], u[2]), rot_z(u[2]) * rot_x(u[1]) * rot_z(u[0]));
         assert_eq!(
             euler_313(u[0], u[1], u[2]),
             sequence([Axis::Z, Axis::X, Axis::Z], [u[2], u[1], u[0]])
@@ -96,11 +85,7 @@ fn sequences_are_products_of_primitives_and_inverses_are_transposes() {
             let product = rot(axes[0], u[0]) * rot(axes[1], u[1]) * rot(axes[2], u[2]);
             assert!(close(&r, &product, 0.0));
             assert!(close(&inverse_sequence(axes, u), &r.transpose(), 1e-15));
-            assert!(close(
-                &(inverse_sequence(axes, u) * r),
-                &Matrix3::identity(),
-                1e-14
-            ));
+            assert!(close(&(inverse_sequence(axes, u) * r), &Matrix3::identity(), 1e-14));
         }
     }
     // A quarter turn about z takes x to y.
@@ -126,11 +111,7 @@ fn rodrigues_axis_angle_and_quaternion_agree() {
         assert!(close(&quaternion_to_matrix(q.map(|x| -x)), &r, 1e-15));
         assert!((r * n - n).norm() <= 1e-14);
     }
-    for (axis, e) in [
-        (Axis::X, Vector3::x()),
-        (Axis::Y, Vector3::y()),
-        (Axis::Z, Vector3::z()),
-    ] {
+    for (axis, e) in [(Axis::X, Vector3::x()), (Axis::Y, Vector3::y()), (Axis::Z, Vector3::z())] {
         assert!(close(&axis_angle(&e, 0.7), &rot(axis, 0.7), 1e-15));
     }
 }
@@ -139,12 +120,7 @@ fn rodrigues_axis_angle_and_quaternion_agree() {
 fn axis_angle_and_quaternion_round_trip_including_half_turns() {
     let mut cases: Vec<(Vector3<f64>, f64)> = angles(50)
         .into_iter()
-        .map(|u| {
-            (
-                Vector3::new(u[0], u[1], u[2]).normalize(),
-                u[2].abs().max(1e-3),
-            )
-        })
+        .map(|u| (Vector3::new(u[0], u[1], u[2]).normalize(), u[2].abs().max(1e-3)))
         .collect();
     cases.push((Vector3::new(1.0, 2.0, 3.0).normalize(), PI));
     cases.push((Vector3::new(0.0, 0.0, 1.0), PI - 1e-9));
@@ -194,10 +170,7 @@ fn gimbal_lock_is_reported_with_the_angle_that_remains() {
         let lock = angles_of(&r, [Axis::Z, Axis::X, Axis::Z]).unwrap_err();
         assert!((lock.middle - theta).abs() <= 1e-12);
         // The matrix is rebuilt from the middle and combined angles alone.
-        let rebuilt = sequence(
-            [Axis::Z, Axis::X, Axis::Z],
-            [lock.combined, lock.middle, 0.0],
-        );
+        let rebuilt = sequence([Axis::Z, Axis::X, Axis::Z], [lock.combined, lock.middle, 0.0]);
         assert!(close(&rebuilt, &r, 1e-12), "θ = {theta}");
     }
     // Bryan 1-2-3 written as R_x R_y R_z at the middle angle ±π/2.
@@ -225,21 +198,11 @@ fn angular_velocity_from_rates_matches_r_transpose_r_dot() {
     for axes in ALL_SEQUENCES {
         for (u, rates) in angles(10).into_iter().zip(angles(10).into_iter().rev()) {
             let path = |t: f64| {
-                sequence(
-                    axes,
-                    [
-                        u[0] + rates[0] * t,
-                        u[1] + rates[1] * t,
-                        u[2] + rates[2] * t,
-                    ],
-                )
+                sequence(axes, [u[0] + rates[0] * t, u[1] + rates[1] * t, u[2] + rates[2] * t])
             };
             let fd = omega_by_differences(&path, 0.0);
             let w = angular_velocity(axes, u, rates);
-            assert!(
-                (w - fd).norm() <= 1e-8 * (1.0 + w.norm()),
-                "{axes:?}: {w} vs {fd}"
-            );
+            assert!((w - fd).norm() <= 1e-8 * (1.0 + w.norm()), "{axes:?}: {w} vs {fd}");
         }
     }
     // Quaternions: q(t) = normalised (q + t q̇ ⊥), rates tangent to |q| = 1.
@@ -263,13 +226,7 @@ fn angular_velocity_from_rates_matches_r_transpose_r_dot() {
 fn point_velocity_and_acceleration_match_differences() {
     // P(t) = P0(t) + R(t) p(t): a point moving in a spinning, moving body.
     let axes = [Axis::Z, Axis::Y, Axis::X];
-    let u = |t: f64| {
-        [
-            0.3 + 1.1 * t + 0.2 * t * t,
-            -0.4 + 0.7 * t,
-            0.2 - 0.5 * t * t,
-        ]
-    };
+    let u = |t: f64| [0.3 + 1.1 * t + 0.2 * t * t, -0.4 + 0.7 * t, 0.2 - 0.5 * t * t];
     let du = |t: f64| [1.1 + 0.4 * t, 0.7, -t];
     let p0 = |t: f64| Vector3::new(t * t, (2.0 * t).sin(), 1.0 - t);
     let p = |t: f64| Vector3::new(0.5 + 0.1 * t, -0.2 * t * t, 0.3);
@@ -282,10 +239,7 @@ fn point_velocity_and_acceleration_match_differences() {
     // ω̇ by differences of ω (it depends on the angles and their rates).
     let omega_dot = (omega(t + h) - omega(t - h)) / (2.0 * h);
     let r = sequence(axes, u(t));
-    let (p_dot, p_ddot) = (
-        Vector3::new(0.1, -0.4 * t, 0.0),
-        Vector3::new(0.0, -0.4, 0.0),
-    );
+    let (p_dot, p_ddot) = (Vector3::new(0.1, -0.4 * t, 0.0), Vector3::new(0.0, -0.4, 0.0));
     let p0_dot = Vector3::new(2.0 * t, 2.0 * (2.0 * t).cos(), -1.0);
     let p0_ddot = Vector3::new(2.0, -4.0 * (2.0 * t).sin(), 0.0);
     let v = point_velocity(&p0_dot, &r, &omega(t), &p(t), &p_dot);
@@ -301,12 +255,7 @@ fn transforms_compose_and_invert() {
     let (alpha, beta) = (0.4, 1.1);
     let t =
         transform(&rot_z(alpha), &Vector3::zeros()) * transform(&rot_z(beta), &Vector3::zeros());
-    assert!(
-        (t - transform(&rot_z(alpha + beta), &Vector3::zeros()))
-            .abs()
-            .max()
-            <= 1e-15
-    );
+    assert!((t - transform(&rot_z(alpha + beta), &Vector3::zeros())).abs().max() <= 1e-15);
     for u in angles(10) {
         let r = sequence([Axis::Z, Axis::X, Axis::Y], u);
         let p = Vector3::new(u[2], u[0], -u[1]);

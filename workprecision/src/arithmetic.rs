@@ -179,14 +179,10 @@ fn collect_functions(tokens: &[TokenTree], functions: &mut HashMap<String, Group
 /// `tokens[at]` (1 when its range is not two integer literals), its body,
 /// and the position after it.
 fn loop_parts(tokens: &[TokenTree], at: usize) -> (u64, Vec<TokenTree>, usize) {
-    let body = tokens
-        .iter()
-        .enumerate()
-        .skip(at)
-        .find_map(|(j, t)| match t {
-            TokenTree::Group(g) if g.delimiter() == Delimiter::Brace => Some((j, g)),
-            _ => None,
-        });
+    let body = tokens.iter().enumerate().skip(at).find_map(|(j, t)| match t {
+        TokenTree::Group(g) if g.delimiter() == Delimiter::Brace => Some((j, g)),
+        _ => None,
+    });
     let Some((open, body)) = body else {
         return (1, Vec::new(), tokens.len());
     };
@@ -195,11 +191,9 @@ fn loop_parts(tokens: &[TokenTree], at: usize) -> (u64, Vec<TokenTree>, usize) {
         .iter()
         .position(|t| t == "in")
         .and_then(|j| match &header[j + 1..] {
-            [a, dot, dot2, b] if dot == "." && dot2 == "." => Some(
-                b.parse::<u64>()
-                    .ok()?
-                    .saturating_sub(a.parse::<u64>().ok()?),
-            ),
+            [a, dot, dot2, b] if dot == "." && dot2 == "." => {
+                Some(b.parse::<u64>().ok()?.saturating_sub(a.parse::<u64>().ok()?))
+            }
             _ => None,
         })
         .unwrap_or(1);

@@ -37,9 +37,5 @@ pub fn expansion_cost(
         return Err(format!("the model does not expand: {code:.200}"));
     }
     times.sort_by(f64::total_cmp);
-    Ok(ExpansionCost {
-        seconds: times[times.len() / 2],
-        bytes: code.len(),
-        code,
-    })
+    Ok(ExpansionCost { seconds: times[times.len() / 2], bytes: code.len(), code })
 }

@@ -25,10 +25,7 @@ pub fn work_precision_svg(title: &str, records: &[Record]) -> Result<String, Str
     let fold = |f: fn(&Record) -> f64| {
         let lo = finite.iter().map(|r| f(r)).fold(f64::INFINITY, f64::min);
         let hi = finite.iter().map(|r| f(r)).fold(0.0, f64::max);
-        (
-            decade(lo, false),
-            decade(hi, true).max(decade(lo, false) * 10.0),
-        )
+        (decade(lo, false), decade(hi, true).max(decade(lo, false) * 10.0))
     };
     let (e0, e1) = fold(|r| r.error);
     let (t0, t1) = fold(|r| r.seconds * 1e3);
@@ -69,9 +66,7 @@ pub fn work_precision_svg(title: &str, records: &[Record]) -> Result<String, Str
             let ours = method.starts_with("daegen ");
             let width = if ours { 2 } else { 1 };
             let style = ShapeStyle::from(&colour).stroke_width(width);
-            chart
-                .draw_series(LineSeries::new(points.clone(), style))
-                .map_err(draw)?;
+            chart.draw_series(LineSeries::new(points.clone(), style)).map_err(draw)?;
             chart
                 .draw_series(points.iter().map(|&p| {
                     if ours {
@@ -82,12 +77,8 @@ pub fn work_precision_svg(title: &str, records: &[Record]) -> Result<String, Str
                 }))
                 .map_err(draw)?;
             let y = 48 + 22 * row;
-            legend
-                .draw(&PathElement::new(vec![(4, y), (28, y)], style))
-                .map_err(draw)?;
-            legend
-                .draw(&Text::new(method, (34, y - 7), ("sans-serif", 13)))
-                .map_err(draw)?;
+            legend.draw(&PathElement::new(vec![(4, y), (28, y)], style)).map_err(draw)?;
+            legend.draw(&Text::new(method, (34, y - 7), ("sans-serif", 13))).map_err(draw)?;
             row += 1;
         }
         root.present().map_err(draw)?;

@@ -43,12 +43,7 @@ pub struct Runner {
 impl Runner {
     /// A runner with no peers.
     pub fn new(settings: Settings) -> Runner {
-        Runner {
-            settings,
-            peers: Vec::new(),
-            problems: Vec::new(),
-            progress: true,
-        }
+        Runner { settings, peers: Vec::new(), problems: Vec::new(), progress: true }
     }
 
     /// Adds a peer; it runs on every problem it applies to.
@@ -184,11 +179,8 @@ impl Runner {
     /// `summary.md` into `dir`.
     pub fn write(&self, dir: &Path) -> std::io::Result<()> {
         std::fs::create_dir_all(dir)?;
-        let all: Vec<Record> = self
-            .problems
-            .iter()
-            .flat_map(|p| p.records.iter().cloned())
-            .collect();
+        let all: Vec<Record> =
+            self.problems.iter().flat_map(|p| p.records.iter().cloned()).collect();
         std::fs::write(dir.join("results.csv"), to_csv(&all))?;
         for p in &self.problems {
             if let Ok(svg) = work_precision_svg(&p.name, &p.records) {

@@ -6,10 +6,8 @@ use crate::{Problem, Record};
 
 /// The time `curve` would take to reach `error`, by log–log interpolation.
 pub fn time_at_error(curve: &[&Record], error: f64) -> Option<f64> {
-    let mut points: Vec<&&Record> = curve
-        .iter()
-        .filter(|r| r.error > 0.0 && r.error.is_finite())
-        .collect();
+    let mut points: Vec<&&Record> =
+        curve.iter().filter(|r| r.error > 0.0 && r.error.is_finite()).collect();
     points.sort_by(|a, b| b.error.total_cmp(&a.error));
     points.windows(2).find_map(|w| {
         let (a, b) = (w[0], w[1]);
@@ -70,9 +68,7 @@ pub fn summary_markdown(problems: &[Problem]) -> String {
             ));
         }
         if let Some(r) = p.rustc_seconds {
-            s.push_str(&format!(
-                " rustc (release) on the generated code: {r:.2} s."
-            ));
+            s.push_str(&format!(" rustc (release) on the generated code: {r:.2} s."));
         }
         for (peer, t) in &p.setup {
             s.push_str(&format!(" {peer} set-up (JIT): {:.1} ms.", t * 1e3));
@@ -86,11 +82,7 @@ pub fn summary_markdown(problems: &[Problem]) -> String {
         } else {
             s.push_str("\n| ours | ");
             s.push_str(
-                &peers
-                    .iter()
-                    .map(|(m, _)| format!("vs {m}"))
-                    .collect::<Vec<_>>()
-                    .join(" | "),
+                &peers.iter().map(|(m, _)| format!("vs {m}")).collect::<Vec<_>>().join(" | "),
             );
             s.push_str(" |\n|---|");
             s.push_str(&"---|".repeat(peers.len()));

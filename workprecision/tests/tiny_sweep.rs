@@ -85,27 +85,17 @@ fn a_tiny_sweep_writes_well_formed_csv_svg_and_summary() {
     let mut runner = Runner::new(settings).peer(EulerPeer).peer(AbsentPeer);
     runner.progress = false;
     let problem = runner.run::<Oscillator>().clone();
-    let ours: Vec<&Record> = problem
-        .records
-        .iter()
-        .filter(|r| r.method == "daegen DOP853")
-        .collect();
+    let ours: Vec<&Record> =
+        problem.records.iter().filter(|r| r.method == "daegen DOP853").collect();
     assert_eq!(ours.len(), 2);
     assert!(ours[1].error < ours[0].error, "{ours:?}");
     assert!(ours.iter().all(|r| r.steps > 0 && r.rhs_evals > r.steps));
-    let euler: Vec<&Record> = problem
-        .records
-        .iter()
-        .filter(|r| r.method == "test Euler")
-        .collect();
+    let euler: Vec<&Record> = problem.records.iter().filter(|r| r.method == "test Euler").collect();
     assert_eq!(euler.len(), 2);
     // Euler's error is O(h): ten times smaller h, about ten times smaller error.
     let drop = euler[0].error / euler[1].error;
     assert!((5.0..20.0).contains(&drop), "Euler error ratio {drop}");
-    assert_eq!(
-        problem.missing,
-        vec![("absent".to_string(), "not installed".to_string())]
-    );
+    assert_eq!(problem.missing, vec![("absent".to_string(), "not installed".to_string())]);
     let expansion = problem.expansion.as_ref().expect("the model expands");
     assert!(expansion.bytes > 100 && expansion.code.contains("fn rhs"));
 

@@ -36,9 +36,8 @@ pub fn projection_levels(
     let mut levels = Vec::new();
     let mut lower: Vec<usize> = Vec::new();
     for level in 0..=deepest.unwrap_or(0) {
-        let rows: Vec<usize> = (0..sys.invariants.len())
-            .filter(|&r| sys.invariants[r].level == level)
-            .collect();
+        let rows: Vec<usize> =
+            (0..sys.invariants.len()).filter(|&r| sys.invariants[r].level == level).collect();
         if rows.is_empty() {
             continue;
         }
@@ -49,24 +48,14 @@ pub fn projection_levels(
             .collect();
         involved.sort_unstable();
         involved.dedup();
-        let new: Vec<usize> = involved
-            .iter()
-            .copied()
-            .filter(|s| !lower.contains(s))
-            .collect();
+        let new: Vec<usize> = involved.iter().copied().filter(|s| !lower.contains(s)).collect();
         lower.extend(&involved);
         // A velocity-level constraint (non-holonomic, A(q) v = 0) corrects
         // the velocities it is linear in, not the positions it reads.
-        let velocities: Vec<usize> = new
-            .iter()
-            .copied()
-            .filter(|&s| sys.slots[s].velocity_like)
-            .collect();
-        let new = if !velocities.is_empty() && velocities.len() < new.len() {
-            velocities
-        } else {
-            new
-        };
+        let velocities: Vec<usize> =
+            new.iter().copied().filter(|&s| sys.slots[s].velocity_like).collect();
+        let new =
+            if !velocities.is_empty() && velocities.len() < new.len() { velocities } else { new };
         match levels.last_mut() {
             // Nothing of its own to correct (the hidden constraints of a
             // linear DAE involve every state): projected jointly with the
@@ -146,12 +135,7 @@ pub fn constraint_methods(
             }
         });
     }
-    let fixed = sys
-        .slots
-        .iter()
-        .enumerate()
-        .filter(|(_, s)| s.fixed)
-        .map(|(i, _)| index(i));
+    let fixed = sys.slots.iter().enumerate().filter(|(_, s)| s.fixed).map(|(i, _)| index(i));
     Ok(quote! {
         const FIXED_STATES: &'static [usize] = &[#(#fixed),*];
         const CONSTRAINTS: &'static [::daegen::ConstraintInfo] = &[#(#infos),*];

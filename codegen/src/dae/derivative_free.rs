@@ -81,22 +81,16 @@ pub fn separate(
 ) -> Result<Separated, Failure> {
     // Gaussian elimination with its pivot choice and the bookkeeping of which equations each
     // row combines, kept together so the invariants between them are in view.
-    let mut out = Separated {
-        residuals: residuals.to_vec(),
-        combined: Vec::new(),
-        conditions: Vec::new(),
-    };
+    let mut out =
+        Separated { residuals: residuals.to_vec(), combined: Vec::new(), conditions: Vec::new() };
     let z_index: FxHashMap<SymbolId, usize> = z.iter().enumerate().map(|(j, &s)| (s, j)).collect();
     // The rows: equations linear in their highest derivatives, with
     // coefficients of the parameters, the states and time (not of the
     // algebraic variables).
     let mut rows: Vec<(usize, Vec<(usize, Id)>)> = Vec::new();
     for (i, &r) in residuals.iter().enumerate() {
-        let derivatives: Vec<usize> = g
-            .free_symbols(r)
-            .into_iter()
-            .filter_map(|s| z_index.get(&s).copied())
-            .collect();
+        let derivatives: Vec<usize> =
+            g.free_symbols(r).into_iter().filter_map(|s| z_index.get(&s).copied()).collect();
         if derivatives.is_empty() {
             continue;
         }
@@ -125,10 +119,8 @@ pub fn separate(
     let mut generic_value: FxHashMap<SymbolId, f64> = FxHashMap::default();
     let m = rows.len();
     let columns: Vec<usize> = {
-        let mut c: Vec<usize> = rows
-            .iter()
-            .flat_map(|(_, cs)| cs.iter().map(|&(j, _)| j))
-            .collect();
+        let mut c: Vec<usize> =
+            rows.iter().flat_map(|(_, cs)| cs.iter().map(|&(j, _)| j)).collect();
         c.sort_unstable();
         c.dedup();
         c
@@ -147,15 +139,10 @@ pub fn separate(
             numeric[k][col] = g.eval(&[c], &|s| generic_value.get(&s).copied().unwrap_or(1.0))[0];
         }
     }
-    let scale = numeric
-        .iter()
-        .flatten()
-        .fold(0.0f64, |a, v| a.max(v.abs()))
-        .max(f64::MIN_POSITIVE);
+    let scale = numeric.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs())).max(f64::MIN_POSITIVE);
     // W: each row as a combination of the original rows.
-    let mut weights: Vec<Vec<Id>> = (0..m)
-        .map(|k| (0..m).map(|i| if i == k { one } else { zero }).collect())
-        .collect();
+    let mut weights: Vec<Vec<Id>> =
+        (0..m).map(|k| (0..m).map(|i| if i == k { one } else { zero }).collect()).collect();
     let mut pivoted = vec![false; m];
     for col in 0..columns.len() {
         let Some(p) = (0..m)
@@ -179,10 +166,7 @@ pub fn separate(
             let (i, _) = rows[p];
             out.conditions.push(RankCondition {
                 pivot,
-                text: format!(
-                    "the coefficient of `{}` in `{}`",
-                    z_names[columns[col]], texts[i]
-                ),
+                text: format!("the coefficient of `{}` in `{}`", z_names[columns[col]], texts[i]),
             });
         }
         for k in 0..m {
@@ -270,9 +254,7 @@ mod tests {
         let r2 = g.parse("c*(der(y1) - der(y2)) - y2 + 1").unwrap();
         let texts = ["a".to_string(), "b".to_string()];
         let names = ["der(y1)".to_string(), "der(y2)".to_string()];
-        let Ok(out) = separate(&mut g, &[r1, r2], &z, &texts, &names) else {
-            panic!("separates")
-        };
+        let Ok(out) = separate(&mut g, &[r1, r2], &z, &texts, &names) else { panic!("separates") };
         assert_eq!(out.combined.len(), 1);
         let (replaced, _) = out.combined[0];
         let combination = out.residuals[replaced];
@@ -297,9 +279,7 @@ mod tests {
         // Regular: nothing to combine.
         let r1 = g.parse("der(y1) + der(y2) - y1").unwrap();
         let r2 = g.parse("der(y1) - der(y2) - y2").unwrap();
-        let Ok(out) = separate(&mut g, &[r1, r2], &z, &texts, &names) else {
-            panic!("separates")
-        };
+        let Ok(out) = separate(&mut g, &[r1, r2], &z, &texts, &names) else { panic!("separates") };
         assert!(out.combined.is_empty());
         // The same equation twice, scaled: dependent.
         let r3 = g.parse("2*der(y1) + 2*der(y2) - 2*y1").unwrap();

@@ -80,12 +80,8 @@ pub fn reduce_index(
     residuals: &[Id],
     origins: &[TokenStream],
 ) -> Option<IndexReduction> {
-    let is_unknown: FxHashMap<SymbolId, ()> = unknowns
-        .z
-        .iter()
-        .chain(unknowns.algebraics)
-        .map(|&s| (s, ()))
-        .collect();
+    let is_unknown: FxHashMap<SymbolId, ()> =
+        unknowns.z.iter().chain(unknowns.algebraics).map(|&s| (s, ())).collect();
     let involves_unknown =
         |g: &Graph, r: Id| g.free_symbols(r).iter().any(|s| is_unknown.contains_key(s));
     let explicit = explicit_definitions(g, unknowns, residuals, &is_unknown)?;
@@ -107,12 +103,8 @@ pub fn reduce_index(
     if singular_linear_pencil(cx, g, unknowns, residuals, origins) {
         return None;
     }
-    let unknown_symbols: Vec<SymbolId> = unknowns
-        .z
-        .iter()
-        .chain(unknowns.algebraics)
-        .copied()
-        .collect();
+    let unknown_symbols: Vec<SymbolId> =
+        unknowns.z.iter().chain(unknowns.algebraics).copied().collect();
     let m = residuals.len();
     let mut current = residuals.to_vec();
     let mut level = vec![0usize; m];
@@ -303,10 +295,8 @@ fn singular_linear_pencil(
     if linear_pencil::pencil_is_singular(&e, &a) != Some(true) {
         return false;
     }
-    let listed: Vec<String> = origins
-        .iter()
-        .map(|o| format!("`{}`", crate::front::names::source_text(o)))
-        .collect();
+    let listed: Vec<String> =
+        origins.iter().map(|o| format!("`{}`", crate::front::names::source_text(o))).collect();
     cx.error_at(&origins[0], format!("this linear DAE is inconsistent or under-determined: det(E·s + A) is identically zero, a singular pencil (course notes §2.1, Example 2.2); its equations {} do not determine the variables: change one of them", listed.join(", ")));
     true
 }
@@ -323,11 +313,8 @@ fn explicit_definitions(
     let mut explicit = vec![None; unknowns.z.len()];
     let zero = g.zero();
     for &r in residuals {
-        let involved: Vec<SymbolId> = g
-            .free_symbols(r)
-            .into_iter()
-            .filter(|s| is_unknown.contains_key(s))
-            .collect();
+        let involved: Vec<SymbolId> =
+            g.free_symbols(r).into_iter().filter(|s| is_unknown.contains_key(s)).collect();
         let [s] = involved[..] else { continue };
         let Some(j) = unknowns.z.iter().position(|&z| z == s) else {
             continue;

@@ -80,11 +80,7 @@ pub fn left_null_space(m: &[Vec<Number>]) -> Option<Vec<(usize, Vec<Number>)>> {
         .map(|(i, r)| {
             let mut unit = vec![Number::ZERO; rows];
             unit[i] = Number::ONE;
-            Some((
-                i,
-                r.iter().map(|&x| exact(x)).collect::<Option<Vec<_>>>()?,
-                unit,
-            ))
+            Some((i, r.iter().map(|&x| exact(x)).collect::<Option<Vec<_>>>()?, unit))
         })
         .collect::<Option<_>>()?;
     let mut next = 0;
@@ -110,12 +106,7 @@ pub fn left_null_space(m: &[Vec<Number>]) -> Option<Vec<(usize, Vec<Number>)>> {
         }
         next += 1;
     }
-    Some(
-        work.into_iter()
-            .skip(next)
-            .map(|(original, _, alpha)| (original, alpha))
-            .collect(),
-    )
+    Some(work.into_iter().skip(next).map(|(original, _, alpha)| (original, alpha)).collect())
 }
 
 #[cfg(test)]
@@ -123,9 +114,7 @@ mod tests {
     use super::*;
 
     fn m(rows: &[&[i64]]) -> Vec<Vec<Number>> {
-        rows.iter()
-            .map(|r| r.iter().map(|&x| Number::integer(x)).collect())
-            .collect()
+        rows.iter().map(|r| r.iter().map(|&x| Number::integer(x)).collect()).collect()
     }
 
     #[test]
@@ -148,9 +137,7 @@ mod tests {
             for c in 0..3 {
                 let mut sum = Number::ZERO;
                 for r in 0..4 {
-                    sum = sum
-                        .checked_add(alpha[r].checked_mul(e[r][c]).unwrap())
-                        .unwrap();
+                    sum = sum.checked_add(alpha[r].checked_mul(e[r][c]).unwrap()).unwrap();
                 }
                 assert!(sum.is_zero(), "column {c}");
             }

@@ -98,10 +98,7 @@ pub fn mass_form(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Option<MassFo
     for (slot, derivative) in sys.slots.iter().zip(&sys.derivatives) {
         // A top slot's derivative with λ as a component (not the index-1
         // form's, which eliminated it); a lower slot's is the next slot.
-        let row = match (
-            z.iter().position(|&s| is_next(g, slot.symbol, s)),
-            derivative,
-        ) {
+        let row = match (z.iter().position(|&s| is_next(g, slot.symbol, s)), derivative) {
             (Some(j), _) => match solved.symbolic[j] {
                 Some(w) => w,
                 None => return Ok(None),
@@ -123,12 +120,8 @@ pub fn mass_form(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Option<MassFo
     // Algebraic rows; a multiplier μ for each position-level constraint.
     let mut algebraic_rows = Vec::new();
     for &e in &constraints {
-        let levels: Vec<Id> = sys
-            .invariants
-            .iter()
-            .filter(|i| i.equation == e)
-            .map(|i| i.residual)
-            .collect();
+        let levels: Vec<Id> =
+            sys.invariants.iter().filter(|i| i.equation == e).map(|i| i.residual).collect();
         match sys.differentiations[e] {
             1 => algebraic_rows.push(levels[0]),
             2 => {

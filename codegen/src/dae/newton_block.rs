@@ -70,10 +70,7 @@ pub fn find(g: &mut Graph, model: &Candidates<'_>) -> crate::Result<Option<Newto
     for (e, variables) in &algebraic_equations {
         for &a in variables {
             let d = g.partial(model.residuals[*e], model.algebraics[a].0)?;
-            let nonlinear = g
-                .free_symbols(d)
-                .iter()
-                .any(|&s| algebraic_index(s).is_some());
+            let nonlinear = g.free_symbols(d).iter().any(|&s| algebraic_index(s).is_some());
             if nonlinear {
                 for &b in variables {
                     in_block[b] = true;
@@ -109,10 +106,7 @@ pub fn find(g: &mut Graph, model: &Candidates<'_>) -> crate::Result<Option<Newto
     }
     Ok(Some(NewtonBlock {
         unknowns: members.iter().map(|&a| model.algebraics[a].0).collect(),
-        names: members
-            .iter()
-            .map(|&a| model.algebraics[a].1.clone())
-            .collect(),
+        names: members.iter().map(|&a| model.algebraics[a].1.clone()).collect(),
         guesses: members.iter().map(|&a| model.algebraics[a].2).collect(),
         residuals: equations.iter().map(|&e| model.residuals[e]).collect(),
         texts: equations.iter().map(|&e| model.texts[e].clone()).collect(),

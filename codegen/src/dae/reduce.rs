@@ -117,17 +117,10 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
     }
     let n_states = z_symbols.len();
     let algebraic_symbols: Vec<SymbolId> = ir.algebraics.iter().map(|a| a.symbol).collect();
-    let state_orders: Vec<(SymbolId, u32)> = ir
-        .states
-        .iter()
-        .zip(&order)
-        .map(|(s, &k)| (s.symbol, k))
-        .collect();
+    let state_orders: Vec<(SymbolId, u32)> =
+        ir.states.iter().zip(&order).map(|(s, &k)| (s.symbol, k)).collect();
     let origins: Vec<TokenStream> = ir.equations.iter().map(|e| e.origin.clone()).collect();
-    let texts: Vec<String> = origins
-        .iter()
-        .map(crate::front::names::source_text)
-        .collect();
+    let texts: Vec<String> = origins.iter().map(crate::front::names::source_text).collect();
     // Only a square system (as many equations as unknowns) is separated: in
     // another, a repeated or missing equation is the mistake to report.
     let square = residuals.len() == z_symbols.len() + ir.algebraics.len();
@@ -145,46 +138,18 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         &residuals,
         &origins,
     )?;
-    let newton = newton_block(
-        cx,
-        g,
-        &ir.algebraics,
-        &reduction,
-        &z_symbols,
-        &texts,
-        &origins,
-    )?;
+    let newton = newton_block(cx, g, &ir.algebraics, &reduction, &z_symbols, &texts, &origins)?;
     let in_newton = |s: &SymbolId| newton.as_ref().is_some_and(|b| b.unknowns.contains(s));
     // The unknowns: z, then λ (but for the Newton block's).
-    let linear_algebraics: Vec<crate::front::ir::AlgebraicDecl> = ir
-        .algebraics
-        .iter()
-        .filter(|a| !in_newton(&a.symbol))
-        .cloned()
-        .collect();
+    let linear_algebraics: Vec<crate::front::ir::AlgebraicDecl> =
+        ir.algebraics.iter().filter(|a| !in_newton(&a.symbol)).cloned().collect();
     z_symbols.extend(linear_algebraics.iter().map(|a| a.symbol));
     let z_index: FxHashMap<SymbolId, usize> =
         z_symbols.iter().enumerate().map(|(j, &s)| (s, j)).collect();
-    let equations = equations_in_unknowns(
-        g,
-        &ir.equations,
-        &reduction.residuals,
-        newton.as_ref(),
-        &z_index,
-    );
-    let owner = matched(
-        cx,
-        g,
-        &ir.states,
-        &linear_algebraics,
-        &equations,
-        &z_symbols,
-    )?;
-    let unknowns = Unknowns {
-        z: &z_symbols,
-        index: &z_index,
-        states: n_states,
-    };
+    let equations =
+        equations_in_unknowns(g, &ir.equations, &reduction.residuals, newton.as_ref(), &z_index);
+    let owner = matched(cx, g, &ir.states, &linear_algebraics, &equations, &z_symbols)?;
+    let unknowns = Unknowns { z: &z_symbols, index: &z_index, states: n_states };
     let linear = linear_system(
         cx,
         g,
@@ -214,14 +179,8 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         newton.as_ref(),
     )?;
     ok &= observed;
-    let algebraics = algebraic_values(
-        g,
-        &ir.algebraics,
-        &unknowns,
-        &solved,
-        newton.as_ref(),
-        linear.mass_only,
-    )?;
+    let algebraics =
+        algebraic_values(g, &ir.algebraics, &unknowns, &solved, newton.as_ref(), linear.mass_only)?;
     let (invariants, invariants_ok) =
         invariants(cx, g, &ir.invariants, &z_index, reduction.invariants);
     ok &= invariants_ok;
@@ -273,17 +232,9 @@ fn equations_in_unknowns(
         if newton.is_some_and(|b| b.equations.contains(&e)) {
             continue;
         }
-        let unknowns: Vec<usize> = g
-            .free_symbols(r)
-            .into_iter()
-            .filter_map(|s| z_index.get(&s).copied())
-            .collect();
-        equations.push(Equation {
-            residual: r,
-            unknowns,
-            origin: eq.origin.clone(),
-            index: e,
-        });
+        let unknowns: Vec<usize> =
+            g.free_symbols(r).into_iter().filter_map(|s| z_index.get(&s).copied()).collect();
+        equations.push(Equation { residual: r, unknowns, origin: eq.origin.clone(), index: e });
     }
     equations
 }
@@ -301,11 +252,8 @@ fn observables(
     newton: Option<&crate::dae::newton_block::NewtonBlock>,
 ) -> Option<(Vec<Id>, Vec<Id>, bool)> {
     let in_newton = |s: &SymbolId| newton.is_some_and(|b| b.unknowns.contains(s));
-    let replace: FxHashMap<SymbolId, Id> = z
-        .iter()
-        .enumerate()
-        .filter_map(|(j, &s)| solved.symbolic[j].map(|v| (s, v)))
-        .collect();
+    let replace: FxHashMap<SymbolId, Id> =
+        z.iter().enumerate().filter_map(|(j, &s)| solved.symbolic[j].map(|v| (s, v))).collect();
     let mut ok = true;
     let mut observe = |value: Id, origin: &TokenStream, what: &str| -> Option<Id> {
         let v = g.substitute(value, &replace).ok()?;
@@ -313,10 +261,8 @@ fn observables(
             // Outputs may solve the blocks they read (λ of a mechanism).
             return Some(v);
         }
-        if let Some(s) = g
-            .free_symbols(v)
-            .into_iter()
-            .find(|s| z_index.contains_key(s) || in_newton(s))
+        if let Some(s) =
+            g.free_symbols(v).into_iter().find(|s| z_index.contains_key(s) || in_newton(s))
         {
             let name = g.symbol(s).name.clone();
             cx.error_at(origin, format!("this {what} reads `{name}`, which is only known after a numerical solve; compute it from the states instead"));
@@ -350,12 +296,8 @@ struct Unknowns<'a> {
 fn residuals_and_orders(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<(Vec<Id>, Vec<u32>)> {
     let g = &mut ir.graph;
     let mut order = vec![0u32; ir.states.len()];
-    let state_of: FxHashMap<SymbolId, usize> = ir
-        .states
-        .iter()
-        .enumerate()
-        .map(|(i, s)| (s.symbol, i))
-        .collect();
+    let state_of: FxHashMap<SymbolId, usize> =
+        ir.states.iter().enumerate().map(|(i, s)| (s.symbol, i)).collect();
     let mut residuals = Vec::with_capacity(ir.equations.len());
     for eq in &ir.equations {
         let r = match g.sub(eq.lhs, eq.rhs) {
@@ -378,10 +320,7 @@ fn residuals_and_orders(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<(Vec<Id>, Vec
     // An algebraic variable no equation reads has nothing to determine it
     // (a constraint force left out of the dynamics).
     for a in &ir.algebraics {
-        if !residuals
-            .iter()
-            .any(|&r| g.free_symbols(r).contains(&a.symbol))
-        {
+        if !residuals.iter().any(|&r| g.free_symbols(r).contains(&a.symbol)) {
             let name = &a.name;
             cx.error_at(&a.origin, format!("algebraic variable `{name}` appears in no equation: use it where its constraint acts (a pendulum's `der(u) == -{name} * x;`), or remove it"));
             ok = false;
@@ -456,10 +395,8 @@ fn newton_block(
     texts: &[String],
     origins: &[TokenStream],
 ) -> Option<Option<crate::dae::newton_block::NewtonBlock>> {
-    let candidates: Vec<(SymbolId, String, Id)> = algebraics
-        .iter()
-        .map(|a| (a.symbol, a.name.clone(), a.init))
-        .collect();
+    let candidates: Vec<(SymbolId, String, Id)> =
+        algebraics.iter().map(|a| (a.symbol, a.name.clone(), a.init)).collect();
     let found = crate::dae::newton_block::find(
         g,
         &crate::dae::newton_block::Candidates {
@@ -516,10 +453,8 @@ fn linear_system(
             differentiations[eq.index] == 0 && eq.unknowns.iter().all(|&j| j >= unknowns.states);
         for &j in &eq.unknowns {
             let c = g.partial(eq.residual, unknowns.z[j]).ok()?;
-            if let Some(bad) = g
-                .free_symbols(c)
-                .into_iter()
-                .find(|s| unknowns.index.contains_key(s))
+            if let Some(bad) =
+                g.free_symbols(c).into_iter().find(|s| unknowns.index.contains_key(s))
             {
                 if algebraic_equation && !has_events {
                     mass_only = true;
@@ -542,11 +477,7 @@ fn linear_system(
         g_vec.push(g.negate_terms(r0).ok()?);
         e_matrix.push(row);
     }
-    Some(LinearSystem {
-        e: e_matrix,
-        g: g_vec,
-        mass_only,
-    })
+    Some(LinearSystem { e: e_matrix, g: g_vec, mass_only })
 }
 
 /// The unknowns solved block by block (nothing for a mass-matrix-only
@@ -574,10 +505,7 @@ fn solve(
     match solved {
         Ok(solved) => Some(solved),
         Err(crate::dae::solve_unknowns::Unsolvable::Dependent { equation, unknowns }) => {
-            let names: Vec<String> = unknowns
-                .iter()
-                .map(|&j| format!("`{}`", names[j]))
-                .collect();
+            let names: Vec<String> = unknowns.iter().map(|&j| format!("`{}`", names[j])).collect();
             cx.error_at(
                 &equations[equation].origin,
                 format!(
@@ -612,11 +540,7 @@ fn slots(
         for k in 0..order[i] {
             let id = g.derivative(s.symbol, k).ok()?;
             let symbol = g.as_symbol(id)?;
-            let init = if k == 0 {
-                s.init
-            } else {
-                init_of.get(&symbol).copied().unwrap_or(zero)
-            };
+            let init = if k == 0 { s.init } else { init_of.get(&symbol).copied().unwrap_or(zero) };
             slots.push(Slot {
                 name: g.symbol(symbol).name.clone(),
                 symbol,
@@ -678,10 +602,7 @@ fn algebraic_values(
     let mut algebraics = Vec::with_capacity(declared.len());
     for a in declared {
         if let Some(k) = newton.and_then(|b| b.unknowns.iter().position(|&s| s == a.symbol)) {
-            algebraics.push(SlotDerivative::Block {
-                block: newton_block_index,
-                row: k,
-            });
+            algebraics.push(SlotDerivative::Block { block: newton_block_index, row: k });
             continue;
         }
         let j = *unknowns.index.get(&a.symbol)?;
@@ -710,11 +631,7 @@ fn invariants(
 ) -> (Vec<crate::dae::index_reduction::Invariant>, bool) {
     let mut ok = true;
     for inv in user {
-        if let Some(s) = g
-            .free_symbols(inv.value)
-            .into_iter()
-            .find(|s| z_index.contains_key(s))
-        {
+        if let Some(s) = g.free_symbols(inv.value).into_iter().find(|s| z_index.contains_key(s)) {
             let name = g.symbol(s).name.clone();
             cx.error_at(&inv.origin, format!("an invariant is a function of the states, and this one reads `{name}`: write it without derivatives or algebraic variables"));
             ok = false;
@@ -757,12 +674,7 @@ fn matched(
         false
     }
     let name = |j: usize| format!("`{}`", g.symbol(unknowns[j]).name);
-    let text = |e: usize| {
-        format!(
-            "`{}`",
-            crate::front::names::source_text(&equations[e].origin)
-        )
-    };
+    let text = |e: usize| format!("`{}`", crate::front::names::source_text(&equations[e].origin));
     let mut ok = true;
     for e in 0..equations.len() {
         let mut seen = vec![false; n];

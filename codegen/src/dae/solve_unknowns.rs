@@ -123,12 +123,7 @@ pub fn solve_unknowns(
                         symbolic[j] = Some(w[k]);
                     }
                 }
-                None => {
-                    return Err(Unsolvable::Dependent {
-                        equation: rows[0],
-                        unknowns: cols,
-                    })
-                }
+                None => return Err(Unsolvable::Dependent { equation: rows[0], unknowns: cols }),
             },
             None => {
                 let id = groups.len();
@@ -156,19 +151,15 @@ pub fn solve_unknowns(
         // mechanism with a constant mass matrix) are eliminated symbolically;
         // what is left is the Schur complement G M⁻¹ Gᵀ in the multipliers.
         let eliminated = eliminate_constant_pivots(g, &mut a, &mut b)?;
-        let rest_rows: Vec<usize> = (0..rows.len())
-            .filter(|r| !eliminated.iter().any(|e| e.1 == *r))
-            .collect();
-        let rest_cols: Vec<usize> = (0..cols.len())
-            .filter(|c| !eliminated.iter().any(|e| e.0 == *c))
-            .collect();
+        let rest_rows: Vec<usize> =
+            (0..rows.len()).filter(|r| !eliminated.iter().any(|e| e.1 == *r)).collect();
+        let rest_cols: Vec<usize> =
+            (0..cols.len()).filter(|c| !eliminated.iter().any(|e| e.0 == *c)).collect();
         let mut value: Vec<Option<Id>> = vec![None; cols.len()];
         let mut at_run_time = false;
         if !rest_cols.is_empty() {
-            let sub: Vec<Vec<Id>> = rest_rows
-                .iter()
-                .map(|&r| rest_cols.iter().map(|&c| a[r][c]).collect())
-                .collect();
+            let sub: Vec<Vec<Id>> =
+                rest_rows.iter().map(|&r| rest_cols.iter().map(|&c| a[r][c]).collect()).collect();
             let sub_b: Vec<Id> = rest_rows.iter().map(|&r| b[r]).collect();
             let symbolic_rest = if rest_cols.len() <= SYMBOLIC_BLOCK {
                 solve_symbolic(g, sub.clone(), sub_b.clone())?
@@ -223,12 +214,7 @@ pub fn solve_unknowns(
             }
         }
     }
-    Ok(Solved {
-        symbolic,
-        block_of,
-        blocks,
-        after_solve,
-    })
+    Ok(Solved { symbolic, block_of, blocks, after_solve })
 }
 
 /// A block's right-hand side `g_B − Σ E_BC w_C` over the unknowns `C`
@@ -274,9 +260,7 @@ fn eliminate_constant_pivots(
         let best = (0..k)
             .filter(|r| !eliminated.iter().any(|e| e.1 == *r))
             .filter_map(|r| {
-                pivot_class(g, a[r][c])
-                    .filter(|&class| class <= 1)
-                    .map(|class| (class, r))
+                pivot_class(g, a[r][c]).filter(|&class| class <= 1).map(|class| (class, r))
             })
             .min();
         let Some((_, r)) = best else { continue };
@@ -315,10 +299,8 @@ fn pivot_class(g: &Graph, e: Id) -> Option<u8> {
     if let Some(n) = g.as_number(e) {
         return (!n.is_zero()).then_some(0);
     }
-    let state_free = g
-        .free_symbols(e)
-        .iter()
-        .all(|&s| matches!(g.symbol(s).kind, crate::SymbolKind::Parameter));
+    let state_free =
+        g.free_symbols(e).iter().all(|&s| matches!(g.symbol(s).kind, crate::SymbolKind::Parameter));
     Some(if state_free { 1 } else { 2 })
 }
 
@@ -334,9 +316,7 @@ fn solve_symbolic(
 ) -> crate::Result<Option<Vec<Id>>> {
     let n = a.len();
     for col in 0..n {
-        let best = (col..n)
-            .filter_map(|r| pivot_class(g, a[r][col]).map(|c| (c, r)))
-            .min();
+        let best = (col..n).filter_map(|r| pivot_class(g, a[r][col]).map(|c| (c, r))).min();
         let Some((_, pivot)) = best else {
             return Ok(None);
         };
@@ -432,12 +412,7 @@ pub fn solve_constant(g: &mut Graph, mut m: Vec<Vec<Number>>, mut rhs: Vec<Id>) 
     for col in 0..k {
         let pivot = (col..k)
             .filter(|&r| !m[r][col].is_zero())
-            .max_by(|&a, &b| {
-                m[a][col]
-                    .abs()
-                    .to_f64()
-                    .total_cmp(&m[b][col].abs().to_f64())
-            })?;
+            .max_by(|&a, &b| m[a][col].abs().to_f64().total_cmp(&m[b][col].abs().to_f64()))?;
         m.swap(col, pivot);
         rhs.swap(col, pivot);
         for row in col + 1..k {

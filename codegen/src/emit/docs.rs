@@ -11,10 +11,7 @@ use quote::quote;
 
 /// The generated type's name.
 pub fn type_name(ir: &ModelIr) -> syn::Ident {
-    syn::Ident::new(
-        &upper_camel_case(&ir.fn_name.to_string()),
-        ir.fn_name.span(),
-    )
+    syn::Ident::new(&upper_camel_case(&ir.fn_name.to_string()), ir.fn_name.span())
 }
 
 /// The struct with one `pub f64` per parameter, and its `Default`.
@@ -32,20 +29,13 @@ pub(crate) fn struct_and_default(ir: &ModelIr, analysis: &str) -> TokenStream {
     let doc = doc_attr(&doc);
     let fields = ir.params.iter().map(|p| {
         let (ident, doc) = (&p.ident, &p.doc);
-        let doc = doc_attr(&if doc.is_empty() {
-            format!("Parameter `{ident}`.")
-        } else {
-            doc.clone()
-        });
+        let doc =
+            doc_attr(&if doc.is_empty() { format!("Parameter `{ident}`.") } else { doc.clone() });
         quote!(#[doc = #doc] pub #ident: f64)
     });
     let defaults = ir.params.iter().map(|p| {
         let ident = &p.ident;
-        let v = Literal::f64_unsuffixed(if p.default.is_finite() {
-            p.default
-        } else {
-            0.0
-        });
+        let v = Literal::f64_unsuffixed(if p.default.is_finite() { p.default } else { 0.0 });
         quote!(#ident: #v)
     });
     quote! {
@@ -63,10 +53,7 @@ pub(crate) fn struct_and_default(ir: &ModelIr, analysis: &str) -> TokenStream {
 
 /// A doc comment as rustdoc writes `///` lines: each line after a space.
 pub(crate) fn doc_attr(text: &str) -> String {
-    text.lines()
-        .map(|l| format!(" {l}"))
-        .collect::<Vec<_>>()
-        .join("\n")
+    text.lines().map(|l| format!(" {l}")).collect::<Vec<_>>().join("\n")
 }
 
 /// What index reduction found, for the generated type's documentation:
@@ -76,19 +63,12 @@ pub(crate) fn dae_analysis(ir: &ModelIr, sys: &FirstOrder) -> String {
     if sys.index == 0 && ir.algebraics.is_empty() {
         return String::new();
     }
-    let mut lines = vec![format!(
-        "DAE of differentiation index {} (found at compile time).",
-        sys.index
-    )];
+    let mut lines =
+        vec![format!("DAE of differentiation index {} (found at compile time).", sys.index)];
     for (e, combines) in &sys.combined {
         let texts: Vec<String> = combines
             .iter()
-            .map(|&i| {
-                format!(
-                    "`{}`",
-                    crate::front::names::source_text(&ir.equations[i].origin)
-                )
-            })
+            .map(|&i| format!("`{}`", crate::front::names::source_text(&ir.equations[i].origin)))
             .collect();
         lines.push(format!(
             "- The highest derivatives cancel in a combination of {}: it stands in for `{}` as an equation without them.",
@@ -98,11 +78,7 @@ pub(crate) fn dae_analysis(ir: &ModelIr, sys: &FirstOrder) -> String {
     }
     for (e, &d) in sys.differentiations.iter().enumerate() {
         if d > 0 {
-            let times = if d == 1 {
-                "once".to_string()
-            } else {
-                format!("{d} times")
-            };
+            let times = if d == 1 { "once".to_string() } else { format!("{d} times") };
             let what = if sys.combined.iter().any(|(c, _)| *c == e) {
                 "The combination standing in for "
             } else {
@@ -115,11 +91,7 @@ pub(crate) fn dae_analysis(ir: &ModelIr, sys: &FirstOrder) -> String {
         }
     }
     if !ir.algebraics.is_empty() {
-        let names: Vec<String> = ir
-            .algebraics
-            .iter()
-            .map(|a| format!("`{}`", a.name))
-            .collect();
+        let names: Vec<String> = ir.algebraics.iter().map(|a| format!("`{}`", a.name)).collect();
         lines.push(format!("- Algebraic variables: {}.", names.join(", ")));
     }
     if sys.mass_only {

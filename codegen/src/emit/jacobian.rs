@@ -33,10 +33,8 @@ pub(crate) fn jacobian_items(
                 let k = index(k);
                 quote!(values[#k] = #v;)
             });
-            let dfdt: Vec<Id> = f
-                .iter()
-                .map(|&e| g.partial(e, time))
-                .collect::<crate::Result<_>>()?;
+            let dfdt: Vec<Id> =
+                f.iter().map(|&e| g.partial(e, time)).collect::<crate::Result<_>>()?;
             let time = program(g, layout, &dfdt, &|i, v| {
                 let i = index(i);
                 quote!(dfdt[#i] = #v;)
@@ -49,12 +47,8 @@ pub(crate) fn jacobian_items(
         }
         None => (
             quote!(&[]),
-            quote!(::core::result::Result::Err(
-                ::daegen::EvalError::JacobianUnavailable
-            )),
-            quote!(::core::result::Result::Err(
-                ::daegen::EvalError::JacobianUnavailable
-            )),
+            quote!(::core::result::Result::Err(::daegen::EvalError::JacobianUnavailable)),
+            quote!(::core::result::Result::Err(::daegen::EvalError::JacobianUnavailable)),
         ),
     })
 }

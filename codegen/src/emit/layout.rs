@@ -23,12 +23,7 @@ impl Layout {
     /// array its solve returns.
     pub(crate) fn of_system(sys: &FirstOrder) -> Layout {
         let mut layout = Layout {
-            slot_of: sys
-                .slots
-                .iter()
-                .enumerate()
-                .map(|(i, s)| (s.symbol, i))
-                .collect(),
+            slot_of: sys.slots.iter().enumerate().map(|(i, s)| (s.symbol, i)).collect(),
             block_of: Default::default(),
             taylor_of: Default::default(),
         };
@@ -43,11 +38,7 @@ impl Layout {
     /// Component `i` of the state read as `y[i]`.
     pub(crate) fn of_components(components: &[SymbolId]) -> Layout {
         Layout {
-            slot_of: components
-                .iter()
-                .enumerate()
-                .map(|(i, &s)| (s, i))
-                .collect(),
+            slot_of: components.iter().enumerate().map(|(i, &s)| (s, i)).collect(),
             block_of: Default::default(),
             taylor_of: Default::default(),
         }

@@ -83,11 +83,7 @@ pub fn expand(
     let mut analysis = dae_analysis(ir, sys);
     if let Some(reason) = &taylor_unavailable {
         let note = format!("`Method::Taylor` is not available: {reason}.");
-        analysis = if analysis.is_empty() {
-            note
-        } else {
-            format!("{analysis}\n\n{note}")
-        };
+        analysis = if analysis.is_empty() { note } else { format!("{analysis}\n\n{note}") };
     }
     let struct_and_default = struct_and_default(ir, &analysis);
     let n_lit = index(n);
@@ -158,23 +154,21 @@ fn mass_form_items(
     sys: &FirstOrder,
     name: &syn::Ident,
 ) -> crate::Result<(TokenStream, TokenStream)> {
-    Ok(
-        match crate::dae::mass_form::mass_form(&mut ir.graph, sys)? {
-            Some(form) => {
-                let form_layout = Layout::of_components(&form.components);
-                let params: Vec<syn::Ident> = ir.params.iter().map(|p| p.ident.clone()).collect();
-                crate::dae::mass_form::emit_mass_form(
-                    &mut ir.graph,
-                    &form,
-                    name,
-                    &ir.vis,
-                    &params,
-                    &|g, ids, assign| program(g, &form_layout, ids, assign),
-                )?
-            }
-            None => (TokenStream::new(), TokenStream::new()),
-        },
-    )
+    Ok(match crate::dae::mass_form::mass_form(&mut ir.graph, sys)? {
+        Some(form) => {
+            let form_layout = Layout::of_components(&form.components);
+            let params: Vec<syn::Ident> = ir.params.iter().map(|p| p.ident.clone()).collect();
+            crate::dae::mass_form::emit_mass_form(
+                &mut ir.graph,
+                &form,
+                name,
+                &ir.vis,
+                &params,
+                &|g, ids, assign| program(g, &form_layout, ids, assign),
+            )?
+        }
+        None => (TokenStream::new(), TokenStream::new()),
+    })
 }
 
 /// A model whose algebraic equations are nonlinear in the algebraic

@@ -111,11 +111,7 @@ pub(crate) fn block_solve_code(
     let mut solve = TokenStream::new();
     for (b, block) in sys.blocks.iter().enumerate() {
         let k = block.rhs.len();
-        let (m, gv, kk) = (
-            format_ident!("mass{}", b),
-            format_ident!("rhs{}", b),
-            index(k),
-        );
+        let (m, gv, kk) = (format_ident!("mass{}", b), format_ident!("rhs{}", b), index(k));
         setup.extend(quote!(let mut #m = [[0.0f64; #kk]; #kk]; let mut #gv = [0.0f64; #kk];));
         for (r, &e) in block.rhs.iter().enumerate() {
             let rl = index(r);

@@ -40,24 +40,14 @@ pub(crate) fn output_arms(
         let linear = block_solve_code(g, layout, sys, quote!(return f64::NAN));
         quote!(#newton_solve #linear)
     };
-    layout.block_of = sys
-        .block_unknowns
-        .iter()
-        .map(|&(s, b, r)| (s, (b, r)))
-        .collect();
+    layout.block_of = sys.block_unknowns.iter().map(|&(s, b, r)| (s, (b, r))).collect();
     let output_arms: Vec<TokenStream> = observables
         .iter()
         .enumerate()
         .map(|(k, &o)| {
-            let reads_block = g
-                .free_symbols(o)
-                .iter()
-                .any(|s| layout.block_of.contains_key(s));
-            let solve = if reads_block {
-                block_solve_for_outputs.clone()
-            } else {
-                TokenStream::new()
-            };
+            let reads_block = g.free_symbols(o).iter().any(|s| layout.block_of.contains_key(s));
+            let solve =
+                if reads_block { block_solve_for_outputs.clone() } else { TokenStream::new() };
             let body = program(g, layout, &[o], &|_, v| v);
             let k = index(k);
             quote!(#k => { #solve #body })

@@ -48,11 +48,7 @@ pub fn emit_program(
             symbols[s.index()] = Some(symbol(*s).to_string());
         }
     }
-    let e = Emitter {
-        g,
-        program,
-        symbols,
-    };
+    let e = Emitter { g, program, symbols };
     let mut text = String::new();
     for t in &program.temps {
         let _ = writeln!(text, "let {} = {};", t.name, e.inline(t.node).0);
@@ -133,10 +129,7 @@ impl Emitter<'_> {
             Node::Number(n) => number(*n),
             Node::Symbol(s) => match self.g.symbol(*s).kind {
                 SymbolKind::Intermediate { definition } => self.render(definition),
-                _ => (
-                    self.symbols[s.index()].clone().unwrap_or_default(),
-                    Prec::Postfix,
-                ),
+                _ => (self.symbols[s.index()].clone().unwrap_or_default(), Prec::Postfix),
             },
             Node::Add(terms) => self.sum(terms),
             Node::Mul(factors) => {
@@ -259,11 +252,7 @@ impl Emitter<'_> {
             c if !c.is_one() => numerator.insert(0, number(c).0),
             _ => {}
         }
-        let mut body = if numerator.is_empty() {
-            "1.0".to_string()
-        } else {
-            numerator.join(" * ")
-        };
+        let mut body = if numerator.is_empty() { "1.0".to_string() } else { numerator.join(" * ") };
         match denominator.len() {
             0 => {}
             1 => {
@@ -271,10 +260,8 @@ impl Emitter<'_> {
                 let _ = write!(body, " / {d}");
             }
             _ => {
-                let parts: Vec<String> = denominator
-                    .into_iter()
-                    .map(|p| paren(p, Prec::Product))
-                    .collect();
+                let parts: Vec<String> =
+                    denominator.into_iter().map(|p| paren(p, Prec::Product)).collect();
                 let _ = write!(body, " / ({})", parts.join(" * "));
             }
         }
@@ -310,11 +297,7 @@ impl Emitter<'_> {
 fn number(n: Number) -> Piece {
     let (body, prec) = match n.abs() {
         Number::Rational(r) if !r.is_exact_in_f64() => (
-            format!(
-                "{} / {}",
-                integer_literal(r.numer()),
-                integer_literal(r.denom())
-            ),
+            format!("{} / {}", integer_literal(r.numer()), integer_literal(r.denom())),
             Prec::Product,
         ),
         a => (literal(a.to_f64()), Prec::Postfix),

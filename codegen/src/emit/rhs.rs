@@ -77,11 +77,7 @@ pub(crate) fn rhs_items(
     if !after.is_empty() {
         let after_layout = Layout {
             slot_of: layout.slot_of.clone(),
-            block_of: sys
-                .block_unknowns
-                .iter()
-                .map(|&(s, b, r)| (s, (b, r)))
-                .collect(),
+            block_of: sys.block_unknowns.iter().map(|&(s, b, r)| (s, (b, r))).collect(),
             taylor_of: Default::default(),
         };
         let ids: Vec<Id> = after.iter().map(|x| x.1).collect();

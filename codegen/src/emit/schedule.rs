@@ -60,10 +60,7 @@ impl Program {
             let v = self.inline_value(g, t.node, true, &done, value)?;
             done.insert(t.node, v);
         }
-        self.outputs
-            .iter()
-            .map(|&o| self.inline_value(g, o, false, &done, value))
-            .collect()
+        self.outputs.iter().map(|&o| self.inline_value(g, o, false, &done, value)).collect()
     }
 
     fn inline_value(
@@ -163,12 +160,7 @@ impl Graph {
             if is_leaf(self, id) || is_negated_leaf(self, id) {
                 continue;
             }
-            let d = 1 + self
-                .operands(id)
-                .iter()
-                .map(|c| depth[position[c]])
-                .max()
-                .unwrap_or(0);
+            let d = 1 + self.operands(id).iter().map(|c| depth[position[c]]).max().unwrap_or(0);
             let named = matches!(self.node(id), Node::Symbol(_));
             if named || uses[i] > 1 || d > MAX_INLINE_DEPTH {
                 is_temp[i] = true;
@@ -176,12 +168,8 @@ impl Graph {
                 depth[i] = d;
             }
         }
-        let temp_nodes: Vec<Id> = order
-            .iter()
-            .zip(&is_temp)
-            .filter(|(_, &t)| t)
-            .map(|(&id, _)| id)
-            .collect();
+        let temp_nodes: Vec<Id> =
+            order.iter().zip(&is_temp).filter(|(_, &t)| t).map(|(&id, _)| id).collect();
         let taken: BTreeSet<&str> = temp_nodes
             .iter()
             .filter_map(|&id| self.as_symbol(id).map(|s| self.symbol(s).name.as_str()))
@@ -203,12 +191,7 @@ impl Graph {
             temp_of.insert(id, temps.len());
             temps.push(Temp { node: id, name });
         }
-        Program {
-            temps,
-            outputs: outputs.to_vec(),
-            temp_of,
-            root_of,
-        }
+        Program { temps, outputs: outputs.to_vec(), temp_of, root_of }
     }
 
     /// Every node the outputs need, dependencies first: operands, and for a
@@ -234,12 +217,8 @@ impl Graph {
             let mut deps: Vec<Id> = self.operands(id).to_vec();
             deps.extend(root_of.get(&id));
             deps.sort_unstable();
-            stack.extend(
-                deps.into_iter()
-                    .rev()
-                    .filter(|d| !visited[d.index()])
-                    .map(|d| (d, false)),
-            );
+            stack
+                .extend(deps.into_iter().rev().filter(|d| !visited[d.index()]).map(|d| (d, false)));
         }
         order
     }

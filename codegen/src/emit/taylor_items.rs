@@ -77,10 +77,7 @@ pub(crate) fn taylor_refusal(e: &crate::Error) -> String {
         .split("; this model")
         .nth(1)
         .map_or(reason.to_string(), |r| format!("the model{}", r));
-    reason.replace(
-        "`taylor = p` needs an explicit ODE",
-        "the model is no explicit ODE",
-    )
+    reason.replace("`taylor = p` needs an explicit ODE", "the model is no explicit ODE")
 }
 
 /// `TAYLOR_ORDER` and `taylor_derivatives`: D_1 = f and D_{k+1} the total
@@ -184,18 +181,11 @@ pub(crate) fn taylor_tape_items(
     });
     let (ops, outs) = (&tape.ops, &tape.outputs);
     // The unrolled layout, for the orders the user asked for.
-    let numbers: Vec<Option<f64>> = consts
-        .iter()
-        .map(|&id| g.as_number(id).map(|x| x.to_f64()))
-        .collect();
+    let numbers: Vec<Option<f64>> =
+        consts.iter().map(|&id| g.as_number(id).map(|x| x.to_f64())).collect();
     let jets: Vec<_> = unroll
         .iter()
-        .map(|&order| {
-            (
-                order,
-                crate::taylor::unrolled::unrolled_jet(&tape, n, order, &numbers),
-            )
-        })
+        .map(|&order| (order, crate::taylor::unrolled::unrolled_jet(&tape, n, order, &numbers)))
         .collect();
     let jet_lengths = jets.iter().map(|(order, jet)| {
         let (order, buffer) = (index(*order), index(jet.buffer));
@@ -216,11 +206,8 @@ pub(crate) fn taylor_tape_items(
         }
     });
     let unrolled_orders = unroll.iter().map(|&o| index(o));
-    let by_coefficient: Vec<_> = jets
-        .iter()
-        .filter(|(_, jet)| jet.by_coefficient)
-        .map(|(order, _)| index(*order))
-        .collect();
+    let by_coefficient: Vec<_> =
+        jets.iter().filter(|(_, jet)| jet.by_coefficient).map(|(order, _)| index(*order)).collect();
     let by_coefficient = if by_coefficient.is_empty() {
         TokenStream::new()
     } else {

@@ -14,10 +14,7 @@ use crate::expr::node::{Func, Id, Node};
 use crate::expr::number::Number;
 
 fn overflow(expression: String) -> Error {
-    Error::NotFinite {
-        expression,
-        reason: "the result overflows f64",
-    }
+    Error::NotFinite { expression, reason: "the result overflows f64" }
 }
 
 impl Graph {
@@ -45,10 +42,7 @@ impl Graph {
         match self.node(a) {
             Node::Add(terms) => {
                 let terms = terms.to_vec();
-                let negated = terms
-                    .into_iter()
-                    .map(|t| self.neg(t))
-                    .collect::<Result<Vec<_>>>()?;
+                let negated = terms.into_iter().map(|t| self.neg(t)).collect::<Result<Vec<_>>>()?;
                 self.sum(&negated)
             }
             _ => self.neg(a),
@@ -91,9 +85,7 @@ impl Graph {
         // `e + 0` is `e` itself, even when `e` is a scaled sum like `2*(x + y)`.
         let mut non_numbers = pending.iter().filter(|&&t| self.as_number(t).is_none());
         if let (Some(&only), None) = (non_numbers.next(), non_numbers.next()) {
-            if pending
-                .iter()
-                .all(|&t| t == only || self.as_number(t).is_some_and(Number::is_zero))
+            if pending.iter().all(|&t| t == only || self.as_number(t).is_some_and(Number::is_zero))
             {
                 return Ok(only);
             }
@@ -103,12 +95,9 @@ impl Graph {
         let mut work: Vec<(Number, Id)> = pending.into_iter().map(|t| (Number::ONE, t)).collect();
         while let Some((scale, t)) = work.pop() {
             if let Some(n) = self.as_number(t) {
-                let n = scale
-                    .checked_mul(n)
-                    .ok_or_else(|| overflow(format!("{scale} * {n}")))?;
-                constant = constant
-                    .checked_add(n)
-                    .ok_or_else(|| overflow(format!("{constant} + {n}")))?;
+                let n = scale.checked_mul(n).ok_or_else(|| overflow(format!("{scale} * {n}")))?;
+                constant =
+                    constant.checked_add(n).ok_or_else(|| overflow(format!("{constant} + {n}")))?;
                 continue;
             }
             let (coefficient, rest) = self.split_coefficient(t);
@@ -313,11 +302,7 @@ impl Graph {
                         } else {
                             format!("{}^{}", paren_if_negative(b), paren_if_fraction(e))
                         },
-                        reason: if b.is_zero() {
-                            "division by zero"
-                        } else {
-                            "not a real number"
-                        },
+                        reason: if b.is_zero() { "division by zero" } else { "not a real number" },
                     }),
                 };
             }
@@ -364,10 +349,8 @@ impl Graph {
     }
 
     fn fold_call(&self, f: Func, x: Number) -> Result<Number> {
-        let not_finite = |reason| Error::NotFinite {
-            expression: format!("{}({x})", f.name()),
-            reason,
-        };
+        let not_finite =
+            |reason| Error::NotFinite { expression: format!("{}({x})", f.name()), reason };
         let exact = match f {
             Func::Sin | Func::Tan | Func::Asin | Func::Atan | Func::Sinh | Func::Tanh
                 if x.is_zero() =>

@@ -153,10 +153,7 @@ impl Graph {
                     terms.push(self.product(&[e, p, db])?);
                 }
                 if de != zero {
-                    if self
-                        .as_number(b)
-                        .is_some_and(|n| n.is_negative() || n.is_zero())
-                    {
+                    if self.as_number(b).is_some_and(|n| n.is_negative() || n.is_zero()) {
                         return Err(crate::Error::NotFinite {
                             expression: self.show(id).to_string(),
                             reason:

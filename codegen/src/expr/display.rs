@@ -76,19 +76,13 @@ fn text(g: &Graph, id: Id) -> (String, Prec) {
         }
         Node::Pow([b, e]) => match g.as_number(*e) {
             Some(n) if n.is_negative() => (
-                format!(
-                    "1/{}",
-                    wrap(power_text(g, *b, &number_text(n.negated())), Prec::Unary)
-                ),
+                format!("1/{}", wrap(power_text(g, *b, &number_text(n.negated())), Prec::Unary)),
                 Prec::Product,
             ),
             _ => power_text(g, *b, &text(g, *e)),
         },
         Node::Call(f, a) => (format!("{}({})", f.name(), text(g, *a).0), Prec::Atom),
-        Node::Atan2([y, x]) => (
-            format!("atan2({}, {})", text(g, *y).0, text(g, *x).0),
-            Prec::Atom,
-        ),
+        Node::Atan2([y, x]) => (format!("atan2({}, {})", text(g, *y).0, text(g, *x).0), Prec::Atom),
     }
 }
 
@@ -141,15 +135,9 @@ fn term_text(g: &Graph, id: Id) -> (bool, String, Prec) {
                 }
                 None => numerator.insert(0, (c.to_string(), Prec::Atom)),
             }
-            let numerator: Vec<String> = numerator
-                .into_iter()
-                .map(|f| wrap(f, Prec::Unary))
-                .collect();
-            let mut s = if numerator.is_empty() {
-                "1".to_string()
-            } else {
-                numerator.join("*")
-            };
+            let numerator: Vec<String> =
+                numerator.into_iter().map(|f| wrap(f, Prec::Unary)).collect();
+            let mut s = if numerator.is_empty() { "1".to_string() } else { numerator.join("*") };
             match denominator.len() {
                 0 => {}
                 1 => {
@@ -157,10 +145,8 @@ fn term_text(g: &Graph, id: Id) -> (bool, String, Prec) {
                     s.push_str(&wrap(denominator.remove(0), Prec::Unary));
                 }
                 _ => {
-                    let d: Vec<String> = denominator
-                        .into_iter()
-                        .map(|p| wrap(p, Prec::Unary))
-                        .collect();
+                    let d: Vec<String> =
+                        denominator.into_iter().map(|p| wrap(p, Prec::Unary)).collect();
                     s.push_str(&format!("/({})", d.join("*")));
                 }
             }

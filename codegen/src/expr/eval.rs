@@ -40,10 +40,7 @@ impl Graph {
     pub fn eval_named(&self, id: Id, values: &[(&str, f64)]) -> f64 {
         let lookup = |s: SymbolId| {
             let name = &self.symbol(s).name;
-            values
-                .iter()
-                .find(|(n, _)| n == name)
-                .map_or(f64::NAN, |&(_, v)| v)
+            values.iter().find(|(n, _)| n == name).map_or(f64::NAN, |&(_, v)| v)
         };
         self.eval(&[id], &lookup)[0]
     }

@@ -118,10 +118,7 @@ impl Graph {
         }
         let smooth = match &node {
             Node::Call(f, _) if !f.is_smooth() => false,
-            _ => self
-                .operands_of(&node)
-                .iter()
-                .all(|c| self.smooth[c.index()]),
+            _ => self.operands_of(&node).iter().all(|c| self.smooth[c.index()]),
         };
         let id = Id(u32::try_from(self.nodes.len()).expect("expression graph exceeds 2^32 nodes"));
         self.nodes.push(node.clone());
@@ -194,10 +191,7 @@ impl Graph {
 
     /// All symbols, in creation order.
     pub fn symbols(&self) -> impl Iterator<Item = (SymbolId, &Symbol)> {
-        self.symbols
-            .iter()
-            .enumerate()
-            .map(|(i, s)| (SymbolId(i as u32), s))
+        self.symbols.iter().enumerate().map(|(i, s)| (SymbolId(i as u32), s))
     }
 
     /// The symbol with this name, if any.
@@ -212,15 +206,10 @@ impl Graph {
             if self.symbols[s.index()].kind == kind {
                 return Ok(self.symbol_node(s));
             }
-            return Err(Error::NameTaken {
-                name: name.to_string(),
-            });
+            return Err(Error::NameTaken { name: name.to_string() });
         }
         let s = SymbolId(self.symbols.len() as u32);
-        self.symbols.push(Symbol {
-            name: name.to_string(),
-            kind,
-        });
+        self.symbols.push(Symbol { name: name.to_string(), kind });
         self.symbol_names.insert(name.to_string(), s);
         let id = self.intern(Node::Symbol(s));
         self.symbol_nodes.push(id);
@@ -267,12 +256,8 @@ impl Graph {
             return Ok(self.symbol_node(s));
         }
         let base_name = &self.symbols[base.index()].name;
-        let name = format!(
-            "{}{}{}",
-            "der(".repeat(order as usize),
-            base_name,
-            ")".repeat(order as usize)
-        );
+        let name =
+            format!("{}{}{}", "der(".repeat(order as usize), base_name, ")".repeat(order as usize));
         let id = self.add_symbol(&name, SymbolKind::Derivative { of: base, order })?;
         if let Node::Symbol(s) = self.node(id) {
             self.derivatives.insert((base, order), *s);
@@ -317,10 +302,7 @@ impl Graph {
             .into_iter()
             .filter_map(|n| match self.node(n) {
                 Node::Symbol(s)
-                    if !matches!(
-                        self.symbols[s.index()].kind,
-                        SymbolKind::Intermediate { .. }
-                    ) =>
+                    if !matches!(self.symbols[s.index()].kind, SymbolKind::Intermediate { .. }) =>
                 {
                     Some(*s)
                 }

@@ -49,10 +49,6 @@ impl Graph {
                 }
             }
         }
-        Ok(SparseJacobian {
-            rows: outputs.len(),
-            cols: wrt.len(),
-            entries,
-        })
+        Ok(SparseJacobian { rows: outputs.len(), cols: wrt.len(), entries })
     }
 }

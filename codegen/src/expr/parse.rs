@@ -22,12 +22,7 @@ struct Parser<'a, 'g> {
 impl Graph {
     /// Builds the expression written in the text syntax.
     pub fn parse(&mut self, src: &str) -> Result<Id> {
-        let mut p = Parser {
-            src,
-            pos: 0,
-            depth: 0,
-            g: self,
-        };
+        let mut p = Parser { src, pos: 0, depth: 0, g: self };
         let e = p.expr()?;
         p.skip_ws();
         if p.pos < src.len() {
@@ -39,10 +34,7 @@ impl Graph {
 
 impl Parser<'_, '_> {
     fn error(&self, message: &str) -> Error {
-        Error::Parse {
-            position: self.pos,
-            message: message.to_string(),
-        }
+        Error::Parse { position: self.pos, message: message.to_string() }
     }
 
     fn skip_ws(&mut self) {

@@ -54,10 +54,7 @@ impl Rational {
             num = -num;
             den = -den;
         }
-        Some(Rational {
-            num: i64::try_from(num).ok()?,
-            den: i64::try_from(den).ok()?,
-        })
+        Some(Rational { num: i64::try_from(num).ok()?, den: i64::try_from(den).ok()? })
     }
 
     /// The exact rational value of `v` when it is a fraction with a small
@@ -118,34 +115,19 @@ impl Rational {
 
     /// Exact sum.
     pub fn checked_add(self, o: Rational) -> Option<Rational> {
-        let (a, b, c, d) = (
-            self.num as i128,
-            self.den as i128,
-            o.num as i128,
-            o.den as i128,
-        );
+        let (a, b, c, d) = (self.num as i128, self.den as i128, o.num as i128, o.den as i128);
         Self::from_i128(a * d + c * b, b * d)
     }
 
     /// Exact product.
     pub fn checked_mul(self, o: Rational) -> Option<Rational> {
-        let (a, b, c, d) = (
-            self.num as i128,
-            self.den as i128,
-            o.num as i128,
-            o.den as i128,
-        );
+        let (a, b, c, d) = (self.num as i128, self.den as i128, o.num as i128, o.den as i128);
         Self::from_i128(a * c, b * d)
     }
 
     /// Exact quotient; `None` for division by zero.
     pub fn checked_div(self, o: Rational) -> Option<Rational> {
-        let (a, b, c, d) = (
-            self.num as i128,
-            self.den as i128,
-            o.num as i128,
-            o.den as i128,
-        );
+        let (a, b, c, d) = (self.num as i128, self.den as i128, o.num as i128, o.den as i128);
         Self::from_i128(a * d, b * c)
     }
 
@@ -156,11 +138,7 @@ impl Rational {
 
     /// Exact integer power; `None` on overflow or `0` to a negative power.
     pub fn checked_powi(self, n: i64) -> Option<Rational> {
-        let base = if n < 0 {
-            Rational::ONE.checked_div(self)?
-        } else {
-            self
-        };
+        let base = if n < 0 { Rational::ONE.checked_div(self)? } else { self };
         let mut e = n.unsigned_abs();
         let mut acc = Rational::ONE;
         let mut sq = base;

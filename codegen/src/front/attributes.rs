@@ -45,10 +45,9 @@ pub fn attributes(cx: &mut Ctxt, attr: TokenStream) -> Attributes {
         return out;
     };
     let integer = |e: &syn::Expr| match e {
-        syn::Expr::Lit(syn::ExprLit {
-            lit: syn::Lit::Int(i),
-            ..
-        }) => i.base10_parse::<usize>().ok(),
+        syn::Expr::Lit(syn::ExprLit { lit: syn::Lit::Int(i), .. }) => {
+            i.base10_parse::<usize>().ok()
+        }
         _ => None,
     };
     for arg in &args {
@@ -63,11 +62,9 @@ pub fn attributes(cx: &mut Ctxt, attr: TokenStream) -> Attributes {
             }
         } else if arg.path.is_ident("unroll") && out.unroll.is_empty() {
             let orders: Option<Vec<usize>> = match &arg.value {
-                syn::Expr::Array(a) if !a.elems.is_empty() => a
-                    .elems
-                    .iter()
-                    .map(|e| integer(e).filter(|p| (2..=40).contains(p)))
-                    .collect(),
+                syn::Expr::Array(a) if !a.elems.is_empty() => {
+                    a.elems.iter().map(|e| integer(e).filter(|p| (2..=40).contains(p))).collect()
+                }
                 _ => None,
             };
             match orders {
@@ -104,8 +101,7 @@ pub fn attributes(cx: &mut Ctxt, attr: TokenStream) -> Attributes {
         if !out.written.is_empty() {
             out.written.push_str(", ");
         }
-        out.written
-            .push_str(&quote::ToTokens::to_token_stream(arg).to_string());
+        out.written.push_str(&quote::ToTokens::to_token_stream(arg).to_string());
     }
     out
 }

@@ -143,10 +143,7 @@ pub fn lower_with(cx: &mut Ctxt, item: &syn::ItemFn, recursive: bool) -> ModelIr
         equations: Vec::new(),
         inits: Vec::new(),
         invariants: Vec::new(),
-        scene: Scene {
-            recursive,
-            ..Scene::default()
-        },
+        scene: Scene { recursive, ..Scene::default() },
         unrolled: 0,
         non_smooth_calls: Vec::new(),
     };
@@ -166,10 +163,7 @@ pub fn lower_with(cx: &mut Ctxt, item: &syn::ItemFn, recursive: bool) -> ModelIr
     // under a name no declaration took.
     let time = l.time.or_else(|| {
         let names = std::iter::once("t".to_string()).chain((0..).map(|k| format!("__time{k}")));
-        names
-            .into_iter()
-            .find_map(|n| l.g.time(&n).ok())
-            .and_then(|id| l.g.as_symbol(id))
+        names.into_iter().find_map(|n| l.g.time(&n).ok()).and_then(|id| l.g.as_symbol(id))
     });
     let time = time.unwrap_or(SymbolId(0));
     l.scene_equations(item);
@@ -209,9 +203,7 @@ pub fn doc_comment(attrs: &[syn::Attribute]) -> String {
         .filter(|a| a.path().is_ident("doc"))
         .filter_map(|a| match &a.meta {
             syn::Meta::NameValue(nv) => match &nv.value {
-                Expr::Lit(syn::ExprLit {
-                    lit: Lit::Str(s), ..
-                }) => Some(s.value()),
+                Expr::Lit(syn::ExprLit { lit: Lit::Str(s), .. }) => Some(s.value()),
                 _ => None,
             },
             _ => None,
@@ -295,12 +287,10 @@ impl Lower<'_> {
                 }
             }
             Stmt::Expr(e, _) => self.expr_stmt(e),
-            Stmt::Item(other) => self
-                .cx
-                .error_at(other, "only `const` items are allowed in a model"),
-            Stmt::Macro(m) => self
-                .cx
-                .error_at(m, "macros are not part of the model language"),
+            Stmt::Item(other) => {
+                self.cx.error_at(other, "only `const` items are allowed in a model")
+            }
+            Stmt::Macro(m) => self.cx.error_at(m, "macros are not part of the model language"),
         }
     }
 
@@ -309,29 +299,19 @@ impl Lower<'_> {
             Pat::Ident(p) => (p.ident.clone(), p.mutability.is_some()),
             Pat::Type(t) => match &*t.pat {
                 Pat::Ident(p) => (p.ident.clone(), p.mutability.is_some()),
-                other => {
-                    return self
-                        .cx
-                        .error_at(other, "bind a single name: `let x = ...;`")
-                }
+                other => return self.cx.error_at(other, "bind a single name: `let x = ...;`"),
             },
-            other => {
-                return self
-                    .cx
-                    .error_at(other, "bind a single name: `let x = ...;`")
-            }
+            other => return self.cx.error_at(other, "bind a single name: `let x = ...;`"),
         };
         let Some(init) = &local.init else {
-            return self.cx.error_at(
-                local,
-                format!("`{ident}` needs a value: `let {ident} = ...;`"),
-            );
+            return self
+                .cx
+                .error_at(local, format!("`{ident}` needs a value: `let {ident} = ...;`"));
         };
         if let Some((_, else_branch)) = &init.diverge {
-            return self.cx.error_at(
-                else_branch,
-                "`let ... else` is not part of the model language",
-            );
+            return self
+                .cx
+                .error_at(else_branch, "`let ... else` is not part of the model language");
         }
         let e = &*init.expr;
         let doc = doc_comment(&local.attrs);
@@ -367,10 +347,7 @@ impl Lower<'_> {
                     return self.cx.error_at(e, format!("declare `{name}(...)` outside loops: each iteration would declare `{ident}` again"));
                 }
                 if mutable {
-                    self.cx.error_at(
-                        &local.pat,
-                        format!("a {name} cannot be `mut`: remove `mut`"),
-                    );
+                    self.cx.error_at(&local.pat, format!("a {name} cannot be `mut`: remove `mut`"));
                 }
                 let first = self.states.len();
                 self.declaration(&ident, &name, call, doc, local);
@@ -387,10 +364,7 @@ impl Lower<'_> {
                 (None, false) => self.bind(&ident, Binding::Tensor(t)),
                 (None, true) => self.cx.error_at(
                     &local.pat,
-                    format!(
-                        "a {} cannot be `mut`: bind each new value with `let`",
-                        t.shape()
-                    ),
+                    format!("a {} cannot be `mut`: bind each new value with `let`", t.shape()),
                 ),
             }
             return;
@@ -440,8 +414,7 @@ impl Lower<'_> {
         for m in settings {
             let setting = m.method.to_string();
             if !m.args.is_empty() {
-                self.cx
-                    .error_at(&m.args, format!("`.{setting}()` takes no argument"));
+                self.cx.error_at(&m.args, format!("`.{setting}()` takes no argument"));
                 continue;
             }
             let wanted = match setting.as_str() {
@@ -478,13 +451,7 @@ impl Lower<'_> {
             doc,
             origin: local.to_token_stream(),
         });
-        self.bind(
-            ident,
-            Binding::Value {
-                id: value,
-                mutable: false,
-            },
-        );
+        self.bind(ident, Binding::Value { id: value, mutable: false });
     }
 
     pub(crate) fn arity(&mut self, call: &syn::ExprCall, name: &str, n: usize) -> bool {
@@ -496,10 +463,7 @@ impl Lower<'_> {
             1 => "one argument".to_string(),
             n => format!("{n} arguments"),
         };
-        self.cx.error_at(
-            call,
-            format!("`{name}` takes {args}, not {}", call.args.len()),
-        );
+        self.cx.error_at(call, format!("`{name}` takes {args}, not {}", call.args.len()));
         false
     }
 
@@ -525,17 +489,11 @@ impl Lower<'_> {
                 if !self.arity(call, "param", 1) {
                     return;
                 }
-                let v = self
-                    .constant(&call.args[0])
-                    .unwrap_or_else(|| self.g.zero());
+                let v = self.constant(&call.args[0]).unwrap_or_else(|| self.g.zero());
                 let default = self.g.as_number(v).map_or(f64::NAN, |n| n.to_f64());
                 match self.g.parameter(&name) {
                     Ok(id) => {
-                        self.params.push(Param {
-                            ident: ident.clone(),
-                            default,
-                            doc,
-                        });
+                        self.params.push(Param { ident: ident.clone(), default, doc });
                         self.bind(ident, Binding::Param(id));
                     }
                     Err(e) => self.cx.error_at(ident, e),
@@ -547,9 +505,7 @@ impl Lower<'_> {
                 }
                 // A bad initial value is reported; the state is still
                 // declared, so its uses raise no second error.
-                let init = self
-                    .initial_value(&call.args[0])
-                    .unwrap_or_else(|| self.g.zero());
+                let init = self.initial_value(&call.args[0]).unwrap_or_else(|| self.g.zero());
                 match self.g.state(&name) {
                     Ok(id) => {
                         let symbol = self.g.as_symbol(id).unwrap_or(SymbolId(0));
@@ -620,10 +576,9 @@ impl Lower<'_> {
                     }
                     terms.push(self.g.int(-1));
                     match self.g.sum(&terms) {
-                        Ok(value) => self.invariants.push(UserInvariant {
-                            value,
-                            origin: origin.clone(),
-                        }),
+                        Ok(value) => {
+                            self.invariants.push(UserInvariant { value, origin: origin.clone() })
+                        }
                         Err(e) => return self.cx.error_at(ident, e),
                     }
                 }
@@ -633,19 +588,11 @@ impl Lower<'_> {
                 if !self.arity(call, "algebraic", 1) {
                     return;
                 }
-                let init = self
-                    .initial_value(&call.args[0])
-                    .unwrap_or_else(|| self.g.zero());
+                let init = self.initial_value(&call.args[0]).unwrap_or_else(|| self.g.zero());
                 match self.g.algebraic(&name) {
                     Ok(id) => {
                         let symbol = self.g.as_symbol(id).unwrap_or(SymbolId(0));
-                        self.algebraics.push(AlgebraicDecl {
-                            name,
-                            symbol,
-                            init,
-                            origin,
-                            doc,
-                        });
+                        self.algebraics.push(AlgebraicDecl { name, symbol, init, origin, doc });
                         self.bind(ident, Binding::Algebraic(id));
                     }
                     Err(e) => self.cx.error_at(ident, e),
@@ -656,10 +603,9 @@ impl Lower<'_> {
                     return;
                 }
                 if self.time.is_some() {
-                    return self.cx.error_at(
-                        local,
-                        "the time is already declared: a model has one `time()`",
-                    );
+                    return self
+                        .cx
+                        .error_at(local, "the time is already declared: a model has one `time()`");
                 }
                 match self.g.time(&name) {
                     Ok(id) => {
@@ -677,19 +623,8 @@ impl Lower<'_> {
                 let Some(value) = self.value(&call.args[0]) else {
                     return;
                 };
-                self.outputs.push(Output {
-                    name,
-                    value,
-                    doc,
-                    origin,
-                });
-                self.bind(
-                    ident,
-                    Binding::Value {
-                        id: value,
-                        mutable: false,
-                    },
-                );
+                self.outputs.push(Output { name, value, doc, origin });
+                self.bind(ident, Binding::Value { id: value, mutable: false });
             }
         }
     }
@@ -740,11 +675,7 @@ impl Lower<'_> {
     /// A non-negative whole constant (loop bound, array index or length).
     pub(crate) fn index_constant(&mut self, e: &Expr) -> Option<usize> {
         let v = self.value(e)?;
-        match self
-            .g
-            .as_number(v)
-            .and_then(|n| n.as_integer())
-            .and_then(|n| usize::try_from(n).ok())
+        match self.g.as_number(v).and_then(|n| n.as_integer()).and_then(|n| usize::try_from(n).ok())
         {
             Some(n) => Some(n),
             None => {
@@ -857,9 +788,7 @@ impl Lower<'_> {
             _ => None,
         };
         let Some(name) = name else {
-            return self
-                .cx
-                .error_at(target, "only `let mut` intermediates can be assigned to");
+            return self.cx.error_at(target, "only `let mut` intermediates can be assigned to");
         };
         match self.lookup(&name).cloned() {
             Some(Binding::Value { mutable: true, .. }) => {
@@ -899,19 +828,13 @@ impl Lower<'_> {
 
     pub(crate) fn for_loop(&mut self, f: &syn::ExprForLoop) {
         let Pat::Ident(var) = &*f.pat else {
-            return self
-                .cx
-                .error_at(&f.pat, "loop over one index: `for i in 0..N`");
+            return self.cx.error_at(&f.pat, "loop over one index: `for i in 0..N`");
         };
         let Expr::Range(range) = &*f.expr else {
-            return self
-                .cx
-                .error_at(&f.expr, "loop over a constant range: `for i in 0..N`");
+            return self.cx.error_at(&f.expr, "loop over a constant range: `for i in 0..N`");
         };
         let (Some(start), Some(end)) = (&range.start, &range.end) else {
-            return self
-                .cx
-                .error_at(range, "the range needs both bounds: `0..N`");
+            return self.cx.error_at(range, "the range needs both bounds: `0..N`");
         };
         let (Some(start), Some(end)) = (self.index_constant(start), self.index_constant(end))
         else {
@@ -924,10 +847,9 @@ impl Lower<'_> {
         let count = end.saturating_sub(start);
         self.unrolled += count;
         if self.unrolled > MAX_UNROLLED {
-            return self.cx.error_at(
-                &f.expr,
-                format!("loops unroll to more than {MAX_UNROLLED} iterations"),
-            );
+            return self
+                .cx
+                .error_at(&f.expr, format!("loops unroll to more than {MAX_UNROLLED} iterations"));
         }
         for i in start..end {
             let index = self.g.int(i as i64);
@@ -977,16 +899,10 @@ impl Lower<'_> {
         match e {
             Expr::Paren(p) => self.condition(&p.expr),
             Expr::Unary(u) if matches!(u.op, UnOp::Not(_)) => self.condition(&u.expr).map(|b| !b),
-            Expr::Lit(syn::ExprLit {
-                lit: Lit::Bool(b), ..
-            }) => Some(b.value),
+            Expr::Lit(syn::ExprLit { lit: Lit::Bool(b), .. }) => Some(b.value),
             Expr::Binary(b) if matches!(b.op, BinOp::And(_) | BinOp::Or(_)) => {
                 let (l, r) = (self.condition(&b.left)?, self.condition(&b.right)?);
-                Some(if matches!(b.op, BinOp::And(_)) {
-                    l && r
-                } else {
-                    l || r
-                })
+                Some(if matches!(b.op, BinOp::And(_)) { l && r } else { l || r })
             }
             Expr::Binary(b) if is_comparison(&b.op) => {
                 let (l, r) = (self.value(&b.left)?, self.value(&b.right)?);
@@ -1009,10 +925,8 @@ impl Lower<'_> {
                 }
             }
             other => {
-                self.cx.error_at(
-                    other,
-                    "`if` is only for conditions on constants, such as `i != j`",
-                );
+                self.cx
+                    .error_at(other, "`if` is only for conditions on constants, such as `i != j`");
                 None
             }
         }
@@ -1106,8 +1020,7 @@ impl Lower<'_> {
                     },
                     Some(b @ (Binding::StateArray(_) | Binding::ValueArray(_))) => {
                         let what = b.describe();
-                        self.cx
-                            .error_at(e, format!("`{name}` is {what}: index it, `{name}[0]`"));
+                        self.cx.error_at(e, format!("`{name}` is {what}: index it, `{name}[0]`"));
                         None
                     }
                     None => {
@@ -1119,15 +1032,10 @@ impl Lower<'_> {
             Expr::Index(ix) if self.mentions_tensor(&ix.expr) => self.scalar_of(e),
             Expr::Index(ix) => {
                 let Expr::Path(p) = &*ix.expr else {
-                    self.cx
-                        .error_at(&ix.expr, "only arrays declared in the model can be indexed");
+                    self.cx.error_at(&ix.expr, "only arrays declared in the model can be indexed");
                     return None;
                 };
-                let name = p
-                    .path
-                    .get_ident()
-                    .map(|i| i.to_string())
-                    .unwrap_or_default();
+                let name = p.path.get_ident().map(|i| i.to_string()).unwrap_or_default();
                 let elements = match self.lookup(&name).cloned() {
                     Some(Binding::StateArray(s)) => {
                         s.into_iter().map(|s| self.g.symbol_node(s)).collect()
@@ -1135,8 +1043,7 @@ impl Lower<'_> {
                     Some(Binding::ValueArray(v)) => v,
                     Some(b) => {
                         let what = b.describe();
-                        self.cx
-                            .error_at(&ix.expr, format!("`{name}` is {what}, not an array"));
+                        self.cx.error_at(&ix.expr, format!("`{name}` is {what}, not an array"));
                         return None;
                     }
                     None => {
@@ -1180,8 +1087,7 @@ impl Lower<'_> {
     }
 
     pub(crate) fn unsupported(&mut self, e: &Expr, what: &str) -> Option<Id> {
-        self.cx
-            .error_at(e, format!("{what} are not part of the model language"));
+        self.cx.error_at(e, format!("{what} are not part of the model language"));
         None
     }
 
@@ -1196,8 +1102,7 @@ impl Lower<'_> {
                 } else {
                     "write a number such as `1.0`".to_string()
                 };
-                self.cx
-                    .error_at(lit, format!("a string is not a number: {fix}"));
+                self.cx.error_at(lit, format!("a string is not a number: {fix}"));
                 return None;
             }
             Lit::Bool(b) => {
@@ -1212,8 +1117,7 @@ impl Lower<'_> {
                 return None;
             }
             other => {
-                self.cx
-                    .error_at(other, "expected a number such as `1.0` or `2`");
+                self.cx.error_at(other, "expected a number such as `1.0` or `2`");
                 return None;
             }
         };
@@ -1238,8 +1142,7 @@ impl Lower<'_> {
 
     pub(crate) fn call(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<Id> {
         let Some((name, _)) = call_name(e) else {
-            self.cx
-                .error_at(&c.func, "call a function by name: `sin(x)`");
+            self.cx.error_at(&c.func, "call a function by name: `sin(x)`");
             return None;
         };
         if DECLARATIONS.contains(&name.as_str()) {
@@ -1250,14 +1153,10 @@ impl Lower<'_> {
             return self.der(c, e);
         }
         if matches!(name.as_str(), "init" | "constraint" | "invariant") {
-            self.cx
-                .error_at(e, format!("`{name}(...)` is a statement, not a value"));
+            self.cx.error_at(e, format!("`{name}(...)` is a statement, not a value"));
             return None;
         }
-        let func = Func::ALL
-            .iter()
-            .copied()
-            .find(|f| f.name() == name && *f != Func::Sign);
+        let func = Func::ALL.iter().copied().find(|f| f.name() == name && *f != Func::Sign);
         let arity = match name.as_str() {
             "atan2" => 2,
             _ if func.is_some() || name == "sqrt" => 1,
@@ -1294,10 +1193,7 @@ impl Lower<'_> {
         let arg = &c.args[0];
         let inner = self.value(arg)?;
         let symbol = self.g.as_symbol(inner).filter(|&s| {
-            matches!(
-                self.g.symbol(s).kind,
-                SymbolKind::State | SymbolKind::Derivative { .. }
-            )
+            matches!(self.g.symbol(s).kind, SymbolKind::State | SymbolKind::Derivative { .. })
         });
         match symbol {
             Some(s) => {
@@ -1349,8 +1245,7 @@ impl Lower<'_> {
                 self.graph_result(r, e)
             }
             "powi" | "powf" => {
-                self.cx
-                    .error_at(e, format!("`{method}` takes one argument"));
+                self.cx.error_at(e, format!("`{method}` takes one argument"));
                 None
             }
             other if FUNCTIONS.contains(&other) || other == "sqrt" => {

@@ -28,9 +28,7 @@ fn edit_distance(a: &str, b: &str) -> usize {
         current[0] = i;
         for j in 1..=b.len() {
             let cost = usize::from(a[i - 1] != b[j - 1]);
-            let mut d = (previous[j - 1] + cost)
-                .min(previous[j] + 1)
-                .min(current[j - 1] + 1);
+            let mut d = (previous[j - 1] + cost).min(previous[j] + 1).min(current[j - 1] + 1);
             if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
                 d = d.min(before[j - 2] + 1);
             }
@@ -50,11 +48,7 @@ pub fn did_you_mean<'a>(name: &str, known: impl Iterator<Item = &'a str>) -> Opt
     if limit == 0 {
         return None;
     }
-    known
-        .map(|k| (edit_distance(name, k), k))
-        .filter(|&(d, _)| d <= limit)
-        .min()
-        .map(|(_, k)| k)
+    known.map(|k| (edit_distance(name, k), k)).filter(|&(d, _)| d <= limit).min().map(|(_, k)| k)
 }
 
 /// The user's tokens as compact source text for messages and docs:
@@ -99,20 +93,14 @@ mod tests {
     fn camel_case_and_suggestions() {
         assert_eq!(upper_camel_case("pendulum"), "Pendulum");
         assert_eq!(upper_camel_case("three_body_2d"), "ThreeBody2d");
-        assert_eq!(
-            did_you_mean("lamda", ["lambda", "l", "m"].into_iter()),
-            Some("lambda")
-        );
+        assert_eq!(did_you_mean("lamda", ["lambda", "l", "m"].into_iter()), Some("lambda"));
         assert_eq!(did_you_mean("zeta", ["lambda", "l", "m"].into_iter()), None);
         // A transposition is one slip, not two substitutions.
         assert_eq!(edit_distance("omgea", "omega"), 1);
         assert_eq!(edit_distance("omega", "omega"), 0);
         assert_eq!(edit_distance("lamda", "lambda"), 1);
         assert_eq!(edit_distance("abc", "ca"), 3);
-        assert_eq!(
-            did_you_mean("omgea", ["omega", "theta"].into_iter()),
-            Some("omega")
-        );
+        assert_eq!(did_you_mean("omgea", ["omega", "theta"].into_iter()), Some("omega"));
     }
 
     #[test]

@@ -16,11 +16,7 @@ pub(crate) struct Tensor {
 
 impl Tensor {
     pub(crate) fn scalar(id: Id) -> Tensor {
-        Tensor {
-            rows: 1,
-            cols: 1,
-            data: vec![id],
-        }
+        Tensor { rows: 1, cols: 1, data: vec![id] }
     }
 
     pub(crate) fn from_vector(data: Vec<Id>) -> Tensor {
@@ -28,11 +24,7 @@ impl Tensor {
     }
 
     pub(crate) fn vector(data: Vec<Id>) -> Tensor {
-        Tensor {
-            rows: data.len(),
-            cols: 1,
-            data,
-        }
+        Tensor { rows: data.len(), cols: 1, data }
     }
 
     pub(crate) fn matrix(rows: usize, cols: usize, data: Vec<Id>) -> Tensor {

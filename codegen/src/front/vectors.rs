@@ -56,11 +56,7 @@ impl Lower<'_> {
             Expr::Group(g) => self.tensor(&g.expr),
             Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => {
                 let t = self.tensor(&u.expr)?;
-                let data = t
-                    .data
-                    .iter()
-                    .map(|&x| self.g.neg(x))
-                    .collect::<Result<Vec<_>, _>>();
+                let data = t.data.iter().map(|&x| self.g.neg(x)).collect::<Result<Vec<_>, _>>();
                 let data = self.graph_result_all(data, e)?;
                 Some(Tensor { data, ..t })
             }
@@ -74,10 +70,7 @@ impl Lower<'_> {
                 self.combine(&b.op, l?, r?, e)
             }
             Expr::Path(p) => {
-                let bound = p
-                    .path
-                    .get_ident()
-                    .and_then(|i| self.lookup(&i.to_string()).cloned());
+                let bound = p.path.get_ident().and_then(|i| self.lookup(&i.to_string()).cloned());
                 match bound {
                     Some(Binding::Tensor(t)) => Some(t),
                     _ => self.value(e).map(Tensor::scalar),
@@ -86,11 +79,8 @@ impl Lower<'_> {
             Expr::Index(ix) if self.mentions_tensor(&ix.expr) => {
                 let base = self.tensor(&ix.expr)?;
                 let i = self.index_constant(&ix.index)?;
-                let bound = if base.cols == 1 || base.rows == 1 {
-                    base.data.len()
-                } else {
-                    base.rows
-                };
+                let bound =
+                    if base.cols == 1 || base.rows == 1 { base.data.len() } else { base.rows };
                 if i >= bound {
                     self.cx.error_at(
                         &ix.index,
@@ -156,10 +146,7 @@ impl Lower<'_> {
             return self.arith(op, x, y, e).map(Tensor::scalar);
         }
         let mismatch = |this: &mut Self, what: &str| {
-            this.cx.error_at(
-                e,
-                format!("cannot {what} a {} and a {}", a.shape(), b.shape()),
-            );
+            this.cx.error_at(e, format!("cannot {what} a {} and a {}", a.shape(), b.shape()));
             None
         };
         match op {
@@ -167,11 +154,7 @@ impl Lower<'_> {
                 if (a.rows, a.cols) != (b.rows, b.cols) {
                     return mismatch(
                         self,
-                        if matches!(op, BinOp::Add(_)) {
-                            "add"
-                        } else {
-                            "subtract"
-                        },
+                        if matches!(op, BinOp::Add(_)) { "add" } else { "subtract" },
                     );
                 }
                 let mut data = Vec::with_capacity(a.data.len());
@@ -212,11 +195,7 @@ impl Lower<'_> {
     }
 
     fn scale(&mut self, t: &Tensor, s: Id, e: &Expr) -> Option<Tensor> {
-        let data = t
-            .data
-            .iter()
-            .map(|&x| self.g.mul(s, x))
-            .collect::<Result<Vec<_>, _>>();
+        let data = t.data.iter().map(|&x| self.g.mul(s, x)).collect::<Result<Vec<_>, _>>();
         let data = self.graph_result_all(data, e)?;
         Some(Tensor::matrix(t.rows, t.cols, data))
     }
@@ -245,17 +224,11 @@ impl Lower<'_> {
         shapes: &[usize],
     ) -> Option<Vec<Tensor>> {
         if c.args.len() != shapes.len() {
-            let what: Vec<&str> = shapes
-                .iter()
-                .map(|&s| if s == 1 { "a number" } else { "a 3-vector" })
-                .collect();
+            let what: Vec<&str> =
+                shapes.iter().map(|&s| if s == 1 { "a number" } else { "a 3-vector" }).collect();
             self.cx.error_at(
                 c,
-                format!(
-                    "`{name}` takes {} argument(s): {}",
-                    shapes.len(),
-                    what.join(", ")
-                ),
+                format!("`{name}` takes {} argument(s): {}", shapes.len(), what.join(", ")),
             );
             return None;
         }
@@ -263,15 +236,8 @@ impl Lower<'_> {
         for (arg, &n) in c.args.iter().zip(shapes) {
             let t = self.tensor(arg)?;
             if (t.rows, t.cols) != (n, 1) {
-                let want = if n == 1 {
-                    "a number".to_string()
-                } else {
-                    format!("a {n}-vector")
-                };
-                self.cx.error_at(
-                    arg,
-                    format!("`{name}` needs {want} here, not a {}", t.shape()),
-                );
+                let want = if n == 1 { "a number".to_string() } else { format!("a {n}-vector") };
+                self.cx.error_at(arg, format!("`{name}` needs {want} here, not a {}", t.shape()));
                 return None;
             }
             out.push(t);
@@ -406,21 +372,14 @@ impl Lower<'_> {
                 let sin = g(self, sin)?;
                 let msin = self.g.neg(sin);
                 let msin = g(self, msin)?;
-                Some(Tensor::matrix(
-                    3,
-                    3,
-                    vec![cos, msin, zero, sin, cos, zero, zero, zero, one],
-                ))
+                Some(Tensor::matrix(3, 3, vec![cos, msin, zero, sin, cos, zero, zero, zero, one]))
             }
             "omega_quat" => {
                 // ω = 2 (q0 q̇v − q̇0 qv − qv × q̇v) in body axes.
                 let a = self.tensor_args(c, name, &[1, 1, 1, 1])?;
                 let q: Vec<Id> = a.iter().map(|t| t.data[0]).collect();
-                let rates = c
-                    .args
-                    .iter()
-                    .map(|a| self.rate_of(a, name))
-                    .collect::<Option<Vec<Id>>>()?;
+                let rates =
+                    c.args.iter().map(|a| self.rate_of(a, name)).collect::<Option<Vec<Id>>>()?;
                 let qv = Tensor::vector(q[1..].to_vec());
                 let dv = Tensor::vector(rates[1..].to_vec());
                 let a1 = self.scale(&dv, q[0], e)?;
@@ -443,11 +402,7 @@ impl Lower<'_> {
             }
             "identity3" => {
                 self.tensor_args(c, name, &[])?;
-                Some(Tensor::matrix(
-                    3,
-                    3,
-                    vec![one, zero, zero, zero, one, zero, zero, zero, one],
-                ))
+                Some(Tensor::matrix(3, 3, vec![one, zero, zero, zero, one, zero, zero, zero, one]))
             }
             "rot_x" | "rot_y" | "rot_z" => {
                 let a = self.tensor_args(c, name, &[1])?;
@@ -494,8 +449,7 @@ impl Lower<'_> {
             }
             "transpose" => {
                 if c.args.len() != 1 {
-                    self.cx
-                        .error_at(c, "`transpose` takes one matrix or vector");
+                    self.cx.error_at(c, "`transpose` takes one matrix or vector");
                     return None;
                 }
                 let t = self.tensor(&c.args[0])?;
@@ -518,11 +472,8 @@ impl Lower<'_> {
                 let len = self.g.sqrt(nn.data[0]);
                 let len = g(self, len)?;
                 let unit = {
-                    let data = n
-                        .data
-                        .iter()
-                        .map(|&x| self.g.div(x, len))
-                        .collect::<Result<Vec<_>, _>>();
+                    let data =
+                        n.data.iter().map(|&x| self.g.div(x, len)).collect::<Result<Vec<_>, _>>();
                     Tensor::vector(self.graph_result_all(data, e)?)
                 };
                 let big_n = self.skew(&unit, e)?;
@@ -533,11 +484,8 @@ impl Lower<'_> {
                 let cos = g(self, cos)?;
                 let one_minus = self.g.sub(one, cos);
                 let one_minus = g(self, one_minus)?;
-                let identity = Tensor::matrix(
-                    3,
-                    3,
-                    vec![one, zero, zero, zero, one, zero, zero, zero, one],
-                );
+                let identity =
+                    Tensor::matrix(3, 3, vec![one, zero, zero, zero, one, zero, zero, zero, one]);
                 let s_n = self.scale(&big_n, sin, e)?;
                 let c_n2 = self.scale(&n2, one_minus, e)?;
                 let plus = BinOp::Add(Default::default());
@@ -587,10 +535,7 @@ impl Lower<'_> {
             return None;
         }
         let axes: Option<Vec<usize>> = match &c.args[0] {
-            Expr::Lit(syn::ExprLit {
-                lit: syn::Lit::Str(s),
-                ..
-            }) => {
+            Expr::Lit(syn::ExprLit { lit: syn::Lit::Str(s), .. }) => {
                 let text = s.value();
                 let axes: Option<Vec<usize>> = text
                     .chars()
@@ -668,17 +613,9 @@ impl Lower<'_> {
     /// The cross-product matrix of eq. 4.17.
     fn skew(&mut self, w: &Tensor, e: &Expr) -> Option<Tensor> {
         let zero = self.g.zero();
-        let negs = w
-            .data
-            .iter()
-            .map(|&x| self.g.neg(x))
-            .collect::<Result<Vec<_>, _>>();
+        let negs = w.data.iter().map(|&x| self.g.neg(x)).collect::<Result<Vec<_>, _>>();
         let n = self.graph_result_all(negs, e)?;
         let (x, y, z) = (w.data[0], w.data[1], w.data[2]);
-        Some(Tensor::matrix(
-            3,
-            3,
-            vec![zero, n[2], y, z, zero, n[0], n[1], x, zero],
-        ))
+        Some(Tensor::matrix(3, 3, vec![zero, n[2], y, z, zero, n[0], n[1], x, zero]))
     }
 }

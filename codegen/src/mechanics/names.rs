@@ -28,24 +28,10 @@ impl Lower<'_> {
             .iter()
             .map(|&r| &self.scene.records[r])
             .filter(|r| matches!(r.kind, "revolute" | "prismatic"))
-            .map(|r| {
-                (
-                    r.kind,
-                    r.name.clone(),
-                    r.a,
-                    r.b,
-                    r.local_a,
-                    r.local_b,
-                    r.axis,
-                )
-            })
+            .map(|r| (r.kind, r.name.clone(), r.a, r.b, r.local_a, r.local_b, r.axis))
             .collect();
-        let coordinates: Vec<SymbolId> = self
-            .scene
-            .bodies
-            .iter()
-            .flat_map(|b| [b.x, b.y, b.theta])
-            .collect();
+        let coordinates: Vec<SymbolId> =
+            self.scene.bodies.iter().flat_map(|b| [b.x, b.y, b.theta]).collect();
         for (kind, name, a, b, local_a, local_b, axis) in records {
             let built = (|| -> crate::Result<(Id, Id, &'static str)> {
                 let [xa, ya, ta] = self.frame_pose(a);
@@ -107,12 +93,7 @@ impl Lower<'_> {
                 let doc = body_coordinate_doc(coordinate);
                 self.push_output(format!("{name}.{coordinate}"), p[k], doc, origin);
                 let doc = format!("rate of `{name}.{coordinate}`");
-                self.push_output(
-                    format!("der({name}.{coordinate})"),
-                    velocity[b][k],
-                    &doc,
-                    origin,
-                );
+                self.push_output(format!("der({name}.{coordinate})"), velocity[b][k], &doc, origin);
             }
         }
     }
@@ -140,22 +121,13 @@ impl Lower<'_> {
             Frame::Body(k) => {
                 let b = &self.scene.bodies[k];
                 let (x, y, t) = (b.x, b.y, b.theta);
-                [
-                    self.g.symbol_node(x),
-                    self.g.symbol_node(y),
-                    self.g.symbol_node(t),
-                ]
+                [self.g.symbol_node(x), self.g.symbol_node(y), self.g.symbol_node(t)]
             }
         }
     }
 
     fn push_output(&mut self, name: String, value: Id, doc: &str, origin: &TokenStream) {
-        self.outputs.push(Output {
-            name,
-            value,
-            doc: doc.to_string(),
-            origin: origin.clone(),
-        });
+        self.outputs.push(Output { name, value, doc: doc.to_string(), origin: origin.clone() });
     }
 }
 
@@ -180,10 +152,7 @@ pub(crate) fn planar_joint_doc(kind: &str) -> &'static str {
 
 /// `R(angle) p` in the plane.
 pub(crate) fn rotate(g: &mut crate::Graph, angle: Id, p: [Id; 2]) -> crate::Result<[Id; 2]> {
-    let (c, s) = (
-        g.call(crate::Func::Cos, angle)?,
-        g.call(crate::Func::Sin, angle)?,
-    );
+    let (c, s) = (g.call(crate::Func::Cos, angle)?, g.call(crate::Func::Sin, angle)?);
     let (a1, a2) = (g.mul(c, p[0])?, g.mul(s, p[1])?);
     let (b1, b2) = (g.mul(s, p[0])?, g.mul(c, p[1])?);
     Ok([g.sub(a1, a2)?, g.add(b1, b2)?])

@@ -39,9 +39,7 @@ impl Lower<'_> {
                 return;
             }
             if self.scene.ground {
-                return self
-                    .cx
-                    .error_at(local, "a scene has one ground: remove this one");
+                return self.cx.error_at(local, "a scene has one ground: remove this one");
             }
             self.scene.ground = true;
             return self.bind(ident, Binding::Ground);
@@ -63,8 +61,7 @@ impl Lower<'_> {
                     a.elems.iter().map(|v| this.initial_value(v)).collect()
                 }
                 other => {
-                    this.cx
-                        .error_at(other, "write three values: `[x, y, theta]`");
+                    this.cx.error_at(other, "write three values: `[x, y, theta]`");
                     None
                 }
             }
@@ -216,10 +213,7 @@ impl Lower<'_> {
             let mut s = b.position.to_vec();
             s.extend(b.quaternion);
             s.extend(b.rates);
-            (
-                &["x", "y", "z", "q0", "q1", "q2", "q3", "wx", "wy", "wz"],
-                s,
-            )
+            (&["x", "y", "z", "q0", "q1", "q2", "q3", "wx", "wy", "wz"], s)
         };
         match names.iter().position(|n| *n == member) {
             Some(k) => Some(self.g.symbol_node(symbols[k])),
@@ -283,19 +277,16 @@ impl Lower<'_> {
         let Some((a, b)) = self.joint_frames(kind, c, extra) else {
             return;
         };
-        let (Some(pa), Some(pb)) = (
-            self.world_point(a, &c.args[1], e),
-            self.world_point(b, &c.args[3], e),
-        ) else {
+        let (Some(pa), Some(pb)) =
+            (self.world_point(a, &c.args[1], e), self.world_point(b, &c.args[3], e))
+        else {
             return;
         };
         let initial = |this: &Self, f: Frame| match f {
             Frame::Ground => None,
-            Frame::Body(k) => this
-                .states
-                .iter()
-                .find(|s| s.symbol == this.scene.bodies[k].theta)
-                .map(|s| s.init),
+            Frame::Body(k) => {
+                this.states.iter().find(|s| s.symbol == this.scene.bodies[k].theta).map(|s| s.init)
+            }
         };
         let rows: crate::Result<Vec<Id>> = match kind {
             "revolute" => (0..2).map(|k| self.g.sub(pa[k], pb[k])).collect(),
@@ -309,11 +300,7 @@ impl Lower<'_> {
                     let zero = g.zero();
                     let relative = g.sub(tb, ta)?;
                     let start = g.sub(ib.unwrap_or(zero), ia.unwrap_or(zero))?;
-                    Ok(vec![
-                        g.sub(pa[0], pb[0])?,
-                        g.sub(pa[1], pb[1])?,
-                        g.sub(relative, start)?,
-                    ])
+                    Ok(vec![g.sub(pa[0], pb[0])?, g.sub(pa[1], pb[1])?, g.sub(relative, start)?])
                 })()
             }
             "distance" => {
@@ -379,11 +366,7 @@ impl Lower<'_> {
         else {
             return;
         };
-        let axis = if kind == "prismatic" {
-            local(self, &c.args[4])
-        } else {
-            None
-        };
+        let axis = if kind == "prismatic" { local(self, &c.args[4]) } else { None };
         let Some((equations, algebraics, rows)) = self.add_joint_rows(kind, name, rows, e) else {
             return;
         };
@@ -393,12 +376,7 @@ impl Lower<'_> {
             "fixed" => "fixed",
             _ => "prismatic",
         };
-        let name = self
-            .scene
-            .joint_rows
-            .last()
-            .map(|j| j.0.clone())
-            .unwrap_or_default();
+        let name = self.scene.joint_rows.last().map(|j| j.0.clone()).unwrap_or_default();
         self.scene.records.push(JointRecord {
             kind,
             name,
@@ -450,16 +428,9 @@ impl Lower<'_> {
         name: Option<&syn::Ident>,
         rows: Vec<Id>,
         e: &Expr,
-    ) -> Option<(
-        std::ops::Range<usize>,
-        std::ops::Range<usize>,
-        std::ops::Range<usize>,
-    )> {
-        let (equations_start, algebraics_start, rows_start) = (
-            self.equations.len(),
-            self.algebraics.len(),
-            self.scene.rows.len(),
-        );
+    ) -> Option<(std::ops::Range<usize>, std::ops::Range<usize>, std::ops::Range<usize>)> {
+        let (equations_start, algebraics_start, rows_start) =
+            (self.equations.len(), self.algebraics.len(), self.scene.rows.len());
         self.scene.joints += 1;
         let base = match name {
             Some(n) => n.to_string(),
@@ -499,9 +470,7 @@ impl Lower<'_> {
             let t = crate::front::tensor::Tensor::from_vector(multipliers);
             self.bind(n, Binding::Tensor(t));
         }
-        self.scene
-            .joint_rows
-            .push((base, rows_start..self.scene.rows.len(), e.to_token_stream()));
+        self.scene.joint_rows.push((base, rows_start..self.scene.rows.len(), e.to_token_stream()));
         Some((
             equations_start..self.equations.len(),
             algebraics_start..self.algebraics.len(),
@@ -526,10 +495,7 @@ impl Lower<'_> {
         match self.frame(&c.args[0])? {
             Frame::Body(b) => Some(b),
             Frame::Ground => {
-                self.cx.error_at(
-                    &c.args[0],
-                    format!("a {kind} acts on a body, not on the ground"),
-                );
+                self.cx.error_at(&c.args[0], format!("a {kind} acts on a body, not on the ground"));
                 None
             }
         }
@@ -580,9 +546,7 @@ impl Lower<'_> {
                     return;
                 };
                 if (f.rows, f.cols) != (3, 1) {
-                    return self
-                        .cx
-                        .error_at(&c.args[2], "a force is a 3-vector in world axes");
+                    return self.cx.error_at(&c.args[2], "a force is a 3-vector in world axes");
                 }
                 let Some(p) = self.world_point(Frame::Body(b), &c.args[1], e) else {
                     return;
@@ -629,10 +593,9 @@ impl Lower<'_> {
         let Some((a, b, [k, l0, damping])) = self.spring_arguments(c) else {
             return;
         };
-        let (Some(pa), Some(pb)) = (
-            self.world_point(a, &c.args[1], e),
-            self.world_point(b, &c.args[3], e),
-        ) else {
+        let (Some(pa), Some(pb)) =
+            (self.world_point(a, &c.args[1], e), self.world_point(b, &c.args[3], e))
+        else {
             return;
         };
         // ḋ along the motion: each coordinate's derivative is its der().
@@ -680,11 +643,7 @@ impl Lower<'_> {
         if self.scene.bodies.is_empty() && self.scene.spatial.is_empty() {
             return;
         }
-        let at = self
-            .scene
-            .first_body
-            .clone()
-            .unwrap_or_else(|| item.sig.ident.to_token_stream());
+        let at = self.scene.first_body.clone().unwrap_or_else(|| item.sig.ident.to_token_stream());
         if !self.scene.ground {
             return self.cx.error_at(at, "a scene needs a ground to hold it: add `let ground = ground();` and attach a body to it with a joint");
         }

@@ -39,9 +39,8 @@ impl Lower<'_> {
             return;
         };
         self.body_coordinates(&placement.pose, &velocity, &origin);
-        let cut_joints: Vec<usize> = (0..records.len())
-            .filter(|r| !tree.iter().any(|t| t.0 == *r))
-            .collect();
+        let cut_joints: Vec<usize> =
+            (0..records.len()).filter(|r| !tree.iter().any(|t| t.0 == *r)).collect();
         self.planar_joint_coordinates(&cut_joints, &origin);
         let Some(drop_rows) = self.tree_joints_to_coordinates(&tree, &records, &placement, &origin)
         else {
@@ -128,17 +127,9 @@ impl Lower<'_> {
         origin: &TokenStream,
     ) -> Option<()> {
         let zero = self.g.zero();
-        let Placement {
-            pose,
-            start,
-            coordinates,
-            joint_rates,
-        } = placement;
-        let (p_parent, p_child) = if child_is_b {
-            (rec.local_a, rec.local_b)
-        } else {
-            (rec.local_b, rec.local_a)
-        };
+        let Placement { pose, start, coordinates, joint_rates } = placement;
+        let (p_parent, p_child) =
+            if child_is_b { (rec.local_a, rec.local_b) } else { (rec.local_b, rec.local_a) };
         let body = self.scene.bodies[child].clone();
         let (parent_pose, parent_start) = match parent {
             Frame::Ground => ([zero; 3], [zero; 3]),
@@ -261,8 +252,7 @@ impl Lower<'_> {
                     Ok((d1, d2, g.derivative(s, 1)?, g.derivative(s, 2)?))
                 })();
                 let Ok((d1, d2, s1, s2)) = derived else {
-                    self.cx
-                        .error_at(origin, "the body poses could not be differentiated");
+                    self.cx.error_at(origin, "the body poses could not be differentiated");
                     return None;
                 };
                 replace.insert(s, p[k]);
@@ -298,12 +288,8 @@ impl Lower<'_> {
             drop_algebraics.extend(records[r].algebraics.clone());
             drop_rows.extend(records[r].rows.clone());
         }
-        let body_symbols: Vec<SymbolId> = self
-            .scene
-            .bodies
-            .iter()
-            .flat_map(|b| [b.x, b.y, b.theta])
-            .collect();
+        let body_symbols: Vec<SymbolId> =
+            self.scene.bodies.iter().flat_map(|b| [b.x, b.y, b.theta]).collect();
         let equations = std::mem::take(&mut self.equations);
         self.equations = equations
             .into_iter()
@@ -335,16 +321,8 @@ impl Lower<'_> {
             if self.g.as_number(rate).is_some_and(|v| v.is_zero()) {
                 continue;
             }
-            let target = self
-                .g
-                .derivative(*q, 1)
-                .ok()
-                .and_then(|d| self.g.as_symbol(d))?;
-            self.inits.push(crate::front::ir::Init {
-                target,
-                value: rate,
-                origin: origin.clone(),
-            });
+            let target = self.g.derivative(*q, 1).ok().and_then(|d| self.g.as_symbol(d))?;
+            self.inits.push(crate::front::ir::Init { target, value: rate, origin: origin.clone() });
         }
         Some(drop_rows)
     }
@@ -387,12 +365,7 @@ impl Lower<'_> {
             .loads
             .iter()
             .map(|&(b, fx, fy, tau)| {
-                (
-                    b,
-                    sub(&mut self.g, fx),
-                    sub(&mut self.g, fy),
-                    sub(&mut self.g, tau),
-                )
+                (b, sub(&mut self.g, fx), sub(&mut self.g, fy), sub(&mut self.g, tau))
             })
             .collect();
         let cut: Vec<(Id, Id)> = self
@@ -404,10 +377,7 @@ impl Lower<'_> {
             .map(|(_, &(row, l))| (sub(&mut self.g, row), l))
             .collect();
         if !ok {
-            self.cx.error_at(
-                origin,
-                "the scene could not be rewritten in joint coordinates",
-            );
+            self.cx.error_at(origin, "the scene could not be rewritten in joint coordinates");
             return None;
         }
         Some((loads, cut))
@@ -446,9 +416,9 @@ impl Lower<'_> {
                 let half = g.rational(1, 2)?;
                 let t = g.mul(half, twice_t)?;
                 let rate = g.derivative(q, 1)?;
-                let rate = g.as_symbol(rate).ok_or_else(|| crate::Error::Unsupported {
-                    message: "a joint rate".into(),
-                })?;
+                let rate = g
+                    .as_symbol(rate)
+                    .ok_or_else(|| crate::Error::Unsupported { message: "a joint rate".into() })?;
                 let momentum = g.partial(t, rate)?;
                 let d_momentum = g.total_derivative(momentum, field)?;
                 let dt_dq = g.partial(t, q)?;
@@ -457,11 +427,8 @@ impl Lower<'_> {
                 let mut forces = Vec::new();
                 for (b, body) in bodies.iter().enumerate() {
                     let p = pose[b].unwrap_or([zero; 3]);
-                    let (dx, dy, dth) = (
-                        g.partial(p[0], q)?,
-                        g.partial(p[1], q)?,
-                        g.partial(p[2], q)?,
-                    );
+                    let (dx, dy, dth) =
+                        (g.partial(p[0], q)?, g.partial(p[1], q)?, g.partial(p[2], q)?);
                     if let Some((gx, gy)) = gravity {
                         let (wx, wy) = (g.mul(body.mass, gx)?, g.mul(body.mass, gy)?);
                         forces.push(g.mul(wx, dx)?);
@@ -584,11 +551,7 @@ fn joint_pose(
         } else {
             g.sub(parent_pose[2], q_node)?
         };
-        let relative0 = if child_is_b {
-            relative0
-        } else {
-            g.neg(relative0)?
-        };
+        let relative0 = if child_is_b { relative0 } else { g.neg(relative0)? };
         let arm = rotate(g, parent_pose[2], p_parent)?;
         let jx = g.add(parent_pose[0], arm[0])?;
         let jy = g.add(parent_pose[1], arm[1])?;

@@ -139,9 +139,7 @@ pub(crate) fn natural_frame(g: &mut Graph, p1: Vec3, p2: Vec3, p3: Vec3) -> crat
 /// `e_k` least aligned with `u` (by its value at the defaults), then `u × n1`.
 /// Polynomial in `u`, so exact for symbolic axes too.
 fn normals(g: &mut Graph, u: Vec3, values: [f64; 3]) -> crate::Result<[Vec3; 2]> {
-    let k = (0..3)
-        .min_by(|&i, &j| values[i].abs().total_cmp(&values[j].abs()))
-        .unwrap_or(0);
+    let k = (0..3).min_by(|&i, &j| values[i].abs().total_cmp(&values[j].abs())).unwrap_or(0);
     let (zero, one) = (g.zero(), g.one());
     let mut e = [zero; 3];
     e[k] = one;
@@ -160,13 +158,8 @@ struct Pose {
 }
 
 /// Spatial joints and their number of rows.
-pub(crate) const SPATIAL_JOINTS: [(&str, usize); 5] = [
-    ("spherical", 3),
-    ("revolute", 5),
-    ("prismatic", 5),
-    ("fixed", 6),
-    ("distance", 1),
-];
+pub(crate) const SPATIAL_JOINTS: [(&str, usize); 5] =
+    [("spherical", 3), ("revolute", 5), ("prismatic", 5), ("fixed", 6), ("distance", 1)];
 
 impl Lower<'_> {
     /// `let b = spatial_body(m, inertia, [x, y, z], [q0, q1, q2, q3])`, with
@@ -198,9 +191,7 @@ impl Lower<'_> {
         };
         let zero = self.g.zero();
         let inertia: Mat3 = match (j.rows, j.cols) {
-            (3, 1) => [
-                j.data[0], zero, zero, zero, j.data[1], zero, zero, zero, j.data[2],
-            ],
+            (3, 1) => [j.data[0], zero, zero, zero, j.data[1], zero, zero, zero, j.data[2]],
             (3, 3) => std::array::from_fn(|k| j.data[k]),
             _ => {
                 return self.cx.error_at(&call.args[1], format!("the inertia is a `vec3` of principal moments or a `mat3` in body axes, not a {}", j.shape()));
@@ -212,8 +203,7 @@ impl Lower<'_> {
                     a.elems.iter().map(|v| this.initial_value(v)).collect()
                 }
                 other => {
-                    this.cx
-                        .error_at(other, format!("write {n} values: `{what}`"));
+                    this.cx.error_at(other, format!("write {n} values: `{what}`"));
                     None
                 }
             }
@@ -298,10 +288,9 @@ impl Lower<'_> {
             g.sum(&terms)
         })();
         match norm {
-            Ok(value) => self.invariants.push(crate::front::ir::UserInvariant {
-                value,
-                origin: origin.clone(),
-            }),
+            Ok(value) => self
+                .invariants
+                .push(crate::front::ir::UserInvariant { value, origin: origin.clone() }),
             Err(e) => return self.cx.error_at(ident, e),
         }
         if self.scene.first_body.is_none() {
@@ -320,8 +309,7 @@ impl Lower<'_> {
     /// `orientation(body)`: R(q), body axes to world axes.
     pub(crate) fn orientation(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<Mat3> {
         if c.args.len() != 1 {
-            self.cx
-                .error_at(c, "`orientation` takes a spatial body: `orientation(top)`");
+            self.cx.error_at(c, "`orientation` takes a spatial body: `orientation(top)`");
             return None;
         }
         let frame = self.frame(&c.args[0])?;
@@ -340,20 +328,15 @@ impl Lower<'_> {
         let (zero, one) = (g.zero(), g.one());
         let identity = [one, zero, zero, zero, one, zero, zero, zero, one];
         match frame {
-            crate::mechanics::Frame::Ground => Ok(Pose {
-                r: [zero; 3],
-                rot: identity,
-                rot0: identity,
-            }),
+            crate::mechanics::Frame::Ground => {
+                Ok(Pose { r: [zero; 3], rot: identity, rot0: identity })
+            }
             crate::mechanics::Frame::Body(b) => {
                 let body = self.scene.spatial[b].clone();
                 let q = body.quaternion.map(|s| self.g.symbol_node(s));
-                let q0 = body.quaternion.map(|s| {
-                    self.states
-                        .iter()
-                        .find(|d| d.symbol == s)
-                        .map_or(zero, |d| d.init)
-                });
+                let q0 = body
+                    .quaternion
+                    .map(|s| self.states.iter().find(|d| d.symbol == s).map_or(zero, |d| d.init));
                 let g = &mut self.g;
                 Ok(Pose {
                     r: body.position.map(|s| g.symbol_node(s)),
@@ -368,8 +351,7 @@ impl Lower<'_> {
     fn vec3_arg(&mut self, e: &Expr, what: &str) -> Option<Vec3> {
         let t = self.tensor(e)?;
         if (t.rows, t.cols) != (3, 1) {
-            self.cx
-                .error_at(e, format!("{what} is a 3-vector, not a {}", t.shape()));
+            self.cx.error_at(e, format!("{what} is a 3-vector, not a {}", t.shape()));
             return None;
         }
         Some([t.data[0], t.data[1], t.data[2]])
@@ -379,9 +361,7 @@ impl Lower<'_> {
     pub(crate) fn spatial_position(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<Vec3> {
         let frame = self.frame(&c.args[0])?;
         let p = self.vec3_arg(&c.args[1], "a point in body coordinates")?;
-        let r = self
-            .pose(frame)
-            .and_then(|pose| Self::place(&mut self.g, &pose, p));
+        let r = self.pose(frame).and_then(|pose| Self::place(&mut self.g, &pose, p));
         match r {
             Ok(v) => Some(v),
             Err(err) => {
@@ -467,21 +447,13 @@ impl Lower<'_> {
             };
             let attitude = |g: &mut Graph| -> crate::Result<Vec<Id>> {
                 let d = relative(g)?;
-                Ok(vec![
-                    g.sub(d[7], d[5])?,
-                    g.sub(d[2], d[6])?,
-                    g.sub(d[3], d[1])?,
-                ])
+                Ok(vec![g.sub(d[7], d[5])?, g.sub(d[2], d[6])?, g.sub(d[3], d[1])?])
             };
             // |u| for a unit axis.
             let unit = |g: &mut Graph, u: Vec3| -> crate::Result<Vec3> {
                 let length = dot3(g, u, u)?;
                 let length = g.sqrt(length)?;
-                Ok([
-                    g.div(u[0], length)?,
-                    g.div(u[1], length)?,
-                    g.div(u[2], length)?,
-                ])
+                Ok([g.div(u[0], length)?, g.div(u[1], length)?, g.div(u[2], length)?])
             };
             let mut coordinate = None;
             match kind {

@@ -31,11 +31,8 @@ impl Lower<'_> {
     /// (their initial values) at the start.
     fn start_values(&self) -> HashMap<SymbolId, f64> {
         let mut values = HashMap::new();
-        let by_name: HashMap<String, f64> = self
-            .params
-            .iter()
-            .map(|p| (p.ident.to_string(), p.default))
-            .collect();
+        let by_name: HashMap<String, f64> =
+            self.params.iter().map(|p| (p.ident.to_string(), p.default)).collect();
         let parameter = |g: &Graph, s: SymbolId| -> f64 {
             let sym = g.symbol(s);
             match sym.kind {
@@ -58,8 +55,7 @@ impl Lower<'_> {
     /// The value of `id` at the start (NaN where something has no value).
     pub(crate) fn numeric(&self, id: Id) -> f64 {
         let values = self.start_values();
-        self.g
-            .eval(&[id], &|s| values.get(&s).copied().unwrap_or(f64::NAN))[0]
+        self.g.eval(&[id], &|s| values.get(&s).copied().unwrap_or(f64::NAN))[0]
     }
 
     /// rank Φ_q at the initial configuration, or `None` when it cannot be
@@ -107,10 +103,7 @@ impl Lower<'_> {
                 kept.push(rest.into_iter().map(|x| x / left).collect());
             }
         }
-        Some(Mobility {
-            rank: kept.len(),
-            redundant,
-        })
+        Some(Mobility { rank: kept.len(), redundant })
     }
 
     /// The joint a scene row belongs to: its name and statement.

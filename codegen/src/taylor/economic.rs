@@ -38,10 +38,8 @@ pub fn economic_taylor_derivatives(
     out.push(rhs.to_vec());
     while out.len() < order {
         let last = out[out.len() - 1].clone();
-        let next = last
-            .iter()
-            .map(|&d| g.total_derivative(d, &mut field))
-            .collect::<Result<Vec<_>>>()?;
+        let next =
+            last.iter().map(|&d| g.total_derivative(d, &mut field)).collect::<Result<Vec<_>>>()?;
         out.push(next);
     }
     Ok(out)

@@ -51,11 +51,7 @@ pub fn factor_shared_operands(folding: &mut Folding, tape: &Tape) {
 /// −μ′ of two products as two constants, and their `E` rows should be one.
 fn canonical_constants(constants: &[Constant]) -> Vec<usize> {
     (0..constants.len())
-        .map(|i| {
-            (0..i)
-                .find(|&j| same_constant(&constants[j], &constants[i]))
-                .unwrap_or(i)
-        })
+        .map(|i| (0..i).find(|&j| same_constant(&constants[j], &constants[i])).unwrap_or(i))
         .collect()
 }
 
@@ -77,11 +73,7 @@ fn canonical_weight(w: &Weight, canonical: &[usize]) -> Weight {
         mapped.sort_unstable();
         mapped
     };
-    Weight {
-        literal: w.literal,
-        times: map(&w.times),
-        over: map(&w.over),
-    }
+    Weight { literal: w.literal, times: map(&w.times), over: map(&w.over) }
 }
 
 /// The series `o` is a constant shift of, or `o` itself: u-variables whose
@@ -95,9 +87,7 @@ fn root(folding: &Folding, o: Operand) -> Option<Operand> {
     let Role::SumRow(terms) = &folding.roles[u] else {
         return Some(o);
     };
-    let mut series = terms
-        .iter()
-        .filter(|t| !matches!(t.base, Base::Operand(Operand::Const(_))));
+    let mut series = terms.iter().filter(|t| !matches!(t.base, Base::Operand(Operand::Const(_))));
     match (series.next(), series.next()) {
         (Some(t), None) if t.weight.is_literal() && t.weight.literal == 1.0 => match t.base {
             Base::Operand(s) if is_series(s) => Some(s),
@@ -160,17 +150,13 @@ fn factor_sum(
         let mut next: Vec<LinearTerm> = Vec::with_capacity(terms.len() + 1);
         for (i, t) in terms.iter().enumerate() {
             match members.iter().find(|(j, ..)| *j == i) {
-                Some(&(_, a, b)) => next.push(LinearTerm {
-                    weight: t.weight.clone(),
-                    base: Base::Head(a, b),
-                }),
+                Some(&(_, a, b)) => {
+                    next.push(LinearTerm { weight: t.weight.clone(), base: Base::Head(a, b) })
+                }
                 None => next.push(t.clone()),
             }
         }
-        next.push(LinearTerm {
-            weight: Weight::one(),
-            base: Base::Tail(s, Operand::Var(e)),
-        });
+        next.push(LinearTerm { weight: Weight::one(), base: Base::Tail(s, Operand::Var(e)) });
         terms = next;
         changed = true;
     }
@@ -181,10 +167,7 @@ fn factor_sum(
 /// The u-variable whose row is the sum `terms`: an earlier one with the
 /// same terms, or a new one after all others.
 fn shared_row(folding: &mut Folding, terms: Vec<LinearTerm>) -> usize {
-    let existing = folding
-        .roles
-        .iter()
-        .position(|r| matches!(r, Role::SumRow(t) if *t == terms));
+    let existing = folding.roles.iter().position(|r| matches!(r, Role::SumRow(t) if *t == terms));
     existing.unwrap_or_else(|| {
         folding.roles.push(Role::SumRow(terms));
         folding.roles.len() - 1
@@ -199,11 +182,7 @@ mod tests {
 
     fn term(times: &[usize], base: Base) -> LinearTerm {
         LinearTerm {
-            weight: Weight {
-                literal: 1.0,
-                times: times.to_vec(),
-                over: Vec::new(),
-            },
+            weight: Weight { literal: 1.0, times: times.to_vec(), over: Vec::new() },
             base,
         }
     }

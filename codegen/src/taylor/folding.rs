@@ -31,11 +31,7 @@ pub struct Weight {
 
 impl Weight {
     pub(super) fn one() -> Weight {
-        Weight {
-            literal: 1.0,
-            times: Vec::new(),
-            over: Vec::new(),
-        }
+        Weight { literal: 1.0, times: Vec::new(), over: Vec::new() }
     }
 
     /// True when the weight is a number known at expansion time.
@@ -128,10 +124,7 @@ pub struct Folding {
 }
 
 fn is_linear(r: &Recurrence) -> bool {
-    matches!(
-        r,
-        Recurrence::Add(..) | Recurrence::Scale(..) | Recurrence::Quotient(..)
-    )
+    matches!(r, Recurrence::Add(..) | Recurrence::Scale(..) | Recurrence::Quotient(..))
 }
 
 /// The operands a recurrence reads, in order.
@@ -194,15 +187,9 @@ pub fn fold_linear(tape: &Tape, known: &[Option<f64>]) -> Folding {
     let terms_of = |o: Operand, folded: &[Option<Vec<LinearTerm>>]| -> Vec<LinearTerm> {
         match o {
             Operand::Var(u) => folded[u].clone().unwrap_or_else(|| {
-                vec![LinearTerm {
-                    weight: Weight::one(),
-                    base: Base::Operand(o),
-                }]
+                vec![LinearTerm { weight: Weight::one(), base: Base::Operand(o) }]
             }),
-            _ => vec![LinearTerm {
-                weight: Weight::one(),
-                base: Base::Operand(o),
-            }],
+            _ => vec![LinearTerm { weight: Weight::one(), base: Base::Operand(o) }],
         }
     };
     for &(v, r) in &tape.recurrences {
@@ -229,10 +216,7 @@ pub fn fold_linear(tape: &Tape, known: &[Option<f64>]) -> Folding {
                     Recurrence::Mul(a, b) => Base::Product(a, b),
                     _ => Base::Square(a),
                 };
-                folded[v] = Some(vec![LinearTerm {
-                    weight: Weight::one(),
-                    base,
-                }]);
+                folded[v] = Some(vec![LinearTerm { weight: Weight::one(), base }]);
                 roles[v] = Role::Folded;
                 continue;
             }
@@ -254,11 +238,7 @@ pub fn fold_linear(tape: &Tape, known: &[Option<f64>]) -> Folding {
             roles[v] = Role::Folded;
         }
     }
-    let outputs = tape
-        .output_operands
-        .iter()
-        .map(|&o| terms_of(o, &folded))
-        .collect();
+    let outputs = tape.output_operands.iter().map(|&o| terms_of(o, &folded)).collect();
     Folding { roles, outputs }
 }
 
@@ -268,14 +248,7 @@ mod tests {
     use crate::taylor::tape::test_tape;
 
     fn term(literal: f64, times: &[usize], over: &[usize], base: Base) -> LinearTerm {
-        LinearTerm {
-            weight: Weight {
-                literal,
-                times: times.to_vec(),
-                over: over.to_vec(),
-            },
-            base,
-        }
+        LinearTerm { weight: Weight { literal, times: times.to_vec(), over: over.to_vec() }, base }
     }
 
     /// One gravitating pair in the plane, as the tape writes it: the
@@ -365,9 +338,6 @@ mod tests {
                 term(1.0, &[], &[0], Base::Product(State(0), State(1))),
             ])
         );
-        assert_eq!(
-            f.outputs[0],
-            vec![term(1.0, &[], &[], Base::Operand(Var(2)))]
-        );
+        assert_eq!(f.outputs[0], vec![term(1.0, &[], &[], Base::Operand(Var(2)))]);
     }
 }

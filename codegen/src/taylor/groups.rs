@@ -47,10 +47,8 @@ pub fn group_lanes(tape: &Tape, folding: &Folding, known: &[Option<f64>]) -> Lan
             nodes.push(Node::Var(v));
         }
     }
-    let shapes: BTreeMap<Node, (Shape, Vec<Operand>)> = nodes
-        .iter()
-        .filter_map(|&x| Some((x, shape(x, tape, folding)?)))
-        .collect();
+    let shapes: BTreeMap<Node, (Shape, Vec<Operand>)> =
+        nodes.iter().filter_map(|&x| Some((x, shape(x, tape, folding)?))).collect();
     let mut lanes = Lanes::default();
     // Seeds: every nonlinear row of one shape whose operands are of the
     // same kinds (rows, states, constants), in tape order.

@@ -80,11 +80,7 @@ impl Lanes {
             return Some((members[0], lane, members.len()));
         }
         let (partner, lane) = self.of(n)?;
-        Some(if lane == 0 {
-            (n, 0, 2)
-        } else {
-            (partner, 1, 2)
-        })
+        Some(if lane == 0 { (n, 0, 2) } else { (partner, 1, 2) })
     }
 
     /// The members of the group `n` is in, in lane order.
@@ -95,10 +91,7 @@ impl Lanes {
 
     /// The pairs, lane 0 first, in the order of their lane-0 node.
     pub fn pairs(&self) -> impl Iterator<Item = (Node, Node)> + '_ {
-        self.partner
-            .iter()
-            .filter(|(_, (_, lane))| *lane == 0)
-            .map(|(a, (b, _))| (*a, *b))
+        self.partner.iter().filter(|(_, (_, lane))| *lane == 0).map(|(a, (b, _))| (*a, *b))
     }
 
     /// True when `a` and `b` are lane 0 and lane 1 of one pair, or the
@@ -169,10 +162,7 @@ pub(super) fn shape(n: Node, tape: &Tape, folding: &Folding) -> Option<(Shape, V
                     Recurrence::Inverse(f, ..) => *f as u64,
                     _ => 0,
                 };
-                Some((
-                    Shape::Recurrence(std::mem::discriminant(r), exponent),
-                    operands(r),
-                ))
+                Some((Shape::Recurrence(std::mem::discriminant(r), exponent), operands(r)))
             }
         },
     }
@@ -194,10 +184,8 @@ pub fn pair_lanes(tape: &Tape, folding: &Folding, n: usize) -> Lanes {
         }
     }
     nodes.extend((0..n).map(Node::State));
-    let shapes: BTreeMap<Node, (Shape, Vec<Operand>)> = nodes
-        .iter()
-        .filter_map(|&x| Some((x, shape(x, tape, folding)?)))
-        .collect();
+    let shapes: BTreeMap<Node, (Shape, Vec<Operand>)> =
+        nodes.iter().filter_map(|&x| Some((x, shape(x, tape, folding)?))).collect();
     let mut lanes = Lanes::default();
     // First the pairs whose operands pair all the way down to the states;
     // then, among the rows left, those whose two lanes read states that
@@ -212,10 +200,7 @@ pub fn pair_lanes(tape: &Tape, folding: &Folding, n: usize) -> Lanes {
                     continue;
                 }
                 if let Some(found) = unify(&lanes, &shapes, a, b, gather_states) {
-                    let mut trial = Lanes {
-                        partner: lanes.partner.clone(),
-                        ..Lanes::default()
-                    };
+                    let mut trial = Lanes { partner: lanes.partner.clone(), ..Lanes::default() };
                     for (x, y) in found {
                         trial.partner.insert(x, (y, 0));
                         trial.partner.insert(y, (x, 1));
@@ -277,13 +262,7 @@ fn unify(
             }
         }
     }
-    Some(
-        found
-            .into_iter()
-            .filter(|(_, (_, lane))| *lane == 0)
-            .map(|(x, (y, _))| (x, y))
-            .collect(),
-    )
+    Some(found.into_iter().filter(|(_, (_, lane))| *lane == 0).map(|(x, (y, _))| (x, y)).collect())
 }
 
 /// The u-variables with a row in the order their statements are written
@@ -331,12 +310,7 @@ pub fn schedule(tape: &Tape, folding: &Folding, lanes: &Lanes) -> Option<Vec<usi
     }
     // In lane order.
     for list in members.values_mut() {
-        list.sort_by_key(|&v| {
-            (
-                lanes.vector_of(Node::Var(v)).map_or(0, |(_, lane, _)| lane),
-                v,
-            )
-        });
+        list.sort_by_key(|&v| (lanes.vector_of(Node::Var(v)).map_or(0, |(_, lane, _)| lane), v));
     }
     let mut waits: BTreeMap<usize, usize> = members.keys().map(|&g| (g, 0)).collect();
     let mut users: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
@@ -356,11 +330,8 @@ pub fn schedule(tape: &Tape, folding: &Folding, lanes: &Lanes) -> Option<Vec<usi
         }
     }
     // Kahn's algorithm, the earliest group in the tape first.
-    let mut ready: BinaryHeap<Reverse<usize>> = waits
-        .iter()
-        .filter(|(_, &w)| w == 0)
-        .map(|(&g, _)| Reverse(g))
-        .collect();
+    let mut ready: BinaryHeap<Reverse<usize>> =
+        waits.iter().filter(|(_, &w)| w == 0).map(|(&g, _)| Reverse(g)).collect();
     let mut order = Vec::new();
     while let Some(Reverse(g)) = ready.pop() {
         order.extend(members[&g].iter().copied());
@@ -413,18 +384,12 @@ mod tests {
         let (folding, lanes) = lanes_of(&t, 4);
         assert_eq!(
             lanes.pairs().collect::<Vec<_>>(),
-            vec![
-                (Node::State(0), Node::State(1)),
-                (Node::State(2), Node::State(3))
-            ]
+            vec![(Node::State(0), Node::State(1)), (Node::State(2), Node::State(3))]
         );
         assert!(lanes.match_bases(Base::Square(State(0)), Base::Square(State(1))));
         assert!(!lanes.match_bases(Base::Square(State(1)), Base::Square(State(0))));
         // A product with the shared power pairs; the power alone does not.
-        assert!(lanes.match_bases(
-            Base::Product(State(0), Var(3)),
-            Base::Product(State(1), Var(3))
-        ));
+        assert!(lanes.match_bases(Base::Product(State(0), Var(3)), Base::Product(State(1), Var(3))));
         assert!(!lanes.match_bases(Base::Square(Var(3)), Base::Square(Var(3))));
         assert_eq!(schedule(&t, &folding, &lanes), Some(vec![2, 3]));
     }
@@ -457,10 +422,7 @@ mod tests {
         let (folding, lanes) = lanes_of(&t, 4);
         let pairs: Vec<_> = lanes.pairs().collect();
         for (a, b) in [(0, 4), (3, 6), (7, 8)] {
-            assert!(
-                pairs.contains(&(Node::Var(a), Node::Var(b))),
-                "u{a} and u{b} in {pairs:?}"
-            );
+            assert!(pairs.contains(&(Node::Var(a), Node::Var(b))), "u{a} and u{b} in {pairs:?}");
         }
         assert_eq!(lanes.of(Node::Var(2)), None);
         let order = schedule(&t, &folding, &lanes).expect("a schedule");
@@ -485,21 +447,11 @@ mod tests {
     fn n_body_interactions_pair_by_gathering_states() {
         let t = n_body_tape(6);
         let (folding, lanes) = lanes_of(&t, 36);
-        let rows: Vec<usize> = (0..t.ops.len())
-            .filter(|&v| folding.roles[v] != Role::Folded)
-            .collect();
+        let rows: Vec<usize> =
+            (0..t.ops.len()).filter(|&v| folding.roles[v] != Role::Folded).collect();
         assert_eq!(rows.len(), 15 * 8);
-        let paired = rows
-            .iter()
-            .filter(|&&v| lanes.of(Node::Var(v)).is_some())
-            .count();
-        assert_eq!(
-            paired,
-            7 * 2 * 8 + 4,
-            "{} of {} rows paired",
-            paired,
-            rows.len()
-        );
+        let paired = rows.iter().filter(|&&v| lanes.of(Node::Var(v)).is_some()).count();
+        assert_eq!(paired, 7 * 2 * 8 + 4, "{} of {} rows paired", paired, rows.len());
         assert!(schedule(&t, &folding, &lanes).is_some());
     }
 

@@ -33,10 +33,7 @@ pub(super) enum Piece {
     Own(TokenStream),
     /// A statement, and its form at any order k ≥ 1 (`r[F + S * k]`, the
     /// scale `s`) when it has one.
-    Statement {
-        literal: TokenStream,
-        any_order: Option<TokenStream>,
-    },
+    Statement { literal: TokenStream, any_order: Option<TokenStream> },
 }
 
 /// The shared functions, and each order's body calling them: `orders[k]`
@@ -119,9 +116,7 @@ fn shared_positions(orders: &[Vec<Piece>]) -> Vec<bool> {
         return Vec::new();
     };
     let any_order = |piece: &Piece| match piece {
-        Piece::Statement {
-            any_order: Some(t), ..
-        } => Some(t.to_string()),
+        Piece::Statement { any_order: Some(t), .. } => Some(t.to_string()),
         _ => None,
     };
     if orders.len() < 3 || orders[1..].iter().any(|o| o.len() != first.len()) {
@@ -181,10 +176,7 @@ mod tests {
         // with their k and scale, and keep their loop and last statement.
         assert!(!bodies[0].to_string().contains("any_order_0"));
         let third = bodies[3].to_string();
-        assert!(
-            third.contains("any_order_0 (r , c , t , 3 , 0.25f64)"),
-            "{third}"
-        );
+        assert!(third.contains("any_order_0 (r , c , t , 3 , 0.25f64)"), "{third}");
         assert!(third.contains("for lane"), "{third}");
         assert!(third.contains("r [33] = r [3] * 0.5"), "{third}");
         assert!(!third.contains("r [13]"), "{third}");

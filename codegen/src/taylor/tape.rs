@@ -243,10 +243,7 @@ impl Builder<'_> {
             let negated = self.binary("Mul", &minus_one, &square);
             let difference = self.binary("Add", &one, &negated);
             let b = difference.tokens();
-            self.push(
-                quote!(T::Pow(#b, 0.5)),
-                Some(Recurrence::Pow(difference, 0.5)),
-            )
+            self.push(quote!(T::Pow(#b, 0.5)), Some(Recurrence::Pow(difference, 0.5)))
         };
         let function = match f {
             "Asin" => InverseFunction::Asin,
@@ -353,9 +350,8 @@ impl Builder<'_> {
     /// The operands of a sum or product of a time-dependent node, split
     /// into constants and the others (never empty: the node depends on time).
     fn split_constants(&self, operands: &[Id]) -> (Vec<Id>, Vec<Id>) {
-        let (constant, varying): (Vec<Id>, Vec<Id>) = operands
-            .iter()
-            .partition(|&&o| matches!(self.operand(o), Operand::Const(_)));
+        let (constant, varying): (Vec<Id>, Vec<Id>) =
+            operands.iter().partition(|&&o| matches!(self.operand(o), Operand::Const(_)));
         if varying.is_empty() {
             (Vec::new(), constant)
         } else {
@@ -567,10 +563,8 @@ pub fn decompose(
             Node::Symbol(s) => *s == time || slot_of.contains_key(s),
             _ => false,
         };
-        let dep = own
-            || g.operands(id)
-                .iter()
-                .any(|c| time_dependent.get(c).copied().unwrap_or(false));
+        let dep =
+            own || g.operands(id).iter().any(|c| time_dependent.get(c).copied().unwrap_or(false));
         time_dependent.insert(id, dep);
     }
     let mut b = Builder {

@@ -63,10 +63,8 @@ fn scaled_sum(terms: Vec<Triple>, scale: TokenStream) -> TokenStream {
 
 /// A term as a product of its factors (weight first), or a single value.
 fn term(weight: f64, a: TokenStream, b: TokenStream) -> Term {
-    let mut factors: Vec<TokenStream> = [a, b]
-        .into_iter()
-        .filter(|f| f.to_string() != "1.0")
-        .collect();
+    let mut factors: Vec<TokenStream> =
+        [a, b].into_iter().filter(|f| f.to_string() != "1.0").collect();
     if weight.abs() != 1.0 {
         factors.insert(0, float(weight.abs()));
     }
@@ -242,12 +240,7 @@ fn convolution(
 /// the Cauchy product (a square by its half-sum, each cross term twice).
 fn base_terms(l: &Layout, base: Base, k: usize) -> Vec<Triple> {
     match base {
-        Base::Operand(o) => vec![(
-            1.0,
-            l.coefficient(o, k),
-            Some(quote!(1.0)),
-            l.fresh(o, k, k),
-        )],
+        Base::Operand(o) => vec![(1.0, l.coefficient(o, k), Some(quote!(1.0)), l.fresh(o, k, k))],
         Base::Square(a) => convolution(l, a, a, k, (0..=k).filter(|&j| j <= k - j), |j| {
             if j < k - j {
                 2.0
@@ -437,19 +430,14 @@ impl Weights {
         self.list
             .iter()
             .map(|w| {
-                let mut factors: Vec<TokenStream> = w
-                    .times
-                    .iter()
-                    .map(|i| name(i).into_token_stream())
-                    .collect();
+                let mut factors: Vec<TokenStream> =
+                    w.times.iter().map(|i| name(i).into_token_stream()).collect();
                 if w.literal.abs() != 1.0 || factors.is_empty() {
                     factors.insert(0, float(w.literal.abs()));
                 }
                 let sign = (w.literal < 0.0).then(|| quote!(-));
-                let product = factors
-                    .into_iter()
-                    .reduce(|a, b| quote!(#a * #b))
-                    .unwrap_or_default();
+                let product =
+                    factors.into_iter().reduce(|a, b| quote!(#a * #b)).unwrap_or_default();
                 let numerator = quote!(#sign (#product));
                 if w.over.is_empty() {
                     numerator
@@ -477,10 +465,8 @@ struct Seeds<'a> {
 impl Seeds<'_> {
     /// `seeds[i] = a; seeds[i + 1] = b;` at the next two slots.
     fn store(&mut self, a: &TokenStream, b: &TokenStream) -> TokenStream {
-        let (i, j) = (
-            Literal::usize_unsuffixed(self.next),
-            Literal::usize_unsuffixed(self.next + 1),
-        );
+        let (i, j) =
+            (Literal::usize_unsuffixed(self.next), Literal::usize_unsuffixed(self.next + 1));
         self.next += 2;
         quote!(seeds[#i] = #a; seeds[#j] = #b;)
     }
@@ -538,14 +524,8 @@ fn folded_sum(
         }
         if let Some(j) = partner[i] {
             let first = seeds.next;
-            let (a, b) = (
-                format_ident!("lane_{}", first),
-                format_ident!("lane_{}", first + 1),
-            );
-            let (sa, sb) = (
-                sum(base_terms(l, t.base, k)),
-                sum(base_terms(l, terms[j].base, k)),
-            );
+            let (a, b) = (format_ident!("lane_{}", first), format_ident!("lane_{}", first + 1));
+            let (sa, sb) = (sum(base_terms(l, t.base, k)), sum(base_terms(l, terms[j].base, k)));
             prelude.extend(quote!(let #a = #sa; let #b = #sb;));
             prelude.extend(seeds.store(&a.to_token_stream(), &b.to_token_stream()));
             extra.push(weighted(weights, t, a.to_token_stream()));
@@ -555,15 +535,10 @@ fn folded_sum(
         let products = base_terms(l, t.base, k);
         match weights.token(&t.weight) {
             None => flat.extend(
-                products
-                    .into_iter()
-                    .map(|(w, a, b, fresh)| (w * t.weight.literal, a, b, fresh)),
+                products.into_iter().map(|(w, a, b, fresh)| (w * t.weight.literal, a, b, fresh)),
             ),
             Some(weight) => {
-                if products
-                    .iter()
-                    .any(|(_, a, b, _)| a.is_some() && b.is_some())
-                {
+                if products.iter().any(|(_, a, b, _)| a.is_some() && b.is_some()) {
                     let inner = sum(products);
                     extra.push(Term::Product(weight, quote!((#inner))));
                 }
@@ -596,10 +571,8 @@ fn group_loop(
     lanes: &Lanes,
     members: &[Node],
 ) -> Option<Loop> {
-    let operands: Vec<Vec<Operand>> = members
-        .iter()
-        .map(|&m| Some(shape(m, tape, folding)?.1))
-        .collect::<Option<_>>()?;
+    let operands: Vec<Vec<Operand>> =
+        members.iter().map(|&m| Some(shape(m, tape, folding)?.1)).collect::<Option<_>>()?;
     if let Node::Var(first) = members[0] {
         if let Role::SumRow(terms) = &folding.roles[first] {
             for m in &members[1..] {
@@ -632,11 +605,7 @@ fn group_loop(
         looped.insert(l.row(nodes[0]));
     }
     let written = members.iter().map(|&m| l.row(m)).collect();
-    looped.is_disjoint(&shared).then_some(Loop {
-        looped,
-        shared,
-        written,
-    })
+    looped.is_disjoint(&shared).then_some(Loop { looped, shared, written })
 }
 
 /// Consecutive lane groups of one width written as one loop, so that the
@@ -673,12 +642,8 @@ impl FusedLoop {
             return None;
         }
         let closed = open.take().map(FusedLoop::tokens);
-        *open = Some(FusedLoop {
-            width,
-            written: g.written.clone(),
-            shared: g.shared.clone(),
-            body,
-        });
+        *open =
+            Some(FusedLoop { width, written: g.written.clone(), shared: g.shared.clone(), body });
         closed
     }
 
@@ -761,25 +726,15 @@ fn jet_in(
         .collect();
     let len = Literal::usize_unsuffixed(l.len());
     let weights = Weights::collect(&folding, tape.constants.len());
-    let inline = if single_function {
-        quote!(#[inline(always)])
-    } else {
-        quote!(#[inline(never)])
-    };
-    let constants: Vec<_> = (0..tape.constants.len())
-        .map(|i| format_ident!("c{}", i))
-        .collect();
+    let inline = if single_function { quote!(#[inline(always)]) } else { quote!(#[inline(never)]) };
+    let constants: Vec<_> = (0..tape.constants.len()).map(|i| format_ident!("c{}", i)).collect();
     let weight_values = weights.values();
     let nc = Literal::usize_unsuffixed(constants.len() + weight_values.len());
     // The u-variables in the order they are written (lane pairs together).
     // (The rows `taylor_factoring` adds come after the tape's.)
     let written = schedule(tape, &folding, &lanes).unwrap_or_else(|| {
         let added = tape.ops.len()..folding.roles.len();
-        tape.recurrences
-            .iter()
-            .map(|(v, _)| *v)
-            .chain(added)
-            .collect()
+        tape.recurrences.iter().map(|(v, _)| *v).chain(added).collect()
     });
     let recurrence: std::collections::BTreeMap<usize, Recurrence> =
         tape.recurrences.iter().copied().collect();
@@ -798,10 +753,7 @@ fn jet_in(
     // vectoriser the adjacent stores it starts from. Split into functions,
     // the coefficients are stored in `r`, where lanes are neighbours.
     let seed_rows = single_function;
-    let mut seeds = Seeds {
-        lanes: &lanes,
-        next: 0,
-    };
+    let mut seeds = Seeds { lanes: &lanes, next: 0 };
     let row_slot = |node: Node, k: usize| match node {
         Node::State(i) => l.slot(i, k),
         Node::Var(v) => l.slot(l.var_row(v), k),
@@ -819,11 +771,7 @@ fn jet_in(
     } else {
         code.extend(quote!(let mut r = [0.0f64; #len];));
     }
-    let r_arg = if in_out {
-        quote!(&mut *r)
-    } else {
-        quote!(&mut r)
-    };
+    let r_arg = if in_out { quote!(&mut *r) } else { quote!(&mut r) };
     for i in 0..n {
         let (slot, i) = (l.slot(i, 0), Literal::usize_unsuffixed(i));
         code.extend(quote!(#slot = y[#i];));
@@ -887,19 +835,19 @@ fn jet_in(
         for &i in &state_order {
             let terms = &folding.outputs[i];
             let single = match terms.as_slice() {
-                [LinearTerm {
-                    weight,
-                    base: Base::Operand(o),
-                }] if weight.is_literal() && weight.literal == 1.0 => Some(*o),
+                [LinearTerm { weight, base: Base::Operand(o) }]
+                    if weight.is_literal() && weight.literal == 1.0 =>
+                {
+                    Some(*o)
+                }
                 _ => None,
             };
             let state_row = |scale: &TokenStream, seeds: &mut Seeds| {
                 let slot = l.slot(i, k + 1);
                 let (prelude, value) = match (single, k) {
-                    (Some(o), 0) => (
-                        TokenStream::new(),
-                        l.coefficient(o, k).unwrap_or(quote!(0.0f64)),
-                    ),
+                    (Some(o), 0) => {
+                        (TokenStream::new(), l.coefficient(o, k).unwrap_or(quote!(0.0f64)))
+                    }
                     (Some(o), _) => (
                         TokenStream::new(),
                         match l.coefficient(o, k) {
@@ -943,10 +891,7 @@ fn jet_in(
             pieces
                 .into_iter()
                 .map(|piece| match piece {
-                    Piece::Own(tokens)
-                    | Piece::Statement {
-                        literal: tokens, ..
-                    } => tokens,
+                    Piece::Own(tokens) | Piece::Statement { literal: tokens, .. } => tokens,
                 })
                 .collect()
         };
@@ -1016,9 +961,7 @@ mod tests {
         let file: syn::File = syn::parse2(tokens).expect("the jet parses");
         // One snapshot per function of the jet, each short enough to read:
         // the functions it defines, then what is left of it.
-        let syn::Item::Fn(mut jet) = file.items[0].clone() else {
-            panic!("the jet is a function")
-        };
+        let syn::Item::Fn(mut jet) = file.items[0].clone() else { panic!("the jet is a function") };
         let mut pieces = Vec::new();
         jet.block.stmts.retain(|stmt| match stmt {
             syn::Stmt::Item(syn::Item::Fn(f)) => {
@@ -1034,11 +977,7 @@ mod tests {
                 attrs: Vec::new(),
                 items: vec![item],
             });
-            assert!(
-                text.lines().count() <= 80,
-                "{name}: {} lines",
-                text.lines().count()
-            );
+            assert!(text.lines().count() <= 80, "{name}: {} lines", text.lines().count());
             insta::assert_snapshot!(
                 format!("three_bodies_in_lane_groups_at_order_3__{name}"),
                 text

@@ -14,11 +14,7 @@ pub fn config(cases: u32, regressions: Option<&'static str>) -> Config {
     let mut config = Config {
         cases,
         max_global_rejects: 1_000_000,
-        rng_seed: if ci {
-            RngSeed::Fixed(CI_SEED)
-        } else {
-            RngSeed::Random
-        },
+        rng_seed: if ci { RngSeed::Fixed(CI_SEED) } else { RngSeed::Random },
         ..Config::default()
     };
     if let Some(path) = regressions {

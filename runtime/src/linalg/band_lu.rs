@@ -53,11 +53,8 @@ impl BandOrdering {
             while head < order.len() {
                 let v = order[head];
                 head += 1;
-                let mut next: Vec<usize> = neighbours[v]
-                    .iter()
-                    .copied()
-                    .filter(|&u| !placed[u])
-                    .collect();
+                let mut next: Vec<usize> =
+                    neighbours[v].iter().copied().filter(|&u| !placed[u]).collect();
                 next.sort_by_key(|&u| (degree(u), u));
                 for u in next {
                     placed[u] = true;
@@ -78,11 +75,7 @@ impl BandOrdering {
                 upper = upper.max(pc.saturating_sub(pr));
             }
         }
-        BandOrdering {
-            order,
-            lower,
-            upper,
-        }
+        BandOrdering { order, lower, upper }
     }
 
     /// Whether banded factorisation beats the dense one for n states: the
@@ -107,13 +100,7 @@ pub struct BandLu {
 impl BandLu {
     /// Storage for n × n matrices with the given bandwidths.
     pub fn new(n: usize, kl: usize, ku: usize) -> BandLu {
-        BandLu {
-            n,
-            kl,
-            ku,
-            a: vec![0.0; n * (2 * kl + ku + 1)],
-            pivots: vec![0; n],
-        }
+        BandLu { n, kl, ku, a: vec![0.0; n * (2 * kl + ku + 1)], pivots: vec![0; n] }
     }
 
     fn width(&self) -> usize {
@@ -281,9 +268,7 @@ mod tests {
 
     /// A deterministic pseudo-random number in [-1, 1).
     fn uniform(seed: &mut u64) -> f64 {
-        *seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
+        *seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
         2.0 * ((*seed >> 11) as f64 / (1u64 << 53) as f64) - 1.0
     }
 
@@ -347,15 +332,8 @@ mod tests {
             let (mut re_dense, mut im_dense) = (b.clone(), c.clone());
             newton.solve_complex(&mut re_band, &mut im_band);
             dense_complex.solve(&mut re_dense, &mut im_dense);
-            let scale = re_dense
-                .iter()
-                .chain(&im_dense)
-                .fold(1.0f64, |m, v| m.max(v.abs()));
-            for (u, v) in re_band
-                .iter()
-                .chain(&im_band)
-                .zip(re_dense.iter().chain(&im_dense))
-            {
+            let scale = re_dense.iter().chain(&im_dense).fold(1.0f64, |m, v| m.max(v.abs()));
+            for (u, v) in re_band.iter().chain(&im_band).zip(re_dense.iter().chain(&im_dense)) {
                 assert!((u - v).abs() <= 1e-10 * scale, "complex: {u} vs {v}");
             }
         }

@@ -13,11 +13,7 @@ pub struct RealLu {
 impl RealLu {
     /// Storage for n × n matrices.
     pub fn new(n: usize) -> RealLu {
-        RealLu {
-            n,
-            a: vec![0.0; n * n],
-            pivots: vec![0; n],
-        }
+        RealLu { n, a: vec![0.0; n * n], pivots: vec![0; n] }
     }
 
     /// Factors `shift·I − J` (J row-major). `false` when a pivot is zero.
@@ -48,11 +44,7 @@ impl RealLu {
         let n = self.n;
         for col in 0..n {
             let pivot = (col..n)
-                .max_by(|&x, &y| {
-                    self.a[x * n + col]
-                        .abs()
-                        .total_cmp(&self.a[y * n + col].abs())
-                })
+                .max_by(|&x, &y| self.a[x * n + col].abs().total_cmp(&self.a[y * n + col].abs()))
                 .unwrap_or(col);
             self.pivots[col] = pivot;
             if pivot != col {
@@ -106,12 +98,7 @@ pub struct ComplexLu {
 impl ComplexLu {
     /// Storage for n × n matrices.
     pub fn new(n: usize) -> ComplexLu {
-        ComplexLu {
-            n,
-            re: vec![0.0; n * n],
-            im: vec![0.0; n * n],
-            pivots: vec![0; n],
-        }
+        ComplexLu { n, re: vec![0.0; n * n], im: vec![0.0; n * n], pivots: vec![0; n] }
     }
 
     /// Factors `(α + iβ)·I − J`. `false` when a pivot is zero.
@@ -147,9 +134,8 @@ impl ComplexLu {
         }
         for col in 0..n {
             let magnitude = |k: usize| self.re[k * n + col].hypot(self.im[k * n + col]);
-            let pivot = (col..n)
-                .max_by(|&x, &y| magnitude(x).total_cmp(&magnitude(y)))
-                .unwrap_or(col);
+            let pivot =
+                (col..n).max_by(|&x, &y| magnitude(x).total_cmp(&magnitude(y))).unwrap_or(col);
             self.pivots[col] = pivot;
             if pivot != col {
                 for k in 0..n {

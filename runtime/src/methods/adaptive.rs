@@ -114,13 +114,11 @@ fn stage<M: Model, P: EmbeddedPair, const S: usize>(
     let (done, rest) = k.split_at_mut(S);
     if S + 1 == P::STAGES {
         combine(y, h, a[S], done, y_new);
-        rhs.call(t + h, y_new.as_ref(), rest[0].as_mut())
-            .map_err(|cause| (t + h, cause))
+        rhs.call(t + h, y_new.as_ref(), rest[0].as_mut()).map_err(|cause| (t + h, cause))
     } else {
         combine(y, h, a[S], done, stage);
         let ts = t + c[S] * h;
-        rhs.call(ts, stage.as_ref(), rest[0].as_mut())
-            .map_err(|cause| (ts, cause))
+        rhs.call(ts, stage.as_ref(), rest[0].as_mut()).map_err(|cause| (ts, cause))
     }
 }
 
@@ -202,11 +200,7 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
 
     y.as_mut().copy_from_slice(y0);
     if let Err(cause) = rhs.call(t0, y.as_ref(), k[0].as_mut()) {
-        return Err(Error::Evaluation {
-            t: t0,
-            cause,
-            partial: Box::new(solution),
-        });
+        return Err(Error::Evaluation { t: t0, cause, partial: Box::new(solution) });
     }
     if let Some(i) = k[0].as_ref().iter().position(|v| !v.is_finite()) {
         return Err(Error::NonFinite {
@@ -218,10 +212,7 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
     if t0 == t1 {
         return Ok((solution, Finish::Done));
     }
-    let hmax = options
-        .max_step
-        .unwrap_or((t1 - t0).abs())
-        .min((t1 - t0).abs());
+    let hmax = options.max_step.unwrap_or((t1 - t0).abs()).min((t1 - t0).abs());
     let mut h = match options.initial_step {
         Some(h0) => h0.abs().min(hmax),
         None => {
@@ -260,11 +251,7 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
             finish_stats(&mut solution, accepted, rejected, rhs.evals);
             let partial = Box::new(solution);
             return Err(match non_finite {
-                Some(i) => Error::NonFinite {
-                    t,
-                    variable: M::INFO.states[i],
-                    partial,
-                },
+                Some(i) => Error::NonFinite { t, variable: M::INFO.states[i], partial },
                 None => Error::StepSizeUnderflow { t, h, partial },
             });
         }
@@ -275,11 +262,7 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
         if let Err((ts, cause)) = stages::<M, P>(&mut rhs, t, h, &y, &mut k, &mut stage, &mut y_new)
         {
             finish_stats(&mut solution, accepted, rejected, rhs.evals);
-            return Err(Error::Evaluation {
-                t: ts,
-                cause,
-                partial: Box::new(solution),
-            });
+            return Err(Error::Evaluation { t: ts, cause, partial: Box::new(solution) });
         }
         scale(atol, rtol, y.as_ref(), y_new.as_ref(), sk.as_mut());
         let err = P::error(h, &k[..P::STAGES], &sk);
@@ -340,11 +323,7 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
                 // The last stage was evaluated before the projection.
                 if let Err(cause) = rhs.call(t, y.as_ref(), k[0].as_mut()) {
                     finish_stats(&mut solution, accepted, rejected, rhs.evals);
-                    return Err(Error::Evaluation {
-                        t,
-                        cause,
-                        partial: Box::new(solution),
-                    });
+                    return Err(Error::Evaluation { t, cause, partial: Box::new(solution) });
                 }
             } else {
                 k[0] = k[P::STAGES - 1];
@@ -464,21 +443,14 @@ mod tests {
     /// Error of one step of size h from the exact state at t = 0.3.
     fn local_error<P: EmbeddedPair>(h: f64) -> f64 {
         let t = 0.3;
-        let mut rhs = Rhs {
-            model: &Kepler,
-            evals: 0,
-        };
+        let mut rhs = Rhs { model: &Kepler, evals: 0 };
         let y = exact(t);
         let mut k = vec![[0.0; 4]; P::STAGES + P::DENSE_STAGES];
         let (mut stage, mut y_new) = ([0.0; 4], [0.0; 4]);
         rhs.call(t, &y, &mut k[0]).unwrap();
         stages::<Kepler, P>(&mut rhs, t, h, &y, &mut k, &mut stage, &mut y_new).unwrap();
         let want = exact(t + h);
-        y_new
-            .iter()
-            .zip(want)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max)
+        y_new.iter().zip(want).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max)
     }
 
     /// Local error O(h^(p+1)): halving h divides it by 2^(p+1).
@@ -505,10 +477,7 @@ mod tests {
     /// divides the error at the step's midpoint by about 2^(q+1).
     fn dense_error<P: EmbeddedPair>(h: f64) -> f64 {
         let t = 0.3;
-        let mut rhs = Rhs {
-            model: &Kepler,
-            evals: 0,
-        };
+        let mut rhs = Rhs { model: &Kepler, evals: 0 };
         let y = exact(t);
         let n = 4;
         let mut k = vec![[0.0; 4]; P::STAGES + P::DENSE_STAGES];
@@ -524,9 +493,7 @@ mod tests {
         let mut dense = vec![0.0; P::DENSE_WIDTH * n];
         P::dense_coefficients(h, &y, &y_new, &k, &mut dense);
         let want = exact(t + 0.37 * h);
-        (0..n)
-            .map(|i| (P::interpolate(&dense, n, i, 0.37) - want[i]).abs())
-            .fold(0.0, f64::max)
+        (0..n).map(|i| (P::interpolate(&dense, n, i, 0.37) - want[i]).abs()).fold(0.0, f64::max)
     }
 
     #[test]

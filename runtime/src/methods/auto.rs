@@ -155,10 +155,7 @@ fn switching<M: Model, P: EmbeddedPair>(
         segments += 1;
         let steps_before = solution.stats().steps;
         let phase = remaining(options, &solution, h);
-        let watch = NonStiffWatch {
-            below: ratio * h_rho,
-            confirmations: CALM_STEPS,
-        };
+        let watch = NonStiffWatch { below: ratio * h_rho, confirmations: CALM_STEPS };
         let result = radau5::integrate_watching(model, t, t1, &y, &phase, Some(watch), solution);
         let rho_h;
         (solution, (t, rho_h)) = match labelled(result, segments)? {
@@ -179,12 +176,8 @@ fn switching<M: Model, P: EmbeddedPair>(
 /// step the last stretch ended with as the first.
 fn remaining(options: &Options, solution: &Solution, h: Option<f64>) -> Options {
     let stats = solution.stats();
-    let mut phase = options.max_steps(
-        options
-            .max_steps
-            .saturating_sub(stats.steps + stats.rejected)
-            .max(1),
-    );
+    let mut phase =
+        options.max_steps(options.max_steps.saturating_sub(stats.steps + stats.rejected).max(1));
     if let Some(h) = h {
         phase = phase.initial_step(h);
     }

@@ -155,18 +155,10 @@ impl Newton {
             // filter is the matrix at the start of the step, as in RADAU5.
             self.evals += 1;
             self.next_delta.copy_from_slice(y);
-            model
-                .rhs(t0, y, &mut self.trial_residual)
-                .map_err(|e| Trouble::Evaluation(t0, e))?;
+            model.rhs(t0, y, &mut self.trial_residual).map_err(|e| Trouble::Evaluation(t0, e))?;
             self.jacobian_evals += 1;
             self.jacobian
-                .evaluate(
-                    model,
-                    t0,
-                    &mut self.next_delta,
-                    &self.trial_residual,
-                    &mut self.evals,
-                )
+                .evaluate(model, t0, &mut self.next_delta, &self.trial_residual, &mut self.evals)
                 .map_err(|e| Trouble::Evaluation(t0, e))?;
             self.factored = self.lu.factor_shifted(1.0 / self.h, &self.jacobian.matrix);
             if !self.factored {
@@ -177,12 +169,7 @@ impl Newton {
             self.next_delta[i] = 0.5 * (self.f[i] - self.f_start[i]);
         }
         self.lu.solve(&mut self.next_delta);
-        Ok(self
-            .next_delta
-            .iter()
-            .zip(scale)
-            .map(|(e, s)| (e / s).abs())
-            .fold(0.0, f64::max))
+        Ok(self.next_delta.iter().zip(scale).map(|(e, s)| (e / s).abs()).fold(0.0, f64::max))
     }
 
     /// The step was accepted: f(t₁, Y) is f at the start of the next.
@@ -272,15 +259,11 @@ impl Newton {
         for (w, v) in self.weights.iter_mut().zip(y) {
             *w = atol + rtol * v.abs();
         }
-        *effort = Effort {
-            smallest_damping: 1.0,
-            ..Effort::default()
-        };
+        *effort = Effort { smallest_damping: 1.0, ..Effort::default() };
         self.formed_in_step = false;
         big_y.copy_from_slice(y);
         self.trial.copy_from_slice(y);
-        self.trial_residual(model, t1, y)
-            .map_err(|e| Trouble::Evaluation(t1, e))?;
+        self.trial_residual(model, t1, y).map_err(|e| Trouble::Evaluation(t1, e))?;
         std::mem::swap(&mut self.residual, &mut self.trial_residual);
         // The matrix of the last step is kept while it serves.
         let mut keep_matrix = self.factored;
@@ -298,9 +281,7 @@ impl Newton {
                 effort.matrices += 1;
                 // f(t₁, Y), which a finite-difference Jacobian reads.
                 self.evals += 1;
-                model
-                    .rhs(t1, big_y, &mut self.f)
-                    .map_err(|e| Trouble::Evaluation(t1, e))?;
+                model.rhs(t1, big_y, &mut self.f).map_err(|e| Trouble::Evaluation(t1, e))?;
                 self.formed_in_step = true;
                 if !self.refresh(model, t1, big_y)? {
                     if big_y == y {
@@ -309,8 +290,7 @@ impl Newton {
                     // Singular at Y: once more from the start of the step.
                     big_y.copy_from_slice(y);
                     self.trial.copy_from_slice(y);
-                    self.trial_residual(model, t1, y)
-                        .map_err(|e| Trouble::Evaluation(t1, e))?;
+                    self.trial_residual(model, t1, y).map_err(|e| Trouble::Evaluation(t1, e))?;
                     std::mem::swap(&mut self.residual, &mut self.trial_residual);
                     residual_norm = norm(&self.residual, &self.weights);
                     continue 'matrices;
@@ -492,11 +472,7 @@ pub(crate) fn integrate<M: Model>(
     let (mut y, mut next) = (y0.to_vec(), vec![0.0; n]);
     newton.evals += 1;
     if let Err(cause) = model.rhs(t0, &y, &mut newton.f_start) {
-        return Err(Error::Evaluation {
-            t: t0,
-            cause,
-            partial: Box::new(solution),
-        });
+        return Err(Error::Evaluation { t: t0, cause, partial: Box::new(solution) });
     }
     let mut events = EventWatch::new(model, t0, y0, 1);
     let mut projector = Projector::new(model);
@@ -519,15 +495,8 @@ pub(crate) fn integrate<M: Model>(
         };
         newton.set_step(t_next - t);
         let mut effort = Effort::default();
-        let outcome = newton.solve(
-            model,
-            t_next,
-            &y,
-            &mut next,
-            options.rtol,
-            options.atol,
-            &mut effort,
-        );
+        let outcome =
+            newton.solve(model, t_next, &y, &mut next, options.rtol, options.atol, &mut effort);
         let stats = solution.stats_mut();
         stats.rhs_evals = newton.evals;
         stats.jacobian_evals = newton.jacobian_evals;
@@ -547,11 +516,7 @@ pub(crate) fn integrate<M: Model>(
                 magnitude.copy_from_slice(&scale);
             }
             Err(Trouble::Evaluation(t, cause)) => {
-                return Err(Error::Evaluation {
-                    t,
-                    cause,
-                    partial: Box::new(solution),
-                })
+                return Err(Error::Evaluation { t, cause, partial: Box::new(solution) })
             }
             Err(trouble) => {
                 solution.stats_mut().rejected += 1;

@@ -25,32 +25,16 @@ pub struct Tableau {
 }
 
 /// Explicit Euler.
-pub const EULER: Tableau = Tableau {
-    name: "Euler",
-    order: 1,
-    a: &[&[]],
-    b: &[1.0],
-    c: &[0.0],
-};
+pub const EULER: Tableau = Tableau { name: "Euler", order: 1, a: &[&[]], b: &[1.0], c: &[0.0] };
 
 /// The two-stage family of the course notes, eq. 1.19:
 /// `y + h(1−γ) f(x, y) + hγ f(x + h/(2γ), y + h/(2γ) f(x, y))`. γ = 1.
-pub const MIDPOINT: Tableau = Tableau {
-    name: "midpoint",
-    order: 2,
-    a: &[&[], &[0.5]],
-    b: &[0.0, 1.0],
-    c: &[0.0, 0.5],
-};
+pub const MIDPOINT: Tableau =
+    Tableau { name: "midpoint", order: 2, a: &[&[], &[0.5]], b: &[0.0, 1.0], c: &[0.0, 0.5] };
 
 /// Eq. 1.19 with γ = 1/2 (Heun's method, the explicit trapezoidal rule).
-pub const HEUN: Tableau = Tableau {
-    name: "Heun",
-    order: 2,
-    a: &[&[], &[1.0]],
-    b: &[0.5, 0.5],
-    c: &[0.0, 1.0],
-};
+pub const HEUN: Tableau =
+    Tableau { name: "Heun", order: 2, a: &[&[], &[1.0]], b: &[0.5, 0.5], c: &[0.0, 1.0] };
 
 /// Eq. 1.19 with γ = 3/4 (Ralston's method, smallest error constant).
 pub const RALSTON: Tableau = Tableau {
@@ -115,11 +99,7 @@ pub(crate) fn integrate<M: Model>(
             let ti = t + tableau.c[i] * h;
             let (_, rest) = k.split_at_mut(i * n);
             if let Err(cause) = model.rhs(ti, &stage, &mut rest[..n]) {
-                return Err(Error::Evaluation {
-                    t: ti,
-                    cause,
-                    partial: Box::new(solution),
-                });
+                return Err(Error::Evaluation { t: ti, cause, partial: Box::new(solution) });
             }
             solution.stats_mut().rhs_evals += 1;
         }
@@ -128,11 +108,8 @@ pub(crate) fn integrate<M: Model>(
                 *yv += h * bi * ki;
             }
         }
-        let t_next = if step + 1 == steps {
-            t1
-        } else {
-            t0 + span * ((step + 1) as f64 / steps as f64)
-        };
+        let t_next =
+            if step + 1 == steps { t1 } else { t0 + span * ((step + 1) as f64 / steps as f64) };
         if let Some(i) = y.iter().position(|v| !v.is_finite()) {
             return Err(Error::NonFinite {
                 t: t_next,

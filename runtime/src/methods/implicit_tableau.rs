@@ -38,16 +38,8 @@ pub const RADAU_IIA_3: ImplicitTableau = ImplicitTableau {
     order: 5,
     stage_order: 3,
     a: &[
-        &[
-            (88.0 - 7.0 * S6) / 360.0,
-            (296.0 - 169.0 * S6) / 1800.0,
-            (-2.0 + 3.0 * S6) / 225.0,
-        ],
-        &[
-            (296.0 + 169.0 * S6) / 1800.0,
-            (88.0 + 7.0 * S6) / 360.0,
-            (-2.0 - 3.0 * S6) / 225.0,
-        ],
+        &[(88.0 - 7.0 * S6) / 360.0, (296.0 - 169.0 * S6) / 1800.0, (-2.0 + 3.0 * S6) / 225.0],
+        &[(296.0 + 169.0 * S6) / 1800.0, (88.0 + 7.0 * S6) / 360.0, (-2.0 - 3.0 * S6) / 225.0],
         &[(16.0 - S6) / 36.0, (16.0 + S6) / 36.0, 1.0 / 9.0],
     ],
     b: &[(16.0 - S6) / 36.0, (16.0 + S6) / 36.0, 1.0 / 9.0],
@@ -62,10 +54,7 @@ mod tests {
     fn b_condition(t: &ImplicitTableau, p: usize) -> f64 {
         (1..=p)
             .map(|k| {
-                (t.b.iter()
-                    .zip(t.c)
-                    .map(|(b, c)| b * c.powi(k as i32 - 1))
-                    .sum::<f64>()
+                (t.b.iter().zip(t.c).map(|(b, c)| b * c.powi(k as i32 - 1)).sum::<f64>()
                     - 1.0 / k as f64)
                     .abs()
             })
@@ -77,11 +66,7 @@ mod tests {
         let mut worst = 0.0f64;
         for (row, ci) in t.a.iter().zip(t.c) {
             for k in 1..=eta {
-                let lhs: f64 = row
-                    .iter()
-                    .zip(t.c)
-                    .map(|(a, c)| a * c.powi(k as i32 - 1))
-                    .sum();
+                let lhs: f64 = row.iter().zip(t.c).map(|(a, c)| a * c.powi(k as i32 - 1)).sum();
                 worst = worst.max((lhs - ci.powi(k as i32) / k as f64).abs());
             }
         }
@@ -94,9 +79,7 @@ mod tests {
         let mut worst = 0.0f64;
         for j in 0..s {
             for k in 1..=zeta {
-                let lhs: f64 = (0..s)
-                    .map(|i| t.b[i] * t.c[i].powi(k as i32 - 1) * t.a[i][j])
-                    .sum();
+                let lhs: f64 = (0..s).map(|i| t.b[i] * t.c[i].powi(k as i32 - 1) * t.a[i][j]).sum();
                 worst = worst.max((lhs - t.b[j] * (1.0 - t.c[j].powi(k as i32)) / k as f64).abs());
             }
         }
@@ -107,21 +90,9 @@ mod tests {
     fn radau_iia_has_order_5_by_butchers_theorem() {
         // B(5), C(3), D(2) with 5 ≤ 3 + 2 + 1 and 5 ≤ 2·3 + 2 give order 5.
         let t = RADAU_IIA_3;
-        assert!(
-            b_condition(&t, 5) < 1e-15,
-            "B(5) off by {}",
-            b_condition(&t, 5)
-        );
-        assert!(
-            c_condition(&t, 3) < 1e-15,
-            "C(3) off by {}",
-            c_condition(&t, 3)
-        );
-        assert!(
-            d_condition(&t, 2) < 1e-15,
-            "D(2) off by {}",
-            d_condition(&t, 2)
-        );
+        assert!(b_condition(&t, 5) < 1e-15, "B(5) off by {}", b_condition(&t, 5));
+        assert!(c_condition(&t, 3) < 1e-15, "C(3) off by {}", c_condition(&t, 3));
+        assert!(d_condition(&t, 2) < 1e-15, "D(2) off by {}", d_condition(&t, 2));
         assert!(b_condition(&t, 6) > 1e-4, "and not order 6");
         // Stiffly accurate: the last row of A is b, so y₁ is the last stage.
         assert_eq!(t.a[2], t.b);

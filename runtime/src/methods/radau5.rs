@@ -32,34 +32,14 @@ const DD2: f64 = (-13.0 + 7.0 * SQ6) / 3.0;
 const DD3: f64 = -1.0 / 3.0;
 /// T and T⁻¹: A⁻¹ = T diag(γ, [α −β; β α]) T⁻¹ (values of `radau5.f`).
 const T: [[f64; 3]; 3] = [
-    [
-        9.1232394870892942792e-02,
-        -0.14125529502095420843,
-        -3.0029194105147424492e-02,
-    ],
-    [
-        0.24171793270710701896,
-        0.20412935229379993199,
-        0.38294211275726193779,
-    ],
+    [9.1232394870892942792e-02, -0.14125529502095420843, -3.0029194105147424492e-02],
+    [0.24171793270710701896, 0.20412935229379993199, 0.38294211275726193779],
     [0.96604818261509293619, 1.0, 0.0],
 ];
 const TI: [[f64; 3]; 3] = [
-    [
-        4.3255798900631553510,
-        0.33919925181580986954,
-        0.54177053993587487119,
-    ],
-    [
-        -4.1787185915519047273,
-        -0.32768282076106238708,
-        0.47662355450055045196,
-    ],
-    [
-        -0.50287263494578687595,
-        2.5719269498556054292,
-        -0.59603920482822492497,
-    ],
+    [4.3255798900631553510, 0.33919925181580986954, 0.54177053993587487119],
+    [-4.1787185915519047273, -0.32768282076106238708, 0.47662355450055045196],
+    [-0.50287263494578687595, 2.5719269498556054292, -0.59603920482822492497],
 ];
 
 /// Eigenvalues of A⁻¹: the real γ and the complex pair α ± iβ.
@@ -160,10 +140,7 @@ pub(crate) fn newton_operations<M: Model>() -> (f64, f64) {
         let ordering = BandOrdering::reverse_cuthill_mckee(M::STATES, M::JACOBIAN_PATTERN);
         if ordering.pays() {
             let (kl, ku) = (ordering.lower as f64, ordering.upper as f64);
-            return (
-                5.0 * 2.0 * n * kl * (kl + ku + 1.0),
-                5.0 * 2.0 * n * (2.0 * kl + ku + 1.0),
-            );
+            return (5.0 * 2.0 * n * kl * (kl + ku + 1.0), 5.0 * 2.0 * n * (2.0 * kl + ku + 1.0));
         }
     }
     (5.0 * 2.0 / 3.0 * n * n * n, 5.0 * 2.0 * n * n)
@@ -185,22 +162,14 @@ impl<M: Model> Work<'_, M> {
     /// The dense Jacobian at `(t, y)`, `f0 = f(t, y)`.
     fn evaluate_jacobian(&mut self, t: f64, y: &mut [f64], f0: &[f64]) -> Result<(), EvalError> {
         self.jacobian_evals += 1;
-        self.jacobian
-            .evaluate(self.model, t, y, f0, &mut self.evals)
+        self.jacobian.evaluate(self.model, t, y, f0, &mut self.evals)
     }
 }
 
 fn rms(values: [&[f64]; 3], scale: &[f64]) -> f64 {
     let n = scale.len();
-    let sum: f64 = values
-        .iter()
-        .map(|v| {
-            v.iter()
-                .zip(scale)
-                .map(|(x, s)| (x / s).powi(2))
-                .sum::<f64>()
-        })
-        .sum();
+    let sum: f64 =
+        values.iter().map(|v| v.iter().zip(scale).map(|(x, s)| (x / s).powi(2)).sum::<f64>()).sum();
     (sum / (3 * n) as f64).sqrt()
 }
 
@@ -238,24 +207,12 @@ pub(crate) fn integrate_watching<M: Model>(
     let fnewt = (10.0 * f64::EPSILON / rtol).max(0.03f64.min(rtol.sqrt()));
     let (gamma, alpha, beta) = eigenvalues();
     let direction = if t1 >= t0 { 1.0 } else { -1.0 };
-    let hmax = options
-        .max_step
-        .unwrap_or((t1 - t0).abs())
-        .min((t1 - t0).abs());
+    let hmax = options.max_step.unwrap_or((t1 - t0).abs()).min((t1 - t0).abs());
 
-    let mut w = Work {
-        model,
-        evals: 0,
-        jacobian_evals: 0,
-        jacobian: DenseJacobian::new::<M>(),
-    };
+    let mut w = Work { model, evals: 0, jacobian_evals: 0, jacobian: DenseJacobian::new::<M>() };
     // A singular mass matrix (Hairer's IMAS = 1): diagonal, or general and
     // dense (`mass_matrix`, applied by `apply_mass`); dense Newton either way.
-    let mass: Vec<f64> = if M::MASS.len() == n {
-        M::MASS.to_vec()
-    } else {
-        vec![1.0; n]
-    };
+    let mass: Vec<f64> = if M::MASS.len() == n { M::MASS.to_vec() } else { vec![1.0; n] };
     let mass_matrix = if M::MASS_PATTERN.is_empty() {
         Vec::new()
     } else {
@@ -298,11 +255,7 @@ pub(crate) fn integrate_watching<M: Model>(
      -> Result<(Solution, Finish), Error> {
         let mut solution = solution;
         finish(&mut solution, steps, rejected, w);
-        Err(Error::Evaluation {
-            t,
-            cause,
-            partial: Box::new(solution),
-        })
+        Err(Error::Evaluation { t, cause, partial: Box::new(solution) })
     };
     if let Err(cause) = w.rhs(t0, &y, &mut y0) {
         return fail(solution, &w, 0, 0, t0, cause);
@@ -349,27 +302,13 @@ pub(crate) fn integrate_watching<M: Model>(
             caljac = false;
         }
         if refresh != Refresh::Nothing {
-            let factor_mass = if mass_matrix.is_empty() {
-                M::MASS
-            } else {
-                &mass_matrix[..]
-            };
-            let ok = newton.factor(
-                gamma / h,
-                alpha / h,
-                beta / h,
-                factor_mass,
-                &w.jacobian.matrix,
-            );
+            let factor_mass = if mass_matrix.is_empty() { M::MASS } else { &mass_matrix[..] };
+            let ok = newton.factor(gamma / h, alpha / h, beta / h, factor_mass, &w.jacobian.matrix);
             if !ok {
                 singular += 1;
                 if singular >= 5 {
                     finish(&mut solution, accepted, rejected, &w);
-                    return Err(Error::SingularMatrix {
-                        t,
-                        h,
-                        partial: Box::new(solution),
-                    });
+                    return Err(Error::SingularMatrix { t, h, partial: Box::new(solution) });
                 }
                 refresh = retry(&mut h, 0.5, &mut reject, &mut last, caljac);
                 continue 'steps;
@@ -477,11 +416,7 @@ pub(crate) fn integrate_watching<M: Model>(
             }
             if newt > 1 && newt < NIT {
                 let thq = dyno / dyno_old;
-                theta = if newt == 2 {
-                    thq
-                } else {
-                    (thq * thq_old).sqrt()
-                };
+                theta = if newt == 2 { thq } else { (thq * thq_old).sqrt() };
                 thq_old = thq;
                 if theta < 0.99 {
                     faccon = theta / (1.0 - theta);
@@ -537,11 +472,7 @@ pub(crate) fn integrate_watching<M: Model>(
             scratch[i] = f2[i] + y0[i];
         }
         newton.solve_real(&mut scratch);
-        let mut err = (scratch
-            .iter()
-            .zip(&scal)
-            .map(|(e, s)| (e / s).powi(2))
-            .sum::<f64>()
+        let mut err = (scratch.iter().zip(&scal).map(|(e, s)| (e / s).powi(2)).sum::<f64>()
             / n as f64)
             .sqrt()
             .max(1e-10);
@@ -556,12 +487,7 @@ pub(crate) fn integrate_watching<M: Model>(
                 scratch[i] = f1[i] + f2[i];
             }
             newton.solve_real(&mut scratch);
-            err = (scratch
-                .iter()
-                .zip(&scal)
-                .map(|(e, s)| (e / s).powi(2))
-                .sum::<f64>()
-                / n as f64)
+            err = (scratch.iter().zip(&scal).map(|(e, s)| (e / s).powi(2)).sum::<f64>() / n as f64)
                 .sqrt()
                 .max(1e-10);
         }
@@ -625,11 +551,7 @@ pub(crate) fn integrate_watching<M: Model>(
             }
             reject = false;
             if let Some(watch) = watch {
-                calm = if h.abs() * rho < watch.below {
-                    calm + 1
-                } else {
-                    0
-                };
+                calm = if h.abs() * rho < watch.below { calm + 1 } else { 0 };
                 if calm >= watch.confirmations {
                     finish(&mut solution, accepted, rejected, &w);
                     return Ok((solution, Finish::NonStiffAt { t, h: h_new }));
@@ -646,11 +568,7 @@ pub(crate) fn integrate_watching<M: Model>(
                 }
                 h = h_new;
             }
-            refresh = if theta <= THET {
-                Refresh::Factorisation
-            } else {
-                Refresh::Jacobian
-            };
+            refresh = if theta <= THET { Refresh::Factorisation } else { Refresh::Jacobian };
         } else {
             reject = true;
             last = false;
@@ -662,11 +580,7 @@ pub(crate) fn integrate_watching<M: Model>(
             if accepted >= 1 {
                 rejected += 1;
             }
-            refresh = if caljac {
-                Refresh::Factorisation
-            } else {
-                Refresh::Jacobian
-            };
+            refresh = if caljac { Refresh::Factorisation } else { Refresh::Jacobian };
         }
     }
     finish(&mut solution, accepted, rejected, &w);
@@ -677,11 +591,7 @@ pub(crate) fn integrate_watching<M: Model>(
 fn apply_mass(m: &[f64], x: &[f64], out: &mut [f64]) {
     let n = x.len();
     for (i, o) in out.iter_mut().enumerate() {
-        *o = m[i * n..(i + 1) * n]
-            .iter()
-            .zip(x)
-            .map(|(a, b)| a * b)
-            .sum();
+        *o = m[i * n..(i + 1) * n].iter().zip(x).map(|(a, b)| a * b).sum();
     }
 }
 
@@ -776,10 +686,7 @@ mod mass_matrix_tests {
         let opts = Options::new().method(crate::Method::Dop853);
         let err = crate::run::simulate(&GglPendulum, 0.0, 1.0, &opts).unwrap_err();
         let message = err.to_string();
-        assert!(
-            message.contains("Method::Radau5") && message.contains("lambda, mu"),
-            "{message}"
-        );
+        assert!(message.contains("Method::Radau5") && message.contains("lambda, mu"), "{message}");
         let auto = crate::run::simulate(&GglPendulum, 0.0, 1.0, &Options::new()).unwrap();
         assert!(auto.stats().method.contains("Radau5"));
     }
@@ -788,10 +695,7 @@ mod mass_matrix_tests {
     fn radau5_with_a_singular_mass_matrix_solves_the_ggl_pendulum() {
         let model = GglPendulum;
         for tol in [1e-6, 1e-8, 1e-10] {
-            let opts = Options::new()
-                .method(crate::Method::Radau5)
-                .rtol(tol)
-                .atol(tol);
+            let opts = Options::new().method(crate::Method::Radau5).rtol(tol).atol(tol);
             let mut y0 = [0.0; 6];
             model.initial_state(&mut y0);
             let sol = crate::run::simulate(&model, 0.0, 10.0, &opts).unwrap();
@@ -806,10 +710,7 @@ mod mass_matrix_tests {
                 let growth = if t == 1.0 { 1.0 } else { 50.0 };
 
                 let e = errs[..4].iter().fold(0.0f64, |a, b| a.max(*b));
-                assert!(
-                    e <= 20.0 * growth * tol,
-                    "tol {tol:e}, t = {t}: error {e:e}"
-                );
+                assert!(e <= 20.0 * growth * tol, "tol {tol:e}, t = {t}: error {e:e}");
                 // radau5.f controls an index-2 variable's error against
                 // tol / h: the bound uses the mean step.
                 let h_mean = 10.0 / sol.stats().steps as f64;

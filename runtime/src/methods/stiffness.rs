@@ -61,14 +61,7 @@ pub(crate) struct StiffnessTest {
 impl StiffnessTest {
     /// A test that decides after `confirmations` steps with h·ρ > `bound`.
     pub(crate) fn new(bound: f64, confirmations: usize) -> StiffnessTest {
-        StiffnessTest {
-            bound,
-            confirmations,
-            ratio: 0.0,
-            stiff: 0,
-            non_stiff: 0,
-            onset: f64::NAN,
-        }
+        StiffnessTest { bound, confirmations, ratio: 0.0, stiff: 0, non_stiff: 0, onset: f64::NAN }
     }
 
     /// The same test, counting only steps where ρ exceeds `ratio` times
@@ -113,16 +106,8 @@ pub(crate) fn stage_quotient(
     y_last: &[f64],
     y_before: &[f64],
 ) -> f64 {
-    let num: f64 = k_last
-        .iter()
-        .zip(k_before)
-        .map(|(a, b)| (a - b).powi(2))
-        .sum();
-    let den: f64 = y_last
-        .iter()
-        .zip(y_before)
-        .map(|(a, b)| (a - b).powi(2))
-        .sum();
+    let num: f64 = k_last.iter().zip(k_before).map(|(a, b)| (a - b).powi(2)).sum();
+    let den: f64 = y_last.iter().zip(y_before).map(|(a, b)| (a - b).powi(2)).sum();
     if den > 0.0 && num.is_finite() {
         h.abs() * (num / den).sqrt()
     } else {

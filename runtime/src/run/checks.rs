@@ -38,23 +38,14 @@ pub(crate) fn check_request<M: Model>(
     for (k, &name) in M::INFO.parameters.iter().enumerate() {
         let value = model.parameter(k);
         if !value.is_finite() {
-            return Err(Error::NonFiniteParameter {
-                parameter: name,
-                value,
-            });
+            return Err(Error::NonFiniteParameter { parameter: name, value });
         }
     }
     if let Some(condition) = model.degenerate_parameters() {
-        return Err(Error::DegenerateParameters {
-            model: M::INFO.name,
-            condition,
-        });
+        return Err(Error::DegenerateParameters { model: M::INFO.name, condition });
     }
     if let Some(i) = y0.iter().position(|v| !v.is_finite()) {
-        return Err(Error::NonFiniteInitialValue {
-            variable: M::INFO.states[i],
-            value: y0[i],
-        });
+        return Err(Error::NonFiniteInitialValue { variable: M::INFO.states[i], value: y0[i] });
     }
     Ok(())
 }
@@ -63,9 +54,7 @@ pub(crate) fn check_request<M: Model>(
 fn check_options<M: Model>(options: &Options) -> Result<(), Error> {
     for (name, value) in [("rtol", options.rtol), ("atol", options.atol)] {
         if !(value.is_finite() && value >= 0.0) {
-            return invalid(format!(
-                "{name}({value}): a tolerance must be finite and ≥ 0"
-            ));
+            return invalid(format!("{name}({value}): a tolerance must be finite and ≥ 0"));
         }
     }
     if options.rtol < 1e-15 && options.atol == 0.0 {

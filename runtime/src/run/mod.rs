@@ -83,11 +83,7 @@ fn explicit_pair<M: Model, P: EmbeddedPair>(
     options: &Options,
     solution: Solution,
 ) -> Result<Solution, Error> {
-    let stiffness = if options.stiffness_detection {
-        Stiffness::Fail
-    } else {
-        Stiffness::Ignore
-    };
+    let stiffness = if options.stiffness_detection { Stiffness::Fail } else { Stiffness::Ignore };
     adaptive::integrate::<M, P>(model, t0, t1, y0, options, stiffness, solution).map(|r| r.0)
 }
 
@@ -151,10 +147,7 @@ pub fn simulate_from<M: Model + Clone + Send + Sync + 'static>(
     t1: f64,
     options: &Options,
 ) -> Result<Solution, Error> {
-    labelled::<M>(
-        checked_run(model, t0, y0, t1, options),
-        method_name(options.method),
-    )
+    labelled::<M>(checked_run(model, t0, y0, t1, options), method_name(options.method))
 }
 
 /// The values initialization moved by more than `rtol·|given| + atol`.
@@ -168,11 +161,7 @@ fn initial_corrections<M: Model>(
         .zip(used)
         .enumerate()
         .filter(|(_, (g, u))| (*u - *g).abs() > options.rtol * g.abs() + options.atol)
-        .map(|(i, (&given, &used))| InitialCorrection {
-            name: M::INFO.states[i],
-            given,
-            used,
-        })
+        .map(|(i, (&given, &used))| InitialCorrection { name: M::INFO.states[i], given, used })
         .collect()
 }
 
@@ -221,11 +210,7 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     // A thinned run keeps no dense output: it could not serve between the
     // stored steps.
     let thinned = options.dense_output(false);
-    let options = if options.keep_every > 1 {
-        &thinned
-    } else {
-        options
-    };
+    let options = if options.keep_every > 1 { &thinned } else { options };
     let mut solution = observables::solution_of(model);
     solution.configure(options, t0, t1);
     let mut y0 = y0.to_vec();
@@ -236,13 +221,7 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
         crate::step::projection::consistent_algebraic_components(model, t0, &mut y0, solution)?;
     let corrections = initial_corrections::<M>(&given, &y0, options);
     if options.strict_initial_values && !corrections.is_empty() {
-        return Err(inconsistent_start(
-            model,
-            t0,
-            &given,
-            &corrections,
-            solution,
-        ));
+        return Err(inconsistent_start(model, t0, &given, &corrections, solution));
     }
     solution.set_initial_corrections(corrections);
     if options.formulation == crate::options::Formulation::MassMatrix && !has_mass_matrix::<M>() {

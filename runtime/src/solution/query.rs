@@ -15,12 +15,7 @@ impl Solution {
                 known: self.names.events.iter().map(|e| e.name).collect(),
             });
         };
-        Ok(self
-            .events
-            .iter()
-            .filter(|e| e.index == info)
-            .map(|e| e.t)
-            .collect())
+        Ok(self.events.iter().filter(|e| e.index == info).map(|e| e.t).collect())
     }
 
     /// Every name a value can be read by, in order: the states (declared
@@ -51,10 +46,8 @@ impl Solution {
     /// stores only some times (`keep_every`, `output_times`) answers at
     /// those only. Each time must lie in the integrated interval.
     pub fn sample(&self, names: &[&str], times: &[f64]) -> Result<Table, Error> {
-        let readers = names
-            .iter()
-            .map(|name| self.reader(name))
-            .collect::<Result<Vec<_>, Error>>()?;
+        let readers =
+            names.iter().map(|name| self.reader(name)).collect::<Result<Vec<_>, Error>>()?;
         let mut columns = vec![Vec::with_capacity(times.len()); names.len()];
         let mut y = vec![0.0; self.n];
         for &t in times {
@@ -63,24 +56,14 @@ impl Solution {
                 column.push(value.read(self, t, &y));
             }
         }
-        Ok(Table::new(
-            names.iter().map(|s| s.to_string()).collect(),
-            times.to_vec(),
-            columns,
-        ))
+        Ok(Table::new(names.iter().map(|s| s.to_string()).collect(), times.to_vec(), columns))
     }
 
     /// `names` at every stored time, as a [`Table`].
     pub fn table(&self, names: &[&str]) -> Result<Table, Error> {
-        let columns = names
-            .iter()
-            .map(|name| self.column(name))
-            .collect::<Result<Vec<_>, Error>>()?;
-        Ok(Table::new(
-            names.iter().map(|s| s.to_string()).collect(),
-            self.times.clone(),
-            columns,
-        ))
+        let columns =
+            names.iter().map(|name| self.column(name)).collect::<Result<Vec<_>, Error>>()?;
+        Ok(Table::new(names.iter().map(|s| s.to_string()).collect(), self.times.clone(), columns))
     }
 
     /// Writes `names` at every stored time as CSV: a header row (`t` and
@@ -93,10 +76,7 @@ impl Solution {
     /// A state, algebraic variable or output at the end of the run.
     pub fn last(&self, name: &str) -> Result<f64, Error> {
         if self.end_y.is_empty() {
-            return Err(Error::OutOfRange {
-                t: f64::NAN,
-                interval: (f64::NAN, f64::NAN),
-            });
+            return Err(Error::OutOfRange { t: f64::NAN, interval: (f64::NAN, f64::NAN) });
         }
         Ok(self.reader(name)?.read(self, self.end_t, &self.end_y))
     }
@@ -132,16 +112,10 @@ impl Solution {
     /// The state at `t` into `y`.
     fn state_at(&self, t: f64, y: &mut [f64]) -> Result<(), Error> {
         let Some((first, end)) = self.interval() else {
-            return Err(Error::OutOfRange {
-                t,
-                interval: (f64::NAN, f64::NAN),
-            });
+            return Err(Error::OutOfRange { t, interval: (f64::NAN, f64::NAN) });
         };
         if !(first.min(end)..=first.max(end)).contains(&t) {
-            return Err(Error::OutOfRange {
-                t,
-                interval: (first, end),
-            });
+            return Err(Error::OutOfRange { t, interval: (first, end) });
         }
         if t == end {
             y.copy_from_slice(&self.end_y);
@@ -220,10 +194,7 @@ impl Solution {
 
     /// The error for a name the model does not have.
     fn unknown_name(&self, name: &str) -> Error {
-        Error::UnknownName {
-            name: name.to_string(),
-            known: self.names(),
-        }
+        Error::UnknownName { name: name.to_string(), known: self.names() }
     }
 }
 

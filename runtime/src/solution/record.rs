@@ -123,10 +123,7 @@ impl Solution {
             (Some(times), _) => {
                 self.times = Vec::with_capacity(times.len());
                 self.states = Vec::with_capacity(times.len() * self.n);
-                Storage::OutputTimes {
-                    times: times.clone(),
-                    next: 0,
-                }
+                Storage::OutputTimes { times: times.clone(), next: 0 }
             }
             (None, k) if k > 1 => Storage::KeepEvery { k, tail: false },
             _ => Storage::All,
@@ -227,10 +224,7 @@ impl Solution {
             Storage::OutputTimes { times, next } => {
                 let forward = t >= self.last.t_old;
                 let reached = |tau: f64| if forward { tau <= t } else { tau >= t };
-                let due = times[*next..]
-                    .iter()
-                    .take_while(|&&tau| reached(tau))
-                    .count();
+                let due = times[*next..].iter().take_while(|&&tau| reached(tau)).count();
                 if due == 0 {
                     return;
                 }
@@ -255,14 +249,10 @@ impl Solution {
             return;
         }
         if !last.has_f_old {
-            last.has_f_old = self
-                .observables
-                .derivative(last.t_old, &last.y_old, &mut last.f_old);
+            last.has_f_old = self.observables.derivative(last.t_old, &last.y_old, &mut last.f_old);
             self.interpolation_evals += 1;
         }
-        last.has_f_new = self
-            .observables
-            .derivative(last.t_new, &last.y_new, &mut last.f_new);
+        last.has_f_new = self.observables.derivative(last.t_new, &last.y_new, &mut last.f_new);
         self.interpolation_evals += 1;
     }
 

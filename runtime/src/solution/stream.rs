@@ -19,10 +19,8 @@ impl Stream {
         let progress = options
             .progress
             .then(|| Progress::new(t0, t1, ProgressDrawTarget::stderr, Instant::now()));
-        (options.on_step.is_some() || progress.is_some()).then(|| Stream {
-            callback: options.on_step.clone(),
-            progress,
-        })
+        (options.on_step.is_some() || progress.is_some())
+            .then(|| Stream { callback: options.on_step.clone(), progress })
     }
 
     /// Shows the step that ended at `(t, y)`; `true` when the callback asks
@@ -76,14 +74,7 @@ struct Progress {
 
 impl Progress {
     fn new(t0: f64, t1: f64, target: fn() -> ProgressDrawTarget, now: Instant) -> Progress {
-        Progress {
-            t0,
-            t1,
-            started: now,
-            last_drawn: now,
-            target,
-            bar: None,
-        }
+        Progress { t0, t1, started: now, last_drawn: now, target, bar: None }
     }
 
     /// The bar's position for time `t`: the fraction of the interval done.
@@ -99,17 +90,8 @@ impl Progress {
     /// The line beside the bar.
     fn message(&self, t: f64, steps: usize, now: Instant) -> String {
         let seconds = now.duration_since(self.started).as_secs_f64();
-        let rate = if seconds > 0.0 {
-            steps as f64 / seconds
-        } else {
-            0.0
-        };
-        format!(
-            "t = {} of {} · {steps} steps · {} steps/s",
-            short(t),
-            short(self.t1),
-            short(rate)
-        )
+        let rate = if seconds > 0.0 { steps as f64 / seconds } else { 0.0 };
+        format!("t = {} of {} · {steps} steps · {} steps/s", short(t), short(self.t1), short(rate))
     }
 
     fn update(&mut self, t: f64, steps: usize, now: Instant) {
@@ -147,11 +129,7 @@ fn short(x: f64) -> String {
     if a != 0.0 && !(1e-3..1e6).contains(&a) {
         format!("{x:.3e}")
     } else {
-        let digits = if a == 0.0 {
-            0
-        } else {
-            (3 - a.log10().floor() as i32).max(0) as usize
-        };
+        let digits = if a == 0.0 { 0 } else { (3 - a.log10().floor() as i32).max(0) as usize };
         format!("{x:.digits$}")
     }
 }

@@ -19,11 +19,7 @@ impl Table {
     pub fn new(names: Vec<String>, times: Vec<f64>, columns: Vec<Vec<f64>>) -> Table {
         debug_assert_eq!(names.len(), columns.len());
         debug_assert!(columns.iter().all(|c| c.len() == times.len()));
-        Table {
-            names,
-            times,
-            columns,
-        }
+        Table { names, times, columns }
     }
 
     /// The names of the columns, in order.
@@ -61,9 +57,7 @@ impl Table {
     /// row per time, each number in the shortest form that reads back to
     /// the same `f64`.
     pub fn write_csv<W: std::io::Write>(&self, writer: W) -> Result<(), Error> {
-        let failed = |e: csv::Error| Error::Io {
-            message: format!("writing CSV failed: {e}"),
-        };
+        let failed = |e: csv::Error| Error::Io { message: format!("writing CSV failed: {e}") };
         let mut out = csv::Writer::from_writer(writer);
         let header = std::iter::once("t").chain(self.names.iter().map(String::as_str));
         out.write_record(header).map_err(failed)?;
@@ -74,9 +68,7 @@ impl Table {
             row.extend(self.columns.iter().map(|c| c[k].to_string()));
             out.write_record(&row).map_err(failed)?;
         }
-        out.flush().map_err(|e| Error::Io {
-            message: format!("writing CSV failed: {e}"),
-        })
+        out.flush().map_err(|e| Error::Io { message: format!("writing CSV failed: {e}") })
     }
 }
 
@@ -84,13 +76,7 @@ impl Table {
 /// six significant digits.
 impl fmt::Display for Table {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let width = self
-            .names
-            .iter()
-            .map(|n| n.len())
-            .max()
-            .unwrap_or(0)
-            .max(12);
+        let width = self.names.iter().map(|n| n.len()).max().unwrap_or(0).max(12);
         write!(f, "{:>width$}", "t")?;
         for name in &self.names {
             write!(f, " {name:>width$}")?;
@@ -112,11 +98,7 @@ fn significant(x: f64) -> String {
     }
     // The exponent after rounding to six digits (0.9999996 is 1.00000e0).
     let scientific = format!("{x:.5e}");
-    let exponent: i32 = scientific
-        .rsplit('e')
-        .next()
-        .and_then(|e| e.parse().ok())
-        .unwrap_or(0);
+    let exponent: i32 = scientific.rsplit('e').next().and_then(|e| e.parse().ok()).unwrap_or(0);
     if (-4..6).contains(&exponent) {
         let decimals = (5 - exponent).max(0) as usize;
         format!("{x:.decimals$}")

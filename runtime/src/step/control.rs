@@ -26,9 +26,7 @@ pub struct PiState {
 
 impl Default for PiState {
     fn default() -> Self {
-        PiState {
-            previous_error: 1e-4,
-        }
+        PiState { previous_error: 1e-4 }
     }
 }
 
@@ -52,12 +50,7 @@ impl Controller {
         let fac11 = power(err, self.exponent);
         let fac = fac11 / power(state.previous_error, self.beta);
         let fac = (fac / self.safety).clamp(1.0 / self.max_factor, 1.0 / self.min_factor);
-        (
-            1.0 / fac,
-            PiState {
-                previous_error: err.max(1e-4),
-            },
-        )
+        (1.0 / fac, PiState { previous_error: err.max(1e-4) })
     }
 
     /// The factor after a rejected step: no PI memory, only shrinking.
@@ -103,11 +96,7 @@ pub fn initial_step(
     let sk: Vec<f64> = y.iter().map(|v| atol + rtol * v.abs()).collect();
     let dnf: f64 = f0.iter().zip(&sk).map(|(f, s)| (f / s).powi(2)).sum();
     let dny: f64 = y.iter().zip(&sk).map(|(y, s)| (y / s).powi(2)).sum();
-    let mut h = if dnf <= 1e-10 || dny <= 1e-10 {
-        1e-6
-    } else {
-        (dny / dnf).sqrt() * 0.01
-    };
+    let mut h = if dnf <= 1e-10 || dny <= 1e-10 { 1e-6 } else { (dny / dnf).sqrt() * 0.01 };
     h = h.min(hmax);
     for ((z, y), f) in scratch_y.iter_mut().zip(y).zip(f0) {
         *z = y + direction * h * f;
@@ -115,20 +104,11 @@ pub fn initial_step(
     if !f(t + direction * h, scratch_y, f1) {
         return h * 1e-3;
     }
-    let der2: f64 = f1
-        .iter()
-        .zip(f0)
-        .zip(&sk)
-        .map(|((a, b), s)| ((a - b) / s).powi(2))
-        .sum::<f64>()
-        .sqrt()
-        / h;
+    let der2: f64 =
+        f1.iter().zip(f0).zip(&sk).map(|((a, b), s)| ((a - b) / s).powi(2)).sum::<f64>().sqrt() / h;
     let der12 = der2.abs().max(dnf.sqrt());
-    let h1 = if der12 <= 1e-15 {
-        (h * 1e-3).max(1e-6)
-    } else {
-        (0.01 / der12).powf(1.0 / order as f64)
-    };
+    let h1 =
+        if der12 <= 1e-15 { (h * 1e-3).max(1e-6) } else { (0.01 / der12).powf(1.0 / order as f64) };
     (100.0 * h).min(h1).min(hmax)
 }
 
@@ -162,16 +142,8 @@ mod tests {
             safety: 0.9,
         };
         let s = PiState::default();
-        assert_eq!(
-            c.factor(0.0, s).0,
-            10.0,
-            "a zero error grows the step by the maximum factor"
-        );
-        assert_eq!(
-            c.factor(1e12, s).0,
-            0.2,
-            "a huge error shrinks it by the minimum factor"
-        );
+        assert_eq!(c.factor(0.0, s).0, 10.0, "a zero error grows the step by the maximum factor");
+        assert_eq!(c.factor(1e12, s).0, 0.2, "a huge error shrinks it by the minimum factor");
         let (grow, _) = c.factor(1e-3, s);
         assert!(grow > 1.0 && grow <= 10.0);
         assert!(c.rejected_factor(2.0) < 1.0);
@@ -185,19 +157,8 @@ mod tests {
             true
         };
         let (mut z, mut f1) = ([0.0], [0.0]);
-        let h = initial_step(
-            &mut f,
-            0.0,
-            &[1.0],
-            &[-1.0],
-            1.0,
-            5,
-            10.0,
-            1e-6,
-            1e-6,
-            &mut z,
-            &mut f1,
-        );
+        let h =
+            initial_step(&mut f, 0.0, &[1.0], &[-1.0], 1.0, 5, 10.0, 1e-6, 1e-6, &mut z, &mut f1);
         assert!(h > 1e-3 && h < 1.0, "h = {h}");
     }
 }

@@ -127,11 +127,7 @@ impl<'m, M: Model> EventWatch<'m, M> {
             if self.has_rates {
                 self.model.event_rates(b, &self.y, &mut self.rate_new);
             }
-            let bad = self
-                .g_new
-                .iter()
-                .chain(&self.rate_new)
-                .position(|g| !g.is_finite());
+            let bad = self.g_new.iter().chain(&self.rate_new).position(|g| !g.is_finite());
             if let Some(i) = bad {
                 return Err(Error::NonFinite {
                     t: b,
@@ -233,13 +229,7 @@ impl<'m, M: Model> EventWatch<'m, M> {
             }
             let mut state = vec![0.0; M::STATES];
             solution.interpolate_last_step(t, &mut state);
-            hits.push(EventHit {
-                name: M::INFO.events[i].name,
-                index: i,
-                t,
-                rising,
-                state,
-            });
+            hits.push(EventHit { name: M::INFO.events[i].name, index: i, t, rising, state });
         }
     }
 
@@ -327,13 +317,7 @@ mod tests {
         let r = bracketed_root(|t| t * t - 2.0, 0.0, 2.0, -2.0, 2.0);
         assert!((r - 2f64.sqrt()).abs() <= 2.0 * f64::EPSILON * r);
         // A flat function regula falsi alone creeps on.
-        let r = bracketed_root(
-            |t| (t - 0.3).powi(9),
-            0.0,
-            1.0,
-            (-0.3f64).powi(9),
-            0.7f64.powi(9),
-        );
+        let r = bracketed_root(|t| (t - 0.3).powi(9), 0.0, 1.0, (-0.3f64).powi(9), 0.7f64.powi(9));
         assert!((r - 0.3).abs() <= 1e-15, "{r}");
         // Backwards brackets work alike.
         let r = bracketed_root(|t| t.cos(), 3.0, 1.0, 3f64.cos(), 1f64.cos());

@@ -117,11 +117,7 @@ impl DenseJacobian {
             let matrix = &self.matrix;
             crate::methods::stiffness::spectral_radius(v, w, |v, w| {
                 for (i, wi) in w.iter_mut().enumerate() {
-                    *wi = matrix[i * n..(i + 1) * n]
-                        .iter()
-                        .zip(v.iter())
-                        .map(|(a, b)| a * b)
-                        .sum();
+                    *wi = matrix[i * n..(i + 1) * n].iter().zip(v.iter()).map(|(a, b)| a * b).sum();
                 }
             })
         }

@@ -46,16 +46,8 @@ impl<'m, M: Model> Projector<'m, M> {
         if M::CONSTRAINTS.is_empty() {
             return None;
         }
-        let widest = M::PROJECTION
-            .iter()
-            .map(|l| l.rows.len() * l.slots.len())
-            .max()
-            .unwrap_or(0);
-        let rows = M::PROJECTION
-            .iter()
-            .map(|l| l.rows.len())
-            .max()
-            .unwrap_or(0);
+        let widest = M::PROJECTION.iter().map(|l| l.rows.len() * l.slots.len()).max().unwrap_or(0);
+        let rows = M::PROJECTION.iter().map(|l| l.rows.len()).max().unwrap_or(0);
         Some(Projector {
             model,
             residuals: vec![0.0; M::CONSTRAINTS.len()],
@@ -86,10 +78,7 @@ impl<'m, M: Model> Projector<'m, M> {
         for (r, info) in M::CONSTRAINTS.iter().enumerate() {
             let v = self.residuals[r].abs();
             if !v.is_finite() {
-                return Err(Failure {
-                    row: r,
-                    message: "its residual is not finite".into(),
-                });
+                return Err(Failure { row: r, message: "its residual is not finite".into() });
             }
             match info.level {
                 0 => worst.position = worst.position.max(v),
@@ -318,12 +307,7 @@ pub(crate) fn consistent_initial_values<M: Model>(
                 level.rows[0],
                 format!(
                     "every state it corrects is fixed ({}): remove `.fixed()` from one of them",
-                    level
-                        .slots
-                        .iter()
-                        .map(|&s| M::INFO.states[s])
-                        .collect::<Vec<_>>()
-                        .join(", ")
+                    level.slots.iter().map(|&s| M::INFO.states[s]).collect::<Vec<_>>().join(", ")
                 ),
                 solution,
             ));
@@ -389,9 +373,7 @@ pub(crate) fn consistent_algebraic_components<M: Model>(
     w: &mut [f64],
     solution: Solution,
 ) -> Result<Solution, Error> {
-    let algebraic: Vec<usize> = (0..M::STATES)
-        .filter(|&i| M::MASS.get(i) == Some(&0.0))
-        .collect();
+    let algebraic: Vec<usize> = (0..M::STATES).filter(|&i| M::MASS.get(i) == Some(&0.0)).collect();
     let m = algebraic.len();
     if m == 0 {
         return Ok(solution);
@@ -409,11 +391,7 @@ pub(crate) fn consistent_algebraic_components<M: Model>(
     };
     for _ in 0..INITIAL_ITERATIONS {
         if let Err(cause) = model.rhs(t0, w, &mut f) {
-            return Err(Error::Evaluation {
-                t: t0,
-                cause,
-                partial: Box::new(solution),
-            });
+            return Err(Error::Evaluation { t: t0, cause, partial: Box::new(solution) });
         }
         let size = algebraic.iter().fold(1.0f64, |a, &i| a.max(w[i].abs()));
         let residual = algebraic.iter().fold(0.0f64, |a, &i| a.max(f[i].abs()));
@@ -437,11 +415,7 @@ pub(crate) fn consistent_algebraic_components<M: Model>(
                 let r = model.rhs(t0, w, &mut scratch);
                 w[c] = saved;
                 if let Err(cause) = r {
-                    return Err(Error::Evaluation {
-                        t: t0,
-                        cause,
-                        partial: Box::new(solution),
-                    });
+                    return Err(Error::Evaluation { t: t0, cause, partial: Box::new(solution) });
                 }
                 for (a, &r) in algebraic.iter().enumerate() {
                     jaa[a * m + b] = (scratch[r] - f[r]) / delta;

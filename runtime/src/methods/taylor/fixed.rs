@@ -23,9 +23,7 @@ pub(crate) fn integrate<M: Model>(
     mut solution: Solution,
 ) -> Result<Solution, Error> {
     let Method::TaylorFixed { order, step } = options.method else {
-        return Err(Error::MethodNotAvailable {
-            method: options.method,
-        });
+        return Err(Error::MethodNotAvailable { method: options.method });
     };
     let steps = ((t1 - t0).abs() / step).ceil().max(1.0);
     if steps > options.max_steps as f64 {
@@ -56,11 +54,7 @@ pub(crate) fn integrate<M: Model>(
             t0 + (t1 - t0) * ((step + 1) as f64 / steps as f64)
         };
         if let Err(cause) = model.taylor_derivatives(t, &y, order, &mut derivatives) {
-            return Err(Error::Evaluation {
-                t,
-                cause,
-                partial: Box::new(solution),
-            });
+            return Err(Error::Evaluation { t, cause, partial: Box::new(solution) });
         }
         let h = t_next - t;
         taylor_step(&y, &derivatives[..order * n], h, &mut next);

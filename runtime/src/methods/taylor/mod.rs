@@ -39,9 +39,7 @@ fn first_non_finite(c: &[f64]) -> Option<usize> {
             lanes[l] += 0.0 * x[l];
         }
     }
-    let total = tail
-        .iter()
-        .fold(lanes.iter().sum::<f64>(), |s, x| s + 0.0 * x);
+    let total = tail.iter().fold(lanes.iter().sum::<f64>(), |s, x| s + 0.0 * x);
     if total == 0.0 {
         return None;
     }
@@ -108,11 +106,7 @@ fn horner(rows: &[f64], w: usize, h: f64, y: &mut [f64], carried: &mut [f64]) {
     // with its rounding error carried to the next step.
     let leading = |c: &[f64], acc: f64| c.iter().rev().fold(acc, |acc, &ck| mul_add(acc, h, ck));
     let update = |y: &mut f64, carried: &mut f64, p: f64| add_increment(y, carried, p, h);
-    for ((ys, cs), block) in y
-        .chunks_mut(4)
-        .zip(carried.chunks_mut(4))
-        .zip(rows.chunks(4 * w))
-    {
+    for ((ys, cs), block) in y.chunks_mut(4).zip(carried.chunks_mut(4)).zip(rows.chunks(4 * w)) {
         if let ([y0, y1, y2, y3], [e0, e1, e2, e3], true) =
             (&mut *ys, &mut *cs, block.len() == 4 * w && w > LEADING)
         {
@@ -132,16 +126,8 @@ fn horner(rows: &[f64], w: usize, h: f64, y: &mut [f64], carried: &mut [f64]) {
         } else {
             for ((yi, ei), row) in ys.iter_mut().zip(cs.iter_mut()).zip(block.chunks_exact(w)) {
                 let split = row.len().min(LEADING);
-                let t = if row.len() > LEADING {
-                    tail(&row[LEADING..])
-                } else {
-                    0.0
-                };
-                let p = if split > 1 {
-                    leading(&row[1..split], t)
-                } else {
-                    0.0
-                };
+                let t = if row.len() > LEADING { tail(&row[LEADING..]) } else { 0.0 };
+                let p = if split > 1 { leading(&row[1..split], t) } else { 0.0 };
                 update(yi, ei, p);
             }
         }
@@ -257,10 +243,7 @@ fn horner_states<const B: usize>(
 /// coefficients are stored state by state, already multiplied by hᵏ.
 pub(crate) fn interpolate(c: &[f64], n: usize, i: usize, s: f64) -> f64 {
     let w = c.len() / n;
-    c[i * w..(i + 1) * w]
-        .iter()
-        .rev()
-        .fold(0.0, |acc, ck| acc * s + ck)
+    c[i * w..(i + 1) * w].iter().rev().fold(0.0, |acc, ck| acc * s + ck)
 }
 
 /// Integrates `model` from `t0` to `t1` with the adaptive Taylor method.
@@ -288,16 +271,8 @@ pub(crate) fn integrate<M: Model>(
         });
     };
     let n = M::STATES;
-    let tol = if options.rtol > 0.0 {
-        options.rtol
-    } else {
-        options.atol
-    };
-    let unrolled_orders = if options.taylor_compact {
-        &[][..]
-    } else {
-        M::TAYLOR_UNROLLED
-    };
+    let tol = if options.rtol > 0.0 { options.rtol } else { options.atol };
+    let unrolled_orders = if options.taylor_compact { &[][..] } else { M::TAYLOR_UNROLLED };
     // The straight-line recurrences when the macro emitted the order, else
     // the interpreted tape.
     let (p, unrolled) = match options.taylor_order {
@@ -384,11 +359,7 @@ pub(crate) fn integrate<M: Model>(
                     partial: Box::new(solution),
                 });
             }
-            return Err(Error::StepSizeUnderflow {
-                t,
-                h,
-                partial: Box::new(solution),
-            });
+            return Err(Error::StepSizeUnderflow { t, h, partial: Box::new(solution) });
         }
         let h = direction * h;
         if keep_dense {
@@ -470,9 +441,8 @@ mod tests {
         // Seven rows of three: column k of row i is −(i + 1)·(k + 1) except
         // where set below.
         let (n, w) = (7, 3);
-        let mut c: Vec<f64> = (0..n * w)
-            .map(|x| -(((x / w) + 1) as f64) * ((x % w) + 1) as f64)
-            .collect();
+        let mut c: Vec<f64> =
+            (0..n * w).map(|x| -(((x / w) + 1) as f64) * ((x % w) + 1) as f64).collect();
         assert_eq!(column_max(&c, w, 0), 7.0);
         assert_eq!(column_max(&c, w, 2), 21.0);
         for row in 0..n {
@@ -505,10 +475,7 @@ mod tests {
             for (i, yi) in y.iter().enumerate() {
                 let want: f64 = (0..w).map(|k| c(i, k) * h.powi(k as i32)).sum();
                 assert_eq!(*yi, want, "order {order}, state {i}");
-                assert_eq!(
-                    carried[i], 0.0,
-                    "order {order}, state {i}: exact sums carry nothing"
-                );
+                assert_eq!(carried[i], 0.0, "order {order}, state {i}: exact sums carry nothing");
             }
         }
     }
@@ -522,9 +489,7 @@ mod tests {
     fn coefficients_by_order_sum_to_the_same_bits_as_by_state() {
         let mut seed = 1u64;
         let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
             (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
         };
         for (n, order) in [(7, 0), (7, 1), (7, 3), (36, 12), (36, 15), (5, 18), (3, 22)] {
@@ -542,11 +507,7 @@ mod tests {
             let (mut y2, mut carried2) = (y0, carried0);
             horner_by_coefficient(&by_order, w, h, &mut y2, &mut carried2);
             for i in 0..n {
-                assert_eq!(
-                    y[i].to_bits(),
-                    y2[i].to_bits(),
-                    "{n} states, order {order}, state {i}"
-                );
+                assert_eq!(y[i].to_bits(), y2[i].to_bits(), "{n} states, order {order}, state {i}");
                 assert_eq!(
                     carried[i].to_bits(),
                     carried2[i].to_bits(),

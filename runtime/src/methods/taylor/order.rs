@@ -57,10 +57,7 @@ impl JetCost {
     /// `states` states.
     pub fn of_tape(tape: &[TapeOp], states: usize) -> JetCost {
         let is_const = |a: &Operand| matches!(a, Operand::Const(_));
-        let mut cost = JetCost {
-            linear: 2.0 * states as f64,
-            convolution: 0.0,
-        };
+        let mut cost = JetCost { linear: 2.0 * states as f64, convolution: 0.0 };
         for op in tape {
             // (linear, convolution) per op: a product of two series is
             // k + 1 multiply-adds at order k, a square half that; a
@@ -115,10 +112,7 @@ pub const MAX_STEP_FACTOR: f64 = 0.2019; // e^−1.6
 /// within [`MAX_STEP_FACTOR`]·ρ, at most 2·p₀.
 pub fn highest_order(tol: f64) -> usize {
     let p0 = jorba_zou_order(tol);
-    (p0..=2 * p0)
-        .take_while(|&p| step_factor(tol, p) <= MAX_STEP_FACTOR)
-        .last()
-        .unwrap_or(p0)
+    (p0..=2 * p0).take_while(|&p| step_factor(tol, p) <= MAX_STEP_FACTOR).last().unwrap_or(p0)
 }
 
 /// The order of least work per unit time for the tolerance, and whether
@@ -199,18 +193,12 @@ mod tests {
     /// one to make it even.
     #[test]
     fn convolution_bound_models_keep_jorba_and_zous_order() {
-        let cost = JetCost {
-            linear: 0.0,
-            convolution: 1e6,
-        };
+        let cost = JetCost { linear: 0.0, convolution: 1e6 };
         for tol in TOLERANCES {
             let p0 = jorba_zou_order(tol);
             let (p, unrolled) = choose_order(tol, &cost, &[]);
             assert!(!unrolled);
-            assert!(
-                p % 2 == 0 && p + 1 >= p0 && p <= p0 + 2,
-                "tol {tol:e}: {p} against {p0}"
-            );
+            assert!(p % 2 == 0 && p + 1 >= p0 && p <= p0 + 2, "tol {tol:e}: {p} against {p0}");
         }
     }
 
@@ -219,10 +207,7 @@ mod tests {
     /// the last even order below it.
     #[test]
     fn fixed_cost_models_take_the_highest_order() {
-        let cost = JetCost {
-            linear: 0.0,
-            convolution: 0.0,
-        };
+        let cost = JetCost { linear: 0.0, convolution: 0.0 };
         for tol in TOLERANCES {
             let p0 = jorba_zou_order(tol) as f64;
             let bound = ((2.0 + 0.7 / (p0 - 1.0)) * (p0 + 1.0) / 1.6 - 1.0).floor() as usize;
@@ -230,11 +215,7 @@ mod tests {
             assert!(step_factor(tol, bound) <= MAX_STEP_FACTOR);
             assert!(step_factor(tol, bound + 1) > MAX_STEP_FACTOR);
             // The highest even order.
-            assert_eq!(
-                choose_order(tol, &cost, &[]).0,
-                bound / 2 * 2,
-                "tol {tol:e}"
-            );
+            assert_eq!(choose_order(tol, &cost, &[]).0, bound / 2 * 2, "tol {tol:e}");
         }
         assert_eq!(highest_order(1e-12), 19);
     }
@@ -244,10 +225,7 @@ mod tests {
     /// unless it is far from the best.
     #[test]
     fn small_models_take_higher_orders_and_prefer_unrolled_ones() {
-        let cost = JetCost {
-            linear: 17.0,
-            convolution: 2.0,
-        };
+        let cost = JetCost { linear: 17.0, convolution: 2.0 };
         let best = choose_order(1e-12, &cost, &[]).0;
         assert!(best > jorba_zou_order(1e-12) + 2, "{best}");
         assert_eq!(choose_order(1e-12, &cost, &[best]), (best, true));

@@ -143,10 +143,8 @@ impl TaylorWork {
         let time_row = states;
         let mut constants: Vec<f64> = Vec::new();
         let constant_row = |c: f64, constants: &mut Vec<f64>| {
-            let i = constants
-                .iter()
-                .position(|&d| d.to_bits() == c.to_bits())
-                .unwrap_or_else(|| {
+            let i =
+                constants.iter().position(|&d| d.to_bits() == c.to_bits()).unwrap_or_else(|| {
                     constants.push(c);
                     constants.len() - 1
                 });
@@ -212,14 +210,7 @@ impl TaylorWork {
         if order > 0 {
             rows[time_row * w + 1] = 1.0;
         }
-        TaylorWork {
-            order,
-            states,
-            time_row,
-            steps,
-            outputs,
-            rows,
-        }
+        TaylorWork { order, states, time_row, steps, outputs, rows }
     }
 
     /// All rows; state i's coefficients are row i.
@@ -306,10 +297,7 @@ pub fn advance(rows: &mut [f64], w: usize, k: usize, v: usize, step: Step) {
             let a = row(a);
             let s = &rows[v * w..v * w + k];
             let c = &rows[(v + 1) * w..(v + 1) * w + k];
-            (
-                weighted_convolution(a, c) / kf,
-                weighted_convolution(a, s) / kf,
-            )
+            (weighted_convolution(a, c) / kf, weighted_convolution(a, s) / kf)
         }
         Step::Inverse(f, a, _) if k == 0 => (f.value(at(a, 0)), 0.0),
         Step::Inverse(f, a, d) => {
@@ -332,10 +320,7 @@ pub fn advance(rows: &mut [f64], w: usize, k: usize, v: usize, step: Step) {
             let a = row(a);
             let s = &rows[v * w..v * w + k];
             let c = &rows[(v + 1) * w..(v + 1) * w + k];
-            (
-                weighted_convolution(a, c) / kf,
-                -weighted_convolution(a, s) / kf,
-            )
+            (weighted_convolution(a, c) / kf, -weighted_convolution(a, s) / kf)
         }
     };
     rows[v * w + k] = value;
@@ -488,11 +473,8 @@ mod tests {
             work.compute(0.0, &[2.0]);
             work.state(0).to_vec()
         };
-        let (ca, cb, cc) = (
-            run(&a, Operand::Var(0)),
-            run(&b, Operand::Var(2)),
-            run(&c, Operand::Var(1)),
-        );
+        let (ca, cb, cc) =
+            (run(&a, Operand::Var(0)), run(&b, Operand::Var(2)), run(&c, Operand::Var(1)));
         // Exact: y = (y0^(3/2) + 3t/2)^(2/3); check the first coefficients and mutual agreement.
         assert!((ca[1] - 2f64.powf(-0.5)).abs() < 1e-15);
         for k in 0..=12 {
