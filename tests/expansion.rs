@@ -80,156 +80,109 @@ fn snapshot(test: &str, items: &BTreeMap<String, String>, keys: &[&str]) {
     }
 }
 
-#[test]
-fn pendulum_in_its_angle() {
-    let items = items(
-        proc_macro2::TokenStream::new(),
-        quote! {
-            /// Planar pendulum in its angle: the contract's pendulum as an ODE.
-            fn pendulum() {
-                /// Length (m).
-                let l = param(1.0);
-                /// Gravity (m/s²).
-                let g = param(9.81);
-                let theta = state(1.0);
-                init(der(theta), 0.0);
-                der(der(theta)) == -g / l * sin(theta);
-                /// Energy per unit mass (J/kg).
-                let energy = output(0.5 * l * l * der(theta) * der(theta) - g * l * cos(theta));
-            }
-        },
-    );
-    snapshot(
-        "pendulum_in_its_angle",
-        &items,
-        &["Pendulum::rhs", "Pendulum::jacobian", "Pendulum::output", "Pendulum::INFO"],
-    );
+/// A test that expands a model (with the attribute's arguments in
+/// parentheses) and snapshots the items named.
+macro_rules! expansion_test {
+    ($(#[$doc:meta])* $test:ident, ($($attr:tt)*), [$($key:literal),*], $($model:tt)*) => {
+        $(#[$doc])*
+        #[test]
+        fn $test() {
+            let items = items(quote!($($attr)*), quote!($($model)*));
+            snapshot(stringify!($test), &items, &[$($key),*]);
+        }
+    };
 }
 
-#[test]
-fn harmonic_oscillator_with_second_derivative() {
-    let items = items(
-        proc_macro2::TokenStream::new(),
-        quote! {
-            fn oscillator() {
-                let omega = param(2.0);
-                let x = state(1.0);
-                der(der(x)) == -omega.powi(2) * x;
-            }
-        },
-    );
-    snapshot(
-        "harmonic_oscillator_with_second_derivative",
-        &items,
-        &["Oscillator::rhs", "Oscillator::taylor_tape"],
-    );
+expansion_test! {
+    pendulum_in_its_angle, (), ["Pendulum::rhs", "Pendulum::jacobian", "Pendulum::output", "Pendulum::INFO"],
+    /// Planar pendulum in its angle: the contract's pendulum as an ODE.
+    fn pendulum() {
+        /// Length (m).
+        let l = param(1.0);
+        /// Gravity (m/s²).
+        let g = param(9.81);
+        let theta = state(1.0);
+        init(der(theta), 0.0);
+        der(der(theta)) == -g / l * sin(theta);
+        /// Energy per unit mass (J/kg).
+        let energy = output(0.5 * l * l * der(theta) * der(theta) - g * l * cos(theta));
+    }
 }
 
-#[test]
-fn example_1_1_third_order_system() {
-    let items = items(
-        proc_macro2::TokenStream::new(),
-        quote! {
-            /// Course notes, Example 1.1.
-            fn example_1_1() {
-                let t = time();
-                let x = state(0.0);
-                let y = state(0.0);
-                init(der(x), 0.0);
-                init(der(der(x)), 2.0);
-                init(der(y), 2.0);
-                der(der(der(x))) + der(y) == x * x + t;
-                der(der(y)) + x == t * t + 1.0;
-            }
-        },
-    );
-    snapshot(
-        "example_1_1_third_order_system",
-        &items,
-        &["Example11::rhs", "Example11::initial_state", "Example11::time_derivative"],
-    );
+expansion_test! {
+    harmonic_oscillator_with_second_derivative, (), ["Oscillator::rhs", "Oscillator::taylor_tape"],
+    fn oscillator() {
+        let omega = param(2.0);
+        let x = state(1.0);
+        der(der(x)) == -omega.powi(2) * x;
+    }
 }
 
-#[test]
-fn three_body_with_state_arrays_and_loops() {
-    let items = items(
-        proc_macro2::TokenStream::new(),
-        quote! {
-            fn three_body() {
-                const N: usize = 3;
-                let gm = param(1.0);
-                let x = state_array([1.0, -0.5, -0.5]);
-                let y = state_array([0.0, 0.8660254037844386, -0.8660254037844386]);
-                let u = state_array([0.0; N]);
-                let v = state_array([0.0; N]);
-                for i in 0..N {
-                    der(x[i]) == u[i];
-                    der(y[i]) == v[i];
-                    let mut ax = 0.0;
-                    let mut ay = 0.0;
-                    for j in 0..N {
-                        if j != i {
-                            let dx = x[j] - x[i];
-                            let dy = y[j] - y[i];
-                            let r3 = (dx * dx + dy * dy).powf(-1.5);
-                            ax += gm * dx * r3;
-                            ay += gm * dy * r3;
-                        }
-                    }
-                    der(u[i]) == ax;
-                    der(v[i]) == ay;
+expansion_test! {
+    example_1_1_third_order_system, (), ["Example11::rhs", "Example11::initial_state", "Example11::time_derivative"],
+    /// Course notes, Example 1.1.
+    fn example_1_1() {
+        let t = time();
+        let x = state(0.0);
+        let y = state(0.0);
+        init(der(x), 0.0);
+        init(der(der(x)), 2.0);
+        init(der(y), 2.0);
+        der(der(der(x))) + der(y) == x * x + t;
+        der(der(y)) + x == t * t + 1.0;
+    }
+}
+
+expansion_test! {
+    three_body_with_state_arrays_and_loops, (), ["ThreeBody::rhs", "ThreeBody::taylor_tape", "ThreeBody::JACOBIAN_PATTERN"],
+    fn three_body() {
+        const N: usize = 3;
+        let gm = param(1.0);
+        let x = state_array([1.0, -0.5, -0.5]);
+        let y = state_array([0.0, 0.8660254037844386, -0.8660254037844386]);
+        let u = state_array([0.0; N]);
+        let v = state_array([0.0; N]);
+        for i in 0..N {
+            der(x[i]) == u[i];
+            der(y[i]) == v[i];
+            let mut ax = 0.0;
+            let mut ay = 0.0;
+            for j in 0..N {
+                if j != i {
+                    let dx = x[j] - x[i];
+                    let dy = y[j] - y[i];
+                    let r3 = (dx * dx + dy * dy).powf(-1.5);
+                    ax += gm * dx * r3;
+                    ay += gm * dy * r3;
                 }
             }
-        },
-    );
-    snapshot(
-        "three_body_with_state_arrays_and_loops",
-        &items,
-        &["ThreeBody::rhs", "ThreeBody::taylor_tape", "ThreeBody::JACOBIAN_PATTERN"],
-    );
+            der(u[i]) == ax;
+            der(v[i]) == ay;
+        }
+    }
 }
 
-#[test]
-fn double_pendulum_with_a_mass_matrix_solved_symbolically() {
-    let items = items(
-        proc_macro2::TokenStream::new(),
-        quote! {
-            fn double_pendulum() {
-                let g = param(9.81);
-                let a = state(1.0);
-                let b = state(-0.5);
-                let c = cos(a - b);
-                let s = sin(a - b);
-                2.0 * der(der(a)) + c * der(der(b)) == -s * der(b) * der(b) - 2.0 * g * sin(a);
-                c * der(der(a)) + der(der(b)) == s * der(a) * der(a) - g * sin(b);
-            }
-        },
-    );
-    snapshot(
-        "double_pendulum_with_a_mass_matrix_solved_symbolically",
-        &items,
-        &["DoublePendulum::rhs", "DoublePendulum::jacobian"],
-    );
+expansion_test! {
+    double_pendulum_with_a_mass_matrix_solved_symbolically, (), ["DoublePendulum::rhs", "DoublePendulum::jacobian"],
+    fn double_pendulum() {
+        let g = param(9.81);
+        let a = state(1.0);
+        let b = state(-0.5);
+        let c = cos(a - b);
+        let s = sin(a - b);
+        2.0 * der(der(a)) + c * der(der(b)) == -s * der(b) * der(b) - 2.0 * g * sin(a);
+        c * der(der(a)) + der(der(b)) == s * der(a) * der(a) - g * sin(b);
+    }
 }
 
-/// Course notes Example 1.4 with the economic Taylor derivatives of order 4.
-#[test]
-fn example_1_4_with_taylor_derivatives_of_order_4() {
-    let items = items(
-        quote!(taylor = 4),
-        quote! {
-            fn example_1_4() {
-                let x = time();
-                let y = state(1.0);
-                der(y) == x * y + x;
-            }
-        },
-    );
-    snapshot(
-        "example_1_4_with_taylor_derivatives_of_order_4",
-        &items,
-        &["Example14::taylor_derivatives"],
-    );
+expansion_test! {
+    /// Course notes Example 1.4 with the economic Taylor derivatives of order 4.
+    example_1_4_with_taylor_derivatives_of_order_4, (taylor = 4), ["Example14::taylor_derivatives"],
+    fn example_1_4() {
+        let x = time();
+        let y = state(1.0);
+        der(y) == x * y + x;
+    }
 }
 
 #[test]
@@ -256,29 +209,19 @@ fn bouncing_ball_with_a_terminal_event() {
     );
 }
 
-/// The unrolled Taylor recurrences of order 2 for a forced logistic
-/// equation: a product, a sine/cosine pair of the time and a constant, each
-/// coefficient one slot of `r`, one function per order; the negation and
-/// `1 − x` are one folded sum, and `k·x·(1 − x)` is folded into the output
-/// with its weight `k` computed once (`taylor_folding`).
-#[test]
-fn logistic_with_unrolled_taylor_recurrences_of_order_2() {
-    let items = items(
-        quote!(unroll = [2]),
-        quote! {
-            fn forced_logistic() {
-                let t = time();
-                let k = param(2.0);
-                let x = state(0.5);
-                der(x) == k * x * (1.0 - x) + sin(t);
-            }
-        },
-    );
-    snapshot(
-        "logistic_with_unrolled_taylor_recurrences_of_order_2",
-        &items,
-        &["ForcedLogistic::taylor_jet_unrolled"],
-    );
+expansion_test! {
+    /// The unrolled Taylor recurrences of order 2 for a forced logistic
+    /// equation: a product, a sine/cosine pair of the time and a constant, each
+    /// coefficient one slot of `r`, one function per order; the negation and
+    /// `1 − x` are one folded sum, and `k·x·(1 − x)` is folded into the output
+    /// with its weight `k` computed once (`taylor_folding`).
+    logistic_with_unrolled_taylor_recurrences_of_order_2, (unroll = [2]), ["ForcedLogistic::taylor_jet_unrolled"],
+    fn forced_logistic() {
+        let t = time();
+        let k = param(2.0);
+        let x = state(0.5);
+        der(x) == k * x * (1.0 - x) + sin(t);
+    }
 }
 
 /// Products that differ only by constant factors share one convolution on
@@ -335,177 +278,106 @@ fn taylor_tape_shares_a_product_with_a_negated_difference() {
     assert_eq!(convolutions, 2, "{tape}");
 }
 
-#[test]
-fn cartesian_pendulum_as_an_index_3_dae() {
-    let items = items(
-        proc_macro2::TokenStream::new(),
-        quote! {
-            /// The contract's pendulum: index 3, the KKT system solved at run
-            /// time, position and velocity constraints projected onto.
-            fn pendulum() {
-                let m = param(1.0);
-                let l = param(1.0);
-                let g = param(9.81);
-                let x = state(1.0);
-                let y = state(0.0);
-                let u = state(0.0);
-                let v = state(0.0);
-                let lambda = algebraic(0.0);
-                der(x) == u;
-                der(y) == v;
-                m * der(u) == -lambda * x;
-                m * der(v) == -lambda * y - m * g;
-                constraint(x * x + y * y - l * l);
-                let energy = output(0.5 * m * (u * u + v * v) + m * g * y);
-            }
-        },
-    );
-    snapshot(
-        "cartesian_pendulum_as_an_index_3_dae",
-        &items,
-        &[
-            "Pendulum::rhs",
-            "Pendulum::constraints",
-            "Pendulum::constraint_jacobian",
-            "Pendulum::CONSTRAINTS",
-            "PendulumMassForm::rhs",
-        ],
-    );
+expansion_test! {
+    cartesian_pendulum_as_an_index_3_dae, (), ["Pendulum::rhs", "Pendulum::constraints", "Pendulum::constraint_jacobian", "Pendulum::CONSTRAINTS", "PendulumMassForm::rhs"],
+    /// The contract's pendulum: index 3, the KKT system solved at run
+    /// time, position and velocity constraints projected onto.
+    fn pendulum() {
+        let m = param(1.0);
+        let l = param(1.0);
+        let g = param(9.81);
+        let x = state(1.0);
+        let y = state(0.0);
+        let u = state(0.0);
+        let v = state(0.0);
+        let lambda = algebraic(0.0);
+        der(x) == u;
+        der(y) == v;
+        m * der(u) == -lambda * x;
+        m * der(v) == -lambda * y - m * g;
+        constraint(x * x + y * y - l * l);
+        let energy = output(0.5 * m * (u * u + v * v) + m * g * y);
+    }
 }
 
-#[test]
-fn cartesian_double_pendulum_reduces_its_kkt_system_to_the_multipliers() {
-    let items = items(
-        proc_macro2::TokenStream::new(),
-        quote! {
-            /// Two point masses on massless rods: a 6 × 6 KKT system whose four
-            /// accelerations have constant pivots, leaving the 2 × 2 Schur
-            /// complement in the multipliers, solved symbolically.
-            fn double_pendulum_cartesian() {
-                let g = param(9.81);
-                let x1 = state(1.0);
-                let y1 = state(0.0);
-                let x2 = state(2.0);
-                let y2 = state(0.0);
-                let l1 = algebraic(0.0);
-                let l2 = algebraic(0.0);
-                der(der(x1)) == -l1 * x1 + l2 * (x2 - x1);
-                der(der(y1)) == -l1 * y1 + l2 * (y2 - y1) - g;
-                der(der(x2)) == -l2 * (x2 - x1);
-                der(der(y2)) == -l2 * (y2 - y1) - g;
-                constraint(x1 * x1 + y1 * y1 - 1.0);
-                constraint((x2 - x1) * (x2 - x1) + (y2 - y1) * (y2 - y1) - 1.0);
-            }
-        },
-    );
-    snapshot(
-        "cartesian_double_pendulum_reduces_its_kkt_system_to_the_multipliers",
-        &items,
-        &[
-            "DoublePendulumCartesian::rhs",
-            "DoublePendulumCartesian::output",
-            "DoublePendulumCartesian::constraints",
-        ],
-    );
+expansion_test! {
+    cartesian_double_pendulum_reduces_its_kkt_system_to_the_multipliers, (), ["DoublePendulumCartesian::rhs", "DoublePendulumCartesian::output", "DoublePendulumCartesian::constraints"],
+    /// Two point masses on massless rods: a 6 × 6 KKT system whose four
+    /// accelerations have constant pivots, leaving the 2 × 2 Schur
+    /// complement in the multipliers, solved symbolically.
+    fn double_pendulum_cartesian() {
+        let g = param(9.81);
+        let x1 = state(1.0);
+        let y1 = state(0.0);
+        let x2 = state(2.0);
+        let y2 = state(0.0);
+        let l1 = algebraic(0.0);
+        let l2 = algebraic(0.0);
+        der(der(x1)) == -l1 * x1 + l2 * (x2 - x1);
+        der(der(y1)) == -l1 * y1 + l2 * (y2 - y1) - g;
+        der(der(x2)) == -l2 * (x2 - x1);
+        der(der(y2)) == -l2 * (y2 - y1) - g;
+        constraint(x1 * x1 + y1 * y1 - 1.0);
+        constraint((x2 - x1) * (x2 - x1) + (y2 - y1) * (y2 - y1) - 1.0);
+    }
 }
 
-/// Two products sharing the factor x, once shifted by a constant, at order
-/// 2 (`taylor_factoring`): `(x + 1)·sin y + x·cos y` is written as its heads
-/// `(x + 1)^[0]·sin^[k]` and `x^[0]·cos^[k]` plus one convolution
-/// `Σ_{j≥1} x^[j]·e^[k−j]` on the row `e = sin y + cos y`.
-#[test]
-fn products_sharing_a_factor_with_unrolled_taylor_recurrences_of_order_2() {
-    let items = items(
-        quote!(unroll = [2]),
-        quote! {
-            fn shared_factor() {
-                let x = state(0.5);
-                let y = state(0.2);
-                der(x) == (x + 1.0) * sin(y) + x * cos(y);
-                der(y) == -x;
-            }
-        },
-    );
-    snapshot(
-        "products_sharing_a_factor_with_unrolled_taylor_recurrences_of_order_2",
-        &items,
-        &["SharedFactor::taylor_jet_unrolled"],
-    );
+expansion_test! {
+    /// Two products sharing the factor x, once shifted by a constant, at order
+    /// 2 (`taylor_factoring`): `(x + 1)·sin y + x·cos y` is written as its heads
+    /// `(x + 1)^[0]·sin^[k]` and `x^[0]·cos^[k]` plus one convolution
+    /// `Σ_{j≥1} x^[j]·e^[k−j]` on the row `e = sin y + cos y`.
+    products_sharing_a_factor_with_unrolled_taylor_recurrences_of_order_2, (unroll = [2]), ["SharedFactor::taylor_jet_unrolled"],
+    fn shared_factor() {
+        let x = state(0.5);
+        let y = state(0.2);
+        der(x) == (x + 1.0) * sin(y) + x * cos(y);
+        der(y) == -x;
+    }
 }
 
-/// Two symmetric rows unrolled at order 2, x' = −x s, y' = −y s with
-/// s = x + y (Kepler's shape in first order, without the power): x and y
-/// are a lane pair (`taylor_lanes`) — their rows interleaved in `r`,
-/// written side by side and copied to `seeds` for the vectoriser — and the
-/// shared s is one row read by both lanes.
-#[test]
-fn symmetric_rows_as_a_lane_pair_at_order_2() {
-    let items = items(
-        quote!(unroll = [2]),
-        quote! {
-            fn central() {
-                let x = state(0.5);
-                let y = state(0.25);
-                der(x) == -x * (x + y);
-                der(y) == -y * (x + y);
-            }
-        },
-    );
-    snapshot("symmetric_rows_as_a_lane_pair_at_order_2", &items, &["Central::taylor_jet_unrolled"]);
+expansion_test! {
+    /// Two symmetric rows unrolled at order 2, x' = −x s, y' = −y s with
+    /// s = x + y (Kepler's shape in first order, without the power): x and y
+    /// are a lane pair (`taylor_lanes`) — their rows interleaved in `r`,
+    /// written side by side and copied to `seeds` for the vectoriser — and the
+    /// shared s is one row read by both lanes.
+    symmetric_rows_as_a_lane_pair_at_order_2, (unroll = [2]), ["Central::taylor_jet_unrolled"],
+    fn central() {
+        let x = state(0.5);
+        let y = state(0.25);
+        der(x) == -x * (x + y);
+        der(y) == -y * (x + y);
+    }
 }
 
-/// A capacitor between two nodes written at both: the rows of the node
-/// equations are opposite, and their sum stands in for the second as an
-/// equation without derivatives (differentiated once: index 1). The
-/// capacitance divides the combination, so a run checks it is not zero
-/// (`degenerate_parameters`); the mass-matrix form keeps the singular
-/// matrix as written (`MASS_PATTERN`).
-#[test]
-fn a_capacitor_between_two_nodes_combines_their_equations() {
-    let items = items(
-        proc_macro2::TokenStream::new(),
-        quote! {
-            fn two_nodes() {
-                let c = param(1e-6);
-                let r = param(1000.0);
-                let v1 = state(1.0);
-                let v2 = state(0.0);
-                c * der(v1) - c * der(v2) == -v1 / r;
-                -c * der(v1) + c * der(v2) == -v2 / r + v1 / r;
-            }
-        },
-    );
-    snapshot(
-        "a_capacitor_between_two_nodes_combines_their_equations",
-        &items,
-        &[
-            "TwoNodes::rhs",
-            "TwoNodes::degenerate_parameters",
-            "TwoNodes::CONSTRAINTS",
-            "TwoNodesMassForm::mass_values",
-        ],
-    );
+expansion_test! {
+    /// A capacitor between two nodes written at both: the rows of the node
+    /// equations are opposite, and their sum stands in for the second as an
+    /// equation without derivatives (differentiated once: index 1). The
+    /// capacitance divides the combination, so a run checks it is not zero
+    /// (`degenerate_parameters`); the mass-matrix form keeps the singular
+    /// matrix as written (`MASS_PATTERN`).
+    a_capacitor_between_two_nodes_combines_their_equations, (), ["TwoNodes::rhs", "TwoNodes::degenerate_parameters", "TwoNodes::CONSTRAINTS", "TwoNodesMassForm::mass_values"],
+    fn two_nodes() {
+        let c = param(1e-6);
+        let r = param(1000.0);
+        let v1 = state(1.0);
+        let v2 = state(0.0);
+        c * der(v1) - c * der(v2) == -v1 / r;
+        -c * der(v1) + c * der(v2) == -v2 / r + v1 / r;
+    }
 }
 
-/// An algebraic equation quadratic in its variable: the model solves it by
-/// Newton's method at each evaluation (`__daegen_algebraics`, the residual
-/// and ∂g/∂z generated), and the rest reads z from that solve.
-#[test]
-fn a_nonlinear_algebraic_equation_is_solved_by_newton() {
-    let items = items(
-        proc_macro2::TokenStream::new(),
-        quote! {
-            fn quadratic() {
-                let y = state(2.0);
-                let z = algebraic(1.0);
-                der(y) == -z;
-                0.0 == z * z + z - y;
-            }
-        },
-    );
-    snapshot(
-        "a_nonlinear_algebraic_equation_is_solved_by_newton",
-        &items,
-        &["Quadratic::__daegen_algebraics", "Quadratic::rhs", "Quadratic::output"],
-    );
+expansion_test! {
+    /// An algebraic equation quadratic in its variable: the model solves it by
+    /// Newton's method at each evaluation (`__daegen_algebraics`, the residual
+    /// and ∂g/∂z generated), and the rest reads z from that solve.
+    a_nonlinear_algebraic_equation_is_solved_by_newton, (), ["Quadratic::__daegen_algebraics", "Quadratic::rhs", "Quadratic::output"],
+    fn quadratic() {
+        let y = state(2.0);
+        let z = algebraic(1.0);
+        der(y) == -z;
+        0.0 == z * z + z - y;
+    }
 }
