@@ -141,6 +141,9 @@ pub struct Solution {
     storage: Storage,
     /// The latest step, stored or not: events and output times read it.
     last: LastStep,
+    /// Whether the latest step's states and coefficients are kept (only
+    /// events and output times read them).
+    track_last: bool,
     /// The end of the run: the latest step's end, or where a terminal
     /// event or the step callback ended it.
     end_t: f64,
@@ -208,6 +211,7 @@ impl Solution {
             segments: Vec::new(),
             storage: Storage::All,
             last: LastStep::new(n),
+            track_last: true,
             end_t: f64::NAN,
             end_y: Vec::new(),
             steps: 0,

@@ -129,6 +129,10 @@ impl Solution {
             _ => Storage::All,
         };
         self.stream = Stream::new(options, t0, t1);
+        // Only events and output times read the latest step's interior:
+        // a run with neither does not copy it.
+        self.track_last =
+            !self.names.events.is_empty() || !matches!(self.storage, Storage::All);
     }
 
     /// The steps pushed from now on carry `width` dense-output vectors, read by `f`.
@@ -167,9 +171,11 @@ impl Solution {
     /// An accepted step to `(t, y)` with its dense-output coefficients.
     pub(crate) fn push_dense(&mut self, t: f64, y: &[f64], coefficients: &[f64]) {
         self.advance(t, y);
-        self.last.coefficients.clear();
-        self.last.coefficients.extend_from_slice(coefficients);
-        self.last.interpolant = self.segments.last().map(|s| s.interpolant);
+        if self.track_last {
+            self.last.coefficients.clear();
+            self.last.coefficients.extend_from_slice(coefficients);
+            self.last.interpolant = self.segments.last().map(|s| s.interpolant);
+        }
         if matches!(self.storage, Storage::All) {
             self.dense.extend_from_slice(coefficients);
         }
@@ -186,7 +192,10 @@ impl Solution {
     fn advance(&mut self, t: f64, y: &[f64]) {
         let last = &mut self.last;
         last.t_old = self.end_t;
-        last.y_old.copy_from_slice(&self.end_y);
+        if self.track_last {
+            last.y_old.copy_from_slice(&self.end_y);
+            last.y_new.copy_from_slice(y);
+        }
         // The old end's derivative serves again, unless a cut moved the end.
         last.has_f_old = last.has_f_new && last.t_new == self.end_t;
         if last.has_f_old {
@@ -194,7 +203,6 @@ impl Solution {
         }
         last.has_f_new = false;
         last.t_new = t;
-        last.y_new.copy_from_slice(y);
         last.interpolant = None;
         self.end_t = t;
         self.end_y.copy_from_slice(y);
