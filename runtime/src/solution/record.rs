@@ -131,8 +131,7 @@ impl Solution {
         self.stream = Stream::new(options, t0, t1);
         // Only events and output times read the latest step's interior:
         // a run with neither does not copy it.
-        self.track_last =
-            !self.names.events.is_empty() || !matches!(self.storage, Storage::All);
+        self.track_last = !self.names.events.is_empty() || !matches!(self.storage, Storage::All);
     }
 
     /// The steps pushed from now on carry `width` dense-output vectors, read by `f`.
