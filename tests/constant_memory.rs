@@ -28,14 +28,8 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static ALLOCATOR: Counting = Counting;
 
-/// x'' = −x.
-#[dae_model]
-fn oscillator() {
-    let x = state(1.0);
-    let v = state(0.0);
-    der(x) == v;
-    der(v) == -x;
-}
+mod support;
+use support::Oscillator;
 
 /// Peak bytes alive above the start during a run of `steps` Euler steps to
 /// t = 10, streamed to a callback that keeps the largest |x|, stored at 11

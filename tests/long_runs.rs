@@ -3,14 +3,8 @@
 
 use daegen::prelude::*;
 
-/// x'' = −x from (1, 0): x = cos t.
-#[dae_model]
-fn oscillator() {
-    let x = state(1.0);
-    let v = state(0.0);
-    der(x) == v;
-    der(v) == -x;
-}
+mod support;
+use support::{Falling, Oscillator};
 
 #[test]
 fn a_million_steps_keep_a_thousand_states() {
@@ -59,14 +53,6 @@ fn keep_every_thins_the_stored_steps_and_at_refuses_between_them() {
     assert!(message.contains("keep_every(7)"), "{message}");
     let zero = Oscillator::default().simulate(0.0, 1.0, &opts.keep_every(0));
     assert!(matches!(zero, Err(daegen::Error::InvalidOptions { .. })));
-}
-
-/// A falling ball with its impact as an event.
-#[dae_model]
-fn falling() {
-    let h = state(1.0);
-    der(der(h)) == -9.81;
-    let impact = event(h).falling().terminal();
 }
 
 /// Thinning stores fewer steps but watches every one: the impact of a body

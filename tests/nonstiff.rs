@@ -27,13 +27,8 @@ fn arenstorf() {
 const ARENSTORF_PERIOD: f64 = 17.0652165601579625588917206249;
 const ARENSTORF_START: [f64; 4] = [0.994, 0.0, 0.0, -2.00158510637908252240537862224];
 
-fn max_error(got: &[f64], want: &[f64]) -> f64 {
-    got.iter().zip(want).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max)
-}
-
-fn final_state(sol: &Solution) -> Vec<f64> {
-    sol.state(sol.times().len() - 1).unwrap_or(&[]).to_vec()
-}
+mod support;
+use support::{final_state, max_error};
 
 /// Hairer's `dopri5.f` on Arenstorf with h₀ = 1e-4, rtol = atol = 1e-7:
 /// 217 accepted and 21 rejected steps, 1429 evaluations, and this final

@@ -12,14 +12,8 @@ robertson_model!();
 hires_model!();
 low_pass_model!();
 
-fn last_state(sol: &Solution) -> Vec<f64> {
-    sol.state(sol.times().len() - 1).unwrap_or(&[]).to_vec()
-}
-
-/// Largest error relative to max(|reference|, atol/rtol floor).
-fn mixed_error(got: &[f64], reference: &[f64], floor: f64) -> f64 {
-    got.iter().zip(reference).map(|(g, r)| (g - r).abs() / r.abs().max(floor)).fold(0.0, f64::max)
-}
+mod support;
+use support::{final_state as last_state, mixed_error};
 
 const TOLERANCES: [f64; 5] = [1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
 

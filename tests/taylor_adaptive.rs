@@ -13,13 +13,8 @@ arenstorf_model!(taylor = 1);
 // Order 18 (tolerance 1e-14) unrolled.
 lorenz_model!([-8.0, 8.0, 27.0], taylor = 1, unroll = [18]);
 
-fn max_error(got: &[f64], want: &[f64]) -> f64 {
-    got.iter().zip(want).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max)
-}
-
-fn final_state(sol: &Solution) -> Vec<f64> {
-    sol.state(sol.times().len() - 1).unwrap_or(&[]).to_vec()
-}
+mod support;
+use support::{final_state, max_error};
 
 #[test]
 fn errors_fall_with_the_tolerance_on_kepler_and_arenstorf() {

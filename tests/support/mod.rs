@@ -1,0 +1,41 @@
+//! What several test files share: error measures, and small models whose
+//! solutions are known in closed form.
+
+// Each test file uses some of these.
+#![allow(dead_code)]
+
+use daegen::prelude::*;
+
+/// max |got − want| over the components.
+pub fn max_error(got: &[f64], want: &[f64]) -> f64 {
+    got.iter().zip(want).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max)
+}
+
+/// max |got − want| / max(|want|, floor): relative where the reference is
+/// large, absolute (scaled by the floor) where it is small.
+pub fn mixed_error(got: &[f64], want: &[f64], floor: f64) -> f64 {
+    got.iter().zip(want).map(|(g, r)| (g - r).abs() / r.abs().max(floor)).fold(0.0, f64::max)
+}
+
+/// The state a run ended with.
+pub fn final_state(sol: &Solution) -> Vec<f64> {
+    sol.final_state().to_vec()
+}
+
+/// x'' = −x from (1, 0), as x' = v, v' = −x: x = cos t, v = −sin t.
+#[dae_model]
+pub fn oscillator() {
+    let x = state(1.0);
+    let v = state(0.0);
+    der(x) == v;
+    der(v) == -x;
+}
+
+/// A body dropped from 1 m, stopped at the ground: h = 1 − 9.81 t²/2,
+/// the impact at t = √(2/9.81).
+#[dae_model]
+pub fn falling() {
+    let h = state(1.0);
+    der(der(h)) == -9.81;
+    let impact = event(h).falling().terminal();
+}
