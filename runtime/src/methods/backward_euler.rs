@@ -32,6 +32,7 @@ use crate::solution::Solution;
 use crate::step::events::{after_accepted_step, EventWatch};
 use crate::step::jacobian::DenseJacobian;
 use crate::step::projection::{project_onto_constraints, Projector};
+use crate::step::return_if_not_finite;
 
 /// Iterations with one Newton matrix before it is refreshed.
 const ITERATIONS_PER_MATRIX: usize = 10;
@@ -554,13 +555,7 @@ pub(crate) fn integrate<M: Model>(
                 });
             }
         }
-        if let Some(i) = next.iter().position(|v| !v.is_finite()) {
-            return Err(Error::NonFinite {
-                t: t_next,
-                variable: M::INFO.states[i],
-                partial: Box::new(solution),
-            });
-        }
+        return_if_not_finite!(next, t_next, M, solution);
         y.copy_from_slice(&next);
         t = t_next;
         if t == end {

@@ -7,6 +7,7 @@ use crate::model::Model;
 use crate::solution::Solution;
 use crate::step::events::{after_accepted_step, EventWatch};
 use crate::step::projection::{project_onto_constraints, Projector};
+use crate::step::return_if_not_finite;
 
 /// An explicit Butcher tableau: `a` strictly lower triangular (row i has i
 /// entries), weights `b`, nodes `c`.
@@ -110,13 +111,7 @@ pub(crate) fn integrate<M: Model>(
         }
         let t_next =
             if step + 1 == steps { t1 } else { t0 + span * ((step + 1) as f64 / steps as f64) };
-        if let Some(i) = y.iter().position(|v| !v.is_finite()) {
-            return Err(Error::NonFinite {
-                t: t_next,
-                variable: M::INFO.states[i],
-                partial: Box::new(solution),
-            });
-        }
+        return_if_not_finite!(y, t_next, M, solution);
         project_onto_constraints!(projector, t_next, &mut y, solution);
         solution.push(t_next, &y);
         solution.stats_mut().steps += 1;

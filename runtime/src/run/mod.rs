@@ -288,14 +288,7 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
                     message: format!("the step must be positive and finite, not {step}"),
                 });
             }
-            let steps = ((t1 - t0).abs() / step).ceil().max(1.0);
-            if steps > options.max_steps as f64 {
-                return Err(Error::MaxSteps {
-                    t: t0,
-                    max_steps: options.max_steps,
-                    partial: Box::new(solution),
-                });
-            }
+            let (steps, solution) = crate::step::equal_steps(t0, t1, step, options, solution)?;
             let tableau = match fixed {
                 Method::Rk4 => &explicit_rk::RK4,
                 Method::Rk38 => &explicit_rk::RK38,
@@ -304,19 +297,11 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
                 Method::Heun => &explicit_rk::HEUN,
                 Method::Ralston => &explicit_rk::RALSTON,
                 Method::BackwardEuler => {
-                    return backward_euler::integrate(
-                        model,
-                        t0,
-                        t1,
-                        &y0,
-                        steps as usize,
-                        options,
-                        solution,
-                    )
+                    return backward_euler::integrate(model, t0, t1, &y0, steps, options, solution)
                 }
                 other => return Err(Error::MethodNotAvailable { method: other }),
             };
-            explicit_rk::integrate(model, tableau, t0, t1, &y0, steps as usize, solution)
+            explicit_rk::integrate(model, tableau, t0, t1, &y0, steps, solution)
         }
     }
 }

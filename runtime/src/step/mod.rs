@@ -6,3 +6,43 @@ pub mod control;
 pub(crate) mod events;
 pub(crate) mod jacobian;
 pub(crate) mod projection;
+
+use crate::error::Error;
+use crate::options::Options;
+use crate::solution::Solution;
+
+/// In a method's step loop: returns `Error::NonFinite`, naming the first
+/// state that is NaN or infinite at time `t`, with the solution so far.
+macro_rules! return_if_not_finite {
+    ($y:expr, $t:expr, $model:ty, $solution:ident) => {
+        if let Some(i) = $y.iter().position(|v| !v.is_finite()) {
+            return Err($crate::error::Error::NonFinite {
+                t: $t,
+                variable: <$model as $crate::model::Model>::INFO.states[i],
+                partial: Box::new($solution),
+            });
+        }
+    };
+}
+pub(crate) use return_if_not_finite;
+
+/// The number of equal steps of about `step` from `t0` to `t1` for a
+/// fixed-step method, or `Error::MaxSteps` (with `solution`) when that is
+/// more than `options` allow.
+pub(crate) fn equal_steps(
+    t0: f64,
+    t1: f64,
+    step: f64,
+    options: &Options,
+    solution: Solution,
+) -> Result<(usize, Solution), Error> {
+    let steps = ((t1 - t0).abs() / step).ceil().max(1.0);
+    if steps > options.max_steps as f64 {
+        return Err(Error::MaxSteps {
+            t: t0,
+            max_steps: options.max_steps,
+            partial: Box::new(solution),
+        });
+    }
+    Ok((steps as usize, solution))
+}

@@ -11,6 +11,7 @@ use crate::options::{Method, Options};
 use crate::solution::Solution;
 use crate::step::events::{after_accepted_step, EventWatch};
 use crate::step::projection::{project_onto_constraints, Projector};
+use crate::step::return_if_not_finite;
 
 /// Integrates with the order and step of `Method::TaylorFixed` in
 /// `options`, in equal steps that end at `t1`.
@@ -20,20 +21,12 @@ pub(crate) fn integrate<M: Model>(
     t1: f64,
     y0: &[f64],
     options: &Options,
-    mut solution: Solution,
+    solution: Solution,
 ) -> Result<Solution, Error> {
     let Method::TaylorFixed { order, step } = options.method else {
         return Err(Error::MethodNotAvailable { method: options.method });
     };
-    let steps = ((t1 - t0).abs() / step).ceil().max(1.0);
-    if steps > options.max_steps as f64 {
-        return Err(Error::MaxSteps {
-            t: t0,
-            max_steps: options.max_steps,
-            partial: Box::new(solution),
-        });
-    }
-    let steps = steps as usize;
+    let (steps, mut solution) = crate::step::equal_steps(t0, t1, step, options, solution)?;
     let n = M::STATES;
     let (mut y, mut next) = (y0.to_vec(), vec![0.0; n]);
     // The generated code writes all TAYLOR_ORDER blocks' room; only `order` are filled.
@@ -70,13 +63,7 @@ pub(crate) fn integrate<M: Model>(
             }
         }
         std::mem::swap(&mut y, &mut next);
-        if let Some(i) = y.iter().position(|v| !v.is_finite()) {
-            return Err(Error::NonFinite {
-                t: t_next,
-                variable: M::INFO.states[i],
-                partial: Box::new(solution),
-            });
-        }
+        return_if_not_finite!(y, t_next, M, solution);
         project_onto_constraints!(projector, t_next, &mut y, solution);
         if keep_dense {
             solution.push_dense(t_next, &y, &dense);

@@ -22,6 +22,7 @@ use crate::options::Options;
 use crate::solution::Solution;
 use crate::step::events::{after_accepted_step, EventWatch};
 use crate::step::projection::{project_onto_constraints, Projector};
+use crate::step::return_if_not_finite;
 
 /// Sub-intervals of each step on which event functions are checked for a
 /// sign change.
@@ -398,13 +399,7 @@ pub(crate) fn integrate<M: Model>(
         let t_next = t + step;
         compensation = (t_next - t) - step;
         t = if last { t1 } else { t_next };
-        if let Some(i) = y.iter().position(|v| !v.is_finite()) {
-            return Err(Error::NonFinite {
-                t,
-                variable: M::INFO.states[i],
-                partial: Box::new(solution),
-            });
-        }
+        return_if_not_finite!(y, t, M, solution);
         if project_onto_constraints!(projector, t, &mut y, solution) {
             // The carried rounding errors belong to the state before it moved.
             carried.fill(0.0);
