@@ -301,26 +301,11 @@ fn slider_crank_in_global_coordinates_follows_its_crank_angle_ode() {
 fn linear_index_1() {
     let t = time();
     let y = state_array([0.0, 0.0, 0.0, 0.0]);
+    let dy = der(y[0]) + der(y[1]) + der(y[2]) + der(y[3]);
     y[0] + y[1] + y[2] == sin(t) + t * t;
     y[0] + 2.0 * y[1] + y[2] == sin(t) + cos(t);
-    der(y[0])
-        + der(y[1])
-        + der(y[2])
-        + der(y[3])
-        + 0.5 * y[0]
-        + 1.5 * y[1]
-        + 2.5 * y[2]
-        + 0.5 * y[3]
-        == cos(t) + t * t + 1.0;
-    der(y[0])
-        + der(y[1])
-        + der(y[2])
-        + der(y[3])
-        + 0.5 * y[0]
-        + 0.5 * y[1]
-        + 1.5 * y[2]
-        + 0.5 * y[3]
-        == t * t + 1.0;
+    dy + 0.5 * y[0] + 1.5 * y[1] + 2.5 * y[2] + 0.5 * y[3] == cos(t) + t * t + 1.0;
+    dy + 0.5 * y[0] + 0.5 * y[1] + 1.5 * y[2] + 0.5 * y[3] == t * t + 1.0;
 }
 
 /// Kronecker index 2.
@@ -328,26 +313,11 @@ fn linear_index_1() {
 fn linear_index_2() {
     let t = time();
     let y = state_array([0.0, 0.0, 0.0, 0.0]);
+    let dy = der(y[0]) + der(y[1]) + der(y[2]) + der(y[3]);
     der(y[1]) + der(y[2]) + y[0] + y[1] + y[2] == sin(t) + t * t;
     der(y[1]) + der(y[2]) + y[0] + 2.0 * y[1] + y[2] == sin(t) + cos(t);
-    der(y[0])
-        + der(y[1])
-        + der(y[2])
-        + der(y[3])
-        + 0.5 * y[0]
-        + 1.5 * y[1]
-        + 2.5 * y[2]
-        + 0.5 * y[3]
-        == cos(t) + t * t + 1.0;
-    der(y[0])
-        + der(y[1])
-        + der(y[2])
-        + der(y[3])
-        + 0.5 * y[0]
-        + 0.5 * y[1]
-        + 1.5 * y[2]
-        + 0.5 * y[3]
-        == t * t + 1.0;
+    dy + 0.5 * y[0] + 1.5 * y[1] + 2.5 * y[2] + 0.5 * y[3] == cos(t) + t * t + 1.0;
+    dy + 0.5 * y[0] + 0.5 * y[1] + 1.5 * y[2] + 0.5 * y[3] == t * t + 1.0;
 }
 
 /// Kronecker index 3.
@@ -355,26 +325,11 @@ fn linear_index_2() {
 fn linear_index_3() {
     let t = time();
     let y = state_array([0.0, 0.0, 0.0, 0.0]);
+    let dy = der(y[0]) + der(y[1]) + der(y[2]) + der(y[3]);
     der(y[1]) + der(y[2]) + y[0] + y[1] + y[2] == sin(t) + t * t;
     der(y[1]) + 2.0 * der(y[2]) + y[0] + 2.0 * y[1] + y[2] == sin(t) + cos(t);
-    der(y[0])
-        + der(y[1])
-        + 2.0 * der(y[2])
-        + der(y[3])
-        + 0.5 * y[0]
-        + 1.5 * y[1]
-        + 2.5 * y[2]
-        + 0.5 * y[3]
-        == cos(t) + t * t + 1.0;
-    der(y[0])
-        + der(y[1])
-        + der(y[2])
-        + der(y[3])
-        + 0.5 * y[0]
-        + 0.5 * y[1]
-        + 1.5 * y[2]
-        + 0.5 * y[3]
-        == t * t + 1.0;
+    dy + der(y[2]) + 0.5 * y[0] + 1.5 * y[1] + 2.5 * y[2] + 0.5 * y[3] == cos(t) + t * t + 1.0;
+    dy + 0.5 * y[0] + 0.5 * y[1] + 1.5 * y[2] + 0.5 * y[3] == t * t + 1.0;
 }
 
 /// y(t) from the closed form, β0 = (Q⁻¹ y(0))₄ = y1 + y2 + y3 + y4 at t = 0.
