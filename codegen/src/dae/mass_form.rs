@@ -248,26 +248,10 @@ fn is_next(g: &Graph, slot: SymbolId, z: SymbolId) -> bool {
 
 /// A perfect matching of rows to columns (Kuhn), as the row of each column.
 fn perfect_matching(rows: &[Vec<(usize, Id)>], n: usize) -> Option<Vec<usize>> {
-    fn augment(
-        r: usize,
-        rows: &[Vec<(usize, Id)>],
-        owner: &mut [Option<usize>],
-        seen: &mut [bool],
-    ) -> bool {
-        for &(c, _) in &rows[r] {
-            if !seen[c] {
-                seen[c] = true;
-                if owner[c].is_none_or(|o| augment(o, rows, owner, seen)) {
-                    owner[c] = Some(r);
-                    return true;
-                }
-            }
-        }
-        false
-    }
+    let columns = |r: usize| rows[r].iter().map(|&(c, _)| c);
     let mut owner = vec![None; n];
     for r in 0..rows.len() {
-        if !augment(r, rows, &mut owner, &mut vec![false; n]) {
+        if !crate::dae::matching::augment(r, &columns, &mut owner, &mut vec![false; n]) {
             return None;
         }
     }

@@ -9,6 +9,7 @@ pub mod derivative_free;
 pub mod index_reduction;
 pub mod linear_pencil;
 pub mod mass_form;
+pub mod matching;
 pub mod newton_block;
 pub mod reduce;
 pub mod solve_unknowns;

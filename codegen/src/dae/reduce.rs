@@ -661,24 +661,13 @@ fn matched(
 ) -> Option<Vec<usize>> {
     let n = unknowns.len();
     let mut owner: Vec<Option<usize>> = vec![None; n];
-    fn augment(e: usize, eqs: &[Equation], owner: &mut [Option<usize>], seen: &mut [bool]) -> bool {
-        for &j in &eqs[e].unknowns {
-            if !seen[j] {
-                seen[j] = true;
-                if owner[j].is_none_or(|other| augment(other, eqs, owner, seen)) {
-                    owner[j] = Some(e);
-                    return true;
-                }
-            }
-        }
-        false
-    }
+    let columns = |e: usize| equations[e].unknowns.iter().copied();
     let name = |j: usize| format!("`{}`", g.symbol(unknowns[j]).name);
     let text = |e: usize| format!("`{}`", crate::front::names::source_text(&equations[e].origin));
     let mut ok = true;
     for e in 0..equations.len() {
         let mut seen = vec![false; n];
-        if augment(e, equations, &mut owner, &mut seen) {
+        if crate::dae::matching::augment(e, &columns, &mut owner, &mut seen) {
             continue;
         }
         ok = false;

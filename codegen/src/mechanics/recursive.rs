@@ -290,20 +290,8 @@ impl Lower<'_> {
         }
         let body_symbols: Vec<SymbolId> =
             self.scene.bodies.iter().flat_map(|b| [b.x, b.y, b.theta]).collect();
-        let equations = std::mem::take(&mut self.equations);
-        self.equations = equations
-            .into_iter()
-            .enumerate()
-            .filter(|(i, _)| !drop_equations.contains(i))
-            .map(|(_, e)| e)
-            .collect();
-        let algebraics = std::mem::take(&mut self.algebraics);
-        self.algebraics = algebraics
-            .into_iter()
-            .enumerate()
-            .filter(|(i, _)| !drop_algebraics.contains(i))
-            .map(|(_, a)| a)
-            .collect();
+        retain_unlisted(&mut self.equations, &drop_equations);
+        retain_unlisted(&mut self.algebraics, &drop_algebraics);
         self.states.retain(|s| !body_symbols.contains(&s.symbol));
         for ((q, q0, name), &rate) in coordinates.iter().zip(joint_rates) {
             let kind = records
@@ -636,4 +624,13 @@ fn joint_rate(
     let p2 = g.mul(dy, dir[1])?;
     let along = g.add(p1, p2)?;
     g.div(along, len)
+}
+
+/// Removes the items at the positions `dropped` lists.
+fn retain_unlisted<T>(items: &mut Vec<T>, dropped: &std::collections::HashSet<usize>) {
+    let mut i = 0;
+    items.retain(|_| {
+        i += 1;
+        !dropped.contains(&(i - 1))
+    });
 }

@@ -196,10 +196,9 @@ struct Builder<'g> {
     constants: Vec<Constant>,
     ops: Vec<TokenStream>,
     recurrences: Vec<(usize, Recurrence)>,
-    /// sin(a) → the u-variable of its pair, so cos(a) is reused.
-    sin_of: FxHashMap<Id, usize>,
-    /// sinh(a) → the u-variable of its pair with cosh(a).
-    sinh_of: FxHashMap<Id, usize>,
+    /// ("Sin", a) → the u-variable of sin(a), paired with cos(a) after it
+    /// (likewise "Sinh" and cosh), so the pair is made once per argument.
+    pairs_of: FxHashMap<(&'static str, Id), usize>,
     /// Each sum, product and quotient of two operands once: products that
     /// differ only by their constant factors (m_j·dx·r³ and −m_i·dx·r³ of
     /// an N-body model) share the convolution dx·r³.
@@ -263,18 +262,6 @@ impl Builder<'_> {
         )
     }
 
-    fn sinh_cosh(&mut self, arg: Id, a: &Operand) -> (Operand, Operand) {
-        if let Some(&v) = self.sinh_of.get(&arg) {
-            return (Operand::Var(v), Operand::Var(v + 1));
-        }
-        let s = self.unary("Sinh", a);
-        let c = self.push(quote!(T::CoshOfPrevious), None);
-        if let Operand::Var(v) = s {
-            self.sinh_of.insert(arg, v);
-        }
-        (s, c)
-    }
-
     fn binary(&mut self, name: &'static str, a: &Operand, b: &Operand) -> Operand {
         // Sums and products commute: one key for both orders.
         let key = match name {
@@ -335,14 +322,19 @@ impl Builder<'_> {
         }
     }
 
-    fn sin_cos(&mut self, arg: Id, a: &Operand) -> (Operand, Operand) {
-        if let Some(&v) = self.sin_of.get(&arg) {
+    /// sin(a) and cos(a) (`first` = "Sin"), or sinh(a) and cosh(a)
+    /// ("Sinh"): one recurrence for the pair, the second reading the
+    /// first's variable + 1, made once per argument.
+    fn pair(&mut self, first: &'static str, arg: Id, a: &Operand) -> (Operand, Operand) {
+        if let Some(&v) = self.pairs_of.get(&(first, arg)) {
             return (Operand::Var(v), Operand::Var(v + 1));
         }
-        let s = self.unary("Sin", a);
-        let c = self.push(quote!(T::CosOfPrevious), None);
+        let s = self.unary(first, a);
+        let second =
+            if first == "Sin" { quote!(T::CosOfPrevious) } else { quote!(T::CoshOfPrevious) };
+        let c = self.push(second, None);
         if let Operand::Var(v) = s {
-            self.sin_of.insert(arg, v);
+            self.pairs_of.insert((first, arg), v);
         }
         (s, c)
     }
@@ -489,16 +481,16 @@ impl Builder<'_> {
                 match f {
                     Func::Exp => self.unary("Exp", &arg),
                     Func::Ln => self.unary("Ln", &arg),
-                    Func::Sin => self.sin_cos(*a, &arg).0,
-                    Func::Cos => self.sin_cos(*a, &arg).1,
+                    Func::Sin => self.pair("Sin", *a, &arg).0,
+                    Func::Cos => self.pair("Sin", *a, &arg).1,
                     Func::Tan => {
-                        let (s, c) = self.sin_cos(*a, &arg);
+                        let (s, c) = self.pair("Sin", *a, &arg);
                         self.binary("Div", &s, &c)
                     }
-                    Func::Sinh => self.sinh_cosh(*a, &arg).0,
-                    Func::Cosh => self.sinh_cosh(*a, &arg).1,
+                    Func::Sinh => self.pair("Sinh", *a, &arg).0,
+                    Func::Cosh => self.pair("Sinh", *a, &arg).1,
                     Func::Tanh => {
-                        let (s, c) = self.sinh_cosh(*a, &arg);
+                        let (s, c) = self.pair("Sinh", *a, &arg);
                         self.binary("Div", &s, &c)
                     }
                     Func::Asin => self.inverse("Asin", &arg),
@@ -575,8 +567,7 @@ pub fn decompose(
         constants: Vec::new(),
         ops: Vec::new(),
         recurrences: Vec::new(),
-        sin_of: FxHashMap::default(),
-        sinh_of: FxHashMap::default(),
+        pairs_of: FxHashMap::default(),
         binary_of: FxHashMap::default(),
         negation_of: negations,
         negative_of: FxHashMap::default(),
