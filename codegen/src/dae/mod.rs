@@ -1,7 +1,8 @@
 //! From the model IR to a first-order system: equations whose highest
 //! derivatives cancel combined (`derivative_free`), the index reduced
 //! (`index_reduction`, `linear_pencil`), the unknowns solved block by block
-//! (`reduce`, `solve_unknowns`, `newton_block`), the constraints to project
+//! (`reduce`, `solve_unknowns`, `newton_block`, over the equations matched
+//! to their unknowns by `matching`), the constraints to project
 //! onto (`constraints`), and the mass-matrix form (`mass_form`).
 
 pub mod constraints;
