@@ -6,6 +6,9 @@
 
 use daegen::prelude::*;
 
+mod support;
+use support::{assert_agree, tight};
+
 include!("models/slider_crank.rs");
 
 /// The slider-crank of the DAE tests, built as a scene.
@@ -31,9 +34,8 @@ fn slider_crank_scene() {
 fn a_slider_crank_scene_matches_the_hand_written_model() {
     assert_eq!(<SliderCrankScene as Model>::INDEX, 3);
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let scene = SliderCrankScene::default().simulate(0.0, 2.0, &opts).unwrap();
-    let hand = SliderCrank::default().simulate(0.0, 2.0, &opts).unwrap();
+    let scene = tight::<SliderCrankScene>(2.0, tol);
+    let hand = tight::<SliderCrank>(2.0, tol);
     assert_eq!(scene.degrees_of_freedom(), Some(1));
     for t in [0.0, 0.5, 1.0, 2.0] {
         let (a, b) = (scene.at(t, "crank.theta").unwrap(), hand.at(t, "theta1").unwrap());
@@ -89,8 +91,7 @@ four_bar_model!(four_bar, scene = global);
 #[test]
 fn a_four_bar_linkage_has_one_degree_of_freedom_and_keeps_its_energy() {
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = FourBar::default().simulate(0.0, 3.0, &opts).unwrap();
+    let sol = tight::<FourBar>(3.0, tol);
     assert_eq!(sol.degrees_of_freedom(), Some(1));
     assert!(sol.max_constraint_residual() <= 1e-12);
     // Energy: Σ ½ m |v|² + ½ J ω² + m g y over the three links.
@@ -155,11 +156,8 @@ fn double_rod_angles() {
 #[test]
 fn a_double_pendulum_scene_follows_its_lagrange_equations() {
     let tol = 1e-11;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = DoubleRodScene::default().simulate(0.0, 2.0, &opts).unwrap();
-    let reference = DoubleRodAngles::default()
-        .simulate(0.0, 2.0, &Options::new().method(Method::Dop853).tolerance(1e-13))
-        .unwrap();
+    let sol = tight::<DoubleRodScene>(2.0, tol);
+    let reference = tight::<DoubleRodAngles>(2.0, 1e-13);
     assert_eq!(sol.degrees_of_freedom(), Some(2));
     let half_pi = std::f64::consts::FRAC_PI_2;
     for t in [0.5, 1.0, 2.0] {
@@ -209,9 +207,7 @@ rod_chain_model!(ten_rod_chain_recursive, scene = recursive);
 
 #[test]
 fn a_ten_rod_chain_keeps_its_constraints_and_energy() {
-    let tol = 1e-9;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = TenRodChain::default().simulate(0.0, 1.0, &opts).unwrap();
+    let sol = tight::<TenRodChain>(1.0, 1e-9);
     assert_eq!(sol.degrees_of_freedom(), Some(10));
     assert!(sol.max_constraint_residual() <= 1e-12);
     let energy = |t: f64| -> f64 {
@@ -240,11 +236,8 @@ fn the_recursive_double_rod_is_an_ode_in_its_joint_angles() {
     assert_eq!(<DoubleRodRecursive as Model>::INDEX, 0);
     assert_eq!(DoubleRodRecursive::INFO.states.len(), 4);
     let tol = 1e-11;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = DoubleRodRecursive::default().simulate(0.0, 2.0, &opts).unwrap();
-    let reference = DoubleRodAngles::default()
-        .simulate(0.0, 2.0, &Options::new().method(Method::Dop853).tolerance(1e-13))
-        .unwrap();
+    let sol = tight::<DoubleRodRecursive>(2.0, tol);
+    let reference = tight::<DoubleRodAngles>(2.0, 1e-13);
     for t in [0.5, 1.0, 2.0] {
         // θ_upper − π/2 is the first joint angle; the second is relative.
         let (q1, q2) = (sol.at(t, "revolute1.q").unwrap(), sol.at(t, "revolute2.q").unwrap());
@@ -265,9 +258,8 @@ four_bar_model!(four_bar_recursive, scene = recursive);
 fn the_recursive_four_bar_matches_the_global_one() {
     assert_eq!(<FourBarRecursive as Model>::INDEX, 3);
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let recursive = FourBarRecursive::default().simulate(0.0, 3.0, &opts).unwrap();
-    let global = FourBar::default().simulate(0.0, 3.0, &opts).unwrap();
+    let recursive = tight::<FourBarRecursive>(3.0, tol);
+    let global = tight::<FourBar>(3.0, tol);
     assert_eq!(recursive.degrees_of_freedom(), Some(1));
     for t in [0.0, 1.0, 2.0, 3.0] {
         // The crank turns over: compare the angles modulo 2π.
@@ -311,29 +303,18 @@ fn the_slider_crank_agrees_in_both_formulations() {
     assert_eq!(SliderCrankRecursive::INFO.states.len(), 4);
     assert_eq!(SliderCrankGlobal::INFO.states.len(), 12);
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let a = SliderCrankRecursive::default().simulate(0.0, 2.0, &opts).unwrap();
-    let b = SliderCrankGlobal::default().simulate(0.0, 2.0, &opts).unwrap();
-    for t in [0.0, 0.5, 1.0, 2.0] {
-        let (x, y) = (a.at(t, "slider_x").unwrap(), b.at(t, "slider_x").unwrap());
-        assert!((x - y).abs() <= 100.0 * tol, "t = {t}: recursive {x}, global {y}");
-    }
+    let a = tight::<SliderCrankRecursive>(2.0, tol);
+    let b = tight::<SliderCrankGlobal>(2.0, tol);
+    assert_agree(&a, &b, &["slider_x"], &[0.0, 0.5, 1.0, 2.0], 100.0 * tol);
     assert_eq!(a.degrees_of_freedom(), Some(1));
 }
 
 #[test]
 fn the_ten_rod_chain_agrees_in_both_formulations() {
     assert_eq!(TenRodChainRecursive::INFO.states.len(), 20);
-    let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let a = TenRodChain::default().simulate(0.0, 0.5, &opts).unwrap();
-    let b = TenRodChainRecursive::default().simulate(0.0, 0.5, &opts).unwrap();
-    for t in [0.1, 0.25, 0.5] {
-        for name in ["tip_x", "tip_y"] {
-            let (x, y) = (a.at(t, name).unwrap(), b.at(t, name).unwrap());
-            assert!((x - y).abs() <= 1e-6, "t = {t}: {name} global {x}, recursive {y}");
-        }
-    }
+    let a = tight::<TenRodChain>(0.5, 1e-10);
+    let b = tight::<TenRodChainRecursive>(0.5, 1e-10);
+    assert_agree(&a, &b, &["tip_x", "tip_y"], &[0.1, 0.25, 0.5], 1e-6);
 }
 
 /// Loads in both formulations: the double rod pulled by a spring–damper
@@ -363,15 +344,9 @@ sprung_double_rod!(sprung_recursive, scene = recursive);
 #[test]
 fn springs_and_torques_agree_in_both_formulations() {
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let a = SprungGlobal::default().simulate(0.0, 2.0, &opts).unwrap();
-    let b = SprungRecursive::default().simulate(0.0, 2.0, &opts).unwrap();
-    for t in [0.5, 1.0, 2.0] {
-        for name in ["tip_x", "tip_y"] {
-            let (x, y) = (a.at(t, name).unwrap(), b.at(t, name).unwrap());
-            assert!((x - y).abs() <= 1000.0 * tol, "t = {t}: {name} global {x}, recursive {y}");
-        }
-    }
+    let a = tight::<SprungGlobal>(2.0, tol);
+    let b = tight::<SprungRecursive>(2.0, tol);
+    assert_agree(&a, &b, &["tip_x", "tip_y"], &[0.5, 1.0, 2.0], 1000.0 * tol);
 }
 
 /// The slider-crank started moving: the crank at θ = 1 turning at ω = 2,
@@ -419,16 +394,11 @@ slider_crank_moving!(moving_crank_recursive, scene = recursive);
 #[test]
 fn initial_body_velocities_become_joint_rates_in_the_recursive_formulation() {
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let a = MovingCrankRecursive::default().simulate(0.0, 1.0, &opts).unwrap();
-    let b = MovingCrankGlobal::default().simulate(0.0, 1.0, &opts).unwrap();
+    let a = tight::<MovingCrankRecursive>(1.0, tol);
+    let b = tight::<MovingCrankGlobal>(1.0, tol);
     assert!((a.at(0.0, "crank_rate").unwrap() - 2.0).abs() <= 1e-15);
-    for t in [0.0, 0.25, 0.5, 1.0] {
-        for name in ["slider_x", "crank_rate"] {
-            let (x, y) = (a.at(t, name).unwrap(), b.at(t, name).unwrap());
-            assert!((x - y).abs() <= 1000.0 * tol, "t = {t}: {name} recursive {x}, global {y}");
-        }
-    }
+    let times = [0.0, 0.25, 0.5, 1.0];
+    assert_agree(&a, &b, &["slider_x", "crank_rate"], &times, 1000.0 * tol);
 }
 
 /// A bent pendulum: a second rod welded at 0.5 rad to the first one's end.
@@ -462,16 +432,10 @@ fn a_welded_body_adds_no_joint_coordinate_and_both_formulations_agree() {
     assert_eq!(BentRecursive::INFO.states.len(), 2);
     assert_eq!(BentGlobal::INFO.states.len(), 12);
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let a = BentGlobal::default().simulate(0.0, 2.0, &opts).unwrap();
-    let b = BentRecursive::default().simulate(0.0, 2.0, &opts).unwrap();
+    let a = tight::<BentGlobal>(2.0, tol);
+    let b = tight::<BentRecursive>(2.0, tol);
     assert_eq!(a.degrees_of_freedom(), Some(1));
-    for t in [0.5, 1.0, 2.0] {
-        for name in ["tip_x", "tip_y"] {
-            let (x, y) = (a.at(t, name).unwrap(), b.at(t, name).unwrap());
-            assert!((x - y).abs() <= 1000.0 * tol, "t = {t}: {name} global {x}, recursive {y}");
-        }
-    }
+    assert_agree(&a, &b, &["tip_x", "tip_y"], &[0.5, 1.0, 2.0], 1000.0 * tol);
 }
 
 /// A pendulum whose hinge names the ground second (`revolute(rod, .., ground,
@@ -493,12 +457,7 @@ hinge_written_backwards!(backwards_recursive, scene = recursive);
 /// Every name the two solutions share agrees at `times` within `tol`.
 fn same_values_by_name(a: &Solution, b: &Solution, times: &[f64], tol: f64) -> usize {
     let shared: Vec<&str> = a.names().into_iter().filter(|n| b.names().contains(n)).collect();
-    for &t in times {
-        for name in &shared {
-            let (x, y) = (a.at(t, name).unwrap(), b.at(t, name).unwrap());
-            assert!((x - y).abs() <= tol, "t = {t}: {name} {x} against {y}");
-        }
-    }
+    assert_agree(a, b, &shared, times, tol);
     shared.len()
 }
 
@@ -509,11 +468,10 @@ fn same_values_by_name(a: &Solution, b: &Solution, times: &[f64], tol: f64) -> u
 #[test]
 fn both_formulations_answer_to_the_same_names() {
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
     let times = [0.0, 0.5, 1.0, 2.0];
 
-    let global = SliderCrankGlobal::default().simulate(0.0, 2.0, &opts).unwrap();
-    let recursive = SliderCrankRecursive::default().simulate(0.0, 2.0, &opts).unwrap();
+    let global = tight::<SliderCrankGlobal>(2.0, tol);
+    let recursive = tight::<SliderCrankRecursive>(2.0, tol);
     let shared = same_values_by_name(&global, &recursive, &times, 1e-7);
     // Six body coordinates and their rates, two joint coordinates and their
     // rates, the rod's multiplier and the output.
@@ -522,15 +480,15 @@ fn both_formulations_answer_to_the_same_names() {
     let q = global.column("revolute1.q").unwrap();
     assert_eq!(q, global.column("crank.theta").unwrap());
 
-    let global = FourBar::default().simulate(0.0, 2.0, &opts).unwrap();
-    let recursive = FourBarRecursive::default().simulate(0.0, 2.0, &opts).unwrap();
+    let global = tight::<FourBar>(2.0, tol);
+    let recursive = tight::<FourBarRecursive>(2.0, tol);
     // Three bodies' coordinates and rates, four joints' coordinates and
     // rates (the cut joint's from the body poses), the cut joint's two
     // multipliers and the output.
     assert_eq!(same_values_by_name(&global, &recursive, &times, 1e-6), 18 + 8 + 2 + 1);
 
-    let global = BackwardsGlobal::default().simulate(0.0, 2.0, &opts).unwrap();
-    let recursive = BackwardsRecursive::default().simulate(0.0, 2.0, &opts).unwrap();
+    let global = tight::<BackwardsGlobal>(2.0, tol);
+    let recursive = tight::<BackwardsRecursive>(2.0, tol);
     assert_eq!(same_values_by_name(&global, &recursive, &times, 1e-7), 6 + 2);
     // θ_ground − θ_rod: the opposite of the rod's angle.
     for t in times {

@@ -60,8 +60,9 @@ pub trait Model {
     /// Names and documentation.
     const INFO: ModelInfo;
     /// `(row, column)` of the structurally non-zero entries of `∂f/∂y`, in
-    /// the order [`Model::jacobian`] writes them.
-    const JACOBIAN_PATTERN: &'static [(usize, usize)];
+    /// the order [`Model::jacobian`] writes them. A hand-written model
+    /// without a Jacobian leaves it empty.
+    const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[];
 
     /// Writes the initial state (values may depend on the parameters).
     fn initial_state(&self, y: &mut [f64]);
@@ -94,11 +95,18 @@ pub trait Model {
     fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), EvalError>;
 
     /// Writes the non-zero entries of `∂f/∂y` in the order of
-    /// [`Model::JACOBIAN_PATTERN`].
-    fn jacobian(&self, t: f64, y: &[f64], values: &mut [f64]) -> Result<(), EvalError>;
+    /// [`Model::JACOBIAN_PATTERN`]. Without it (the default, for a
+    /// hand-written model) the implicit methods difference [`Model::rhs`].
+    fn jacobian(&self, t: f64, y: &[f64], values: &mut [f64]) -> Result<(), EvalError> {
+        let _ = (t, y, values);
+        Err(EvalError::JacobianUnavailable)
+    }
 
-    /// Writes `∂f/∂t`.
-    fn time_derivative(&self, t: f64, y: &[f64], dfdt: &mut [f64]) -> Result<(), EvalError>;
+    /// Writes `∂f/∂t`; like [`Model::jacobian`], differenced where missing.
+    fn time_derivative(&self, t: f64, y: &[f64], dfdt: &mut [f64]) -> Result<(), EvalError> {
+        let _ = (t, y, dfdt);
+        Err(EvalError::JacobianUnavailable)
+    }
 
     /// Highest order of [`Model::taylor_derivatives`] (0: none generated).
     const TAYLOR_ORDER: usize = 0;
@@ -229,8 +237,12 @@ pub trait Model {
     /// The output number `index` at `(t, y)`: the outputs of
     /// [`ModelInfo::outputs`], then the algebraic variables of
     /// [`ModelInfo::algebraics`]. NaN where the model cannot be evaluated
-    /// (a singular block), which cannot happen at a point the run accepted.
-    fn output(&self, index: usize, t: f64, y: &[f64]) -> f64;
+    /// (a singular block), which cannot happen at a point the run accepted;
+    /// NaN by default, for a hand-written model without outputs.
+    fn output(&self, index: usize, t: f64, y: &[f64]) -> f64 {
+        let _ = (index, t, y);
+        f64::NAN
+    }
 
     /// Integrates the model's mass-matrix form (generated for DAEs whose
     /// differential equations solve symbolically) from the consistent

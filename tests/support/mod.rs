@@ -39,3 +39,21 @@ pub fn falling() {
     der(der(h)) == -9.81;
     let impact = event(h).falling().terminal();
 }
+
+/// `M::default()` from 0 to `t1` by DOP853 at `tol`: the tight run that
+/// tests compare a formulation or a method against.
+pub fn tight<M: Simulate + Default>(t1: f64, tol: f64) -> Solution {
+    let opts = Options::new().method(Method::Dop853).tolerance(tol);
+    M::default().simulate(0.0, t1, &opts).unwrap()
+}
+
+/// Asserts that `a` and `b` agree on every one of `names` at every one of
+/// `times` within `bound`, naming the time and the variable where not.
+pub fn assert_agree(a: &Solution, b: &Solution, names: &[&str], times: &[f64], bound: f64) {
+    for &t in times {
+        for &name in names {
+            let (x, y) = (a.at(t, name).unwrap(), b.at(t, name).unwrap());
+            assert!((x - y).abs() <= bound, "t = {t}: {name} is {x} against {y}");
+        }
+    }
+}

@@ -107,3 +107,75 @@ pub(crate) struct SpatialBody {
     /// Inertia tensor about the centre of mass in body axes, row-major.
     pub inertia: [Id; 9],
 }
+
+/// Pushes onto `terms` the constraint forces −(∂Φ_r/∂c)·λ_r on the
+/// coordinate `c` of every row `(Φ_r, λ_r)` whose derivative is not
+/// identically zero.
+pub(crate) fn push_constraint_forces(
+    g: &mut crate::Graph,
+    rows: &[(Id, Id)],
+    c: SymbolId,
+    terms: &mut Vec<Id>,
+) -> crate::Result<()> {
+    for &(row, lambda) in rows {
+        let d = g.partial(row, c)?;
+        if g.as_number(d).is_some_and(|v| v.is_zero()) {
+            continue;
+        }
+        let t = g.mul(d, lambda)?;
+        terms.push(g.neg(t)?);
+    }
+    Ok(())
+}
+
+impl crate::front::lower::Lower<'_> {
+    /// Declares the scene coordinate `name` a state documented by `doc`;
+    /// `None` once the clash with another name is reported at `at`.
+    pub(crate) fn declare_scene_state(
+        &mut self,
+        name: String,
+        init: Id,
+        at: &syn::Ident,
+        origin: &TokenStream,
+        doc: &str,
+    ) -> Option<SymbolId> {
+        let id = match self.g.state(&name) {
+            Ok(id) => id,
+            Err(e) => {
+                self.cx.error_at(at, e);
+                return None;
+            }
+        };
+        let symbol = self.g.as_symbol(id)?;
+        let origin = origin.clone();
+        let doc = doc.to_string();
+        self.states.push(crate::front::ir::StateDecl {
+            name,
+            symbol,
+            init,
+            origin,
+            fixed: false,
+            doc,
+        });
+        Some(symbol)
+    }
+
+    /// Adds the equations of motion `(lhs, rhs)` the scene gave, or reports
+    /// at `origin` why it could not write them.
+    pub(crate) fn push_equations_of_motion(
+        &mut self,
+        equations: crate::Result<Vec<(Id, Id)>>,
+        origin: &TokenStream,
+    ) {
+        match equations {
+            Ok(equations) => {
+                for (lhs, rhs) in equations {
+                    let origin = origin.clone();
+                    let eq = crate::front::ir::Equation { lhs, rhs, origin, is_constraint: false };
+                    self.equations.push(eq);
+                }
+            }
+            Err(e) => self.cx.error_at(origin, e),
+        }
+    }
+}

@@ -81,21 +81,11 @@ impl Lower<'_> {
         let mut symbols = Vec::with_capacity(3);
         for (k, coordinate) in ["x", "y", "theta"].iter().enumerate() {
             let state = format!("{name}.{coordinate}");
-            let id = match self.g.state(&state) {
-                Ok(id) => id,
-                Err(e) => return self.cx.error_at(ident, e),
-            };
-            let Some(symbol) = self.g.as_symbol(id) else {
+            let doc = crate::mechanics::names::body_coordinate_doc(coordinate);
+            let Some(symbol) = self.declare_scene_state(state, position[k], ident, &origin, doc)
+            else {
                 return;
             };
-            self.states.push(crate::front::ir::StateDecl {
-                name: state,
-                symbol,
-                init: position[k],
-                origin: origin.clone(),
-                fixed: false,
-                doc: crate::mechanics::names::body_coordinate_doc(coordinate).to_string(),
-            });
             if let Some(v) = &velocity {
                 let Ok(d) = self.g.derivative(symbol, 1) else {
                     return;
@@ -706,7 +696,7 @@ impl Lower<'_> {
         let origin = item.sig.ident.to_token_stream();
         for (b, body) in bodies.iter().enumerate() {
             for (k, coordinate) in [body.x, body.y, body.theta].into_iter().enumerate() {
-                let equation = (|| -> crate::Result<(Id, Id)> {
+                let equation = (|| -> crate::Result<Vec<(Id, Id)>> {
                     let g = &mut self.g;
                     let inertia = if k < 2 { body.mass } else { body.inertia };
                     let acceleration = g.derivative(coordinate, 2)?;
@@ -720,25 +710,10 @@ impl Lower<'_> {
                             terms.push([fx, fy, tau][k]);
                         }
                     }
-                    for &(row, lambda) in &rows {
-                        let d = g.partial(row, coordinate)?;
-                        if g.as_number(d).is_some_and(|v| v.is_zero()) {
-                            continue;
-                        }
-                        let t = g.mul(d, lambda)?;
-                        terms.push(g.neg(t)?);
-                    }
-                    Ok((lhs, g.sum(&terms)?))
+                    super::push_constraint_forces(g, &rows, coordinate, &mut terms)?;
+                    Ok(vec![(lhs, g.sum(&terms)?)])
                 })();
-                match equation {
-                    Ok((lhs, rhs)) => self.equations.push(crate::front::ir::Equation {
-                        lhs,
-                        rhs,
-                        origin: origin.clone(),
-                        is_constraint: false,
-                    }),
-                    Err(e) => self.cx.error_at(&origin, e),
-                }
+                self.push_equations_of_motion(equation, &origin);
             }
         }
         let every: Vec<usize> = (0..self.scene.records.len()).collect();

@@ -387,7 +387,7 @@ impl Lower<'_> {
         let bodies = self.scene.bodies.clone();
         let gravity = self.scene.gravity;
         for &(q, _, _) in coordinates {
-            let equation = (|| -> crate::Result<(Id, Id)> {
+            let equation = (|| -> crate::Result<Vec<(Id, Id)>> {
                 let g = &mut self.g;
                 let mut kinetic = Vec::new();
                 for (b, body) in bodies.iter().enumerate() {
@@ -430,21 +430,14 @@ impl Lower<'_> {
                         }
                     }
                 }
-                for &(row, lambda) in cut {
-                    let d = g.partial(row, q)?;
-                    let t = g.mul(d, lambda)?;
-                    forces.push(g.neg(t)?);
-                }
-                Ok((lhs, g.sum(&forces)?))
+                super::push_constraint_forces(g, cut, q, &mut forces)?;
+                Ok(vec![(lhs, g.sum(&forces)?)])
             })();
-            match equation {
-                Ok((lhs, rhs)) => self.equations.push(crate::front::ir::Equation {
-                    lhs,
-                    rhs,
-                    origin: origin.clone(),
-                    is_constraint: false,
-                }),
-                Err(err) => return self.cx.error_at(origin, err),
+            // One error is enough: the next coordinates would fail alike.
+            let failed = equation.is_err();
+            self.push_equations_of_motion(equation, origin);
+            if failed {
+                return;
             }
         }
     }

@@ -231,23 +231,8 @@ impl Lower<'_> {
         let name = ident.to_string();
         let origin = local.to_token_stream();
         let declare = |this: &mut Self, coordinate: &str, init: Id| -> Option<SymbolId> {
-            let id = match this.g.state(&format!("{name}.{coordinate}")) {
-                Ok(id) => id,
-                Err(e) => {
-                    this.cx.error_at(ident, e);
-                    return None;
-                }
-            };
-            let symbol = this.g.as_symbol(id)?;
-            this.states.push(crate::front::ir::StateDecl {
-                name: format!("{name}.{coordinate}"),
-                symbol,
-                init,
-                origin: origin.clone(),
-                fixed: false,
-                doc: crate::mechanics::names::body_coordinate_doc(coordinate).to_string(),
-            });
-            Some(symbol)
+            let doc = crate::mechanics::names::body_coordinate_doc(coordinate);
+            this.declare_scene_state(format!("{name}.{coordinate}"), init, ident, &origin, doc)
         };
         let mut symbols = Vec::with_capacity(10);
         for (k, c) in ["x", "y", "z"].iter().enumerate() {
@@ -706,14 +691,7 @@ impl Lower<'_> {
                             terms.push(f[k]);
                         }
                     }
-                    for &(row, lambda) in &rows {
-                        let d = g.partial(row, body.position[k])?;
-                        if g.as_number(d).is_some_and(|v| v.is_zero()) {
-                            continue;
-                        }
-                        let t = g.mul(d, lambda)?;
-                        terms.push(g.neg(t)?);
-                    }
+                    super::push_constraint_forces(g, &rows, body.position[k], &mut terms)?;
                     equations.push((lhs, g.sum(&terms)?));
                 }
                 // Attitude: q' = ½ q ⊗ (0, ω).
@@ -779,19 +757,7 @@ impl Lower<'_> {
             }
             Ok(equations)
         })();
-        match r {
-            Ok(equations) => {
-                for (lhs, rhs) in equations {
-                    self.equations.push(crate::front::ir::Equation {
-                        lhs,
-                        rhs,
-                        origin: origin.clone(),
-                        is_constraint: false,
-                    });
-                }
-            }
-            Err(e) => self.cx.error_at(origin, e),
-        }
+        self.push_equations_of_motion(r, origin);
     }
 }
 

@@ -6,8 +6,8 @@
 use crate::error::Error;
 use crate::info::EvalError;
 use crate::methods::stiffness::{stage_quotient, Finish, StiffnessTest};
+use crate::methods::Problem;
 use crate::model::{Model, StateVector};
-use crate::options::Options;
 use crate::solution::Solution;
 use crate::step::control::{initial_step, scale, Controller, PiState};
 use crate::step::events::{after_accepted_step, EventWatch};
@@ -165,14 +165,11 @@ pub(crate) enum Stiffness {
 
 /// Integrates `model` from `t0` to `t1` (either direction) with pair `P`.
 pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
-    model: &M,
-    t0: f64,
-    t1: f64,
-    y0: &[f64],
-    options: &Options,
+    problem: Problem<'_, M>,
     stiffness: Stiffness,
     mut solution: Solution,
 ) -> Result<(Solution, Finish), Error> {
+    let Problem { model, t0, t1, y0, options } = problem;
     // One function, as dopri5.f's and dop853.f's step loops are: step control, stiffness
     // detection, events and projection act on the same step.
     let n = M::STATES;
@@ -407,7 +404,6 @@ mod tests {
         type State = [f64; 4];
         const INDEX: usize = 0;
         const INFO: ModelInfo = ModelInfo::bare("Kepler", &["q1", "q2", "p1", "p2"], 4);
-        const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[];
         fn initial_state(&self, y: &mut [f64]) {
             y.copy_from_slice(&exact(0.0));
         }
@@ -415,15 +411,6 @@ mod tests {
             let r3 = (y[0] * y[0] + y[1] * y[1]).powf(-1.5);
             dy.copy_from_slice(&[y[2], y[3], -y[0] * r3, -y[1] * r3]);
             Ok(())
-        }
-        fn jacobian(&self, _t: f64, _y: &[f64], _v: &mut [f64]) -> Result<(), EvalError> {
-            Err(EvalError::JacobianUnavailable)
-        }
-        fn time_derivative(&self, _t: f64, _y: &[f64], _d: &mut [f64]) -> Result<(), EvalError> {
-            Err(EvalError::JacobianUnavailable)
-        }
-        fn output(&self, _i: usize, _t: f64, _y: &[f64]) -> f64 {
-            f64::NAN
         }
     }
 

@@ -27,6 +27,7 @@ use crate::methods::dop853::Dop853;
 use crate::methods::dopri5::Dopri5;
 use crate::methods::radau5;
 use crate::methods::stiffness::{Finish, NonStiffWatch, StiffnessTest};
+use crate::methods::Problem;
 use crate::model::Model;
 use crate::options::Options;
 use crate::solution::Solution;
@@ -46,17 +47,13 @@ const TRIAL_STEPS: usize = 20;
 
 /// Integrates `model` from `t0` to `t1` with the pair and RADAU5 in turn.
 pub(crate) fn integrate<M: Model>(
-    model: &M,
-    t0: f64,
-    t1: f64,
-    y0: &[f64],
-    options: &Options,
+    problem: Problem<'_, M>,
     solution: Solution,
 ) -> Result<Solution, Error> {
-    if options.rtol >= 1e-7 {
-        switching::<M, Dopri5>(model, t0, t1, y0, options, 0, solution)
+    if problem.options.rtol >= 1e-7 {
+        switching::<M, Dopri5>(problem, 0, solution)
     } else {
-        switching::<M, Dop853>(model, t0, t1, y0, options, 1, solution)
+        switching::<M, Dop853>(problem, 1, solution)
     }
 }
 
@@ -99,14 +96,11 @@ pub(crate) fn step_cost_ratio<M: Model, P: EmbeddedPair>() -> f64 {
 }
 
 fn switching<M: Model, P: EmbeddedPair>(
-    model: &M,
-    t0: f64,
-    t1: f64,
-    y0: &[f64],
-    options: &Options,
+    problem: Problem<'_, M>,
     pair: usize,
     mut solution: Solution,
 ) -> Result<Solution, Error> {
+    let Problem { t0, y0, options, .. } = problem;
     let ratio = step_cost_ratio::<M, P>();
     let mut threshold = (0.1 * ratio).clamp(0.1, 0.9);
     let (mut t, mut y, mut h) = (t0, y0.to_vec(), options.initial_step);
@@ -136,15 +130,8 @@ fn switching<M: Model, P: EmbeddedPair>(
         let phase = remaining(options, &solution, h);
         let test = StiffnessTest::new(threshold * P::STIFFNESS_BOUND, CONFIRMATIONS)
             .with_ratio(STIFFNESS_RATIO);
-        let result = adaptive::integrate::<M, P>(
-            model,
-            t,
-            t1,
-            &y,
-            &phase,
-            Stiffness::Switch(test),
-            solution,
-        );
+        let stretch = Problem { t0: t, y0: &y, options: &phase, ..problem };
+        let result = adaptive::integrate::<M, P>(stretch, Stiffness::Switch(test), solution);
         let h_rho;
         (solution, (t, h, h_rho)) = match labelled(result, segments)? {
             (s, Finish::StiffAt { t, h, h_rho }) => (s, (t, Some(h.abs()), h_rho)),
@@ -156,7 +143,8 @@ fn switching<M: Model, P: EmbeddedPair>(
         let steps_before = solution.stats().steps;
         let phase = remaining(options, &solution, h);
         let watch = NonStiffWatch { below: ratio * h_rho, confirmations: CALM_STEPS };
-        let result = radau5::integrate_watching(model, t, t1, &y, &phase, Some(watch), solution);
+        let stretch = Problem { t0: t, y0: &y, options: &phase, ..problem };
+        let result = radau5::integrate_watching(stretch, Some(watch), solution);
         let rho_h;
         (solution, (t, rho_h)) = match labelled(result, segments)? {
             (s, Finish::NonStiffAt { t, h }) => (s, (t, h)),

@@ -26,8 +26,8 @@
 use crate::error::Error;
 use crate::info::EvalError;
 use crate::linalg::dense_lu::RealLu;
+use crate::methods::Problem;
 use crate::model::Model;
-use crate::options::Options;
 use crate::solution::Solution;
 use crate::step::events::{after_accepted_step, EventWatch};
 use crate::step::jacobian::DenseJacobian;
@@ -452,14 +452,11 @@ const MAX_HALVINGS: i32 = 30;
 /// [`crate::Stats`], and the solution keeps every step taken; the grid
 /// points are always among them.
 pub(crate) fn integrate<M: Model>(
-    model: &M,
-    t0: f64,
-    t1: f64,
-    y0: &[f64],
+    problem: Problem<'_, M>,
     steps: usize,
-    options: &Options,
     mut solution: Solution,
 ) -> Result<Solution, Error> {
+    let Problem { model, t0, t1, y0, options } = problem;
     let n = M::STATES;
     let h = (t1 - t0) / steps as f64;
     let grid = |k: usize| {

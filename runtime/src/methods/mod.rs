@@ -12,3 +12,23 @@ pub mod implicit_tableau;
 pub(crate) mod radau5;
 pub(crate) mod stiffness;
 pub mod taylor;
+
+use crate::options::Options;
+
+/// The initial-value problem a method is asked to solve: `model` from the
+/// state `y0` at `t0` to `t1` (either direction), with `options`.
+pub(crate) struct Problem<'a, M> {
+    pub model: &'a M,
+    pub t0: f64,
+    pub t1: f64,
+    pub y0: &'a [f64],
+    pub options: &'a Options,
+}
+
+impl<M> Clone for Problem<'_, M> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<M> Copy for Problem<'_, M> {}

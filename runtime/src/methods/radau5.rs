@@ -14,8 +14,8 @@ use crate::info::EvalError;
 use crate::linalg::band_lu::{BandNewton, BandOrdering};
 use crate::linalg::dense_lu::{ComplexLu, RealLu};
 use crate::methods::stiffness::{Finish, NonStiffWatch};
+use crate::methods::Problem;
 use crate::model::{has_mass_matrix, Model};
-use crate::options::Options;
 use crate::solution::Solution;
 use crate::step::events::{after_accepted_step, EventWatch};
 use crate::step::jacobian::DenseJacobian;
@@ -175,28 +175,21 @@ fn rms(values: [&[f64]; 3], scale: &[f64]) -> f64 {
 
 /// Integrates `model` from `t0` to `t1` with RADAU5.
 pub(crate) fn integrate<M: Model>(
-    model: &M,
-    t0: f64,
-    t1: f64,
-    start: &[f64],
-    options: &Options,
+    problem: Problem<'_, M>,
     solution: Solution,
 ) -> Result<Solution, Error> {
-    integrate_watching(model, t0, t1, start, options, None, solution).map(|(s, _)| s)
+    integrate_watching(problem, None, solution).map(|(s, _)| s)
 }
 
 /// Integrates `model` from `t0` to `t1` with RADAU5, stopping early with
 /// [`Finish::NonStiffAt`] where `watch` finds the problem no longer stiff
 /// (h·ρ(J), ρ by the power iteration on each new Jacobian).
 pub(crate) fn integrate_watching<M: Model>(
-    model: &M,
-    t0: f64,
-    t1: f64,
-    start: &[f64],
-    options: &Options,
+    problem: Problem<'_, M>,
     watch: Option<NonStiffWatch>,
     mut solution: Solution,
 ) -> Result<(Solution, Finish), Error> {
+    let Problem { model, t0, t1, y0: start, options } = problem;
     // One function, as radau5.f's step loop is: the Newton iteration, the error estimate and
     // the step-size control share its state (the LU, the last step's stages, θ), and splitting
     // them would pass a dozen values each way.
@@ -621,6 +614,7 @@ fn finish<M: Model>(solution: &mut Solution, steps: usize, rejected: usize, w: &
 mod mass_matrix_tests {
     use super::*;
     use crate::info::ModelInfo;
+    use crate::options::Options;
 
     /// Cash's pendulum (g = 1) in the Gear–Gupta–Leimkuhler index-2 form,
     /// written by hand: w = (x, y, u, v, λ, μ), M = diag(1, 1, 1, 1, 0, 0),
@@ -635,7 +629,6 @@ mod mass_matrix_tests {
         const INDEX: usize = 2;
         const INFO: ModelInfo =
             ModelInfo::bare("GglPendulum", &["x", "y", "u", "v", "lambda", "mu"], 6);
-        const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[];
         const MASS: &'static [f64] = &[1.0, 1.0, 1.0, 1.0, 0.0, 0.0];
         const INDEX2_COMPONENTS: &'static [usize] = &[4, 5];
         fn initial_state(&self, y: &mut [f64]) {
@@ -652,15 +645,6 @@ mod mass_matrix_tests {
                 2.0 * (x * u + y * v),
             ]);
             Ok(())
-        }
-        fn jacobian(&self, _t: f64, _y: &[f64], _v: &mut [f64]) -> Result<(), EvalError> {
-            Err(EvalError::JacobianUnavailable)
-        }
-        fn time_derivative(&self, _t: f64, _y: &[f64], _d: &mut [f64]) -> Result<(), EvalError> {
-            Err(EvalError::JacobianUnavailable)
-        }
-        fn output(&self, _i: usize, _t: f64, _y: &[f64]) -> f64 {
-            f64::NAN
         }
     }
 

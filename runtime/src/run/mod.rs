@@ -13,6 +13,7 @@ use crate::methods::explicit_rk;
 use crate::methods::radau5;
 use crate::methods::taylor;
 use crate::methods::taylor::fixed as taylor_fixed;
+use crate::methods::Problem;
 use crate::model::{has_mass_matrix, Model};
 use crate::options::{Method, Options};
 use crate::solution::{InitialCorrection, Solution};
@@ -76,15 +77,12 @@ fn formulation<M: Model>() -> &'static str {
 /// An explicit pair on its own: it stops with `Error::Stiff` where the
 /// problem turns stiff, unless told not to look.
 fn explicit_pair<M: Model, P: EmbeddedPair>(
-    model: &M,
-    t0: f64,
-    t1: f64,
-    y0: &[f64],
-    options: &Options,
+    problem: Problem<'_, M>,
     solution: Solution,
 ) -> Result<Solution, Error> {
-    let stiffness = if options.stiffness_detection { Stiffness::Fail } else { Stiffness::Ignore };
-    adaptive::integrate::<M, P>(model, t0, t1, y0, options, stiffness, solution).map(|r| r.0)
+    let watch = problem.options.stiffness_detection;
+    let stiffness = if watch { Stiffness::Fail } else { Stiffness::Ignore };
+    adaptive::integrate::<M, P>(problem, stiffness, solution).map(|r| r.0)
 }
 
 fn method_name(method: Method) -> &'static str {
@@ -266,21 +264,20 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
         }
     }
     solution.push_initial(t0, &y0);
+    let problem = Problem { model, t0, t1, y0: &y0, options };
     match options.method {
         Method::Auto if has_mass_matrix::<M>() => {
             // A singular mass matrix: only RADAU5 integrates it.
             let mut solution = solution;
             solution.stats_mut().method = "Radau5";
-            radau5::integrate(model, t0, t1, &y0, options, solution)
+            radau5::integrate(problem, solution)
         }
-        Method::Auto => auto::integrate(model, t0, t1, &y0, options, solution),
-        Method::Dopri5 => explicit_pair::<M, Dopri5>(model, t0, t1, &y0, options, solution),
-        Method::Dop853 => explicit_pair::<M, Dop853>(model, t0, t1, &y0, options, solution),
-        Method::Radau5 => radau5::integrate(model, t0, t1, &y0, options, solution),
-        Method::Taylor => taylor::integrate(model, t0, t1, &y0, options, solution),
-        Method::TaylorFixed { .. } => {
-            taylor_fixed::integrate(model, t0, t1, &y0, options, solution)
-        }
+        Method::Auto => auto::integrate(problem, solution),
+        Method::Dopri5 => explicit_pair::<M, Dopri5>(problem, solution),
+        Method::Dop853 => explicit_pair::<M, Dop853>(problem, solution),
+        Method::Radau5 => radau5::integrate(problem, solution),
+        Method::Taylor => taylor::integrate(problem, solution),
+        Method::TaylorFixed { .. } => taylor_fixed::integrate(problem, solution),
         fixed => {
             let step = options.step.unwrap_or((t1 - t0).abs() / 1000.0);
             if !(step.is_finite() && step > 0.0) && t1 != t0 {
@@ -297,7 +294,7 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
                 Method::Heun => &explicit_rk::HEUN,
                 Method::Ralston => &explicit_rk::RALSTON,
                 Method::BackwardEuler => {
-                    return backward_euler::integrate(model, t0, t1, &y0, steps, options, solution)
+                    return backward_euler::integrate(problem, steps, solution)
                 }
                 other => return Err(Error::MethodNotAvailable { method: other }),
             };

@@ -6,8 +6,9 @@
 
 use crate::error::Error;
 use crate::methods::taylor::series::taylor_step;
+use crate::methods::Problem;
 use crate::model::Model;
-use crate::options::{Method, Options};
+use crate::options::Method;
 use crate::solution::Solution;
 use crate::step::events::{after_accepted_step, EventWatch};
 use crate::step::projection::{project_onto_constraints, Projector};
@@ -16,13 +17,10 @@ use crate::step::return_if_not_finite;
 /// Integrates with the order and step of `Method::TaylorFixed` in
 /// `options`, in equal steps that end at `t1`.
 pub(crate) fn integrate<M: Model>(
-    model: &M,
-    t0: f64,
-    t1: f64,
-    y0: &[f64],
-    options: &Options,
+    problem: Problem<'_, M>,
     solution: Solution,
 ) -> Result<Solution, Error> {
+    let Problem { model, t0, t1, y0, options } = problem;
     let Method::TaylorFixed { order, step } = options.method else {
         return Err(Error::MethodNotAvailable { method: options.method });
     };

@@ -17,8 +17,8 @@ pub mod tape;
 use crate::error::Error;
 use crate::methods::taylor::order::{choose_order, step_factor, JetCost};
 use crate::methods::taylor::tape::{mul_add, TaylorWork};
+use crate::methods::Problem;
 use crate::model::Model;
-use crate::options::Options;
 use crate::solution::Solution;
 use crate::step::events::{after_accepted_step, EventWatch};
 use crate::step::projection::{project_onto_constraints, Projector};
@@ -249,13 +249,10 @@ pub(crate) fn interpolate(c: &[f64], n: usize, i: usize, s: f64) -> f64 {
 
 /// Integrates `model` from `t0` to `t1` with the adaptive Taylor method.
 pub(crate) fn integrate<M: Model>(
-    model: &M,
-    t0: f64,
-    t1: f64,
-    y0: &[f64],
-    options: &Options,
+    problem: Problem<'_, M>,
     mut solution: Solution,
 ) -> Result<Solution, Error> {
+    let Problem { model, t0, t1, y0, options } = problem;
     // One function for the step loop: the order, the step-size rule, the compensated time and
     // the dense output act on the same step.
     let Some((tape, outputs)) = model.taylor_tape() else {
