@@ -3,25 +3,10 @@
 
 use daegen::prelude::*;
 
-/// Planar pendulum as an index-3 DAE in Cartesian coordinates: the model of
-/// the contract, the notes' eq. 2.1 (with the Taylor method's tape).
-#[dae_model(taylor = 1)]
-fn pendulum() {
-    let m = param(1.0);
-    let l = param(1.0);
-    let g = param(9.81);
-    let x = state(1.0);
-    let y = state(0.0);
-    let u = state(0.0);
-    let v = state(0.0);
-    let lambda = algebraic(0.0);
-    der(x) == u;
-    der(y) == v;
-    m * der(u) == -lambda * x;
-    m * der(v) == -lambda * y - m * g;
-    constraint(x * x + y * y - l * l);
-    let energy = output(0.5 * m * (u * u + v * v) + m * g * y);
-}
+include!("models/pendulum.rs");
+
+// The contract's pendulum, with the Taylor method's tape.
+contract_pendulum!(dae_model_with! { (taylor = 1) });
 
 /// The same pendulum in its angle θ from the downward vertical
 /// (`x = l sin θ`, `y = −l cos θ`): the minimal-coordinate ODE of the notes.
@@ -573,7 +558,6 @@ fn a_knife_edge_follows_its_closed_form() {
     }
 }
 
-include!("models/pendulum.rs");
 // With the Taylor method's tape: the 3 × 3 KKT system is solved
 // symbolically, so the index-1 form has Taylor recurrences.
 cash_pendulum_model!(taylor = 1, unroll = [12, 16]);

@@ -14,24 +14,15 @@ fn bouncing_ball() {
     let impact = event(height).falling().terminal();
 }
 
-/// Kepler's problem with e = 0.9 from perihelion; the sections are where the
-/// orbit crosses the axes and where it passes an apsis.
-#[dae_model(taylor = 1)]
-fn kepler_sections() {
-    let e = param(0.9);
-    let q1 = state(1.0 - e);
-    let q2 = state(0.0);
-    let p1 = state(0.0);
-    let p2 = state(sqrt((1.0 + e) / (1.0 - e)));
-    let r3 = (q1 * q1 + q2 * q2).powf(-1.5);
-    der(q1) == p1;
-    der(q2) == p2;
-    der(p1) == -q1 * r3;
-    der(p2) == -q2 * r3;
+include!("models/kepler.rs");
+
+// Kepler's problem with e = 0.9 from perihelion; the sections are where the
+// orbit crosses the axes and where it passes an apsis.
+kepler_model!(fn kepler_sections(taylor = 1) {
     let perihelion = event(q2).rising();
     let y_axis = event(q1);
     let apsis = event(q1 * p1 + q2 * p2);
-}
+});
 
 const ADAPTIVE: [Method; 4] = [Method::Taylor, Method::Dop853, Method::Dopri5, Method::Radau5];
 

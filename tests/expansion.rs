@@ -278,27 +278,13 @@ fn taylor_tape_shares_a_product_with_a_negated_difference() {
     assert_eq!(convolutions, 2, "{tape}");
 }
 
-expansion_test! {
+include!("models/pendulum.rs");
+
+// The contract's pendulum: index 3, the KKT system solved at run time,
+// position and velocity constraints projected onto.
+contract_pendulum!(expansion_test! {
     cartesian_pendulum_as_an_index_3_dae, (), ["Pendulum::rhs", "Pendulum::constraints", "Pendulum::constraint_jacobian", "Pendulum::CONSTRAINTS", "PendulumMassForm::rhs"],
-    /// The contract's pendulum: index 3, the KKT system solved at run
-    /// time, position and velocity constraints projected onto.
-    fn pendulum() {
-        let m = param(1.0);
-        let l = param(1.0);
-        let g = param(9.81);
-        let x = state(1.0);
-        let y = state(0.0);
-        let u = state(0.0);
-        let v = state(0.0);
-        let lambda = algebraic(0.0);
-        der(x) == u;
-        der(y) == v;
-        m * der(u) == -lambda * x;
-        m * der(v) == -lambda * y - m * g;
-        constraint(x * x + y * y - l * l);
-        let energy = output(0.5 * m * (u * u + v * v) + m * g * y);
-    }
-}
+});
 
 expansion_test! {
     cartesian_double_pendulum_reduces_its_kkt_system_to_the_multipliers, (), ["DoublePendulumCartesian::rhs", "DoublePendulumCartesian::output", "DoublePendulumCartesian::constraints"],

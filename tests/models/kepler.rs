@@ -4,11 +4,13 @@
 // arguments (reference-problems.md §10).
 
 macro_rules! kepler_model {
-    ($($arguments:tt)*) => {
+    // `kepler_model!(fn name(arguments) { statements })`: the same orbit
+    // under another name, with more statements (events, outputs).
+    (fn $name:ident($($arguments:tt)*) { $($more:tt)* }) => {
 /// Kepler's problem q'' = −q/|q|³ with e = 0.9 from perihelion (semi-major
 /// axis 1, period 2π).
 #[dae_model($($arguments)*)]
-fn kepler() {
+fn $name() {
     let e = param(0.9);
     let q1 = state(1.0 - e);
     let q2 = state(0.0);
@@ -19,8 +21,13 @@ fn kepler() {
     der(q2) == p2;
     der(p1) == -q1 * r3;
     der(p2) == -q2 * r3;
-    let energy = output(0.5 * (p1 * p1 + p2 * p2) - (q1 * q1 + q2 * q2).powf(-0.5));
+    $($more)*
 }
+    };
+    ($($arguments:tt)*) => {
+        kepler_model!(fn kepler($($arguments)*) {
+            let energy = output(0.5 * (p1 * p1 + p2 * p2) - (q1 * q1 + q2 * q2).powf(-0.5));
+        });
     };
 }
 

@@ -239,16 +239,21 @@ pub fn separate(
 mod tests {
     use super::*;
 
-    #[test]
-    fn opposite_rows_combine_into_an_algebraic_equation() {
-        let mut g = Graph::new();
-        g.parameter("c").unwrap();
+    /// States y1, y2 in `g`, and the symbols of y1', y2'.
+    fn two_states_and_their_rates(g: &mut Graph) -> [SymbolId; 2] {
         let y1 = g.state("y1").unwrap();
         let y2 = g.state("y2").unwrap();
         let (s1, s2) = (g.as_symbol(y1).unwrap(), g.as_symbol(y2).unwrap());
         let d1 = g.derivative(s1, 1).unwrap();
         let d2 = g.derivative(s2, 1).unwrap();
-        let z = [g.as_symbol(d1).unwrap(), g.as_symbol(d2).unwrap()];
+        [g.as_symbol(d1).unwrap(), g.as_symbol(d2).unwrap()]
+    }
+
+    #[test]
+    fn opposite_rows_combine_into_an_algebraic_equation() {
+        let mut g = Graph::new();
+        g.parameter("c").unwrap();
+        let z = two_states_and_their_rates(&mut g);
         // c·(y2' − y1') − y1 and c·(y1' − y2') − y2 + 1.
         let r1 = g.parse("c*(der(y2) - der(y1)) - y1").unwrap();
         let r2 = g.parse("c*(der(y1) - der(y2)) - y2 + 1").unwrap();
@@ -268,12 +273,7 @@ mod tests {
     #[test]
     fn regular_and_repeated_systems_are_told_apart() {
         let mut g = Graph::new();
-        let y1 = g.state("y1").unwrap();
-        let y2 = g.state("y2").unwrap();
-        let (s1, s2) = (g.as_symbol(y1).unwrap(), g.as_symbol(y2).unwrap());
-        let d1 = g.derivative(s1, 1).unwrap();
-        let d2 = g.derivative(s2, 1).unwrap();
-        let z = [g.as_symbol(d1).unwrap(), g.as_symbol(d2).unwrap()];
+        let z = two_states_and_their_rates(&mut g);
         let texts = ["a".to_string(), "b".to_string()];
         let names = ["der(y1)".to_string(), "der(y2)".to_string()];
         // Regular: nothing to combine.

@@ -68,14 +68,7 @@ impl EmbeddedPair for Dopri5 {
     fn error<S: StateVector>(h: f64, k: &[S], sk: &S) -> f64 {
         // E[1] = 0: six terms.
         let sk = sk.as_ref();
-        let (k0, k2, k3, k4, k5, k6) = (
-            k[0].as_ref(),
-            k[2].as_ref(),
-            k[3].as_ref(),
-            k[4].as_ref(),
-            k[5].as_ref(),
-            k[6].as_ref(),
-        );
+        let [k0, k2, k3, k4, k5, k6] = stages_but_the_second(k);
         let mut sum = 0.0;
         for i in 0..sk.len() {
             let e = E[0] * k0[i]
@@ -92,14 +85,7 @@ impl EmbeddedPair for Dopri5 {
     fn dense_coefficients<S: StateVector>(h: f64, y: &S, y_new: &S, k: &[S], out: &mut [f64]) {
         let (y, y_new) = (y.as_ref(), y_new.as_ref());
         let n = y.len();
-        let (k0, k2, k3, k4, k5, k6) = (
-            k[0].as_ref(),
-            k[2].as_ref(),
-            k[3].as_ref(),
-            k[4].as_ref(),
-            k[5].as_ref(),
-            k[6].as_ref(),
-        );
+        let [k0, k2, k3, k4, k5, k6] = stages_but_the_second(k);
         for i in 0..n {
             let dy = y_new[i] - y[i];
             let bspl = h * k0[i] - dy;
@@ -122,4 +108,10 @@ impl EmbeddedPair for Dopri5 {
         let s1 = 1.0 - s;
         c[i] + s * (c[n + i] + s1 * (c[2 * n + i] + s * (c[3 * n + i] + s1 * c[4 * n + i])))
     }
+}
+
+/// The stages the error estimate and the dense output combine: every one
+/// but k₂, whose weight is zero in both.
+fn stages_but_the_second<S: StateVector>(k: &[S]) -> [&[f64]; 6] {
+    [k[0].as_ref(), k[2].as_ref(), k[3].as_ref(), k[4].as_ref(), k[5].as_ref(), k[6].as_ref()]
 }
