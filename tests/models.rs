@@ -4,6 +4,8 @@
 
 use daegen::prelude::*;
 
+include!("models/n_body.rs");
+
 /// Course notes, Example 1.1: a third-order system, reduced to first order
 /// by the macro exactly as the notes do by hand (z = x', w = x'', p = y').
 #[dae_model]
@@ -68,43 +70,27 @@ fn oscillator_follows_its_exact_solution() {
     assert!((mid - (3.0 * 2.0005f64).cos()).abs() < 1.2e-6);
 }
 
-/// Three equal masses at the vertices of an equilateral triangle inscribed
-/// in the unit circle, on circular orbits: the Lagrange solution rotates
-/// rigidly with ω² = G m / (√3 R³).
-#[dae_model]
-fn three_body() {
-    const N: usize = 3;
-    /// Gravitational parameter G m of each body.
-    let gm = param(1.0);
-    let w = 3f64.powf(-0.25);
-    let x = state_array([1.0, -0.5, -0.5]);
-    let y = state_array([0.0, 0.8660254037844386, -0.8660254037844386]);
-    let u = state_array([
-        0.0,
-        -0.8660254037844386 * 0.7598356856515925,
-        0.8660254037844386 * 0.7598356856515925,
-    ]);
-    let v = state_array([0.7598356856515925, -0.5 * 0.7598356856515925, -0.5 * 0.7598356856515925]);
-    for i in 0..N {
-        der(x[i]) == u[i];
-        der(y[i]) == v[i];
-        let mut ax = 0.0;
-        let mut ay = 0.0;
-        for j in 0..N {
-            if j != i {
-                let dx = x[j] - x[i];
-                let dy = y[j] - y[i];
-                let r3 = (dx * dx + dy * dy).powf(-1.5);
-                ax += gm * dx * r3;
-                ay += gm * dy * r3;
-            }
-        }
-        der(u[i]) == ax;
-        der(v[i]) == ay;
+gravitating_bodies! {
+    /// Three equal masses at the vertices of an equilateral triangle
+    /// inscribed in the unit circle, on circular orbits: the Lagrange
+    /// solution rotates rigidly with ω² = G m / (√3 R³).
+    #[dae_model]
+    fn three_body(planar) {
+        const N: usize = 3;
+        /// Gravitational constant.
+        let g = param(1.0);
+        let m = [1.0; N];
+        let w = 3f64.powf(-0.25);
+        let x = state_array([1.0, -0.5, -0.5]);
+        let y = state_array([0.0, 0.8660254037844386, -0.8660254037844386]);
+        let u = state_array([0.0, -0.8660254037844386 * w, 0.8660254037844386 * w]);
+        let v = state_array([w, -0.5 * w, -0.5 * w]);
+    } then {
+        let angular_momentum = output(
+            x[0] * v[0] - y[0] * u[0] + x[1] * v[1] - y[1] * u[1] + x[2] * v[2] - y[2] * u[2],
+        );
+        let unused = output(w);
     }
-    let angular_momentum =
-        output(x[0] * v[0] - y[0] * u[0] + x[1] * v[1] - y[1] * u[1] + x[2] * v[2] - y[2] * u[2]);
-    let unused = output(w);
 }
 
 #[test]

@@ -9,6 +9,8 @@
 use daegen::prelude::*;
 use daegen::runtime::taylor_tape::TaylorWork;
 
+include!("models/n_body.rs");
+
 #[dae_model(taylor = 6, unroll = [6, 14])]
 fn trigonometric() {
     let t = time();
@@ -31,74 +33,39 @@ fn rational() {
     let magnitude = output(abs(b));
 }
 
-/// Three bodies in the plane, written as the outer solar system is: its
-/// interactions repeat one computation on other operands, which the
-/// unrolled layout computes as lane pairs (vectorised), in one function
-/// at order 10 and one function per order at order 34.
-#[dae_model(taylor = 1, unroll = [10, 34])]
-fn three_bodies() {
-    const N: usize = 3;
-    let g = param(1.0);
-    let m = [1.0, 0.3, 0.1];
-    let x = state_array([0.0, 1.0, -0.4]);
-    let y = state_array([0.0, 0.2, 1.1]);
-    let u = state_array([0.0, 0.1, -0.5]);
-    let v = state_array([0.1, 0.9, 0.2]);
-    for i in 0..N {
-        der(x[i]) == u[i];
-        der(y[i]) == v[i];
-        let mut ax = 0.0;
-        let mut ay = 0.0;
-        for j in 0..N {
-            if j != i {
-                let dx = x[j] - x[i];
-                let dy = y[j] - y[i];
-                let r3 = (dx * dx + dy * dy).powf(-1.5);
-                ax += g * m[j] * dx * r3;
-                ay += g * m[j] * dy * r3;
-            }
-        }
-        der(u[i]) == ax;
-        der(v[i]) == ay;
+gravitating_bodies! {
+    /// Three bodies in the plane, written as the outer solar system is: its
+    /// interactions repeat one computation on other operands, which the
+    /// unrolled layout computes as lane pairs (vectorised), in one function
+    /// at order 10 and one function per order at order 34.
+    #[dae_model(taylor = 1, unroll = [10, 34])]
+    fn three_bodies(planar) {
+        const N: usize = 3;
+        let g = param(1.0);
+        let m = [1.0, 0.3, 0.1];
+        let x = state_array([0.0, 1.0, -0.4]);
+        let y = state_array([0.0, 0.2, 1.1]);
+        let u = state_array([0.0, 0.1, -0.5]);
+        let v = state_array([0.1, 0.9, 0.2]);
     }
 }
 
-/// Five bodies in space, written as the outer solar system is, at an
-/// order whose jet is one function per order: its ten interactions'
-/// rows are lane groups, each computed by one loop over the interactions
-/// (the differences read lane by lane from the states).
-#[dae_model(taylor = 1, unroll = [18])]
-fn five_bodies() {
-    const N: usize = 5;
-    let g = param(1.0);
-    let m = [1.0, 0.3, 0.1, 0.05, 0.02];
-    let x = state_array([0.0, 1.0, -1.0, 0.1, 2.0]);
-    let y = state_array([0.0, 0.2, 0.1, 1.5, -1.0]);
-    let z = state_array([0.0, -0.3, 0.4, 0.2, 0.5]);
-    let u = state_array([0.0, 0.1, -0.5, 0.3, 0.2]);
-    let v = state_array([0.1, 0.9, 0.2, -0.4, 0.6]);
-    let w = state_array([0.0, 0.1, 0.0, -0.1, 0.2]);
-    for i in 0..N {
-        der(x[i]) == u[i];
-        der(y[i]) == v[i];
-        der(z[i]) == w[i];
-        let mut ax = 0.0;
-        let mut ay = 0.0;
-        let mut az = 0.0;
-        for j in 0..N {
-            if j != i {
-                let dx = x[j] - x[i];
-                let dy = y[j] - y[i];
-                let dz = z[j] - z[i];
-                let r3 = (dx * dx + dy * dy + dz * dz).powf(-1.5);
-                ax += g * m[j] * dx * r3;
-                ay += g * m[j] * dy * r3;
-                az += g * m[j] * dz * r3;
-            }
-        }
-        der(u[i]) == ax;
-        der(v[i]) == ay;
-        der(w[i]) == az;
+gravitating_bodies! {
+    /// Five bodies in space, written as the outer solar system is, at an
+    /// order whose jet is one function per order: its ten interactions'
+    /// rows are lane groups, each computed by one loop over the interactions
+    /// (the differences read lane by lane from the states).
+    #[dae_model(taylor = 1, unroll = [18])]
+    fn five_bodies(spatial) {
+        const N: usize = 5;
+        let g = param(1.0);
+        let m = [1.0, 0.3, 0.1, 0.05, 0.02];
+        let x = state_array([0.0, 1.0, -1.0, 0.1, 2.0]);
+        let y = state_array([0.0, 0.2, 0.1, 1.5, -1.0]);
+        let z = state_array([0.0, -0.3, 0.4, 0.2, 0.5]);
+        let u = state_array([0.0, 0.1, -0.5, 0.3, 0.2]);
+        let v = state_array([0.1, 0.9, 0.2, -0.4, 0.6]);
+        let w = state_array([0.0, 0.1, 0.0, -0.1, 0.2]);
     }
 }
 

@@ -205,6 +205,15 @@ fn report(name: &str, build: fn() -> Model) {
     println!("emitted: {temps} temporaries, {tokens} tokens\n");
 }
 
+include!("../../tests/models/n_body.rs");
+
+/// `quoted! { tokens }`: the tokens as a `TokenStream`, `#name` interpolated.
+macro_rules! quoted {
+    ($($tokens:tt)*) => {
+        quote::quote! { $($tokens)* }
+    };
+}
+
 /// Full `#[dae_model]` expansions: parse, lower, reduce, differentiate,
 /// schedule and emit a whole model (median of 7).
 fn report_models() {
@@ -212,40 +221,17 @@ fn report_models() {
     use quote::quote;
     let n_body = |n: usize| {
         let n_lit = proc_macro2::Literal::usize_unsuffixed(n);
-        quote! {
-            fn n_body() {
-                const N: usize = #n_lit;
-                let gm = param(1.0);
-                let x = state_array([0.0; N]);
-                let y = state_array([0.0; N]);
-                let z = state_array([0.0; N]);
-                let u = state_array([0.0; N]);
-                let v = state_array([0.0; N]);
-                let w = state_array([0.0; N]);
-                for i in 0..N {
-                    der(x[i]) == u[i];
-                    der(y[i]) == v[i];
-                    der(z[i]) == w[i];
-                    let mut ax = 0.0;
-                    let mut ay = 0.0;
-                    let mut az = 0.0;
-                    for j in 0..N {
-                        if j != i {
-                            let dx = x[j] - x[i];
-                            let dy = y[j] - y[i];
-                            let dz = z[j] - z[i];
-                            let r3 = (dx * dx + dy * dy + dz * dz).powf(-1.5);
-                            ax += gm * dx * r3;
-                            ay += gm * dy * r3;
-                            az += gm * dz * r3;
-                        }
-                    }
-                    der(u[i]) == ax;
-                    der(v[i]) == ay;
-                    der(w[i]) == az;
-                }
-            }
-        }
+        gravitating_bodies!(@then quoted {} fn n_body(spatial) {
+            const N: usize = #n_lit;
+            let g = param(1.0);
+            let m = [1.0; N];
+            let x = state_array([0.0; N]);
+            let y = state_array([0.0; N]);
+            let z = state_array([0.0; N]);
+            let u = state_array([0.0; N]);
+            let v = state_array([0.0; N]);
+            let w = state_array([0.0; N]);
+        })
     };
     let chain = quote! {
         /// 30 masses on a line, joined by nonlinear springs: 30 equations, 60 states.

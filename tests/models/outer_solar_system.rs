@@ -1,14 +1,17 @@
+include!("n_body.rs");
+
 // The model shared by tests/taylor_adaptive.rs and the benchmark
 // (`include!`d: bench/ is a separate workspace), as a macro so each can
 // choose the `#[dae_model]` arguments (the benchmark unrolls its orders).
 
 macro_rules! outer_solar_system_model {
     ($($arguments:tt)*) => {
+gravitating_bodies! {
 /// The outer solar system of Hairer, Lubich & Wanner (GNI, Ch. I): the Sun
 /// with the inner planets, Jupiter, Saturn, Uranus, Neptune and Pluto, in
 /// AU and days (reference-problems.md §11a).
 #[dae_model($($arguments)*)]
-fn outer_solar_system() {
+fn outer_solar_system(spatial) {
     const N: usize = 6;
     /// Gravitational constant in AU³/(solar mass · day²).
     let g = param(2.95912208286e-4);
@@ -63,28 +66,7 @@ fn outer_solar_system() {
         0.00039677,
         -0.00136504,
     ]);
-    for i in 0..N {
-        der(x[i]) == u[i];
-        der(y[i]) == v[i];
-        der(z[i]) == w[i];
-        let mut ax = 0.0;
-        let mut ay = 0.0;
-        let mut az = 0.0;
-        for j in 0..N {
-            if j != i {
-                let dx = x[j] - x[i];
-                let dy = y[j] - y[i];
-                let dz = z[j] - z[i];
-                let r3 = (dx * dx + dy * dy + dz * dz).powf(-1.5);
-                ax += g * m[j] * dx * r3;
-                ay += g * m[j] * dy * r3;
-                az += g * m[j] * dz * r3;
-            }
-        }
-        der(u[i]) == ax;
-        der(v[i]) == ay;
-        der(w[i]) == az;
-    }
+}
 }
     };
 }

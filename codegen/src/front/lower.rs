@@ -376,6 +376,16 @@ impl Lower<'_> {
             }
             return;
         }
+        // `[value; N]`: N copies, as in `state_array([0.0; N])`.
+        if let (Expr::Repeat(repeat), false) = (e, mutable) {
+            let (Some(value), Some(n)) =
+                (self.value(&repeat.expr), self.index_constant(&repeat.len))
+            else {
+                return;
+            };
+            self.bind(&ident, Binding::ValueArray(vec![value; n]));
+            return;
+        }
         if let Some(id) = self.value(e) {
             self.bind(&ident, Binding::Value { id, mutable });
         }
@@ -1082,7 +1092,10 @@ impl Lower<'_> {
             Expr::Macro(_) => self.unsupported(e, "macros"),
             Expr::Reference(_) => self.unsupported(e, "references"),
             Expr::Field(f) => self.body_coordinate(f, e),
-            _ => self.unsupported(e, "this syntax"),
+            _ => {
+                self.cx.error_at(e, "this expression is not part of the model language");
+                None
+            }
         }
     }
 
