@@ -11,24 +11,38 @@ use support::{assert_agree, tight};
 
 include!("models/slider_crank.rs");
 
-/// The slider-crank of the DAE tests, built as a scene.
-#[dae_model]
-fn slider_crank_scene() {
-    let r = param(0.15);
-    let l = param(0.4);
-    let m1 = param(1.0);
-    let m2 = param(0.5);
-    let g = param(9.81);
-    let ground = ground();
-    let crank = body(m1, m1 * r * r / 12.0, [0.04, 0.06, 1.0]);
-    let slider = body(m2, 1.0, [0.45, 0.0, 0.0]);
-    let pivot = revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5 * r, 0.0, 0.0));
-    let rod = distance(crank, vec3(0.5 * r, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), l);
-    prismatic(ground, vec3(0.0, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0));
-    gravity(vec3(0.0, -g, 0.0));
+/// `slider_crank_scene!(name, (attributes), crank: (pose[, velocity]),
+/// slider: (pose[, velocity]), { statements })`: the slider-crank of the
+/// DAE tests as a scene (crank r = 0.15 of mass m1 = 1 about the origin, a
+/// massless rod l = 0.4 to the slider of mass m2 = 0.5 on the x axis),
+/// started from the given body poses, followed by `statements`.
+macro_rules! slider_crank_scene {
+    ($name:ident, ($($attr:tt)*), crank: ($($crank:tt)*), slider: ($($slider:tt)*),
+     { $($statements:tt)* }) => {
+        #[dae_model($($attr)*)]
+        fn $name() {
+            let r = param(0.15);
+            let l = param(0.4);
+            let m1 = param(1.0);
+            let m2 = param(0.5);
+            let g = param(9.81);
+            let ground = ground();
+            let crank = body(m1, m1 * r * r / 12.0, $($crank)*);
+            let slider = body(m2, 1.0, $($slider)*);
+            let pivot = revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5 * r, 0.0, 0.0));
+            let rod = distance(crank, vec3(0.5 * r, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), l);
+            prismatic(ground, vec3(0.0, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0));
+            gravity(vec3(0.0, -g, 0.0));
+            $($statements)*
+        }
+    };
+}
+
+// Rough guesses of the body poses: consistent initialization closes the joints.
+slider_crank_scene!(slider_crank_scene, (), crank: ([0.04, 0.06, 1.0]), slider: ([0.45, 0.0, 0.0]), {
     let pin = position(crank, vec3(0.5 * r, 0.0, 0.0));
     let pin_x = output(pin[0]);
-}
+});
 
 #[test]
 fn a_slider_crank_scene_matches_the_hand_written_model() {
@@ -122,8 +136,10 @@ fn a_four_bar_linkage_has_one_degree_of_freedom_and_keeps_its_energy() {
 /// A double pendulum of two uniform rods (mass 1, length 1) released
 /// horizontal, as a scene; each rod's body x axis points from its upper
 /// hinge down the rod, so its angle is θ − π/2 for θ from the vertical.
+/// `double_rod_model!(name, (attributes) { statements })` adds
+/// `statements` (loads, outputs) to it.
 macro_rules! double_rod_model {
-    ($name:ident, $($attr:tt)*) => {
+    ($name:ident, ($($attr:tt)*) { $($statements:tt)* }) => {
         #[dae_model($($attr)*)]
         fn $name() {
             let g = param(9.81);
@@ -133,8 +149,13 @@ macro_rules! double_rod_model {
             revolute(ground, vec3(0.0, 0.0, 0.0), upper, vec3(-0.5, 0.0, 0.0));
             revolute(upper, vec3(0.5, 0.0, 0.0), lower, vec3(-0.5, 0.0, 0.0));
             gravity(vec3(0.0, -g, 0.0));
-            let upper_angle = output(position(upper, vec3(0.5, 0.0, 0.0))[0]);
+            $($statements)*
         }
+    };
+    ($name:ident, $($attr:tt)*) => {
+        double_rod_model!($name, ($($attr)*) {
+            let upper_angle = output(position(upper, vec3(0.5, 0.0, 0.0))[0]);
+        });
     };
 }
 double_rod_model!(double_rod_scene, scene = global);
@@ -271,27 +292,15 @@ fn the_recursive_four_bar_matches_the_global_one() {
     }
 }
 
-/// The slider-crank in both formulations from the same exact start
-/// (θ = 1): the recursive one has the crank angle and the slide as joint
-/// coordinates and the massless rod as its cut joint.
+// The slider-crank in both formulations from the same exact start
+// (θ = 1): the recursive one has the crank angle and the slide as joint
+// coordinates and the massless rod as its cut joint.
 macro_rules! slider_crank_from_rest {
     ($name:ident, $($attr:tt)*) => {
-        #[dae_model($($attr)*)]
-        fn $name() {
-            let r = param(0.15);
-            let l = param(0.4);
-            let m1 = param(1.0);
-            let m2 = param(0.5);
-            let g = param(9.81);
-            let ground = ground();
-            let crank = body(m1, m1 * r * r / 12.0, [0.04052267294011048, 0.06311032386059223, 1.0]);
-            let slider = body(m2, 1.0, [0.4606087109312288, 0.0, 0.0]);
-            revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5 * r, 0.0, 0.0));
-            distance(crank, vec3(0.5 * r, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), l);
-            prismatic(ground, vec3(0.0, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0));
-            gravity(vec3(0.0, -g, 0.0));
-            let slider_x = output(position(slider, vec3(0.0, 0.0, 0.0))[0]);
-        }
+        slider_crank_scene!($name, ($($attr)*),
+            crank: ([0.04052267294011048, 0.06311032386059223, 1.0]),
+            slider: ([0.4606087109312288, 0.0, 0.0]),
+            { let slider_x = output(position(slider, vec3(0.0, 0.0, 0.0))[0]); });
     };
 }
 slider_crank_from_rest!(slider_crank_global, scene = global);
@@ -321,21 +330,13 @@ fn the_ten_rod_chain_agrees_in_both_formulations() {
 /// from a wall point to the lower rod's tip, and a torque on the upper rod.
 macro_rules! sprung_double_rod {
     ($name:ident, $($attr:tt)*) => {
-        #[dae_model($($attr)*)]
-        fn $name() {
-            let g = param(9.81);
-            let ground = ground();
-            let upper = body(1.0, 1.0 / 12.0, [0.5, 0.0, 0.0]);
-            let lower = body(1.0, 1.0 / 12.0, [1.5, 0.0, 0.0]);
-            revolute(ground, vec3(0.0, 0.0, 0.0), upper, vec3(-0.5, 0.0, 0.0));
-            revolute(upper, vec3(0.5, 0.0, 0.0), lower, vec3(-0.5, 0.0, 0.0));
-            gravity(vec3(0.0, -g, 0.0));
+        double_rod_model!($name, ($($attr)*) {
             spring(ground, vec3(2.5, -1.0, 0.0), lower, vec3(0.5, 0.0, 0.0), 30.0, 0.5, 0.8);
             torque(upper, 0.7);
             let tip = position(lower, vec3(0.5, 0.0, 0.0));
             let tip_x = output(tip[0]);
             let tip_y = output(tip[1]);
-        }
+        });
     };
 }
 sprung_double_rod!(sprung_global, scene = global);
@@ -349,27 +350,18 @@ fn springs_and_torques_agree_in_both_formulations() {
     assert_agree(&a, &b, &["tip_x", "tip_y"], &[0.5, 1.0, 2.0], 1000.0 * tol);
 }
 
-/// The slider-crank started moving: the crank at θ = 1 turning at ω = 2,
-/// its centre and the slider with the velocities that follow (ẋ_s =
-/// −r ω sin θ − r² ω sin θ cos θ / √(l² − r² sin² θ)). The recursive
-/// formulation turns them into joint rates.
+// The slider-crank started moving: the crank at θ = 1 turning at ω = 2,
+// its centre and the slider with the velocities that follow (ẋ_s =
+// −r ω sin θ − r² ω sin θ cos θ / √(l² − r² sin² θ)). The recursive
+// formulation turns them into joint rates.
 macro_rules! slider_crank_moving {
     ($name:ident, $($attr:tt)*) => {
-        #[dae_model($($attr)*)]
-        fn $name() {
-            let r = param(0.15);
-            let l = param(0.4);
-            let g = param(9.81);
-            let ground = ground();
-            let crank = body(
-                1.0,
-                r * r / 12.0,
+        slider_crank_scene!($name, ($($attr)*),
+            crank: (
                 [0.5 * r * cos(1.0), 0.5 * r * sin(1.0), 1.0],
-                [-r * sin(1.0), r * cos(1.0), 2.0],
-            );
-            let slider = body(
-                0.5,
-                1.0,
+                [-r * sin(1.0), r * cos(1.0), 2.0]
+            ),
+            slider: (
                 [r * cos(1.0) + sqrt(l * l - r * r * sin(1.0) * sin(1.0)), 0.0, 0.0],
                 [
                     -2.0 * r * sin(1.0)
@@ -377,15 +369,12 @@ macro_rules! slider_crank_moving {
                             / sqrt(l * l - r * r * sin(1.0) * sin(1.0)),
                     0.0,
                     0.0,
-                ],
-            );
-            revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5 * r, 0.0, 0.0));
-            distance(crank, vec3(0.5 * r, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), l);
-            prismatic(ground, vec3(0.0, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0));
-            gravity(vec3(0.0, -g, 0.0));
-            let slider_x = output(slider.x);
-            let crank_rate = output(der(crank.theta));
-        }
+                ]
+            ),
+            {
+                let slider_x = output(slider.x);
+                let crank_rate = output(der(crank.theta));
+            });
     };
 }
 slider_crank_moving!(moving_crank_global, scene = global);
@@ -477,7 +466,7 @@ fn both_formulations_answer_to_the_same_names() {
     // rates, the rod's multiplier and the output.
     assert_eq!(shared, 12 + 4 + 2, "{:?}", recursive.names());
     // The crank's joint angle is its body angle (the ground does not turn).
-    let q = global.column("revolute1.q").unwrap();
+    let q = global.column("pivot.q").unwrap();
     assert_eq!(q, global.column("crank.theta").unwrap());
 
     let global = tight::<FourBar>(2.0, tol);
