@@ -3,6 +3,7 @@
 
 use daegen::prelude::*;
 
+include!("models/items.rs");
 include!("models/pendulum.rs");
 
 // The contract's pendulum, with the Taylor method's tape.
@@ -670,28 +671,13 @@ fn an_algebraic_equation_nonlinear_in_its_variable_runs_with_every_method() {
     }
 }
 
-/// Two unit masses on unit massless rods in Cartesian coordinates: the
-/// 6 × 6 KKT system reduced symbolically to its 2 × 2 Schur complement.
-#[dae_model]
-fn double_pendulum_cartesian() {
-    let g = param(9.81);
-    let x1 = state(1.0);
-    let y1 = state(0.0);
-    let x2 = state(2.0);
-    let y2 = state(0.0);
-    let l1 = algebraic(0.0);
-    let l2 = algebraic(0.0);
-    der(der(x1)) == -l1 * x1 + l2 * (x2 - x1);
-    der(der(y1)) == -l1 * y1 + l2 * (y2 - y1) - g;
-    der(der(x2)) == -l2 * (x2 - x1);
-    der(der(y2)) == -l2 * (y2 - y1) - g;
-    constraint(x1 * x1 + y1 * y1 - 1.0);
-    constraint((x2 - x1) * (x2 - x1) + (y2 - y1) * (y2 - y1) - 1.0);
+// Two unit masses on unit massless rods, with their energy.
+double_pendulum_cartesian!(dae_model_with! { () } {
     let energy = output(
         0.5 * (der(x1) * der(x1) + der(y1) * der(y1) + der(x2) * der(x2) + der(y2) * der(y2))
             + g * (y1 + y2),
     );
-}
+});
 
 /// The same double pendulum in its angles from the downward vertical:
 /// the mass matrix [[2, c], [c, 1]], c = cos(a − b).

@@ -4,21 +4,10 @@
 
 use daegen::prelude::*;
 
+include!("models/items.rs");
 include!("models/n_body.rs");
 
-/// Course notes, Example 1.1: a third-order system, reduced to first order
-/// by the macro exactly as the notes do by hand (z = x', w = x'', p = y').
-#[dae_model]
-fn example_1_1() {
-    let t = time();
-    let x = state(0.0);
-    let y = state(0.0);
-    init(der(x), 0.0);
-    init(der(der(x)), 2.0);
-    init(der(y), 2.0);
-    der(der(der(x))) + der(y) == x * x + t;
-    der(der(y)) + x == t * t + 1.0;
-}
+example_1_1!(dae_model_with! { () });
 
 /// Reference at t = 2: SciPy `solve_ivp`, DOP853 with rtol 1e-13, atol 1e-14
 /// (Radau at the same tolerances agrees to 2e-14), on the notes' reduced system.

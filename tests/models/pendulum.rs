@@ -1,47 +1,6 @@
-// The contract's pendulum, Cash's index-3 pendulum (`pendul3.f`;
-// ../shared/notes/reference-problems.md §4) and its minimal-coordinate ODE,
-// shared by the DAE tests, the expansion snapshots and the benchmark.
-
-/// `contract_pendulum!(then! { arguments })`: `then!` called with its
-/// arguments followed by the contract's pendulum as a plain item, so that
-/// `contract_pendulum!(dae_model_with! { (taylor = 1) })` defines it and
-/// tests/expansion.rs snapshots its expansion.
-#[allow(unused_macros)]
-macro_rules! contract_pendulum {
-    ($then:ident ! { $($arguments:tt)* }) => {
-        $then! {
-            $($arguments)*
-            /// Planar pendulum as an index-3 DAE in Cartesian coordinates: the
-            /// model of the contract, the notes' eq. 2.1.
-            fn pendulum() {
-                let m = param(1.0);
-                let l = param(1.0);
-                let g = param(9.81);
-                let x = state(1.0);
-                let y = state(0.0);
-                let u = state(0.0);
-                let v = state(0.0);
-                let lambda = algebraic(0.0);
-                der(x) == u;
-                der(y) == v;
-                m * der(u) == -lambda * x;
-                m * der(v) == -lambda * y - m * g;
-                constraint(x * x + y * y - l * l);
-                let energy = output(0.5 * m * (u * u + v * v) + m * g * y);
-            }
-        }
-    };
-}
-
-/// `dae_model_with! { (attributes) item }`: `item` under
-/// `#[dae_model(attributes)]`.
-#[allow(unused_macros)]
-macro_rules! dae_model_with {
-    (($($attribute:tt)*) $item:item) => {
-        #[dae_model($($attribute)*)]
-        $item
-    };
-}
+// Cash's index-3 pendulum (`pendul3.f`; ../shared/notes/reference-problems.md
+// §4) and its minimal-coordinate ODE, shared by the DAE tests and the
+// benchmark.
 
 /// `cash_pendulum_model!(attributes)`: the pendulum with g = 1 released
 /// from (1, 0) moving up at unit speed, an index-3 DAE in x, y, u, v, λ.

@@ -1,0 +1,101 @@
+// Models that a test runs and tests/expansion.rs snapshots, written once
+// as macros that hand the model, a plain item, to another macro:
+// `model!(dae_model_with! { (attributes) })` defines it,
+// `model!(expansion_test! { name, (attributes), [items], })` snapshots its
+// expansion. Those that take `{ statements }` add them to the model.
+
+/// `contract_pendulum!(then! { arguments })`: `then!` called with its
+/// arguments followed by the contract's pendulum as a plain item, so that
+/// `contract_pendulum!(dae_model_with! { (taylor = 1) })` defines it and
+/// tests/expansion.rs snapshots its expansion.
+#[allow(unused_macros)]
+macro_rules! contract_pendulum {
+    ($then:ident ! { $($arguments:tt)* }) => {
+        $then! {
+            $($arguments)*
+            /// Planar pendulum as an index-3 DAE in Cartesian coordinates: the
+            /// model of the contract, the notes' eq. 2.1.
+            fn pendulum() {
+                let m = param(1.0);
+                let l = param(1.0);
+                let g = param(9.81);
+                let x = state(1.0);
+                let y = state(0.0);
+                let u = state(0.0);
+                let v = state(0.0);
+                let lambda = algebraic(0.0);
+                der(x) == u;
+                der(y) == v;
+                m * der(u) == -lambda * x;
+                m * der(v) == -lambda * y - m * g;
+                constraint(x * x + y * y - l * l);
+                let energy = output(0.5 * m * (u * u + v * v) + m * g * y);
+            }
+        }
+    };
+}
+
+/// `dae_model_with! { (attributes) item }`: `item` under
+/// `#[dae_model(attributes)]`.
+#[allow(unused_macros)]
+macro_rules! dae_model_with {
+    (($($attribute:tt)*) $item:item) => {
+        #[dae_model($($attribute)*)]
+        $item
+    };
+}
+
+/// `example_1_1!(then! { arguments })`: course notes, Example 1.1, a
+/// third-order system.
+#[allow(unused_macros)]
+macro_rules! example_1_1 {
+    ($then:ident ! { $($arguments:tt)* }) => {
+        $then! {
+            $($arguments)*
+            /// Course notes, Example 1.1: a third-order system, reduced to
+            /// first order by the macro exactly as the notes do by hand
+            /// (z = x', w = x'', p = y').
+            fn example_1_1() {
+                let t = time();
+                let x = state(0.0);
+                let y = state(0.0);
+                init(der(x), 0.0);
+                init(der(der(x)), 2.0);
+                init(der(y), 2.0);
+                der(der(der(x))) + der(y) == x * x + t;
+                der(der(y)) + x == t * t + 1.0;
+            }
+        }
+    };
+}
+
+/// `double_pendulum_cartesian!(then! { arguments } { statements })`: two
+/// unit masses on unit massless rods in Cartesian coordinates, a 6 × 6 KKT
+/// system whose four accelerations have constant pivots, leaving the 2 × 2
+/// Schur complement in the multipliers, solved symbolically.
+#[allow(unused_macros)]
+macro_rules! double_pendulum_cartesian {
+    ($then:ident ! { $($arguments:tt)* } { $($statements:tt)* }) => {
+        $then! {
+            $($arguments)*
+            /// Two unit masses on unit massless rods in Cartesian
+            /// coordinates.
+            fn double_pendulum_cartesian() {
+                let g = param(9.81);
+                let x1 = state(1.0);
+                let y1 = state(0.0);
+                let x2 = state(2.0);
+                let y2 = state(0.0);
+                let l1 = algebraic(0.0);
+                let l2 = algebraic(0.0);
+                der(der(x1)) == -l1 * x1 + l2 * (x2 - x1);
+                der(der(y1)) == -l1 * y1 + l2 * (y2 - y1) - g;
+                der(der(x2)) == -l2 * (x2 - x1);
+                der(der(y2)) == -l2 * (y2 - y1) - g;
+                constraint(x1 * x1 + y1 * y1 - 1.0);
+                constraint((x2 - x1) * (x2 - x1) + (y2 - y1) * (y2 - y1) - 1.0);
+                $($statements)*
+            }
+        }
+    };
+}
