@@ -85,21 +85,19 @@ impl Peer for OdeSolvers {
         });
         Ok(match out {
             Some((y, stats)) => Record {
-                problem: p.name.into(),
-                method: self.name(),
-                tol,
                 error: mixed_error(&y, p.reference),
-                seconds,
                 steps: stats.accepted_steps as usize,
                 rejected: stats.rejected_steps as usize,
                 rhs_evals: stats.num_eval as usize,
-                jacobian_evals: 0,
+                ..failed(p, self.name(), tol, seconds)
             },
             None => failed(p, self.name(), tol, seconds),
         })
     }
 }
 
+/// A run that gave no answer (its error infinite, no counts); with the
+/// counts and the error of one that did, its record.
 fn failed(p: &PeerProblem, method: String, tol: f64, seconds: f64) -> Record {
     Record {
         problem: p.name.into(),
@@ -194,15 +192,11 @@ impl Peer for Diffsol {
         });
         Ok(match out {
             Some((y, stats)) => Record {
-                problem: p.name.into(),
-                method: self.name(),
-                tol,
                 error: mixed_error(&y, p.reference),
-                seconds,
                 steps: stats.number_of_steps,
                 rejected: stats.number_of_error_test_failures,
-                rhs_evals: 0,
                 jacobian_evals: stats.number_of_linear_solver_setups,
+                ..failed(p, self.name(), tol, seconds)
             },
             None => failed(p, self.name(), tol, seconds),
         })

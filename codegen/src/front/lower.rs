@@ -391,6 +391,38 @@ impl Lower<'_> {
         }
     }
 
+    /// Declares the state `name` (a user's, or a scene's coordinate)
+    /// documented by `doc`; `None` once the clash with another name is
+    /// reported at `at`.
+    pub(crate) fn declare_state(
+        &mut self,
+        name: String,
+        init: Id,
+        at: &syn::Ident,
+        origin: &proc_macro2::TokenStream,
+        doc: &str,
+    ) -> Option<SymbolId> {
+        let id = match self.g.state(&name) {
+            Ok(id) => id,
+            Err(e) => {
+                self.cx.error_at(at, e);
+                return None;
+            }
+        };
+        let symbol = self.g.as_symbol(id)?;
+        let origin = origin.clone();
+        let doc = doc.to_string();
+        self.states.push(crate::front::ir::StateDecl {
+            name,
+            symbol,
+            init,
+            origin,
+            fixed: false,
+            doc,
+        });
+        Some(symbol)
+    }
+
     /// Reports a second declaration of `ident`'s name.
     pub(crate) fn already_declared(&mut self, ident: &syn::Ident) -> bool {
         let name = ident.to_string();
@@ -516,20 +548,8 @@ impl Lower<'_> {
                 // A bad initial value is reported; the state is still
                 // declared, so its uses raise no second error.
                 let init = self.initial_value(&call.args[0]).unwrap_or_else(|| self.g.zero());
-                match self.g.state(&name) {
-                    Ok(id) => {
-                        let symbol = self.g.as_symbol(id).unwrap_or(SymbolId(0));
-                        self.states.push(StateDecl {
-                            name,
-                            symbol,
-                            init,
-                            origin,
-                            fixed: false,
-                            doc,
-                        });
-                        self.bind(ident, Binding::State(symbol));
-                    }
-                    Err(e) => self.cx.error_at(ident, e),
+                if let Some(symbol) = self.declare_state(name, init, ident, &origin, &doc) {
+                    self.bind(ident, Binding::State(symbol));
                 }
             }
             "state_array" | "quaternion_state" => {

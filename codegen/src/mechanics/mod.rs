@@ -129,37 +129,6 @@ pub(crate) fn push_constraint_forces(
 }
 
 impl crate::front::lower::Lower<'_> {
-    /// Declares the scene coordinate `name` a state documented by `doc`;
-    /// `None` once the clash with another name is reported at `at`.
-    pub(crate) fn declare_scene_state(
-        &mut self,
-        name: String,
-        init: Id,
-        at: &syn::Ident,
-        origin: &TokenStream,
-        doc: &str,
-    ) -> Option<SymbolId> {
-        let id = match self.g.state(&name) {
-            Ok(id) => id,
-            Err(e) => {
-                self.cx.error_at(at, e);
-                return None;
-            }
-        };
-        let symbol = self.g.as_symbol(id)?;
-        let origin = origin.clone();
-        let doc = doc.to_string();
-        self.states.push(crate::front::ir::StateDecl {
-            name,
-            symbol,
-            init,
-            origin,
-            fixed: false,
-            doc,
-        });
-        Some(symbol)
-    }
-
     /// Adds the equations of motion `(lhs, rhs)` the scene gave, or reports
     /// at `origin` why it could not write them.
     pub(crate) fn push_equations_of_motion(

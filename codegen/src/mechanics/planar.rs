@@ -82,8 +82,7 @@ impl Lower<'_> {
         for (k, coordinate) in ["x", "y", "theta"].iter().enumerate() {
             let state = format!("{name}.{coordinate}");
             let doc = crate::mechanics::names::body_coordinate_doc(coordinate);
-            let Some(symbol) = self.declare_scene_state(state, position[k], ident, &origin, doc)
-            else {
+            let Some(symbol) = self.declare_state(state, position[k], ident, &origin, doc) else {
                 return;
             };
             if let Some(v) = &velocity {

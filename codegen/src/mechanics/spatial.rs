@@ -232,7 +232,7 @@ impl Lower<'_> {
         let origin = local.to_token_stream();
         let declare = |this: &mut Self, coordinate: &str, init: Id| -> Option<SymbolId> {
             let doc = crate::mechanics::names::body_coordinate_doc(coordinate);
-            this.declare_scene_state(format!("{name}.{coordinate}"), init, ident, &origin, doc)
+            this.declare_state(format!("{name}.{coordinate}"), init, ident, &origin, doc)
         };
         let mut symbols = Vec::with_capacity(10);
         for (k, c) in ["x", "y", "z"].iter().enumerate() {

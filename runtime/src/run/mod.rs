@@ -145,7 +145,8 @@ pub fn simulate_from<M: Model + Clone + Send + Sync + 'static>(
     t1: f64,
     options: &Options,
 ) -> Result<Solution, Error> {
-    labelled::<M>(checked_run(model, t0, y0, t1, options), method_name(options.method))
+    let problem = Problem { model, t0, t1, y0, options };
+    labelled::<M>(checked_run(problem), method_name(options.method))
 }
 
 /// The values initialization moved by more than `rtol·|given| + atol`.
@@ -198,12 +199,9 @@ fn inconsistent_start<M: Model>(
 }
 
 fn checked_run<M: Model + Clone + Send + Sync + 'static>(
-    model: &M,
-    t0: f64,
-    y0: &[f64],
-    t1: f64,
-    options: &Options,
+    problem: Problem<'_, M>,
 ) -> Result<Solution, Error> {
+    let Problem { model, t0, t1, y0, options } = problem;
     crate::run::checks::check_request(model, t0, y0, t1, options)?;
     // A thinned run keeps no dense output: it could not serve between the
     // stored steps.
