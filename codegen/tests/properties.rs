@@ -2,7 +2,7 @@
 //! that does not use the graph: a plain recursive `f64` evaluation of the
 //! expression as written, and forward-mode dual numbers for derivatives.
 
-use daegen_codegen::{emit_program, Func, Graph, Id, Number, SymbolId};
+use daegen_codegen::{emit_program, Func, Graph, Id, Number, Program, SymbolId};
 use proc_macro2::{Literal, TokenStream};
 use proptest::prelude::*;
 use quote::quote;
@@ -364,18 +364,7 @@ fn scheduled_and_emitted_agree(r: &R, q: &R, at: &[f64; 4]) -> Result<(), TestCa
     let direct = g.eval(&outputs, &|sym| at[sym.index()]);
     let program = g.schedule(&outputs);
     let scheduled = program.evaluate(&g, &|sym| at[sym.index()]).map_err(TestCaseError::fail)?;
-    let code = emit_program(
-        &g,
-        &program,
-        &|sym| {
-            let n = quote::format_ident!("{}", NAMES[sym.index()]);
-            quote!(#n)
-        },
-        &|i, v| {
-            let i = Literal::usize_unsuffixed(i);
-            quote!(out[#i] = #v;)
-        },
-    );
+    let code = emit_to_out(&g, &program);
     let emitted = interpret(&code, at).map_err(TestCaseError::fail)?;
     // The condition of each expression as written, from the oracle.
     let mut condition = [0.0f64; 2];
@@ -442,8 +431,7 @@ proptest! {
             let mut outputs = vec![e, f];
             outputs.extend(j.expressions());
             let program = g.schedule(&outputs);
-            let code = emit_program(&g, &program, &|sym| { let n = quote::format_ident!("{}", NAMES[sym.index()]); quote!(#n) },
-                &|i, v| { let i = Literal::usize_unsuffixed(i); quote!(out[#i] = #v;) });
+            let code = emit_to_out(&g, &program);
             Some(code.to_string())
         };
         prop_assert_eq!(emit_once(), emit_once());
@@ -459,18 +447,7 @@ fn shared_square_roots_are_defined_before_use() {
     let d = g.partial(f, s[0]).unwrap();
     let program = g.schedule(&[f, d]);
     let at = [0.3, -1.2, 0.0, 0.0];
-    let code = emit_program(
-        &g,
-        &program,
-        &|sym| {
-            let n = quote::format_ident!("{}", NAMES[sym.index()]);
-            quote!(#n)
-        },
-        &|i, v| {
-            let i = Literal::usize_unsuffixed(i);
-            quote!(out[#i] = #v;)
-        },
-    );
+    let code = emit_to_out(&g, &program);
     let emitted = interpret(&code, &at).unwrap_or_else(|e| panic!("{e}\n{code}"));
     let direct = g.eval(&[f, d], &|sym| at[sym.index()]);
     for k in 0..2 {
@@ -493,6 +470,23 @@ fn partial_derivatives_are_memoised_per_node_and_symbol() {
     assert_eq!(d1, d2);
     assert_eq!(g.len(), before, "a repeated derivative must not build new nodes");
     let _ = Number::ONE;
+}
+
+/// The program's statements with the symbols by their names and output
+/// `i` written as `out[i] = …;`.
+fn emit_to_out(g: &Graph, program: &Program) -> TokenStream {
+    emit_program(
+        g,
+        program,
+        &|sym| {
+            let n = quote::format_ident!("{}", NAMES[sym.index()]);
+            quote!(#n)
+        },
+        &|i, v| {
+            let i = Literal::usize_unsuffixed(i);
+            quote!(out[#i] = #v;)
+        },
+    )
 }
 
 /// Interprets the emitted statements (`let t = ...;` and `out[i] = ...;`) with

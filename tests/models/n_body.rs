@@ -11,63 +11,38 @@
 /// `then!` after its arguments instead (tests/expansion.rs snapshots it).
 #[allow(unused_macros)]
 macro_rules! gravitating_bodies {
-    (@then $then:ident { $($arguments:tt)* }
-     $(#[$attribute:meta])* fn $name:ident(planar) { $($declarations:tt)* }
+    // Each coordinate as (position, velocity, acceleration, difference).
+    (@axes [$(($q:ident, $p:ident, $a:ident, $d:ident)),*] $then:ident { $($arguments:tt)* }
+     $(#[$attribute:meta])* fn $name:ident { $($declarations:tt)* }
      $(then { $($statements:tt)* })?) => { $then! { $($arguments)*
         $(#[$attribute])*
         fn $name() {
             $($declarations)*
             for i in 0..N {
-                der(x[i]) == u[i];
-                der(y[i]) == v[i];
-                let mut ax = 0.0;
-                let mut ay = 0.0;
+                $(der($q[i]) == $p[i];)*
+                $(let mut $a = 0.0;)*
                 for j in 0..N {
                     if j != i {
-                        let dx = x[j] - x[i];
-                        let dy = y[j] - y[i];
-                        let r3 = (dx * dx + dy * dy).powf(-1.5);
-                        ax += g * m[j] * dx * r3;
-                        ay += g * m[j] * dy * r3;
+                        $(let $d = $q[j] - $q[i];)*
+                        let r3 = (0.0 $(+ $d * $d)*).powf(-1.5);
+                        $($a += g * m[j] * $d * r3;)*
                     }
                 }
-                der(u[i]) == ax;
-                der(v[i]) == ay;
+                $(der($p[i]) == $a;)*
             }
             $($($statements)*)?
         }
     } };
-    (@then $then:ident { $($arguments:tt)* }
-     $(#[$attribute:meta])* fn $name:ident(spatial) { $($declarations:tt)* }
-     $(then { $($statements:tt)* })?) => { $then! { $($arguments)*
-        $(#[$attribute])*
-        fn $name() {
-            $($declarations)*
-            for i in 0..N {
-                der(x[i]) == u[i];
-                der(y[i]) == v[i];
-                der(z[i]) == w[i];
-                let mut ax = 0.0;
-                let mut ay = 0.0;
-                let mut az = 0.0;
-                for j in 0..N {
-                    if j != i {
-                        let dx = x[j] - x[i];
-                        let dy = y[j] - y[i];
-                        let dz = z[j] - z[i];
-                        let r3 = (dx * dx + dy * dy + dz * dz).powf(-1.5);
-                        ax += g * m[j] * dx * r3;
-                        ay += g * m[j] * dy * r3;
-                        az += g * m[j] * dz * r3;
-                    }
-                }
-                der(u[i]) == ax;
-                der(v[i]) == ay;
-                der(w[i]) == az;
-            }
-            $($($statements)*)?
-        }
-    } };
+    (@then $then:ident { $($arguments:tt)* } $(#[$attribute:meta])* fn $name:ident(planar)
+     $($rest:tt)*) => {
+        gravitating_bodies!(@axes [(x, u, ax, dx), (y, v, ay, dy)] $then { $($arguments)* }
+            $(#[$attribute])* fn $name $($rest)*);
+    };
+    (@then $then:ident { $($arguments:tt)* } $(#[$attribute:meta])* fn $name:ident(spatial)
+     $($rest:tt)*) => {
+        gravitating_bodies!(@axes [(x, u, ax, dx), (y, v, ay, dy), (z, w, az, dz)]
+            $then { $($arguments)* } $(#[$attribute])* fn $name $($rest)*);
+    };
     ($($model:tt)*) => {
         gravitating_bodies!(@then just_the_item {} $($model)*);
     };
