@@ -128,6 +128,22 @@ pub(crate) fn push_constraint_forces(
     Ok(())
 }
 
+/// A spring–damper whose squared length is `d2`: its length d and its
+/// tension k (d − l₀) + c ḋ, ḋ along `field`.
+pub(crate) fn spring_tension(
+    g: &mut crate::Graph,
+    d2: Id,
+    [k, damping, l0]: [Id; 3],
+    field: &mut crate::VectorField,
+) -> crate::Result<(Id, Id)> {
+    let d = g.sqrt(d2)?;
+    let d_dot = g.total_derivative(d, field)?;
+    let stretch = g.sub(d, l0)?;
+    let elastic = g.mul(k, stretch)?;
+    let viscous = g.mul(damping, d_dot)?;
+    Ok((d, g.add(elastic, viscous)?))
+}
+
 impl crate::front::lower::Lower<'_> {
     /// Adds the equations of motion `(lhs, rhs)` the scene gave, or reports
     /// at `origin` why it could not write them.

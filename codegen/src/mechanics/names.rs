@@ -159,7 +159,7 @@ pub(crate) fn rotate(g: &mut crate::Graph, angle: Id, p: [Id; 2]) -> crate::Resu
 }
 
 /// The world position of the point `local` of a body at `pose`.
-fn point(g: &mut crate::Graph, pose: [Id; 3], local: [Id; 2]) -> crate::Result<[Id; 2]> {
+pub(crate) fn point(g: &mut crate::Graph, pose: [Id; 3], local: [Id; 2]) -> crate::Result<[Id; 2]> {
     let arm = rotate(g, pose[2], local)?;
     Ok([g.add(pose[0], arm[0])?, g.add(pose[1], arm[1])?])
 }

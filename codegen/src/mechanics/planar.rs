@@ -18,6 +18,7 @@
 //! let p = position(crank, point);                 // world position of a body point
 //! ```
 
+use super::names::{point, rotate};
 use super::{Body, Frame, JointRecord, FORCE_USAGE};
 use crate::front::lower::Binding;
 use crate::front::lower::Lower;
@@ -155,23 +156,9 @@ impl Lower<'_> {
         match frame {
             Frame::Ground => Some([px, py]),
             Frame::Body(b) => {
-                let body = self.scene.bodies[b].clone();
-                let r = (|| -> crate::Result<[Id; 2]> {
-                    let g = &mut self.g;
-                    let theta = g.symbol_node(body.theta);
-                    let c = g.call(crate::Func::Cos, theta)?;
-                    let s = g.call(crate::Func::Sin, theta)?;
-                    let (x, y) = (g.symbol_node(body.x), g.symbol_node(body.y));
-                    let cx = g.mul(c, px)?;
-                    let sy = g.mul(s, py)?;
-                    let sx = g.mul(s, px)?;
-                    let cy = g.mul(c, py)?;
-                    let wx = g.add(x, cx)?;
-                    let wx = g.sub(wx, sy)?;
-                    let wy = g.add(y, sx)?;
-                    let wy = g.add(wy, cy)?;
-                    Ok([wx, wy])
-                })();
+                let body = &self.scene.bodies[b];
+                let pose = [body.x, body.y, body.theta].map(|s| self.g.symbol_node(s));
+                let r = point(&mut self.g, pose, [px, py]);
                 self.graph_result_pair(r, at)
             }
         }
@@ -322,15 +309,8 @@ impl Lower<'_> {
                 let (ia, ib) = (initial(self, a), initial(self, b));
                 (|| {
                     let g = &mut self.g;
-                    let (c_, s_) = (g.call(crate::Func::Cos, ta)?, g.call(crate::Func::Sin, ta)?);
-                    let (ax, ay) = (axis.data[0], axis.data[1]);
                     // The axis in the world: R(θa) (ax, ay).
-                    let t1 = g.mul(c_, ax)?;
-                    let t2 = g.mul(s_, ay)?;
-                    let wx = g.sub(t1, t2)?;
-                    let t3 = g.mul(s_, ax)?;
-                    let t4 = g.mul(c_, ay)?;
-                    let wy = g.add(t3, t4)?;
+                    let [wx, wy] = rotate(g, ta, [axis.data[0], axis.data[1]])?;
                     let dx = g.sub(pb[0], pa[0])?;
                     let dy = g.sub(pb[1], pa[1])?;
                     let cross1 = g.mul(dx, wy)?;
@@ -603,12 +583,7 @@ impl Lower<'_> {
             let dx2 = g.mul(dx, dx)?;
             let dy2 = g.mul(dy, dy)?;
             let d2 = g.add(dx2, dy2)?;
-            let d = g.sqrt(d2)?;
-            let d_dot = g.total_derivative(d, &mut field)?;
-            let stretch = g.sub(d, l0)?;
-            let elastic = g.mul(k, stretch)?;
-            let viscous = g.mul(damping, d_dot)?;
-            let tension = g.add(elastic, viscous)?;
+            let (d, tension) = super::spring_tension(g, d2, [k, damping, l0], &mut field)?;
             // On A towards B, on B towards A.
             let ux = g.div(dx, d)?;
             let uy = g.div(dy, d)?;

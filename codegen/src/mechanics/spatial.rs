@@ -342,6 +342,14 @@ impl Lower<'_> {
         Some([t.data[0], t.data[1], t.data[2]])
     }
 
+    /// The points in body coordinates of a joint's or a spring's call
+    /// `(a, sa, b, sb, ..)`, both checked (each error reported).
+    fn attachment_points(&mut self, c: &syn::ExprCall) -> Option<[Vec3; 2]> {
+        let what = "a point in body coordinates";
+        let (sa, sb) = (self.vec3_arg(&c.args[1], what), self.vec3_arg(&c.args[3], what));
+        Some([sa?, sb?])
+    }
+
     /// `position(body, p)` in a spatial scene: `r + R(q) p`.
     pub(crate) fn spatial_position(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<Vec3> {
         let frame = self.frame(&c.args[0])?;
@@ -380,10 +388,7 @@ impl Lower<'_> {
         let Some((a, b)) = self.joint_frames(kind, c, extra) else {
             return;
         };
-        let (Some(sa), Some(sb)) = (
-            self.vec3_arg(&c.args[1], "a point in body coordinates"),
-            self.vec3_arg(&c.args[3], "a point in body coordinates"),
-        ) else {
+        let Some([sa, sb]) = self.attachment_points(c) else {
             return;
         };
         let extra = match kind {
@@ -568,10 +573,7 @@ impl Lower<'_> {
         let Some((a, b, [k, l0, damping])) = self.spring_arguments(c) else {
             return;
         };
-        let (Some(sa), Some(sb)) = (
-            self.vec3_arg(&c.args[1], "a point in body coordinates"),
-            self.vec3_arg(&c.args[3], "a point in body coordinates"),
-        ) else {
+        let Some([sa, sb]) = self.attachment_points(c) else {
             return;
         };
         let mut field = self.spatial_field();
@@ -583,12 +585,7 @@ impl Lower<'_> {
             let xb = Self::place(g, &pb, sb)?;
             let gap = sub3(g, xb, xa)?;
             let d2 = dot3(g, gap, gap)?;
-            let d = g.sqrt(d2)?;
-            let d_dot = g.total_derivative(d, &mut field)?;
-            let stretch = g.sub(d, l0)?;
-            let elastic = g.mul(k, stretch)?;
-            let viscous = g.mul(damping, d_dot)?;
-            let tension = g.add(elastic, viscous)?;
+            let (d, tension) = super::spring_tension(g, d2, [k, damping, l0], &mut field)?;
             let over = g.div(tension, d)?;
             // On a towards b; on b the opposite.
             let f = scale3(g, over, gap)?;
