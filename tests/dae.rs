@@ -282,41 +282,32 @@ fn slider_crank_in_global_coordinates_follows_its_crank_angle_ode() {
 // E = P⁻¹ diag(N, 1) Q⁻¹, A = P⁻¹ diag(I, J) Q⁻¹, c = P⁻¹ (d, e), y = Q (α, β).
 // The closed form (2.9): α = Σ (−1)^j N^j d^(j), β = 2 + (β0 − 2) e^(−t/2).
 
-/// Kronecker index 1.
-#[dae_model]
-fn linear_index_1() {
-    let t = time();
-    let y = state_array([0.0, 0.0, 0.0, 0.0]);
-    let dy = der(y[0]) + der(y[1]) + der(y[2]) + der(y[3]);
-    y[0] + y[1] + y[2] == sin(t) + t * t;
-    y[0] + 2.0 * y[1] + y[2] == sin(t) + cos(t);
-    dy + 0.5 * y[0] + 1.5 * y[1] + 2.5 * y[2] + 0.5 * y[3] == cos(t) + t * t + 1.0;
-    dy + 0.5 * y[0] + 0.5 * y[1] + 1.5 * y[2] + 0.5 * y[3] == t * t + 1.0;
+/// `linear_dae!(name, [E₁ y'], [E₂ y'], [E₃ y'])`: the system above, its
+/// rows sharing A y and c(t) and differing in E y' (the fourth row's E y'
+/// is `dy` in every one); each `[..]` is a row's E y' with a trailing `+`,
+/// or empty.
+macro_rules! linear_dae {
+    ($name:ident, [$($e1:tt)*], [$($e2:tt)*], [$($e3:tt)*]) => {
+        #[dae_model]
+        fn $name() {
+            let t = time();
+            let y = state_array([0.0, 0.0, 0.0, 0.0]);
+            let dy = der(y[0]) + der(y[1]) + der(y[2]) + der(y[3]);
+            $($e1)* y[0] + y[1] + y[2] == sin(t) + t * t;
+            $($e2)* y[0] + 2.0 * y[1] + y[2] == sin(t) + cos(t);
+            dy + $($e3)* 0.5 * y[0] + 1.5 * y[1] + 2.5 * y[2] + 0.5 * y[3] == cos(t) + t * t + 1.0;
+            dy + 0.5 * y[0] + 0.5 * y[1] + 1.5 * y[2] + 0.5 * y[3] == t * t + 1.0;
+        }
+    };
 }
-
-/// Kronecker index 2.
-#[dae_model]
-fn linear_index_2() {
-    let t = time();
-    let y = state_array([0.0, 0.0, 0.0, 0.0]);
-    let dy = der(y[0]) + der(y[1]) + der(y[2]) + der(y[3]);
-    der(y[1]) + der(y[2]) + y[0] + y[1] + y[2] == sin(t) + t * t;
-    der(y[1]) + der(y[2]) + y[0] + 2.0 * y[1] + y[2] == sin(t) + cos(t);
-    dy + 0.5 * y[0] + 1.5 * y[1] + 2.5 * y[2] + 0.5 * y[3] == cos(t) + t * t + 1.0;
-    dy + 0.5 * y[0] + 0.5 * y[1] + 1.5 * y[2] + 0.5 * y[3] == t * t + 1.0;
-}
-
-/// Kronecker index 3.
-#[dae_model]
-fn linear_index_3() {
-    let t = time();
-    let y = state_array([0.0, 0.0, 0.0, 0.0]);
-    let dy = der(y[0]) + der(y[1]) + der(y[2]) + der(y[3]);
-    der(y[1]) + der(y[2]) + y[0] + y[1] + y[2] == sin(t) + t * t;
-    der(y[1]) + 2.0 * der(y[2]) + y[0] + 2.0 * y[1] + y[2] == sin(t) + cos(t);
-    dy + der(y[2]) + 0.5 * y[0] + 1.5 * y[1] + 2.5 * y[2] + 0.5 * y[3] == cos(t) + t * t + 1.0;
-    dy + 0.5 * y[0] + 0.5 * y[1] + 1.5 * y[2] + 0.5 * y[3] == t * t + 1.0;
-}
+linear_dae!(linear_index_1, [], [], []);
+linear_dae!(linear_index_2, [der(y[1]) + der(y[2]) +], [der(y[1]) + der(y[2]) +], []);
+linear_dae!(
+    linear_index_3,
+    [der(y[1]) + der(y[2]) +],
+    [der(y[1]) + 2.0 * der(y[2]) +],
+    [der(y[2]) +]
+);
 
 /// y(t) from the closed form, β0 = (Q⁻¹ y(0))₄ = y1 + y2 + y3 + y4 at t = 0.
 fn linear_closed_form(alpha: [f64; 3], beta0: f64, t: f64) -> [f64; 4] {

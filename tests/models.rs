@@ -124,25 +124,13 @@ fn constant_coefficients_are_solved_symbolically() {
     assert_eq!(jac, [-0.5, 0.5, 0.5, 0.5]);
 }
 
-/// A double pendulum in its angles (unit masses and lengths): the mass
-/// matrix [[2, c], [c, 1]], c = cos(θ1 - θ2), is full and depends on the
-/// configuration; a 2 × 2 block is solved symbolically (its pivot 1 − c²/2
-/// never vanishes), so the model has an analytic Jacobian.
-#[dae_model]
-fn double_pendulum() {
-    let g = param(9.81);
-    let a = state(1.0);
-    let b = state(-0.5);
-    let c = cos(a - b);
-    let s = sin(a - b);
-    2.0 * der(der(a)) + c * der(der(b)) == -s * der(b) * der(b) - 2.0 * g * sin(a);
-    c * der(der(a)) + der(der(b)) == s * der(a) * der(a) - g * sin(b);
+double_pendulum_angles!(dae_model_with! { () } {
     let energy = output(
         der(a) * der(a) + 0.5 * der(b) * der(b) + der(a) * der(b) * c
             - 2.0 * g * cos(a)
             - g * cos(b),
     );
-}
+});
 
 #[test]
 fn double_pendulum_conserves_energy_through_its_solved_mass_matrix() {

@@ -99,3 +99,28 @@ macro_rules! double_pendulum_cartesian {
         }
     };
 }
+
+/// `double_pendulum_angles!(then! { arguments } { statements })`: a double
+/// pendulum in its angles (unit masses and lengths), the mass matrix
+/// [[2, c], [c, 1]], c = cos(θ1 − θ2), full and configuration-dependent; a
+/// 2 × 2 block solved symbolically (its pivot 1 − c²/2 never vanishes), so
+/// the model has an analytic Jacobian.
+#[allow(unused_macros)]
+macro_rules! double_pendulum_angles {
+    ($then:ident ! { $($arguments:tt)* } { $($statements:tt)* }) => {
+        $then! {
+            $($arguments)*
+            /// A double pendulum in its angles, unit masses and lengths.
+            fn double_pendulum() {
+                let g = param(9.81);
+                let a = state(1.0);
+                let b = state(-0.5);
+                let c = cos(a - b);
+                let s = sin(a - b);
+                2.0 * der(der(a)) + c * der(der(b)) == -s * der(b) * der(b) - 2.0 * g * sin(a);
+                c * der(der(a)) + der(der(b)) == s * der(a) * der(a) - g * sin(b);
+                $($statements)*
+            }
+        }
+    };
+}
