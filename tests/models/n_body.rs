@@ -35,13 +35,13 @@ macro_rules! gravitating_bodies {
     } };
     (@then $then:ident { $($arguments:tt)* } $(#[$attribute:meta])* fn $name:ident(planar)
      $($rest:tt)*) => {
-        gravitating_bodies!(@axes [(x, u, ax, dx), (y, v, ay, dy)] $then { $($arguments)* }
-            $(#[$attribute])* fn $name $($rest)*);
+        gravitating_bodies! { @axes [(x, u, ax, dx), (y, v, ay, dy)] $then { $($arguments)* }
+            $(#[$attribute])* fn $name $($rest)* }
     };
     (@then $then:ident { $($arguments:tt)* } $(#[$attribute:meta])* fn $name:ident(spatial)
      $($rest:tt)*) => {
-        gravitating_bodies!(@axes [(x, u, ax, dx), (y, v, ay, dy), (z, w, az, dz)]
-            $then { $($arguments)* } $(#[$attribute])* fn $name $($rest)*);
+        gravitating_bodies! { @axes [(x, u, ax, dx), (y, v, ay, dy), (z, w, az, dz)]
+            $then { $($arguments)* } $(#[$attribute])* fn $name $($rest)* }
     };
     ($($model:tt)*) => {
         gravitating_bodies!(@then just_the_item {} $($model)*);

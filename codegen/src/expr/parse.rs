@@ -12,6 +12,9 @@ use crate::expr::node::{Func, Id};
 
 const MAX_NESTING: usize = 200;
 
+/// A graph operation on two operands.
+type BinaryOp = fn(&mut Graph, Id, Id) -> Result<Id>;
+
 struct Parser<'a, 'g> {
     src: &'a str,
     pos: usize,
@@ -76,34 +79,26 @@ impl Parser<'_, '_> {
     }
 
     fn expr(&mut self) -> Result<Id> {
-        self.nested(|p| {
-            let mut acc = p.term()?;
-            loop {
-                if p.eat('+') {
-                    let t = p.term()?;
-                    acc = p.g.add(acc, t)?;
-                } else if p.eat('-') {
-                    let t = p.term()?;
-                    acc = p.g.sub(acc, t)?;
-                } else {
-                    return Ok(acc);
-                }
-            }
-        })
+        self.nested(|p| p.left_associative([('+', Graph::add), ('-', Graph::sub)], Self::term))
     }
 
     fn term(&mut self) -> Result<Id> {
-        let mut acc = self.unary()?;
+        self.left_associative([('*', Graph::mul), ('/', Graph::div)], Self::unary)
+    }
+
+    /// `operand (op operand)*` for the two operators `ops`, from the left.
+    fn left_associative(
+        &mut self,
+        ops: [(char, BinaryOp); 2],
+        operand: fn(&mut Self) -> Result<Id>,
+    ) -> Result<Id> {
+        let mut acc = operand(self)?;
         loop {
-            if self.eat('*') {
-                let f = self.unary()?;
-                acc = self.g.mul(acc, f)?;
-            } else if self.eat('/') {
-                let f = self.unary()?;
-                acc = self.g.div(acc, f)?;
-            } else {
+            let Some(&(_, op)) = ops.iter().find(|(c, _)| self.eat(*c)) else {
                 return Ok(acc);
-            }
+            };
+            let rhs = operand(self)?;
+            acc = op(self.g, acc, rhs)?;
         }
     }
 

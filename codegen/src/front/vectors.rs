@@ -408,21 +408,17 @@ impl Lower<'_> {
                 let a = self.tensor_args(c, name, &[1])?;
                 self.primitive(name, a[0].data[0], e)
             }
-            "euler_313" => {
+            // R = R_{axis₃}(a₃) R_{axis₂}(a₂) R_{axis₁}(a₁).
+            "euler_313" | "bryan_123" => {
                 let a = self.tensor_args(c, name, &[1, 1, 1])?;
-                let (psi, theta, phi) = (a[0].data[0], a[1].data[0], a[2].data[0]);
-                let r = self.primitive("rot_z", phi, e)?;
-                let m = self.primitive("rot_x", theta, e)?;
-                let l = self.primitive("rot_z", psi, e)?;
-                let rm = self.product(&r, &m, e)?;
-                self.product(&rm, &l, e)
-            }
-            "bryan_123" => {
-                let a = self.tensor_args(c, name, &[1, 1, 1])?;
-                let (p1, p2, p3) = (a[0].data[0], a[1].data[0], a[2].data[0]);
-                let r = self.primitive("rot_z", p3, e)?;
-                let m = self.primitive("rot_y", p2, e)?;
-                let l = self.primitive("rot_x", p1, e)?;
+                let axes = if name == "euler_313" {
+                    ["rot_z", "rot_x", "rot_z"]
+                } else {
+                    ["rot_x", "rot_y", "rot_z"]
+                };
+                let r = self.primitive(axes[2], a[2].data[0], e)?;
+                let m = self.primitive(axes[1], a[1].data[0], e)?;
+                let l = self.primitive(axes[0], a[0].data[0], e)?;
                 let rm = self.product(&r, &m, e)?;
                 self.product(&rm, &l, e)
             }
