@@ -341,6 +341,26 @@ impl Builder<'_> {
 
     /// The operands of a sum or product of a time-dependent node, split
     /// into constants and the others (never empty: the node depends on time).
+    /// `acc op c` for the constant operands of a sum or a product: one
+    /// constant as it is, several folded into one tape constant by `fold`.
+    fn with_constants(
+        &mut self,
+        op: &'static str,
+        acc: Operand,
+        constant: Vec<Id>,
+        fold: fn(Vec<Id>) -> Constant,
+    ) -> Operand {
+        match constant.len() {
+            0 => acc,
+            1 => self.binary(op, &acc, &self.operand(constant[0])),
+            _ => {
+                self.constants.push(fold(constant));
+                let c = Operand::Const(self.constants.len() - 1);
+                self.binary(op, &acc, &c)
+            }
+        }
+    }
+
     fn split_constants(&self, operands: &[Id]) -> (Vec<Id>, Vec<Id>) {
         let (constant, varying): (Vec<Id>, Vec<Id>) =
             operands.iter().partition(|&&o| matches!(self.operand(o), Operand::Const(_)));
@@ -399,15 +419,7 @@ impl Builder<'_> {
                     let next = self.operand(t);
                     acc = self.binary("Add", &acc, &next);
                 }
-                match constant.len() {
-                    0 => acc,
-                    1 => self.binary("Add", &acc, &self.operand(constant[0])),
-                    _ => {
-                        self.constants.push(Constant::Sum(constant));
-                        let c = Operand::Const(self.constants.len() - 1);
-                        self.binary("Add", &acc, &c)
-                    }
-                }
+                self.with_constants("Add", acc, constant, Constant::Sum)
             }
                         Node::Mul(factors) => {
                 let (constant, varying) = self.split_constants(factors);
@@ -437,15 +449,7 @@ impl Builder<'_> {
                     let minus_one = self.integer(-1);
                     acc = self.binary("Mul", &acc, &minus_one);
                 }
-                match constant.len() {
-                    0 => acc,
-                    1 => self.binary("Mul", &acc, &self.operand(constant[0])),
-                    _ => {
-                        self.constants.push(Constant::Product(constant));
-                        let c = Operand::Const(self.constants.len() - 1);
-                        self.binary("Mul", &acc, &c)
-                    }
-                }
+                self.with_constants("Mul", acc, constant, Constant::Product)
             }
             Node::Pow([b, e]) => {
                 let base = self.operand(*b);
