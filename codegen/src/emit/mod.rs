@@ -2,13 +2,16 @@
 //! (`schedule`), programs as Rust tokens (`program`) reading symbols as
 //! `layout` says, and the items of a model type: `model` assembles them
 //! from one emitter per item (`rhs`, `jacobian`, `events`, `outputs`,
-//! `taylor_items`, `newton`, `docs`), and `benchmark` registers it.
+//! `taylor_items`, `newton`, `constraints`, `mass_form`, `docs`), and
+//! `benchmark` registers it.
 
 pub mod benchmark;
+pub mod constraints;
 pub mod docs;
 pub mod events;
 pub mod jacobian;
 pub mod layout;
+pub mod mass_form;
 pub mod model;
 pub mod newton;
 pub mod outputs;

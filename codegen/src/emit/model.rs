@@ -54,7 +54,7 @@ pub fn expand(
     let (pattern, jacobian_body, time_body) =
         jacobian_items(g, &layout, &slot_symbols, ir.time, explicit)?;
     let output_arms = output_arms(g, &mut layout, sys, &newton_solve_for_outputs)?;
-    let constraint_methods = crate::dae::constraints::constraint_methods(
+    let constraint_methods = crate::emit::constraints::constraint_methods(
         g,
         &|g, ids, assign| program(g, &layout, ids, assign),
         &layout.slot_of,
@@ -158,7 +158,7 @@ fn mass_form_items(
         Some(form) => {
             let form_layout = Layout::of_components(&form.components);
             let params: Vec<syn::Ident> = ir.params.iter().map(|p| p.ident.clone()).collect();
-            crate::dae::mass_form::emit_mass_form(
+            crate::emit::mass_form::emit_mass_form(
                 &mut ir.graph,
                 &form,
                 name,
@@ -185,10 +185,13 @@ fn expand_mass_only(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenSt
     let mut inits: Vec<Id> = sys.slots.iter().map(|s| s.init).collect();
     inits.extend(ir.algebraics.iter().map(|a| a.init));
     inits.resize(form.components.len(), zero);
-    let items =
-        crate::dae::mass_form::primary_items(g, &form, &inits, &sys.outputs, &|g, ids, assign| {
-            program(g, &layout, ids, assign)
-        })?;
+    let items = crate::emit::mass_form::primary_items(
+        g,
+        &form,
+        &inits,
+        &sys.outputs,
+        &|g, ids, assign| program(g, &layout, ids, assign),
+    )?;
     let model_index = index(sys.index);
     let struct_and_default = struct_and_default(ir, &dae_analysis(ir, sys));
     // The algebraic variables are states here.
