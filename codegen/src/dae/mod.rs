@@ -2,8 +2,9 @@
 //! derivatives cancel combined (`derivative_free`), the index reduced
 //! (`index_reduction`, `linear_pencil`), the unknowns solved block by block
 //! (`reduce`, `solve_unknowns`, `newton_block`, over the equations matched
-//! to their unknowns by `matching`), the constraints to project
-//! onto (`constraints`), and the mass-matrix form (`mass_form`).
+//! to their unknowns by `matching`), the constraints' projection levels
+//! (`constraints`), and the mass-matrix form (`mass_form`), as values that
+//! `emit` writes out.
 
 pub mod constraints;
 pub mod derivative_free;
