@@ -350,6 +350,21 @@ impl Lower<'_> {
         Some([sa?, sb?])
     }
 
+    /// The poses of frames `a` and `b` and the vector from `a`'s point
+    /// `sa` to `b`'s point `sb`, in the world.
+    fn attachment_gap(
+        &mut self,
+        [a, b]: [crate::mechanics::Frame; 2],
+        [sa, sb]: [Vec3; 2],
+    ) -> crate::Result<(Pose, Pose, Vec3)> {
+        let pa = self.pose(a)?;
+        let pb = self.pose(b)?;
+        let g = &mut self.g;
+        let xa = Self::place(g, &pa, sa)?;
+        let xb = Self::place(g, &pb, sb)?;
+        Ok((pa, pb, sub3(g, xb, xa)?))
+    }
+
     /// `position(body, p)` in a spatial scene: `r + R(q) p`.
     pub(crate) fn spatial_position(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<Vec3> {
         let frame = self.frame(&c.args[0])?;
@@ -405,12 +420,8 @@ impl Lower<'_> {
         let axis_values = extra.map(|u| u.map(|x| self.numeric(x)));
         // The rows, and the joint's coordinate (revolute and prismatic).
         let rows = (|| -> crate::Result<(Vec<Id>, Option<Id>)> {
-            let pa = self.pose(a)?;
-            let pb = self.pose(b)?;
+            let (pa, pb, gap) = self.attachment_gap([a, b], [sa, sb])?;
             let g = &mut self.g;
-            let xa = Self::place(g, &pa, sa)?;
-            let xb = Self::place(g, &pb, sb)?;
-            let gap = sub3(g, xb, xa)?;
             let mut rows = Vec::with_capacity(6);
             // The relative attitude kept at its initial value: with
             // D = R_aᵀ R_b (R_a0ᵀ R_b0)ᵀ, which is I + [θ]× near it, the
@@ -578,12 +589,8 @@ impl Lower<'_> {
         };
         let mut field = self.spatial_field();
         let r = (|| -> crate::Result<(Vec3, Vec3, Vec3)> {
-            let pa = self.pose(a)?;
-            let pb = self.pose(b)?;
+            let (pa, pb, gap) = self.attachment_gap([a, b], [sa, sb])?;
             let g = &mut self.g;
-            let xa = Self::place(g, &pa, sa)?;
-            let xb = Self::place(g, &pb, sb)?;
-            let gap = sub3(g, xb, xa)?;
             let d2 = dot3(g, gap, gap)?;
             let (d, tension) = super::spring_tension(g, d2, [k, damping, l0], &mut field)?;
             let over = g.div(tension, d)?;
