@@ -423,6 +423,20 @@ impl Lower<'_> {
         Some(symbol)
     }
 
+    /// Starts `der(state)` at `value` (a body's or a joint's initial
+    /// rate); `None` where the state has no derivative to start.
+    pub(crate) fn init_rate(
+        &mut self,
+        state: SymbolId,
+        value: Id,
+        origin: &proc_macro2::TokenStream,
+    ) -> Option<()> {
+        let d = self.g.derivative(state, 1).ok()?;
+        let target = self.g.as_symbol(d)?;
+        self.inits.push(Init { target, value, origin: origin.clone() });
+        Some(())
+    }
+
     /// Reports a second declaration of `ident`'s name.
     pub(crate) fn already_declared(&mut self, ident: &syn::Ident) -> bool {
         let name = ident.to_string();

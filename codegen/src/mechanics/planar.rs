@@ -87,15 +87,8 @@ impl Lower<'_> {
                 return;
             };
             if let Some(v) = &velocity {
-                let Ok(d) = self.g.derivative(symbol, 1) else {
+                if self.init_rate(symbol, v[k], &origin).is_none() {
                     return;
-                };
-                if let Some(target) = self.g.as_symbol(d) {
-                    self.inits.push(crate::front::ir::Init {
-                        target,
-                        value: v[k],
-                        origin: origin.clone(),
-                    });
                 }
             }
             symbols.push(symbol);

@@ -309,8 +309,7 @@ impl Lower<'_> {
             if self.g.as_number(rate).is_some_and(|v| v.is_zero()) {
                 continue;
             }
-            let target = self.g.derivative(*q, 1).ok().and_then(|d| self.g.as_symbol(d))?;
-            self.inits.push(crate::front::ir::Init { target, value: rate, origin: origin.clone() });
+            self.init_rate(*q, rate, origin)?;
         }
         Some(drop_rows)
     }

@@ -249,15 +249,8 @@ impl Lower<'_> {
         };
         if call.args.len() > 4 {
             for k in 0..3 {
-                let Ok(d) = self.g.derivative(symbols[k], 1) else {
+                if self.init_rate(symbols[k], velocity[k], &origin).is_none() {
                     return;
-                };
-                if let Some(target) = self.g.as_symbol(d) {
-                    self.inits.push(crate::front::ir::Init {
-                        target,
-                        value: velocity[k],
-                        origin: origin.clone(),
-                    });
                 }
             }
         }
