@@ -10,6 +10,8 @@ use daegen::prelude::*;
 use std::f64::consts::PI;
 use std::path::PathBuf;
 
+// tests/models/kepler.rs holds the same orbit for the tests; an example is
+// read alone, so it writes its model out.
 /// The two-body problem in the plane, in units where the period is 2π,
 /// started at the pericentre of an orbit of eccentricity e.
 #[dae_model]

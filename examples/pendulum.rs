@@ -34,6 +34,8 @@ fn pendulum() {
     let swing = event(theta);
 }
 
+// tests/models/items.rs holds the same pendulum for the tests; an example
+// is read alone, so it writes its model out.
 /// The contract's pendulum: an index-3 DAE in Cartesian coordinates.
 #[dae_model]
 fn pendulum_dae() {

@@ -14,6 +14,8 @@
 use daegen::prelude::*;
 use std::path::PathBuf;
 
+// tests/scenes.rs checks this mechanism; an example is read alone, so it
+// writes its model out rather than share the test's.
 macro_rules! slider_crank {
     ($name:ident, $($attr:tt)*) => {
         /// Crank 0.15 m (1 kg), rod 0.4 m, slider 0.5 kg, motor torque 0.5 N·m.

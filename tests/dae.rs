@@ -390,6 +390,8 @@ fn initialization_keeps_fixed_values_and_reports_the_degrees_of_freedom() {
     assert_eq!(auto.stats().method, "Dopri5");
 }
 
+// The pendulum variants below differ from the contract's in a line or two;
+// each is written out so that its test shows the model it examines.
 /// A constraint no real configuration satisfies.
 #[dae_model]
 fn impossible_circle() {

@@ -8,6 +8,8 @@
 
 use daegen::prelude::*;
 
+// The two amplifiers share their circuit parameters: each is written as
+// its source publishes it.
 /// The transistor amplifier of the IVP Test Set (`transamp.f`, Mazzia &
 /// Magherini), written node by node as its authors write it: eight node
 /// voltages, capacitors between nodes 1–2, 4–5 and 7–8, so the rows of

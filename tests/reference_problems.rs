@@ -56,6 +56,7 @@ fn relative_error(y: &[f64], reference: &[f64]) -> f64 {
     support::mixed_error(y, reference, 0.0)
 }
 
+// One row a problem: the rows share their shape by design.
 fn problems() -> Vec<Problem> {
     use Method::*;
     vec![

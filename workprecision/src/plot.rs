@@ -29,6 +29,8 @@ pub fn work_precision_svg(title: &str, records: &[Record]) -> Result<String, Str
     };
     let (e0, e1) = fold(|r| r.error);
     let (t0, t1) = fold(|r| r.seconds * 1e3);
+    // The frame of daegen::plot's charts (legend beside the chart), on
+    // logarithmic axes, which daegen::plot does not draw.
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (880, 480)).into_drawing_area();

@@ -56,6 +56,8 @@ pub enum Constant {
     Sum(Vec<Id>),
 }
 
+// The runtime's `TapeOp` mirrors these variants: the macro crate cannot
+// link the runtime, so each side names its own.
 /// How a u-variable's Taylor coefficients follow from its operands' (the
 /// recurrences of `daegen::runtime::taylor_tape::Step`, for the unrolled
 /// layout). Constants are indices into [`Tape::constants`].

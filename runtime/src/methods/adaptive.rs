@@ -394,6 +394,8 @@ mod tests {
     use crate::methods::dop853::Dop853;
     use crate::methods::dopri5::Dopri5;
 
+    // Written out like the GGL pendulum of radau5.rs's tests: unit tests
+    // of the runtime cannot use the macro.
     /// Kepler problem with e = 0.5 written by hand (the runtime cannot use
     /// the macro): q'' = -q/|q|³.
     #[derive(Clone)]
