@@ -110,7 +110,7 @@ pub fn expand(
                 #initial_state
             }
 
-                        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
+            fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
                 #rhs_method_body
             }
 
@@ -124,10 +124,10 @@ pub fn expand(
                 #time_body
             }
 
-                        #taylor_tokens
+            #taylor_tokens
             #taylor_unavailable_const
 
-                        #events_method
+            #events_method
 
             #event_rates_method
 

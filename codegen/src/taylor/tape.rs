@@ -423,7 +423,7 @@ impl Builder<'_> {
                 }
                 self.with_constants("Add", acc, constant, Constant::Sum)
             }
-                        Node::Mul(factors) => {
+            Node::Mul(factors) => {
                 let (constant, varying) = self.split_constants(factors);
                 // A factor that is the negation of another operand enters
                 // as that operand with a sign, so −dx·r³ and dx·r³ share
