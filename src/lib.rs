@@ -33,7 +33,8 @@ pub use daegen_codegen as codegen;
 pub use daegen_macros::dae_model;
 pub use daegen_runtime as runtime;
 pub use daegen_runtime::{
-    ConstraintInfo, Error, EvalError, EventDirection, EventInfo, Flow, Formulation,
+    ConstraintInfo, Ensemble, Error, EvalError, EventDirection, EventInfo, FinalState,
+    FinalStates, Flow, Formulation, Shard,
     InitialCorrection, Method, Model, ModelInfo, Options, ProjectionLevel, Simulate, Solution,
     Stats, Step, Table,
 };

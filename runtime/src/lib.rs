@@ -15,6 +15,7 @@
 pub mod algebraic;
 pub mod bench;
 mod describe;
+pub mod ensemble;
 pub mod error;
 pub mod info;
 pub mod kinematics;
@@ -33,6 +34,7 @@ pub use methods::taylor::{self as taylor, order as taylor_order, series as taylo
 pub use methods::{dop853, dopri5, explicit_rk, implicit_tableau};
 pub use step::control as step_control;
 
+pub use ensemble::{Ensemble, FinalState, FinalStates, Shard};
 pub use error::Error;
 pub use info::{ConstraintInfo, EvalError, EventDirection, EventInfo, ModelInfo, ProjectionLevel};
 pub use model::{Model, StateVector};

@@ -1,0 +1,163 @@
+//! Ensembles: members in order with their own parameters and initial
+//! states, each member's error kept in its place, answers independent of
+//! the thread count, reductions that fold in member order, and shards that
+//! merge back into the unsharded answer — checked against the exact
+//! solution x(t) = x₀ e^(−k t).
+
+use daegen::prelude::*;
+use daegen::{Ensemble, FinalStates, Shard};
+
+/// x' = −k x from x(0) = 1.
+#[dae_model]
+fn decay() {
+    let k = param(1.0);
+    let x = state(1.0);
+    der(x) == -k * x;
+}
+
+/// Member i decays at the rate k = 0.1 (i + 1).
+fn rate(i: usize) -> f64 {
+    0.1 * (i + 1) as f64
+}
+
+fn ensemble(n: usize) -> Ensemble<Decay, impl Fn(usize) -> Decay + Sync> {
+    Ensemble::new(n, |i| Decay { k: rate(i) })
+}
+
+fn options() -> Options {
+    Options::new().method(Method::Dop853).tolerance(1e-12)
+}
+
+#[test]
+fn members_come_back_in_order_with_their_own_parameters() {
+    let results = ensemble(40).run(0.0, 2.0, &options());
+    assert_eq!(results.len(), 40);
+    for (i, result) in results.iter().enumerate() {
+        let x = result.as_ref().unwrap().last("x").unwrap();
+        let exact = (-rate(i) * 2.0).exp();
+        assert!((x - exact).abs() <= 1e-11, "member {i}: {x} against {exact}");
+    }
+}
+
+#[test]
+fn members_start_from_their_own_initial_states() {
+    let finals = ensemble(10).initial_states(|i| vec![i as f64]).final_states(0.0, 1.0, &options());
+    assert_eq!(finals.names, ["x"]);
+    for row in &finals.rows {
+        let x = row.state.as_ref().unwrap()[0];
+        let exact = row.member as f64 * (-rate(row.member)).exp();
+        assert!((x - exact).abs() <= 1e-11, "member {}: {x} against {exact}", row.member);
+    }
+}
+
+#[test]
+fn a_failing_member_keeps_its_error_and_the_others_run() {
+    let results = Ensemble::new(8, |i| Decay { k: if i == 3 { f64::NAN } else { rate(i) } })
+        .run(0.0, 1.0, &options());
+    for (i, result) in results.iter().enumerate() {
+        match (i, result) {
+            (3, Err(Error::NonFiniteParameter { parameter, .. })) => assert_eq!(*parameter, "k"),
+            (3, other) => panic!("member 3: expected NonFiniteParameter, got {other:?}"),
+            (_, Ok(sol)) => assert!((sol.last("x").unwrap() - (-rate(i)).exp()).abs() <= 1e-11),
+            (_, Err(e)) => panic!("member {i}: {e}"),
+        }
+    }
+    let finals = Ensemble::new(8, |i| Decay { k: if i == 3 { f64::NAN } else { rate(i) } })
+        .final_states(0.0, 1.0, &options());
+    let errors: Vec<_> = finals.errors().collect();
+    assert_eq!(errors.len(), 1);
+    assert_eq!(errors[0].0, 3);
+    assert!(errors[0].1.contains('k'), "{}", errors[0].1);
+}
+
+#[test]
+fn the_answers_do_not_depend_on_the_thread_count() {
+    let runs: Vec<Vec<(Vec<f64>, usize)>> = [1, 2, 0]
+        .into_iter()
+        .map(|threads| {
+            ensemble(64).threads(threads).map(0.0, 3.0, &options(), |_, result| {
+                let sol = result.unwrap();
+                (sol.final_state().to_vec(), sol.stats().steps)
+            })
+        })
+        .collect();
+    assert_eq!(runs[0], runs[1]);
+    assert_eq!(runs[0], runs[2]);
+}
+
+#[test]
+fn a_fold_sums_in_member_order_beyond_one_chunk_of_members() {
+    // More members than a fold holds at once (4096), on two threads.
+    let n = 5000;
+    let ens = Ensemble::new(n, |i| Decay { k: 1e-4 * i as f64 }).threads(2);
+    let opts = Options::new().method(Method::Dopri5).tolerance(1e-10);
+    let final_x = |_: usize, r: Result<Solution, Error>| r.unwrap().final_state()[0];
+    let (count, sum) =
+        ens.fold(0.0, 1.0, &opts, final_x, (0usize, 0.0f64), |(c, s), i, x| {
+            assert_eq!(i, c, "members fold in order");
+            (c + 1, s + x)
+        });
+    assert_eq!(count, n);
+    // Σ e^(−1e-4 i) over i < n, a geometric series.
+    let q = (-1e-4f64).exp();
+    let exact = (1.0 - q.powi(n as i32)) / (1.0 - q);
+    assert!((sum - exact).abs() <= 1e-9 * exact, "{sum} against {exact}");
+    // The same order on one thread: the same bits.
+    let again = ens.threads(1).fold(0.0, 1.0, &opts, final_x, 0.0, |s, _, x| s + x);
+    assert_eq!(again, sum);
+}
+
+#[test]
+fn shards_cover_every_member_once_and_merge_into_the_unsharded_table() {
+    let n = 23;
+    let whole = ensemble(n).final_states(0.0, 2.0, &options());
+    let dir = std::env::temp_dir().join(format!("daegen-shards-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut parts = Vec::new();
+    let mut covered = 0;
+    for index in 0..4 {
+        let shard = Shard::parse(&format!("{index}/4")).unwrap();
+        let part = ensemble(n).shard(shard);
+        assert_eq!(part.members().start, covered);
+        covered = part.members().end;
+        let path = dir.join(format!("shard{index}.csv"));
+        part.final_states(0.0, 2.0, &options()).write_csv(&path).unwrap();
+        parts.push(FinalStates::read_csv(&path).unwrap());
+    }
+    assert_eq!(covered, n);
+    // Shards given in any order; the numbers read back to the bit.
+    parts.reverse();
+    let merged = FinalStates::merge(parts.clone(), n).unwrap();
+    assert_eq!(merged, whole);
+    // A shard left out, or given twice, is an error that says so.
+    let missing = FinalStates::merge(parts[..3].to_vec(), n).unwrap_err().to_string();
+    assert!(missing.contains("missing"), "{missing}");
+    let mut twice = parts.clone();
+    twice.push(parts[0].clone());
+    let twice = FinalStates::merge(twice, n).unwrap_err().to_string();
+    assert!(twice.contains("two shards"), "{twice}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn an_error_message_crosses_a_csv_file_intact() {
+    let finals = Ensemble::new(3, |i| Decay { k: if i == 1 { f64::INFINITY } else { 1.0 } })
+        .final_states(0.0, 1.0, &options());
+    let path = std::env::temp_dir().join(format!("daegen-errors-{}.csv", std::process::id()));
+    finals.write_csv(&path).unwrap();
+    let back = FinalStates::read_csv(&path).unwrap();
+    std::fs::remove_file(&path).unwrap();
+    assert_eq!(back, finals);
+    assert_eq!(back.errors().count(), 1);
+}
+
+#[test]
+fn bad_shards_are_refused_with_what_to_write() {
+    for text in ["4/4", "1/0", "one/4", "3"] {
+        let e = Shard::parse(text).unwrap_err().to_string();
+        assert!(e.contains("i/n"), "{text}: {e}");
+    }
+    // Blocks differ in size by one at most.
+    let sizes: Vec<usize> = (0..3).map(|i| Shard::new(i, 3).unwrap().members(10).len()).collect();
+    assert_eq!(sizes, [3, 3, 4]);
+}
