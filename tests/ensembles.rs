@@ -52,8 +52,11 @@ fn members_start_from_their_own_initial_states() {
 
 #[test]
 fn a_failing_member_keeps_its_error_and_the_others_run() {
-    let results = Ensemble::new(8, |i| Decay { k: if i == 3 { f64::NAN } else { rate(i) } })
-        .run(0.0, 1.0, &options());
+    let results = Ensemble::new(8, |i| Decay { k: if i == 3 { f64::NAN } else { rate(i) } }).run(
+        0.0,
+        1.0,
+        &options(),
+    );
     for (i, result) in results.iter().enumerate() {
         match (i, result) {
             (3, Err(Error::NonFiniteParameter { parameter, .. })) => assert_eq!(*parameter, "k"),
@@ -92,11 +95,10 @@ fn a_fold_sums_in_member_order_beyond_one_chunk_of_members() {
     let ens = Ensemble::new(n, |i| Decay { k: 1e-4 * i as f64 }).threads(2);
     let opts = Options::new().method(Method::Dopri5).tolerance(1e-10);
     let final_x = |_: usize, r: Result<Solution, Error>| r.unwrap().final_state()[0];
-    let (count, sum) =
-        ens.fold(0.0, 1.0, &opts, final_x, (0usize, 0.0f64), |(c, s), i, x| {
-            assert_eq!(i, c, "members fold in order");
-            (c + 1, s + x)
-        });
+    let (count, sum) = ens.fold(0.0, 1.0, &opts, final_x, (0usize, 0.0f64), |(c, s), i, x| {
+        assert_eq!(i, c, "members fold in order");
+        (c + 1, s + x)
+    });
     assert_eq!(count, n);
     // Σ e^(−1e-4 i) over i < n, a geometric series.
     let q = (-1e-4f64).exp();

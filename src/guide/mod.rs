@@ -13,10 +13,13 @@
 //!    recursive, and the names they answer to.
 //! 6. [`kinematics`]: rotations, angle sequences, quaternions, angular
 //!    velocities and frames, in the model language and numerically.
-//! 7. [`work_precision`]: registering a model in the benchmarks and
+//! 7. [`ensembles`]: one model run many times, on every core, and shards
+//!    of it spread over machines.
+//! 8. [`work_precision`]: registering a model in the benchmarks and
 //!    reading a work-precision diagram.
 
 pub mod daes;
+pub mod ensembles;
 pub mod kinematics;
 pub mod language;
 pub mod mechanisms;

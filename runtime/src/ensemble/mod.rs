@@ -172,14 +172,12 @@ where
         // Only the end is asked for: store no steps. `output_times` is
         // refused beside `keep_every` and without dense output, which keep
         // little anyway.
-        let options = if options.output_times.is_none()
-            && options.keep_every <= 1
-            && options.dense_output
-        {
-            options.output_times(vec![t1])
-        } else {
-            options.clone()
-        };
+        let options =
+            if options.output_times.is_none() && options.keep_every <= 1 && options.dense_output {
+                options.output_times(vec![t1])
+            } else {
+                options.clone()
+            };
         let names = M::INFO.states.iter().map(|s| s.to_string()).collect();
         let rows = self.map(t0, t1, &options, |member, result| FinalState {
             member,
@@ -212,9 +210,9 @@ where
         match self.in_pool(|| members.clone().into_par_iter().map(one).collect()) {
             Ok(reduced) => reduced,
             // No pool, no runs: each member says why.
-            Err(message) => {
-                members.map(|i| reduce(i, Err(Error::InvalidOptions { message: message.clone() }))).collect()
-            }
+            Err(message) => members
+                .map(|i| reduce(i, Err(Error::InvalidOptions { message: message.clone() })))
+                .collect(),
         }
     }
 

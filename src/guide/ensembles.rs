@@ -1,0 +1,101 @@
+//! # Ensembles: one model, many runs
+//!
+//! Monte Carlo over uncertain parameters, sweeps and fitting run one model
+//! thousands of times. [`crate::Ensemble`] runs member `i` as the model
+//! `model_of(i)` (its parameters set for that member), optionally from its
+//! own initial state, on every core:
+//!
+//! | to | write |
+//! |---|---|
+//! | run every member, keep every solution | `ens.run(t0, t1, &opts)`: a `Vec<Result<Solution, Error>>` in member order |
+//! | keep only what you need of each | `ens.map(t0, t1, &opts, \|i, result\| ..)`: each member reduced as it ends |
+//! | fold the members in order (a million in little memory) | `ens.fold(t0, t1, &opts, reduce, init, \|acc, i, value\| ..)` |
+//! | the final states only | `ens.final_states(t0, t1, &opts)`: a [`crate::FinalStates`] table, CSV in and out |
+//! | members from their own initial states | `.initial_states(\|i\| vec![..])` |
+//! | on k threads (default: every core) | `.threads(k)` |
+//! | one progress bar for the ensemble | `.progress(true)` (the members' own bars stay off) |
+//! | one machine's share of many | `.shard(Shard::parse("3/16")?)` |
+//!
+//! Each member is exactly the run it would be alone, so the answers do not
+//! depend on the thread count, and a fold visits the members in order
+//! whatever the threads. A member that fails keeps its `Err` (with its
+//! partial solution) in its place; the others run on. A callback given by
+//! [`crate::Options::on_step`] is shared: every member calls it, one at a
+//! time.
+//!
+//! ```
+//! use daegen::prelude::*;
+//! use daegen::Ensemble;
+//!
+//! /// x' = −k x.
+//! #[dae_model]
+//! fn decay() {
+//!     let k = param(1.0);
+//!     let x = state(1.0);
+//!     der(x) == -k * x;
+//! }
+//!
+//! // A sweep of the rate: member i decays at k = 0.1 (i + 1).
+//! let ensemble = Ensemble::new(100, |i| Decay { k: 0.1 * (i + 1) as f64 });
+//! let opts = Options::new().tolerance(1e-10);
+//! let finals = ensemble.final_states(0.0, 1.0, &opts);
+//! for row in &finals.rows {
+//!     let x = row.state.as_ref().unwrap()[0];
+//!     let k = 0.1 * (row.member + 1) as f64;
+//!     assert!((x - (-k).exp()).abs() < 1e-8);
+//! }
+//!
+//! // The mean of x(1) over the members, folded in member order.
+//! let final_x = |_: usize, r: Result<Solution, Error>| r.map(|s| s.final_state()[0]);
+//! let sum = ensemble.fold(0.0, 1.0, &opts, final_x, 0.0, |sum, _, x| sum + x.unwrap());
+//! assert!(sum / 100.0 > 0.0);
+//! ```
+//!
+//! ## Past one machine
+//!
+//! A shard `i/n` is the `i`-th of `n` contiguous blocks of members. Each
+//! machine runs its shard and writes its final states; a merge puts the
+//! files back in member order, refusing a member missing or given twice,
+//! and equals the unsharded run to the bit. The example
+//! `examples/ensemble.rs` is such a program:
+//!
+//! ```text
+//! cargo run --release --example ensemble -- --members 100000 --shard 3/16 --out shard3.csv
+//! cargo run --release --example ensemble -- merge --members 100000 --out all.csv shard*.csv
+//! ```
+//!
+//! The scheduler that spreads the shards is the cluster's own. With Slurm,
+//! an array job runs one task a shard:
+//!
+//! ```text
+//! #!/bin/bash
+//! #SBATCH --array=0-15
+//! #SBATCH --cpus-per-task=8
+//! ./ensemble --members 100000 --threads "$SLURM_CPUS_PER_TASK" \
+//!     --shard "$SLURM_ARRAY_TASK_ID/16" --out "shard$SLURM_ARRAY_TASK_ID.csv"
+//! ```
+//!
+//! then, once the array is done (`sbatch --dependency=afterok:<job>`),
+//! `./ensemble merge --members 100000 --out all.csv shard*.csv`. On
+//! Kubernetes, an indexed Job gives each pod its index:
+//!
+//! ```text
+//! apiVersion: batch/v1
+//! kind: Job
+//! metadata: {name: kepler-ensemble}
+//! spec:
+//!   completions: 16
+//!   parallelism: 16
+//!   completionMode: Indexed
+//!   template:
+//!     spec:
+//!       restartPolicy: Never
+//!       containers:
+//!       - name: shard
+//!         image: registry.example/ensemble:latest
+//!         command: ["sh", "-c", "./ensemble --members 100000 --shard $JOB_COMPLETION_INDEX/16 --out /results/shard$JOB_COMPLETION_INDEX.csv"]
+//!         volumeMounts: [{name: results, mountPath: /results}]
+//!       volumes: [{name: results, persistentVolumeClaim: {claimName: ensemble-results}}]
+//! ```
+//!
+//! with the merge as a second Job over the shared volume.
