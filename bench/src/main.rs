@@ -15,6 +15,8 @@
 //! `--auto` times `Method::Auto` against the best single method on every
 //! reference problem and an explicit pair on a stiff problem
 //! (`results/auto.md`);
+//! `--ensemble` times `daegen::Ensemble` on one thread and every core
+//! against heyoka's ensembles (`results/ensemble.md`);
 //! `--versus-heyoka` times our Taylor method and heyoka in alternation,
 //! `results/versus_heyoka.md`; with `--only name`, one problem, printed
 //! only); `--readme` rewrites `README.md` from the results there. Writes
@@ -31,6 +33,7 @@
 
 mod auto;
 mod dae;
+mod ensemble;
 mod peers;
 mod readme;
 mod tape_cost;
@@ -458,6 +461,10 @@ fn main() {
     }
     if has("--tape-cost") {
         tape_cost::tape_cost_section();
+        return;
+    }
+    if has("--ensemble") {
+        ensemble::ensemble_section();
         return;
     }
     if has("--auto") {
