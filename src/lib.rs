@@ -33,9 +33,9 @@ pub use daegen_codegen as codegen;
 pub use daegen_macros::dae_model;
 pub use daegen_runtime as runtime;
 pub use daegen_runtime::{
-    ConstraintInfo, Ensemble, Error, EvalError, EventDirection, EventInfo, FinalState, FinalStates,
-    Flow, Formulation, InitialCorrection, Method, Model, ModelInfo, Options, ProjectionLevel,
-    Shard, Simulate, Solution, Stats, Step, Table,
+    Batch, ConstraintInfo, Ensemble, Error, EvalError, EventDirection, EventInfo, FinalState,
+    FinalStates, Flow, Formulation, InitialCorrection, Method, Model, ModelInfo, Options,
+    ProjectionLevel, Shard, Simulate, Solution, Stats, Step, Table,
 };
 
 pub mod guide;

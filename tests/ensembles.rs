@@ -5,7 +5,7 @@
 //! solution x(t) = x₀ e^(−k t).
 
 use daegen::prelude::*;
-use daegen::{Ensemble, FinalStates, Shard};
+use daegen::{Batch, Ensemble, FinalStates, Shard};
 
 /// x' = −k x from x(0) = 1.
 #[dae_model]
@@ -162,4 +162,84 @@ fn bad_shards_are_refused_with_what_to_write() {
     // Blocks differ in size by one at most.
     let sizes: Vec<usize> = (0..3).map(|i| Shard::new(i, 3).unwrap().members(10).len()).collect();
     assert_eq!(sizes, [3, 3, 4]);
+}
+
+/// Kepler's problem, and beside it `KeplerBatch`: four members a run.
+#[dae_model(batch = 4)]
+fn kepler() {
+    let e = param(0.5);
+    let q1 = state(1.0 - e);
+    let q2 = state(0.0);
+    let p1 = state(0.0);
+    let p2 = state(sqrt((1.0 + e) / (1.0 - e)));
+    let r3 = (q1 * q1 + q2 * q2).powf(-1.5);
+    der(q1) == p1;
+    der(q2) == p2;
+    der(p1) == -q1 * r3;
+    der(p2) == -q2 * r3;
+}
+
+#[test]
+fn a_batch_of_equal_steps_gives_each_member_its_scalar_run_to_the_bit() {
+    let members: Vec<Kepler> = (0..4).map(|i| Kepler { e: 0.1 + 0.2 * i as f64 }).collect();
+    let batch = KeplerBatch::from_members(&members);
+    assert_eq!(batch.member(2), members[2]);
+    let opts = Options::new().method(Method::Rk4).step(1e-3);
+    let together = batch.simulate(0.0, 3.0, &opts).unwrap();
+    for (lane, member) in members.iter().enumerate() {
+        let alone = member.simulate(0.0, 3.0, &opts).unwrap();
+        for (i, name) in ["q1", "q2", "p1", "p2"].iter().enumerate() {
+            let lane_value = together.last(&format!("{name}[lane {lane}]")).unwrap();
+            assert_eq!(lane_value, alone.final_state()[i], "lane {lane}: {name}");
+        }
+    }
+}
+
+#[test]
+fn a_batch_of_identical_members_steps_as_one_member_alone() {
+    // Each lane is measured alone: four equal lanes take the scalar run's
+    // steps, to the bit.
+    for method in [Method::Dopri5, Method::Dop853] {
+        let opts = Options::new().method(method).tolerance(1e-10);
+        let member = Kepler { e: 0.7 };
+        let alone = member.simulate(0.0, 10.0, &opts).unwrap();
+        let together = KeplerBatch::from_members(&[member; 4]).simulate(0.0, 10.0, &opts).unwrap();
+        assert_eq!(together.stats().steps, alone.stats().steps, "{method:?}");
+        let lane3: Vec<f64> = together.final_state().iter().skip(3).step_by(4).copied().collect();
+        assert_eq!(lane3, alone.final_state(), "{method:?}");
+    }
+}
+
+#[test]
+fn batched_ensembles_meet_the_tolerance_in_every_lane() {
+    // Eccentricities 0 … 0.8: the lanes need different steps; the batch
+    // takes the smallest, and every member stays within the tolerance of
+    // its exact orbit (energy −1/2 for a = 1).
+    let ens = Ensemble::new(10, |i| Kepler { e: 0.08 * i as f64 });
+    let opts = Options::new().method(Method::Dop853).tolerance(1e-10);
+    let batched = ens.final_states_batched::<KeplerBatch>(0.0, 2.0 * std::f64::consts::PI, &opts);
+    let alone = ens.final_states(0.0, 2.0 * std::f64::consts::PI, &opts);
+    assert_eq!(batched.rows.len(), 10, "the last batch's two spare lanes are dropped");
+    for (b, a) in batched.rows.iter().zip(&alone.rows) {
+        assert_eq!(b.member, a.member);
+        let (yb, ya) = (b.state.as_ref().unwrap(), a.state.as_ref().unwrap());
+        // After one period the orbit is back at its pericentre.
+        let e = 0.08 * b.member as f64;
+        let start = [1.0 - e, 0.0, 0.0, ((1.0 + e) / (1.0 - e)).sqrt()];
+        for k in 0..4 {
+            assert!((yb[k] - start[k]).abs() <= 1e-7, "member {}: {yb:?}", b.member);
+            assert!((ya[k] - start[k]).abs() <= 1e-7, "member {}: {ya:?}", a.member);
+        }
+    }
+    // Members from their own initial states, in batches too: the orbit of
+    // eccentricity 0.05 i (the parameter only sets the initial state), back
+    // at its pericentre after one period.
+    let pericentre = |e: f64| vec![1.0 - e, 0.0, 0.0, ((1.0 + e) / (1.0 - e)).sqrt()];
+    let shifted = ens.initial_states(move |i| pericentre(0.05 * i as f64));
+    let b = shifted.final_states_batched::<KeplerBatch>(0.0, 2.0 * std::f64::consts::PI, &opts);
+    for row in &b.rows {
+        let y = row.state.as_ref().unwrap();
+        let start = pericentre(0.05 * row.member as f64);
+        assert!(y.iter().zip(&start).all(|(a, b)| (a - b).abs() <= 1e-7), "{y:?} {start:?}");
+    }
 }

@@ -314,3 +314,20 @@ expansion_test! {
         0.0 == z * z + z - y;
     }
 }
+
+expansion_test! {
+    lorenz_in_batches_of_four, (batch = 4), ["LorenzBatch::rhs", "LorenzBatch::from_members"],
+    /// Lorenz's system, four members a run: the model's own program on
+    /// lanes, its constants and time mixed with them.
+    fn lorenz() {
+        let sigma = param(10.0);
+        let rho = param(28.0);
+        let beta = param(8.0 / 3.0);
+        let x = state(1.0);
+        let y = state(0.0);
+        let z = state(0.0);
+        der(x) == sigma * (y - x);
+        der(y) == x * (rho - z) - y;
+        der(z) == x * y - beta * z;
+    }
+}

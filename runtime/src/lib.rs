@@ -19,6 +19,7 @@ pub mod ensemble;
 pub mod error;
 pub mod info;
 pub mod kinematics;
+pub mod lanes;
 pub mod linalg;
 mod methods;
 pub mod model;
@@ -34,7 +35,7 @@ pub use methods::taylor::{self as taylor, order as taylor_order, series as taylo
 pub use methods::{dop853, dopri5, explicit_rk, implicit_tableau};
 pub use step::control as step_control;
 
-pub use ensemble::{Ensemble, FinalState, FinalStates, Shard};
+pub use ensemble::{Batch, Ensemble, FinalState, FinalStates, Shard};
 pub use error::Error;
 pub use info::{ConstraintInfo, EvalError, EventDirection, EventInfo, ModelInfo, ProjectionLevel};
 pub use model::{Model, StateVector};

@@ -108,6 +108,12 @@ pub trait Model {
         Err(EvalError::JacobianUnavailable)
     }
 
+    /// Members stepped together: a batch model (`#[dae_model(batch = L)]`)
+    /// holds `LANES` members' states, component `i` of lane `l` at
+    /// `i·LANES + l`, and the step-size control measures each lane alone;
+    /// 1 for every other model.
+    const LANES: usize = 1;
+
     /// Highest order of [`Model::taylor_derivatives`] (0: none generated).
     const TAYLOR_ORDER: usize = 0;
 

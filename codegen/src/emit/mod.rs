@@ -2,9 +2,10 @@
 //! (`schedule`), programs as Rust tokens (`program`) reading symbols as
 //! `layout` says, and the items of a model type: `model` assembles them
 //! from one emitter per item (`rhs`, `jacobian`, `events`, `outputs`,
-//! `taylor_items`, `newton`, `constraints`, `mass_form`, `docs`), and
-//! `benchmark` registers it.
+//! `taylor_items`, `newton`, `constraints`, `mass_form`, `docs`), `batch` steps several members
+//! at once, and `benchmark` registers it.
 
+pub mod batch;
 pub mod benchmark;
 pub mod constraints;
 pub mod docs;

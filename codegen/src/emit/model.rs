@@ -87,8 +87,18 @@ pub fn expand(
     }
     let struct_and_default = struct_and_default(ir, &analysis);
     let n_lit = index(n);
+    // Last of all: its program cannot change the model's own code.
+    let batch = match attributes.batch {
+        Some((lanes, span)) => match crate::emit::batch::batch_items(ir, sys, lanes) {
+            Ok(items) => items,
+            Err(message) => quote_spanned!(span=> ::core::compile_error!(#message);),
+        },
+        None => TokenStream::new(),
+    };
     Ok(quote! {
         #struct_and_default
+
+        #batch
 
         #mass_form_type
 

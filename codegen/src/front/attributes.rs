@@ -25,6 +25,9 @@ pub struct Attributes {
     /// `bench = Bench::until(t1)...`: the model's benchmark problem; the
     /// model then implements `daegen::runtime::bench::Benchmark`.
     pub bench: Option<syn::Expr>,
+    /// `batch = L`, 2 ≤ L ≤ 16: also the type `<Model>Batch` stepping L
+    /// members together; where the argument was written.
+    pub batch: Option<(usize, proc_macro2::Span)>,
     /// The other arguments, as written (for re-expanding the model when the
     /// benchmark times its expansion).
     pub written: String,
@@ -37,7 +40,7 @@ pub fn attributes(cx: &mut Ctxt, attr: TokenStream) -> Attributes {
     if attr.is_empty() {
         return out;
     }
-    let fix = "`#[dae_model]` takes `taylor = p` (p from 0 to 8), `unroll = [p, ...]` (orders from 2 to 40), `scene = global` or `scene = recursive`, and `bench = Bench::until(t1)...`";
+    let fix = "`#[dae_model]` takes `taylor = p` (p from 0 to 8), `unroll = [p, ...]` (orders from 2 to 40), `scene = global` or `scene = recursive`, `batch = L` (members stepped together, 2 to 16), and `bench = Bench::until(t1)...`";
     let parser =
         syn::punctuated::Punctuated::<syn::MetaNameValue, syn::Token![,]>::parse_terminated;
     let Ok(args) = syn::parse::Parser::parse2(parser, attr.clone()) else {
@@ -89,6 +92,16 @@ pub fn attributes(cx: &mut Ctxt, attr: TokenStream) -> Attributes {
         } else if arg.path.is_ident("bench") && out.bench.is_none() {
             out.bench = Some(arg.value.clone());
             continue;
+        } else if arg.path.is_ident("batch") && out.batch.is_none() {
+            match integer(&arg.value) {
+                Some(l) if (2..=16).contains(&l) => {
+                    out.batch = Some((l, syn::spanned::Spanned::span(&arg.value)))
+                }
+                _ => cx.error_at(
+                    &arg.value,
+                    "`batch = L` takes the number of members stepped together, from 2 to 16 (4 or 8 fill a SIMD register)",
+                ),
+            }
         } else if arg.path.is_ident("scene") {
             match &arg.value {
                 syn::Expr::Path(p) if p.path.is_ident("recursive") => out.recursive = true,

@@ -14,8 +14,10 @@
 //! Like DifferentialEquations.jl's `EnsembleProblem` (a `prob_func` per
 //! member) and heyoka's `ensemble_propagate_until`.
 
+mod batch;
 mod final_states;
 
+pub use batch::Batch;
 pub use final_states::{FinalState, FinalStates, Shard};
 
 use crate::error::Error;
@@ -169,15 +171,7 @@ where
     /// Every member's state at the end of its run (the steps between are
     /// not kept: a member stores one state), or its error.
     pub fn final_states(&self, t0: f64, t1: f64, options: &Options) -> FinalStates {
-        // Only the end is asked for: store no steps. `output_times` is
-        // refused beside `keep_every` and without dense output, which keep
-        // little anyway.
-        let options =
-            if options.output_times.is_none() && options.keep_every <= 1 && options.dense_output {
-                options.output_times(vec![t1])
-            } else {
-                options.clone()
-            };
+        let options = final_state_options(options, t1);
         let names = M::INFO.states.iter().map(|s| s.to_string()).collect();
         let rows = self.map(t0, t1, &options, |member, result| FinalState {
             member,
@@ -235,6 +229,17 @@ where
                 .map(|pool| pool.install(f))
                 .map_err(|e| format!("the ensemble could not start {k} threads: {e}")),
         }
+    }
+}
+
+/// `options` for a run whose end alone is kept: no steps stored.
+/// `output_times` is refused beside `keep_every` and without dense output,
+/// which keep little anyway.
+fn final_state_options(options: &Options, t1: f64) -> Options {
+    if options.output_times.is_none() && options.keep_every <= 1 && options.dense_output {
+        options.output_times(vec![t1])
+    } else {
+        options.clone()
     }
 }
 

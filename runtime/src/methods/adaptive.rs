@@ -9,7 +9,7 @@ use crate::methods::stiffness::{stage_quotient, Finish, StiffnessTest};
 use crate::methods::Problem;
 use crate::model::{Model, StateVector};
 use crate::solution::Solution;
-use crate::step::control::{initial_step, scale, Controller, PiState};
+use crate::step::control::{initial_step_in_lanes, scale, Controller, PiState};
 use crate::step::events::{after_accepted_step, EventWatch};
 use crate::step::projection::{project_onto_constraints, Projector};
 
@@ -36,7 +36,10 @@ pub trait EmbeddedPair {
     /// Controller constants.
     fn controller() -> Controller;
     /// Scaled error of the step (≤ 1 accepts it); `k` holds the stages.
-    fn error<S: StateVector>(h: f64, k: &[S], sk: &S) -> f64;
+    /// A batch of `lanes` members (component `i` of lane `l` at
+    /// `i·lanes + l`) is measured lane by lane and its worst lane counts,
+    /// so each member meets the tolerance as it would alone.
+    fn error<S: StateVector>(h: f64, k: &[S], sk: &S, lanes: usize) -> f64;
     /// Dense-output coefficients of an accepted step, `DENSE_WIDTH` vectors
     /// of length n one after the other in `out`.
     fn dense_coefficients<S: StateVector>(h: f64, y: &S, y_new: &S, k: &[S], out: &mut [f64]);
@@ -215,7 +218,7 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
         None => {
             let (f0, rest) = k.split_at_mut(1);
             let mut f = |t: f64, y: &[f64], out: &mut [f64]| rhs.call(t, y, out).is_ok();
-            initial_step(
+            initial_step_in_lanes(
                 &mut f,
                 t0,
                 y.as_ref(),
@@ -223,10 +226,10 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
                 direction,
                 P::ORDER,
                 hmax,
-                atol,
-                rtol,
+                (atol, rtol),
                 stage.as_mut(),
                 rest[0].as_mut(),
+                M::LANES,
             )
         }
     } * direction;
@@ -262,7 +265,7 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
             return Err(Error::Evaluation { t: ts, cause, partial: Box::new(solution) });
         }
         scale(atol, rtol, y.as_ref(), y_new.as_ref(), sk.as_mut());
-        let err = P::error(h, &k[..P::STAGES], &sk);
+        let err = P::error(h, &k[..P::STAGES], &sk, M::LANES);
         if !err.is_finite() {
             // A stage left the domain of f: retry with a much smaller step,
             // and name the variable if the step underflows.
@@ -378,6 +381,31 @@ fn relative_change(y: &[f64], y_new: &[f64], scale: &[f64]) -> f64 {
     } else {
         f64::INFINITY
     }
+}
+
+/// The worst over `lanes` lanes of `norm(sums)`, where `sums` holds each
+/// lane's sums of the squared scaled error terms `terms(i)` of components
+/// `i ≡ lane (mod lanes)`: the per-member error of a batch.
+#[inline(always)]
+pub(crate) fn worst_lane<const K: usize>(
+    n: usize,
+    lanes: usize,
+    terms: impl Fn(usize) -> [f64; K],
+    norm: impl Fn([f64; K], usize) -> f64,
+) -> f64 {
+    let per_lane = n / lanes.max(1);
+    let mut worst = 0.0f64;
+    for lane in 0..lanes {
+        let mut sums = [0.0; K];
+        for c in 0..per_lane {
+            let t = terms(c * lanes + lane);
+            for (s, v) in sums.iter_mut().zip(t) {
+                *s += v * v;
+            }
+        }
+        worst = worst.max(norm(sums, per_lane));
+    }
+    worst
 }
 
 fn finish_stats(solution: &mut Solution, steps: usize, rejected: usize, evals: usize) {

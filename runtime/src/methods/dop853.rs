@@ -6,7 +6,7 @@
 // Published coefficients are kept digit for digit as printed.
 #![allow(clippy::excessive_precision)]
 
-use crate::methods::adaptive::EmbeddedPair;
+use crate::methods::adaptive::{worst_lane, EmbeddedPair};
 use crate::model::StateVector;
 use crate::step::control::Controller;
 
@@ -299,7 +299,7 @@ impl EmbeddedPair for Dop853 {
 
     /// Hairer's combination of the 5th- and 3rd-order estimates: the 3rd
     /// guards against the 5th being accidentally small.
-    fn error<S: StateVector>(h: f64, k: &[S], sk: &S) -> f64 {
+    fn error<S: StateVector>(h: f64, k: &[S], sk: &S, lanes: usize) -> f64 {
         let sk = sk.as_ref();
         let n = sk.len();
         // Stages 2–5 have zero weight in both sums (`dop853.f` leaves them
@@ -324,15 +324,21 @@ impl EmbeddedPair for Dop853 {
             e5s[i] /= sk[i];
             e3s[i] = e3 / sk[i];
         }
+        let norm = |[err5, err3]: [f64; 2], n: usize| {
+            if err5 == 0.0 && err3 == 0.0 {
+                return 0.0;
+            }
+            h.abs() * err5 / ((err5 + 0.01 * err3) * n as f64).sqrt()
+        };
+        if lanes > 1 {
+            return worst_lane(n, lanes, |i| [e5s[i], e3s[i]], norm);
+        }
         let (mut err5, mut err3) = (0.0, 0.0);
         for (e5, e3) in e5s.iter().zip(e3s.iter()) {
             err5 += e5 * e5;
             err3 += e3 * e3;
         }
-        if err5 == 0.0 && err3 == 0.0 {
-            return 0.0;
-        }
-        h.abs() * err5 / ((err5 + 0.01 * err3) * n as f64).sqrt()
+        norm([err5, err3], n)
     }
 
     fn dense_coefficients<S: StateVector>(h: f64, y: &S, y_new: &S, k: &[S], out: &mut [f64]) {

@@ -3,7 +3,7 @@
 //! code `dopri5.f`). Seven stages, the last one evaluated at the new point
 //! and reused as the first of the next step (FSAL).
 
-use crate::methods::adaptive::EmbeddedPair;
+use crate::methods::adaptive::{worst_lane, EmbeddedPair};
 use crate::model::StateVector;
 use crate::step::control::Controller;
 
@@ -65,19 +65,26 @@ impl EmbeddedPair for Dopri5 {
         }
     }
 
-    fn error<S: StateVector>(h: f64, k: &[S], sk: &S) -> f64 {
+    fn error<S: StateVector>(h: f64, k: &[S], sk: &S, lanes: usize) -> f64 {
         // E[1] = 0: six terms.
         let sk = sk.as_ref();
         let [k0, k2, k3, k4, k5, k6] = stages_but_the_second(k);
-        let mut sum = 0.0;
-        for i in 0..sk.len() {
+        let term = |i: usize| {
             let e = E[0] * k0[i]
                 + E[2] * k2[i]
                 + E[3] * k3[i]
                 + E[4] * k4[i]
                 + E[5] * k5[i]
                 + E[6] * k6[i];
-            sum += (h * e / sk[i]).powi(2);
+            h * e / sk[i]
+        };
+        if lanes > 1 {
+            let norm = |[sum]: [f64; 1], n: usize| (sum / n.max(1) as f64).sqrt();
+            return worst_lane(sk.len(), lanes, |i| [term(i)], norm);
+        }
+        let mut sum = 0.0;
+        for i in 0..sk.len() {
+            sum += term(i).powi(2);
         }
         (sum / sk.len().max(1) as f64).sqrt()
     }

@@ -93,10 +93,43 @@ pub fn initial_step(
     scratch_y: &mut [f64],
     f1: &mut [f64],
 ) -> f64 {
+    let tolerances = (atol, rtol);
+    initial_step_in_lanes(f, t, y, f0, direction, order, hmax, tolerances, scratch_y, f1, 1)
+}
+
+/// [`initial_step`] for a batch of `lanes` members (component `i` of lane
+/// `l` at `i·lanes + l`): each lane's guess as it would be alone, the
+/// Euler probe with the smallest, and the smallest lane's step; for one
+/// lane, [`initial_step`] exactly.
+#[allow(clippy::too_many_arguments)]
+pub fn initial_step_in_lanes(
+    f: &mut RhsProbe<'_>,
+    t: f64,
+    y: &[f64],
+    f0: &[f64],
+    direction: f64,
+    order: usize,
+    hmax: f64,
+    (atol, rtol): (f64, f64),
+    scratch_y: &mut [f64],
+    f1: &mut [f64],
+    lanes: usize,
+) -> f64 {
+    let lanes = lanes.max(1);
     let sk: Vec<f64> = y.iter().map(|v| atol + rtol * v.abs()).collect();
-    let dnf: f64 = f0.iter().zip(&sk).map(|(f, s)| (f / s).powi(2)).sum();
-    let dny: f64 = y.iter().zip(&sk).map(|(y, s)| (y / s).powi(2)).sum();
-    let mut h = if dnf <= 1e-10 || dny <= 1e-10 { 1e-6 } else { (dny / dnf).sqrt() * 0.01 };
+    // Σ over lane `l`'s components of term(i)², in component order.
+    let lane_sum = |l: usize, term: &dyn Fn(usize) -> f64| -> f64 {
+        (l..y.len()).step_by(lanes).map(|i| term(i).powi(2)).sum()
+    };
+    let mut h = f64::INFINITY;
+    let mut dnf = vec![0.0; lanes];
+    for l in 0..lanes {
+        dnf[l] = lane_sum(l, &|i| f0[i] / sk[i]);
+        let dny = lane_sum(l, &|i| y[i] / sk[i]);
+        let guess =
+            if dnf[l] <= 1e-10 || dny <= 1e-10 { 1e-6 } else { (dny / dnf[l]).sqrt() * 0.01 };
+        h = h.min(guess);
+    }
     h = h.min(hmax);
     for ((z, y), f) in scratch_y.iter_mut().zip(y).zip(f0) {
         *z = y + direction * h * f;
@@ -104,12 +137,18 @@ pub fn initial_step(
     if !f(t + direction * h, scratch_y, f1) {
         return h * 1e-3;
     }
-    let der2: f64 =
-        f1.iter().zip(f0).zip(&sk).map(|((a, b), s)| ((a - b) / s).powi(2)).sum::<f64>().sqrt() / h;
-    let der12 = der2.abs().max(dnf.sqrt());
-    let h1 =
-        if der12 <= 1e-15 { (h * 1e-3).max(1e-6) } else { (0.01 / der12).powf(1.0 / order as f64) };
-    (100.0 * h).min(h1).min(hmax)
+    let mut step = f64::INFINITY;
+    for l in 0..lanes {
+        let der2 = lane_sum(l, &|i| (f1[i] - f0[i]) / sk[i]).sqrt() / h;
+        let der12 = der2.abs().max(dnf[l].sqrt());
+        let h1 = if der12 <= 1e-15 {
+            (h * 1e-3).max(1e-6)
+        } else {
+            (0.01 / der12).powf(1.0 / order as f64)
+        };
+        step = step.min((100.0 * h).min(h1).min(hmax));
+    }
+    step
 }
 
 #[cfg(test)]
