@@ -67,6 +67,10 @@ kepler_model!(
         .tolerances(3, 15)
         .peer("kepler")
 );
+// Kepler's orbit beside its batches of four and eight members
+// (`--ensemble`).
+kepler_model!(fn kepler_four(batch = 4) {});
+kepler_model!(fn kepler_eight(batch = 8) {});
 arenstorf_model!(
     taylor = 1,
     unroll = [6, 8, 10, 12, 14, 15, 16, 18, 20, 22, 24],

@@ -15,6 +15,7 @@
 //! | on k threads (default: every core) | `.threads(k)` |
 //! | one progress bar for the ensemble | `.progress(true)` (the members' own bars stay off) |
 //! | one machine's share of many | `.shard(Shard::parse("3/16")?)` |
+//! | members stepped L at a time in SIMD lanes | `#[dae_model(batch = L)]`, then `ens.final_states_batched::<MBatch>(..)` |
 //!
 //! Each member is exactly the run it would be alone, so the answers do not
 //! depend on the thread count, and a fold visits the members in order
@@ -50,6 +51,49 @@
 //! let sum = ensemble.fold(0.0, 1.0, &opts, final_x, 0.0, |sum, _, x| sum + x.unwrap());
 //! assert!(sum / 100.0 > 0.0);
 //! ```
+//!
+//! ## Batch lanes
+//!
+//! `#[dae_model(batch = L)]` (L from 2 to 16) generates beside the model
+//! `M` the type `MBatch`: L members' parameters and states side by side,
+//! the right-hand side computed for all of them at once on
+//! [`crate::runtime::lanes::Lanes`] values, which the compiler turns into
+//! SIMD instructions (heyoka's batch mode). A batch takes one step size,
+//! the one its most demanding member needs, and measures each lane's error
+//! alone, so every member meets the tolerance as it would alone; four
+//! identical members take exactly the steps of one. It pays where the
+//! members are alike (a sweep over a narrow range) and costs where they
+//! are not: the results of `bench --ensemble` are in bench/README.md.
+//!
+//! ```
+//! use daegen::prelude::*;
+//! use daegen::{Batch, Ensemble};
+//!
+//! /// x' = −k x, in batches of four.
+//! #[dae_model(batch = 4)]
+//! fn decay() {
+//!     let k = param(1.0);
+//!     let x = state(1.0);
+//!     der(x) == -k * x;
+//! }
+//!
+//! let ensemble = Ensemble::new(10, |i| Decay { k: 1.0 + 0.01 * i as f64 });
+//! let opts = Options::new().method(Method::Dop853).tolerance(1e-10);
+//! let finals = ensemble.final_states_batched::<DecayBatch>(0.0, 1.0, &opts);
+//! for row in &finals.rows {
+//!     let k = 1.0 + 0.01 * row.member as f64;
+//!     assert!((row.state.as_ref().unwrap()[0] - (-k).exp()).abs() < 1e-9);
+//! }
+//! // A batch is a model too: lane l of `x` is `x[lane l]`.
+//! let batch = DecayBatch::from_members(&[Decay { k: 1.0 }, Decay { k: 2.0 }, Decay { k: 3.0 }, Decay { k: 4.0 }]);
+//! let sol = batch.simulate(0.0, 1.0, &opts).unwrap();
+//! assert!((sol.last("x[lane 1]").unwrap() - (-2.0f64).exp()).abs() < 1e-9);
+//! ```
+//!
+//! Batches run the explicit pairs (DOPRI5, DOP853) and the fixed-step
+//! methods; the Taylor method runs members one by one. Only explicit ODEs
+//! batch: a DAE, events or derivatives solved at run time are a compile
+//! error that says so.
 //!
 //! ## Past one machine
 //!
