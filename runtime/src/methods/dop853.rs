@@ -324,21 +324,15 @@ impl EmbeddedPair for Dop853 {
             e5s[i] /= sk[i];
             e3s[i] = e3 / sk[i];
         }
-        let norm = |[err5, err3]: [f64; 2], n: usize| {
-            if err5 == 0.0 && err3 == 0.0 {
-                return 0.0;
-            }
-            h.abs() * err5 / ((err5 + 0.01 * err3) * n as f64).sqrt()
-        };
         if lanes > 1 {
-            return worst_lane(n, lanes, |i| [e5s[i], e3s[i]], norm);
+            return worst_lane(n, lanes, |i| [e5s[i], e3s[i]], |sums, n| combined(h, sums, n));
         }
         let (mut err5, mut err3) = (0.0, 0.0);
         for (e5, e3) in e5s.iter().zip(e3s.iter()) {
             err5 += e5 * e5;
             err3 += e3 * e3;
         }
-        norm([err5, err3], n)
+        combined(h, [err5, err3], n)
     }
 
     fn dense_coefficients<S: StateVector>(h: f64, y: &S, y_new: &S, k: &[S], out: &mut [f64]) {
@@ -375,6 +369,16 @@ impl EmbeddedPair for Dop853 {
         let tail = r(4) + s * (r(5) + s1 * (r(6) + s * r(7)));
         r(0) + s * (r(1) + s1 * (r(2) + s * (r(3) + s1 * tail)))
     }
+}
+
+/// DOP853's error from the sums of squares of its fifth- and third-order
+/// estimates over `n` components (`dop853.f`'s `err`).
+#[inline(always)]
+fn combined(h: f64, [err5, err3]: [f64; 2], n: usize) -> f64 {
+    if err5 == 0.0 && err3 == 0.0 {
+        return 0.0;
+    }
+    h.abs() * err5 / ((err5 + 0.01 * err3) * n as f64).sqrt()
 }
 
 #[cfg(test)]

@@ -187,9 +187,24 @@ pub(crate) fn integrate<M: Model>(
 pub(crate) fn integrate_watching<M: Model>(
     problem: Problem<'_, M>,
     watch: Option<NonStiffWatch>,
+    solution: Solution,
+) -> Result<(Solution, Finish), Error> {
+    let Problem { model, t0, t1, y0, options } = problem;
+    step_loop(model, t0, t1, y0, options, watch, solution)
+}
+
+/// The step loop of [`integrate_watching`], its inputs as separate
+/// arguments, as the explicit pairs' (`adaptive::integrate_from` says why).
+#[allow(clippy::too_many_arguments)]
+fn step_loop<M: Model>(
+    model: &M,
+    t0: f64,
+    t1: f64,
+    start: &[f64],
+    options: &crate::options::Options,
+    watch: Option<NonStiffWatch>,
     mut solution: Solution,
 ) -> Result<(Solution, Finish), Error> {
-    let Problem { model, t0, t1, y0: start, options } = problem;
     // One function, as radau5.f's step loop is: the Newton iteration, the error estimate and
     // the step-size control share its state (the LU, the last step's stages, θ), and splitting
     // them would pass a dozen values each way.
