@@ -437,6 +437,25 @@ impl Lower<'_> {
         Some(())
     }
 
+    /// Adds the equations of motion `(lhs, rhs)` the scene gave, or reports
+    /// at `origin` why it could not write them.
+    pub(crate) fn push_equations_of_motion(
+        &mut self,
+        equations: crate::Result<Vec<(Id, Id)>>,
+        origin: &proc_macro2::TokenStream,
+    ) {
+        match equations {
+            Ok(equations) => {
+                for (lhs, rhs) in equations {
+                    let origin = origin.clone();
+                    let eq = crate::front::ir::Equation { lhs, rhs, origin, is_constraint: false };
+                    self.equations.push(eq);
+                }
+            }
+            Err(e) => self.cx.error_at(origin, e),
+        }
+    }
+
     /// Reports a second declaration of `ident`'s name.
     pub(crate) fn already_declared(&mut self, ident: &syn::Ident) -> bool {
         let name = ident.to_string();

@@ -143,24 +143,3 @@ pub(crate) fn spring_tension(
     let viscous = g.mul(damping, d_dot)?;
     Ok((d, g.add(elastic, viscous)?))
 }
-
-impl crate::front::lower::Lower<'_> {
-    /// Adds the equations of motion `(lhs, rhs)` the scene gave, or reports
-    /// at `origin` why it could not write them.
-    pub(crate) fn push_equations_of_motion(
-        &mut self,
-        equations: crate::Result<Vec<(Id, Id)>>,
-        origin: &TokenStream,
-    ) {
-        match equations {
-            Ok(equations) => {
-                for (lhs, rhs) in equations {
-                    let origin = origin.clone();
-                    let eq = crate::front::ir::Equation { lhs, rhs, origin, is_constraint: false };
-                    self.equations.push(eq);
-                }
-            }
-            Err(e) => self.cx.error_at(origin, e),
-        }
-    }
-}
