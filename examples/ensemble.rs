@@ -1,11 +1,12 @@
-//! Ten thousand Kepler orbits with random eccentricities, run as an
-//! ensemble on every core, or as one shard of it on one machine of many,
-//! with a merge step that puts the shards back together.
+//! Monte Carlo over an uncertain throw: ten thousand projectiles with
+//! quadratic air drag, each with its own drag coefficient, launch speed and
+//! angle, run as an ensemble on every core, or as one shard of it on one
+//! machine of many, with a merge step that puts the shards back together.
 //!
-//! Each member is an orbit of semi-major axis 1 started at its pericentre,
-//! with its eccentricity drawn from [0, 0.9) (a fixed pseudo-random
-//! sequence: the same members on every machine). Each run ends at t = 20π
-//! (ten orbits); its energy error against the exact −1/2 is printed.
+//! Member i draws its drag c, speed and angle from fixed pseudo-random
+//! sequences (the same members on every machine) around c = 0.005 1/m,
+//! 50 m/s and 0.7 rad; each run stops where the projectile lands (a
+//! terminal event). The distribution of the range is printed.
 //!
 //! Run:
 //!
@@ -16,46 +17,58 @@
 //! ```
 //!
 //! Options: `--members N` (10000), `--threads K` (every core),
-//! `--method taylor|dop853` (taylor), `--tolerance TOL` (1e-12),
+//! `--method dopri5|dop853` (dopri5), `--tolerance TOL` (1e-8),
 //! `--shard i/n`, `--out FILE` (the final states as CSV). The guide's
 //! chapter on ensembles spreads the shards with a Slurm array job or a
 //! Kubernetes indexed Job.
 
 use daegen::prelude::*;
 use daegen::{Ensemble, FinalStates, Shard};
-use std::f64::consts::PI;
 use std::time::Instant;
 
-/// The two-body problem in the plane, in units where the period is 2π,
-/// started at the pericentre of an orbit of eccentricity e.
-#[dae_model(taylor = 1)]
-fn kepler() {
-    /// Eccentricity.
-    let e = param(0.5);
-    let q1 = state(1.0 - e);
-    let q2 = state(0.0);
-    let p1 = state(0.0);
-    let p2 = state(sqrt((1.0 + e) / (1.0 - e)));
-    let r3 = (q1 * q1 + q2 * q2).powf(-1.5);
-    der(q1) == p1;
-    der(q2) == p2;
-    der(p1) == -q1 * r3;
-    der(p2) == -q2 * r3;
+/// A point mass thrown from 1.5 m, slowed by air drag ∝ speed²
+/// (c = ρ C_d A / 2m), until it lands.
+#[dae_model]
+fn projectile() {
+    /// Drag over mass (1/m).
+    let c = param(0.005);
+    /// Launch speed (m/s).
+    let speed = param(50.0);
+    /// Launch angle above the horizontal (rad).
+    let angle = param(0.7);
+    let g = param(9.81);
+    let x = state(0.0);
+    let y = state(1.5);
+    let u = state(speed * cos(angle));
+    let v = state(speed * sin(angle));
+    let w = sqrt(u * u + v * v);
+    der(x) == u;
+    der(y) == v;
+    der(u) == -c * w * u;
+    der(v) == -g - c * w * v;
+    /// It lands.
+    let landing = event(y).falling().terminal();
 }
 
-/// Member i's eccentricity in [0, 0.9): SplitMix64 of i (Steele, Lea and
-/// Flood 2014), the same on every machine.
-fn eccentricity(i: usize) -> f64 {
-    let mut z = (i as u64).wrapping_add(1).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+/// u in [0, 1) from SplitMix64 of `k` (Steele, Lea and Flood 2014), the
+/// same on every machine.
+fn uniform(k: u64) -> f64 {
+    let mut z = k.wrapping_add(1).wrapping_mul(0x9E37_79B9_7F4A_7C15);
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     z ^= z >> 31;
-    0.9 * (z >> 11) as f64 / (1u64 << 53) as f64
+    (z >> 11) as f64 / (1u64 << 53) as f64
 }
 
-/// The energy ½|p|² − 1/|q| of a final state.
-fn energy(y: &[f64]) -> f64 {
-    0.5 * (y[2] * y[2] + y[3] * y[3]) - (y[0] * y[0] + y[1] * y[1]).powf(-0.5)
+/// Member i's throw: drag ±40 %, speed ±2 m/s, angle ±0.05 rad.
+fn throw(i: usize) -> Projectile {
+    let draw = |k: u64| 2.0 * uniform(3 * i as u64 + k) - 1.0;
+    Projectile {
+        c: 0.005 * (1.0 + 0.4 * draw(0)),
+        speed: 50.0 + 2.0 * draw(1),
+        angle: 0.7 + 0.05 * draw(2),
+        ..Projectile::default()
+    }
 }
 
 /// What the command line asked for.
@@ -73,8 +86,8 @@ fn parse(args: &[String]) -> Result<Request, String> {
     let mut request = Request {
         members: 10_000,
         threads: 0,
-        method: Method::Taylor,
-        tolerance: 1e-12,
+        method: Method::Dopri5,
+        tolerance: 1e-8,
         shard: None,
         out: None,
         merge: Vec::new(),
@@ -96,9 +109,9 @@ fn parse(args: &[String]) -> Result<Request, String> {
             }
             "--method" => {
                 request.method = match value()?.as_str() {
-                    "taylor" => Method::Taylor,
+                    "dopri5" => Method::Dopri5,
                     "dop853" => Method::Dop853,
-                    other => return Err(format!("--method: `{other}`; write taylor or dop853")),
+                    other => return Err(format!("--method: `{other}`; write dopri5 or dop853")),
                 }
             }
             "--shard" => request.shard = Some(Shard::parse(&value()?).map_err(|e| e.to_string())?),
@@ -135,20 +148,20 @@ fn run(request: &Request) -> Result<(), Box<dyn std::error::Error>> {
         }
         return Ok(());
     }
-    let mut ensemble = Ensemble::new(request.members, |i| Kepler { e: eccentricity(i) })
-        .threads(request.threads)
-        .progress(true);
+    let mut ensemble =
+        Ensemble::new(request.members, throw).threads(request.threads).progress(true);
     if let Some(shard) = request.shard {
         ensemble = ensemble.shard(shard);
     }
     let members = ensemble.members();
     println!(
-        "Kepler orbits {}..{} of {}, e in [0, 0.9), t = 20π, {:?} at tol {:e}",
+        "throws {}..{} of {}, drag, speed and angle uncertain, {:?} at tol {:e}",
         members.start, members.end, request.members, request.method, request.tolerance
     );
     let options = Options::new().method(request.method).tolerance(request.tolerance);
     let started = Instant::now();
-    let finals = ensemble.final_states(0.0, 20.0 * PI, &options);
+    // Every throw lands before t = 20 s; the landing event ends the run.
+    let finals = ensemble.final_states(0.0, 20.0, &options);
     let seconds = started.elapsed().as_secs_f64();
     println!(
         "{} members in {seconds:.2} s: {:.0} members/s",
@@ -163,19 +176,28 @@ fn run(request: &Request) -> Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
-/// The members that failed, and the largest and median energy errors.
+/// The members that failed, and the distribution of the range.
 fn report(finals: &FinalStates) {
-    let mut errors: Vec<f64> = finals
-        .rows
-        .iter()
-        .filter_map(|r| r.state.as_ref().ok())
-        .map(|y| (energy(y) + 0.5).abs())
-        .collect();
-    errors.sort_by(f64::total_cmp);
     for (member, message) in finals.errors() {
         println!("member {member} failed: {message}");
     }
-    if let (Some(median), Some(max)) = (errors.get(errors.len() / 2), errors.last()) {
-        println!("energy error |E + 1/2|: median {median:.1e}, largest {max:.1e}");
+    let landed: Vec<&Vec<f64>> = finals.rows.iter().filter_map(|r| r.state.as_ref().ok()).collect();
+    // Each run ends at its landing: y = 0 there, to the event's accuracy.
+    let highest = landed.iter().map(|y| y[1].abs()).fold(0.0, f64::max);
+    let mut range: Vec<f64> = landed.iter().map(|y| y[0]).collect();
+    range.sort_by(f64::total_cmp);
+    let n = range.len();
+    if n == 0 {
+        return;
     }
+    let mean = range.iter().sum::<f64>() / n as f64;
+    let sd = (range.iter().map(|r| (r - mean).powi(2)).sum::<f64>() / n as f64).sqrt();
+    let at = |q: f64| range[((n - 1) as f64 * q).round() as usize];
+    println!("{n} throws landed (|y| at landing ≤ {highest:.1e} m)");
+    println!(
+        "range: mean {mean:.2} m, sd {sd:.2} m; 5 % {:.2} m, median {:.2} m, 95 % {:.2} m",
+        at(0.05),
+        at(0.5),
+        at(0.95)
+    );
 }

@@ -164,20 +164,10 @@ fn bad_shards_are_refused_with_what_to_write() {
     assert_eq!(sizes, [3, 3, 4]);
 }
 
-/// Kepler's problem, and beside it `KeplerBatch`: four members a run.
-#[dae_model(batch = 4)]
-fn kepler() {
-    let e = param(0.5);
-    let q1 = state(1.0 - e);
-    let q2 = state(0.0);
-    let p1 = state(0.0);
-    let p2 = state(sqrt((1.0 + e) / (1.0 - e)));
-    let r3 = (q1 * q1 + q2 * q2).powf(-1.5);
-    der(q1) == p1;
-    der(q2) == p2;
-    der(p1) == -q1 * r3;
-    der(p2) == -q2 * r3;
-}
+include!("models/kepler.rs");
+
+// Kepler's problem, and beside it `KeplerBatch`: four members a run.
+kepler_model!(fn kepler(batch = 4) {});
 
 #[test]
 fn a_batch_of_equal_steps_gives_each_member_its_scalar_run_to_the_bit() {

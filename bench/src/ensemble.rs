@@ -14,7 +14,8 @@ use crate::*;
 use daegen::Ensemble;
 
 /// Robertson's kinetics (test set `rober`) with its rate constants as
-/// parameters.
+/// parameters (examples/robertson.rs writes the same model: an example is
+/// read alone).
 #[dae_model]
 fn robertson_rates() {
     let k1 = param(0.04);

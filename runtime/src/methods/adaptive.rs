@@ -9,7 +9,7 @@ use crate::methods::stiffness::{stage_quotient, Finish, StiffnessTest};
 use crate::methods::Problem;
 use crate::model::{Model, StateVector};
 use crate::solution::Solution;
-use crate::step::control::{initial_step_in_lanes, scale, Controller, PiState};
+use crate::step::control::{initial_step, scale, Controller, PiState};
 use crate::step::events::{after_accepted_step, EventWatch};
 use crate::step::projection::{project_onto_constraints, Projector};
 
@@ -234,7 +234,7 @@ fn integrate_from<M: Model, P: EmbeddedPair>(
         None => {
             let (f0, rest) = k.split_at_mut(1);
             let mut f = |t: f64, y: &[f64], out: &mut [f64]| rhs.call(t, y, out).is_ok();
-            initial_step_in_lanes(
+            initial_step(
                 &mut f,
                 t0,
                 y.as_ref(),

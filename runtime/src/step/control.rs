@@ -78,31 +78,13 @@ pub type RhsProbe<'a> = dyn FnMut(f64, &[f64], &mut [f64]) -> bool + 'a;
 
 /// Hairer's initial step (`hinit` of `dopri5.f`): a guess from ‖y‖/‖f‖,
 /// refined by one explicit Euler step that estimates the second derivative.
-/// `f1` is scratch for f at the Euler point; returns |h| (the caller adds the sign).
+/// `f1` is scratch for f at the Euler point; returns |h| (the caller adds
+/// the sign). For a batch of `lanes` members (component `i` of lane `l` at
+/// `i·lanes + l`; 1 for any other model): each lane's guess as it would
+/// be alone, the Euler probe with the smallest, and the smallest lane's
+/// step.
 #[allow(clippy::too_many_arguments)]
 pub fn initial_step(
-    f: &mut RhsProbe<'_>,
-    t: f64,
-    y: &[f64],
-    f0: &[f64],
-    direction: f64,
-    order: usize,
-    hmax: f64,
-    atol: f64,
-    rtol: f64,
-    scratch_y: &mut [f64],
-    f1: &mut [f64],
-) -> f64 {
-    let tolerances = (atol, rtol);
-    initial_step_in_lanes(f, t, y, f0, direction, order, hmax, tolerances, scratch_y, f1, 1)
-}
-
-/// [`initial_step`] for a batch of `lanes` members (component `i` of lane
-/// `l` at `i·lanes + l`): each lane's guess as it would be alone, the
-/// Euler probe with the smallest, and the smallest lane's step; for one
-/// lane, [`initial_step`] exactly.
-#[allow(clippy::too_many_arguments)]
-pub fn initial_step_in_lanes(
     f: &mut RhsProbe<'_>,
     t: f64,
     y: &[f64],
@@ -196,8 +178,19 @@ mod tests {
             true
         };
         let (mut z, mut f1) = ([0.0], [0.0]);
-        let h =
-            initial_step(&mut f, 0.0, &[1.0], &[-1.0], 1.0, 5, 10.0, 1e-6, 1e-6, &mut z, &mut f1);
+        let h = initial_step(
+            &mut f,
+            0.0,
+            &[1.0],
+            &[-1.0],
+            1.0,
+            5,
+            10.0,
+            (1e-6, 1e-6),
+            &mut z,
+            &mut f1,
+            1,
+        );
         assert!(h > 1e-3 && h < 1.0, "h = {h}");
     }
 }
