@@ -423,6 +423,30 @@ impl Lower<'_> {
         Some(symbol)
     }
 
+    /// Declares the algebraic variable `name` (a user's, or a joint's
+    /// multiplier) documented by `doc`; its node, or `None` once the clash
+    /// with another name is reported at `at`.
+    pub(crate) fn declare_algebraic(
+        &mut self,
+        name: String,
+        init: Id,
+        at: &dyn quote::ToTokens,
+        origin: &proc_macro2::TokenStream,
+        doc: String,
+    ) -> Option<Id> {
+        let id = match self.g.algebraic(&name) {
+            Ok(id) => id,
+            Err(e) => {
+                self.cx.error_at(at, e);
+                return None;
+            }
+        };
+        let symbol = self.g.as_symbol(id)?;
+        let origin = origin.clone();
+        self.algebraics.push(AlgebraicDecl { name, symbol, init, origin, doc });
+        Some(id)
+    }
+
     /// Starts `der(state)` at `value` (a body's or a joint's initial
     /// rate); `None` where the state has no derivative to start.
     pub(crate) fn init_rate(
@@ -652,13 +676,8 @@ impl Lower<'_> {
                     return;
                 }
                 let init = self.initial_value(&call.args[0]).unwrap_or_else(|| self.g.zero());
-                match self.g.algebraic(&name) {
-                    Ok(id) => {
-                        let symbol = self.g.as_symbol(id).unwrap_or(SymbolId(0));
-                        self.algebraics.push(AlgebraicDecl { name, symbol, init, origin, doc });
-                        self.bind(ident, Binding::Algebraic(id));
-                    }
-                    Err(e) => self.cx.error_at(ident, e),
+                if let Some(id) = self.declare_algebraic(name, init, ident, &origin, doc) {
+                    self.bind(ident, Binding::Algebraic(id));
                 }
             }
             "time" => {

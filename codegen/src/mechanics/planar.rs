@@ -402,23 +402,11 @@ impl Lower<'_> {
         let mut multipliers = Vec::with_capacity(rows.len());
         for (k, &row) in rows.iter().enumerate() {
             let lambda_name = format!("{base}[{k}]");
-            let lambda = match self.g.algebraic(&lambda_name) {
-                Ok(id) => id,
-                Err(err) => {
-                    self.cx.error_at(e, err);
-                    return None;
-                }
-            };
-            let symbol = self.g.as_symbol(lambda)?;
-            self.algebraics.push(crate::front::ir::AlgebraicDecl {
-                name: lambda_name,
-                symbol,
-                init: zero,
-                origin: e.to_token_stream(),
-                doc: format!(
-                    "multiplier of row {k} of the joint's constraints Φ (its reaction is −Φ_qᵀλ)"
-                ),
-            });
+            let doc = format!(
+                "multiplier of row {k} of the joint's constraints Φ (its reaction is −Φ_qᵀλ)"
+            );
+            let origin = e.to_token_stream();
+            let lambda = self.declare_algebraic(lambda_name, zero, e, &origin, doc)?;
             self.equations.push(crate::front::ir::Equation {
                 lhs: row,
                 rhs: zero,
