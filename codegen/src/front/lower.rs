@@ -391,6 +391,25 @@ impl Lower<'_> {
         }
     }
 
+    /// A new state or algebraic symbol `name` and its node; `None` once
+    /// the clash with another name is reported at `at`.
+    fn new_symbol(
+        &mut self,
+        name: &str,
+        kind: SymbolKind,
+        at: &dyn quote::ToTokens,
+    ) -> Option<(Id, SymbolId)> {
+        let created =
+            if kind == SymbolKind::State { self.g.state(name) } else { self.g.algebraic(name) };
+        match created {
+            Ok(id) => Some((id, self.g.as_symbol(id)?)),
+            Err(e) => {
+                self.cx.error_at(at, e);
+                None
+            }
+        }
+    }
+
     /// Declares the state `name` (a user's, or a scene's coordinate)
     /// documented by `doc`; `None` once the clash with another name is
     /// reported at `at`.
@@ -402,24 +421,9 @@ impl Lower<'_> {
         origin: &proc_macro2::TokenStream,
         doc: &str,
     ) -> Option<SymbolId> {
-        let id = match self.g.state(&name) {
-            Ok(id) => id,
-            Err(e) => {
-                self.cx.error_at(at, e);
-                return None;
-            }
-        };
-        let symbol = self.g.as_symbol(id)?;
-        let origin = origin.clone();
-        let doc = doc.to_string();
-        self.states.push(crate::front::ir::StateDecl {
-            name,
-            symbol,
-            init,
-            origin,
-            fixed: false,
-            doc,
-        });
+        let (_, symbol) = self.new_symbol(&name, SymbolKind::State, at)?;
+        let (origin, doc) = (origin.clone(), doc.to_string());
+        self.states.push(StateDecl { name, symbol, init, origin, fixed: false, doc });
         Some(symbol)
     }
 
@@ -434,14 +438,7 @@ impl Lower<'_> {
         origin: &proc_macro2::TokenStream,
         doc: String,
     ) -> Option<Id> {
-        let id = match self.g.algebraic(&name) {
-            Ok(id) => id,
-            Err(e) => {
-                self.cx.error_at(at, e);
-                return None;
-            }
-        };
-        let symbol = self.g.as_symbol(id)?;
+        let (id, symbol) = self.new_symbol(&name, SymbolKind::Algebraic, at)?;
         let origin = origin.clone();
         self.algebraics.push(AlgebraicDecl { name, symbol, init, origin, doc });
         Some(id)
