@@ -233,3 +233,19 @@ fn batched_ensembles_meet_the_tolerance_in_every_lane() {
         assert!(y.iter().zip(&start).all(|(a, b)| (a - b).abs() <= 1e-7), "{y:?} {start:?}");
     }
 }
+
+#[test]
+fn the_contracts_chain_runs_with_a_progress_bar() {
+    // `Ensemble::new(n, |i| model_i).threads(k).run(t0, t1, &opts)`, with
+    // one bar for the ensemble (drawn on stderr only on a terminal).
+    let rates: Vec<f64> = (0..16).map(rate).collect();
+    let results = Ensemble::new(rates.len(), |i| Decay { k: rates[i] })
+        .threads(2)
+        .progress(true)
+        .run(0.0, 1.0, &options().progress(true));
+    assert_eq!(results.len(), 16);
+    for (k, result) in rates.iter().zip(&results) {
+        let x = result.as_ref().unwrap().last("x").unwrap();
+        assert!((x - (-k).exp()).abs() <= 1e-11);
+    }
+}
