@@ -249,3 +249,16 @@ fn the_contracts_chain_runs_with_a_progress_bar() {
         assert!((x - (-k).exp()).abs() <= 1e-11);
     }
 }
+
+#[test]
+fn a_batch_refuses_the_methods_that_would_mix_its_members_errors() {
+    let batch = KeplerBatch::from_members(&[Kepler { e: 0.5 }; 4]);
+    for method in [Method::Auto, Method::Radau5, Method::BackwardEuler, Method::Taylor] {
+        let err = batch.simulate(0.0, 1.0, &Options::new().method(method)).unwrap_err();
+        let message = err.to_string();
+        assert!(
+            message.contains("Dop853") || message.contains("one by one"),
+            "{method:?}: {message}"
+        );
+    }
+}

@@ -32,6 +32,16 @@ pub(crate) fn check_request<M: Model>(
         return invalid(format!("the interval [{t0}, {t1}] must be finite"));
     }
     check_options::<M>(options)?;
+    if M::LANES > 1
+        && matches!(options.method, Method::Auto | Method::Radau5 | Method::BackwardEuler)
+    {
+        return invalid(format!(
+            "{} steps {} members together, and only the explicit pairs and the explicit fixed-step methods keep each member to its own tolerance: use Method::Dopri5 or Method::Dop853 (or Rk4 with a step), or run the members one by one for {:?}",
+            M::INFO.name,
+            M::LANES,
+            options.method
+        ));
+    }
     if let Some(times) = &options.output_times {
         check_output_times(times, t0, t1, options)?;
     }
