@@ -262,3 +262,32 @@ fn a_batch_refuses_the_methods_that_would_mix_its_members_errors() {
         );
     }
 }
+
+/// The decay with its rate of change as an output.
+#[dae_model]
+fn decay_with_rate() {
+    let k = param(1.0);
+    let x = state(1.0);
+    der(x) == -k * x;
+    let rate_of_x = output(-k * x);
+}
+
+#[test]
+fn final_values_read_outputs_by_name_and_refuse_unknown_names() {
+    let ens = Ensemble::new(5, |i| DecayWithRate { k: rate(i) });
+    let values = ens.final_values(0.0, 1.0, &options(), &["rate_of_x", "x"]).unwrap();
+    assert_eq!(values.names, ["rate_of_x", "x"]);
+    for row in &values.rows {
+        let k = rate(row.member);
+        let v = row.state.as_ref().unwrap();
+        assert!((v[1] - (-k).exp()).abs() <= 1e-11);
+        assert!((v[0] + k * (-k).exp()).abs() <= 1e-11);
+    }
+    match ens.final_values(0.0, 1.0, &options(), &["energy"]) {
+        Err(Error::UnknownName { name, known }) => {
+            assert_eq!(name, "energy");
+            assert!(known.contains(&"rate_of_x"), "{known:?}");
+        }
+        other => panic!("expected UnknownName, got {other:?}"),
+    }
+}

@@ -11,6 +11,7 @@
 //! | keep only what you need of each | `ens.map(t0, t1, &opts, \|i, result\| ..)`: each member reduced as it ends |
 //! | fold the members in order (a million in little memory) | `ens.fold(t0, t1, &opts, reduce, init, \|acc, i, value\| ..)` |
 //! | the final states only | `ens.final_states(t0, t1, &opts)`: a [`crate::FinalStates`] table, CSV in and out |
+//! | chosen values (outputs too) at the end | `ens.final_values(t0, t1, &opts, &["x", "energy"])?` |
 //! | members from their own initial states | `.initial_states(\|i\| vec![..])` |
 //! | on k threads (default: every core) | `.threads(k)` |
 //! | one progress bar for the ensemble | `.progress(true)` (the members' own bars stay off) |

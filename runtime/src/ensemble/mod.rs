@@ -7,7 +7,8 @@
 //! keeps its `Err` (with its partial solution) in its place; the others
 //! run on. For ensembles too large to keep every solution, [`Ensemble::map`]
 //! reduces each member as soon as it ends, [`Ensemble::fold`] folds them
-//! in member order, and [`Ensemble::final_states`] keeps one state each.
+//! in member order, and [`Ensemble::final_states`] (or
+//! [`Ensemble::final_values`], any names) keeps one row each.
 //! [`Ensemble::shard`] cuts the members into contiguous blocks, one per
 //! machine, whose [`FinalStates`] merge back into the unsharded answer.
 //!
@@ -181,6 +182,32 @@ where
             },
         });
         FinalStates { names, rows }
+    }
+
+    /// Every member's values of `names` (states, algebraic variables or
+    /// outputs) at the end of its run, as [`Ensemble::final_states`] keeps
+    /// the states; `Err` before any run for a name the model does not have.
+    pub fn final_values(
+        &self,
+        t0: f64,
+        t1: f64,
+        options: &Options,
+        names: &[&str],
+    ) -> Result<FinalStates, Error> {
+        let info = &M::INFO;
+        let known: Vec<&'static str> =
+            info.states.iter().chain(info.outputs).chain(info.algebraics).copied().collect();
+        if let Some(name) = names.iter().find(|n| !known.contains(n)) {
+            return Err(Error::UnknownName { name: name.to_string(), known });
+        }
+        let options = final_state_options(options, t1);
+        let rows = self.map(t0, t1, &options, |member, result| FinalState {
+            member,
+            state: result
+                .and_then(|solution| names.iter().map(|n| solution.last(n)).collect())
+                .map_err(|e| e.to_string()),
+        });
+        Ok(FinalStates { names: names.iter().map(|n| n.to_string()).collect(), rows })
     }
 
     /// The members `members`, each reduced as it ends, in member order.
