@@ -89,21 +89,11 @@ fn global_error_is_proportional_to_the_tolerance() {
 #[test]
 fn dense_output_adds_no_error_to_the_steps() {
     let two_pi = 2.0 * std::f64::consts::PI;
-    let names = ["q1", "q2", "p1", "p2"];
     for (method, tol) in [(Method::Dopri5, 1e-8), (Method::Dop853, 1e-12)] {
         let sol = Kepler::default()
             .simulate(0.0, two_pi, &Options::new().method(method).tolerance(tol))
             .unwrap();
-        let at_steps = (0..sol.times().len())
-            .map(|k| max_error(sol.state(k).unwrap(), &kepler_exact(sol.times()[k])))
-            .fold(0.0, f64::max);
-        let between = (0..=1000)
-            .map(|j| {
-                let t = two_pi * j as f64 / 1000.0;
-                let exact = kepler_exact(t);
-                (0..4).map(|i| (sol.at(t, names[i]).unwrap() - exact[i]).abs()).fold(0.0, f64::max)
-            })
-            .fold(0.0, f64::max);
+        let (at_steps, between) = kepler_errors_at_and_between_steps(&sol, 1000);
         assert!(
             between <= 1.5 * at_steps,
             "{method:?}: {between:e} between steps, {at_steps:e} at steps"

@@ -86,17 +86,7 @@ fn dense_output_is_the_step_polynomial() {
     let sol = Kepler::default()
         .simulate(0.0, two_pi, &Options::new().method(Method::Taylor).tolerance(1e-14))
         .unwrap();
-    let names = ["q1", "q2", "p1", "p2"];
-    let at_steps = (0..sol.times().len())
-        .map(|k| max_error(sol.state(k).unwrap(), &kepler_exact(sol.times()[k])))
-        .fold(0.0, f64::max);
-    let between = (0..=500)
-        .map(|j| {
-            let t = two_pi * j as f64 / 500.0;
-            let e = kepler_exact(t);
-            (0..4).map(|i| (sol.at(t, names[i]).unwrap() - e[i]).abs()).fold(0.0, f64::max)
-        })
-        .fold(0.0, f64::max);
+    let (at_steps, between) = kepler_errors_at_and_between_steps(&sol, 500);
     assert!(between <= 2.0 * at_steps + 1e-14, "{between:e} between steps, {at_steps:e} at steps");
 }
 

@@ -45,6 +45,29 @@ fn kepler_exact(t: f64) -> [f64; 4] {
     [c - e, w * s, -s / (1.0 - e * c), w * c / (1.0 - e * c)]
 }
 
+/// The largest error against [`kepler_exact`] at a solution's stored steps,
+/// and at `samples + 1` equally spaced times over one period by its dense
+/// output: `(at the steps, between them)`.
+#[allow(dead_code)]
+fn kepler_errors_at_and_between_steps(sol: &daegen::Solution, samples: usize) -> (f64, f64) {
+    // NaN wins, so that a NaN anywhere fails the caller's comparison.
+    let max = |a: f64, b: f64| if a.is_nan() || b.is_nan() { f64::NAN } else { a.max(b) };
+    let worst =
+        |got: &[f64], t: f64| got.iter().zip(kepler_exact(t)).map(|(g, e)| (g - e).abs()).fold(0.0, max);
+    let at_steps = (0..sol.times().len())
+        .map(|k| worst(sol.state(k).expect("a stored step"), sol.times()[k]))
+        .fold(0.0, max);
+    let between = (0..=samples)
+        .map(|j| {
+            let t = 2.0 * std::f64::consts::PI * j as f64 / samples as f64;
+            let got: Vec<f64> =
+                ["q1", "q2", "p1", "p2"].iter().map(|n| sol.at(t, n).expect("in the run")).collect();
+            worst(&got, t)
+        })
+        .fold(0.0, max);
+    (at_steps, between)
+}
+
 /// Component `i` at `t` by the cubic Hermite polynomial through a
 /// solution's stored steps around `t`, with component `di` as its
 /// derivative (p1 is q1's: `hermite_between_steps(&sol, t, 0, 2)`).
