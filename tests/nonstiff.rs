@@ -28,7 +28,7 @@ const ARENSTORF_PERIOD: f64 = 17.0652165601579625588917206249;
 const ARENSTORF_START: [f64; 4] = [0.994, 0.0, 0.0, -2.00158510637908252240537862224];
 
 mod support;
-use support::{final_state, max_error};
+use support::{final_state, max_error, BlowUp};
 
 /// Hairer's `dopri5.f` on Arenstorf with h₀ = 1e-4, rtol = atol = 1e-7:
 /// 217 accepted and 21 rejected steps, 1429 evaluations, and this final
@@ -120,13 +120,6 @@ fn integrates_backwards_in_time() {
     );
     assert!(eb < 10.0 * ef && ef < 10.0 * eb, "forward {ef:e}, backward {eb:e}");
     assert!(backward.at(1.0, "q1").is_ok());
-}
-
-/// y' = y², y(0) = 1: y = 1/(1 - t) blows up at t = 1.
-#[dae_model]
-fn blow_up() {
-    let y = state(1.0);
-    der(y) == y * y;
 }
 
 #[test]

@@ -8,6 +8,8 @@ use daegen::{Flow, Step};
 use std::f64::consts::PI;
 use std::sync::{Arc, Mutex};
 
+mod support;
+
 /// x'' = −x from (1, 0): x = cos t; with an algebraic variable and an output.
 #[dae_model]
 fn oscillator() {
@@ -76,13 +78,6 @@ fn sampled_error(opts: &Options) -> f64 {
 /// (the step's own Taylor polynomial), 1 for Euler.
 #[test]
 fn samples_between_steps_converge_at_the_methods_order() {
-    #[dae_model(taylor = 6)]
-    fn oscillator6() {
-        let x = state(1.0);
-        let v = state(0.0);
-        der(x) == v;
-        der(v) == -x;
-    }
     let cases: [(Method, Method, f64); 4] = [
         (Method::Rk4, Method::Rk4, 4.0),
         (Method::Rk38, Method::Rk38, 4.0),
@@ -97,7 +92,7 @@ fn samples_between_steps_converge_at_the_methods_order() {
         let error = |method: Method, step: f64| -> f64 {
             let opts = Options::new().method(method).step(step);
             if matches!(method, Method::TaylorFixed { .. }) {
-                let sol = Oscillator6::default().simulate(0.0, 3.0, &opts).unwrap();
+                let sol = support::Oscillator::default().simulate(0.0, 3.0, &opts).unwrap();
                 let grid: Vec<f64> = (0..=96).map(|k| 3.0 * k as f64 / 96.0).collect();
                 let x = sol.sample(&["x"], &grid).unwrap().column("x").unwrap().to_vec();
                 grid.iter().zip(x).map(|(t, x)| (x - t.cos()).abs()).fold(0.0, f64::max)

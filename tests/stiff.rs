@@ -206,20 +206,15 @@ fn auto_switches_back_where_the_stiffness_fades() {
     }
 }
 
-/// y' = y², y(0) = 1: one backward Euler step of h = 1 asks for
-/// y₁ = 1 + y₁², which has no real root, so Newton cannot converge.
-#[dae_model]
-fn quadratic() {
-    let y = state(1.0);
-    der(y) == y * y;
-}
+// y' = y² (support::BlowUp): one backward Euler step of h = 1 asks for
+// y₁ = 1 + y₁², which has no real root, so Newton cannot converge.
 
 #[test]
 fn newton_failures_are_reported_with_the_time_and_what_was_tried() {
     // No root for h = 1 or 1/2; h = 1/4 has the double root y₁ = 2, ahead
     // of the exact y(1/4) = 4/3, so the backward Euler solution blows up
     // before the exact pole at t = 1, and the halved steps end there.
-    let err = Quadratic::default()
+    let err = support::BlowUp::default()
         .simulate(0.0, 1.0, &Options::new().method(Method::BackwardEuler).step(1.0))
         .unwrap_err();
     let message = err.to_string();
@@ -234,7 +229,7 @@ fn newton_failures_are_reported_with_the_time_and_what_was_tried() {
     let partial = err.partial_solution().unwrap();
     assert!(partial.times().len() > 2 && partial.stats().rejected >= 30);
     // RADAU5 runs into the pole at t = 1 and stops there with an error.
-    let err = Quadratic::default()
+    let err = support::BlowUp::default()
         .simulate(0.0, 2.0, &Options::new().method(Method::Radau5))
         .unwrap_err();
     let t = match &err {
@@ -304,7 +299,7 @@ fn backward_euler_follows_van_der_pol_across_its_relaxation_jumps() {
 
 #[test]
 fn a_minimum_step_stops_the_run_early() {
-    let err = Quadratic::default()
+    let err = support::BlowUp::default()
         .simulate(0.0, 2.0, &Options::new().method(Method::Dopri5).min_step(1e-6))
         .unwrap_err();
     match err {

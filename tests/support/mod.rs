@@ -22,13 +22,21 @@ pub fn final_state(sol: &Solution) -> Vec<f64> {
     sol.final_state().to_vec()
 }
 
-/// x'' = −x from (1, 0), as x' = v, v' = −x: x = cos t, v = −sin t.
-#[dae_model]
+/// x'' = −x from (1, 0), as x' = v, v' = −x: x = cos t, v = −sin t (with
+/// the economic derivatives to order 6, for `Method::TaylorFixed`).
+#[dae_model(taylor = 6)]
 pub fn oscillator() {
     let x = state(1.0);
     let v = state(0.0);
     der(x) == v;
     der(v) == -x;
+}
+
+/// y' = y², y(0) = 1: y = 1/(1 − t), which blows up at t = 1.
+#[dae_model]
+pub fn blow_up() {
+    let y = state(1.0);
+    der(y) == y * y;
 }
 
 /// A body dropped from 1 m, stopped at the ground: h = 1 − 9.81 t²/2,
