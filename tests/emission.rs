@@ -70,13 +70,7 @@ fn indexed(array: &str, i: usize) -> TokenStream {
 }
 
 fn states(g: &mut Graph, names: &[&str]) -> Vec<SymbolId> {
-    names
-        .iter()
-        .map(|n| {
-            let id = g.state(n).unwrap();
-            g.as_symbol(id).unwrap()
-        })
-        .collect()
+    g.state_symbols(names).unwrap()
 }
 
 /// Right-hand side and sparse Jacobian in one program: shared subexpressions once.

@@ -142,15 +142,10 @@ double_pendulum_angles!(expansion_test! {
     double_pendulum_with_a_mass_matrix_solved_symbolically, (), ["DoublePendulum::rhs", "DoublePendulum::jacobian"],
 } {});
 
-expansion_test! {
-    /// Course notes Example 1.4 with the economic Taylor derivatives of order 4.
+// Course notes Example 1.4 with the economic Taylor derivatives of order 4.
+example_1_4!(expansion_test! {
     example_1_4_with_taylor_derivatives_of_order_4, (taylor = 4), ["Example14::taylor_derivatives"],
-    fn example_1_4() {
-        let x = time();
-        let y = state(1.0);
-        der(y) == x * y + x;
-    }
-}
+});
 
 #[test]
 fn bouncing_ball_with_a_terminal_event() {

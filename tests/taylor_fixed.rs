@@ -3,13 +3,9 @@
 
 use daegen::prelude::*;
 
-/// Course notes, Example 1.4: y' = x y + x, y(0) = 1, y = 2 exp(x²/2) − 1.
-#[dae_model(taylor = 4)]
-fn example_1_4() {
-    let x = time();
-    let y = state(1.0);
-    der(y) == x * y + x;
-}
+include!("models/items.rs");
+
+example_1_4!(dae_model_with! { (taylor = 4) });
 
 #[test]
 fn derivatives_are_those_of_the_exact_solution() {

@@ -6,13 +6,7 @@ fn symbols(g: &mut Graph, states: &[&str], params: &[&str]) -> Vec<SymbolId> {
     for p in params {
         g.parameter(p).unwrap();
     }
-    states
-        .iter()
-        .map(|s| {
-            let id = g.state(s).unwrap();
-            g.as_symbol(id).unwrap()
-        })
-        .collect()
+    g.state_symbols(states).unwrap()
 }
 
 fn parse_all(g: &mut Graph, exprs: &[&str]) -> Vec<Id> {

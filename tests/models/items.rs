@@ -124,3 +124,21 @@ macro_rules! double_pendulum_angles {
         }
     };
 }
+
+/// `example_1_4!(then! { arguments })`: course notes, Example 1.4,
+/// y' = x y + x, y(0) = 1, whose solution is y = 2 exp(x²/2) − 1.
+#[allow(unused_macros)]
+macro_rules! example_1_4 {
+    ($then:ident ! { $($arguments:tt)* }) => {
+        $then! {
+            $($arguments)*
+            /// Course notes, Example 1.4: y' = x y + x, y(0) = 1,
+            /// y = 2 exp(x²/2) − 1.
+            fn example_1_4() {
+                let x = time();
+                let y = state(1.0);
+                der(y) == x * y + x;
+            }
+        }
+    };
+}

@@ -241,9 +241,8 @@ mod tests {
 
     /// States y1, y2 in `g`, and the symbols of y1', y2'.
     fn two_states_and_their_rates(g: &mut Graph) -> [SymbolId; 2] {
-        let y1 = g.state("y1").unwrap();
-        let y2 = g.state("y2").unwrap();
-        let (s1, s2) = (g.as_symbol(y1).unwrap(), g.as_symbol(y2).unwrap());
+        let y = g.state_symbols(&["y1", "y2"]).unwrap();
+        let (s1, s2) = (y[0], y[1]);
         let d1 = g.derivative(s1, 1).unwrap();
         let d2 = g.derivative(s2, 1).unwrap();
         [g.as_symbol(d1).unwrap(), g.as_symbol(d2).unwrap()]

@@ -221,6 +221,20 @@ impl Graph {
         self.add_symbol(name, SymbolKind::State)
     }
 
+    /// New differential variables `names`, as symbols: for tests and tools
+    /// that build a graph by hand.
+    pub fn state_symbols(&mut self, names: &[&str]) -> Result<Vec<SymbolId>> {
+        names
+            .iter()
+            .map(|n| {
+                let id = self.state(n)?;
+                self.as_symbol(id).ok_or_else(|| crate::Error::Unsupported {
+                    message: format!("`{n}` is not a symbol"),
+                })
+            })
+            .collect()
+    }
+
     /// An algebraic variable.
     pub fn algebraic(&mut self, name: &str) -> Result<Id> {
         self.add_symbol(name, SymbolKind::Algebraic)
