@@ -3,6 +3,9 @@
 
 use daegen::prelude::*;
 
+mod support;
+use support::tight;
+
 include!("models/items.rs");
 include!("models/pendulum.rs");
 
@@ -364,8 +367,7 @@ fn pendulum_fixed_abscissa() {
 
 #[test]
 fn initialization_keeps_fixed_values_and_reports_the_degrees_of_freedom() {
-    let opts = Options::new().method(Method::Dop853).tolerance(1e-10);
-    let sol = PendulumFixedAbscissa::default().simulate(0.0, 1.0, &opts).unwrap();
+    let sol = tight::<PendulumFixedAbscissa>(1.0, 1e-10);
     let s = sol.state(0).unwrap();
     assert_eq!(s[0], 0.6);
     assert!((s[1] + 0.8).abs() <= 1e-14, "y0 = {}", s[1]);
@@ -375,14 +377,8 @@ fn initialization_keeps_fixed_values_and_reports_the_degrees_of_freedom() {
     let (u, v) = (0.3 * 0.8 * 0.8, 0.3 * 0.8 * 0.6);
     assert!((s[2] - u).abs() <= 1e-14 && (s[3] - v).abs() <= 1e-14, "{s:?}");
     assert_eq!(sol.degrees_of_freedom(), Some(1));
-    assert_eq!(
-        SliderCrank::default().simulate(0.0, 0.1, &opts).unwrap().degrees_of_freedom(),
-        Some(1)
-    );
-    assert_eq!(
-        PendulumAngle::default().simulate(0.0, 0.1, &opts).unwrap().degrees_of_freedom(),
-        None
-    );
+    assert_eq!(tight::<SliderCrank>(0.1, 1e-10).degrees_of_freedom(), Some(1));
+    assert_eq!(tight::<PendulumAngle>(0.1, 1e-10).degrees_of_freedom(), None);
     let stats = sol.stats();
     assert_eq!(stats.method, "Dop853");
     assert!(stats.formulation.contains("projected"), "{}", stats.formulation);
@@ -488,8 +484,7 @@ fn shaken_pendulum_angle() {
 fn a_pendulum_on_a_moving_support_follows_its_angle_form() {
     assert_eq!(<PendulumOnAShakingSupport as Model>::INDEX, 3);
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = PendulumOnAShakingSupport::default().simulate(0.0, 5.0, &opts).unwrap();
+    let sol = tight::<PendulumOnAShakingSupport>(5.0, tol);
     let (a, w, l) = (0.1, 3.0, 1.0);
     // The consistent start (the velocity constraint involves s'(0) = a ω).
     let s0 = sol.state(0).unwrap();
@@ -539,8 +534,7 @@ fn a_knife_edge_follows_its_closed_form() {
     // It corrects the velocities, not the heading.
     assert_eq!(KnifeEdge::PROJECTION[0].slots, &[3, 4]);
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = KnifeEdge::default().simulate(0.0, 10.0, &opts).unwrap();
+    let sol = tight::<KnifeEdge>(10.0, tol);
     // φ = ω t and the speed along the blade V − (g sin α/ω) sin ω t give
     // x = (V/ω) sin ωt − g sin α/(2ω²) sin² ωt,
     // y = (V/ω)(1 − cos ωt) − (g sin α/ω)(t/2 − sin 2ωt/(4ω)) (V = ω = g sin α = 1).
@@ -689,11 +683,8 @@ fn double_pendulum_angles() {
 fn the_cartesian_double_pendulum_follows_its_angle_form() {
     // Chaotic: compared over 2 s, where both runs agree to their tolerance.
     let tol = 1e-11;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = DoublePendulumCartesian::default().simulate(0.0, 2.0, &opts).unwrap();
-    let reference = DoublePendulumAngles::default()
-        .simulate(0.0, 2.0, &Options::new().method(Method::Dop853).tolerance(1e-13))
-        .unwrap();
+    let sol = tight::<DoublePendulumCartesian>(2.0, tol);
+    let reference = tight::<DoublePendulumAngles>(2.0, 1e-13);
     for t in [0.5, 1.0, 2.0] {
         let (a, b) = (reference.at(t, "a").unwrap(), reference.at(t, "b").unwrap());
         let (x2, y2) = (a.sin() + b.sin(), -a.cos() - b.cos());
@@ -728,8 +719,7 @@ fn explicit_definitions_may_have_parameter_coefficients() {
     assert_eq!(<PendulumMomentum as Model>::INDEX, 3);
     // Cash's pendulum again (unit speed, g = 1), whatever the mass.
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = PendulumMomentum::default().simulate(0.0, 1.0, &opts).unwrap();
+    let sol = tight::<PendulumMomentum>(1.0, tol);
     let e = (sol.last("x").unwrap() - PENDUL3[0].1[0])
         .abs()
         .max((sol.last("y").unwrap() - PENDUL3[0].1[1]).abs());

@@ -8,6 +8,9 @@ use daegen::prelude::*;
 use daegen::runtime::kinematics as k;
 use daegen::runtime::nalgebra::{Matrix3, Vector3};
 
+mod support;
+use support::tight;
+
 /// Each rotation constructor of the language applied to one vector `w`.
 #[dae_model]
 fn rotations() {
@@ -124,11 +127,8 @@ fn spherical_pendulum_angles() {
 fn a_spherical_pendulum_written_with_vectors_follows_its_angles() {
     assert_eq!(<SphericalPendulum as Model>::INDEX, 3);
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = SphericalPendulum::default().simulate(0.0, 3.0, &opts).unwrap();
-    let reference = SphericalPendulumAngles::default()
-        .simulate(0.0, 3.0, &Options::new().method(Method::Dop853).tolerance(1e-13))
-        .unwrap();
+    let sol = tight::<SphericalPendulum>(3.0, tol);
+    let reference = tight::<SphericalPendulumAngles>(3.0, 1e-13);
     for t in [0.5, 1.0, 3.0] {
         let (theta, phi) = (reference.at(t, "theta").unwrap(), reference.at(t, "phi").unwrap());
         let want = [theta.sin() * phi.cos(), theta.sin() * phi.sin(), -theta.cos()];

@@ -4,6 +4,9 @@
 
 use daegen::prelude::*;
 
+mod support;
+use support::tight;
+
 include!("models/heavy_top.rs");
 
 /// The heavy top of the kinematics tests as a scene: a body on a spherical
@@ -43,9 +46,8 @@ fn heavy_top_scene() {
 fn a_heavy_top_scene_matches_the_hand_written_quaternion_model() {
     assert_eq!(<HeavyTopScene as Model>::INDEX, 3);
     let tol = 1e-12;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let scene = HeavyTopScene::default().simulate(0.0, 10.0, &opts).unwrap();
-    let hand = HeavyTop::default().simulate(0.0, 10.0, &opts).unwrap();
+    let scene = tight::<HeavyTopScene>(10.0, tol);
+    let hand = tight::<HeavyTop>(10.0, tol);
     assert_eq!(scene.degrees_of_freedom(), Some(3));
     let mut worst = 0.0f64;
     for t in [1.0, 2.5, 5.0, 10.0] {
@@ -121,9 +123,8 @@ fn compound_pendulum() {
 fn a_revolute_and_a_fixed_joint_make_a_compound_pendulum() {
     assert_eq!(<WeldedPendulum as Model>::INDEX, 3);
     let tol = 1e-11;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let scene = WeldedPendulum::default().simulate(0.0, 3.0, &opts).unwrap();
-    let minimal = CompoundPendulum::default().simulate(0.0, 3.0, &opts).unwrap();
+    let scene = tight::<WeldedPendulum>(3.0, tol);
+    let minimal = tight::<CompoundPendulum>(3.0, tol);
     assert_eq!(scene.degrees_of_freedom(), Some(1));
     for t in [0.5, 1.0, 2.0, 3.0] {
         let (a, b) = (scene.at(t, "angle").unwrap(), minimal.at(t, "theta").unwrap());
@@ -164,8 +165,7 @@ fn block_on_a_slope() {
 #[test]
 fn a_prismatic_joint_on_a_slope_follows_the_exact_solution() {
     let tol = 1e-10;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = BlockOnASlope::default().simulate(0.0, 2.0, &opts).unwrap();
+    let sol = tight::<BlockOnASlope>(2.0, tol);
     assert_eq!(sol.degrees_of_freedom(), Some(1));
     let (g, alpha) = (9.81f64, 0.3f64);
     let q0 = [
@@ -249,8 +249,7 @@ fn damped_block() {
 #[test]
 fn a_spring_damper_gives_the_damped_oscillator() {
     let tol = 1e-11;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = DampedBlock::default().simulate(0.0, 5.0, &opts).unwrap();
+    let sol = tight::<DampedBlock>(5.0, tol);
     // x − 1 = A e^{−ζω t} (cos ω_d t + ζ/√(1−ζ²) sin ω_d t), ω = 2, ζ = 0.1.
     let (omega, zeta, a) = (2.0f64, 0.1f64, 0.3f64);
     let wd = omega * (1.0 - zeta * zeta).sqrt();
@@ -277,8 +276,7 @@ fn spun_body() {
 #[test]
 fn a_constant_torque_about_a_principal_axis_spins_a_body_up() {
     let tol = 1e-12;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let sol = SpunBody::default().simulate(0.0, 2.0, &opts).unwrap();
+    let sol = tight::<SpunBody>(2.0, tol);
     for t in [0.5, 1.0, 2.0] {
         // ψ = ½ (τ / J_z) t², q = (cos ψ/2, 0, 0, sin ψ/2).
         let psi = 0.5 * 1.5 * t * t;
@@ -311,9 +309,8 @@ fn pulled_bar_angle() {
 #[test]
 fn a_force_at_a_body_point_turns_the_bar_as_its_one_coordinate_says() {
     let tol = 1e-11;
-    let opts = Options::new().method(Method::Dop853).tolerance(tol);
-    let scene = PulledBar::default().simulate(0.0, 3.0, &opts).unwrap();
-    let minimal = PulledBarAngle::default().simulate(0.0, 3.0, &opts).unwrap();
+    let scene = tight::<PulledBar>(3.0, tol);
+    let minimal = tight::<PulledBarAngle>(3.0, tol);
     for t in [0.5, 1.5, 3.0] {
         let (a, b) = (scene.at(t, "psi").unwrap(), minimal.at(t, "psi").unwrap());
         assert!((a - b).abs() <= 1e-8, "t = {t}: scene {a}, one coordinate {b}");
