@@ -71,7 +71,7 @@ where
                 })
                 .collect()
         };
-        let rows = self.in_pool(|| (0..batches).into_par_iter().flat_map_iter(one).collect());
+        let rows = self.pool().run(|| (0..batches).into_par_iter().flat_map_iter(one).collect());
         if let Some(bar) = bar {
             bar.finish();
         }

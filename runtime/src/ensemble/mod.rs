@@ -133,7 +133,8 @@ where
         reduce: impl Fn(usize, Result<Solution, Error>) -> T + Sync,
     ) -> Vec<T> {
         let bar = self.progress.then(|| progress_bar(self.members.len()));
-        let reduced = self.map_members(self.members.clone(), t0, t1, options, &reduce, &bar);
+        let pool = self.pool();
+        let reduced = self.map_members(&pool, self.members.clone(), t0, t1, options, &reduce, &bar);
         if let Some(bar) = bar {
             bar.finish();
         }
@@ -153,11 +154,12 @@ where
         mut fold: impl FnMut(A, usize, T) -> A,
     ) -> A {
         let bar = self.progress.then(|| progress_bar(self.members.len()));
+        let pool = self.pool();
         let mut accumulator = init;
         let mut start = self.members.start;
         while start < self.members.end {
             let end = (start + FOLD_CHUNK).min(self.members.end);
-            let reduced = self.map_members(start..end, t0, t1, options, &reduce, &bar);
+            let reduced = self.map_members(&pool, start..end, t0, t1, options, &reduce, &bar);
             for (i, value) in (start..end).zip(reduced) {
                 accumulator = fold(accumulator, i, value);
             }
@@ -211,8 +213,10 @@ where
     }
 
     /// The members `members`, each reduced as it ends, in member order.
+    #[allow(clippy::too_many_arguments)]
     fn map_members<T: Send>(
         &self,
+        pool: &Pool,
         members: Range<usize>,
         t0: f64,
         t1: f64,
@@ -228,7 +232,7 @@ where
             }
             reduce(i, result)
         };
-        match self.in_pool(|| members.clone().into_par_iter().map(one).collect()) {
+        match pool.run(|| members.clone().into_par_iter().map(one).collect()) {
             Ok(reduced) => reduced,
             // No pool, no runs: each member says why.
             Err(message) => members
@@ -245,16 +249,34 @@ where
         }
     }
 
-    /// `f` on a pool of the ensemble's threads (rayon's global pool, one
-    /// thread per core, by default).
-    fn in_pool<R: Send>(&self, f: impl FnOnce() -> R + Send) -> Result<R, String> {
+    /// The ensemble's threads: rayon's global pool (one thread per core)
+    /// by default, else a pool of its own, built once a run.
+    fn pool(&self) -> Pool {
         match self.threads {
-            None => Ok(f()),
-            Some(k) => rayon::ThreadPoolBuilder::new()
-                .num_threads(k)
-                .build()
-                .map(|pool| pool.install(f))
-                .map_err(|e| format!("the ensemble could not start {k} threads: {e}")),
+            None => Pool::Global,
+            Some(k) => match rayon::ThreadPoolBuilder::new().num_threads(k).build() {
+                Ok(pool) => Pool::Own(pool),
+                Err(e) => Pool::Failed(format!("the ensemble could not start {k} threads: {e}")),
+            },
+        }
+    }
+}
+
+/// Where an ensemble's members run.
+enum Pool {
+    Global,
+    Own(rayon::ThreadPool),
+    /// No threads could be started: the reason, for every member.
+    Failed(String),
+}
+
+impl Pool {
+    /// `f` on this pool's threads.
+    fn run<R: Send>(&self, f: impl FnOnce() -> R + Send) -> Result<R, String> {
+        match self {
+            Pool::Global => Ok(f()),
+            Pool::Own(pool) => Ok(pool.install(f)),
+            Pool::Failed(message) => Err(message.clone()),
         }
     }
 }
