@@ -20,7 +20,7 @@ fn rate(i: usize) -> f64 {
     0.1 * (i + 1) as f64
 }
 
-fn ensemble(n: usize) -> Ensemble<Decay, impl Fn(usize) -> Decay + Sync> {
+fn ensemble(n: usize) -> Ensemble<'static, Decay, impl Fn(usize) -> Decay + Sync> {
     Ensemble::new(n, |i| Decay { k: rate(i) })
 }
 
@@ -290,4 +290,16 @@ fn final_values_read_outputs_by_name_and_refuse_unknown_names() {
         }
         other => panic!("expected UnknownName, got {other:?}"),
     }
+}
+
+#[test]
+fn members_may_borrow_their_initial_states_and_shards_nest() {
+    let starts: Vec<Vec<f64>> = (0..12).map(|i| vec![1.0 + i as f64]).collect();
+    let ens = ensemble(12).initial_states(|i| starts[i].clone());
+    let whole = ens.final_states(0.0, 1.0, &options());
+    // Shard 1 of 3 is members 4..8; its shard 1 of 2, members 6..8.
+    let inner = ensemble(12).shard(Shard::new(1, 3).unwrap()).shard(Shard::new(1, 2).unwrap());
+    assert_eq!(inner.members(), 6..8);
+    let part = inner.initial_states(|i| starts[i].clone()).final_states(0.0, 1.0, &options());
+    assert_eq!(part.rows[..], whole.rows[6..8]);
 }

@@ -21,7 +21,7 @@ pub trait Batch: Simulate {
     fn from_members(members: &[Self::Member]) -> Self;
 }
 
-impl<M, F> Ensemble<M, F>
+impl<M, F> Ensemble<'_, M, F>
 where
     M: Simulate,
     F: Fn(usize) -> M + Sync,

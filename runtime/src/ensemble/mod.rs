@@ -36,7 +36,7 @@ const FOLD_CHUNK: usize = 4096;
 
 /// A model's initial state per member, as [`Ensemble::initial_states`]
 /// gives it.
-type InitialStateOf = Box<dyn Fn(usize) -> Vec<f64> + Send + Sync>;
+type InitialStateOf<'a> = Box<dyn Fn(usize) -> Vec<f64> + Send + Sync + 'a>;
 
 /// `n` runs of a model: `Ensemble::new(n, |i| model_for_member(i))`.
 ///
@@ -52,16 +52,16 @@ type InitialStateOf = Box<dyn Fn(usize) -> Vec<f64> + Send + Sync>;
 /// let finals = ensemble.final_states(0.0, 10.0, &Options::new().tolerance(1e-10));
 /// # }
 /// ```
-pub struct Ensemble<M, F> {
+pub struct Ensemble<'a, M, F> {
     model_of: F,
-    initial_state_of: Option<InitialStateOf>,
+    initial_state_of: Option<InitialStateOf<'a>>,
     members: Range<usize>,
     threads: Option<usize>,
     progress: bool,
     _model: std::marker::PhantomData<fn() -> M>,
 }
 
-impl<M, F> Ensemble<M, F>
+impl<'a, M, F> Ensemble<'a, M, F>
 where
     M: Simulate,
     F: Fn(usize) -> M + Sync,
@@ -84,7 +84,7 @@ where
     /// a DAE's state is made consistent as a lone run's is.
     pub fn initial_states(
         mut self,
-        initial_state: impl Fn(usize) -> Vec<f64> + Send + Sync + 'static,
+        initial_state: impl Fn(usize) -> Vec<f64> + Send + Sync + 'a,
     ) -> Self {
         self.initial_state_of = Some(Box::new(initial_state));
         self
@@ -105,9 +105,12 @@ where
 
     /// Keeps only the members of shard `shard` (the `i`-th of `n`
     /// contiguous blocks, as [`Shard::members`] cuts them): one machine's
-    /// part of an ensemble spread over `n`.
+    /// part of an ensemble spread over `n`. A shard of a shard cuts the
+    /// shard's members.
     pub fn shard(mut self, shard: Shard) -> Self {
-        self.members = shard.members(self.members.len());
+        let block = shard.members(self.members.len());
+        let start = self.members.start;
+        self.members = start + block.start..start + block.end;
         self
     }
 
