@@ -303,3 +303,13 @@ fn members_may_borrow_their_initial_states_and_shards_nest() {
     let part = inner.initial_states(|i| starts[i].clone()).final_states(0.0, 1.0, &options());
     assert_eq!(part.rows[..], whole.rows[6..8]);
 }
+
+#[test]
+fn an_empty_ensemble_runs_nothing_and_says_nothing_went_wrong() {
+    let empty = ensemble(0);
+    assert!(empty.run(0.0, 1.0, &options()).is_empty());
+    assert!(empty.final_states(0.0, 1.0, &options()).rows.is_empty());
+    assert_eq!(empty.fold(0.0, 1.0, &options(), |_, _| 1, 0, |a, _, b| a + b), 0);
+    let no_batches = Ensemble::new(0, |_| Kepler { e: 0.5 });
+    assert!(no_batches.final_states_batched::<KeplerBatch>(0.0, 1.0, &options()).rows.is_empty());
+}
