@@ -123,12 +123,19 @@ fn robertson_row(members: usize, cores: usize) -> Row {
     }
 }
 
-/// DOP853 at 1e-12 on `members` Kepler orbits with eccentricities
+/// `method` at 1e-12 on `members` Kepler orbits with eccentricities
 /// `e(i)`: scalar runs, batches of four and of eight on one thread, and
-/// batches of eight on `cores` threads. (seconds, largest energy error) of
-/// each.
-fn batch_rows(members: usize, e: &(dyn Fn(usize) -> f64 + Sync), cores: usize) -> [(f64, f64); 4] {
-    let opts = Options::new().method(Method::Dop853).tolerance(1e-12);
+/// batches of eight on `cores` threads; for Taylor, the scalar runs also
+/// with the straight-line jets `#[dae_model(unroll = [..])]` emits (the
+/// batches interpret their tapes on lanes). (seconds, largest energy
+/// error) of each.
+fn batch_rows(
+    method: Method,
+    members: usize,
+    e: &(dyn Fn(usize) -> f64 + Sync),
+    cores: usize,
+) -> Vec<(f64, f64)> {
+    let opts = Options::new().method(method).tolerance(1e-12);
     let t1 = 20.0 * std::f64::consts::PI;
     let worst = |f: &daegen::FinalStates| {
         f.rows
@@ -155,7 +162,15 @@ fn batch_rows(members: usize, e: &(dyn Fn(usize) -> f64 + Sync), cores: usize) -
             .threads(cores)
             .final_states_batched::<KeplerEightBatch>(0.0, t1, &opts)
     });
-    [(scalar, worst(&f1)), (four, worst(&f4)), (eight, worst(&f8)), (both, worst(&fb))]
+    let mut rows =
+        vec![(scalar, worst(&f1)), (four, worst(&f4)), (eight, worst(&f8)), (both, worst(&fb))];
+    if method == Method::Taylor {
+        let (unrolled, fu) = fastest(|| {
+            Ensemble::new(members, |i| Kepler { e: e(i) }).threads(1).final_states(0.0, t1, &opts)
+        });
+        rows.push((unrolled, worst(&fu)));
+    }
+    rows
 }
 
 /// heyoka's ensemble through bench/peers/ensemble.py: (solve seconds,
@@ -228,20 +243,25 @@ pub fn ensemble_section() {
             }
         }
     }
-    text.push_str(&format!("\n## Batch lanes\n\n`#[dae_model(batch = L)]` steps L members together with one step size, the right-hand side computed on `Lanes<L>` values (SIMD where the target has it), each lane's error measured alone. DOP853 at 1e-12 on one thread, 10⁴ Kepler orbits to t = 20π: members alike (e in [0.5, 0.51)) and members unlike (e in [0, 0.9)), where a batch takes the steps of its most eccentric member. Ratio: scalar time on one thread over batch time (above 1: the batch pays); the last column adds every thread to batches of 8.\n\n| members | scalar | batch of 4 | batch of 8 | batch of 8, {cores} threads | largest \\|E + ½\\| scalar, 4, 8 |\n|---|---|---|---|---|---|\n"));
+    text.push_str(&format!("\n## Batch lanes\n\n`#[dae_model(batch = L)]` steps L members together with one step size, each lane's error measured alone: DOP853 computes the right-hand side on `Lanes<L>` values (SIMD where the target has it), Taylor runs the members' tapes as one tape whose coefficients are lanes. Tol 1e-12 on one thread, 10⁴ Kepler orbits to t = 20π: members alike (e in [0.5, 0.51)) and members unlike (e in [0, 0.9)), where a batch takes the steps of its most eccentric member. Ratio: scalar time on one thread over batch time (above 1: the batch pays); the batch-of-8 column on {cores} threads adds every core. Taylor's scalar runs interpret the same tape; the last column is the scalar run with the straight-line jets `unroll` emits, against the batch of 8 on one thread.\n\n| method | members | scalar | batch of 4 | batch of 8 | batch of 8, {cores} threads | largest \\|E + ½\\| scalar, 4, 8 | scalar unrolled (batch of 8 over it) |\n|---|---|---|---|---|---|---|---|\n"));
     let alike = |i: usize| 0.5 + 0.01 * uniform(i as u64);
     let unlike = |i: usize| 0.9 * uniform(i as u64);
     let spreads: [(&str, &(dyn Fn(usize) -> f64 + Sync)); 2] =
         [("alike, e in [0.5, 0.51)", &alike), ("unlike, e in [0, 0.9)", &unlike)];
-    for (label, e) in spreads {
-        eprintln!("ensemble: batch lanes, members {label}");
-        let [(s, es), (f, ef), (e8, ee), (b, _)] = batch_rows(kepler_members, e, cores);
-        text.push_str(&format!(
-            "| {label} | {s:.2} s | {f:.2} s ({:.2}×) | {e8:.2} s ({:.2}×) | {b:.2} s ({:.2}×) | {es:.1e}, {ef:.1e}, {ee:.1e} |\n",
-            s / f,
-            s / e8,
-            s / b
-        ));
+    for method in [Method::Dop853, Method::Taylor] {
+        for (label, e) in spreads {
+            eprintln!("ensemble: batch lanes, {method:?}, members {label}");
+            let rows = batch_rows(method, kepler_members, e, cores);
+            let [(s, es), (f, ef), (e8, ee), (b, _)] = [rows[0], rows[1], rows[2], rows[3]];
+            let unrolled =
+                rows.get(4).map_or("".to_string(), |&(u, _)| format!("{u:.2} s ({:.2}×)", u / e8));
+            text.push_str(&format!(
+                "| {method:?} | {label} | {s:.2} s | {f:.2} s ({:.2}×) | {e8:.2} s ({:.2}×) | {b:.2} s ({:.2}×) | {es:.1e}, {ef:.1e}, {ee:.1e} | {unrolled} |\n",
+                s / f,
+                s / e8,
+                s / b
+            ));
+        }
     }
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("results/ensemble.md");
     if let Err(e) = std::fs::write(&path, &text) {

@@ -182,6 +182,13 @@ pub trait Model {
         None
     }
 
+    /// A batch model's members' tapes, lane by lane (see [`Model::LANES`]):
+    /// the adaptive Taylor method runs them as one tape on lanes. `None`
+    /// for every other model, and for a batch whose members have no tape.
+    fn taylor_member_tapes(&self) -> Option<Vec<crate::methods::taylor::tape::Tape>> {
+        None
+    }
+
     /// Writes the value of every event function (see [`ModelInfo::events`])
     /// at `(t, y)` into `g`.
     fn events(&self, t: f64, y: &[f64], g: &mut [f64]) {

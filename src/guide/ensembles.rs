@@ -91,10 +91,14 @@
 //! assert!((sol.last("x[lane 1]").unwrap() - (-2.0f64).exp()).abs() < 1e-9);
 //! ```
 //!
-//! Batches run the explicit pairs (DOPRI5, DOP853) and the fixed-step
-//! methods; the Taylor method runs members one by one. Only explicit ODEs
-//! batch: a DAE, events or derivatives solved at run time are a compile
-//! error that says so.
+//! Batches run the explicit pairs (DOPRI5, DOP853), the fixed-step
+//! methods and `Method::Taylor`, which runs the members' tapes as one tape
+//! whose coefficients are lanes: each lane picks the order and the radius
+//! of convergence it would alone, and the batch steps by the least radius
+//! (the straight-line jets of `unroll` are for members run one by one).
+//! The stiff methods refuse a batch: their Newton iteration would couple
+//! the members' errors. Only explicit ODEs batch: a DAE, events or
+//! derivatives solved at run time are a compile error that says so.
 //!
 //! ## Past one machine
 //!

@@ -69,10 +69,9 @@ pub(crate) fn batch_items(
     let states: Vec<String> =
         (0..n * l).map(|k| format!("{}[lane {}]", sys.slots[k / l].name, k % l)).collect();
     let doc = doc_attr(&format!(
-        "{l} members of [`{name}`] stepped together with one step size: their parameters and states side by side, component `i` of lane `l` at `i·{l} + l`, the right-hand side computed for all lanes at once. Built from members by `daegen::runtime::Batch::from_members`; run by `daegen::Ensemble::final_states_batched` or as any model, with an explicit pair or a fixed-step method (each lane meets the tolerance as its member would alone)."
+        "{l} members of [`{name}`] stepped together with one step size: their parameters and states side by side, component `i` of lane `l` at `i·{l} + l`, the right-hand side computed for all lanes at once. Built from members by `daegen::runtime::Batch::from_members`; run by `daegen::Ensemble::final_states_batched` or as any model, with an explicit pair, `Method::Taylor` (the members' tapes on lanes) or a fixed-step method (each lane meets the tolerance as its member would alone)."
     ));
     let name_str = batch.to_string();
-    let unavailable = "a batch runs the explicit pairs and the fixed-step methods; run `Method::Taylor` on the members one by one (`Ensemble::final_states`)";
     Ok(quote! {
         #[doc = #doc]
         #[derive(Clone, Copy, Debug, PartialEq)]
@@ -112,7 +111,7 @@ pub(crate) fn batch_items(
             type State = [f64; #nl_lit];
             const INDEX: usize = 0;
             const LANES: usize = #l_lit;
-            const TAYLOR_UNAVAILABLE: &'static str = #unavailable;
+            const TAYLOR_UNAVAILABLE: &'static str = <#name as ::daegen::Model>::TAYLOR_UNAVAILABLE;
             const INFO: ::daegen::ModelInfo = ::daegen::ModelInfo {
                 name: #name_str,
                 doc: "",
@@ -137,6 +136,9 @@ pub(crate) fn batch_items(
                         }
                     }
                 }
+            }
+            fn taylor_member_tapes(&self) -> ::core::option::Option<::std::vec::Vec<::daegen::runtime::taylor_tape::Tape>> {
+                (0..#l_lit).map(|lane| ::daegen::Model::taylor_tape(&self.member(lane))).collect()
             }
             fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
                 let y: [::daegen::runtime::lanes::Lanes<#l_lit>; #n_lit] = ::daegen::runtime::lanes::load(y);

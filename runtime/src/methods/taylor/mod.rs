@@ -9,7 +9,9 @@
 //! rejected. Time is summed with compensation, and each step's polynomial
 //! is the dense output.
 
+pub mod coefficient;
 pub(crate) mod fixed;
+pub(crate) mod lanes;
 pub mod order;
 pub mod series;
 pub mod tape;
@@ -252,6 +254,9 @@ pub(crate) fn integrate<M: Model>(
     problem: Problem<'_, M>,
     mut solution: Solution,
 ) -> Result<Solution, Error> {
+    if M::LANES > 1 {
+        return lanes::integrate(problem, solution);
+    }
     let Problem { model, t0, t1, y0, options } = problem;
     // One function for the step loop: the order, the step-size rule, the compensated time and
     // the dense output act on the same step.

@@ -6,6 +6,8 @@
 //! sin/cos as a pair. This is the compact layout: one loop over the tape
 //! per order, the same code for every model.
 
+use super::coefficient::Coefficient;
+
 /// `a·b + c`, fused (one rounding, one instruction) where the target has
 /// FMA, as the straight-line recurrences emitted by `#[dae_model(unroll =
 /// [..])]` are compiled with `-C target-cpu=native`; plain otherwise (a
@@ -19,9 +21,10 @@ pub fn mul_add(a: f64, b: f64, c: f64) -> f64 {
     }
 }
 
-/// An operand of a tape operation.
+/// An operand of a tape operation; its constants are `C`s (`f64`, or
+/// [`crate::lanes::Lanes`] for a batch's members side by side).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Operand {
+pub enum Operand<C = f64> {
     /// u-variable `i` (an earlier operation of the tape).
     Var(usize),
     /// State `i`.
@@ -29,37 +32,77 @@ pub enum Operand {
     /// The independent variable.
     Time,
     /// A constant (parameters are folded in by the generated code).
-    Const(f64),
+    Const(C),
 }
 
 /// One elementary operation; the result is the next u-variable.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum TapeOp {
+pub enum TapeOp<C = f64> {
     /// `a + b`.
-    Add(Operand, Operand),
+    Add(Operand<C>, Operand<C>),
     /// `a * b`.
-    Mul(Operand, Operand),
+    Mul(Operand<C>, Operand<C>),
     /// `a / b`.
-    Div(Operand, Operand),
+    Div(Operand<C>, Operand<C>),
     /// `a^e` for a constant real `e` (`sqrt` is `e = 0.5`).
-    Pow(Operand, f64),
+    Pow(Operand<C>, C),
     /// `exp(a)`.
-    Exp(Operand),
+    Exp(Operand<C>),
     /// `ln(a)`.
-    Ln(Operand),
+    Ln(Operand<C>),
     /// `sin(a)`; its `cos` is the next u-variable (`SinCos` pairs them).
-    Sin(Operand),
+    Sin(Operand<C>),
     /// The `cos` of the argument of the preceding `Sin`.
     CosOfPrevious,
     /// `sinh(a)`; its `cosh` is the next u-variable.
-    Sinh(Operand),
+    Sinh(Operand<C>),
     /// The `cosh` of the argument of the preceding `Sinh`.
     CoshOfPrevious,
     /// `f(a)` for an inverse function f whose derivative is ±a'/d; `d` is
     /// √(1 − a²) for asin and acos, 1 + a² for atan (earlier u-variables).
-    Inverse(Inverse, Operand, Operand),
+    Inverse(Inverse, Operand<C>, Operand<C>),
     /// `atan2(y, x)` with `d = x² + y²`: u' = (x·y' − y·x')/d.
-    Atan2(Operand, Operand, Operand),
+    Atan2(Operand<C>, Operand<C>, Operand<C>),
+}
+
+/// A model's tape: its operations, and the operand that is each f_i.
+pub type Tape = (Vec<TapeOp>, Vec<Operand>);
+
+impl<C> Operand<C> {
+    /// The same operand with its constant, if any, mapped by `f`.
+    pub fn map_constant<D>(&self, f: impl FnOnce(&C) -> D) -> Operand<D> {
+        match self {
+            Operand::Var(i) => Operand::Var(*i),
+            Operand::State(i) => Operand::State(*i),
+            Operand::Time => Operand::Time,
+            Operand::Const(c) => Operand::Const(f(c)),
+        }
+    }
+}
+
+impl<C> TapeOp<C> {
+    /// The same operation with its constants mapped by `f`, in the order
+    /// of its operands.
+    pub fn map_constants<D>(&self, mut f: impl FnMut(&C) -> D) -> TapeOp<D> {
+        let mut o = |a: &Operand<C>| a.map_constant(&mut f);
+        match self {
+            TapeOp::Add(a, b) => TapeOp::Add(o(a), o(b)),
+            TapeOp::Mul(a, b) => TapeOp::Mul(o(a), o(b)),
+            TapeOp::Div(a, b) => TapeOp::Div(o(a), o(b)),
+            TapeOp::Pow(a, e) => {
+                let a = o(a);
+                TapeOp::Pow(a, f(e))
+            }
+            TapeOp::Exp(a) => TapeOp::Exp(o(a)),
+            TapeOp::Ln(a) => TapeOp::Ln(o(a)),
+            TapeOp::Sin(a) => TapeOp::Sin(o(a)),
+            TapeOp::CosOfPrevious => TapeOp::CosOfPrevious,
+            TapeOp::Sinh(a) => TapeOp::Sinh(o(a)),
+            TapeOp::CoshOfPrevious => TapeOp::CoshOfPrevious,
+            TapeOp::Inverse(g, a, d) => TapeOp::Inverse(*g, o(a), o(d)),
+            TapeOp::Atan2(y, x, d) => TapeOp::Atan2(o(y), o(x), o(d)),
+        }
+    }
 }
 
 /// The inverse functions of [`TapeOp::Inverse`].
@@ -82,11 +125,11 @@ impl Inverse {
         }
     }
 
-    fn sign(self) -> f64 {
-        match self {
+    fn sign<T: Coefficient>(self) -> T {
+        T::splat(match self {
             Inverse::Acos => -1.0,
             _ => 1.0,
-        }
+        })
     }
 }
 
@@ -95,13 +138,13 @@ impl Inverse {
 /// interprets a list of these; the emitted layout calls [`advance`] with
 /// literal ones, which the compiler specialises.
 #[derive(Clone, Copy, Debug)]
-pub enum Step {
+pub enum Step<T = f64> {
     /// `a + b`.
     Add(usize, usize),
     /// Multiplication by a constant: one product per order, not a convolution.
-    Scale(usize, f64),
+    Scale(usize, T),
     /// Division by a constant.
-    Quotient(usize, f64),
+    Quotient(usize, T),
     /// `a·b`, the Cauchy convolution.
     Mul(usize, usize),
     /// `a·a`: the symmetric convolution, half the products.
@@ -109,7 +152,7 @@ pub enum Step {
     /// `a/b`.
     Div(usize, usize),
     /// `a^e`, constant real e.
-    Pow(usize, f64),
+    Pow(usize, T),
     /// `exp(a)`.
     Exp(usize),
     /// `ln(a)`.
@@ -125,29 +168,34 @@ pub enum Step {
 }
 
 /// The tape compiled for one order, with its coefficient storage. Rows of
-/// `order + 1` coefficients: states, time, constants, then u-variables.
-pub struct TaylorWork {
+/// `order + 1` coefficients: states, time, constants, then u-variables;
+/// each coefficient a `T` (`f64`, or a batch's lanes).
+pub struct TaylorWork<T: Coefficient = f64> {
     order: usize,
     states: usize,
     time_row: usize,
-    steps: Vec<(usize, Step)>,
+    steps: Vec<(usize, Step<T>)>,
     outputs: Vec<usize>,
-    rows: Vec<f64>,
+    rows: Vec<T>,
 }
 
-impl TaylorWork {
+impl<T: Coefficient> TaylorWork<T> {
     /// Compiles `tape` (with `outputs[i]` the operand that is f_i) for
     /// `states` states up to `order`. Allocates; call once per integration.
-    pub fn new(tape: &[TapeOp], outputs: &[Operand], states: usize, order: usize) -> TaylorWork {
+    pub fn new(
+        tape: &[TapeOp<T>],
+        outputs: &[Operand<T>],
+        states: usize,
+        order: usize,
+    ) -> TaylorWork<T> {
         let w = order + 1;
         let time_row = states;
-        let mut constants: Vec<f64> = Vec::new();
-        let constant_row = |c: f64, constants: &mut Vec<f64>| {
-            let i =
-                constants.iter().position(|&d| d.to_bits() == c.to_bits()).unwrap_or_else(|| {
-                    constants.push(c);
-                    constants.len() - 1
-                });
+        let mut constants: Vec<T> = Vec::new();
+        let constant_row = |c: T, constants: &mut Vec<T>| {
+            let i = constants.iter().position(|d| d.same(&c)).unwrap_or_else(|| {
+                constants.push(c);
+                constants.len() - 1
+            });
             time_row + 1 + i
         };
         // Constants are numbered in a first pass so that u-variable rows
@@ -172,7 +220,7 @@ impl TaylorWork {
             }
         }
         let first_var = time_row + 1 + constants.len();
-        let row = |o: Operand, constants: &mut Vec<f64>| match o {
+        let row = |o: Operand<T>, constants: &mut Vec<T>| match o {
             Operand::Var(i) => first_var + i,
             Operand::State(i) => i,
             Operand::Time => time_row,
@@ -203,44 +251,45 @@ impl TaylorWork {
             steps.push((first_var + v, step));
         }
         let outputs = outputs.iter().map(|&o| row(o, &mut constants)).collect();
-        let mut rows = vec![0.0; (first_var + tape.len()) * w];
+        let mut rows = vec![T::splat(0.0); (first_var + tape.len()) * w];
         for (i, c) in constants.iter().enumerate() {
             rows[(time_row + 1 + i) * w] = *c;
         }
         if order > 0 {
-            rows[time_row * w + 1] = 1.0;
+            rows[time_row * w + 1] = T::splat(1.0);
         }
         TaylorWork { order, states, time_row, steps, outputs, rows }
     }
 
     /// All rows; state i's coefficients are row i.
-    pub fn rows(&self) -> &[f64] {
+    pub fn rows(&self) -> &[T] {
         &self.rows
     }
 
     /// The normalised coefficients x_i^\[k\] = x_i^(k)/k! of state `i`.
     #[inline]
-    pub fn state(&self, i: usize) -> &[f64] {
+    pub fn state(&self, i: usize) -> &[T] {
         let w = self.order + 1;
         &self.rows[i * w..(i + 1) * w]
     }
 
     /// Fills the normalised Taylor coefficients of the solution through
     /// (t, y): `self.state(i)[k]` for k = 0..=order.
-    pub fn compute(&mut self, t: f64, y: &[f64]) {
+    pub fn compute(&mut self, t: f64, y: &[T]) {
         let w = self.order + 1;
         let rows = &mut self.rows;
         for (i, &yi) in y.iter().enumerate().take(self.states) {
             rows[i * w] = yi;
         }
-        rows[self.time_row * w] = t;
+        rows[self.time_row * w] = T::splat(t);
         for k in 0..self.order {
             for &(v, step) in &self.steps {
                 advance(rows, w, k, v, step);
             }
             // x^[k+1] = f^[k] / (k + 1).
+            let next = T::splat((k + 1) as f64);
             for (i, &out) in self.outputs.iter().enumerate() {
-                rows[i * w + k + 1] = rows[out * w + k] / (k + 1) as f64;
+                rows[i * w + k + 1] = rows[out * w + k] / next;
             }
         }
     }
@@ -252,46 +301,47 @@ impl TaylorWork {
 /// coefficients; rows of constants are zero beyond coefficient 0, the time
 /// row is (t, 1, 0, …).
 #[inline]
-pub fn advance(rows: &mut [f64], w: usize, k: usize, v: usize, step: Step) {
+pub fn advance<T: Coefficient>(rows: &mut [T], w: usize, k: usize, v: usize, step: Step<T>) {
     let at = |r: usize, j: usize| rows[r * w + j];
     let row = |r: usize| &rows[r * w..r * w + k + 1];
     let own = &rows[v * w..v * w + k];
-    let kf = k as f64;
+    let kf = T::splat(k as f64);
+    let zero = T::splat(0.0);
     let (value, second) = match step {
-        Step::Add(a, b) => (at(a, k) + at(b, k), 0.0),
-        Step::Scale(a, c) => (at(a, k) * c, 0.0),
-        Step::Quotient(a, c) => (at(a, k) / c, 0.0),
-        Step::Mul(a, b) => (convolution(row(a), row(b)), 0.0),
+        Step::Add(a, b) => (at(a, k) + at(b, k), zero),
+        Step::Scale(a, c) => (at(a, k) * c, zero),
+        Step::Quotient(a, c) => (at(a, k) / c, zero),
+        Step::Mul(a, b) => (convolution(row(a), row(b)), zero),
         Step::Square(a) => {
             // Σ_j a_j a_{k−j} = 2 Σ_{j<k−j} a_j a_{k−j} + a_{k/2}² (k even).
             let a = row(a);
             let half = k.div_ceil(2);
-            let twice = 2.0 * convolution(&a[..half], &a[k + 1 - half..]);
-            let middle = if k % 2 == 0 { a[k / 2] * a[k / 2] } else { 0.0 };
-            (twice + middle, 0.0)
+            let twice = T::splat(2.0) * convolution(&a[..half], &a[k + 1 - half..]);
+            let middle = if k % 2 == 0 { a[k / 2] * a[k / 2] } else { zero };
+            (twice + middle, zero)
         }
         Step::Div(a, b) => {
             // u = a/b: u^[k] = (a^[k] − Σ_{j<k} u^[j] b^[k−j]) / b^[0].
             let s = convolution(own, &row(b)[1..]);
-            ((at(a, k) - s) / at(b, 0), 0.0)
+            ((at(a, k) - s) / at(b, 0), zero)
         }
-        Step::Pow(a, e) if k == 0 => (power(at(a, 0), e), 0.0),
+        Step::Pow(a, e) if k == 0 => (at(a, 0).zip(e, power), zero),
         Step::Pow(a, e) => {
             // Σ_{j<k} (k·e − j·(e+1)) a^[k−j] u^[j].
             let a = row(a);
             let (plain, weighted) = convolutions(own, &a[1..]);
-            ((kf * e * plain - (e + 1.0) * weighted) / (kf * a[0]), 0.0)
+            ((kf * e * plain - (e + T::splat(1.0)) * weighted) / (kf * a[0]), zero)
         }
-        Step::Exp(a) if k == 0 => (at(a, 0).exp(), 0.0),
-        Step::Exp(a) => (weighted_convolution(row(a), own) / kf, 0.0),
-        Step::Ln(a) if k == 0 => (at(a, 0).ln(), 0.0),
+        Step::Exp(a) if k == 0 => (at(a, 0).map(f64::exp), zero),
+        Step::Exp(a) => (weighted_convolution(row(a), own) / kf, zero),
+        Step::Ln(a) if k == 0 => (at(a, 0).map(f64::ln), zero),
         Step::Ln(a) => {
             // Σ_{0<j<k} j u^[j] a^[k−j].
             let a = row(a);
             let (_, s) = convolutions(own, &a[1..]);
-            ((kf * a[k] - s) / (kf * a[0]), 0.0)
+            ((kf * a[k] - s) / (kf * a[0]), zero)
         }
-        Step::SinhCosh(a) if k == 0 => (at(a, 0).sinh(), at(a, 0).cosh()),
+        Step::SinhCosh(a) if k == 0 => (at(a, 0).map(f64::sinh), at(a, 0).map(f64::cosh)),
         Step::SinhCosh(a) => {
             // s' = a' c and c' = a' s.
             let a = row(a);
@@ -299,20 +349,20 @@ pub fn advance(rows: &mut [f64], w: usize, k: usize, v: usize, step: Step) {
             let c = &rows[(v + 1) * w..(v + 1) * w + k];
             (weighted_convolution(a, c) / kf, weighted_convolution(a, s) / kf)
         }
-        Step::Inverse(f, a, _) if k == 0 => (f.value(at(a, 0)), 0.0),
+        Step::Inverse(f, a, _) if k == 0 => (at(a, 0).map(|x| f.value(x)), zero),
         Step::Inverse(f, a, d) => {
             // d·u' = ±a': k u^[k] d^[0] = ±k a^[k] − Σ_{0<j<k} j u^[j] d^[k−j].
             let d = row(d);
             let (_, s) = convolutions(own, &d[1..]);
-            ((f.sign() * at(a, k) - s / kf) / d[0], 0.0)
+            ((f.sign::<T>() * at(a, k) - s / kf) / d[0], zero)
         }
-        Step::Atan2(y, x, _) if k == 0 => (at(y, 0).atan2(at(x, 0)), 0.0),
+        Step::Atan2(y, x, _) if k == 0 => (at(y, 0).zip(at(x, 0), f64::atan2), zero),
         Step::Atan2(y, x, d) => {
             // d·u' = x·y' − y·x'.
             let (y, x, d) = (row(y), row(x), row(d));
             let numerator = weighted_convolution(y, &x[..k]) - weighted_convolution(x, &y[..k]);
             let (_, s) = convolutions(own, &d[1..]);
-            ((numerator - s) / (kf * d[0]), 0.0)
+            ((numerator - s) / (kf * d[0]), zero)
         }
         Step::SinCos(a) if k == 0 => at(a, 0).sin_cos(),
         Step::SinCos(a) => {
@@ -352,21 +402,21 @@ pub fn power(a: f64, e: f64) -> f64 {
 /// addition per term, which dominated the whole method; the result differs
 /// from the sequential sum only by rounding.
 #[inline]
-fn convolution(a: &[f64], b: &[f64]) -> f64 {
+fn convolution<T: Coefficient>(a: &[T], b: &[T]) -> T {
     let n = a.len().min(b.len());
     let (a, b) = (&a[..n], &b[..n]);
-    let mut acc = [0.0f64; 4];
+    let mut acc = [T::splat(0.0); 4];
     let (a4, b4) = (a.chunks_exact(4), b.rchunks_exact(4));
     let (a_tail, b_head) = (a4.remainder(), b4.remainder());
     for (x, y) in a4.zip(b4) {
-        acc[0] += x[0] * y[3];
-        acc[1] += x[1] * y[2];
-        acc[2] += x[2] * y[1];
-        acc[3] += x[3] * y[0];
+        acc[0] = acc[0] + x[0] * y[3];
+        acc[1] = acc[1] + x[1] * y[2];
+        acc[2] = acc[2] + x[2] * y[1];
+        acc[3] = acc[3] + x[3] * y[0];
     }
     // a's last elements meet b's first ones, in reverse.
     for (x, y) in a_tail.iter().zip(b_head.iter().rev()) {
-        acc[0] += x * y;
+        acc[0] = acc[0] + *x * *y;
     }
     (acc[0] + acc[1]) + (acc[2] + acc[3])
 }
@@ -374,26 +424,26 @@ fn convolution(a: &[f64], b: &[f64]) -> f64 {
 /// (Σ_i a[i]·b[n−1−i], Σ_i i·a[i]·b[n−1−i]) over the common length n, in
 /// one pass, with four partial sums each (see [`convolution`]).
 #[inline]
-fn convolutions(a: &[f64], b: &[f64]) -> (f64, f64) {
+fn convolutions<T: Coefficient>(a: &[T], b: &[T]) -> (T, T) {
     let n = a.len().min(b.len());
     let (a, b) = (&a[..n], &b[..n]);
-    let (mut plain, mut weighted) = ([0.0f64; 4], [0.0f64; 4]);
+    let (mut plain, mut weighted) = ([T::splat(0.0); 4], [T::splat(0.0); 4]);
     let mut index = [0.0, 1.0, 2.0, 3.0];
     let (a4, b4) = (a.chunks_exact(4), b.rchunks_exact(4));
     let (a_tail, b_head) = (a4.remainder(), b4.remainder());
     for (x, y) in a4.zip(b4) {
         for l in 0..4 {
             let term = x[l] * y[3 - l];
-            plain[l] += term;
-            weighted[l] += index[l] * term;
+            plain[l] = plain[l] + term;
+            weighted[l] = weighted[l] + T::splat(index[l]) * term;
             index[l] += 4.0;
         }
     }
     let mut i = index[0];
     for (x, y) in a_tail.iter().zip(b_head.iter().rev()) {
-        let term = x * y;
-        plain[0] += term;
-        weighted[0] += i * term;
+        let term = *x * *y;
+        plain[0] = plain[0] + term;
+        weighted[0] = weighted[0] + T::splat(i) * term;
         i += 1.0;
     }
     (
@@ -405,7 +455,7 @@ fn convolutions(a: &[f64], b: &[f64]) -> (f64, f64) {
 /// Σ_{j=1..k} j·a[j]·b[k−j] for `a` of length k+1 and `b` of length k: the
 /// term of the derivative recurrences u' = a'·g.
 #[inline]
-fn weighted_convolution(a: &[f64], b: &[f64]) -> f64 {
+fn weighted_convolution<T: Coefficient>(a: &[T], b: &[T]) -> T {
     let (plain, weighted) = convolutions(&a[1..], b);
     plain + weighted
 }
