@@ -108,10 +108,10 @@ impl Batch<'_> {
         let hmax = options.max_step.unwrap_or(f64::INFINITY);
         let safety = step_factor(tol, p);
         let (inv_pm1, inv_p) = (1.0 / (p - 1) as f64, 1.0 / p as f64);
-        let (mut t, mut compensation, mut steps) = (self.t0, 0.0f64, 0usize);
+        let (mut t, mut compensation) = (self.t0, 0.0f64);
         let variable = |j: usize| names.get((j / W) * lanes + lane(j % W)).copied().unwrap_or("");
         while (self.t1 - t) * direction > 0.0 {
-            if steps >= options.max_steps {
+            if solution.stats().steps >= options.max_steps {
                 return Err(Error::MaxSteps {
                     t,
                     max_steps: options.max_steps,
@@ -187,7 +187,6 @@ impl Batch<'_> {
                 solution.push(t, &out);
             }
             solution.stats_mut().steps += 1;
-            steps += 1;
             if solution.after_accepted_step() {
                 break;
             }
@@ -251,28 +250,30 @@ fn lane_tape<const W: usize>(
             return Err(differ.to_string());
         }
     }
+    // Each member's constants of one operation (or output), in order.
+    let constants = |of: &dyn Fn(usize, &mut Vec<f64>)| -> Vec<Vec<f64>> {
+        (0..tapes.len())
+            .map(|l| {
+                let mut values = Vec::new();
+                of(l, &mut values);
+                values
+            })
+            .collect()
+    };
     let ops = (0..first_ops.len())
         .map(|v| {
-            let constants: Vec<Vec<f64>> = (0..tapes.len())
-                .map(|l| {
-                    let mut values = Vec::new();
-                    member(l).0[v].map_constants(|c| values.push(*c));
-                    values
-                })
-                .collect();
-            first_ops[v].map_constants(gather::<W>(&constants))
+            let values = constants(&|l, values| {
+                member(l).0[v].map_constants(|c| values.push(*c));
+            });
+            first_ops[v].map_constants(gather::<W>(&values))
         })
         .collect();
     let outputs = (0..first_outputs.len())
         .map(|i| {
-            let constants: Vec<Vec<f64>> = (0..tapes.len())
-                .map(|l| {
-                    let mut values = Vec::new();
-                    member(l).1[i].map_constant(|c| values.push(*c));
-                    values
-                })
-                .collect();
-            first_outputs[i].map_constant(gather::<W>(&constants))
+            let values = constants(&|l, values| {
+                member(l).1[i].map_constant(|c| values.push(*c));
+            });
+            first_outputs[i].map_constant(gather::<W>(&values))
         })
         .collect();
     Ok((ops, outputs))
