@@ -6,7 +6,7 @@
 //! method's (`mod.rs`); the step is the least of the lanes' steps.
 
 use super::order::{choose_order, step_factor, JetCost};
-use super::tape::{Operand, Tape, TapeOp, TaylorWork};
+use super::tape::{Tape, TapeOp, TaylorWork};
 use super::{horner_by_coefficient, interpolate};
 use crate::error::Error;
 use crate::lanes::Lanes;
@@ -230,9 +230,7 @@ fn lanes_rho<const W: usize>(rows: &[Lanes<W>], w: usize, k: [usize; 2], inv_k: 
 /// same operations on the same operands in every member (the generated
 /// tape's shape does not depend on parameter values), each constant the
 /// members' values side by side. `Err` when the shapes differ.
-fn lane_tape<const W: usize>(
-    tapes: &[Tape],
-) -> Result<(Vec<TapeOp<Lanes<W>>>, Vec<Operand<Lanes<W>>>), String> {
+fn lane_tape<const W: usize>(tapes: &[Tape]) -> Result<Tape<Lanes<W>>, String> {
     let member = |l: usize| &tapes[l.min(tapes.len() - 1)];
     let (first_ops, first_outputs) = member(0);
     let differ = "the members' Taylor tapes differ in shape, so they cannot share lanes; run the members one by one with `Ensemble::final_states`";
@@ -293,6 +291,7 @@ fn gather<const W: usize>(constants: &[Vec<f64>]) -> impl FnMut(&f64) -> Lanes<W
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::methods::taylor::tape::Operand;
 
     /// Lanes of one tape with different constants give each lane the
     /// coefficients its own tape gives alone, to the bit: y' = −k·y + c

@@ -66,7 +66,7 @@ pub enum TapeOp<C = f64> {
 }
 
 /// A model's tape: its operations, and the operand that is each f_i.
-pub type Tape = (Vec<TapeOp>, Vec<Operand>);
+pub type Tape<C = f64> = (Vec<TapeOp<C>>, Vec<Operand<C>>);
 
 impl<C> Operand<C> {
     /// The same operand with its constant, if any, mapped by `f`.
