@@ -36,6 +36,8 @@ mod dae;
 mod ensemble;
 mod peers;
 mod readme;
+#[cfg(feature = "sundials")]
+mod sundials;
 mod tape_cost;
 mod versus;
 
@@ -501,6 +503,10 @@ fn main() {
         .peer(peers::OdeSolvers { dop853: true })
         .peer(peers::Diffsol { sdirk: false })
         .peer(peers::Diffsol { sdirk: true });
+    #[cfg(feature = "sundials")]
+    {
+        runner = runner.peer(sundials::Cvode);
+    }
     if !has("--no-python") {
         for solver in ["DOP853", "heyoka", "Radau", "BDF"] {
             runner = runner.peer(peers::Python { solver });
