@@ -1,6 +1,7 @@
 //! The DAE benchmarks (`--dae`): the price of the DAE forms against the
 //! ODEs they reduce to, the global and recursive formulations of a scene,
-//! and Robertson as an index-1 DAE against diffsol's mass-matrix BDF. These
+//! and Robertson as an index-1 DAE against diffsol's mass-matrix BDF and
+//! SUNDIALS' IDA. These
 //! compare forms of one problem rather than sweep a registered model, so
 //! they keep their own tables.
 
@@ -242,6 +243,45 @@ fn diffsol_robertson_dae(tol: f64, atol: f64) -> Point {
     }
 }
 
+/// IDA's BDF on Robertson as the index-1 DAE F = (y1′ − f1, y2′ − f2,
+/// y1 + y2 + y3 − 1), y3 algebraic, its residual and iteration matrix
+/// written out as in SUNDIALS' own example `idaRoberts_dns`.
+#[cfg(feature = "sundials")]
+fn ida_robertson_dae(tol: f64, atol: f64) -> Point {
+    use crate::sundials::ida::{solve, Residual};
+    let residual = |_t: f64, y: &[f64], yp: &[f64], r: &mut [f64]| {
+        r[0] = yp[0] - (-0.04 * y[0] + 1e4 * y[1] * y[2]);
+        r[1] = yp[1] - (0.04 * y[0] - 1e4 * y[1] * y[2] - 3e7 * y[1] * y[1]);
+        r[2] = y[0] + y[1] + y[2] - 1.0;
+    };
+    let iteration_matrix = |_t: f64, cj: f64, y: &[f64], _yp: &[f64], j: &mut [f64]| {
+        j.copy_from_slice(&[
+            0.04 + cj,
+            -1e4 * y[2],
+            -1e4 * y[1],
+            -0.04,
+            1e4 * y[2] + 6e7 * y[1] + cj,
+            1e4 * y[1],
+            1.0,
+            1.0,
+            1.0,
+        ]);
+    };
+    let dae = Residual {
+        y0: &[1.0, 0.0, 0.0],
+        yp0: &[-0.04, 0.04, 0.0],
+        differential: &[1.0, 1.0, 0.0],
+        residual: &residual,
+        iteration_matrix: &iteration_matrix,
+    };
+    let (d, out) = time(|| solve(&dae, 1e11, tol, atol));
+    Point {
+        tol,
+        error: out.map_or(f64::INFINITY, |(y, _)| mixed_error(&y, &ROBER_AT_1E11)),
+        seconds: d.as_secs_f64(),
+    }
+}
+
 fn ratio(r: f64) -> String {
     if r < 0.1 {
         format!("{r:.1e}×")
@@ -318,10 +358,16 @@ pub fn dae_section(stiff_tols: &[f64]) {
             })
             .collect(),
     )];
-    let rober_dae_peers = vec![(
+    #[allow(unused_mut)]
+    let mut rober_dae_peers = vec![(
         "diffsol BDF (mass matrix)",
         Some(stiff_tols.iter().map(|&t| diffsol_robertson_dae(t, 1e-6 * t)).collect()),
     )];
+    #[cfg(feature = "sundials")]
+    rober_dae_peers.push((
+        "IDA BDF (dense)",
+        Some(stiff_tols.iter().map(|&t| ida_robertson_dae(t, 1e-6 * t)).collect()),
+    ));
     report(
         "Robertson as an index-1 DAE to t = 1e11, atol = 1e-6·rtol",
         &rober_dae_ours,

@@ -505,7 +505,7 @@ fn main() {
         .peer(peers::Diffsol { sdirk: true });
     #[cfg(feature = "sundials")]
     {
-        runner = runner.peer(sundials::Cvode);
+        runner = runner.peer(sundials::cvode::Cvode);
     }
     if !has("--no-python") {
         for solver in ["DOP853", "heyoka", "Radau", "BDF"] {

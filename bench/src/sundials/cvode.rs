@@ -1,11 +1,9 @@
-//! SUNDIALS' CVODE (variable-order BDF, orders 1–5) as a peer on the
-//! stiff problems, through the `sundials-sys` bindings to the system's
-//! SUNDIALS 6 (`peers/install-sundials.sh`): the generated right-hand side
-//! and Jacobian as its callbacks, dense LU (`SUNLinSol_Dense`) as its
-//! linear solver, `tstop` at the end so it steps onto `t_end` instead of
-//! interpolating past it (Hindmarsh et al., "SUNDIALS: Suite of nonlinear
-//! and differential/algebraic equation solvers", ACM TOMS 31, 2005).
+//! CVODE (variable-order BDF, orders 1–5) as a peer on the stiff
+//! problems: the generated right-hand side and Jacobian as its callbacks,
+//! dense LU (`SUNLinSol_Dense`) as its linear solver, `tstop` at the end
+//! so it steps onto `t_end` instead of interpolating past it.
 
+use super::{quiet, values};
 use daegen_workprecision::{median_time, mixed_error, Peer, PeerProblem, Record, Settings};
 use std::os::raw::{c_int, c_long, c_void};
 use sundials_sys as sun;
@@ -18,14 +16,6 @@ struct Callbacks<'a> {
     problem: &'a PeerProblem<'a>,
     /// The Jacobian row-major, as `PeerProblem::jacobian` writes it.
     jacobian: Vec<f64>,
-}
-
-/// The `n` values of a serial vector.
-///
-/// # Safety
-/// `v` is a serial `N_Vector` of length `n`.
-unsafe fn values<'v>(v: sun::N_Vector, n: usize) -> &'v mut [f64] {
-    std::slice::from_raw_parts_mut(sun::N_VGetArrayPointer(v), n)
 }
 
 unsafe extern "C" fn rhs(t: f64, y: sun::N_Vector, dy: sun::N_Vector, data: *mut c_void) -> c_int {
@@ -63,17 +53,6 @@ unsafe extern "C" fn jacobian(
         }
     }
     0
-}
-
-/// Silences CVODE's messages: a failed run is a record with an infinite
-/// error, not a line on the terminal.
-unsafe extern "C" fn quiet(
-    _code: c_int,
-    _module: *const std::os::raw::c_char,
-    _function: *const std::os::raw::c_char,
-    _message: *mut std::os::raw::c_char,
-    _data: *mut c_void,
-) {
 }
 
 /// CVODE's counters after a solve.
