@@ -285,3 +285,31 @@ fn radau5_works_without_an_analytic_jacobian() {
     assert!(drift < 1e-6, "energy drift {drift:e}");
     assert!(sol.stats().jacobian_evals > 0);
 }
+
+/// Diffusion on a ring of eight cells, u_i' = u_{i+1} − 2u_i + u_{i−1}
+/// with the neighbours taken modulo N (`%` on loop indices).
+#[dae_model]
+fn ring_diffusion() {
+    const N: usize = 8;
+    let u = state_array([0.0; N]);
+    for i in 0..N {
+        der(u[i]) == u[(i + 1) % N] - 2.0 * u[i] + u[(i + N - 1) % N];
+    }
+}
+
+#[test]
+fn periodic_neighbours_follow_the_rings_exact_mode() {
+    // u_i = cos(2π i/N) is an eigenvector of the periodic Laplacian with
+    // eigenvalue −(2 − 2 cos(2π/N)): it decays without changing shape.
+    let n = 8;
+    let mode: Vec<f64> =
+        (0..n).map(|i| (2.0 * std::f64::consts::PI * i as f64 / n as f64).cos()).collect();
+    let rate = 2.0 - 2.0 * (2.0 * std::f64::consts::PI / n as f64).cos();
+    let opts = Options::new().method(Method::Dop853).tolerance(1e-12);
+    let sol = RingDiffusion::default().simulate_from(0.0, &mode, 3.0, &opts).unwrap();
+    for (i, m) in mode.iter().enumerate() {
+        let exact = m * (-rate * 3.0).exp();
+        let got = sol.last(&format!("u[{i}]")).unwrap();
+        assert!((got - exact).abs() <= 1e-11, "u[{i}]: {got} against {exact}");
+    }
+}

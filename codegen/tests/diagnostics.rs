@@ -143,6 +143,27 @@ fn good_models_have_no_diagnostics() {
     assert!(m.is_empty(), "{m:#?}");
 }
 
+#[test]
+fn a_remainder_takes_whole_number_constants() {
+    let m = messages(quote! {
+        fn model() {
+            let x = state(1.0);
+            der(x) == x % 2.0;
+        }
+    });
+    assert!(m.iter().any(|s| s.contains("`%` takes whole-number constants")), "{m:#?}");
+    let m = messages(quote! {
+        fn model() {
+            const N: usize = 3;
+            let q = state_array([0.0; N]);
+            for i in 0..N { der(q[i]) == q[(i + 1) % N] - q[(i + N - 1) % N]; }
+            let bad = q[(1 + 1) % 0];
+        }
+    });
+    assert_eq!(m.len(), 1, "{m:#?}");
+    assert!(m[0].contains("the right one positive"), "{m:#?}");
+}
+
 /// `x' + y' = x, 2x' + 2y' = y` has dependent derivative rows but a regular
 /// pencil (det(E s + A) = 1 − 3s): an index-1 DAE, not a mistake.
 #[test]

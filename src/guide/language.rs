@@ -17,7 +17,7 @@
 //! | `let e = output(expr);` | a value computed from the solution, only when asked for |
 //! | `let hit = event(g).falling().terminal();` | a zero crossing of `g`, located to machine precision |
 //! | `let t = time();` | the independent variable |
-//! | `const N: usize = 3; for i in 0..N { ... }` | loops over constants, unrolled |
+//! | `const N: usize = 3; for i in 0..N { ... }` | loops over constants, unrolled; `if` on indices, and `u[(i + 1) % N]` for a periodic neighbour |
 //! | `let r = rot_z(theta); let p = r * vec3(1.0, 0.0, 0.0);` | vectors and 3 × 3 matrices: see [`super::mechanisms`] |
 //!
 //! Functions: `sin cos tan asin acos atan atan2 sinh cosh tanh exp ln sqrt

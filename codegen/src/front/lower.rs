@@ -1037,8 +1037,19 @@ impl Lower<'_> {
             BinOp::Sub(_) | BinOp::SubAssign(_) => self.g.sub(a, b),
             BinOp::Mul(_) | BinOp::MulAssign(_) => self.g.mul(a, b),
             BinOp::Div(_) | BinOp::DivAssign(_) => self.g.div(a, b),
+            BinOp::Rem(_) => {
+                // Neighbours on a periodic grid: `u[(i + 1) % N]`.
+                let whole = |g: &Graph, x: Id| g.as_number(x).and_then(|n| n.as_integer());
+                return match (whole(&self.g, a), whole(&self.g, b)) {
+                    (Some(x), Some(m)) if m > 0 => Some(self.g.int(x.rem_euclid(m))),
+                    _ => {
+                        self.cx.error_at(at, "`%` takes whole-number constants such as loop indices, the right one positive: `u[(i + 1) % N]`");
+                        None
+                    }
+                };
+            }
             _ => {
-                self.cx.error_at(op, format!("operator `{}` is not part of the model language: use + - * / and `powi`, `powf`", op.to_token_stream()));
+                self.cx.error_at(op, format!("operator `{}` is not part of the model language: use + - * / and `powi`, `powf` (and `%` on loop indices)", op.to_token_stream()));
                 return None;
             }
         };
