@@ -164,6 +164,25 @@ fn a_remainder_takes_whole_number_constants() {
     assert!(m[0].contains("the right one positive"), "{m:#?}");
 }
 
+#[test]
+fn initial_values_by_index_take_a_range_and_a_closure_of_constants() {
+    let cases: [(proc_macro2::TokenStream, &str); 3] = [
+        (
+            quote! { fn m() { let q = state_array((0..3).map(|i, j| 1.0)); der(q[0]) == 1.0; } },
+            "`(0..N).map(|i| 1.0 + 0.1 * (i as f64))`",
+        ),
+        (
+            quote! { fn m() { let q = state_array(vec.map(|i| 1.0)); der(q[0]) == 1.0; } },
+            "`(0..N).map(|i| 1.0 + 0.1 * (i as f64))`",
+        ),
+        (
+            quote! { fn m() { let x = state(1.0); let q = state_array((0..2).map(|i| x)); der(x) == 1.0; } },
+            "an initial value may use constants and parameters, not `x`",
+        ),
+    ];
+    assert_each_reports(&cases);
+}
+
 /// `x' + y' = x, 2x' + 2y' = y` has dependent derivative rows but a regular
 /// pencil (det(E s + A) = 1 − 3s): an index-1 DAE, not a mistake.
 #[test]

@@ -10,7 +10,7 @@
 //! |---|---|
 //! | `let k = param(2.0);` | a parameter: a field of the struct, constant during a run |
 //! | `let x = state(1.0);` | a state with its initial value (constants and parameters) |
-//! | `let q = state_array([1.0, 0.0]);`, `state_array([0.0; N])` | an array of states, `q[i]` |
+//! | `let q = state_array([1.0, 0.0]);`, `state_array([0.0; N])`, `state_array((0..N).map(|i| ...))` | an array of states, `q[i]`; initial values by index with `map` |
 //! | `der(x) == f;`, `der(der(x)) == a;` | an equation; second derivatives are reduced to first order (`init(der(x), v0)` sets the initial rate) |
 //! | `lhs == rhs;` | any equation, also implicit in the derivatives (solved symbolically) |
 //! | `let y = algebraic(0.0);` and `constraint(g);` | a DAE: see [`super::daes`] |

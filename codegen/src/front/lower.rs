@@ -619,8 +619,14 @@ impl Lower<'_> {
                             None => return,
                         }
                     }
+                    Expr::MethodCall(m) if m.method == "map" => {
+                        match self.initial_values_by_index(m) {
+                            Some(inits) => inits,
+                            None => return,
+                        }
+                    }
                     other => {
-                        return self.cx.error_at(other, "`state_array` takes an array of initial values: `state_array([1.0, 0.0])` or `state_array([0.0; N])`");
+                        return self.cx.error_at(other, "`state_array` takes an array of initial values: `state_array([1.0, 0.0])`, `state_array([0.0; N])` or `state_array((0..N).map(|i| ...))`");
                     }
                 };
                 if inits.is_empty() {
@@ -709,6 +715,43 @@ impl Lower<'_> {
     }
 
     /// An initial value or guess: constants and parameters only.
+    /// The initial values of `(0..N).map(|i| value)`: `value` with `i`
+    /// bound to each index of the range in turn, as a loop binds it.
+    fn initial_values_by_index(&mut self, m: &syn::ExprMethodCall) -> Option<Vec<Option<Id>>> {
+        let how = "write the initial values as `(0..N).map(|i| 1.0 + 0.1 * (i as f64))`";
+        let mut receiver = &*m.receiver;
+        while let Expr::Paren(p) = receiver {
+            receiver = &p.expr;
+        }
+        let (Expr::Range(range), [Expr::Closure(closure)]) =
+            (receiver, m.args.iter().collect::<Vec<_>>().as_slice())
+        else {
+            self.cx.error_at(m, how);
+            return None;
+        };
+        let (Some(start), Some(end), [Pat::Ident(var)]) =
+            (&range.start, &range.end, closure.inputs.iter().collect::<Vec<_>>().as_slice())
+        else {
+            self.cx.error_at(m, how);
+            return None;
+        };
+        let (start, end) = (self.index_constant(start)?, self.index_constant(end)?);
+        let end = match range.limits {
+            syn::RangeLimits::HalfOpen(_) => end,
+            syn::RangeLimits::Closed(_) => end + 1,
+        };
+        let values = (start..end)
+            .map(|i| {
+                let index = self.g.int(i as i64);
+                self.scopes.push(HashMap::from([(var.ident.to_string(), Binding::Const(index))]));
+                let value = self.initial_value(&closure.body);
+                self.scopes.pop();
+                value
+            })
+            .collect();
+        Some(values)
+    }
+
     pub(crate) fn initial_value(&mut self, e: &Expr) -> Option<Id> {
         let v = self.value(e)?;
         let bad = self
