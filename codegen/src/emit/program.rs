@@ -114,10 +114,21 @@ impl Emitter<'_> {
     fn at(&self, id: Id, min: Prec) -> String {
         if min == Prec::Postfix && self.program.temp(id).is_none() {
             if let Some(n) = self.g.as_number(id) {
-                if !n.is_negative() && n.as_rational().is_none_or(|r| r.is_exact_in_f64()) {
-                    // `2.0.powf(x)` is ambiguous to rustc; `2.0_f64.powf(x)` is not.
-                    return format!("{}_f64", literal(n.to_f64()));
-                }
+                // `2.0.powf(x)` is ambiguous to rustc; `2.0_f64.powf(x)` is
+                // not, nor `(22.0_f64 / 31.0).sqrt()` or `(-0.5_f64).sin()`.
+                let body = match n.abs() {
+                    Number::Rational(r) if !r.is_exact_in_f64() => format!(
+                        "{}_f64 / {}",
+                        integer_literal(r.numer()),
+                        integer_literal(r.denom())
+                    ),
+                    a => format!("{}_f64", literal(a.to_f64())),
+                };
+                return match (n.is_negative(), body.contains('/')) {
+                    (false, false) => body,
+                    (false, true) => format!("({body})"),
+                    (true, _) => format!("(-{body})"),
+                };
             }
         }
         paren(self.render(id), min)

@@ -1016,6 +1016,35 @@ impl Lower<'_> {
         }
     }
 
+    /// `if i == 0 { 1.0 } else { u[i - 1] }`, a condition on constants as a
+    /// value: the value of the branch taken.
+    fn const_if_value(&mut self, i: &syn::ExprIf) -> Option<Id> {
+        let taken = self.condition(&i.cond)?;
+        if taken {
+            return self.branch_value(&i.then_branch);
+        }
+        match i.else_branch.as_ref().map(|(_, e)| &**e) {
+            Some(Expr::Block(b)) => self.branch_value(&b.block),
+            Some(Expr::If(inner)) => self.const_if_value(inner),
+            Some(other) => self.value(other),
+            None => {
+                self.cx.error_at(i, "an `if` used as a value needs an `else`: `if i == 0 { 1.0 } else { u[i - 1] }`");
+                None
+            }
+        }
+    }
+
+    /// The value of a branch of an `if` used as a value: one expression.
+    fn branch_value(&mut self, b: &syn::Block) -> Option<Id> {
+        match b.stmts.as_slice() {
+            [Stmt::Expr(e, None)] => self.value(e),
+            _ => {
+                self.cx.error_at(b, "a branch of an `if` used as a value is one expression: `if i == 0 { 1.0 } else { u[i - 1] }`");
+                None
+            }
+        }
+    }
+
     /// A condition on constants (loop indices): `i != j`, `i < N && j > 0`.
     pub(crate) fn condition(&mut self, e: &Expr) -> Option<bool> {
         match e {
@@ -1205,11 +1234,12 @@ impl Lower<'_> {
             Expr::Call(c) => self.call(c, e),
             Expr::MethodCall(m) => self.method_call(m, e),
             Expr::Closure(_) => self.unsupported(e, "closures"),
-            Expr::If(_) => {
-                self.cx.error_at(e, "`if` on model variables is not supported: the model must be smooth (use `abs`, or split the model into two); `if` on constants such as loop indices is allowed as a statement");
-                None
-            }
+            Expr::If(i) => self.const_if_value(i),
             Expr::Match(_) => self.unsupported(e, "`match`"),
+            // `{ expr }`, as rustfmt writes a long closure's body.
+            Expr::Block(b) if matches!(b.block.stmts.as_slice(), [Stmt::Expr(_, None)]) => {
+                self.branch_value(&b.block)
+            }
             Expr::Block(_) => self.unsupported(e, "blocks as values"),
             Expr::Assign(_) => self.unsupported(e, "assignments inside expressions"),
             Expr::Macro(_) => self.unsupported(e, "macros"),
