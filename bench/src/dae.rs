@@ -30,15 +30,15 @@ fn time<T>(mut run: impl FnMut() -> T) -> (Duration, T) {
 
 /// One point of a work-precision curve.
 #[derive(Clone, Debug)]
-struct Point {
-    tol: f64,
-    error: f64,
-    seconds: f64,
+pub(crate) struct Point {
+    pub(crate) tol: f64,
+    pub(crate) error: f64,
+    pub(crate) seconds: f64,
 }
 
 /// A peer's time at `error`, by log–log interpolation on its curve (None
 /// outside the range it covers).
-fn time_at_error(curve: &[Point], error: f64) -> Option<f64> {
+pub(crate) fn time_at_error(curve: &[Point], error: f64) -> Option<f64> {
     let mut pts: Vec<&Point> =
         curve.iter().filter(|p| p.error > 0.0 && p.error.is_finite()).collect();
     pts.sort_by(|a, b| b.error.total_cmp(&a.error));

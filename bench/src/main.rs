@@ -15,6 +15,8 @@
 //! `--auto` times `Method::Auto` against the best single method on every
 //! reference problem and an explicit pair on a stiff problem
 //! (`results/auto.md`);
+//! `--large` runs RADAU5 against CVODE on the 1-D and 2-D Brusselators
+//! (`results/large.md`);
 //! `--ensemble` times `daegen::Ensemble` on one thread and every core
 //! against heyoka's ensembles (`results/ensemble.md`);
 //! `--versus-heyoka` times our Taylor method and heyoka in alternation,
@@ -34,6 +36,8 @@
 mod auto;
 mod dae;
 mod ensemble;
+#[cfg(feature = "sundials")]
+mod large;
 mod peers;
 mod readme;
 #[cfg(feature = "sundials")]
@@ -467,6 +471,13 @@ fn main() {
     }
     if has("--tape-cost") {
         tape_cost::tape_cost_section();
+        return;
+    }
+    if has("--large") {
+        #[cfg(feature = "sundials")]
+        large::large_section();
+        #[cfg(not(feature = "sundials"))]
+        eprintln!("--large needs the `sundials` feature (peers/install-sundials.sh)");
         return;
     }
     if has("--ensemble") {

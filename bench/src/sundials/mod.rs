@@ -6,6 +6,7 @@
 
 pub mod cvode;
 pub mod ida;
+pub mod structured;
 
 use std::os::raw::{c_char, c_int, c_void};
 use sundials_sys as sun;

@@ -4,6 +4,7 @@
 
 pub mod band_lu;
 pub mod dense_lu;
+pub mod sparse_lu;
 
 /// Solves `a x = b` in place (`b` becomes `x`) by Gaussian elimination with
 /// partial pivoting; `a` is row-major `N × N` and is destroyed. Returns

@@ -13,6 +13,7 @@ use crate::error::Error;
 use crate::info::EvalError;
 use crate::linalg::band_lu::{BandNewton, BandOrdering};
 use crate::linalg::dense_lu::{ComplexLu, RealLu};
+use crate::linalg::sparse_lu::{SparseNewton, SparsePattern};
 use crate::methods::stiffness::{Finish, NonStiffWatch};
 use crate::methods::Problem;
 use crate::model::{has_mass_matrix, Model};
@@ -77,23 +78,62 @@ enum Refresh {
     Nothing,
 }
 
-/// The Newton matrices `γ/h·I − J` and `(α + iβ)/h·I − J`: banded after a
-/// reverse Cuthill–McKee renumbering when the generated Jacobian's pattern
-/// makes that pay, dense otherwise (and always for finite differences).
+/// The Newton matrices `γ/h·I − J` and `(α + iβ)/h·I − J`, in the form
+/// the generated Jacobian's pattern makes cheapest: banded after a reverse
+/// Cuthill–McKee renumbering, sparse after a minimum-degree one, or dense
+/// (always for finite differences and mass matrices).
 enum Newton {
     Dense(RealLu, ComplexLu),
     Band(Box<BandNewton>),
+    Sparse(Box<SparseNewton>, &'static [(usize, usize)]),
+}
+
+/// Below this many states the dense LU is kept: the sparse one's
+/// bookkeeping would not pay.
+const SPARSE_FROM: usize = 64;
+
+/// How the Newton matrices of `n` states with Jacobian `pattern` are
+/// stored, and the operations of one real factorisation.
+enum Structure {
+    Dense,
+    Band(BandOrdering),
+    Sparse(SparsePattern),
+}
+
+impl Structure {
+    fn of(n: usize, pattern: &[(usize, usize)]) -> (Structure, f64) {
+        let dense = 2.0 / 3.0 * (n as f64).powi(3);
+        let mut best = (Structure::Dense, dense);
+        if pattern.is_empty() {
+            return best;
+        }
+        let ordering = BandOrdering::reverse_cuthill_mckee(n, pattern);
+        if ordering.pays() {
+            let (kl, ku) = (ordering.lower as f64, ordering.upper as f64);
+            best = (Structure::Band(ordering), 2.0 * n as f64 * kl * (kl + ku + 1.0));
+        }
+        if n >= SPARSE_FROM {
+            let sparse = SparsePattern::minimum_degree(n, pattern);
+            // The sparse elimination's indirect addressing costs some
+            // twice the band's contiguous loops per operation.
+            let operations = 2.0 * sparse.factor_operations();
+            if operations < best.1 && operations < dense / 4.0 {
+                best = (Structure::Sparse(sparse), operations);
+            }
+        }
+        best
+    }
 }
 
 impl Newton {
-    fn for_pattern(n: usize, pattern: &[(usize, usize)]) -> Newton {
-        if !pattern.is_empty() {
-            let ordering = BandOrdering::reverse_cuthill_mckee(n, pattern);
-            if ordering.pays() {
-                return Newton::Band(Box::new(BandNewton::new(ordering)));
+    fn for_pattern(n: usize, pattern: &'static [(usize, usize)]) -> Newton {
+        match Structure::of(n, pattern).0 {
+            Structure::Dense => Newton::Dense(RealLu::new(n), ComplexLu::new(n)),
+            Structure::Band(ordering) => Newton::Band(Box::new(BandNewton::new(ordering))),
+            Structure::Sparse(sparse) => {
+                Newton::Sparse(Box::new(SparseNewton::new(sparse)), pattern)
             }
         }
-        Newton::Dense(RealLu::new(n), ComplexLu::new(n))
     }
 
     fn factor(
@@ -112,6 +152,20 @@ impl Newton {
             Newton::Band(band) => {
                 band.factor_real(gamma, jacobian) && band.factor_complex(alpha, beta, jacobian)
             }
+            Newton::Sparse(sparse, pattern) => {
+                let n = sparse.states();
+                let entry = |k: usize| {
+                    let (r, c) = pattern[k];
+                    jacobian[r * n + c]
+                };
+                if sparse.factor(gamma, alpha, beta, entry) {
+                    return true;
+                }
+                // A pivot too small to keep without interchanges: the dense
+                // LU, which pivots, for the rest of the run.
+                *self = Newton::Dense(RealLu::new(n), ComplexLu::new(n));
+                self.factor(gamma, alpha, beta, mass, jacobian)
+            }
         }
     }
 
@@ -119,6 +173,7 @@ impl Newton {
         match self {
             Newton::Dense(real, _) => real.solve(b),
             Newton::Band(band) => band.solve_real(b),
+            Newton::Sparse(sparse, _) => sparse.solve_real(b),
         }
     }
 
@@ -126,6 +181,7 @@ impl Newton {
         match self {
             Newton::Dense(_, complex) => complex.solve(re, im),
             Newton::Band(band) => band.solve_complex(re, im),
+            Newton::Sparse(sparse, _) => sparse.solve_complex(re, im),
         }
     }
 }
@@ -136,14 +192,17 @@ impl Newton {
 /// where [`Newton::for_pattern`] bands it, dense otherwise.
 pub(crate) fn newton_operations<M: Model>() -> (f64, f64) {
     let n = M::STATES as f64;
-    if M::MASS.is_empty() && !M::JACOBIAN_PATTERN.is_empty() {
-        let ordering = BandOrdering::reverse_cuthill_mckee(M::STATES, M::JACOBIAN_PATTERN);
-        if ordering.pays() {
+    let pattern = if M::MASS.is_empty() { M::JACOBIAN_PATTERN } else { &[] };
+    match Structure::of(M::STATES, pattern) {
+        (Structure::Band(ordering), _) => {
             let (kl, ku) = (ordering.lower as f64, ordering.upper as f64);
-            return (5.0 * 2.0 * n * kl * (kl + ku + 1.0), 5.0 * 2.0 * n * (2.0 * kl + ku + 1.0));
+            (5.0 * 2.0 * n * kl * (kl + ku + 1.0), 5.0 * 2.0 * n * (2.0 * kl + ku + 1.0))
         }
+        (Structure::Sparse(sparse), operations) => {
+            (5.0 * operations, 5.0 * 2.0 * sparse.entries() as f64)
+        }
+        (Structure::Dense, _) => (5.0 * 2.0 / 3.0 * n * n * n, 5.0 * 2.0 * n * n),
     }
-    (5.0 * 2.0 / 3.0 * n * n * n, 5.0 * 2.0 * n * n)
 }
 
 struct Work<'m, M> {
@@ -732,5 +791,45 @@ mod mass_matrix_tests {
             let h_mean = 10.0 / sol.stats().steps as f64;
             assert!(mu <= 1000.0 * tol / h_mean, "max |μ| = {mu:e}");
         }
+    }
+}
+
+#[cfg(test)]
+mod structure_tests {
+    use super::*;
+
+    /// The five-point Laplacian's pattern on an m × m periodic grid.
+    fn periodic_grid(m: usize) -> Vec<(usize, usize)> {
+        let mut pattern = Vec::new();
+        for i in 0..m {
+            for j in 0..m {
+                for (a, b) in [
+                    (i, j),
+                    ((i + 1) % m, j),
+                    ((i + m - 1) % m, j),
+                    (i, (j + 1) % m),
+                    (i, (j + m - 1) % m),
+                ] {
+                    pattern.push((i * m + j, a * m + b));
+                }
+            }
+        }
+        pattern
+    }
+
+    #[test]
+    fn each_pattern_gets_its_cheapest_newton_matrices() {
+        // A chain: a band of one either side.
+        let chain: Vec<(usize, usize)> = (0..100)
+            .flat_map(|i| [(i, i), (i, (i + 1).min(99)), (i, i.saturating_sub(1))])
+            .collect();
+        assert!(matches!(Structure::of(100, &chain).0, Structure::Band(_)));
+        // A periodic grid: no narrow band, a sparse fill.
+        assert!(matches!(Structure::of(256, &periodic_grid(16)).0, Structure::Sparse(_)));
+        // Small or full: dense.
+        assert!(matches!(Structure::of(36, &periodic_grid(6)).0, Structure::Dense));
+        let full: Vec<(usize, usize)> =
+            (0..80).flat_map(|i| (0..80).map(move |j| (i, j))).collect();
+        assert!(matches!(Structure::of(80, &full).0, Structure::Dense));
     }
 }
