@@ -185,10 +185,26 @@ impl BandLu {
     }
 }
 
+/// Entry (i, j) of a matrix stored by [`BandNewton::load`] (row i's
+/// columns i − kl ..= i + ku), zero outside the band.
+fn band_entry(band: &[f64], kl: usize, ku: usize) -> impl Fn(usize, usize) -> f64 + '_ {
+    move |i, j| {
+        if j + kl < i || j > i + ku {
+            0.0
+        } else {
+            band[i * (kl + ku + 1) + j + kl - i]
+        }
+    }
+}
+
 /// The Newton matrices of RADAU5 in banded form: `γ·I − J` and, in real
 /// form, `(α + iβ)·I − J`, both in the order of a [`BandOrdering`].
 pub struct BandNewton {
     ordering: BandOrdering,
+    /// `position[state]`: where the ordering places it.
+    position: Vec<usize>,
+    /// J renumbered, row i's columns i − kl ..= i + ku.
+    jacobian: Vec<f64>,
     real: BandLu,
     complex: BandLu,
     scratch: Vec<f64>,
@@ -199,31 +215,48 @@ impl BandNewton {
     pub fn new(ordering: BandOrdering) -> BandNewton {
         let n = ordering.order.len();
         let (kl, ku) = (ordering.lower, ordering.upper);
+        let mut position = vec![0; n];
+        for (k, &v) in ordering.order.iter().enumerate() {
+            position[v] = k;
+        }
         BandNewton {
             real: BandLu::new(n, kl, ku),
             complex: BandLu::new(2 * n, 2 * kl + 1, 2 * ku + 1),
             scratch: vec![0.0; 2 * n],
+            jacobian: vec![0.0; n * (kl + ku + 1)],
+            position,
             ordering,
         }
     }
 
-    /// Factors `γ·I − J` (J row-major, n × n). `false` if singular.
-    pub fn factor_real(&mut self, gamma: f64, jacobian: &[f64]) -> bool {
-        let (order, n) = (&self.ordering.order, self.ordering.order.len());
-        self.real.factor(|i, j| {
-            let shift = if i == j { gamma } else { 0.0 };
-            shift - jacobian[order[i] * n + order[j]]
-        })
+    /// Renumbers J, given as `values` at `pattern` (the generated
+    /// Jacobian's non-zeros), into the band.
+    fn load(&mut self, pattern: &[(usize, usize)], values: &[f64]) {
+        let (kl, ku) = (self.ordering.lower, self.ordering.upper);
+        self.jacobian.fill(0.0);
+        for (&(r, c), &v) in pattern.iter().zip(values) {
+            let (i, j) = (self.position[r], self.position[c]);
+            self.jacobian[i * (kl + ku + 1) + j + kl - i] += v;
+        }
     }
 
-    /// Factors `(α + iβ)·I − J`. `false` if singular.
-    pub fn factor_complex(&mut self, alpha: f64, beta: f64, jacobian: &[f64]) -> bool {
-        let (order, n) = (&self.ordering.order, self.ordering.order.len());
+    /// Factors `γ·I − J`, J given as `values` at `pattern`. `false` if
+    /// singular.
+    pub fn factor_real(&mut self, gamma: f64, pattern: &[(usize, usize)], values: &[f64]) -> bool {
+        self.load(pattern, values);
+        let entry = band_entry(&self.jacobian, self.ordering.lower, self.ordering.upper);
+        self.real.factor(|i, j| if i == j { gamma } else { 0.0 } - entry(i, j))
+    }
+
+    /// Factors `(α + iβ)·I − J` for the J of the last
+    /// [`BandNewton::factor_real`]. `false` if singular.
+    pub fn factor_complex(&mut self, alpha: f64, beta: f64) -> bool {
+        let entry = band_entry(&self.jacobian, self.ordering.lower, self.ordering.upper);
         // Unknown k's real part at 2k, its imaginary part at 2k + 1:
         // [[αI − J, −βI], [βI, αI − J]] interleaved.
         self.complex.factor(|i, j| {
             let (k, l) = (i / 2, j / 2);
-            let a = if k == l { alpha } else { 0.0 } - jacobian[order[k] * n + order[l]];
+            let a = if k == l { alpha } else { 0.0 } - entry(k, l);
             let b = if k == l { beta } else { 0.0 };
             match (i % 2, j % 2) {
                 (0, 0) | (1, 1) => a,
@@ -309,15 +342,16 @@ mod tests {
         let (mut dense_real, mut dense_complex) = (RealLu::new(n), ComplexLu::new(n));
         let mut seed = 11;
         for _ in 0..20 {
+            let values: Vec<f64> = pattern.iter().map(|_| 10.0 * uniform(&mut seed)).collect();
             let mut jacobian = vec![0.0; n * n];
-            for &(r, c) in &pattern {
-                jacobian[r * n + c] = 10.0 * uniform(&mut seed);
+            for (&(r, c), &v) in pattern.iter().zip(&values) {
+                jacobian[r * n + c] = v;
             }
             // Small shifts: pivoting is needed.
             let (gamma, alpha, beta) = (0.3, 0.2, 0.4);
-            assert!(newton.factor_real(gamma, &jacobian));
+            assert!(newton.factor_real(gamma, &pattern, &values));
             assert!(dense_real.factor_shifted(gamma, &jacobian));
-            assert!(newton.factor_complex(alpha, beta, &jacobian));
+            assert!(newton.factor_complex(alpha, beta));
             assert!(dense_complex.factor_shifted(alpha, beta, &jacobian));
             let b: Vec<f64> = (0..n).map(|_| uniform(&mut seed)).collect();
             let (mut x_band, mut x_dense) = (b.clone(), b.clone());

@@ -14,8 +14,9 @@
 //! is factored in complex arithmetic.
 
 use nalgebra::Complex;
-use std::collections::{BTreeSet, BinaryHeap};
+use std::collections::BinaryHeap;
 use std::ops::{Add, Div, Mul, Sub};
+use std::sync::{Arc, Mutex};
 
 /// The numbers a factorisation runs on: `f64` and `Complex<f64>`.
 pub trait Scalar:
@@ -48,8 +49,9 @@ impl Scalar for Complex<f64> {
     fn from_real(v: f64) -> Self {
         Complex::new(v, 0.0)
     }
+    /// |re| + |im|: within √2 of the modulus, and no square root.
     fn magnitude(self) -> f64 {
-        self.re.hypot(self.im)
+        self.re.abs() + self.im.abs()
     }
 }
 
@@ -74,15 +76,36 @@ pub struct SparsePattern {
 }
 
 impl SparsePattern {
+    /// [`SparsePattern::minimum_degree`] of a model's pattern, computed
+    /// once per pattern and process: a run of a large model would otherwise
+    /// spend a part of its time renumbering the same pattern again.
+    pub fn of_model(n: usize, pattern: &'static [(usize, usize)]) -> Arc<SparsePattern> {
+        static FOUND: Mutex<Vec<(usize, usize, usize, Arc<SparsePattern>)>> =
+            Mutex::new(Vec::new());
+        let key = (n, pattern.as_ptr() as usize, pattern.len());
+        let mut found = FOUND.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        if let Some((.., p)) = found.iter().find(|(a, b, c, _)| (*a, *b, *c) == key) {
+            return Arc::clone(p);
+        }
+        let p = Arc::new(SparsePattern::minimum_degree(n, pattern));
+        found.push((key.0, key.1, key.2, Arc::clone(&p)));
+        p
+    }
+
     /// The minimum-degree renumbering of an n × n pattern (with the
     /// diagonal added) and its fill.
     pub fn minimum_degree(n: usize, pattern: &[(usize, usize)]) -> SparsePattern {
-        let mut graph: Vec<BTreeSet<usize>> = vec![BTreeSet::new(); n];
+        // Adjacency lists of the symmetrised pattern, sorted.
+        let mut graph: Vec<Vec<usize>> = vec![Vec::new(); n];
         for &(r, c) in pattern {
             if r != c && r < n && c < n {
-                graph[r].insert(c);
-                graph[c].insert(r);
+                graph[r].push(c);
+                graph[c].push(r);
             }
+        }
+        for list in &mut graph {
+            list.sort_unstable();
+            list.dedup();
         }
         // Eliminate the vertex of least degree (ties: the lowest index),
         // joining its neighbours into a clique; its neighbours then are its
@@ -92,20 +115,38 @@ impl SparsePattern {
         let mut eliminated = vec![false; n];
         let mut order = Vec::with_capacity(n);
         let mut upper: Vec<Vec<usize>> = Vec::with_capacity(n);
+        let mut merged = Vec::new();
         while let Some(std::cmp::Reverse((degree, v))) = heap.pop() {
             if eliminated[v] || degree != graph[v].len() {
                 continue;
             }
             eliminated[v] = true;
             order.push(v);
-            let neighbours: Vec<usize> = std::mem::take(&mut graph[v]).into_iter().collect();
+            let neighbours = std::mem::take(&mut graph[v]);
             for &u in &neighbours {
-                graph[u].remove(&v);
-                for &w in &neighbours {
-                    if w != u {
-                        graph[u].insert(w);
+                // adj(u) ∪ neighbours, less u and v, by a merge of the two
+                // sorted lists.
+                merged.clear();
+                let (mut a, mut b) = (graph[u].iter().peekable(), neighbours.iter().peekable());
+                loop {
+                    let next = match (a.peek(), b.peek()) {
+                        (Some(&&x), Some(&&y)) if x < y => a.next(),
+                        (Some(&&x), Some(&&y)) if x > y => b.next(),
+                        (Some(_), Some(_)) => {
+                            a.next();
+                            b.next()
+                        }
+                        (Some(_), None) => a.next(),
+                        (None, Some(_)) => b.next(),
+                        (None, None) => break,
+                    };
+                    if let Some(&w) = next {
+                        if w != u && w != v {
+                            merged.push(w);
+                        }
                     }
                 }
+                std::mem::swap(&mut graph[u], &mut merged);
                 heap.push(std::cmp::Reverse((graph[u].len(), u)));
             }
             upper.push(neighbours);
@@ -205,13 +246,12 @@ impl<T: Scalar> SparseLu<T> {
                 work[columns[idx]] = self.lu[idx];
                 largest = largest.max(self.lu[idx].magnitude());
             }
-            for idx in row_start[i]..diagonal[i] {
-                let k = columns[idx];
+            for &k in &columns[row_start[i]..diagonal[i]] {
                 let l = work[k] / self.lu[diagonal[k]];
                 work[k] = l;
-                for idx2 in diagonal[k] + 1..row_start[k + 1] {
-                    let j = columns[idx2];
-                    work[j] = work[j] - l * self.lu[idx2];
+                let row_of_u = diagonal[k] + 1..row_start[k + 1];
+                for (&j, &u) in columns[row_of_u.clone()].iter().zip(&self.lu[row_of_u]) {
+                    work[j] = work[j] - l * u;
                 }
             }
             let pivot = work[i].magnitude();
@@ -255,7 +295,7 @@ impl<T: Scalar> SparseLu<T> {
 /// The Newton matrices of RADAU5 in sparse form: `γ·I − J` and
 /// `(α + iβ)·I − J`, in one [`SparsePattern`].
 pub struct SparseNewton {
-    pattern: SparsePattern,
+    pattern: Arc<SparsePattern>,
     real: SparseLu<f64>,
     complex: SparseLu<Complex<f64>>,
     scratch: Vec<Complex<f64>>,
@@ -263,7 +303,7 @@ pub struct SparseNewton {
 
 impl SparseNewton {
     /// Storage for the matrices of `pattern`.
-    pub fn new(pattern: SparsePattern) -> SparseNewton {
+    pub fn new(pattern: Arc<SparsePattern>) -> SparseNewton {
         let n = pattern.order.len();
         SparseNewton {
             real: SparseLu::new(&pattern),
@@ -355,7 +395,7 @@ mod tests {
             dense[r * n + c] += v;
         }
         let sparse = SparsePattern::minimum_degree(n, &pattern);
-        let mut newton = SparseNewton::new(sparse);
+        let mut newton = SparseNewton::new(Arc::new(sparse));
         let (gamma, alpha, beta) = (8.0, 6.0, 3.0);
         assert!(newton.factor(gamma, alpha, beta, |k| values[k]));
         let mut real = RealLu::new(n);

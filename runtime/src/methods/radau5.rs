@@ -56,11 +56,38 @@ fn eigenvalues() -> (f64, f64, f64) {
 /// Controller constants of `radau5.f` (its defaults).
 const NIT: usize = 7;
 const SAFE: f64 = 0.9;
-const THET: f64 = 0.001;
 const FACL: f64 = 5.0;
 const FACR: f64 = 1.0 / 8.0;
-const QUOT1: f64 = 1.0;
-const QUOT2: f64 = 1.2;
+
+/// When RADAU5 keeps its Jacobian and its LU (`radau5.f`'s WORK(3),
+/// WORK(5) and WORK(6)): the Jacobian while Newton's contraction θ stays
+/// below `thet`, the LU too while h_new/h stays in `quot1..=quot2`.
+#[derive(Clone, Copy)]
+struct Reuse {
+    thet: f64,
+    quot1: f64,
+    quot2: f64,
+}
+
+impl Reuse {
+    /// Hairer's defaults for small systems (0.001, 1, 1.2) and, where one
+    /// real factorisation takes over [`COSTLY_FACTORISATION`] operations,
+    /// the values his documentation recommends for large ones (0.1 "when
+    /// Jacobian evaluations are costly", as each one brings a
+    /// factorisation; 0.99 and 2 "for large systems").
+    fn for_factorisation(operations: f64) -> Reuse {
+        if operations > COSTLY_FACTORISATION {
+            Reuse { thet: 0.1, quot1: 0.99, quot2: 2.0 }
+        } else {
+            Reuse { thet: 0.001, quot1: 1.0, quot2: 1.2 }
+        }
+    }
+}
+
+/// Operations of one real factorisation above which it outweighs the
+/// extra Newton iterations of a kept LU (a dense system of some 110
+/// states, a sparse 2-D grid of a thousand).
+const COSTLY_FACTORISATION: f64 = 1e6;
 
 /// Component `i` of the collocation polynomial at `s = (t - t_old)/h`.
 pub(crate) fn interpolate(c: &[f64], n: usize, i: usize, s: f64) -> f64 {
@@ -85,7 +112,17 @@ enum Refresh {
 enum Newton {
     Dense(RealLu, ComplexLu),
     Band(Box<BandNewton>),
-    Sparse(Box<SparseNewton>, &'static [(usize, usize)]),
+    Sparse(Box<SparseNewton>),
+}
+
+/// The outcome of [`Newton::factor`].
+#[derive(Clone, Copy, PartialEq)]
+enum Factored {
+    Yes,
+    Singular,
+    /// The sparse LU gave way to the dense one: evaluate the Jacobian as
+    /// a dense matrix and factor again.
+    NeedsDenseJacobian,
 }
 
 /// Below this many states the dense LU is kept: the sparse one's
@@ -97,11 +134,11 @@ const SPARSE_FROM: usize = 64;
 enum Structure {
     Dense,
     Band(BandOrdering),
-    Sparse(SparsePattern),
+    Sparse(std::sync::Arc<SparsePattern>),
 }
 
 impl Structure {
-    fn of(n: usize, pattern: &[(usize, usize)]) -> (Structure, f64) {
+    fn of(n: usize, pattern: &'static [(usize, usize)]) -> (Structure, f64) {
         let dense = 2.0 / 3.0 * (n as f64).powi(3);
         let mut best = (Structure::Dense, dense);
         if pattern.is_empty() {
@@ -113,7 +150,7 @@ impl Structure {
             best = (Structure::Band(ordering), 2.0 * n as f64 * kl * (kl + ku + 1.0));
         }
         if n >= SPARSE_FROM {
-            let sparse = SparsePattern::minimum_degree(n, pattern);
+            let sparse = SparsePattern::of_model(n, pattern);
             // The sparse elimination's indirect addressing costs some
             // twice the band's contiguous loops per operation.
             let operations = 2.0 * sparse.factor_operations();
@@ -126,46 +163,59 @@ impl Structure {
 }
 
 impl Newton {
-    fn for_pattern(n: usize, pattern: &'static [(usize, usize)]) -> Newton {
-        match Structure::of(n, pattern).0 {
+    /// The Newton matrices for `pattern`, and the operations of one real
+    /// factorisation.
+    fn for_pattern(n: usize, pattern: &'static [(usize, usize)]) -> (Newton, f64) {
+        let (structure, operations) = Structure::of(n, pattern);
+        let newton = match structure {
             Structure::Dense => Newton::Dense(RealLu::new(n), ComplexLu::new(n)),
             Structure::Band(ordering) => Newton::Band(Box::new(BandNewton::new(ordering))),
-            Structure::Sparse(sparse) => {
-                Newton::Sparse(Box::new(SparseNewton::new(sparse)), pattern)
-            }
-        }
+            Structure::Sparse(sparse) => Newton::Sparse(Box::new(SparseNewton::new(sparse))),
+        };
+        (newton, operations)
     }
 
+    /// Whether the Jacobian is needed as a dense matrix.
+    fn dense(&self) -> bool {
+        matches!(self, Newton::Dense(..))
+    }
+
+    /// Factors both matrices; `false` if singular. A sparse LU that meets
+    /// a pivot too small to keep without interchanges gives way to the
+    /// dense LU, which pivots, for the rest of the run (`jacobian` then
+    /// grows its dense matrix, and the next evaluation fills it).
     fn factor(
         &mut self,
         gamma: f64,
         alpha: f64,
         beta: f64,
         mass: &[f64],
-        jacobian: &[f64],
-    ) -> bool {
-        match self {
+        jacobian: &DenseJacobian,
+        pattern: &[(usize, usize)],
+    ) -> Factored {
+        let ok = match self {
             Newton::Dense(real, complex) => {
-                real.factor_shifted_mass(gamma, mass, jacobian)
-                    && complex.factor_shifted_mass(alpha, beta, mass, jacobian)
+                real.factor_shifted_mass(gamma, mass, &jacobian.matrix)
+                    && complex.factor_shifted_mass(alpha, beta, mass, &jacobian.matrix)
             }
             Newton::Band(band) => {
-                band.factor_real(gamma, jacobian) && band.factor_complex(alpha, beta, jacobian)
+                band.factor_real(gamma, pattern, jacobian.values())
+                    && band.factor_complex(alpha, beta)
             }
-            Newton::Sparse(sparse, pattern) => {
-                let n = sparse.states();
-                let entry = |k: usize| {
-                    let (r, c) = pattern[k];
-                    jacobian[r * n + c]
-                };
-                if sparse.factor(gamma, alpha, beta, entry) {
-                    return true;
+            Newton::Sparse(sparse) => {
+                let values = jacobian.values();
+                if sparse.factor(gamma, alpha, beta, |k| values[k]) {
+                    return Factored::Yes;
                 }
-                // A pivot too small to keep without interchanges: the dense
-                // LU, which pivots, for the rest of the run.
+                let n = sparse.states();
                 *self = Newton::Dense(RealLu::new(n), ComplexLu::new(n));
-                self.factor(gamma, alpha, beta, mass, jacobian)
+                return Factored::NeedsDenseJacobian;
             }
+        };
+        if ok {
+            Factored::Yes
+        } else {
+            Factored::Singular
         }
     }
 
@@ -173,7 +223,7 @@ impl Newton {
         match self {
             Newton::Dense(real, _) => real.solve(b),
             Newton::Band(band) => band.solve_real(b),
-            Newton::Sparse(sparse, _) => sparse.solve_real(b),
+            Newton::Sparse(sparse) => sparse.solve_real(b),
         }
     }
 
@@ -181,7 +231,7 @@ impl Newton {
         match self {
             Newton::Dense(_, complex) => complex.solve(re, im),
             Newton::Band(band) => band.solve_complex(re, im),
-            Newton::Sparse(sparse, _) => sparse.solve_complex(re, im),
+            Newton::Sparse(sparse) => sparse.solve_complex(re, im),
         }
     }
 }
@@ -276,7 +326,6 @@ fn step_loop<M: Model>(
     let direction = if t1 >= t0 { 1.0 } else { -1.0 };
     let hmax = options.max_step.unwrap_or((t1 - t0).abs()).min((t1 - t0).abs());
 
-    let mut w = Work { model, evals: 0, jacobian_evals: 0, jacobian: DenseJacobian::new::<M>() };
     // A singular mass matrix (Hairer's IMAS = 1): diagonal, or general and
     // dense (`mass_matrix`, applied by `apply_mass`); dense Newton either way.
     let mass: Vec<f64> = if M::MASS.len() == n { M::MASS.to_vec() } else { vec![1.0; n] };
@@ -285,11 +334,13 @@ fn step_loop<M: Model>(
     } else {
         crate::model::dense_mass_matrix(model)
     };
-    let mut newton = if has_mass_matrix::<M>() {
+    let (mut newton, factor_operations) = if has_mass_matrix::<M>() {
         Newton::for_pattern(n, &[])
     } else {
         Newton::for_pattern(n, M::JACOBIAN_PATTERN)
     };
+    let jacobian = DenseJacobian::with_matrix::<M>(newton.dense());
+    let mut w = Work { model, evals: 0, jacobian_evals: 0, jacobian };
     let mut mass_applied = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
     let mut y = vec![0.0; n];
     let mut y0 = vec![0.0; n];
@@ -349,7 +400,8 @@ fn step_loop<M: Model>(
     let (mut h_old, mut h_acc, mut err_acc) = (h, h, 1e-2);
     let (mut first, mut reject) = (true, false);
     let mut faccon = 1.0f64;
-    let mut theta = THET;
+    let reuse = Reuse::for_factorisation(factor_operations);
+    let mut theta = reuse.thet;
     let cfac = SAFE * (1 + 2 * NIT) as f64;
     let (mut accepted, mut rejected, mut singular) = (0usize, 0usize, 0usize);
     let mut newton_failures = 0usize;
@@ -370,8 +422,24 @@ fn step_loop<M: Model>(
         }
         if refresh != Refresh::Nothing {
             let factor_mass = if mass_matrix.is_empty() { M::MASS } else { &mass_matrix[..] };
-            let ok = newton.factor(gamma / h, alpha / h, beta / h, factor_mass, &w.jacobian.matrix);
-            if !ok {
+            let pattern = M::JACOBIAN_PATTERN;
+            let mut factored =
+                newton.factor(gamma / h, alpha / h, beta / h, factor_mass, &w.jacobian, pattern);
+            if factored == Factored::NeedsDenseJacobian {
+                w.jacobian = DenseJacobian::new::<M>();
+                if let Err(cause) = w.evaluate_jacobian(t, &mut y, &y0) {
+                    return fail(solution, &w, accepted, rejected, t, cause);
+                }
+                factored = newton.factor(
+                    gamma / h,
+                    alpha / h,
+                    beta / h,
+                    factor_mass,
+                    &w.jacobian,
+                    pattern,
+                );
+            }
+            if factored != Factored::Yes {
                 singular += 1;
                 if singular >= 5 {
                     finish(&mut solution, accepted, rejected, &w);
@@ -624,18 +692,18 @@ fn step_loop<M: Model>(
                     return Ok((solution, Finish::NonStiffAt { t, h: h_new }));
                 }
             }
-            if (t + h_new / QUOT1 - t1) * direction >= 0.0 {
+            if (t + h_new / reuse.quot1 - t1) * direction >= 0.0 {
                 h = t1 - t;
                 last = true;
             } else {
                 let qt = h_new / h;
-                if theta <= THET && (QUOT1..=QUOT2).contains(&qt) {
+                if theta <= reuse.thet && (reuse.quot1..=reuse.quot2).contains(&qt) {
                     refresh = Refresh::Nothing;
                     continue 'steps;
                 }
                 h = h_new;
             }
-            refresh = if theta <= THET { Refresh::Factorisation } else { Refresh::Jacobian };
+            refresh = if theta <= reuse.thet { Refresh::Factorisation } else { Refresh::Jacobian };
         } else {
             reject = true;
             last = false;
@@ -799,7 +867,8 @@ mod structure_tests {
     use super::*;
 
     /// The five-point Laplacian's pattern on an m × m periodic grid.
-    fn periodic_grid(m: usize) -> Vec<(usize, usize)> {
+    /// (Leaked: a model's pattern is static.)
+    fn periodic_grid(m: usize) -> &'static [(usize, usize)] {
         let mut pattern = Vec::new();
         for i in 0..m {
             for j in 0..m {
@@ -814,22 +883,22 @@ mod structure_tests {
                 }
             }
         }
-        pattern
+        pattern.leak()
     }
 
     #[test]
     fn each_pattern_gets_its_cheapest_newton_matrices() {
         // A chain: a band of one either side.
-        let chain: Vec<(usize, usize)> = (0..100)
+        let chain: Vec<(usize, usize)> = (0..100usize)
             .flat_map(|i| [(i, i), (i, (i + 1).min(99)), (i, i.saturating_sub(1))])
             .collect();
-        assert!(matches!(Structure::of(100, &chain).0, Structure::Band(_)));
+        assert!(matches!(Structure::of(100, chain.leak()).0, Structure::Band(_)));
         // A periodic grid: no narrow band, a sparse fill.
-        assert!(matches!(Structure::of(256, &periodic_grid(16)).0, Structure::Sparse(_)));
+        assert!(matches!(Structure::of(256, periodic_grid(16)).0, Structure::Sparse(_)));
         // Small or full: dense.
-        assert!(matches!(Structure::of(36, &periodic_grid(6)).0, Structure::Dense));
+        assert!(matches!(Structure::of(36, periodic_grid(6)).0, Structure::Dense));
         let full: Vec<(usize, usize)> =
             (0..80).flat_map(|i| (0..80).map(move |j| (i, j))).collect();
-        assert!(matches!(Structure::of(80, &full).0, Structure::Dense));
+        assert!(matches!(Structure::of(80, full.leak()).0, Structure::Dense));
     }
 }

@@ -22,8 +22,15 @@ pub(crate) struct DenseJacobian {
 impl DenseJacobian {
     /// Storage for `M`'s Jacobian.
     pub(crate) fn new<M: Model>() -> DenseJacobian {
+        DenseJacobian::with_matrix::<M>(true)
+    }
+
+    /// Storage for `M`'s generated Jacobian, scattered into a dense
+    /// `matrix` only if `dense` (a banded or sparse LU reads the non-zeros,
+    /// and zeroing n² entries would cost a large model more than its LU).
+    pub(crate) fn with_matrix<M: Model>(dense: bool) -> DenseJacobian {
         DenseJacobian {
-            matrix: vec![0.0; M::STATES * M::STATES],
+            matrix: if dense { vec![0.0; M::STATES * M::STATES] } else { Vec::new() },
             values: vec![0.0; M::JACOBIAN_PATTERN.len()],
             perturbed: vec![0.0; M::STATES],
             analytic: false,
@@ -46,12 +53,19 @@ impl DenseJacobian {
         self.matrix.iter_mut().for_each(|v| *v = 0.0);
         self.analytic = false;
         match model.jacobian(t, y, &mut self.values) {
+            Ok(()) if self.matrix.is_empty() => {
+                self.analytic = true;
+                Ok(())
+            }
             Ok(()) => {
                 for (&(r, c), &v) in M::JACOBIAN_PATTERN.iter().zip(&self.values) {
                     self.matrix[r * n + c] = v;
                 }
                 self.analytic = true;
                 Ok(())
+            }
+            Err(EvalError::JacobianUnavailable) if self.matrix.is_empty() => {
+                Err(EvalError::JacobianUnavailable)
             }
             Err(EvalError::JacobianUnavailable) => {
                 for j in 0..n {
@@ -70,6 +84,12 @@ impl DenseJacobian {
             }
             Err(e) => Err(e),
         }
+    }
+
+    /// The generated Jacobian's non-zeros at the last evaluation, in
+    /// [`Model::JACOBIAN_PATTERN`] order.
+    pub(crate) fn values(&self) -> &[f64] {
+        &self.values
     }
 
     /// `out = (J(t, y) − matrix)·direction`: how the Jacobian changed since
