@@ -80,15 +80,16 @@ impl SparsePattern {
     /// once per pattern and process: a run of a large model would otherwise
     /// spend a part of its time renumbering the same pattern again.
     pub fn of_model(n: usize, pattern: &'static [(usize, usize)]) -> Arc<SparsePattern> {
-        static FOUND: Mutex<Vec<(usize, usize, usize, Arc<SparsePattern>)>> =
-            Mutex::new(Vec::new());
+        // (states, the pattern's address and length) and its renumbering.
+        type Found = Vec<((usize, usize, usize), Arc<SparsePattern>)>;
+        static FOUND: Mutex<Found> = Mutex::new(Vec::new());
         let key = (n, pattern.as_ptr() as usize, pattern.len());
         let mut found = FOUND.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
-        if let Some((.., p)) = found.iter().find(|(a, b, c, _)| (*a, *b, *c) == key) {
+        if let Some((_, p)) = found.iter().find(|(k, _)| *k == key) {
             return Arc::clone(p);
         }
         let p = Arc::new(SparsePattern::minimum_degree(n, pattern));
-        found.push((key.0, key.1, key.2, Arc::clone(&p)));
+        found.push((key, Arc::clone(&p)));
         p
     }
 
