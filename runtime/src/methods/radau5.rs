@@ -149,7 +149,8 @@ impl Structure {
             let (kl, ku) = (ordering.lower as f64, ordering.upper as f64);
             best = (Structure::Band(ordering), 2.0 * n as f64 * kl * (kl + ku + 1.0));
         }
-        if n >= SPARSE_FROM {
+        // A pattern over an eighth full fills in whole: not worth renumbering.
+        if n >= SPARSE_FROM && 8 * pattern.len() < n * n {
             let sparse = SparsePattern::of_model(n, pattern);
             // The sparse elimination's indirect addressing costs some
             // twice the band's contiguous loops per operation.
