@@ -88,7 +88,7 @@ fn brusselator_2d() {
 struct Large<M: Benchmark> {
     /// (phase end, the model during the phase).
     phases: Vec<(f64, M)>,
-    linear: sundials::structured::Linear,
+    linear: sundials::cvode::Linear,
 }
 
 impl<M: Benchmark> Large<M> {
@@ -111,9 +111,11 @@ impl<M: Benchmark> Large<M> {
         self.phases[0].1.initial_state(&mut y);
         let (mut t, mut steps) = (0.0, 0);
         for (end, model) in &self.phases {
-            let (next, s) = sundials::structured::solve(model, t, &y, *end, tol, tol, self.linear)?;
+            let mut system = sundials::structured::ModelSystem(model);
+            let (next, counts) =
+                sundials::cvode::solve(&mut system, t, &y, *end, (tol, tol), self.linear)?;
             y = next;
-            steps += s;
+            steps += counts.steps;
             t = *end;
         }
         Some((y, steps))
@@ -152,7 +154,7 @@ fn report<M: Benchmark>(title: &str, problem: &Large<M>) -> String {
         }
         Err(e) => (format!("failed: {e}"), "–".into()),
     };
-    let (ml, mu) = sundials::structured::bandwidths(M::JACOBIAN_PATTERN);
+    let (ml, mu) = sundials::cvode::bandwidths(M::JACOBIAN_PATTERN);
     text.push_str(&format!(
         "{} states, {} Jacobian non-zeros (bandwidths {ml} below, {mu} above). Macro expansion {expand}; rustc -C opt-level=3 on the generated code {rustc}.\n\n",
         M::STATES,
@@ -215,13 +217,13 @@ pub fn large_section() {
     );
     let bruss_1d = Large {
         phases: vec![(10.0, Brusselator1d::default())],
-        linear: sundials::structured::Linear::Band,
+        linear: sundials::cvode::Linear::Band,
     };
     text.push_str(&report("Brusselator 1-D, N = 500, to t = 10", &bruss_1d));
     let off = Brusselator2d::default();
     let bruss_2d = Large {
         phases: vec![(1.1, off), (11.5, Brusselator2d { forcing: 5.0, ..off })],
-        linear: sundials::structured::Linear::Klu,
+        linear: sundials::cvode::Linear::Klu,
     };
     text.push_str(&report("Brusselator 2-D, 32 × 32, to t = 11.5", &bruss_2d));
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("results/large.md");

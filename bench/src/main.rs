@@ -516,7 +516,7 @@ fn main() {
         .peer(peers::Diffsol { sdirk: true });
     #[cfg(feature = "sundials")]
     {
-        runner = runner.peer(sundials::cvode::Cvode);
+        runner = runner.peer(sundials::peer::Cvode);
     }
     if !has("--no-python") {
         for solver in ["DOP853", "heyoka", "Radau", "BDF"] {

@@ -98,7 +98,7 @@ impl Peer for OdeSolvers {
 
 /// A run that gave no answer (its error infinite, no counts); with the
 /// counts and the error of one that did, its record.
-fn failed(p: &PeerProblem, method: String, tol: f64, seconds: f64) -> Record {
+pub(crate) fn failed(p: &PeerProblem, method: String, tol: f64, seconds: f64) -> Record {
     Record {
         problem: p.name.into(),
         method,

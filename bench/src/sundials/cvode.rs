@@ -1,38 +1,82 @@
-//! CVODE (variable-order BDF, orders 1–5) as a peer on the stiff
-//! problems: the generated right-hand side and Jacobian as its callbacks,
-//! dense LU (`SUNLinSol_Dense`) as its linear solver, `tstop` at the end
-//! so it steps onto `t_end` instead of interpolating past it.
+//! CVODE (variable-order BDF, orders 1–5) on any system that gives its
+//! right-hand side and the non-zeros of its Jacobian, with the linear
+//! solver its Jacobian calls for: dense LU, band LU, or KLU sparse LU;
+//! `tstop` at the end, so it steps onto `t1` instead of interpolating past
+//! it.
 
-use super::{quiet, values};
-use daegen_workprecision::{median_time, mixed_error, Peer, PeerProblem, Record, Settings};
+use super::{quiet, values, Objects};
 use std::os::raw::{c_int, c_long, c_void};
 use sundials_sys as sun;
 
-/// CVODE with dense LU and the analytic Jacobian.
-pub struct Cvode;
+/// What CVODE needs from a system.
+pub trait System {
+    /// The number of states.
+    fn states(&self) -> usize;
+    /// Writes f(t, y) into `dy`; `false` where it cannot be evaluated.
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> bool;
+    /// The Jacobian's non-zeros (row, column).
+    fn pattern(&self) -> &[(usize, usize)];
+    /// Writes ∂f/∂y at (t, y) into `values`, in [`System::pattern`]'s
+    /// order; `false` where it cannot be evaluated.
+    fn jacobian(&mut self, t: f64, y: &[f64], values: &mut [f64]) -> bool;
+}
+
+/// CVODE's linear solver.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Linear {
+    /// Dense LU.
+    Dense,
+    /// Band LU, with the pattern's lower and upper bandwidths.
+    Band,
+    /// KLU sparse LU.
+    Klu,
+}
+
+/// The lower and upper bandwidths of a pattern.
+pub fn bandwidths(pattern: &[(usize, usize)]) -> (usize, usize) {
+    pattern
+        .iter()
+        .fold((0, 0), |(l, u), &(r, c)| (l.max(r.saturating_sub(c)), u.max(c.saturating_sub(r))))
+}
+
+/// CVODE's counters after a solve.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Counts {
+    /// Steps taken.
+    pub steps: usize,
+    /// Right-hand-side evaluations.
+    pub rhs_evals: usize,
+    /// Steps whose error test failed.
+    pub error_test_failures: usize,
+    /// Jacobian evaluations.
+    pub jacobian_evals: usize,
+}
 
 /// What the callbacks see through CVODE's `user_data`.
-struct Callbacks<'a> {
-    problem: &'a PeerProblem<'a>,
-    /// The Jacobian row-major, as `PeerProblem::jacobian` writes it.
-    jacobian: Vec<f64>,
+struct Callbacks<'a, S: System> {
+    system: &'a mut S,
+    linear: Linear,
+    values: Vec<f64>,
+    /// For KLU: each pattern entry's position in the compressed columns.
+    slot: Vec<usize>,
+    /// For KLU: the column starts.
+    column_start: Vec<sun::sunindextype>,
 }
 
-unsafe extern "C" fn rhs(t: f64, y: sun::N_Vector, dy: sun::N_Vector, data: *mut c_void) -> c_int {
-    let cb = &*(data as *const Callbacks);
-    let n = cb.problem.y0.len();
-    let dy = values(dy, n);
-    (cb.problem.rhs)(t, values(y, n), dy);
-    // A NaN (the model's evaluation failed) is a recoverable error: CVODE
-    // retries with a smaller step.
-    if dy.iter().all(|v| v.is_finite()) {
-        0
-    } else {
-        1
-    }
+unsafe extern "C" fn rhs<S: System>(
+    t: f64,
+    y: sun::N_Vector,
+    dy: sun::N_Vector,
+    data: *mut c_void,
+) -> c_int {
+    let cb = &*(data as *const Callbacks<S>);
+    let n = cb.system.states();
+    // A failed evaluation is recoverable: CVODE retries with a smaller step.
+    c_int::from(!cb.system.rhs(t, values(y, n), values(dy, n)))
 }
 
-unsafe extern "C" fn jacobian(
+#[allow(clippy::too_many_arguments)]
+unsafe extern "C" fn jacobian<S: System>(
     t: f64,
     y: sun::N_Vector,
     _fy: sun::N_Vector,
@@ -42,108 +86,141 @@ unsafe extern "C" fn jacobian(
     _tmp2: sun::N_Vector,
     _tmp3: sun::N_Vector,
 ) -> c_int {
-    let cb = &mut *(data as *mut Callbacks);
-    let n = cb.problem.y0.len();
-    (cb.problem.jacobian)(t, values(y, n), &mut cb.jacobian);
-    // SUNDIALS' dense matrices are column-major.
-    let out = std::slice::from_raw_parts_mut(sun::SUNDenseMatrix_Data(jac), n * n);
-    for c in 0..n {
-        for r in 0..n {
-            out[c * n + r] = cb.jacobian[r * n + c];
+    let cb = &mut *(data as *mut Callbacks<S>);
+    let n = cb.system.states();
+    if !cb.system.jacobian(t, values(y, n), &mut cb.values) {
+        return 1;
+    }
+    let pattern = cb.system.pattern();
+    match cb.linear {
+        Linear::Dense | Linear::Band => {
+            sun::SUNMatZero(jac);
+            for (&(r, c), &v) in pattern.iter().zip(&cb.values) {
+                let column = if cb.linear == Linear::Dense {
+                    sun::SUNDenseMatrix_Column(jac, c as sun::sunindextype).add(r)
+                } else {
+                    // A band column's pointer is at its diagonal.
+                    sun::SUNBandMatrix_Column(jac, c as sun::sunindextype)
+                        .offset(r as isize - c as isize)
+                };
+                *column += v;
+            }
+        }
+        Linear::Klu => {
+            let nnz = pattern.len();
+            std::slice::from_raw_parts_mut(sun::SUNSparseMatrix_IndexPointers(jac), n + 1)
+                .copy_from_slice(&cb.column_start);
+            let rows = std::slice::from_raw_parts_mut(sun::SUNSparseMatrix_IndexValues(jac), nnz);
+            let out = std::slice::from_raw_parts_mut(sun::SUNSparseMatrix_Data(jac), nnz);
+            for ((&(r, _), &v), &s) in pattern.iter().zip(&cb.values).zip(&cb.slot) {
+                rows[s] = r as sun::sunindextype;
+                out[s] = v;
+            }
         }
     }
     0
 }
 
-/// CVODE's counters after a solve.
-struct Counts {
-    steps: c_long,
-    rhs_evals: c_long,
-    error_test_failures: c_long,
-    jacobian_evals: c_long,
+/// Each pattern entry's position in compressed columns sorted by row, and
+/// the columns' starts.
+fn compressed_columns(
+    n: usize,
+    pattern: &[(usize, usize)],
+) -> (Vec<usize>, Vec<sun::sunindextype>) {
+    let mut order: Vec<usize> = (0..pattern.len()).collect();
+    order.sort_by_key(|&k| (pattern[k].1, pattern[k].0));
+    let mut slot = vec![0; pattern.len()];
+    for (position, &k) in order.iter().enumerate() {
+        slot[k] = position;
+    }
+    let mut start = vec![0 as sun::sunindextype; n + 1];
+    for &(_, c) in pattern {
+        start[c + 1] += 1;
+    }
+    for c in 0..n {
+        start[c + 1] += start[c];
+    }
+    (slot, start)
 }
 
-impl Cvode {
-    /// One solve from 0 to `t_end`: the final state and the counters, or
-    /// `None` where CVODE stopped short.
-    fn solve(p: &PeerProblem, tol: f64) -> Option<(Vec<f64>, Counts)> {
-        let n = p.y0.len();
-        let mut callbacks = Callbacks { problem: p, jacobian: vec![0.0; n * n] };
-        // Every SUNDIALS object below is created and freed here, in order,
-        // and the callbacks outlive the solve.
-        unsafe {
-            let mut ctx: sun::SUNContext = std::ptr::null_mut();
-            if sun::SUNContext_Create(std::ptr::null_mut(), &mut ctx) != 0 {
-                return None;
+/// Integrates `system` from `(t0, y0)` to `t1` by CVODE's BDF at (rtol,
+/// atol) with `linear`: the final state and the counters, or `None` where
+/// it stopped short.
+pub fn solve<S: System>(
+    system: &mut S,
+    t0: f64,
+    y0: &[f64],
+    t1: f64,
+    (rtol, atol): (f64, f64),
+    linear: Linear,
+) -> Option<(Vec<f64>, Counts)> {
+    let n = system.states();
+    let len = n as sun::sunindextype;
+    let nnz = system.pattern().len();
+    let (ml, mu) = bandwidths(system.pattern());
+    let (slot, column_start) = compressed_columns(n, system.pattern());
+    let mut callbacks = Callbacks { system, linear, values: vec![0.0; nnz], slot, column_start };
+    let mut objects = Objects::new()?;
+    let y = objects.vector(y0);
+    // SAFETY: every object lives in `objects` until after `CVodeFree`, and
+    // the callbacks outlive the solve.
+    unsafe {
+        let ctx = objects.ctx;
+        let (a, ls) = match linear {
+            Linear::Dense => {
+                let a = sun::SUNDenseMatrix(len, len, ctx);
+                (a, sun::SUNLinSol_Dense(y, a, ctx))
             }
-            let y = sun::N_VNew_Serial(n as sun::sunindextype, ctx);
-            values(y, n).copy_from_slice(&p.y0);
-            let a = sun::SUNDenseMatrix(n as sun::sunindextype, n as sun::sunindextype, ctx);
-            let ls = sun::SUNLinSol_Dense(y, a, ctx);
-            let mut mem = sun::CVodeCreate(sun::CV_BDF, ctx);
-            let mut ok = !mem.is_null()
-                && sun::CVodeInit(mem, Some(rhs), 0.0, y) == 0
-                && sun::CVodeSStolerances(mem, tol, tol * p.atol_factor) == 0
-                && sun::CVodeSetUserData(mem, &mut callbacks as *mut Callbacks as *mut c_void) == 0
-                && sun::CVodeSetErrHandlerFn(mem, Some(quiet), std::ptr::null_mut()) == 0
-                && sun::CVodeSetLinearSolver(mem, ls, a) == 0
-                && sun::CVodeSetJacFn(mem, Some(jacobian)) == 0
-                && sun::CVodeSetMaxNumSteps(mem, 10_000_000) == 0
-                && sun::CVodeSetStopTime(mem, p.t_end) == 0;
-            let mut t = 0.0;
-            if ok {
-                ok = sun::CVode(mem, p.t_end, y, &mut t, sun::CV_NORMAL) >= 0
-                    && (t - p.t_end).abs() <= 1e-12 * p.t_end.abs();
+            Linear::Band => {
+                let a =
+                    sun::SUNBandMatrix(len, mu as sun::sunindextype, ml as sun::sunindextype, ctx);
+                (a, sun::SUNLinSol_Band(y, a, ctx))
             }
-            let mut counts =
-                Counts { steps: 0, rhs_evals: 0, error_test_failures: 0, jacobian_evals: 0 };
-            if ok {
-                sun::CVodeGetNumSteps(mem, &mut counts.steps);
-                sun::CVodeGetNumRhsEvals(mem, &mut counts.rhs_evals);
-                sun::CVodeGetNumErrTestFails(mem, &mut counts.error_test_failures);
-                sun::CVodeGetNumJacEvals(mem, &mut counts.jacobian_evals);
+            Linear::Klu => {
+                let a = sun::SUNSparseMatrix(
+                    len,
+                    len,
+                    nnz as sun::sunindextype,
+                    sun::CSC_MAT as c_int,
+                    ctx,
+                );
+                (a, sun::SUNLinSol_KLU(y, a, ctx))
             }
-            let out = values(y, n).to_vec();
-            sun::CVodeFree(&mut mem);
-            sun::SUNLinSolFree(ls);
-            sun::SUNMatDestroy(a);
-            sun::N_VDestroy(y);
-            sun::SUNContext_Free(&mut ctx);
-            ok.then_some((out, counts))
-        }
-    }
-}
-
-impl Peer for Cvode {
-    fn name(&self) -> String {
-        "CVODE BDF (dense)".into()
-    }
-    fn applies(&self, p: &PeerProblem) -> bool {
-        p.stiff
-    }
-    fn run(&self, p: &PeerProblem, tol: f64, settings: &Settings) -> Result<Record, String> {
-        let (seconds, out) = median_time(settings, || Cvode::solve(p, tol));
-        let base = Record {
-            problem: p.name.into(),
-            method: self.name(),
-            tol,
-            error: f64::INFINITY,
-            seconds,
-            steps: 0,
-            rejected: 0,
-            rhs_evals: 0,
-            jacobian_evals: 0,
         };
-        Ok(match out {
-            Some((y, c)) => Record {
-                error: mixed_error(&y, p.reference),
-                steps: c.steps as usize,
-                rejected: c.error_test_failures as usize,
-                rhs_evals: c.rhs_evals as usize,
-                jacobian_evals: c.jacobian_evals as usize,
-                ..base
-            },
-            None => base,
-        })
+        (objects.matrix, objects.solver) = (a, ls);
+        let mut mem = sun::CVodeCreate(sun::CV_BDF, ctx);
+        let mut ok = !mem.is_null()
+            && !a.is_null()
+            && !ls.is_null()
+            && sun::CVodeInit(mem, Some(rhs::<S>), t0, y) == 0
+            && sun::CVodeSStolerances(mem, rtol, atol) == 0
+            && sun::CVodeSetUserData(mem, &mut callbacks as *mut Callbacks<S> as *mut c_void) == 0
+            && sun::CVodeSetErrHandlerFn(mem, Some(quiet), std::ptr::null_mut()) == 0
+            && sun::CVodeSetLinearSolver(mem, ls, a) == 0
+            && sun::CVodeSetJacFn(mem, Some(jacobian::<S>)) == 0
+            && sun::CVodeSetMaxNumSteps(mem, 10_000_000) == 0
+            && sun::CVodeSetStopTime(mem, t1) == 0;
+        let mut t = t0;
+        if ok {
+            ok = sun::CVode(mem, t1, y, &mut t, sun::CV_NORMAL) >= 0
+                && (t - t1).abs() <= 1e-12 * t1.abs().max(1.0);
+        }
+        let mut counts = Counts::default();
+        if ok {
+            let count = |get: unsafe extern "C" fn(*mut c_void, *mut c_long) -> c_int| {
+                let mut value: c_long = 0;
+                get(mem, &mut value);
+                value as usize
+            };
+            counts = Counts {
+                steps: count(sun::CVodeGetNumSteps),
+                rhs_evals: count(sun::CVodeGetNumRhsEvals),
+                error_test_failures: count(sun::CVodeGetNumErrTestFails),
+                jacobian_evals: count(sun::CVodeGetNumJacEvals),
+            };
+        }
+        let out = values(y, n).to_vec();
+        sun::CVodeFree(&mut mem);
+        ok.then_some((out, counts))
     }
 }

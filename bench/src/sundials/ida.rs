@@ -3,7 +3,7 @@
 //! LU, the differential components marked (`IDASetId`) so that the error
 //! test and the initial step treat the algebraic ones as such.
 
-use super::{quiet, values};
+use super::{quiet, values, Objects};
 use std::os::raw::{c_int, c_long, c_void};
 use sundials_sys as sun;
 
@@ -79,23 +79,16 @@ pub fn solve(dae: &Residual, t_end: f64, rtol: f64, atol: f64) -> Option<(Vec<f6
     let n = dae.y0.len();
     let mut callbacks = Callbacks { dae, matrix: vec![0.0; n * n] };
     let len = n as sun::sunindextype;
-    // Every SUNDIALS object below is created and freed here, in order, and
-    // the callbacks outlive the solve.
+    let mut objects = Objects::new()?;
+    let (y, yp, id) =
+        (objects.vector(dae.y0), objects.vector(dae.yp0), objects.vector(dae.differential));
+    // SAFETY: every object lives in `objects` until after `IDAFree`, and the
+    // callbacks outlive the solve.
     unsafe {
-        let mut ctx: sun::SUNContext = std::ptr::null_mut();
-        if sun::SUNContext_Create(std::ptr::null_mut(), &mut ctx) != 0 {
-            return None;
-        }
-        let (y, yp, id) = (
-            sun::N_VNew_Serial(len, ctx),
-            sun::N_VNew_Serial(len, ctx),
-            sun::N_VNew_Serial(len, ctx),
-        );
-        values(y, n).copy_from_slice(dae.y0);
-        values(yp, n).copy_from_slice(dae.yp0);
-        values(id, n).copy_from_slice(dae.differential);
+        let ctx = objects.ctx;
         let a = sun::SUNDenseMatrix(len, len, ctx);
         let ls = sun::SUNLinSol_Dense(y, a, ctx);
+        (objects.matrix, objects.solver) = (a, ls);
         let mut mem = sun::IDACreate(ctx);
         let mut ok = !mem.is_null()
             && sun::IDAInit(mem, Some(residual), 0.0, y, yp) == 0
@@ -118,12 +111,6 @@ pub fn solve(dae: &Residual, t_end: f64, rtol: f64, atol: f64) -> Option<(Vec<f6
         }
         let out = values(y, n).to_vec();
         sun::IDAFree(&mut mem);
-        sun::SUNLinSolFree(ls);
-        sun::SUNMatDestroy(a);
-        sun::N_VDestroy(y);
-        sun::N_VDestroy(yp);
-        sun::N_VDestroy(id);
-        sun::SUNContext_Free(&mut ctx);
         ok.then_some((out, steps as usize))
     }
 }

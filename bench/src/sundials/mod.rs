@@ -6,6 +6,7 @@
 
 pub mod cvode;
 pub mod ida;
+pub mod peer;
 pub mod structured;
 
 use std::os::raw::{c_char, c_int, c_void};
@@ -28,4 +29,57 @@ unsafe extern "C" fn quiet(
     _message: *mut c_char,
     _data: *mut c_void,
 ) {
+}
+
+/// The SUNDIALS objects of one solve, freed together when it ends (the
+/// integrator's memory is freed by its own module first).
+struct Objects {
+    ctx: sun::SUNContext,
+    vectors: Vec<sun::N_Vector>,
+    matrix: sun::SUNMatrix,
+    solver: sun::SUNLinearSolver,
+}
+
+impl Objects {
+    /// A context, or `None`.
+    fn new() -> Option<Objects> {
+        let mut ctx: sun::SUNContext = std::ptr::null_mut();
+        // SAFETY: a null communicator is SUNDIALS' serial default.
+        let created = unsafe { sun::SUNContext_Create(std::ptr::null_mut(), &mut ctx) };
+        (created == 0).then_some(Objects {
+            ctx,
+            vectors: Vec::new(),
+            matrix: std::ptr::null_mut(),
+            solver: std::ptr::null_mut(),
+        })
+    }
+
+    /// A new serial vector holding `init`.
+    fn vector(&mut self, init: &[f64]) -> sun::N_Vector {
+        // SAFETY: the vector has `init.len()` values and lives until drop.
+        unsafe {
+            let v = sun::N_VNew_Serial(init.len() as sun::sunindextype, self.ctx);
+            values(v, init.len()).copy_from_slice(init);
+            self.vectors.push(v);
+            v
+        }
+    }
+}
+
+impl Drop for Objects {
+    fn drop(&mut self) {
+        // SAFETY: each object was created by this context and is freed once.
+        unsafe {
+            if !self.solver.is_null() {
+                sun::SUNLinSolFree(self.solver);
+            }
+            if !self.matrix.is_null() {
+                sun::SUNMatDestroy(self.matrix);
+            }
+            for &v in &self.vectors {
+                sun::N_VDestroy(v);
+            }
+            sun::SUNContext_Free(&mut self.ctx);
+        }
+    }
 }
