@@ -177,6 +177,8 @@ impl SparsePattern {
             columns.extend(own);
         }
         row_start.push(columns.len());
+        // Always found: an off-diagonal entry is an edge of the graph, and
+        // eliminating the earlier of its ends puts it in the other's row.
         let slot = |r: usize, c: usize| -> usize {
             let (pr, pc) = (position[r], position[c]);
             let row = &columns[row_start[pr]..row_start[pr + 1]];
