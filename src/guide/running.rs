@@ -22,6 +22,14 @@
 //! order it chose and whether it ran unrolled), `events()`; columns,
 //! grids, CSV and plots in [`super::results`].
 //!
+//! Large stiff models (discretised PDEs written with loops, long chains)
+//! need no option: RADAU5 reads the generated Jacobian's sparsity pattern
+//! and factors its Newton matrices banded (after a reverse Cuthill–McKee
+//! renumbering) or sparse (after a minimum-degree one) where either costs
+//! fewer operations than dense LU, and keeps its Jacobian and LU longer
+//! where one factorisation is costly, as Hairer recommends for large
+//! systems. A 2-D Brusselator of 2048 states runs in about a second.
+//!
 //! `Taylor` chooses its order from the tolerance and the model's cost per
 //! order (higher than Jorba & Zou's for small models, theirs when the
 //! convolutions dominate), among the orders of `unroll = [..]` unless the
