@@ -47,6 +47,8 @@ unsafe extern "C" fn residual(
     }
 }
 
+/// IDA's `IDALsJacFn`: its arguments are SUNDIALS' and mostly CVODE's
+/// `CVLsJacFn`'s too (cvode.rs), whence the like-shaped signatures.
 #[allow(clippy::too_many_arguments)]
 unsafe extern "C" fn iteration_matrix(
     t: f64,
