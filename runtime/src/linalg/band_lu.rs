@@ -197,8 +197,9 @@ fn band_entry(band: &[f64], kl: usize, ku: usize) -> impl Fn(usize, usize) -> f6
     }
 }
 
-/// The Newton matrices of RADAU5 in banded form: `γ·I − J` and, in real
-/// form, `(α + iβ)·I − J`, both in the order of a [`BandOrdering`].
+/// The Newton matrices of the implicit methods in banded form: `γ·I − J`
+/// and, for RADAU5, `(α + iβ)·I − J` in real form, both in the order of a
+/// [`BandOrdering`].
 pub struct BandNewton {
     ordering: BandOrdering,
     /// `position[state]`: where the ordering places it.
@@ -206,13 +207,15 @@ pub struct BandNewton {
     /// J renumbered, row i's columns i − kl ..= i + ku.
     jacobian: Vec<f64>,
     real: BandLu,
-    complex: BandLu,
+    /// The complex matrix in real form, where the method has one.
+    complex: Option<BandLu>,
     scratch: Vec<f64>,
 }
 
 impl BandNewton {
-    /// Storage for the matrices of `ordering`.
-    pub fn new(ordering: BandOrdering) -> BandNewton {
+    /// Storage for the matrices of `ordering`, the complex one only if
+    /// `complex`.
+    pub fn new(ordering: BandOrdering, complex: bool) -> BandNewton {
         let n = ordering.order.len();
         let (kl, ku) = (ordering.lower, ordering.upper);
         let mut position = vec![0; n];
@@ -221,7 +224,7 @@ impl BandNewton {
         }
         BandNewton {
             real: BandLu::new(n, kl, ku),
-            complex: BandLu::new(2 * n, 2 * kl + 1, 2 * ku + 1),
+            complex: complex.then(|| BandLu::new(2 * n, 2 * kl + 1, 2 * ku + 1)),
             scratch: vec![0.0; 2 * n],
             jacobian: vec![0.0; n * (kl + ku + 1)],
             position,
@@ -248,13 +251,19 @@ impl BandNewton {
         self.real.factor(|i, j| if i == j { gamma } else { 0.0 } - entry(i, j))
     }
 
+    /// Whether the complex matrix is kept.
+    pub fn has_complex(&self) -> bool {
+        self.complex.is_some()
+    }
+
     /// Factors `(α + iβ)·I − J` for the J of the last
-    /// [`BandNewton::factor_real`]. `false` if singular.
+    /// [`BandNewton::factor_real`]. `false` if singular or not kept.
     pub fn factor_complex(&mut self, alpha: f64, beta: f64) -> bool {
         let entry = band_entry(&self.jacobian, self.ordering.lower, self.ordering.upper);
+        let Some(complex) = &mut self.complex else { return false };
         // Unknown k's real part at 2k, its imaginary part at 2k + 1:
         // [[αI − J, −βI], [βI, αI − J]] interleaved.
-        self.complex.factor(|i, j| {
+        complex.factor(|i, j| {
             let (k, l) = (i / 2, j / 2);
             let a = if k == l { alpha } else { 0.0 } - entry(k, l);
             let b = if k == l { beta } else { 0.0 };
@@ -279,14 +288,16 @@ impl BandNewton {
         }
     }
 
-    /// Solves `((α + iβ)I − J)(x + iy) = b_re + i·b_im` in place.
+    /// Solves `((α + iβ)I − J)(x + iy) = b_re + i·b_im` in place (nothing
+    /// without the complex matrix).
     pub fn solve_complex(&mut self, b_re: &mut [f64], b_im: &mut [f64]) {
+        let Some(complex) = &self.complex else { return };
         let order = &self.ordering.order;
         for (k, &v) in order.iter().enumerate() {
             self.scratch[2 * k] = b_re[v];
             self.scratch[2 * k + 1] = b_im[v];
         }
-        self.complex.solve(&mut self.scratch);
+        complex.solve(&mut self.scratch);
         for (k, &v) in order.iter().enumerate() {
             b_re[v] = self.scratch[2 * k];
             b_im[v] = self.scratch[2 * k + 1];
@@ -338,7 +349,7 @@ mod tests {
     fn banded_solves_agree_with_dense_lu_on_random_sparse_jacobians() {
         let (n, pattern) = chain(30);
         let ordering = BandOrdering::reverse_cuthill_mckee(n, &pattern);
-        let mut newton = BandNewton::new(ordering);
+        let mut newton = BandNewton::new(ordering, true);
         let (mut dense_real, mut dense_complex) = (RealLu::new(n), ComplexLu::new(n));
         let mut seed = 11;
         for _ in 0..20 {

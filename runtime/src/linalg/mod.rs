@@ -4,6 +4,7 @@
 
 pub mod band_lu;
 pub mod dense_lu;
+pub(crate) mod newton;
 pub mod sparse_lu;
 
 /// Solves `a x = b` in place (`b` becomes `x`) by Gaussian elimination with

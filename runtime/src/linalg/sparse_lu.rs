@@ -295,23 +295,26 @@ impl<T: Scalar> SparseLu<T> {
     }
 }
 
-/// The Newton matrices of RADAU5 in sparse form: `γ·I − J` and
-/// `(α + iβ)·I − J`, in one [`SparsePattern`].
+/// The complex factorisation and its scratch right-hand side.
+type ComplexPart = (SparseLu<Complex<f64>>, Vec<Complex<f64>>);
+
+/// The Newton matrices of the implicit methods in sparse form: `γ·I − J`
+/// and, for RADAU5, `(α + iβ)·I − J`, in one [`SparsePattern`].
 pub struct SparseNewton {
     pattern: Arc<SparsePattern>,
     real: SparseLu<f64>,
-    complex: SparseLu<Complex<f64>>,
-    scratch: Vec<Complex<f64>>,
+    /// The complex matrix and its scratch, where the method has one.
+    complex: Option<ComplexPart>,
 }
 
 impl SparseNewton {
-    /// Storage for the matrices of `pattern`.
-    pub fn new(pattern: Arc<SparsePattern>) -> SparseNewton {
+    /// Storage for the matrices of `pattern`, the complex one only if
+    /// `complex`.
+    pub fn new(pattern: Arc<SparsePattern>, complex: bool) -> SparseNewton {
         let n = pattern.order.len();
         SparseNewton {
             real: SparseLu::new(&pattern),
-            complex: SparseLu::new(&pattern),
-            scratch: vec![Complex::new(0.0, 0.0); n],
+            complex: complex.then(|| (SparseLu::new(&pattern), vec![Complex::new(0.0, 0.0); n])),
             pattern,
         }
     }
@@ -321,8 +324,14 @@ impl SparseNewton {
         self.pattern.order.len()
     }
 
-    /// Factors both matrices, `jacobian(k)` the k-th entry of the pattern.
-    /// `false` when a pivot fails in either.
+    /// Whether the complex matrix is kept.
+    pub fn has_complex(&self) -> bool {
+        self.complex.is_some()
+    }
+
+    /// Factors the matrices, `jacobian(k)` the k-th entry of the pattern
+    /// (`alpha`, `beta` unused without the complex one). `false` when a
+    /// pivot fails.
     pub fn factor(
         &mut self,
         gamma: f64,
@@ -331,7 +340,9 @@ impl SparseNewton {
         jacobian: impl Fn(usize) -> f64,
     ) -> bool {
         self.real.factor(&self.pattern, gamma, &jacobian)
-            && self.complex.factor(&self.pattern, Complex::new(alpha, beta), &jacobian)
+            && self.complex.as_mut().is_none_or(|(complex, _)| {
+                complex.factor(&self.pattern, Complex::new(alpha, beta), &jacobian)
+            })
     }
 
     /// Solves `(γI − J) x = b` in place.
@@ -339,13 +350,15 @@ impl SparseNewton {
         self.real.solve(&self.pattern, b);
     }
 
-    /// Solves `((α + iβ)I − J)(x + iy) = b_re + i·b_im` in place.
+    /// Solves `((α + iβ)I − J)(x + iy) = b_re + i·b_im` in place (nothing
+    /// without the complex matrix).
     pub fn solve_complex(&mut self, b_re: &mut [f64], b_im: &mut [f64]) {
-        for ((s, re), im) in self.scratch.iter_mut().zip(b_re.iter()).zip(b_im.iter()) {
+        let Some((complex, scratch)) = &mut self.complex else { return };
+        for ((s, re), im) in scratch.iter_mut().zip(b_re.iter()).zip(b_im.iter()) {
             *s = Complex::new(*re, *im);
         }
-        self.complex.solve(&self.pattern, &mut self.scratch);
-        for ((s, re), im) in self.scratch.iter().zip(b_re.iter_mut()).zip(b_im.iter_mut()) {
+        complex.solve(&self.pattern, scratch);
+        for ((s, re), im) in scratch.iter().zip(b_re.iter_mut()).zip(b_im.iter_mut()) {
             (*re, *im) = (s.re, s.im);
         }
     }
@@ -398,7 +411,7 @@ mod tests {
             dense[r * n + c] += v;
         }
         let sparse = SparsePattern::minimum_degree(n, &pattern);
-        let mut newton = SparseNewton::new(Arc::new(sparse));
+        let mut newton = SparseNewton::new(Arc::new(sparse), true);
         let (gamma, alpha, beta) = (8.0, 6.0, 3.0);
         assert!(newton.factor(gamma, alpha, beta, |k| values[k]));
         let mut real = RealLu::new(n);

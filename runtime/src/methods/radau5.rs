@@ -11,9 +11,7 @@
 
 use crate::error::Error;
 use crate::info::EvalError;
-use crate::linalg::band_lu::{BandNewton, BandOrdering};
-use crate::linalg::dense_lu::{ComplexLu, RealLu};
-use crate::linalg::sparse_lu::{SparseNewton, SparsePattern};
+use crate::linalg::newton::{Factored, Newton, Shifts, Structure};
 use crate::methods::stiffness::{Finish, NonStiffWatch};
 use crate::methods::Problem;
 use crate::model::{has_mass_matrix, Model};
@@ -103,138 +101,6 @@ enum Refresh {
     Jacobian,
     Factorisation,
     Nothing,
-}
-
-/// The Newton matrices `γ/h·I − J` and `(α + iβ)/h·I − J`, in the form
-/// the generated Jacobian's pattern makes cheapest: banded after a reverse
-/// Cuthill–McKee renumbering, sparse after a minimum-degree one, or dense
-/// (always for finite differences and mass matrices).
-enum Newton {
-    Dense(RealLu, ComplexLu),
-    Band(Box<BandNewton>),
-    Sparse(Box<SparseNewton>),
-}
-
-/// The outcome of [`Newton::factor`].
-#[derive(Clone, Copy, PartialEq)]
-enum Factored {
-    Yes,
-    Singular,
-    /// The sparse LU gave way to the dense one: evaluate the Jacobian as
-    /// a dense matrix and factor again.
-    NeedsDenseJacobian,
-}
-
-/// Below this many states the dense LU is kept: the sparse one's
-/// bookkeeping would not pay.
-const SPARSE_FROM: usize = 64;
-
-/// How the Newton matrices of `n` states with Jacobian `pattern` are
-/// stored, and the operations of one real factorisation.
-enum Structure {
-    Dense,
-    Band(BandOrdering),
-    Sparse(std::sync::Arc<SparsePattern>),
-}
-
-impl Structure {
-    fn of(n: usize, pattern: &'static [(usize, usize)]) -> (Structure, f64) {
-        let dense = 2.0 / 3.0 * (n as f64).powi(3);
-        let mut best = (Structure::Dense, dense);
-        if pattern.is_empty() {
-            return best;
-        }
-        let ordering = BandOrdering::reverse_cuthill_mckee(n, pattern);
-        if ordering.pays() {
-            let (kl, ku) = (ordering.lower as f64, ordering.upper as f64);
-            best = (Structure::Band(ordering), 2.0 * n as f64 * kl * (kl + ku + 1.0));
-        }
-        // A pattern over an eighth full fills in whole: not worth renumbering.
-        if n >= SPARSE_FROM && 8 * pattern.len() < n * n {
-            let sparse = SparsePattern::of_model(n, pattern);
-            // The sparse elimination's indirect addressing costs some
-            // twice the band's contiguous loops per operation.
-            let operations = 2.0 * sparse.factor_operations();
-            if operations < best.1 && operations < dense / 4.0 {
-                best = (Structure::Sparse(sparse), operations);
-            }
-        }
-        best
-    }
-}
-
-impl Newton {
-    /// The Newton matrices for `pattern`, and the operations of one real
-    /// factorisation.
-    fn for_pattern(n: usize, pattern: &'static [(usize, usize)]) -> (Newton, f64) {
-        let (structure, operations) = Structure::of(n, pattern);
-        let newton = match structure {
-            Structure::Dense => Newton::Dense(RealLu::new(n), ComplexLu::new(n)),
-            Structure::Band(ordering) => Newton::Band(Box::new(BandNewton::new(ordering))),
-            Structure::Sparse(sparse) => Newton::Sparse(Box::new(SparseNewton::new(sparse))),
-        };
-        (newton, operations)
-    }
-
-    /// Whether the Jacobian is needed as a dense matrix.
-    fn dense(&self) -> bool {
-        matches!(self, Newton::Dense(..))
-    }
-
-    /// Factors both matrices; `false` if singular. A sparse LU that meets
-    /// a pivot too small to keep without interchanges gives way to the
-    /// dense LU, which pivots, for the rest of the run (`jacobian` then
-    /// grows its dense matrix, and the next evaluation fills it).
-    fn factor(
-        &mut self,
-        gamma: f64,
-        alpha: f64,
-        beta: f64,
-        mass: &[f64],
-        jacobian: &DenseJacobian,
-        pattern: &[(usize, usize)],
-    ) -> Factored {
-        let ok = match self {
-            Newton::Dense(real, complex) => {
-                real.factor_shifted_mass(gamma, mass, &jacobian.matrix)
-                    && complex.factor_shifted_mass(alpha, beta, mass, &jacobian.matrix)
-            }
-            Newton::Band(band) => {
-                band.factor_real(gamma, pattern, jacobian.values())
-                    && band.factor_complex(alpha, beta)
-            }
-            Newton::Sparse(sparse) => {
-                let values = jacobian.values();
-                if sparse.factor(gamma, alpha, beta, |k| values[k]) {
-                    return Factored::Yes;
-                }
-                let n = sparse.states();
-                *self = Newton::Dense(RealLu::new(n), ComplexLu::new(n));
-                return Factored::NeedsDenseJacobian;
-            }
-        };
-        if ok {
-            Factored::Yes
-        } else {
-            Factored::Singular
-        }
-    }
-
-    fn solve_real(&mut self, b: &mut [f64]) {
-        match self {
-            Newton::Dense(real, _) => real.solve(b),
-            Newton::Band(band) => band.solve_real(b),
-            Newton::Sparse(sparse) => sparse.solve_real(b),
-        }
-    }
-
-    fn solve_complex(&mut self, re: &mut [f64], im: &mut [f64]) {
-        match self {
-            Newton::Dense(_, complex) => complex.solve(re, im),
-            Newton::Band(band) => band.solve_complex(re, im),
-            Newton::Sparse(sparse) => sparse.solve_complex(re, im),
-        }
-    }
 }
 
 /// The floating-point operations of one factorisation of RADAU5's two
@@ -335,12 +201,9 @@ fn step_loop<M: Model>(
     } else {
         crate::model::dense_mass_matrix(model)
     };
-    let (mut newton, factor_operations) = if has_mass_matrix::<M>() {
-        Newton::for_pattern(n, &[])
-    } else {
-        Newton::for_pattern(n, M::JACOBIAN_PATTERN)
-    };
-    let jacobian = DenseJacobian::with_matrix::<M>(newton.dense());
+    let pattern = if has_mass_matrix::<M>() { &[] } else { M::JACOBIAN_PATTERN };
+    let (mut newton, factor_operations) = Newton::for_pattern(n, pattern, Shifts::RealAndComplex);
+    let jacobian = DenseJacobian::with_matrix::<M>(newton.dense_jacobian());
     let mut w = Work { model, evals: 0, jacobian_evals: 0, jacobian };
     let mut mass_applied = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
     let mut y = vec![0.0; n];
@@ -424,21 +287,14 @@ fn step_loop<M: Model>(
         if refresh != Refresh::Nothing {
             let factor_mass = if mass_matrix.is_empty() { M::MASS } else { &mass_matrix[..] };
             let pattern = M::JACOBIAN_PATTERN;
-            let mut factored =
-                newton.factor(gamma / h, alpha / h, beta / h, factor_mass, &w.jacobian, pattern);
+            let shifts = (gamma / h, (alpha / h, beta / h));
+            let mut factored = newton.factor(shifts.0, shifts.1, factor_mass, &w.jacobian, pattern);
             if factored == Factored::NeedsDenseJacobian {
                 w.jacobian = DenseJacobian::new::<M>();
                 if let Err(cause) = w.evaluate_jacobian(t, &mut y, &y0) {
                     return fail(solution, &w, accepted, rejected, t, cause);
                 }
-                factored = newton.factor(
-                    gamma / h,
-                    alpha / h,
-                    beta / h,
-                    factor_mass,
-                    &w.jacobian,
-                    pattern,
-                );
+                factored = newton.factor(shifts.0, shifts.1, factor_mass, &w.jacobian, pattern);
             }
             if factored != Factored::Yes {
                 singular += 1;
@@ -724,7 +580,7 @@ fn step_loop<M: Model>(
 }
 
 /// `out = M x` for the dense row-major mass matrix `m`.
-fn apply_mass(m: &[f64], x: &[f64], out: &mut [f64]) {
+pub(crate) fn apply_mass(m: &[f64], x: &[f64], out: &mut [f64]) {
     let n = x.len();
     for (i, o) in out.iter_mut().enumerate() {
         *o = m[i * n..(i + 1) * n].iter().zip(x).map(|(a, b)| a * b).sum();
@@ -860,46 +716,5 @@ mod mass_matrix_tests {
             let h_mean = 10.0 / sol.stats().steps as f64;
             assert!(mu <= 1000.0 * tol / h_mean, "max |μ| = {mu:e}");
         }
-    }
-}
-
-#[cfg(test)]
-mod structure_tests {
-    use super::*;
-
-    /// The five-point Laplacian's pattern on an m × m periodic grid.
-    /// (Leaked: a model's pattern is static.)
-    fn periodic_grid(m: usize) -> &'static [(usize, usize)] {
-        let mut pattern = Vec::new();
-        for i in 0..m {
-            for j in 0..m {
-                for (a, b) in [
-                    (i, j),
-                    ((i + 1) % m, j),
-                    ((i + m - 1) % m, j),
-                    (i, (j + 1) % m),
-                    (i, (j + m - 1) % m),
-                ] {
-                    pattern.push((i * m + j, a * m + b));
-                }
-            }
-        }
-        pattern.leak()
-    }
-
-    #[test]
-    fn each_pattern_gets_its_cheapest_newton_matrices() {
-        // A chain: a band of one either side.
-        let chain: Vec<(usize, usize)> = (0..100usize)
-            .flat_map(|i| [(i, i), (i, (i + 1).min(99)), (i, i.saturating_sub(1))])
-            .collect();
-        assert!(matches!(Structure::of(100, chain.leak()).0, Structure::Band(_)));
-        // A periodic grid: no narrow band, a sparse fill.
-        assert!(matches!(Structure::of(256, periodic_grid(16)).0, Structure::Sparse(_)));
-        // Small or full: dense.
-        assert!(matches!(Structure::of(36, periodic_grid(6)).0, Structure::Dense));
-        let full: Vec<(usize, usize)> =
-            (0..80).flat_map(|i| (0..80).map(move |j| (i, j))).collect();
-        assert!(matches!(Structure::of(80, full.leak()).0, Structure::Dense));
     }
 }

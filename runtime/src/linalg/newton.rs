@@ -1,0 +1,223 @@
+//! The Newton matrices of the implicit methods, `γ·M − J` and, for
+//! RADAU5, `(α + iβ)·M − J`, stored in the form the generated Jacobian's
+//! pattern makes cheapest: banded after a reverse Cuthill–McKee
+//! renumbering, sparse after a minimum-degree one, or dense (always for
+//! finite differences and mass matrices).
+
+use crate::linalg::band_lu::{BandNewton, BandOrdering};
+use crate::linalg::dense_lu::{ComplexLu, RealLu};
+use crate::linalg::sparse_lu::{SparseNewton, SparsePattern};
+use crate::step::jacobian::DenseJacobian;
+
+/// Which shifted matrices a method factors: RADAU5 a real and a complex
+/// one, a Rosenbrock method the real one alone.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(crate) enum Shifts {
+    /// `γ·M − J` only.
+    Real,
+    /// `γ·M − J` and `(α + iβ)·M − J`.
+    RealAndComplex,
+}
+
+/// The factored Newton matrices, in one of three storage forms.
+pub(crate) enum Newton {
+    /// Dense LU with partial pivoting (the complex one only for
+    /// [`Shifts::RealAndComplex`]).
+    Dense(RealLu, Option<ComplexLu>),
+    /// Banded LU in a renumbering that narrows the band.
+    Band(Box<BandNewton>),
+    /// Sparse LU on a minimum-degree ordering with a static fill.
+    Sparse(Box<SparseNewton>),
+}
+
+/// The outcome of [`Newton::factor`].
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(crate) enum Factored {
+    /// Factored.
+    Yes,
+    /// A pivot vanished: the method shrinks its step.
+    Singular,
+    /// The sparse LU gave way to the dense one: evaluate the Jacobian as
+    /// a dense matrix and factor again.
+    NeedsDenseJacobian,
+}
+
+/// Below this many states the dense LU is kept: the sparse one's
+/// bookkeeping would not pay.
+const SPARSE_FROM: usize = 64;
+
+/// How the Newton matrices of `n` states with Jacobian `pattern` are
+/// stored, and the operations of one real factorisation.
+pub(crate) enum Structure {
+    /// Dense.
+    Dense,
+    /// Banded in this renumbering.
+    Band(BandOrdering),
+    /// Sparse with this ordering and fill.
+    Sparse(std::sync::Arc<SparsePattern>),
+}
+
+impl Structure {
+    /// The cheapest storage for `pattern` (empty: dense), and the
+    /// operations of one real factorisation in it.
+    pub(crate) fn of(n: usize, pattern: &'static [(usize, usize)]) -> (Structure, f64) {
+        let dense = 2.0 / 3.0 * (n as f64).powi(3);
+        let mut best = (Structure::Dense, dense);
+        if pattern.is_empty() {
+            return best;
+        }
+        let ordering = BandOrdering::reverse_cuthill_mckee(n, pattern);
+        if ordering.pays() {
+            let (kl, ku) = (ordering.lower as f64, ordering.upper as f64);
+            best = (Structure::Band(ordering), 2.0 * n as f64 * kl * (kl + ku + 1.0));
+        }
+        // A pattern over an eighth full fills in whole: not worth renumbering.
+        if n >= SPARSE_FROM && 8 * pattern.len() < n * n {
+            let sparse = SparsePattern::of_model(n, pattern);
+            // The sparse elimination's indirect addressing costs some
+            // twice the band's contiguous loops per operation.
+            let operations = 2.0 * sparse.factor_operations();
+            if operations < best.1 && operations < dense / 4.0 {
+                best = (Structure::Sparse(sparse), operations);
+            }
+        }
+        best
+    }
+}
+
+impl Newton {
+    /// The Newton matrices for `pattern`, and the operations of one real
+    /// factorisation.
+    pub(crate) fn for_pattern(
+        n: usize,
+        pattern: &'static [(usize, usize)],
+        shifts: Shifts,
+    ) -> (Newton, f64) {
+        let (structure, operations) = Structure::of(n, pattern);
+        let complex = shifts == Shifts::RealAndComplex;
+        let newton = match structure {
+            Structure::Dense => Newton::dense(n, shifts),
+            Structure::Band(ordering) => Newton::Band(Box::new(BandNewton::new(ordering, complex))),
+            Structure::Sparse(sparse) => {
+                Newton::Sparse(Box::new(SparseNewton::new(sparse, complex)))
+            }
+        };
+        (newton, operations)
+    }
+
+    fn dense(n: usize, shifts: Shifts) -> Newton {
+        let complex = (shifts == Shifts::RealAndComplex).then(|| ComplexLu::new(n));
+        Newton::Dense(RealLu::new(n), complex)
+    }
+
+    /// Whether the Jacobian is needed as a dense matrix.
+    pub(crate) fn dense_jacobian(&self) -> bool {
+        matches!(self, Newton::Dense(..))
+    }
+
+    /// Factors `γ·M − J` (and `(α + iβ)·M − J` where the matrices were made
+    /// for both; `complex` is ignored otherwise), `mass` the diagonal of M
+    /// (empty: I) or its dense row-major matrix. A sparse LU that meets a
+    /// pivot too small to keep without interchanges gives way to the dense
+    /// LU, which pivots, for the rest of the run (`jacobian` then grows its
+    /// dense matrix, and the next evaluation fills it).
+    pub(crate) fn factor(
+        &mut self,
+        gamma: f64,
+        complex: (f64, f64),
+        mass: &[f64],
+        jacobian: &DenseJacobian,
+        pattern: &[(usize, usize)],
+    ) -> Factored {
+        let (alpha, beta) = complex;
+        let ok = match self {
+            Newton::Dense(real, complex) => {
+                real.factor_shifted_mass(gamma, mass, &jacobian.matrix)
+                    && complex.as_mut().is_none_or(|complex| {
+                        complex.factor_shifted_mass(alpha, beta, mass, &jacobian.matrix)
+                    })
+            }
+            Newton::Band(band) => {
+                band.factor_real(gamma, pattern, jacobian.values())
+                    && (!band.has_complex() || band.factor_complex(alpha, beta))
+            }
+            Newton::Sparse(sparse) => {
+                let values = jacobian.values();
+                if sparse.factor(gamma, alpha, beta, |k| values[k]) {
+                    return Factored::Yes;
+                }
+                let shifts =
+                    if sparse.has_complex() { Shifts::RealAndComplex } else { Shifts::Real };
+                *self = Newton::dense(sparse.states(), shifts);
+                return Factored::NeedsDenseJacobian;
+            }
+        };
+        if ok {
+            Factored::Yes
+        } else {
+            Factored::Singular
+        }
+    }
+
+    /// Solves `(γ·M − J) x = b` in place.
+    pub(crate) fn solve_real(&mut self, b: &mut [f64]) {
+        match self {
+            Newton::Dense(real, _) => real.solve(b),
+            Newton::Band(band) => band.solve_real(b),
+            Newton::Sparse(sparse) => sparse.solve_real(b),
+        }
+    }
+
+    /// Solves `((α + iβ)·M − J)(x + iy) = re + i·im` in place; only for
+    /// matrices made with [`Shifts::RealAndComplex`].
+    pub(crate) fn solve_complex(&mut self, re: &mut [f64], im: &mut [f64]) {
+        match self {
+            Newton::Dense(_, Some(complex)) => complex.solve(re, im),
+            // Real-only matrices belong to methods without complex stages.
+            Newton::Dense(_, None) => {}
+            Newton::Band(band) => band.solve_complex(re, im),
+            Newton::Sparse(sparse) => sparse.solve_complex(re, im),
+        }
+    }
+}
+
+#[cfg(test)]
+mod structure_tests {
+    use super::*;
+
+    /// The five-point Laplacian's pattern on an m × m periodic grid.
+    /// (Leaked: a model's pattern is static.)
+    fn periodic_grid(m: usize) -> &'static [(usize, usize)] {
+        let mut pattern = Vec::new();
+        for i in 0..m {
+            for j in 0..m {
+                for (a, b) in [
+                    (i, j),
+                    ((i + 1) % m, j),
+                    ((i + m - 1) % m, j),
+                    (i, (j + 1) % m),
+                    (i, (j + m - 1) % m),
+                ] {
+                    pattern.push((i * m + j, a * m + b));
+                }
+            }
+        }
+        pattern.leak()
+    }
+
+    #[test]
+    fn each_pattern_gets_its_cheapest_newton_matrices() {
+        // A chain: a band of one either side.
+        let chain: Vec<(usize, usize)> = (0..100usize)
+            .flat_map(|i| [(i, i), (i, (i + 1).min(99)), (i, i.saturating_sub(1))])
+            .collect();
+        assert!(matches!(Structure::of(100, chain.leak()).0, Structure::Band(_)));
+        // A periodic grid: no narrow band, a sparse fill.
+        assert!(matches!(Structure::of(256, periodic_grid(16)).0, Structure::Sparse(_)));
+        // Small or full: dense.
+        assert!(matches!(Structure::of(36, periodic_grid(6)).0, Structure::Dense));
+        let full: Vec<(usize, usize)> =
+            (0..80).flat_map(|i| (0..80).map(move |j| (i, j))).collect();
+        assert!(matches!(Structure::of(80, full.leak()).0, Structure::Dense));
+    }
+}
