@@ -46,7 +46,8 @@ fn angle_reference(t: f64) -> (f64, f64) {
 fn the_dae_pendulum_follows_the_angle_form_and_keeps_its_constraints() {
     let model = Pendulum::default();
     let (m, g, l) = (model.m, model.g, model.l);
-    for method in [Method::Dop853, Method::Dopri5, Method::Radau5, Method::Taylor] {
+    for method in [Method::Dop853, Method::Dopri5, Method::Radau5, Method::Rodas5P, Method::Taylor]
+    {
         let tol = 1e-10;
         let opts = Options::new().method(method).tolerance(tol);
         let sol = model.simulate(0.0, 100.0, &opts).expect("the pendulum runs");
@@ -120,7 +121,7 @@ fn over_a_hundred_seconds_the_dae_drifts_in_energy_like_the_angle_form() {
             .fold(0.0, f64::max)
     };
     for tol in [1e-8, 1e-10, 1e-12] {
-        for method in [Method::Dop853, Method::Dopri5, Method::Radau5] {
+        for method in [Method::Dop853, Method::Dopri5, Method::Radau5, Method::Rodas5P] {
             let opts = Options::new().method(method).tolerance(tol);
             let angle = PendulumAngle::default().simulate(0.0, 100.0, &opts).unwrap();
             let dae = Pendulum::default().simulate(0.0, 100.0, &opts).unwrap();
@@ -221,7 +222,7 @@ fn pendul3_run(method: Method, tol: f64, step: f64, t_end: f64) -> Solution {
 fn cash_index_3_pendulum_matches_the_reference_including_lambda() {
     // At t = 1 (before the first turning point): within 20 × tol (RADAU5's
     // global error per tolerance is the largest: 17 × at 1e-10).
-    for method in [Method::Dop853, Method::Dopri5, Method::Radau5] {
+    for method in [Method::Dop853, Method::Dopri5, Method::Radau5, Method::Rodas5P] {
         for tol in [1e-6, 1e-8, 1e-10] {
             let e = pendul3_errors(&pendul3_run(method, tol, 0.0, 1.0), 1.0)[0];
             assert!(e <= 20.0 * tol, "{method:?} tol {tol:e}: error {e:e} at t = 1");
@@ -612,6 +613,17 @@ fn the_gear_gupta_leimkuhler_form_with_radau5_matches_the_references() {
         )
         .unwrap_err();
     assert!(err.to_string().contains("Method::Radau5"), "{err}");
+    // A Rosenbrock method does not converge on the index-2 multipliers of
+    // the mass-matrix form: refused, naming them.
+    let err = CashPendulum::default()
+        .simulate(
+            0.0,
+            1.0,
+            &Options::new().method(Method::Rodas5P).formulation(Formulation::MassMatrix),
+        )
+        .unwrap_err();
+    let message = err.to_string();
+    assert!(message.contains("index 2") && message.contains("Method::Radau5"), "{message}");
 }
 
 /// An index-1 DAE whose algebraic equation is nonlinear in its variable:

@@ -331,7 +331,7 @@ fn the_contracts_chain_runs_with_a_progress_bar() {
 #[test]
 fn a_batch_refuses_the_methods_that_would_mix_its_members_errors() {
     let batch = KeplerBatch::from_members(&[Kepler { e: 0.5 }; 4]);
-    for method in [Method::Auto, Method::Radau5, Method::BackwardEuler] {
+    for method in [Method::Auto, Method::Radau5, Method::Rodas5P, Method::BackwardEuler] {
         let err = batch.simulate(0.0, 1.0, &Options::new().method(method)).unwrap_err();
         let message = err.to_string();
         assert!(

@@ -24,7 +24,8 @@ kepler_model!(fn kepler_sections(taylor = 1) {
     let apsis = event(q1 * p1 + q2 * p2);
 });
 
-const ADAPTIVE: [Method; 4] = [Method::Taylor, Method::Dop853, Method::Dopri5, Method::Radau5];
+const ADAPTIVE: [Method; 5] =
+    [Method::Taylor, Method::Dop853, Method::Dopri5, Method::Radau5, Method::Rodas5P];
 
 /// The impact times of the bouncing ball: a drop of sqrt(2h/g), then flights
 /// of 2·eᵏ·v₁/g with v₁ = sqrt(2gh).

@@ -75,6 +75,11 @@ fn the_transistor_amplifier_as_written_matches_the_test_set() {
             (base.method(Method::Radau5), "Radau5"),
             (base.clone(), "Auto"),
             (base.method(Method::Radau5).formulation(Formulation::MassMatrix), "M y' = f"),
+            (base.method(Method::Rodas5P), "Rodas5P"),
+            (
+                base.method(Method::Rodas5P).formulation(Formulation::MassMatrix),
+                "Rodas5P, M y' = f",
+            ),
             (base.formulation(Formulation::MassMatrix), "Auto, M y' = f"),
         ] {
             let sol = TransistorAmplifier::default().simulate(0.0, 0.2, &options).unwrap();
@@ -98,7 +103,7 @@ fn the_transistor_amplifier_as_written_matches_the_test_set() {
             &Options::new().method(Method::Dop853).formulation(Formulation::MassMatrix),
         )
         .unwrap_err();
-    assert!(err.to_string().contains("RADAU5 only"), "{err}");
+    assert!(err.to_string().contains("RADAU5 or RODAS5P only"), "{err}");
 }
 
 #[test]
@@ -166,6 +171,7 @@ fn the_one_transistor_amplifier_agrees_in_both_formulations() {
             base.method(Method::Radau5),
             base.clone(),
             base.method(Method::Radau5).formulation(Formulation::MassMatrix),
+            base.method(Method::Rodas5P).formulation(Formulation::MassMatrix),
         ] {
             let sol = OneTransistorAmplifier::default().simulate(0.0, t1, &options).unwrap();
             let e = error(sol.final_state(), &reference);
@@ -205,8 +211,10 @@ fn newton_on_a_quadratic_algebraic_equation_serves_every_method() {
             base.method(Method::Dopri5),
             base.method(Method::Dop853),
             base.method(Method::Radau5),
+            base.method(Method::Rodas5P),
             base.clone(),
             base.method(Method::Radau5).formulation(Formulation::MassMatrix),
+            base.method(Method::Rodas5P).formulation(Formulation::MassMatrix),
         ] {
             let sol = QuadraticAlgebraic::default().simulate(0.0, 1.0, &options).unwrap();
             let e = (sol.last("y").unwrap() - y).abs().max((sol.last("z").unwrap() - z).abs());
@@ -254,7 +262,12 @@ fn a_quasi_steady_state_follows_its_hand_solved_form() {
     let reference = QuasiSteadyState_reference();
     for tol in [1e-6, 1e-9] {
         let base = Options::new().tolerance(tol);
-        for options in [base.method(Method::Dop853), base.method(Method::Radau5), base] {
+        for options in [
+            base.method(Method::Dop853),
+            base.method(Method::Radau5),
+            base.method(Method::Rodas5P),
+            base,
+        ] {
             let sol = QuasiSteadyState::default().simulate(0.0, 5.0, &options).unwrap();
             let e = (sol.last("a").unwrap() - reference).abs();
             assert!(e <= 1e3 * tol, "{}: tol {tol:e}, error {e:e}", sol.stats().method);
@@ -323,7 +336,12 @@ fn nonlinear_capacitor() {
 fn mass_matrices_that_depend_on_the_state_run_in_the_index_one_form() {
     for tol in [1e-6, 1e-9] {
         let base = Options::new().tolerance(tol);
-        for options in [base.method(Method::Dop853), base.method(Method::Radau5), base] {
+        for options in [
+            base.method(Method::Dop853),
+            base.method(Method::Radau5),
+            base.method(Method::Rodas5P),
+            base,
+        ] {
             let sol = StateDependentMass::default().simulate(0.0, 2.0, &options).unwrap();
             let e = (sol.last("y1").unwrap() - (-2f64).exp())
                 .abs()

@@ -187,7 +187,7 @@ fn a_stiff_problem_hits_the_step_limit_with_a_clear_error() {
 #[test]
 fn runs_without_dense_output_take_the_same_steps_for_less_work() {
     let t1 = 2.0 * std::f64::consts::PI;
-    for method in [Method::Dop853, Method::Dopri5, Method::Radau5] {
+    for method in [Method::Dop853, Method::Dopri5, Method::Radau5, Method::Rodas5P] {
         let with = Options::new().method(method).tolerance(1e-10);
         let without = with.dense_output(false);
         let a = Kepler::default().simulate(0.0, t1, &with).unwrap();

@@ -64,7 +64,7 @@ fn problems() -> Vec<Problem> {
             name: "kepler",
             run: |o| Kepler::default().simulate(0.0, 2.0 * std::f64::consts::PI, o),
             error: |s| mixed_error(s.final_state(), &kepler_exact(2.0 * std::f64::consts::PI)),
-            methods: &[Dopri5, Dop853, Radau5, Taylor, Auto],
+            methods: &[Dopri5, Dop853, Radau5, Rodas5P, Taylor, Auto],
             tolerances: &[1e-6, 1e-8, 1e-10],
             atol_scale: 1.0,
             // An eccentric orbit (e = 0.9): the pericentre passage, 19 times
@@ -101,7 +101,7 @@ fn problems() -> Vec<Problem> {
                 let lambda = s.last("lambda").unwrap_or(f64::NAN);
                 mixed_error(&[y[0], y[1], y[2], y[3], lambda], &CASH_PENDULUM_AT_10)
             },
-            methods: &[Dopri5, Dop853, Radau5, Taylor, Auto],
+            methods: &[Dopri5, Dop853, Radau5, Rodas5P, Taylor, Auto],
             tolerances: &[1e-6, 1e-8, 1e-10],
             atol_scale: 1.0,
             // A pendulum over ten swings, projected onto its constraints.
@@ -111,7 +111,7 @@ fn problems() -> Vec<Problem> {
             name: "van_der_pol",
             run: |o| VanDerPol::default().simulate(0.0, 2.0, o),
             error: |s| mixed_error(s.final_state(), &VDP_AT_2),
-            methods: &[Radau5, Auto],
+            methods: &[Radau5, Rodas5P, Auto],
             tolerances: &[1e-5, 1e-7, 1e-9],
             atol_scale: 1.0,
             // Stiff: the slow manifold damps errors, even across the jump
@@ -122,7 +122,7 @@ fn problems() -> Vec<Problem> {
             name: "robertson",
             run: |o| Robertson::default().simulate(0.0, 1e11, o),
             error: |s| relative_error(s.final_state(), &ROBER_AT_1E11),
-            methods: &[Radau5, Auto],
+            methods: &[Radau5, Rodas5P, Auto],
             tolerances: &[1e-6, 1e-8, 1e-10],
             // y2 falls to 1e-13: its absolute tolerance lies far below it.
             atol_scale: 1e-10,
@@ -132,7 +132,7 @@ fn problems() -> Vec<Problem> {
             name: "hires",
             run: |o| Hires::default().simulate(0.0, 321.8122, o),
             error: |s| relative_error(s.final_state(), &HIRES_AT_END),
-            methods: &[Radau5, Auto],
+            methods: &[Radau5, Rodas5P, Auto],
             tolerances: &[1e-6, 1e-8, 1e-10],
             atol_scale: 1e-4,
             bound: 1e2,
@@ -145,7 +145,7 @@ fn problems() -> Vec<Problem> {
                 let exact = low_pass_exact(0.5, m.tau, m.omega);
                 mixed_error(s.final_state(), &[exact])
             },
-            methods: &[Dopri5, Dop853, Radau5, Auto],
+            methods: &[Dopri5, Dop853, Radau5, Rodas5P, Auto],
             tolerances: &[1e-6, 1e-8, 1e-10],
             atol_scale: 1.0,
             // Stiff and damped: the error forgets its past.
@@ -212,6 +212,9 @@ Dop853                1e-10     70 steps   30 rejected   1412 f    0 J
 Radau5                1e-6      87 steps    0 rejected    597 f   82 J
 Radau5                1e-8     182 steps    1 rejected   1268 f   72 J
 Radau5                1e-10    390 steps    0 rejected   2718 f   42 J
+Rodas5P               1e-6      78 steps    1 rejected    631 f   78 J
+Rodas5P               1e-8     181 steps    0 rejected   1448 f  181 J
+Rodas5P               1e-10    442 steps    0 rejected   3536 f  442 J
 Taylor                1e-6      50 steps    0 rejected     50 f    0 J
 Taylor                1e-8      49 steps    0 rejected     49 f    0 J
 Taylor                1e-10     51 steps    0 rejected     51 f    0 J
@@ -254,6 +257,9 @@ Dop853                1e-10     63 steps   10 rejected   1130 f    0 J
 Radau5                1e-6      93 steps    0 rejected    636 f   86 J
 Radau5                1e-8     192 steps    0 rejected   1329 f  163 J
 Radau5                1e-10    410 steps    0 rejected   2858 f  111 J
+Rodas5P               1e-6      95 steps    2 rejected    774 f   95 J
+Rodas5P               1e-8     218 steps    3 rejected   1765 f  218 J
+Rodas5P               1e-10    530 steps    0 rejected   4240 f  530 J
 Taylor                1e-6      42 steps    0 rejected     42 f    0 J
 Taylor                1e-8      36 steps    0 rejected     36 f    0 J
 Taylor                1e-10     37 steps    0 rejected     37 f    0 J
@@ -265,6 +271,9 @@ Auto (Dop853)         1e-10     63 steps   10 rejected   1130 f    0 J
 Radau5                1e-5     339 steps    8 rejected   2962 f  222 J
 Radau5                1e-7     711 steps    8 rejected   5735 f  434 J
 Radau5                1e-9    1538 steps    4 rejected  11908 f  530 J
+Rodas5P               1e-5     350 steps   20 rejected   2954 f  350 J
+Rodas5P               1e-7    1097 steps   11 rejected   8867 f 1097 J
+Rodas5P               1e-9    3665 steps   11 rejected  29418 f 3665 J
 Auto (Dopri5⇄Radau5)  1e-5     264 steps   50 rejected   2552 f   62 J
 Auto (Dopri5⇄Radau5)  1e-7     623 steps   19 rejected   4758 f  114 J
 Auto (Dop853⇄Radau5)  1e-9     522 steps   86 rejected   7781 f  269 J
@@ -273,6 +282,9 @@ Auto (Dop853⇄Radau5)  1e-9     522 steps   86 rejected   7781 f  269 J
 Radau5                1e-6     299 steps    2 rejected   2222 f  279 J
 Radau5                1e-8     620 steps    2 rejected   4655 f  376 J
 Radau5                1e-10   1326 steps    2 rejected   9960 f  499 J
+Rodas5P               1e-6     284 steps    2 rejected   2286 f  284 J
+Rodas5P               1e-8     723 steps    3 rejected   5805 f  723 J
+Rodas5P               1e-10   2405 steps    9 rejected  19303 f 2405 J
 Auto (Dopri5→Radau5)  1e-6     299 steps    1 rejected   2189 f  253 J
 Auto (Dop853→Radau5)  1e-8     566 steps    4 rejected   4552 f  357 J
 Auto (Dop853→Radau5)  1e-10   1193 steps    3 rejected   9369 f  485 J
@@ -281,6 +293,9 @@ Auto (Dop853→Radau5)  1e-10   1193 steps    3 rejected   9369 f  485 J
 Radau5                1e-6     117 steps    2 rejected   1140 f   73 J
 Radau5                1e-8     235 steps    1 rejected   2050 f  134 J
 Radau5                1e-10    501 steps    1 rejected   4110 f  229 J
+Rodas5P               1e-6     212 steps    1 rejected   1703 f  212 J
+Rodas5P               1e-8     787 steps    4 rejected   6324 f  787 J
+Rodas5P               1e-10   2854 steps    4 rejected  22860 f 2854 J
 Auto (Dopri5→Radau5)  1e-6     328 steps    2 rejected   2299 f   24 J
 Auto (Dop853→Radau5)  1e-8     181 steps    4 rejected   2089 f   79 J
 Auto (Dop853→Radau5)  1e-10    473 steps    6 rejected   5692 f  124 J
@@ -295,6 +310,9 @@ Dop853                1e-10   2953 steps    6 rejected  44369 f    0 J
 Radau5                1e-6      45 steps    7 rejected    238 f    8 J
 Radau5                1e-8      97 steps    8 rejected    493 f    9 J
 Radau5                1e-10    222 steps    8 rejected   1127 f    9 J
+Rodas5P               1e-6      83 steps    5 rejected    699 f   83 J
+Rodas5P               1e-8     275 steps    4 rejected   2228 f  275 J
+Rodas5P               1e-10    830 steps    4 rejected   6668 f  830 J
 Auto (Dopri5→Radau5)  1e-6      61 steps    9 rejected    352 f   10 J
 Auto (Dop853→Radau5)  1e-8     101 steps    7 rejected    714 f    8 J
 Auto (Dop853→Radau5)  1e-10    223 steps    4 rejected   1424 f    5 J

@@ -113,7 +113,14 @@ fn samples_between_steps_converge_at_the_methods_order() {
 /// multiple of the tolerance.
 #[test]
 fn adaptive_samples_follow_the_exact_solution() {
-    for method in [Method::Dopri5, Method::Dop853, Method::Radau5, Method::Taylor, Method::Auto] {
+    for method in [
+        Method::Dopri5,
+        Method::Dop853,
+        Method::Radau5,
+        Method::Rodas5P,
+        Method::Taylor,
+        Method::Auto,
+    ] {
         let opts = Options::new().method(method).tolerance(1e-10);
         let error = sampled_error(&opts);
         assert!(error < 1e-8, "{method:?}: {error:e}");
@@ -123,7 +130,7 @@ fn adaptive_samples_follow_the_exact_solution() {
 #[test]
 fn output_times_store_those_times_at_the_methods_order() {
     let times: Vec<f64> = (0..=30).map(|k| 0.1 * k as f64).collect();
-    for method in [Method::Dop853, Method::Radau5, Method::Taylor, Method::Rk4] {
+    for method in [Method::Dop853, Method::Radau5, Method::Rodas5P, Method::Taylor, Method::Rk4] {
         let full = Options::new().method(method).tolerance(1e-10).step(1e-3);
         let only = full.output_times(times.clone());
         let a = Oscillator::default().simulate(0.0, 3.0, &full).unwrap();

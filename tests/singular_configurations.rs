@@ -31,7 +31,7 @@ fn fast_pendulum_angle() {
 #[test]
 fn a_pendulum_with_a_large_multiplier_follows_its_angle() {
     let tol = 1e-10;
-    for method in [Method::Dop853, Method::Radau5] {
+    for method in [Method::Dop853, Method::Radau5, Method::Rodas5P] {
         let opts = Options::new().method(method).tolerance(tol);
         let dae = FastPendulum::default().simulate(0.0, 5.0, &opts).unwrap();
         let ode = FastPendulumAngle::default().simulate(0.0, 5.0, &opts).unwrap();

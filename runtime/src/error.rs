@@ -244,11 +244,13 @@ impl Error {
         self.partial_solution().map(|s| s.stats().method).unwrap_or("")
     }
 
-    /// Whether the method that failed was an implicit one (RADAU5, backward
-    /// Euler, or `Auto` after it switched to RADAU5).
+    /// Whether the method that failed was an implicit one (RADAU5,
+    /// RODAS5P, backward Euler, or `Auto` after it switched to a stiff one).
     fn failed_implicit(&self) -> bool {
         let method = self.method();
-        method.ends_with("Radau5") || method.contains("BackwardEuler")
+        method.ends_with("Radau5")
+            || method.ends_with("Rodas5P")
+            || method.contains("BackwardEuler")
     }
 }
 

@@ -130,7 +130,8 @@ impl Runner {
             };
             let mut y0 = vec![0.0; n];
             model.initial_state(&mut y0);
-            let explicit = |m: &Method| !matches!(m, Method::Radau5 | Method::BackwardEuler);
+            let explicit =
+                |m: &Method| !matches!(m, Method::Radau5 | Method::Rodas5P | Method::BackwardEuler);
             let peer_problem = PeerProblem {
                 name: M::NAME,
                 peer: bench.peer,

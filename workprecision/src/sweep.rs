@@ -30,6 +30,7 @@ pub(crate) fn method_name(method: Method) -> String {
         Method::Dopri5 => "DOPRI5".into(),
         Method::Dop853 => "DOP853".into(),
         Method::Radau5 => "RADAU5".into(),
+        Method::Rodas5P => "RODAS5P".into(),
         Method::Rk4 => "RK4".into(),
         Method::Rk38 => "RK 3/8".into(),
         Method::TaylorFixed { order, .. } => format!("Taylor order {order} (fixed step)"),

@@ -10,6 +10,7 @@ pub mod dopri5;
 pub mod explicit_rk;
 pub mod implicit_tableau;
 pub(crate) mod radau5;
+pub(crate) mod rodas5p;
 pub(crate) mod stiffness;
 pub mod taylor;
 

@@ -33,7 +33,10 @@ pub(crate) fn check_request<M: Model>(
     }
     check_options::<M>(options)?;
     if M::LANES > 1
-        && matches!(options.method, Method::Auto | Method::Radau5 | Method::BackwardEuler)
+        && matches!(
+            options.method,
+            Method::Auto | Method::Radau5 | Method::Rodas5P | Method::BackwardEuler
+        )
     {
         return invalid(format!(
             "{} steps {} members together, and only the explicit pairs and the explicit fixed-step methods keep each member to its own tolerance: use Method::Dopri5 or Method::Dop853 (or Rk4 with a step), or run the members one by one for {:?}",
@@ -115,8 +118,22 @@ fn check_options<M: Model>(options: &Options) -> Result<(), Error> {
             "taylor_order({order}): the adaptive Taylor method needs an order of 2 or more"
         ));
     }
-    // A singular mass matrix: only RADAU5 integrates it (Auto picks it).
-    if has_mass_matrix::<M>() && !matches!(options.method, Method::Radau5 | Method::Auto) {
+    // A singular mass matrix: RADAU5 integrates it (Auto picks it), RODAS5P
+    // too where no variable is of index 2.
+    if has_mass_matrix::<M>()
+        && options.method == Method::Rodas5P
+        && !M::INDEX2_COMPONENTS.is_empty()
+    {
+        let index2: Vec<&str> = M::INDEX2_COMPONENTS.iter().map(|&i| M::INFO.states[i]).collect();
+        return invalid(format!(
+            "{} has variables of index 2 ({}), which a Rosenbrock method does not converge on: integrate it with Method::Radau5 (or Method::Auto)",
+            M::INFO.name,
+            index2.join(", ")
+        ));
+    }
+    if has_mass_matrix::<M>()
+        && !matches!(options.method, Method::Radau5 | Method::Rodas5P | Method::Auto)
+    {
         let algebraic: Vec<&str> = (0..M::STATES)
             .filter(|&i| M::MASS.get(i) == Some(&0.0))
             .map(|i| M::INFO.states[i])
@@ -127,15 +144,15 @@ fn check_options<M: Model>(options: &Options) -> Result<(), Error> {
             format!(" (algebraic components {})", algebraic.join(", "))
         };
         return invalid(format!(
-            "{} has a singular mass matrix{which}: integrate it with Method::Radau5 (or Method::Auto)",
+            "{} has a singular mass matrix{which}: integrate it with Method::Radau5 (or Method::Auto, or Method::Rodas5P where it is of index 1)",
             M::INFO.name,
         ));
     }
     let mass_form = options.formulation == crate::options::Formulation::MassMatrix
         && !(M::INDEX == 0 && M::INFO.algebraics.is_empty());
-    if mass_form && !matches!(options.method, Method::Radau5 | Method::Auto) {
+    if mass_form && !matches!(options.method, Method::Radau5 | Method::Rodas5P | Method::Auto) {
         return invalid(format!(
-            "Formulation::MassMatrix runs {} with RADAU5 only: use Method::Radau5 (or Method::Auto), or Formulation::IndexOneProjected for {:?}",
+            "Formulation::MassMatrix runs {} with RADAU5 or RODAS5P only: use Method::Radau5 (or Method::Auto, or Method::Rodas5P for an index-1 model), or Formulation::IndexOneProjected for {:?}",
             M::INFO.name,
             options.method
         ));

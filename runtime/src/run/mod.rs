@@ -11,6 +11,7 @@ use crate::methods::dop853::Dop853;
 use crate::methods::dopri5::Dopri5;
 use crate::methods::explicit_rk;
 use crate::methods::radau5;
+use crate::methods::rodas5p;
 use crate::methods::taylor;
 use crate::methods::taylor::fixed as taylor_fixed;
 use crate::methods::Problem;
@@ -61,10 +62,10 @@ fn formulation<M: Model>() -> &'static str {
         return "DAE in mass-matrix form with RADAU5: the Gear–Gupta–Leimkuhler index-2 form (position and velocity constraints kept by the multipliers mu, no projection)";
     }
     if !M::MASS_PATTERN.is_empty() {
-        return "DAE in mass-matrix form with RADAU5: M y' = f(t, y) with the singular mass matrix as written (index 1)";
+        return "DAE in mass-matrix form: M y' = f(t, y) with the singular mass matrix as written (index 1)";
     }
     if !M::MASS.is_empty() {
-        return "DAE in mass-matrix form with RADAU5: the algebraic equations kept as written (index 1)";
+        return "DAE in mass-matrix form: the algebraic equations kept as written (index 1)";
     }
     match (M::INDEX, M::CONSTRAINTS.is_empty()) {
         (0, true) => "ODE",
@@ -100,6 +101,7 @@ fn method_name(method: Method) -> &'static str {
         Method::Dopri5 => "Dopri5",
         Method::Dop853 => "Dop853",
         Method::Radau5 => "Radau5",
+        Method::Rodas5P => "Rodas5P",
     }
 }
 
@@ -274,6 +276,7 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
         Method::Dopri5 => explicit_pair::<M, Dopri5>(problem, solution),
         Method::Dop853 => explicit_pair::<M, Dop853>(problem, solution),
         Method::Radau5 => radau5::integrate(problem, solution),
+        Method::Rodas5P => rodas5p::integrate(problem, solution),
         Method::Taylor => taylor::integrate(problem, solution),
         Method::TaylorFixed { .. } => taylor_fixed::integrate(problem, solution),
         fixed => {
