@@ -105,9 +105,9 @@ fn backward_euler_is_stable_where_explicit_euler_explodes() {
 }
 
 /// `Method::Auto` starts explicit, detects stiffness and switches to
-/// RADAU5, and back where the jumps make the problem non-stiff: Van der
-/// Pol still reaches the published value, with a dense output across the
-/// methods.
+/// RADAU5 (RODAS5P at loose tolerances), and back where the jumps make
+/// the problem non-stiff: Van der Pol still reaches the published value,
+/// with a dense output across the methods.
 #[test]
 fn auto_switches_to_radau5_when_the_problem_turns_stiff() {
     for tol in [1e-6, 1e-8] {
@@ -117,6 +117,14 @@ fn auto_switches_to_radau5_when_the_problem_turns_stiff() {
         let e = mixed_error(&last_state(&sol), &VDP_AT_2, 1.0);
         assert!(e <= 10.0 * tol, "tol {tol:e}: mixed error {e:e}");
         assert!(sol.at(1.0, "y1").is_ok() && sol.at(1e-9, "y2").is_ok());
+    }
+    // At loose tolerances the stiff stretches go to RODAS5P.
+    for tol in [1e-3, 1e-4] {
+        let sol = VanDerPol::default().simulate(0.0, 2.0, &Options::new().tolerance(tol)).unwrap();
+        let stats = sol.stats();
+        assert!(stats.method.contains("Rodas5P") && !stats.method.contains("Radau5"), "{stats:?}");
+        let e = mixed_error(&last_state(&sol), &VDP_AT_2, 1.0);
+        assert!(e <= 10.0 * tol, "tol {tol:e}: mixed error {e:e}");
     }
     // A non-stiff problem never switches.
     let osc = Oscillator::default().simulate(0.0, 10.0, &Options::new().tolerance(1e-8)).unwrap();
@@ -310,7 +318,8 @@ fn a_minimum_step_stops_the_run_early() {
 
 /// A damped string of 50 beads (the wave equation by central differences,
 /// dx = 1/51, damping c): 100 states, a tridiagonal coupling, eigenvalues
-/// down to about −1e4. RADAU5 solves its Newton systems banded here.
+/// down to about −1e4. RADAU5 and RODAS5P solve their linear systems
+/// banded here.
 #[dae_model]
 fn damped_string() {
     const M: usize = 50;
@@ -349,12 +358,18 @@ fn a_banded_newton_solve_follows_the_exact_damped_mode() {
         y0[2 * j] = mode(j);
     }
     let t1 = 0.5;
-    for tol in [1e-6, 1e-9] {
-        let sol = DampedString::default().simulate_from(0.0, &y0, t1, &radau(tol, tol)).unwrap();
+    for (method, tol) in [
+        (Method::Radau5, 1e-6),
+        (Method::Radau5, 1e-9),
+        (Method::Rodas5P, 1e-4),
+        (Method::Rodas5P, 1e-7),
+    ] {
+        let opts = Options::new().method(method).tolerance(tol);
+        let sol = DampedString::default().simulate_from(0.0, &y0, t1, &opts).unwrap();
         let y = last_state(&sol);
         let amplitude = a * (s1 * t1).exp() + b * (s2 * t1).exp();
         let error = (0..m).map(|j| (y[2 * j] - mode(j) * amplitude).abs()).fold(0.0, f64::max);
-        assert!(error <= 10.0 * tol, "tol {tol:e}: error {error:e}");
+        assert!(error <= 10.0 * tol, "{method:?}, tol {tol:e}: error {error:e}");
     }
 }
 
