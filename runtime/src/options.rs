@@ -9,7 +9,7 @@ pub enum Method {
     /// where it is stiff, switching both ways as the problem changes:
     /// `Dopri5` for rtol ≥ 1e-7, `Dop853` for tighter tolerances (where its
     /// higher order pays, Hairer–Nørsett–Wanner I §II.10); `Rodas5P` for
-    /// rtol ≥ 5e-5, `Radau5` for tighter ones. `stats().method` names the
+    /// rtol ≥ 5e-5 on systems of 64 states or more, `Radau5` otherwise. `stats().method` names the
     /// methods in the order they ran (`"Dopri5→Radau5"`), `stats().switches`
     /// counts the hand-overs. A singular mass matrix runs `Radau5` alone.
     Auto,

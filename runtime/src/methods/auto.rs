@@ -5,12 +5,15 @@
 //!
 //! - The pair is DOPRI5 for rtol ≥ 1e-7 and DOP853 below, where its higher
 //!   order pays (Hairer, Nørsett, Wanner I §II.10).
-//! - The stiff method is RODAS5P for rtol ≥ [`ROSENBROCK_FROM`] and RADAU5
-//!   below: one factorisation and no Newton iteration a step pays where
-//!   few digits are asked, RADAU5's reuse of its matrices where many are
-//!   (measured on the Brusselators of `bench --large`, time at matched
+//! - The stiff method is RODAS5P for rtol ≥ [`ROSENBROCK_FROM`] on
+//!   systems of [`ROSENBROCK_STATES`] states or more, and RADAU5 otherwise:
+//!   one factorisation and no Newton iteration a step pays where few digits
+//!   are asked of a large system, RADAU5's reuse of its matrices where many
+//!   are (measured on the Brusselators of `bench --large`, time at matched
 //!   error over CVODE's: RODAS5P 0.45–0.64×, RADAU5 0.71–0.83× at rtol
-//!   1e-3 and 1e-4; from 1e-5 on RADAU5 is ahead).
+//!   1e-3 and 1e-4; from 1e-5 on RADAU5 is ahead). On problems of one to
+//!   three states RODAS5P at rtol 1e-4 took 1.5–2.8× RADAU5's time, far
+//!   more accurate than asked (`bench --auto`), so they keep RADAU5.
 //! - A stiff step costs `K` of the pair's ([`step_cost_ratio`], from the
 //!   model's size and sparsity): the stiff method pays where its steps are
 //!   more than `K` times the pair's.
@@ -51,8 +54,11 @@ const STIFFNESS_RATIO: f64 = 20.0;
 const CALM_STEPS: usize = 3;
 /// A stiff stretch shorter than this was a trial that did not pay.
 const TRIAL_STEPS: usize = 20;
-/// The loosest rtol at which RADAU5 is the stiff method; RODAS5P above.
+/// The rtol from which a large system's stiff method is RODAS5P.
 pub(crate) const ROSENBROCK_FROM: f64 = 5e-5;
+/// The states from which a system counts as large (where a factorisation
+/// outweighs the right-hand sides of a step).
+pub(crate) const ROSENBROCK_STATES: usize = 64;
 
 /// The method `Auto` hands stiff stretches to.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -62,9 +68,9 @@ pub(crate) enum StiffMethod {
 }
 
 impl StiffMethod {
-    /// The stiff method for `options`' tolerance.
-    fn for_options(options: &Options) -> StiffMethod {
-        if options.rtol >= ROSENBROCK_FROM {
+    /// The stiff method for `M` at `options`' tolerance.
+    fn for_problem<M: Model>(options: &Options) -> StiffMethod {
+        if options.rtol >= ROSENBROCK_FROM && M::STATES >= ROSENBROCK_STATES {
             StiffMethod::Rodas5P
         } else {
             StiffMethod::Radau5
@@ -78,7 +84,7 @@ pub(crate) fn integrate<M: Model>(
     problem: Problem<'_, M>,
     solution: Solution,
 ) -> Result<Solution, Error> {
-    let stiff = StiffMethod::for_options(problem.options);
+    let stiff = StiffMethod::for_problem::<M>(problem.options);
     if problem.options.rtol >= 1e-7 {
         switching::<M, Dopri5>(problem, 0, stiff, solution)
     } else {

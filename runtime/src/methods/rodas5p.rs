@@ -211,7 +211,9 @@ impl<M: Model> Derivatives<'_, M> {
     }
 
     /// J and ∂f/∂t at `(t, y)`, `f0 = f(t, y)`; ∂f/∂t by a forward
-    /// difference (`rodas.f`'s increment) where the model has none.
+    /// difference (`rodas.f`'s increment) where the model has none, or
+    /// where its value is not finite (a rate such as exp(−a/sin ωt), flat
+    /// where sin ωt = 0 but 0·∞ there when written out).
     fn evaluate(
         &mut self,
         counts: &mut Counts,
@@ -222,7 +224,8 @@ impl<M: Model> Derivatives<'_, M> {
         counts.jacobian_evals += 1;
         self.jacobian.evaluate(self.model, t, y, f0, &mut counts.evals)?;
         match self.model.time_derivative(t, y, &mut self.dfdt) {
-            Err(EvalError::JacobianUnavailable) => {
+            Ok(()) if self.dfdt.iter().all(|v| v.is_finite()) => Ok(()),
+            Ok(()) | Err(EvalError::JacobianUnavailable) => {
                 let delta = (f64::EPSILON * t.abs().max(1e-5)).sqrt();
                 counts.evals += 1;
                 self.model.rhs(t + delta, y, &mut self.shifted)?;
