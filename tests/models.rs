@@ -387,3 +387,26 @@ fn radau5_and_rodas5p_with_sparse_matrices_follow_the_grids_exact_mode() {
         }
     }
 }
+
+/// Index arithmetic divides as Rust's integers do: `k / 2` of the index
+/// truncates (species side by side, two per cell), and `i / N` of a loop
+/// index picks a row.
+#[dae_model]
+fn cells_side_by_side() {
+    const N: usize = 3;
+    let c = state_array((0..2 * N).map(|k| ((k / 2) as f64) + 0.5 * ((k % 2) as f64)));
+    for i in 0..2 * N {
+        der(c[i]) == ((i / 2 + i / N) as f64) * c[i];
+    }
+}
+
+#[test]
+fn index_division_truncates_as_in_rust() {
+    let mut y = [0.0; 6];
+    CellsSideBySide::default().initial_state(&mut y);
+    assert_eq!(y, [0.0, 0.5, 1.0, 1.5, 2.0, 2.5]);
+    let mut dy = [0.0; 6];
+    CellsSideBySide::default().rhs(0.0, &[1.0; 6], &mut dy).unwrap();
+    // i / 2 + i / 3 for i = 0..6.
+    assert_eq!(dy, [0.0, 0.0, 1.0, 2.0, 3.0, 3.0]);
+}

@@ -68,7 +68,7 @@ fn structural_mistakes_name_the_derivative() {
 
 #[test]
 fn language_mistakes_say_how_to_fix_them() {
-    let cases: [(proc_macro2::TokenStream, &str); 10] = [
+    let cases: [(proc_macro2::TokenStream, &str); 11] = [
         (
             quote! { fn m() { let k = param(1.0); let x = state(1.0); der(x) == der(k); } },
             "`k` is a parameter",
@@ -105,6 +105,10 @@ fn language_mistakes_say_how_to_fix_them() {
         (
             quote! { fn m(a: f64) { let x = state(1.0); der(x) == a; } },
             "a model takes no arguments",
+        ),
+        (
+            quote! { fn m() { let x = state(1.0); der(x) == 1 / 3 * x; } },
+            "`1 / 3` divides whole numbers, which Rust truncates to 0: write `1.0 / 3.0`",
         ),
     ];
     assert_each_reports(&cases);

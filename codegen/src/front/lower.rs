@@ -119,6 +119,9 @@ pub(crate) struct Lower<'c> {
     pub(crate) scene: Scene,
     pub(crate) unrolled: usize,
     pub(crate) non_smooth_calls: Vec<(Id, proc_macro2::TokenStream)>,
+    /// Names of whole-number constants: loop indices and integer `const`s
+    /// (`front::integers`).
+    pub(crate) integer_names: std::collections::HashSet<String>,
 }
 
 /// Lowers the body of `item`. Errors go to `cx`; the IR is returned even
@@ -146,6 +149,7 @@ pub fn lower_with(cx: &mut Ctxt, item: &syn::ItemFn, recursive: bool) -> ModelIr
         scene: Scene { recursive, ..Scene::default() },
         unrolled: 0,
         non_smooth_calls: Vec::new(),
+        integer_names: Default::default(),
     };
     if !item.sig.inputs.is_empty() {
         l.cx.error_at(
@@ -284,6 +288,12 @@ impl Lower<'_> {
             Stmt::Item(syn::Item::Const(c)) => {
                 if let Some(v) = self.constant(&c.expr) {
                     self.bind(&c.ident, Binding::Const(v));
+                    let name = c.ident.to_string();
+                    if crate::front::integers::is_integer_type(&c.ty) {
+                        self.integer_names.insert(name);
+                    } else {
+                        self.integer_names.remove(&name);
+                    }
                 }
             }
             Stmt::Expr(e, _) => self.expr_stmt(e),
@@ -743,6 +753,7 @@ impl Lower<'_> {
         let values = (start..end)
             .map(|i| {
                 let index = self.g.int(i as i64);
+                self.integer_names.insert(var.ident.to_string());
                 self.scopes.push(HashMap::from([(var.ident.to_string(), Binding::Const(index))]));
                 let value = self.initial_value(&closure.body);
                 self.scopes.pop();
@@ -975,6 +986,7 @@ impl Lower<'_> {
         }
         for i in start..end {
             let index = self.g.int(i as i64);
+            self.integer_names.insert(var.ident.to_string());
             let mut scope = HashMap::new();
             scope.insert(var.ident.to_string(), Binding::Const(index));
             self.scopes.push(scope);
@@ -1149,6 +1161,9 @@ impl Lower<'_> {
             }
             Expr::Binary(b) => {
                 let (l, r) = (self.value(&b.left), self.value(&b.right));
+                if matches!(b.op, BinOp::Div(_)) && self.is_integer_expr(e) {
+                    return self.integer_division(l?, r?, e);
+                }
                 self.arith(&b.op, l?, r?, e)
             }
             Expr::Path(p) => {
