@@ -1,5 +1,5 @@
 //! `Method::Auto` against the best of the single methods it chooses among
-//! (DOPRI5, DOP853, RADAU5) on every reference problem, stiff and
+//! (DOPRI5, DOP853, RADAU5, RODAS5P) on every reference problem, stiff and
 //! non-stiff, at equal tolerance; and an explicit pair on a stiff problem
 //! until its stiffness error, with the peak memory of the run.
 //!
@@ -27,7 +27,7 @@ fn orego() {
 /// Published at t = 360 (test set orego.f; reference-problems.md §12a).
 const OREGO_AT_360: [f64; 3] = [0.1000814870318523e1, 0.1228178521549917e4, 0.1320554942846706e3];
 
-const METHODS: [Method; 3] = [Method::Dopri5, Method::Dop853, Method::Radau5];
+const METHODS: [Method; 4] = [Method::Dopri5, Method::Dop853, Method::Radau5, Method::Rodas5P];
 
 /// One problem at one tolerance.
 struct Row {
@@ -209,7 +209,7 @@ pub fn auto_section() {
         "# `Method::Auto` against the single methods\n\nMachine: {}. Written by `cd bench && cargo run --release -- --auto` (bench/src/auto.rs).\n\n",
         machine()
     );
-    text.push_str("## Auto against the best single method\n\nAt equal tolerance (rtol = atol = tol, Robertson atol = 1e-6·tol), the single methods being DOPRI5, DOP853 and RADAU5 (those `Auto` chooses among; an explicit pair that stops with `Error::Stiff` takes no part). Time ratio: Auto's median solve over the fastest single method's, per round of all methods, median (range) over 5 rounds. Errors are max |y − ref| / max(1, |ref|) at the end against the published or exact solution. Goal: ≤ 2×.\n\n| problem | tol | Auto ran | Auto time | best single | ratio (range) | Auto error | best's error |\n|---|---|---|---|---|---|---|---|\n");
+    text.push_str("## Auto against the best single method\n\nAt equal tolerance (rtol = atol = tol, Robertson atol = 1e-6·tol), the single methods being DOPRI5, DOP853, RADAU5 and RODAS5P (those `Auto` chooses among; an explicit pair that stops with `Error::Stiff` takes no part). Time ratio: Auto's median solve over the fastest single method's, per round of all methods, median (range) over 5 rounds. Errors are max |y − ref| / max(1, |ref|) at the end against the published or exact solution. Goal: ≤ 2×.\n\n| problem | tol | Auto ran | Auto time | best single | ratio (range) | Auto error | best's error |\n|---|---|---|---|---|---|---|---|\n");
     for r in &rows {
         let (lo, mid, hi) =
             (r.ratios[0], r.ratios[r.ratios.len() / 2], r.ratios[r.ratios.len() - 1]);

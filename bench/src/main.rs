@@ -15,8 +15,8 @@
 //! `--auto` times `Method::Auto` against the best single method on every
 //! reference problem and an explicit pair on a stiff problem
 //! (`results/auto.md`);
-//! `--large` runs RADAU5 against CVODE on the 1-D and 2-D Brusselators
-//! (`results/large.md`);
+//! `--large` runs RADAU5 and RODAS5P against CVODE on the 1-D and 2-D
+//! Brusselators and SUNDIALS' diurnal example (`results/large.md`);
 //! `--ensemble` times `daegen::Ensemble` on one thread and every core
 //! against heyoka's ensembles (`results/ensemble.md`);
 //! `--versus-heyoka` times our Taylor method and heyoka in alternation,
@@ -111,14 +111,14 @@ lorenz_model!(
 van_der_pol_model!(
     bench = Bench::until(2.0)
         .reference(VDP_AT_2, "IVP test set vdpol, published")
-        .methods([Radau5])
+        .methods([Radau5, Rodas5P])
         .tolerances(4, 10)
         .peer("vdpol")
 );
 robertson_model!(
     bench = Bench::until(1e11)
         .reference(ROBER_AT_1E11, "IVP test set rober, published")
-        .methods([Radau5])
+        .methods([Radau5, Rodas5P])
         .tolerances(4, 10)
         .atol_factor(1e-6)
         .peer("robertson_1e11")
@@ -127,7 +127,7 @@ low_pass_model!();
 hires_model!(
     bench = Bench::until(321.8122)
         .reference(HIRES_AT_END, "IVP test set hires, published")
-        .methods([Radau5])
+        .methods([Radau5, Rodas5P])
         .tolerances(4, 10)
         .peer("hires")
 );
@@ -248,7 +248,7 @@ struct Target {
     what: &'static str,
 }
 
-const TARGETS: [Target; 5] = [
+const TARGETS: [Target; 7] = [
     Target {
         problems: &["kepler", "arenstorf", "lorenz", "outer_solar_system"],
         ours: "daegen Taylor",
@@ -288,6 +288,22 @@ const TARGETS: [Target; 5] = [
         tol_at_most: 1.0,
         max_ratio: 0.7,
         what: "RADAU5 ≤ 0.7× diffsol BDF",
+    },
+    Target {
+        problems: &["van_der_pol", "robertson", "hires"],
+        ours: "daegen RADAU5",
+        peer: "CVODE BDF (dense)",
+        tol_at_most: 1.0,
+        max_ratio: 0.7,
+        what: "RADAU5 ≤ 0.7× CVODE",
+    },
+    Target {
+        problems: &["van_der_pol", "robertson", "hires"],
+        ours: "daegen RODAS5P",
+        peer: "CVODE BDF (dense)",
+        tol_at_most: 1.0,
+        max_ratio: 0.7,
+        what: "RODAS5P ≤ 0.7× CVODE",
     },
 ];
 

@@ -1,9 +1,12 @@
 //! CVODE (variable-order BDF, orders 1–5) on any system that gives its
 //! right-hand side and the non-zeros of its Jacobian, with the linear
-//! solver its Jacobian calls for: dense LU, band LU, or KLU sparse LU;
+//! solver its Jacobian calls for: dense LU, band LU, KLU sparse LU, or
+//! GMRES with a block-diagonal preconditioner (matrix-free: J·v by
+//! CVODE's difference quotients);
 //! `tstop` at the end, so it steps onto `t1` instead of interpolating past
 //! it.
 
+use super::block_jacobi::BlockJacobi;
 use super::{quiet, values, Objects};
 use std::os::raw::{c_int, c_long, c_void};
 use sundials_sys as sun;
@@ -30,6 +33,12 @@ pub enum Linear {
     Band,
     /// KLU sparse LU.
     Klu,
+    /// GMRES (SPGMR, left preconditioned) with the block-diagonal
+    /// preconditioner of blocks of `block` consecutive states.
+    Gmres {
+        /// States per diagonal block (species per grid cell).
+        block: usize,
+    },
 }
 
 /// The lower and upper bandwidths of a pattern.
@@ -48,7 +57,7 @@ pub struct Counts {
     pub rhs_evals: usize,
     /// Steps whose error test failed.
     pub error_test_failures: usize,
-    /// Jacobian evaluations.
+    /// Jacobian evaluations (for GMRES: preconditioner evaluations).
     pub jacobian_evals: usize,
 }
 
@@ -61,6 +70,8 @@ struct Callbacks<'a, S: System> {
     slot: Vec<usize>,
     /// For KLU: the column starts.
     column_start: Vec<sun::sunindextype>,
+    /// For GMRES: the preconditioner.
+    preconditioner: Option<BlockJacobi>,
 }
 
 unsafe extern "C" fn rhs<S: System>(
@@ -106,6 +117,8 @@ unsafe extern "C" fn jacobian<S: System>(
                 *column += v;
             }
         }
+        // GMRES takes no matrix: its preconditioner evaluates the Jacobian.
+        Linear::Gmres { .. } => {}
         Linear::Klu => {
             let nnz = pattern.len();
             std::slice::from_raw_parts_mut(sun::SUNSparseMatrix_IndexPointers(jac), n + 1)
@@ -118,6 +131,52 @@ unsafe extern "C" fn jacobian<S: System>(
             }
         }
     }
+    0
+}
+
+/// CVODE's preconditioner set-up: the Jacobian's blocks, evaluated anew
+/// unless CVODE says the last ones will do (`jok`), and I − γ·J inverted.
+unsafe extern "C" fn preconditioner_setup<S: System>(
+    t: f64,
+    y: sun::N_Vector,
+    _fy: sun::N_Vector,
+    jok: c_int,
+    jcur: *mut c_int,
+    gamma: f64,
+    data: *mut c_void,
+) -> c_int {
+    let cb = &mut *(data as *mut Callbacks<S>);
+    let n = cb.system.states();
+    let Some(p) = cb.preconditioner.as_mut() else { return -1 };
+    if jok == 0 {
+        if !cb.system.jacobian(t, values(y, n), &mut cb.values) {
+            return 1;
+        }
+        p.load(&cb.values);
+        *jcur = 1;
+    } else {
+        *jcur = 0;
+    }
+    c_int::from(!p.factor(gamma))
+}
+
+/// CVODE's preconditioner solve: z = P⁻¹ r.
+#[allow(clippy::too_many_arguments)]
+unsafe extern "C" fn preconditioner_solve<S: System>(
+    _t: f64,
+    _y: sun::N_Vector,
+    _fy: sun::N_Vector,
+    r: sun::N_Vector,
+    z: sun::N_Vector,
+    _gamma: f64,
+    _delta: f64,
+    _lr: c_int,
+    data: *mut c_void,
+) -> c_int {
+    let cb = &*(data as *const Callbacks<S>);
+    let n = cb.system.states();
+    let Some(p) = cb.preconditioner.as_ref() else { return -1 };
+    p.solve(values(r, n), values(z, n));
     0
 }
 
@@ -159,7 +218,12 @@ pub fn solve<S: System>(
     let nnz = system.pattern().len();
     let (ml, mu) = bandwidths(system.pattern());
     let (slot, column_start) = compressed_columns(n, system.pattern());
-    let mut callbacks = Callbacks { system, linear, values: vec![0.0; nnz], slot, column_start };
+    let preconditioner = match linear {
+        Linear::Gmres { block } => Some(BlockJacobi::new(n, block, system.pattern())),
+        _ => None,
+    };
+    let mut callbacks =
+        Callbacks { system, linear, values: vec![0.0; nnz], slot, column_start, preconditioner };
     let mut objects = Objects::new()?;
     let y = objects.vector(y0);
     // SAFETY: every object lives in `objects` until after `CVodeFree`, and
@@ -186,18 +250,32 @@ pub fn solve<S: System>(
                 );
                 (a, sun::SUNLinSol_KLU(y, a, ctx))
             }
+            Linear::Gmres { .. } => {
+                // SPGMR's default Krylov dimension (5), as cvDiurnal_kry.
+                let ls = sun::SUNLinSol_SPGMR(y, sun::SUN_PREC_LEFT as c_int, 0, ctx);
+                (std::ptr::null_mut(), ls)
+            }
         };
+        let krylov = matches!(linear, Linear::Gmres { .. });
         (objects.matrix, objects.solver) = (a, ls);
         let mut mem = sun::CVodeCreate(sun::CV_BDF, ctx);
         let mut ok = !mem.is_null()
-            && !a.is_null()
+            && (krylov || !a.is_null())
             && !ls.is_null()
             && sun::CVodeInit(mem, Some(rhs::<S>), t0, y) == 0
             && sun::CVodeSStolerances(mem, rtol, atol) == 0
             && sun::CVodeSetUserData(mem, &mut callbacks as *mut Callbacks<S> as *mut c_void) == 0
             && sun::CVodeSetErrHandlerFn(mem, Some(quiet), std::ptr::null_mut()) == 0
             && sun::CVodeSetLinearSolver(mem, ls, a) == 0
-            && sun::CVodeSetJacFn(mem, Some(jacobian::<S>)) == 0
+            && if krylov {
+                sun::CVodeSetPreconditioner(
+                    mem,
+                    Some(preconditioner_setup::<S>),
+                    Some(preconditioner_solve::<S>),
+                ) == 0
+            } else {
+                sun::CVodeSetJacFn(mem, Some(jacobian::<S>)) == 0
+            }
             && sun::CVodeSetMaxNumSteps(mem, 10_000_000) == 0
             && sun::CVodeSetStopTime(mem, t1) == 0;
         let mut t = t0;
@@ -216,7 +294,11 @@ pub fn solve<S: System>(
                 steps: count(sun::CVodeGetNumSteps),
                 rhs_evals: count(sun::CVodeGetNumRhsEvals),
                 error_test_failures: count(sun::CVodeGetNumErrTestFails),
-                jacobian_evals: count(sun::CVodeGetNumJacEvals),
+                jacobian_evals: if krylov {
+                    count(sun::CVodeGetNumPrecEvals)
+                } else {
+                    count(sun::CVodeGetNumJacEvals)
+                },
             };
         }
         let out = values(y, n).to_vec();

@@ -4,6 +4,7 @@
 //! et al., "SUNDIALS: Suite of nonlinear and differential/algebraic
 //! equation solvers", ACM TOMS 31, 2005).
 
+pub mod block_jacobi;
 pub mod cvode;
 pub mod ida;
 pub mod peer;
