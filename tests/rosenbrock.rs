@@ -9,7 +9,7 @@
 use daegen::prelude::*;
 
 mod support;
-use support::BlowUp;
+use support::{BlowUp, ProtheroRobinson};
 
 include!("models/stiff.rs");
 low_pass_model!();
@@ -44,16 +44,7 @@ fn rodas5p_converges_with_order_five_on_a_smooth_problem() {
     }
 }
 
-/// Prothero–Robinson: y' = λ(y − g(t)) + g'(t), y(0) = g(0), exact y = g,
-/// here with g = sin t and λ = −1e6, far stiffer than any step is short.
-#[dae_model]
-fn prothero_robinson() {
-    let t = time();
-    let lambda = param(-1e6);
-    let y = state(0.0);
-    der(y) == lambda * (y - sin(t)) + cos(t);
-}
-
+/// Prothero–Robinson (`support`): y' = λ(y − sin t) + cos t, exact sin t.
 #[test]
 fn rodas5p_keeps_a_high_order_where_the_problem_is_far_stiffer_than_the_step() {
     // With hλ from −1e5 to −1.25e4 a method without the Prothero–Robinson

@@ -13,7 +13,7 @@ hires_model!();
 low_pass_model!();
 
 mod support;
-use support::{final_state as last_state, mixed_error};
+use support::{final_state as last_state, mixed_error, ProtheroRobinson};
 
 const TOLERANCES: [f64; 5] = [1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
 
@@ -80,17 +80,10 @@ fn radau5_integrates_backwards() {
     }
 }
 
-/// Prothero–Robinson: y' = λ(y − sin t) + cos t, y(0) = 0, exact y = sin t,
-/// with λ = −1e6. Backward Euler is L-stable: any step works and the error
-/// is O(h/|λ|); explicit Euler with h|λ| ≫ 2 explodes and must say so.
-#[dae_model]
-fn prothero_robinson() {
-    let t = time();
-    let lambda = param(-1e6);
-    let y = state(0.0);
-    der(y) == lambda * (y - sin(t)) + cos(t);
-}
-
+/// Prothero–Robinson (`support`): y' = λ(y − sin t) + cos t, y(0) = 0,
+/// exact y = sin t, with λ = −1e6. Backward Euler is L-stable: any step
+/// works and the error is O(h/|λ|); explicit Euler with h|λ| ≫ 2 explodes
+/// and must say so.
 #[test]
 fn backward_euler_is_stable_where_explicit_euler_explodes() {
     let model = ProtheroRobinson::default();

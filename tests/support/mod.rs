@@ -65,3 +65,13 @@ pub fn assert_agree(a: &Solution, b: &Solution, names: &[&str], times: &[f64], b
         }
     }
 }
+
+/// Prothero–Robinson: y' = λ(y − sin t) + cos t, y(0) = 0, exact y = sin t,
+/// with λ = −1e6, far stiffer than any step is short.
+#[dae_model]
+pub fn prothero_robinson() {
+    let t = time();
+    let lambda = param(-1e6);
+    let y = state(0.0);
+    der(y) == lambda * (y - sin(t)) + cos(t);
+}

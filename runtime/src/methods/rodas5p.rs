@@ -489,6 +489,8 @@ mod tests {
 
     /// y' = −1000 (y − cos t) − sin t, y(0) = 1: y = cos t. Written by
     /// hand, so it has neither a Jacobian nor ∂f/∂t: both are differenced.
+    /// (Its `impl Model` has the shape of every hand-written test model's,
+    /// RADAU5's GGL pendulum among them: the shape is the trait's.)
     #[derive(Clone)]
     struct ForcedDecay;
 
