@@ -173,6 +173,7 @@ pub(crate) fn taylor_tape_items(
             crate::taylor::tape::Constant::Integer(n) => Ok(g.int(*n)),
             crate::taylor::tape::Constant::Product(factors) => g.product(factors),
             crate::taylor::tape::Constant::Sum(terms) => g.sum(terms),
+            crate::taylor::tape::Constant::Value(v) => g.float(*v),
         })
         .collect::<crate::Result<_>>()?;
     let const_code = program(g, layout, &consts, &|i, v| {
@@ -180,6 +181,8 @@ pub(crate) fn taylor_tape_items(
         quote!(let #name: f64 = #v;)
     });
     let (ops, outs) = (&tape.ops, &tape.outputs);
+    let (n_ops, n_outs, n_consts) = (index(ops.len()), index(outs.len()), index(consts.len()));
+    let const_names = (0..consts.len()).map(|i| quote::format_ident!("c{}", i));
     // The unrolled layout, for the orders the user asked for.
     let numbers: Vec<Option<f64>> =
         consts.iter().map(|&id| g.as_number(id).map(|x| x.to_f64())).collect();
@@ -244,7 +247,6 @@ pub(crate) fn taylor_tape_items(
     Ok(quote! {
         #unrolled
 
-        #[inline]
         fn taylor_tape(&self) -> ::core::option::Option<(
             ::std::vec::Vec<::daegen::runtime::taylor_tape::TapeOp>,
             ::std::vec::Vec<::daegen::runtime::taylor_tape::Operand>,
@@ -252,8 +254,18 @@ pub(crate) fn taylor_tape_items(
             // Short names: a large model's tape runs to thousands of operations.
             #[allow(unused_imports)]
             use ::daegen::runtime::taylor_tape::{Inverse as I, Operand as O, TapeOp as T};
+            // The operations as a table with their constants by slot: code
+            // that built them one by one would take rustc minutes for a
+            // model of thousands of states.
+            static OPS: [T<u32>; #n_ops] = [#(#ops),*];
+            static OUTPUTS: [O<u32>; #n_outs] = [#(#outs),*];
             #const_code
-            ::core::option::Option::Some((::std::vec![#(#ops),*], ::std::vec![#(#outs),*]))
+            let constants: [f64; #n_consts] = [#(#const_names),*];
+            let value = |k: &u32| constants.get(*k as usize).copied().unwrap_or(f64::NAN);
+            ::core::option::Option::Some((
+                OPS.iter().map(|op| op.map_constants(value)).collect(),
+                OUTPUTS.iter().map(|o| o.map_constant(value)).collect(),
+            ))
         }
     })
 }

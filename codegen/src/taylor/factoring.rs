@@ -59,6 +59,7 @@ fn same_constant(a: &Constant, b: &Constant) -> bool {
     match (a, b) {
         (Constant::Expr(x), Constant::Expr(y)) => x == y,
         (Constant::Integer(x), Constant::Integer(y)) => x == y,
+        (Constant::Value(x), Constant::Value(y)) => x.to_bits() == y.to_bits(),
         (Constant::Product(x), Constant::Product(y)) | (Constant::Sum(x), Constant::Sum(y)) => {
             x == y
         }

@@ -153,6 +153,7 @@ pub fn known_constants(tape: &Tape, numbers: &[Option<f64>]) -> Vec<Option<f64>>
         .zip(numbers)
         .map(|(c, &n)| match c {
             Constant::Integer(i) => Some(*i as f64),
+            Constant::Value(v) => Some(*v),
             _ => n,
         })
         .collect()

@@ -36,9 +36,11 @@ impl Operand {
                 quote!(#path::State(#i))
             }
             Operand::Time => quote!(#path::Time),
+            // The constants' slot: the tape is a table, its constants
+            // computed beside it (`emit::taylor_items`).
             Operand::Const(i) => {
-                let c = quote::format_ident!("c{}", i);
-                quote!(#path::Const(#c))
+                let i = lit(*i);
+                quote!(#path::Const(#i))
             }
         }
     }
@@ -54,6 +56,8 @@ pub enum Constant {
     Product(Vec<Id>),
     /// The sum of the constant terms of one sum.
     Sum(Vec<Id>),
+    /// A real number of the decomposition (the exponent of a power).
+    Value(f64),
 }
 
 // The runtime's `TapeOp` mirrors these variants: the macro crate cannot
@@ -232,6 +236,13 @@ impl Builder<'_> {
         Operand::Const(self.constants.len() - 1)
     }
 
+    /// The slot of the real number `v`, as a literal of the table.
+    fn value_slot(&mut self, v: f64) -> TokenStream {
+        self.constants.push(Constant::Value(v));
+        let slot = proc_macro2::Literal::usize_unsuffixed(self.constants.len() - 1);
+        quote!(#slot)
+    }
+
     /// The u-variable of `f(a)` with d·u' = ±a' (asin, acos, atan); `d` is
     /// built from products, sums and a square root of earlier u-variables.
     fn inverse(&mut self, f: &str, a: &Operand) -> Operand {
@@ -243,8 +254,8 @@ impl Builder<'_> {
             let minus_one = self.integer(-1);
             let negated = self.binary("Mul", &minus_one, &square);
             let difference = self.binary("Add", &one, &negated);
-            let b = difference.tokens();
-            self.push(quote!(T::Pow(#b, 0.5)), Some(Recurrence::Pow(difference, 0.5)))
+            let (b, half) = (difference.tokens(), self.value_slot(0.5));
+            self.push(quote!(T::Pow(#b, #half)), Some(Recurrence::Pow(difference, 0.5)))
         };
         let function = match f {
             "Asin" => InverseFunction::Asin,
@@ -467,7 +478,7 @@ impl Builder<'_> {
                     }
                     Some(n) => {
                         let value = n.to_f64();
-                        let (b, e) = (base.tokens(), value);
+                        let (b, e) = (base.tokens(), self.value_slot(value));
                         self.push(
                             quote!(T::Pow(#b, #e)),
                             Some(Recurrence::Pow(base, value)),
