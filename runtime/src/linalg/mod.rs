@@ -1,11 +1,21 @@
-//! Dense linear solves for the small mass-matrix blocks that generated code
-//! cannot solve symbolically (`M(q) q'' = f` with `M` full and
-//! configuration-dependent). Stack arrays, no allocation.
+//! Linear algebra: the LU factorisations of the implicit methods (dense,
+//! banded, sparse, and `newton` choosing among them), the product with a
+//! dense mass matrix, and dense solves for the small mass-matrix blocks
+//! that generated code cannot solve symbolically (`M(q) q'' = f` with `M`
+//! full and configuration-dependent; stack arrays, no allocation).
 
 pub mod band_lu;
 pub mod dense_lu;
 pub(crate) mod newton;
 pub mod sparse_lu;
+
+/// `out = M x` for the dense row-major mass matrix `m`.
+pub(crate) fn apply_mass(m: &[f64], x: &[f64], out: &mut [f64]) {
+    let n = x.len();
+    for (i, o) in out.iter_mut().enumerate() {
+        *o = m[i * n..(i + 1) * n].iter().zip(x).map(|(a, b)| a * b).sum();
+    }
+}
 
 /// Solves `a x = b` in place (`b` becomes `x`) by Gaussian elimination with
 /// partial pivoting; `a` is row-major `N × N` and is destroyed. Returns

@@ -11,6 +11,7 @@
 
 use crate::error::Error;
 use crate::info::EvalError;
+use crate::linalg::apply_mass;
 use crate::linalg::newton::{Factored, Newton, Shifts, Structure};
 use crate::methods::stiffness::{Finish, NonStiffWatch};
 use crate::methods::Problem;
@@ -577,14 +578,6 @@ fn step_loop<M: Model>(
     }
     finish(&mut solution, accepted, rejected, &w);
     Ok((solution, Finish::Done))
-}
-
-/// `out = M x` for the dense row-major mass matrix `m`.
-pub(crate) fn apply_mass(m: &[f64], x: &[f64], out: &mut [f64]) {
-    let n = x.len();
-    for (i, o) in out.iter_mut().enumerate() {
-        *o = m[i * n..(i + 1) * n].iter().zip(x).map(|(a, b)| a * b).sum();
-    }
 }
 
 /// After a failed Newton iteration or step: shrink h by `factor`, mark the

@@ -15,8 +15,8 @@
 
 use crate::error::Error;
 use crate::info::EvalError;
+use crate::linalg::apply_mass;
 use crate::linalg::newton::{Factored, Newton, Shifts};
-use crate::methods::radau5::apply_mass;
 use crate::methods::stiffness::{Finish, NonStiffWatch};
 use crate::methods::Problem;
 use crate::model::{has_mass_matrix, Model};
@@ -366,7 +366,8 @@ pub(crate) fn integrate_watching<M: Model>(
                 }
                 coupling.fill(0.0);
                 for (uj, &c) in done.iter().zip(&C[i - 1]) {
-                    coupling.iter_mut().zip(uj).for_each(|(x, v)| *x += c / h * v);
+                    let c_over_h = c / h;
+                    coupling.iter_mut().zip(uj).for_each(|(x, v)| *x += c_over_h * v);
                 }
                 if mass_matrix.is_empty() {
                     for ((f, c), m) in ui.iter_mut().zip(&coupling).zip(&mass) {
