@@ -34,8 +34,8 @@ pub use daegen_macros::dae_model;
 pub use daegen_runtime as runtime;
 pub use daegen_runtime::{
     Batch, ConstraintInfo, Ensemble, Error, EvalError, EventDirection, EventInfo, FinalState,
-    FinalStates, Flow, Formulation, InitialCorrection, Method, Model, ModelInfo, Options,
-    ProjectionLevel, Shard, Simulate, Solution, Stats, Step, Table,
+    FinalStates, Flow, Formulation, InitialCorrection, LinearSolver, Method, Model, ModelInfo,
+    Options, ProjectionLevel, Shard, Simulate, Solution, Stats, Step, Table,
 };
 
 pub mod guide;
@@ -45,7 +45,8 @@ pub mod plot;
 /// Everything a model file needs: `use daegen::prelude::*;`.
 pub mod prelude {
     pub use crate::{
-        dae_model, Error, Flow, Formulation, Method, Model, Options, Simulate, Solution, Step,
+        dae_model, Error, Flow, Formulation, LinearSolver, Method, Model, Options, Simulate,
+        Solution, Step,
     };
 }
 

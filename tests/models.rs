@@ -373,6 +373,8 @@ fn radau5_and_rodas5p_with_sparse_matrices_follow_the_grids_exact_mode() {
     for (method, tol) in [(Method::Radau5, 1e-10), (Method::Rodas5P, 1e-6)] {
         let opts = Options::new().method(method).tolerance(tol);
         let sol = PeriodicHeat::default().simulate(0.0, 2.0, &opts).unwrap();
+        // 256 states: LinearSolver::Auto keeps the sparse LU.
+        assert_eq!(sol.stats().linear_solver, "sparse LU");
         let y = sol.final_state();
         for i in 0..n {
             for j in 0..n {

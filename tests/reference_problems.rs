@@ -36,6 +36,8 @@ struct Problem {
     /// The error of a solution against the reference at the end.
     error: fn(&Solution) -> f64,
     methods: &'static [Method],
+    /// RODAS5P with `LinearSolver::Krylov` too (GMRES rows).
+    gmres: bool,
     tolerances: &'static [f64],
     /// `atol` is `rtol` times this (1 for most; below the smallest
     /// component for chemistry).
@@ -65,6 +67,7 @@ fn problems() -> Vec<Problem> {
             run: |o| Kepler::default().simulate(0.0, 2.0 * std::f64::consts::PI, o),
             error: |s| mixed_error(s.final_state(), &kepler_exact(2.0 * std::f64::consts::PI)),
             methods: &[Dopri5, Dop853, Radau5, Rodas5P, Taylor, Auto],
+            gmres: false,
             tolerances: &[1e-6, 1e-8, 1e-10],
             atol_scale: 1.0,
             // An eccentric orbit (e = 0.9): the pericentre passage, 19 times
@@ -77,6 +80,7 @@ fn problems() -> Vec<Problem> {
             run: |o| Arenstorf::default().simulate(0.0, ARENSTORF_T, o),
             error: |s| mixed_error(s.final_state(), &ARENSTORF_Y0),
             methods: &[Dopri5, Dop853, Taylor, Auto],
+            gmres: false,
             tolerances: &[1e-7, 1e-9, 1e-11],
             atol_scale: 1.0,
             // Two close approaches to the Moon per period.
@@ -87,6 +91,7 @@ fn problems() -> Vec<Problem> {
             run: |o| Lorenz::default().simulate(0.0, 16.0, o),
             error: |s| mixed_error(s.final_state(), &LORENZ_HNW_AT_16),
             methods: &[Dopri5, Dop853, Taylor],
+            gmres: false,
             tolerances: &[1e-8, 1e-10, 1e-12],
             atol_scale: 1.0,
             // Chaotic: errors grow as e^(0.9 t), 2e6 by t = 16, times the
@@ -102,6 +107,7 @@ fn problems() -> Vec<Problem> {
                 mixed_error(&[y[0], y[1], y[2], y[3], lambda], &CASH_PENDULUM_AT_10)
             },
             methods: &[Dopri5, Dop853, Radau5, Rodas5P, Taylor, Auto],
+            gmres: false,
             tolerances: &[1e-6, 1e-8, 1e-10],
             atol_scale: 1.0,
             // A pendulum over ten swings, projected onto its constraints.
@@ -112,6 +118,7 @@ fn problems() -> Vec<Problem> {
             run: |o| VanDerPol::default().simulate(0.0, 2.0, o),
             error: |s| mixed_error(s.final_state(), &VDP_AT_2),
             methods: &[Radau5, Rodas5P, Auto],
+            gmres: true,
             tolerances: &[1e-5, 1e-7, 1e-9],
             atol_scale: 1.0,
             // Stiff: the slow manifold damps errors, even across the jump
@@ -123,6 +130,7 @@ fn problems() -> Vec<Problem> {
             run: |o| Robertson::default().simulate(0.0, 1e11, o),
             error: |s| relative_error(s.final_state(), &ROBER_AT_1E11),
             methods: &[Radau5, Rodas5P, Auto],
+            gmres: true,
             tolerances: &[1e-6, 1e-8, 1e-10],
             // y2 falls to 1e-13: its absolute tolerance lies far below it.
             atol_scale: 1e-10,
@@ -133,6 +141,7 @@ fn problems() -> Vec<Problem> {
             run: |o| Hires::default().simulate(0.0, 321.8122, o),
             error: |s| relative_error(s.final_state(), &HIRES_AT_END),
             methods: &[Radau5, Rodas5P, Auto],
+            gmres: true,
             tolerances: &[1e-6, 1e-8, 1e-10],
             atol_scale: 1e-4,
             bound: 1e2,
@@ -146,6 +155,7 @@ fn problems() -> Vec<Problem> {
                 mixed_error(s.final_state(), &[exact])
             },
             methods: &[Dopri5, Dop853, Radau5, Rodas5P, Auto],
+            gmres: true,
             tolerances: &[1e-6, 1e-8, 1e-10],
             atol_scale: 1.0,
             // Stiff and damped: the error forgets its past.
@@ -161,9 +171,15 @@ fn run_all() -> Vec<(&'static str, String)> {
     let mut beyond = Vec::new();
     for problem in problems() {
         let mut table = String::new();
-        for &method in problem.methods {
+        let gmres = problem.gmres.then_some((Method::Rodas5P, LinearSolver::Krylov));
+        let runs = problem.methods.iter().map(|&m| (m, LinearSolver::Direct)).chain(gmres);
+        for (method, linear) in runs {
             for &tol in problem.tolerances {
-                let opts = Options::new().method(method).rtol(tol).atol(tol * problem.atol_scale);
+                let opts = Options::new()
+                    .method(method)
+                    .linear_solver(linear)
+                    .rtol(tol)
+                    .atol(tol * problem.atol_scale);
                 let sol = match (problem.run)(&opts) {
                     Ok(sol) => sol,
                     Err(e) => panic!("{} with {method:?} at {tol:e}: {e}", problem.name),
@@ -171,18 +187,29 @@ fn run_all() -> Vec<(&'static str, String)> {
                 let error = (problem.error)(&sol);
                 if error > problem.bound * tol || error.is_nan() {
                     beyond.push(format!(
-                        "{} with {method:?} at {tol:e}: error {error:e} = {:.1e} tol, above {:e}",
+                        "{} with {method:?} ({linear:?}) at {tol:e}: error {error:e} = {:.1e} tol, above {:e}",
                         problem.name,
                         error / tol,
                         problem.bound * tol
                     ));
                 }
                 let s = sol.stats();
-                let asked = format!("{method:?}");
-                let ran = if asked == s.method { asked } else { format!("{asked} ({})", s.method) };
+                let asked = match linear {
+                    LinearSolver::Krylov => format!("{method:?} GMRES"),
+                    _ => format!("{method:?}"),
+                };
+                let ran = if asked.starts_with(s.method) {
+                    asked
+                } else {
+                    format!("{asked} ({})", s.method)
+                };
                 let tol = format!("{tol:.0e}");
+                let iterations = match s.linear_iterations {
+                    0 => String::new(),
+                    k => format!(" {k:>5} GMRES it"),
+                };
                 table.push_str(&format!(
-                    "{ran:<21} {tol:<6} {:>5} steps {:>4} rejected {:>6} f {:>4} J\n",
+                    "{ran:<21} {tol:<6} {:>5} steps {:>4} rejected {:>6} f {:>4} J{iterations}\n",
                     s.steps, s.rejected, s.rhs_evals, s.jacobian_evals
                 ));
             }
@@ -277,6 +304,9 @@ Rodas5P               1e-9    3665 steps   11 rejected  29418 f 3665 J
 Auto (Dopri5⇄Radau5)  1e-5     264 steps   50 rejected   2552 f   62 J
 Auto (Dopri5⇄Radau5)  1e-7     623 steps   19 rejected   4758 f  114 J
 Auto (Dop853⇄Radau5)  1e-9     522 steps   86 rejected   7781 f  269 J
+Rodas5P GMRES         1e-5     351 steps   17 rejected   2941 f  351 J  2929 GMRES it
+Rodas5P GMRES         1e-7    1097 steps   13 rejected   8881 f 1097 J  8868 GMRES it
+Rodas5P GMRES         1e-9    3666 steps   12 rejected  29433 f 3666 J 29429 GMRES it
     ");
     insta::assert_snapshot!(table("robertson"), @r"
 Radau5                1e-6     299 steps    2 rejected   2222 f  279 J
@@ -288,6 +318,9 @@ Rodas5P               1e-10   2405 steps    9 rejected  19303 f 2405 J
 Auto (Dopri5→Radau5)  1e-6     299 steps    1 rejected   2189 f  253 J
 Auto (Dop853→Radau5)  1e-8     566 steps    4 rejected   4552 f  357 J
 Auto (Dop853→Radau5)  1e-10   1193 steps    3 rejected   9369 f  485 J
+Rodas5P GMRES         1e-6     284 steps    2 rejected   2286 f  284 J  2284 GMRES it
+Rodas5P GMRES         1e-8     723 steps    3 rejected   5805 f  723 J  5807 GMRES it
+Rodas5P GMRES         1e-10   2406 steps   10 rejected  19318 f 2406 J 19328 GMRES it
     ");
     insta::assert_snapshot!(table("hires"), @r"
 Radau5                1e-6     117 steps    2 rejected   1140 f   73 J
@@ -299,6 +332,9 @@ Rodas5P               1e-10   2854 steps    4 rejected  22860 f 2854 J
 Auto (Dopri5→Radau5)  1e-6     328 steps    2 rejected   2299 f   24 J
 Auto (Dop853→Radau5)  1e-8     181 steps    4 rejected   2089 f   79 J
 Auto (Dop853→Radau5)  1e-10    473 steps    6 rejected   5692 f  124 J
+Rodas5P GMRES         1e-6     212 steps    1 rejected   1703 f  212 J  3642 GMRES it
+Rodas5P GMRES         1e-8     787 steps    4 rejected   6324 f  787 J 13679 GMRES it
+Rodas5P GMRES         1e-10   2854 steps    4 rejected  22860 f 2854 J 49637 GMRES it
     ");
     insta::assert_snapshot!(table("low_pass"), @r"
 Dopri5                1e-6    1361 steps    4 rejected   8192 f    0 J
@@ -316,6 +352,9 @@ Rodas5P               1e-10    830 steps    4 rejected   6668 f  830 J
 Auto (Dopri5→Radau5)  1e-6      61 steps    9 rejected    352 f   10 J
 Auto (Dop853→Radau5)  1e-8     101 steps    7 rejected    714 f    8 J
 Auto (Dop853→Radau5)  1e-10    223 steps    4 rejected   1424 f    5 J
+Rodas5P GMRES         1e-6      82 steps    4 rejected    684 f   82 J   683 GMRES it
+Rodas5P GMRES         1e-8     275 steps    4 rejected   2228 f  275 J  2228 GMRES it
+Rodas5P GMRES         1e-10    830 steps    5 rejected   6675 f  830 J  6677 GMRES it
     ");
 }
 

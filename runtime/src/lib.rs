@@ -42,7 +42,7 @@ pub use model::{Model, StateVector};
 /// The linear-algebra crate of [`kinematics`], re-exported so users get the
 /// same version.
 pub use nalgebra;
-pub use options::{Flow, Formulation, Method, Options, Step};
+pub use options::{Flow, Formulation, LinearSolver, Method, Options, Step};
 pub use run::{simulate, simulate_from, Simulate};
 pub use solution::table::Table;
 pub use solution::{EventHit, InitialCorrection, Solution, Stats};

@@ -1,11 +1,12 @@
 //! Linear algebra: the LU factorisations of the implicit methods (dense,
-//! banded, sparse, and `newton` choosing among them), the product with a
+//! banded, sparse, GMRES in `krylov`, and `newton` choosing among them), the product with a
 //! dense mass matrix, and dense solves for the small mass-matrix blocks
 //! that generated code cannot solve symbolically (`M(q) q'' = f` with `M`
 //! full and configuration-dependent; stack arrays, no allocation).
 
 pub mod band_lu;
 pub mod dense_lu;
+pub(crate) mod krylov;
 pub(crate) mod newton;
 pub mod sparse_lu;
 

@@ -2,10 +2,12 @@
 //! RADAU5, `(α + iβ)·M − J`, stored in the form the generated Jacobian's
 //! pattern makes cheapest: banded after a reverse Cuthill–McKee
 //! renumbering, sparse after a minimum-degree one, or dense (always for
-//! finite differences and mass matrices).
+//! finite differences and mass matrices); or, for the Rosenbrock method on
+//! request, not factored at all but solved by GMRES (`krylov`).
 
 use crate::linalg::band_lu::{BandNewton, BandOrdering};
 use crate::linalg::dense_lu::{ComplexLu, RealLu};
+use crate::linalg::krylov::KrylovNewton;
 use crate::linalg::sparse_lu::{SparseNewton, SparsePattern};
 use crate::step::jacobian::DenseJacobian;
 
@@ -28,6 +30,8 @@ pub(crate) enum Newton {
     Band(Box<BandNewton>),
     /// Sparse LU on a minimum-degree ordering with a static fill.
     Sparse(Box<SparseNewton>),
+    /// GMRES with an ILU(0) preconditioner, real shifts only.
+    Krylov(Box<KrylovNewton>),
 }
 
 /// The outcome of [`Newton::factor`].
@@ -105,6 +109,48 @@ impl Newton {
         (newton, operations)
     }
 
+    /// GMRES on `γ·M − J` in the Jacobian's own `pattern` (not empty),
+    /// for methods with [`Shifts::Real`] alone.
+    pub(crate) fn krylov(n: usize, pattern: &[(usize, usize)]) -> Newton {
+        Newton::Krylov(Box::new(KrylovNewton::new(n, pattern)))
+    }
+
+    /// How the matrices are solved, as `Stats::linear_solver` names it.
+    pub(crate) fn label(&self) -> &'static str {
+        match self {
+            Newton::Dense(..) => "dense LU",
+            Newton::Band(_) => "band LU",
+            Newton::Sparse(_) => "sparse LU",
+            Newton::Krylov(_) => "GMRES",
+        }
+    }
+
+    /// The label of a factorisation that took over from GMRES.
+    pub(crate) fn after_gmres(&self) -> &'static str {
+        match self {
+            Newton::Dense(..) => "GMRES→dense LU",
+            Newton::Band(_) => "GMRES→band LU",
+            Newton::Sparse(_) => "GMRES→sparse LU",
+            Newton::Krylov(_) => "GMRES",
+        }
+    }
+
+    /// GMRES iterations so far (0 for the factorisations).
+    pub(crate) fn linear_iterations(&self) -> usize {
+        match self {
+            Newton::Krylov(krylov) => krylov.iterations,
+            _ => 0,
+        }
+    }
+
+    /// The error weights an iterative solve stops in (the factorisations
+    /// solve exactly and ignore them).
+    pub(crate) fn set_error_weights(&mut self, y: &[f64], rtol: f64, atol: f64) {
+        if let Newton::Krylov(krylov) = self {
+            krylov.set_error_weights(y, rtol, atol);
+        }
+    }
+
     fn dense(n: usize, shifts: Shifts) -> Newton {
         let complex = (shifts == Shifts::RealAndComplex).then(|| ComplexLu::new(n));
         Newton::Dense(RealLu::new(n), complex)
@@ -151,6 +197,7 @@ impl Newton {
                 *self = Newton::dense(sparse.states(), shifts);
                 return Factored::NeedsDenseJacobian;
             }
+            Newton::Krylov(krylov) => krylov.factor(gamma, mass, jacobian.values()),
         };
         if ok {
             Factored::Yes
@@ -159,13 +206,16 @@ impl Newton {
         }
     }
 
-    /// Solves `(γ·M − J) x = b` in place.
-    pub(crate) fn solve_real(&mut self, b: &mut [f64]) {
+    /// Solves `(γ·M − J) x = b` in place; `false` only where GMRES did
+    /// not reach its tolerance (the factorisations solve exactly).
+    pub(crate) fn solve_real(&mut self, b: &mut [f64]) -> bool {
         match self {
             Newton::Dense(real, _) => real.solve(b),
             Newton::Band(band) => band.solve_real(b),
             Newton::Sparse(sparse) => sparse.solve_real(b),
+            Newton::Krylov(krylov) => return krylov.solve(b),
         }
+        true
     }
 
     /// Solves `((α + iβ)·M − J)(x + iy) = re + i·im` in place; only for
@@ -177,6 +227,8 @@ impl Newton {
             Newton::Dense(_, None) => {}
             Newton::Band(band) => band.solve_complex(re, im),
             Newton::Sparse(sparse) => sparse.solve_complex(re, im),
+            // GMRES is made for real shifts alone (`Newton::krylov`).
+            Newton::Krylov(_) => {}
         }
     }
 }

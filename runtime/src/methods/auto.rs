@@ -68,9 +68,13 @@ pub(crate) enum StiffMethod {
 }
 
 impl StiffMethod {
-    /// The stiff method for `M` at `options`' tolerance.
+    /// The stiff method for `M` at `options`' tolerance; RODAS5P at every
+    /// tolerance where it would solve by GMRES, which only it does (and
+    /// which beat RADAU5's sparse LU at every tolerance measured on 2-D
+    /// grids, `bench --large`).
     fn for_problem<M: Model>(options: &Options) -> StiffMethod {
-        if options.rtol >= ROSENBROCK_FROM && M::STATES >= ROSENBROCK_STATES {
+        let krylov = rodas5p::krylov_for::<M>(options.linear_solver);
+        if krylov || (options.rtol >= ROSENBROCK_FROM && M::STATES >= ROSENBROCK_STATES) {
             StiffMethod::Rodas5P
         } else {
             StiffMethod::Radau5

@@ -128,6 +128,8 @@ struct Work<'m, M> {
     evals: usize,
     jacobian_evals: usize,
     jacobian: DenseJacobian,
+    /// How the Newton matrices are solved (`Newton::label`).
+    linear_solver: &'static str,
 }
 
 impl<M: Model> Work<'_, M> {
@@ -205,7 +207,8 @@ fn step_loop<M: Model>(
     let pattern = if has_mass_matrix::<M>() { &[] } else { M::JACOBIAN_PATTERN };
     let (mut newton, factor_operations) = Newton::for_pattern(n, pattern, Shifts::RealAndComplex);
     let jacobian = DenseJacobian::with_matrix::<M>(newton.dense_jacobian());
-    let mut w = Work { model, evals: 0, jacobian_evals: 0, jacobian };
+    let linear_solver = newton.label();
+    let mut w = Work { model, evals: 0, jacobian_evals: 0, jacobian, linear_solver };
     let mut mass_applied = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
     let mut y = vec![0.0; n];
     let mut y0 = vec![0.0; n];
@@ -296,6 +299,7 @@ fn step_loop<M: Model>(
                     return fail(solution, &w, accepted, rejected, t, cause);
                 }
                 factored = newton.factor(shifts.0, shifts.1, factor_mass, &w.jacobian, pattern);
+                w.linear_solver = newton.label();
             }
             if factored != Factored::Yes {
                 singular += 1;
@@ -600,6 +604,7 @@ fn finish<M: Model>(solution: &mut Solution, steps: usize, rejected: usize, w: &
     stats.rejected += rejected;
     stats.rhs_evals += w.evals;
     stats.jacobian_evals += w.jacobian_evals;
+    stats.linear_solver = w.linear_solver;
 }
 
 #[cfg(test)]

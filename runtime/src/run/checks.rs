@@ -4,7 +4,7 @@
 
 use crate::error::Error;
 use crate::model::{has_mass_matrix, Model};
-use crate::options::{Method, Options};
+use crate::options::{LinearSolver, Method, Options};
 
 /// `Err(InvalidOptions)` with `message`.
 fn invalid(message: String) -> Result<(), Error> {
@@ -157,8 +157,36 @@ fn check_options<M: Model>(options: &Options) -> Result<(), Error> {
             options.method
         ));
     }
+    if options.linear_solver == LinearSolver::Krylov {
+        check_krylov::<M>(options)?;
+    }
     if options.keep_every == 0 {
         return invalid("keep_every(0): k ≥ 1 (1 keeps every step)".to_string());
+    }
+    Ok(())
+}
+
+/// `LinearSolver::Krylov`: RODAS5P (alone or under `Auto`) on a model
+/// whose generated Jacobian gives the matrix's pattern, without a mass
+/// matrix.
+fn check_krylov<M: Model>(options: &Options) -> Result<(), Error> {
+    if !matches!(options.method, Method::Rodas5P | Method::Auto) {
+        return invalid(format!(
+            "LinearSolver::Krylov solves RODAS5P's linear systems only; {:?} factors its own: use Method::Rodas5P (or Method::Auto), or LinearSolver::Direct",
+            options.method
+        ));
+    }
+    if has_mass_matrix::<M>() {
+        return invalid(format!(
+            "{} has a mass matrix, which LinearSolver::Krylov does not precondition: use LinearSolver::Direct",
+            M::INFO.name
+        ));
+    }
+    if M::JACOBIAN_PATTERN.is_empty() {
+        return invalid(format!(
+            "{} has no generated Jacobian (it is differenced), whose pattern and values LinearSolver::Krylov needs for its products and preconditioner: use LinearSolver::Direct",
+            M::INFO.name
+        ));
     }
     Ok(())
 }

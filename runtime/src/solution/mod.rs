@@ -34,10 +34,17 @@ pub struct Stats {
     /// beyond four stretches; [`Stats::switches`] counts them).
     pub method: &'static str,
     /// How often `Method::Auto` switched between its explicit pair and
-    /// RADAU5 (0 for every other method).
+    /// its stiff method (0 for every other method).
     pub switches: usize,
     /// How the model was integrated: an ODE, or which DAE formulation.
     pub formulation: &'static str,
+    /// How the stiff methods solved their linear systems: `"dense LU"`,
+    /// `"band LU"`, `"sparse LU"` or `"GMRES"` ("" where no stiff method
+    /// ran; see [`crate::LinearSolver`]).
+    pub linear_solver: &'static str,
+    /// GMRES iterations, each one product with the matrix and one
+    /// preconditioner solve (0 for the LU factorisations).
+    pub linear_iterations: usize,
     /// `Method::Taylor`'s order (0 for the other methods).
     pub taylor_order: usize,
     /// Whether that order ran as the macro's straight-line recurrences
