@@ -142,6 +142,23 @@ double_pendulum_angles!(expansion_test! {
     double_pendulum_with_a_mass_matrix_solved_symbolically, (), ["DoublePendulum::rhs", "DoublePendulum::jacobian"],
 } {});
 
+expansion_test! {
+    /// A chain of ten cells: the diffusion coefficient fills 18 of the
+    /// Jacobian's 28 entries and is written by one loop over their
+    /// indices; ∂f/∂t, zero everywhere, by one `fill`.
+    heat_chain_with_repeated_jacobian_entries, (), ["HeatChain::jacobian", "HeatChain::time_derivative"],
+    fn heat_chain() {
+        const N: usize = 10;
+        let c = param(4.0);
+        let u = state_array([1.0; N]);
+        for i in 0..N {
+            let left = if i == 0 { 0.0 } else { u[i - 1] };
+            let right = if i + 1 == N { 0.0 } else { u[i + 1] };
+            der(u[i]) == c * (left - 2.0 * u[i] + right) - u[i] * u[i];
+        }
+    }
+}
+
 // Course notes Example 1.4 with the economic Taylor derivatives of order 4.
 example_1_4!(expansion_test! {
     example_1_4_with_taylor_derivatives_of_order_4, (taylor = 4), ["Example14::taylor_derivatives"],

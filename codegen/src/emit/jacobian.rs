@@ -1,7 +1,7 @@
 //! `Model::jacobian` and `Model::time_derivative`: the sparse Jacobian
 //! ∂f/∂y and ∂f/∂t, symbolic when f is explicit, else refused at run time.
 
-use crate::emit::layout::{fixed_size_body, index, program, Layout};
+use crate::emit::layout::{fixed_size_body, index, indexed_program, Layout};
 use crate::{Graph, Id, SymbolId};
 use proc_macro2::TokenStream;
 use quote::quote;
@@ -29,16 +29,10 @@ pub(crate) fn jacobian_items(
                     quote!((#r, #c))
                 })
                 .collect();
-            let values = program(g, layout, &j.expressions(), &|k, v| {
-                let k = index(k);
-                quote!(values[#k] = #v;)
-            });
+            let values = indexed_program(g, layout, &j.expressions(), "values");
             let dfdt: Vec<Id> =
                 f.iter().map(|&e| g.partial(e, time)).collect::<crate::Result<_>>()?;
-            let time = program(g, layout, &dfdt, &|i, v| {
-                let i = index(i);
-                quote!(dfdt[#i] = #v;)
-            });
+            let time = indexed_program(g, layout, &dfdt, "dfdt");
             (
                 quote!(&[#(#pattern),*]),
                 fixed_size_body(&nn, "values", &nnz, values),

@@ -3,6 +3,7 @@
 //! arrays), and straight-line programs written with it.
 
 use crate::dae::reduce::FirstOrder;
+use crate::emit::program::emit_indexed_program;
 use crate::{emit_program, Graph, Id, SymbolId, SymbolKind};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
@@ -93,6 +94,19 @@ pub(crate) fn fixed_size_body(
 
 pub(crate) fn index(i: usize) -> Literal {
     Literal::usize_unsuffixed(i)
+}
+
+/// Straight-line code computing `outputs` into `array[i]`, repeated values
+/// in loops ([`crate::emit::program::emit_indexed_program`]).
+pub(crate) fn indexed_program(
+    g: &mut Graph,
+    layout: &Layout,
+    outputs: &[Id],
+    array: &str,
+) -> TokenStream {
+    let program = g.schedule(outputs);
+    let g = &*g;
+    emit_indexed_program(g, &program, &|s| layout.tokens(g, s), array)
 }
 
 /// Straight-line code computing `outputs` and handing each to `assign`.

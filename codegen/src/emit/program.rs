@@ -60,6 +60,73 @@ pub fn emit_program(
     out
 }
 
+/// Outputs that repeat one value this many times or more are written by
+/// one loop over their indices: a grid's Jacobian holds its diffusion
+/// coefficient thousands of times, and LLVM's optimisation time grows
+/// faster than the straight-line code's length (the 2-D Brusselator's
+/// 12 288 entries, 8192 of them one value: 43 s of rustc written out, 22 s
+/// with the loop).
+const REPEATS_AS_LOOP: usize = 8;
+
+/// Emits `program` as statements writing output `i` to `array[i]`, like
+/// [`emit_program`], except that a value written to
+/// [`REPEATS_AS_LOOP`] or more entries is written by one loop over a table
+/// of their indices after the others (or by `array.fill(v)` where it is
+/// every entry).
+pub fn emit_indexed_program(
+    g: &Graph,
+    program: &Program,
+    symbol: &dyn Fn(SymbolId) -> TokenStream,
+    array: &str,
+) -> TokenStream {
+    let mut symbols: Vec<Option<String>> = vec![None; g.symbols().count()];
+    for id in g.reachable(&program.outputs) {
+        if let Node::Symbol(s) = g.node(id) {
+            symbols[s.index()] = Some(symbol(*s).to_string());
+        }
+    }
+    let e = Emitter { g, program, symbols };
+    let mut text = String::new();
+    for t in &program.temps {
+        let _ = writeln!(text, "let {} = {};", t.name, e.inline(t.node).0);
+    }
+    // Each value's entries, in the order of its first one.
+    let mut entries: Vec<(Id, Vec<usize>)> = Vec::new();
+    let mut group_of: std::collections::HashMap<Id, usize> = std::collections::HashMap::new();
+    for (i, &o) in program.outputs.iter().enumerate() {
+        let k = *group_of.entry(o).or_insert_with(|| {
+            entries.push((o, Vec::new()));
+            entries.len() - 1
+        });
+        entries[k].1.push(i);
+    }
+    let repeated = |k: usize| entries[k].1.len() >= REPEATS_AS_LOOP;
+    for (i, o) in program.outputs.iter().enumerate() {
+        if !repeated(group_of[o]) {
+            let _ = writeln!(text, "{array}[{i}] = {};", e.render(*o).0);
+        }
+    }
+    for (k, (o, indices)) in entries.iter().enumerate() {
+        if !repeated(k) {
+            continue;
+        }
+        let value = e.render(*o).0;
+        if indices.len() == program.outputs.len() {
+            let _ = writeln!(text, "{array}.fill({value});");
+        } else {
+            let list: Vec<String> = indices.iter().map(|i| i.to_string()).collect();
+            // `get_mut`: the table's indices are in bounds by construction,
+            // and generated code has no panicking path.
+            let _ = writeln!(
+                text,
+                "for &k in &[{}usize] {{ if let Some(v) = {array}.get_mut(k) {{ *v = {value}; }} }}",
+                list.join(", ")
+            );
+        }
+    }
+    lex(&text)
+}
+
 /// Lexes emitted text. It is well-formed by construction; should it ever not
 /// be, the user gets a compile error naming the bug, not a panic.
 fn lex(text: &str) -> TokenStream {
