@@ -143,10 +143,12 @@ double_pendulum_angles!(expansion_test! {
 } {});
 
 expansion_test! {
-    /// A chain of ten cells: the diffusion coefficient fills 18 of the
-    /// Jacobian's 28 entries and is written by one loop over their
-    /// indices; ∂f/∂t, zero everywhere, by one `fill`.
-    heat_chain_with_repeated_jacobian_entries, (), ["HeatChain::jacobian", "HeatChain::time_derivative"],
+    /// A chain of ten cells: the eight inner cells' right-hand sides differ
+    /// only in the states they read and are written by one loop over a
+    /// table of indices (the two ends stay straight-line code); so are the
+    /// Jacobian's diagonal and its 18 entries equal to the diffusion
+    /// coefficient; ∂f/∂t, zero everywhere, is one `fill`.
+    heat_chain_with_repeated_jacobian_entries, (), ["HeatChain::rhs", "HeatChain::jacobian", "HeatChain::time_derivative"],
     fn heat_chain() {
         const N: usize = 10;
         let c = param(4.0);

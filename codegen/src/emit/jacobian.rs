@@ -1,7 +1,7 @@
 //! `Model::jacobian` and `Model::time_derivative`: the sparse Jacobian
 //! ∂f/∂y and ∂f/∂t, symbolic when f is explicit, else refused at run time.
 
-use crate::emit::layout::{fixed_size_body, index, indexed_program, Layout};
+use crate::emit::layout::{fixed_size_body, index, rolled_program, Layout};
 use crate::{Graph, Id, SymbolId};
 use proc_macro2::TokenStream;
 use quote::quote;
@@ -29,10 +29,13 @@ pub(crate) fn jacobian_items(
                     quote!((#r, #c))
                 })
                 .collect();
-            let values = indexed_program(g, layout, &j.expressions(), "values");
+            let expressions = j.expressions();
+            let entries: Vec<usize> = (0..expressions.len()).collect();
+            let values = rolled_program(g, layout, &expressions, ("values", &entries));
             let dfdt: Vec<Id> =
                 f.iter().map(|&e| g.partial(e, time)).collect::<crate::Result<_>>()?;
-            let time = indexed_program(g, layout, &dfdt, "dfdt");
+            let components: Vec<usize> = (0..dfdt.len()).collect();
+            let time = rolled_program(g, layout, &dfdt, ("dfdt", &components));
             (
                 quote!(&[#(#pattern),*]),
                 fixed_size_body(&nn, "values", &nnz, values),

@@ -3,7 +3,7 @@
 //! arrays), and straight-line programs written with it.
 
 use crate::dae::reduce::FirstOrder;
-use crate::emit::program::emit_indexed_program;
+use crate::emit::program::emit_rolled_program;
 use crate::{emit_program, Graph, Id, SymbolId, SymbolKind};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
@@ -96,17 +96,28 @@ pub(crate) fn index(i: usize) -> Literal {
     Literal::usize_unsuffixed(i)
 }
 
-/// Straight-line code computing `outputs` into `array[i]`, repeated values
-/// in loops ([`crate::emit::program::emit_indexed_program`]).
-pub(crate) fn indexed_program(
+/// Code computing `outputs` into `array[targets[i]]`, outputs that differ
+/// only in the states they read rolled into loops
+/// ([`crate::emit::program::emit_rolled_program`]); straight-line where
+/// some symbol is read from elsewhere than `y`, `self` and `t` (a run-time
+/// block's solution, a Taylor coefficient).
+pub(crate) fn rolled_program(
     g: &mut Graph,
     layout: &Layout,
     outputs: &[Id],
-    array: &str,
+    (array, targets): (&str, &[usize]),
 ) -> TokenStream {
+    if !layout.block_of.is_empty() || !layout.taylor_of.is_empty() {
+        let array = format_ident!("{}", array);
+        return program(g, layout, outputs, &|i, v| {
+            let i = index(targets[i]);
+            quote!(#array[#i] = #v;)
+        });
+    }
     let program = g.schedule(outputs);
     let g = &*g;
-    emit_indexed_program(g, &program, &|s| layout.tokens(g, s), array)
+    let state_slot = |s: SymbolId| layout.slot_of.get(&s).copied();
+    emit_rolled_program(g, &program, &|s| layout.tokens(g, s), &state_slot, (array, targets), "y")
 }
 
 /// Straight-line code computing `outputs` and handing each to `assign`.

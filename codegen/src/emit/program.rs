@@ -12,11 +12,12 @@
 //! token streams costs more than the rest of the pipeline.
 
 use crate::emit::schedule::Program;
-use crate::expr::graph::Graph;
+use crate::expr::graph::{FxHashMap, Graph};
 use crate::expr::node::{Func, Id, Node, SymbolId, SymbolKind};
 use crate::expr::number::Number;
 use proc_macro2::{TokenStream, TokenTree};
 use quote::quote;
+use std::cell::{Cell, RefCell};
 use std::fmt::Write;
 
 /// Binding strength of an emitted piece, weakest first.
@@ -48,7 +49,7 @@ pub fn emit_program(
             symbols[s.index()] = Some(symbol(*s).to_string());
         }
     }
-    let e = Emitter { g, program, symbols };
+    let e = Emitter::new(g, program, symbols);
     let mut text = String::new();
     for t in &program.temps {
         let _ = writeln!(text, "let {} = {};", t.name, e.inline(t.node).0);
@@ -60,24 +61,35 @@ pub fn emit_program(
     out
 }
 
-/// Outputs that repeat one value this many times or more are written by
-/// one loop over their indices: a grid's Jacobian holds its diffusion
-/// coefficient thousands of times, and LLVM's optimisation time grows
-/// faster than the straight-line code's length (the 2-D Brusselator's
-/// 12 288 entries, 8192 of them one value: 43 s of rustc written out, 22 s
-/// with the loop).
-const REPEATS_AS_LOOP: usize = 8;
+/// Outputs that differ only in which states they read, this many or more,
+/// are written by one loop over a table of their indices.
+const ROLLED_FROM: usize = 8;
 
-/// Emits `program` as statements writing output `i` to `array[i]`, like
-/// [`emit_program`], except that a value written to
-/// [`REPEATS_AS_LOOP`] or more entries is written by one loop over a table
-/// of their indices after the others (or by `array.fill(v)` where it is
-/// every entry).
-pub fn emit_indexed_program(
+/// An output's expression, inlined, above this many characters stays
+/// straight-line code: inlining the temporaries it shares could grow it
+/// without bound (a multibody model's accelerations).
+const ROLLED_TEXT_MAX: usize = 1000;
+
+/// Emits `program` as statements writing output `i` to
+/// `array[targets[i]]`, like [`emit_program`], except that outputs whose
+/// expressions are the same up to the states they read (`state_slot` gives
+/// a state symbol's index in the slice `states`) are written by one loop
+/// over a table of the target's and the states' indices, where there are
+/// [`ROLLED_FROM`] or more of them. The temporaries such an output shares
+/// with others are recomputed in the loop where they depend on the states,
+/// read where they do not. A grid's right-hand side and Jacobian are
+/// thousands of copies of a few expressions, and LLVM's optimisation time
+/// grows faster than straight-line code's length: the 2-D Brusselator
+/// (2048 states, 12 288 Jacobian entries) took 43 s of rustc written out.
+/// Every output keeps its operations, in their order: the values are the
+/// straight-line code's to the bit.
+pub fn emit_rolled_program(
     g: &Graph,
     program: &Program,
     symbol: &dyn Fn(SymbolId) -> TokenStream,
-    array: &str,
+    state_slot: &dyn Fn(SymbolId) -> Option<usize>,
+    (array, targets): (&str, &[usize]),
+    states: &str,
 ) -> TokenStream {
     let mut symbols: Vec<Option<String>> = vec![None; g.symbols().count()];
     for id in g.reachable(&program.outputs) {
@@ -85,46 +97,142 @@ pub fn emit_indexed_program(
             symbols[s.index()] = Some(symbol(*s).to_string());
         }
     }
-    let e = Emitter { g, program, symbols };
-    let mut text = String::new();
-    for t in &program.temps {
-        let _ = writeln!(text, "let {} = {};", t.name, e.inline(t.node).0);
-    }
-    // Each value's entries, in the order of its first one.
-    let mut entries: Vec<(Id, Vec<usize>)> = Vec::new();
-    let mut group_of: std::collections::HashMap<Id, usize> = std::collections::HashMap::new();
+    // The temporaries that depend on the states: inlined in a loop's body.
+    let varying = varying_temps(g, program, state_slot);
+    let plain = Emitter::new(g, program, symbols.clone());
+    let rolling = Emitter { inline_temps: varying.clone(), ..Emitter::new(g, program, symbols) };
+    // Each output's expression with its states as placeholders `a0`, `a1`, …
+    // and the states' indices, grouped by expression in order of first use.
+    let mut groups: Vec<(String, Vec<Member>)> = Vec::new();
+    let mut group_of: FxHashMap<String, usize> = FxHashMap::default();
+    let mut rolled = vec![false; program.outputs.len()];
     for (i, &o) in program.outputs.iter().enumerate() {
-        let k = *group_of.entry(o).or_insert_with(|| {
-            entries.push((o, Vec::new()));
-            entries.len() - 1
-        });
-        entries[k].1.push(i);
-    }
-    let repeated = |k: usize| entries[k].1.len() >= REPEATS_AS_LOOP;
-    for (i, o) in program.outputs.iter().enumerate() {
-        if !repeated(group_of[o]) {
-            let _ = writeln!(text, "{array}[{i}] = {};", e.render(*o).0);
-        }
-    }
-    for (k, (o, indices)) in entries.iter().enumerate() {
-        if !repeated(k) {
+        rolling.placeholders.borrow_mut().clear();
+        let text = rolling.render_placeholders(o, state_slot);
+        if text.len() > ROLLED_TEXT_MAX {
             continue;
         }
-        let value = e.render(*o).0;
-        if indices.len() == program.outputs.len() {
-            let _ = writeln!(text, "{array}.fill({value});");
-        } else {
-            let list: Vec<String> = indices.iter().map(|i| i.to_string()).collect();
-            // `get_mut`: the table's indices are in bounds by construction,
-            // and generated code has no panicking path.
-            let _ = writeln!(
-                text,
-                "for &k in &[{}usize] {{ if let Some(v) = {array}.get_mut(k) {{ *v = {value}; }} }}",
-                list.join(", ")
-            );
+        let slots = rolling.placeholders.borrow().iter().map(|&(_, slot)| slot).collect();
+        let k = *group_of.entry(text.clone()).or_insert_with(|| {
+            groups.push((text, Vec::new()));
+            groups.len() - 1
+        });
+        groups[k].1.push((i, slots));
+    }
+    for (_, members) in &groups {
+        if members.len() >= ROLLED_FROM {
+            members.iter().for_each(|&(i, _)| rolled[i] = true);
         }
     }
+    // The temporaries the straight-line outputs still read, and those that
+    // do not depend on the states (the loops read them).
+    let needed = needed_temps(g, program, &rolled);
+    let mut text = String::new();
+    for (k, t) in program.temps.iter().enumerate() {
+        if needed[k] || !varying[k] {
+            let _ = writeln!(text, "let {} = {};", t.name, plain.inline(t.node).0);
+        }
+    }
+    for (i, &o) in program.outputs.iter().enumerate() {
+        if !rolled[i] {
+            let _ = writeln!(text, "{array}[{}] = {};", targets[i], plain.render(o).0);
+        }
+    }
+    for (body, members) in &groups {
+        if members.len() < ROLLED_FROM {
+            continue;
+        }
+        let arity = members[0].1.len();
+        if arity == 0 && members.len() == program.outputs.len() {
+            let _ = writeln!(text, "{array}.fill({body});");
+            continue;
+        }
+        // `get` and `get_mut`: the table's indices are in bounds by
+        // construction, and generated code has no panicking path.
+        if arity == 0 {
+            let rows: Vec<String> = members.iter().map(|(i, _)| targets[*i].to_string()).collect();
+            let _ = writeln!(
+                text,
+                "for &k in &[{}usize] {{ if let Some(out) = {array}.get_mut(k) {{ *out = {body}; }} }}",
+                rows.join(", ")
+            );
+            continue;
+        }
+        let names: Vec<String> = (0..arity).map(|j| format!("s{j}")).collect();
+        let reads: Vec<String> = (0..arity).map(|j| format!("Some(&a{j})")).collect();
+        let gets: Vec<String> = names.iter().map(|s| format!("{states}.get({s})")).collect();
+        let rows: Vec<String> = members
+            .iter()
+            .enumerate()
+            .map(|(r, (i, slots))| {
+                let suffix = if r == 0 { "usize" } else { "" };
+                let mut row = vec![format!("{}{suffix}", targets[*i])];
+                row.extend(slots.iter().map(|s| format!("{s}{suffix}")));
+                format!("({})", row.join(", "))
+            })
+            .collect();
+        let _ = writeln!(
+            text,
+            "for &(k, {names}) in &[{rows}] {{ if let (Some(out), {reads}) = ({array}.get_mut(k), {gets}) {{ *out = {body}; }} }}",
+            names = names.join(", "),
+            rows = rows.join(", "),
+            reads = reads.join(", "),
+            gets = gets.join(", "),
+        );
+    }
     lex(&text)
+}
+
+/// A rolled output: its position among the outputs, and the slots of the
+/// states its placeholders stand for.
+type Member = (usize, Vec<usize>);
+
+/// Which temporaries depend on a state.
+fn varying_temps(
+    g: &Graph,
+    program: &Program,
+    state_slot: &dyn Fn(SymbolId) -> Option<usize>,
+) -> Vec<bool> {
+    let mut memo: FxHashMap<Id, bool> = FxHashMap::default();
+    fn depends(
+        g: &Graph,
+        id: Id,
+        state_slot: &dyn Fn(SymbolId) -> Option<usize>,
+        memo: &mut FxHashMap<Id, bool>,
+    ) -> bool {
+        if let Some(&d) = memo.get(&id) {
+            return d;
+        }
+        let d = match g.node(id) {
+            Node::Symbol(s) if state_slot(*s).is_some() => true,
+            _ => g.operands(id).iter().any(|&c| depends(g, c, state_slot, memo)),
+        };
+        memo.insert(id, d);
+        d
+    }
+    program.temps.iter().map(|t| depends(g, t.node, state_slot, &mut memo)).collect()
+}
+
+/// The temporaries the outputs that are not `rolled` read, directly or
+/// through others (and through the shared square roots of powers).
+fn needed_temps(g: &Graph, program: &Program, rolled: &[bool]) -> Vec<bool> {
+    let mut needed = vec![false; program.temps.len()];
+    let mut seen: FxHashMap<Id, ()> = FxHashMap::default();
+    let mut stack: Vec<Id> =
+        program.outputs.iter().zip(rolled).filter(|(_, &r)| !r).map(|(&o, _)| o).collect();
+    while let Some(id) = stack.pop() {
+        if seen.insert(id, ()).is_some() {
+            continue;
+        }
+        if let Some(k) = program.temp_index(id) {
+            needed[k] = true;
+        }
+        if let Some(root) = program.shared_root(id) {
+            stack.push(root);
+        }
+        stack.extend_from_slice(g.operands(id));
+    }
+    needed
 }
 
 /// Lexes emitted text. It is well-formed by construction; should it ever not
@@ -167,19 +275,89 @@ struct Emitter<'a> {
     g: &'a Graph,
     program: &'a Program,
     symbols: Vec<Option<String>>,
+    /// Temporaries written out in place (by position; empty: none), for
+    /// the body of a rolled loop.
+    inline_temps: Vec<bool>,
+    /// The states a rolled expression has read so far, as (symbol, slot):
+    /// the j-th reads as `a{j}`.
+    placeholders: RefCell<Vec<(SymbolId, usize)>>,
+    /// Whether states read as placeholders (while rendering a rolled body).
+    by_placeholder: Cell<bool>,
+    /// A state symbol's slot, while `by_placeholder`.
+    slot_of: RefCell<FxHashMap<SymbolId, usize>>,
 }
 
-impl Emitter<'_> {
-    /// The value of `id`: its temporary's name if it has one.
-    fn render(&self, id: Id) -> Piece {
-        match self.program.temp(id) {
-            Some(t) => (t.name.clone(), Prec::Postfix),
-            None => self.inline(id),
+impl<'a> Emitter<'a> {
+    fn new(g: &'a Graph, program: &'a Program, symbols: Vec<Option<String>>) -> Emitter<'a> {
+        Emitter {
+            g,
+            program,
+            symbols,
+            inline_temps: Vec::new(),
+            placeholders: RefCell::new(Vec::new()),
+            by_placeholder: Cell::new(false),
+            slot_of: RefCell::new(FxHashMap::default()),
         }
     }
 
+    /// Whether `id` reads as its temporary's name.
+    fn named(&self, id: Id) -> bool {
+        self.program
+            .temp_index(id)
+            .is_some_and(|k| !self.inline_temps.get(k).copied().unwrap_or(false))
+    }
+
+    /// The value of `id`: its temporary's name if it has one (and is not
+    /// written in place).
+    fn render(&self, id: Id) -> Piece {
+        match self.program.temp(id) {
+            Some(t) if self.named(id) => (t.name.clone(), Prec::Postfix),
+            _ => self.inline(id),
+        }
+    }
+
+    /// `id` with its states as placeholders, recorded in `placeholders`.
+    fn render_placeholders(
+        &self,
+        id: Id,
+        state_slot: &dyn Fn(SymbolId) -> Option<usize>,
+    ) -> String {
+        {
+            let mut slot_of = self.slot_of.borrow_mut();
+            if slot_of.is_empty() {
+                for (s, _) in self.g.symbols() {
+                    if let Some(slot) = state_slot(s) {
+                        slot_of.insert(s, slot);
+                    }
+                }
+            }
+        }
+        self.by_placeholder.set(true);
+        let text = self.render(id).0;
+        self.by_placeholder.set(false);
+        text
+    }
+
+    /// A symbol as the code reads it.
+    fn symbol_text(&self, s: SymbolId) -> String {
+        if self.by_placeholder.get() {
+            if let Some(&slot) = self.slot_of.borrow().get(&s) {
+                let mut seen = self.placeholders.borrow_mut();
+                let j = match seen.iter().position(|&(t, _)| t == s) {
+                    Some(j) => j,
+                    None => {
+                        seen.push((s, slot));
+                        seen.len() - 1
+                    }
+                };
+                return format!("a{j}");
+            }
+        }
+        self.symbols[s.index()].clone().unwrap_or_default()
+    }
+
     fn at(&self, id: Id, min: Prec) -> String {
-        if min == Prec::Postfix && self.program.temp(id).is_none() {
+        if min == Prec::Postfix && !self.named(id) {
             if let Some(n) = self.g.as_number(id) {
                 // `2.0.powf(x)` is ambiguous to rustc; `2.0_f64.powf(x)` is
                 // not, nor `(22.0_f64 / 31.0).sqrt()` or `(-0.5_f64).sin()`.
@@ -207,7 +385,7 @@ impl Emitter<'_> {
             Node::Number(n) => number(*n),
             Node::Symbol(s) => match self.g.symbol(*s).kind {
                 SymbolKind::Intermediate { definition } => self.render(definition),
-                _ => (self.symbols[s.index()].clone().unwrap_or_default(), Prec::Postfix),
+                _ => (self.symbol_text(*s), Prec::Postfix),
             },
             Node::Add(terms) => self.sum(terms),
             Node::Mul(factors) => {
@@ -284,7 +462,7 @@ impl Emitter<'_> {
     /// A term of a sum without its sign: `(is_negative, text of |term|, precedence)`.
     fn term(&self, id: Id) -> (bool, String, Prec) {
         match self.g.node(id) {
-            Node::Mul(factors) if self.program.temp(id).is_none() => self.product(factors),
+            Node::Mul(factors) if !self.named(id) => self.product(factors),
             Node::Number(n) => {
                 let (t, p) = number(n.abs());
                 (n.is_negative(), t, p)
@@ -305,8 +483,7 @@ impl Emitter<'_> {
             match self.g.node(f) {
                 Node::Number(n) => coefficient = *n,
                 Node::Pow([b, e])
-                    if self.program.temp(f).is_none()
-                        && self.g.as_number(*e).is_some_and(Number::is_negative) =>
+                    if !self.named(f) && self.g.as_number(*e).is_some_and(Number::is_negative) =>
                 {
                     let e = self.g.as_number(*e).unwrap_or(Number::MINUS_ONE).negated();
                     denominator.push(if e.is_one() {

@@ -2,7 +2,7 @@
 //! linear block's matrix and right-hand side, solved at run time.
 
 use crate::dae::reduce::{FirstOrder, SlotDerivative};
-use crate::emit::layout::{index, program, Layout};
+use crate::emit::layout::{index, program, rolled_program, Layout};
 use crate::{Graph, Id};
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
@@ -17,9 +17,11 @@ pub(crate) fn rhs_items(
     // Right-hand side: explicit entries, then each mass block's E and g.
     let mut outputs = Vec::new();
     let mut targets: Vec<TokenStream> = Vec::new();
+    let mut explicit_slots = Vec::new();
     for (i, d) in sys.derivatives.iter().enumerate() {
         if let SlotDerivative::Explicit(e) = d {
             outputs.push(*e);
+            explicit_slots.push(i);
             let i = index(i);
             targets.push(quote!(dy[#i]));
         }
@@ -86,11 +88,17 @@ pub(crate) fn rhs_items(
             quote!(dy[#i] = #v;)
         }));
     }
-    let targets_for_rhs = targets.clone();
-    let rhs_body = program(g, layout, &outputs, &move |i, v| {
-        let target = &targets_for_rhs[i];
-        quote!(#target = #v;)
-    });
+    // Every entry explicit in the states: entries that differ only in the
+    // states they read (a grid's cells) are rolled into loops.
+    let rhs_body = if sys.blocks.is_empty() && block_solve.is_empty() {
+        rolled_program(g, layout, &outputs, ("dy", &explicit_slots))
+    } else {
+        let targets_for_rhs = targets.clone();
+        program(g, layout, &outputs, &move |i, v| {
+            let target = &targets_for_rhs[i];
+            quote!(#target = #v;)
+        })
+    };
 
     (block_setup, rhs_body, block_solve)
 }

@@ -42,6 +42,11 @@ impl Program {
         self.temp_of.get(&id).map(|&i| &self.temps[i])
     }
 
+    /// The position of `id`'s temporary in [`Program::temps`], if it has one.
+    pub fn temp_index(&self, id: Id) -> Option<usize> {
+        self.temp_of.get(&id).copied()
+    }
+
     /// The shared square root `b^(1/2)` that emission builds `id = b^(k/2)` from.
     pub fn shared_root(&self, id: Id) -> Option<Id> {
         self.root_of.get(&id).copied()
