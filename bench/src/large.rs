@@ -7,9 +7,9 @@
 //! from RADAU5 at rtol 1e-11 checked against CVODE at the same tolerance
 //! (the run fails where they differ by more than 1e-6),
 //! and RADAU5 and RODAS5P (with the LU the pattern calls for, and RODAS5P
-//! with GMRES as well) against CVODE (band LU, KLU or GMRES, the Jacobian
-//! the macro generated), ours from rtol 1e-3 to 1e-8 and CVODE on to
-//! 1e-11, the ratios at matched error.
+//! with GMRES as well) against CVODE and IDA (band LU, KLU or GMRES, the
+//! Jacobian the macro generated), ours from rtol 1e-3 to 1e-8 and theirs
+//! on to 1e-11, the ratios at matched error.
 
 use super::*;
 use crate::dae::{time_at_error, Point};
@@ -191,6 +191,28 @@ impl<M: Benchmark> Large<M> {
         Some((y, steps))
     }
 
+    fn ida(&self, tol: f64) -> Option<(Vec<f64>, usize)> {
+        let mut y = vec![0.0; M::STATES];
+        self.phases[0].1.initial_state(&mut y);
+        let (mut t, mut steps) = (0.0, 0);
+        for (end, model) in &self.phases {
+            let mut system = sundials::structured::ModelSystem(model);
+            let atol = tol * self.atol_factor;
+            let (next, counts) = sundials::ida_structured::solve(
+                &mut system,
+                t,
+                &y,
+                *end,
+                (tol, atol),
+                self.linear,
+            )?;
+            y = next;
+            steps += counts.steps;
+            t = *end;
+        }
+        Some((y, steps))
+    }
+
     fn cvode(&self, tol: f64) -> Option<(Vec<f64>, usize)> {
         let mut y = vec![0.0; M::STATES];
         self.phases[0].1.initial_state(&mut y);
@@ -293,7 +315,7 @@ fn report<M: Benchmark>(title: &str, problem: &Large<M>, failed_checks: &mut usi
         (Method::Rodas5P, LinearSolver::Krylov),
     ];
     let mut ours: Vec<Vec<(Point, usize)>> = vec![Vec::new(); methods.len()];
-    let mut theirs = Vec::new();
+    let (mut theirs, mut ida) = (Vec::new(), Vec::new());
     for &tol in &tols {
         eprintln!("large: {title}: tol {tol:.0e}");
         if tol >= 1e-8 {
@@ -306,34 +328,44 @@ fn report<M: Benchmark>(title: &str, problem: &Large<M>, failed_checks: &mut usi
         let (s, out) = timed(|| problem.cvode(tol));
         let error = out.as_ref().map_or(f64::INFINITY, |o| mixed(&o.0, &reference));
         theirs.push((Point { tol, error, seconds: s }, out.map_or(0, |o| o.1)));
+        let (s, out) = timed(|| problem.ida(tol));
+        let error = out.as_ref().map_or(f64::INFINITY, |o| mixed(&o.0, &reference));
+        ida.push((Point { tol, error, seconds: s }, out.map_or(0, |o| o.1)));
     }
     let curve: Vec<Point> = theirs.iter().map(|(p, _)| p.clone()).collect();
+    let ida_curve: Vec<Point> = ida.iter().map(|(p, _)| p.clone()).collect();
     let linear = problem.linear;
     text.push_str(&format!(
-        "| tol | RADAU5 error | time | steps | RODAS5P error | time | steps | RODAS5P GMRES error | time | steps | CVODE ({linear:?}) error | time | steps | RADAU5 / CVODE | RODAS5P / CVODE | RODAS5P GMRES / CVODE | best / CVODE |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+        "| tol | RADAU5 error | time | steps | RODAS5P error | time | steps | RODAS5P GMRES error | time | steps | CVODE ({linear:?}) error | time | steps | IDA error | time | steps | RADAU5 / CVODE | RODAS5P / CVODE | RODAS5P GMRES / CVODE | best / CVODE | best / IDA |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     ));
-    for (k, (q, qs)) in theirs.iter().enumerate() {
+    for (k, ((q, qs), (d, ds))) in theirs.iter().zip(&ida).enumerate() {
         let mut cells = String::new();
-        let mut ratios = Vec::new();
+        let (mut ratios, mut ida_ratios) = (Vec::new(), Vec::new());
         for runs in &ours {
             match runs.get(k) {
                 Some((p, ps)) => {
                     cells.push_str(&format!("{:.1e} | {:.3} s | {ps} | ", p.error, p.seconds));
                     ratios.push(time_at_error(&curve, p.error).map(|t| p.seconds / t));
+                    ida_ratios.push(time_at_error(&ida_curve, p.error).map(|t| p.seconds / t));
                 }
                 None => cells.push_str("| | | "),
             }
         }
-        let ratio_cells: Vec<String> =
-            ratios.iter().map(|r| r.map_or("–".into(), |r| format!("{r:.2}×"))).collect();
+        let ratio = |r: Option<f64>| r.map_or("–".into(), |r| format!("{r:.2}×"));
+        let mut ratio_cells: Vec<String> = ratios.iter().map(|&r| ratio(r)).collect();
+        ratio_cells.resize(ours.len(), String::new());
         let best = ratios.iter().flatten().copied().reduce(f64::min);
+        let best_ida = ida_ratios.iter().flatten().copied().reduce(f64::min);
         text.push_str(&format!(
-            "| {:.0e} | {cells}{:.1e} | {:.3} s | {qs} | {} | {} |\n",
+            "| {:.0e} | {cells}{:.1e} | {:.3} s | {qs} | {:.1e} | {:.3} s | {ds} | {} | {} | {} |\n",
             q.tol,
             q.error,
             q.seconds,
-            if ratio_cells.is_empty() { " | ".to_string() } else { ratio_cells.join(" | ") },
+            d.error,
+            d.seconds,
+            ratio_cells.join(" | "),
             best.map_or(String::new(), |b| format!("{b:.2}×")),
+            best_ida.map_or(String::new(), |b| format!("{b:.2}×")),
         ));
     }
     text
@@ -342,7 +374,7 @@ fn report<M: Benchmark>(title: &str, problem: &Large<M>, failed_checks: &mut usi
 /// Writes results/large.md.
 pub fn large_section() {
     let mut text = format!(
-        "# Large stiff problems\n\nMachine: {}. Written by `cd bench && cargo run --release -- --large` (bench/src/large.rs). Times are medians of three solves or more (up to 51 while they take under a second in all); errors max |y − ref| / max(1, |ref|) at the end. Ratios: our method's time over CVODE's at our method's error, CVODE's curve interpolated log–log (–: outside the errors CVODE reached); best: the lowest of ours.\n",
+        "# Large stiff problems\n\nMachine: {}. Written by `cd bench && cargo run --release -- --large` (bench/src/large.rs). Times are medians of three solves or more (up to 51 while they take under a second in all); errors max |y − ref| / max(1, |ref|) at the end. Ratios: our method's time over CVODE's (IDA's) at our method's error, the peer's curve interpolated log–log (–: outside the errors it reached); best: the lowest of ours. IDA integrates the same system as y′ − f = 0 with the same linear solver as CVODE.\n",
         machine()
     );
     let bruss_1d = Large {

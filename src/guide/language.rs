@@ -17,7 +17,7 @@
 //! | `let e = output(expr);` | a value computed from the solution, only when asked for |
 //! | `let hit = event(g).falling().terminal();` | a zero crossing of `g`, located to machine precision |
 //! | `let t = time();` | the independent variable |
-//! | `const N: usize = 3; for i in 0..N { ... }` | loops over constants, unrolled; `if` on indices, `u[(i + 1) % N]` for a periodic neighbour, and `k / 2` truncating as in Rust (indices are integers; `1 / 3` of two literals is refused: write `1.0 / 3.0`) |
+//! | `const N: usize = 3; for i in 0..N { ... }` | loops over constants, unrolled into equations; where the cells' equations differ only in the states they read, the generated right-hand side and Jacobian loop over a table of indices again (a 2048-state grid compiles in seconds); `if` on indices, `u[(i + 1) % N]` for a periodic neighbour, and `k / 2` truncating as in Rust (indices are integers; `1 / 3` of two literals is refused: write `1.0 / 3.0`) |
 //! | `let r = rot_z(theta); let p = r * vec3(1.0, 0.0, 0.0);` | vectors and 3 × 3 matrices: see [`super::mechanisms`] |
 //!
 //! Functions: `sin cos tan asin acos atan atan2 sinh cosh tanh exp ln sqrt

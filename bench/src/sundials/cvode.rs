@@ -182,7 +182,7 @@ unsafe extern "C" fn preconditioner_solve<S: System>(
 
 /// Each pattern entry's position in compressed columns sorted by row, and
 /// the columns' starts.
-fn compressed_columns(
+pub(crate) fn compressed_columns(
     n: usize,
     pattern: &[(usize, usize)],
 ) -> (Vec<usize>, Vec<sun::sunindextype>) {

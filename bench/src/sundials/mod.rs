@@ -7,6 +7,7 @@
 pub mod block_jacobi;
 pub mod cvode;
 pub mod ida;
+pub mod ida_structured;
 pub mod peer;
 pub mod structured;
 
