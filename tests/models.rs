@@ -390,6 +390,38 @@ fn radau5_and_rodas5p_with_sparse_matrices_follow_the_grids_exact_mode() {
     }
 }
 
+#[test]
+fn a_grid_written_as_loops_of_index_tables_evaluates_every_cell() {
+    // The 16 × 16 grid's right-hand side and Jacobian come out of the macro
+    // as loops over tables of indices (alike cells); each entry against the
+    // five-point formula at a state with no two values alike.
+    let n = 16;
+    let y: Vec<f64> = (0..n * n).map(|k| ((k * k) as f64 * 0.618).sin() + 0.1 * k as f64).collect();
+    let mut dy = vec![0.0; n * n];
+    PeriodicHeat::default().rhs(0.0, &y, &mut dy).unwrap();
+    let at = |i: usize, j: usize| y[(i % n) * n + j % n];
+    for i in 0..n {
+        for j in 0..n {
+            let want =
+                at(i + 1, j) + at(i + n - 1, j) + at(i, j + 1) + at(i, j + n - 1) - 4.0 * at(i, j);
+            // Rounding: a few units of the terms' magnitude (they cancel).
+            let terms = at(i + 1, j).abs()
+                + at(i + n - 1, j).abs()
+                + at(i, j + 1).abs()
+                + at(i, j + n - 1).abs()
+                + 4.0 * at(i, j).abs();
+            let got = dy[i * n + j];
+            assert!((got - want).abs() <= 4.0 * f64::EPSILON * terms, "[{i},{j}]: {got} {want}");
+        }
+    }
+    let pattern = PeriodicHeat::JACOBIAN_PATTERN;
+    let mut values = vec![f64::NAN; pattern.len()];
+    PeriodicHeat::default().jacobian(0.0, &y, &mut values).unwrap();
+    for (&(r, c), v) in pattern.iter().zip(&values) {
+        assert_eq!(*v, if r == c { -4.0 } else { 1.0 }, "∂f{r}/∂y{c}");
+    }
+}
+
 /// Index arithmetic divides as Rust's integers do: `k / 2` of the index
 /// truncates (species side by side, two per cell), and `i / N` of a loop
 /// index picks a row.

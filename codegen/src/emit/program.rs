@@ -65,9 +65,11 @@ pub fn emit_program(
 /// are written by one loop over a table of their indices.
 const ROLLED_FROM: usize = 8;
 
-/// An output's expression, inlined, above this many characters stays
-/// straight-line code: inlining the temporaries it shares could grow it
-/// without bound (a multibody model's accelerations).
+/// An output's expression, inlined, above this many nodes or characters
+/// stays straight-line code: inlining the temporaries it shares could grow
+/// it without bound (a multibody model's accelerations).
+const ROLLED_NODES_MAX: usize = 200;
+/// See [`ROLLED_NODES_MAX`].
 const ROLLED_TEXT_MAX: usize = 1000;
 
 /// Emits `program` as statements writing output `i` to
@@ -75,14 +77,15 @@ const ROLLED_TEXT_MAX: usize = 1000;
 /// expressions are the same up to the states they read (`state_slot` gives
 /// a state symbol's index in the slice `states`) are written by one loop
 /// over a table of the target's and the states' indices, where there are
-/// [`ROLLED_FROM`] or more of them. The temporaries such an output shares
+/// eight or more of them. The temporaries such an output shares
 /// with others are recomputed in the loop where they depend on the states,
 /// read where they do not. A grid's right-hand side and Jacobian are
 /// thousands of copies of a few expressions, and LLVM's optimisation time
 /// grows faster than straight-line code's length: the 2-D Brusselator
 /// (2048 states, 12 288 Jacobian entries) took 43 s of rustc written out.
-/// Every output keeps its operations, in their order: the values are the
-/// straight-line code's to the bit.
+/// A loop's body is the straight-line expression with its states renamed
+/// (its temporaries written out): the same operations in the same order,
+/// so the same values.
 pub fn emit_rolled_program(
     g: &Graph,
     program: &Program,
@@ -106,7 +109,13 @@ pub fn emit_rolled_program(
     let mut groups: Vec<(String, Vec<Member>)> = Vec::new();
     let mut group_of: FxHashMap<String, usize> = FxHashMap::default();
     let mut rolled = vec![false; program.outputs.len()];
+    let mut sizes: FxHashMap<Id, usize> = FxHashMap::default();
     for (i, &o) in program.outputs.iter().enumerate() {
+        // Measured before it is written: a multibody model's shared
+        // expressions, written out as trees, grow exponentially.
+        if inlined_size(g, program, &varying, o, &mut sizes) > ROLLED_NODES_MAX {
+            continue;
+        }
         rolling.placeholders.borrow_mut().clear();
         let text = rolling.render_placeholders(o, state_slot);
         if text.len() > ROLLED_TEXT_MAX {
@@ -186,6 +195,36 @@ pub fn emit_rolled_program(
 /// A rolled output: its position among the outputs, and the slots of the
 /// states its placeholders stand for.
 type Member = (usize, Vec<usize>);
+
+/// The nodes of `id` written as a tree with the temporaries that depend on
+/// the states (`varying`) in place, the others by name; at most
+/// [`ROLLED_NODES_MAX`] + 1.
+fn inlined_size(
+    g: &Graph,
+    program: &Program,
+    varying: &[bool],
+    id: Id,
+    sizes: &mut FxHashMap<Id, usize>,
+) -> usize {
+    if let Some(&size) = sizes.get(&id) {
+        return size;
+    }
+    let named = program.temp_index(id).is_some_and(|k| !varying[k]);
+    let size = if named {
+        1
+    } else {
+        let mut size = 1usize;
+        for &c in g.operands(id) {
+            size = size.saturating_add(inlined_size(g, program, varying, c, sizes));
+            if size > ROLLED_NODES_MAX {
+                break;
+            }
+        }
+        size.min(ROLLED_NODES_MAX + 1)
+    };
+    sizes.insert(id, size);
+    size
+}
 
 /// Which temporaries depend on a state.
 fn varying_temps(
