@@ -161,6 +161,17 @@ expansion_test! {
     }
 }
 
+expansion_test! {
+    /// y′ = −k·y with its sensitivities to k and to y(0): S′ = −k·S − y
+    /// and S′ = −k·S, from S(0) = 0 and 1.
+    decay_with_sensitivities, (sensitivities = [k, init(y)]), ["DecaySensitivities::rhs", "DecaySensitivities::initial_state", "Decay::with_sensitivities"],
+    fn decay() {
+        let k = param(0.7);
+        let y = state(2.0);
+        der(y) == -k * y;
+    }
+}
+
 // Course notes Example 1.4 with the economic Taylor derivatives of order 4.
 example_1_4!(expansion_test! {
     example_1_4_with_taylor_derivatives_of_order_4, (taylor = 4), ["Example14::taylor_derivatives"],

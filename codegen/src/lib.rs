@@ -81,8 +81,14 @@ pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
     };
     let mut ir = front::lower::lower_with(&mut cx, &item, attributes.recursive);
     let system = if cx.is_ok() { dae::reduce::reduce(&mut cx, &mut ir) } else { None };
+    let sensitivities = match &system {
+        Some(system) if cx.is_ok() => {
+            dae::variational::resolve(&mut cx, &attributes.sensitivities, &ir, system)
+        }
+        _ => Vec::new(),
+    };
     if let (Some(system), true) = (&system, cx.is_ok()) {
-        match emit::model::expand(&mut ir, system, &attributes) {
+        match emit::model::expand(&mut ir, system, &attributes, &sensitivities) {
             Ok(mut tokens) => {
                 tokens.extend(emit::benchmark::benchmark_impl(&item, &ir, &attributes));
                 tokens.extend(front::warnings::odd_unrolled_orders(&attributes.odd_unrolled));
@@ -119,7 +125,7 @@ pub fn diagnostics(item: TokenStream) -> Vec<String> {
     let mut ir = front::lower::lower(&mut cx, &item);
     if cx.is_ok() {
         if let Some(system) = dae::reduce::reduce(&mut cx, &mut ir) {
-            if let Err(e) = emit::model::expand(&mut ir, &system, &Attributes::default()) {
+            if let Err(e) = emit::model::expand(&mut ir, &system, &Attributes::default(), &[]) {
                 cx.error_at(&item.sig.ident, e);
             }
         }

@@ -22,6 +22,7 @@ use crate::{FxHashMap, Graph, Id, SymbolId, SymbolKind};
 
 /// A pivot of the elimination: an expression of the parameters that must
 /// not vanish for the generated code to hold.
+#[derive(Clone)]
 pub struct RankCondition {
     /// The pivot.
     pub pivot: Id,

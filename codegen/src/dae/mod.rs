@@ -15,3 +15,4 @@ pub mod matching;
 pub mod newton_block;
 pub mod reduce;
 pub mod solve_unknowns;
+pub mod variational;

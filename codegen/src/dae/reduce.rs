@@ -13,6 +13,7 @@ use crate::{FxHashMap, Graph, Id, SymbolId, SymbolKind};
 use proc_macro2::TokenStream;
 
 /// One first-order state of the reduced system.
+#[derive(Clone)]
 pub struct Slot {
     /// `x`, `der(x)`, `q[1]`, ...
     pub name: String,
@@ -28,6 +29,7 @@ pub struct Slot {
 }
 
 /// How a slot's derivative is computed.
+#[derive(Clone)]
 pub enum SlotDerivative {
     /// `f_i` as an expression.
     Explicit(Id),

@@ -4,6 +4,7 @@
 //! everything it needs was decided before.
 
 use crate::dae::reduce::FirstOrder;
+use crate::dae::variational::Wrt;
 use crate::emit::docs::{
     dae_analysis, info, info_with, parameter_method, struct_and_default, type_name,
 };
@@ -26,6 +27,7 @@ pub fn expand(
     ir: &mut ModelIr,
     sys: &FirstOrder,
     attributes: &crate::front::attributes::Attributes,
+    sensitivities: &[Wrt],
 ) -> crate::Result<TokenStream> {
     // Most of its length is the quoted `Model` implementation the items fill.
     // `unroll` alone implies the Taylor tape (and the first-order scheme).
@@ -95,10 +97,18 @@ pub fn expand(
         },
         None => TokenStream::new(),
     };
+    // Last too: the sensitivities' type is a model of its own.
+    let sensitivity_type = if sensitivities.is_empty() {
+        TokenStream::new()
+    } else {
+        sensitivity_items(ir, sys, attributes, sensitivities, &name)?
+    };
     Ok(quote! {
         #struct_and_default
 
         #batch
+
+        #sensitivity_type
 
         #mass_form_type
 
@@ -152,6 +162,52 @@ pub fn expand(
                     #(#output_arms)*
                     _ => f64::NAN,
                 }
+            }
+        }
+    })
+}
+
+/// `<Model>Sensitivities`, the model with its forward sensitivities as
+/// states (`dae::variational`), expanded as a model of its own, and
+/// `<Model>::with_sensitivities` that makes one with the same parameters.
+fn sensitivity_items(
+    ir: &mut ModelIr,
+    sys: &FirstOrder,
+    attributes: &crate::front::attributes::Attributes,
+    wrt: &[Wrt],
+    name: &syn::Ident,
+) -> crate::Result<TokenStream> {
+    let augmented = crate::dae::variational::variational_system(&mut ir.graph, sys, wrt)
+        .map_err(|message| crate::Error::Unsupported { message })?;
+    let listed: Vec<String> = wrt.iter().map(|w| format!("`{}`", w.name())).collect();
+    let (fn_name, doc) = (ir.fn_name.clone(), ir.doc.clone());
+    ir.fn_name = syn::Ident::new(&format!("{fn_name}_sensitivities"), fn_name.span());
+    ir.doc = format!(
+        "The model `{name}` with its forward sensitivities with respect to {}: its states, then for each of them the states `d(x)/d(w)` = ∂x/∂w, integrated with them by any method (`Solution::sensitivity(t, \"x\", \"w\")` reads them). Made by `{name}::with_sensitivities`.",
+        listed.join(", ")
+    );
+    let plain = crate::front::attributes::Attributes {
+        batch: None,
+        sensitivities: Vec::new(),
+        ..attributes.clone()
+    };
+    let expanded = expand(ir, &augmented, &plain, &[]);
+    let sensitivity_name = type_name(ir);
+    (ir.fn_name, ir.doc) = (fn_name, doc);
+    let model = expanded?;
+    let fields: Vec<&syn::Ident> = ir.params.iter().map(|p| &p.ident).collect();
+    let vis = &ir.vis;
+    let method_doc = format!(
+        " This model with its forward sensitivities with respect to {}, as the model [`{sensitivity_name}`].",
+        listed.join(", ")
+    );
+    Ok(quote! {
+        #model
+
+        impl #name {
+            #[doc = #method_doc]
+            #vis fn with_sensitivities(&self) -> #sensitivity_name {
+                #sensitivity_name { #(#fields: self.#fields),* }
             }
         }
     })

@@ -28,6 +28,9 @@ pub struct Attributes {
     /// `batch = L`, 2 ≤ L ≤ 16: also the type `<Model>Batch` stepping L
     /// members together; where the argument was written.
     pub batch: Option<(usize, proc_macro2::Span)>,
+    /// `sensitivities = [k, init(x)]`: the parameters and initial values
+    /// to generate forward sensitivities for, as written.
+    pub sensitivities: Vec<syn::Expr>,
     /// The other arguments, as written (for re-expanding the model when the
     /// benchmark times its expansion).
     pub written: String,
@@ -40,7 +43,7 @@ pub fn attributes(cx: &mut Ctxt, attr: TokenStream) -> Attributes {
     if attr.is_empty() {
         return out;
     }
-    let fix = "`#[dae_model]` takes `taylor = p` (p from 0 to 8), `unroll = [p, ...]` (orders from 2 to 40), `scene = global` or `scene = recursive`, `batch = L` (members stepped together, 2 to 16), and `bench = Bench::until(t1)...`";
+    let fix = "`#[dae_model]` takes `taylor = p` (p from 0 to 8), `unroll = [p, ...]` (orders from 2 to 40), `scene = global` or `scene = recursive`, `batch = L` (members stepped together, 2 to 16), `sensitivities = [k, init(x)]`, and `bench = Bench::until(t1)...`";
     let parser =
         syn::punctuated::Punctuated::<syn::MetaNameValue, syn::Token![,]>::parse_terminated;
     let Ok(args) = syn::parse::Parser::parse2(parser, attr.clone()) else {
@@ -100,6 +103,16 @@ pub fn attributes(cx: &mut Ctxt, attr: TokenStream) -> Attributes {
                 _ => cx.error_at(
                     &arg.value,
                     "`batch = L` takes the number of members stepped together, from 2 to 16 (4 or 8 fill a SIMD register)",
+                ),
+            }
+        } else if arg.path.is_ident("sensitivities") && out.sensitivities.is_empty() {
+            match &arg.value {
+                syn::Expr::Array(a) if !a.elems.is_empty() => {
+                    out.sensitivities = a.elems.iter().cloned().collect();
+                }
+                other => cx.error_at(
+                    other,
+                    "`sensitivities` takes a list of parameters and initial values, e.g. `sensitivities = [k, init(x)]`",
                 ),
             }
         } else if arg.path.is_ident("scene") {

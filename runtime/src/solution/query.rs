@@ -97,6 +97,16 @@ impl Solution {
         Ok(value.read(self, t, &y))
     }
 
+    /// The forward sensitivity ∂`name`/∂`wrt` at time `t`, where `wrt` is a
+    /// parameter's name or `init(x)` for a state's initial value: a run of
+    /// a model made by `with_sensitivities()` (`#[dae_model(sensitivities
+    /// = [k, init(x)])]`) keeps them as the states `d(x)/d(k)`, read like
+    /// [`Solution::at`] reads any state. An [`Error::UnknownName`] lists
+    /// what the run has where it has no such sensitivity.
+    pub fn sensitivity(&self, t: f64, name: &str, wrt: &str) -> Result<f64, Error> {
+        self.at(t, &format!("d({name})/d({wrt})"))
+    }
+
     /// The stored state at `k` (the end state for the last entry of a run
     /// that stores every step).
     fn stored_state(&self, k: usize) -> &[f64] {
