@@ -63,6 +63,12 @@ pub trait Model {
     /// the order [`Model::jacobian`] writes them. A hand-written model
     /// without a Jacobian leaves it empty.
     const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[];
+    /// For a model made by `with_sensitivities()`: how many sensitivity
+    /// columns follow the base model's states (its `STATES / (1 + columns)`
+    /// of them); its Jacobian is then block lower triangular with the base
+    /// Jacobian on the diagonal, and the implicit methods factor that block
+    /// alone. 0 for every other model.
+    const SENSITIVITY_COLUMNS: usize = 0;
 
     /// Writes the initial state (values may depend on the parameters).
     fn initial_state(&self, y: &mut [f64]);

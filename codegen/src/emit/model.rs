@@ -97,6 +97,13 @@ pub fn expand(
         },
         None => TokenStream::new(),
     };
+    let sensitivity_columns = match attributes.sensitivity_columns {
+        0 => TokenStream::new(),
+        k => {
+            let k = index(k);
+            quote!(const SENSITIVITY_COLUMNS: usize = #k;)
+        }
+    };
     // Last too: the sensitivities' type is a model of its own.
     let sensitivity_type = if sensitivities.is_empty() {
         TokenStream::new()
@@ -121,6 +128,7 @@ pub fn expand(
             const INDEX: usize = #model_index;
             const INFO: ::daegen::ModelInfo = #info;
             const JACOBIAN_PATTERN: &'static [(usize, usize)] = #pattern;
+            #sensitivity_columns
 
             #parameter
             #degenerate
@@ -189,6 +197,7 @@ fn sensitivity_items(
     let plain = crate::front::attributes::Attributes {
         batch: None,
         sensitivities: Vec::new(),
+        sensitivity_columns: wrt.len(),
         ..attributes.clone()
     };
     let expanded = expand(ir, &augmented, &plain, &[]);

@@ -31,6 +31,9 @@ pub struct Attributes {
     /// `sensitivities = [k, init(x)]`: the parameters and initial values
     /// to generate forward sensitivities for, as written.
     pub sensitivities: Vec<syn::Expr>,
+    /// Set when expanding `<Model>Sensitivities` itself: its number of
+    /// sensitivity columns (`Model::SENSITIVITY_COLUMNS`).
+    pub sensitivity_columns: usize,
     /// The other arguments, as written (for re-expanding the model when the
     /// benchmark times its expansion).
     pub written: String,

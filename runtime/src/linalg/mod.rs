@@ -8,6 +8,7 @@ pub mod band_lu;
 pub mod dense_lu;
 pub(crate) mod krylov;
 pub(crate) mod newton;
+pub(crate) mod sensitivity;
 pub mod sparse_lu;
 
 /// `out = M x` for the dense row-major mass matrix `m`.

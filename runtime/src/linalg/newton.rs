@@ -8,6 +8,7 @@
 use crate::linalg::band_lu::{BandNewton, BandOrdering};
 use crate::linalg::dense_lu::{ComplexLu, RealLu};
 use crate::linalg::krylov::KrylovNewton;
+use crate::linalg::sensitivity::SensitivityNewton;
 use crate::linalg::sparse_lu::{SparseNewton, SparsePattern};
 use crate::step::jacobian::DenseJacobian;
 
@@ -32,6 +33,9 @@ pub(crate) enum Newton {
     Sparse(Box<SparseNewton>),
     /// GMRES with an ILU(0) preconditioner, real shifts only.
     Krylov(Box<KrylovNewton>),
+    /// A model with sensitivity columns: its base block's matrices, and
+    /// block forward substitution.
+    Sensitivity(Box<SensitivityNewton>),
 }
 
 /// The outcome of [`Newton::factor`].
@@ -109,6 +113,19 @@ impl Newton {
         (newton, operations)
     }
 
+    /// The matrices of a model whose states are `n` base states and
+    /// `columns` sensitivity columns of `n` (no mass matrix), and the
+    /// operations of one real factorisation.
+    pub(crate) fn for_sensitivities(
+        n: usize,
+        columns: usize,
+        pattern: &'static [(usize, usize)],
+        shifts: Shifts,
+    ) -> (Newton, f64) {
+        let (newton, operations) = SensitivityNewton::new(n, columns, pattern, shifts);
+        (Newton::Sensitivity(Box::new(newton)), operations)
+    }
+
     /// GMRES on `γ·M − J` in the Jacobian's own `pattern` (not empty),
     /// for methods with [`Shifts::Real`] alone.
     pub(crate) fn krylov(n: usize, pattern: &[(usize, usize)]) -> Newton {
@@ -122,6 +139,7 @@ impl Newton {
             Newton::Band(_) => "band LU",
             Newton::Sparse(_) => "sparse LU",
             Newton::Krylov(_) => "GMRES",
+            Newton::Sensitivity(s) => s.label(),
         }
     }
 
@@ -131,7 +149,7 @@ impl Newton {
             Newton::Dense(..) => "GMRES→dense LU",
             Newton::Band(_) => "GMRES→band LU",
             Newton::Sparse(_) => "GMRES→sparse LU",
-            Newton::Krylov(_) => "GMRES",
+            Newton::Krylov(_) | Newton::Sensitivity(_) => "GMRES",
         }
     }
 
@@ -175,20 +193,35 @@ impl Newton {
         jacobian: &DenseJacobian,
         pattern: &[(usize, usize)],
     ) -> Factored {
+        self.factor_from(gamma, complex, mass, &jacobian.matrix, jacobian.values(), pattern)
+    }
+
+    /// [`Newton::factor`] from the Jacobian as a dense row-major `matrix`
+    /// (read by the dense LU) and as the non-zeros `values` at `pattern`
+    /// (read by the others).
+    pub(crate) fn factor_from(
+        &mut self,
+        gamma: f64,
+        complex: (f64, f64),
+        mass: &[f64],
+        matrix: &[f64],
+        values: &[f64],
+        pattern: &[(usize, usize)],
+    ) -> Factored {
         let (alpha, beta) = complex;
         let ok = match self {
             Newton::Dense(real, complex) => {
-                real.factor_shifted_mass(gamma, mass, &jacobian.matrix)
+                real.factor_shifted_mass(gamma, mass, matrix)
                     && complex.as_mut().is_none_or(|complex| {
-                        complex.factor_shifted_mass(alpha, beta, mass, &jacobian.matrix)
+                        complex.factor_shifted_mass(alpha, beta, mass, matrix)
                     })
             }
             Newton::Band(band) => {
-                band.factor_real(gamma, pattern, jacobian.values())
+                band.factor_real(gamma, pattern, values)
                     && (!band.has_complex() || band.factor_complex(alpha, beta))
             }
+            Newton::Sensitivity(s) => return s.factor(gamma, complex, values),
             Newton::Sparse(sparse) => {
-                let values = jacobian.values();
                 if sparse.factor(gamma, alpha, beta, |k| values[k]) {
                     return Factored::Yes;
                 }
@@ -197,7 +230,7 @@ impl Newton {
                 *self = Newton::dense(sparse.states(), shifts);
                 return Factored::NeedsDenseJacobian;
             }
-            Newton::Krylov(krylov) => krylov.factor(gamma, mass, jacobian.values()),
+            Newton::Krylov(krylov) => krylov.factor(gamma, mass, values),
         };
         if ok {
             Factored::Yes
@@ -214,6 +247,7 @@ impl Newton {
             Newton::Band(band) => band.solve_real(b),
             Newton::Sparse(sparse) => sparse.solve_real(b),
             Newton::Krylov(krylov) => return krylov.solve(b),
+            Newton::Sensitivity(s) => s.solve_real(b),
         }
         true
     }
@@ -229,6 +263,7 @@ impl Newton {
             Newton::Sparse(sparse) => sparse.solve_complex(re, im),
             // GMRES is made for real shifts alone (`Newton::krylov`).
             Newton::Krylov(_) => {}
+            Newton::Sensitivity(s) => s.solve_complex(re, im),
         }
     }
 }

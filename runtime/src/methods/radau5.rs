@@ -205,7 +205,12 @@ fn step_loop<M: Model>(
         crate::model::dense_mass_matrix(model)
     };
     let pattern = if has_mass_matrix::<M>() { &[] } else { M::JACOBIAN_PATTERN };
-    let (mut newton, factor_operations) = Newton::for_pattern(n, pattern, Shifts::RealAndComplex);
+    let (mut newton, factor_operations) = if M::SENSITIVITY_COLUMNS > 0 && !pattern.is_empty() {
+        let columns = M::SENSITIVITY_COLUMNS;
+        Newton::for_sensitivities(n / (1 + columns), columns, pattern, Shifts::RealAndComplex)
+    } else {
+        Newton::for_pattern(n, pattern, Shifts::RealAndComplex)
+    };
     let jacobian = DenseJacobian::with_matrix::<M>(newton.dense_jacobian());
     let linear_solver = newton.label();
     let mut w = Work { model, evals: 0, jacobian_evals: 0, jacobian, linear_solver };

@@ -181,7 +181,8 @@ pub(crate) fn krylov_for<M: Model>(choice: LinearSolver) -> bool {
         LinearSolver::Krylov => true,
         LinearSolver::Direct => false,
         LinearSolver::Auto => {
-            M::STATES >= KRYLOV_FROM
+            M::SENSITIVITY_COLUMNS == 0
+                && M::STATES >= KRYLOV_FROM
                 && !has_mass_matrix::<M>()
                 && matches!(Structure::of(M::STATES, M::JACOBIAN_PATTERN).0, Structure::Sparse(_))
         }
@@ -295,7 +296,10 @@ pub(crate) fn integrate_watching<M: Model>(
         crate::model::dense_mass_matrix(model)
     };
     let pattern = if has_mass_matrix::<M>() { &[] } else { M::JACOBIAN_PATTERN };
-    let mut newton = if krylov_for::<M>(options.linear_solver) {
+    let mut newton = if M::SENSITIVITY_COLUMNS > 0 && !pattern.is_empty() {
+        let columns = M::SENSITIVITY_COLUMNS;
+        Newton::for_sensitivities(n / (1 + columns), columns, pattern, Shifts::Real).0
+    } else if krylov_for::<M>(options.linear_solver) {
         Newton::krylov(n, pattern)
     } else {
         Newton::for_pattern(n, pattern, Shifts::Real).0

@@ -182,6 +182,12 @@ fn check_krylov<M: Model>(options: &Options) -> Result<(), Error> {
             M::INFO.name
         ));
     }
+    if M::SENSITIVITY_COLUMNS > 0 {
+        return invalid(format!(
+            "{} carries sensitivities, whose linear systems are solved through the base model's factorisation: use LinearSolver::Direct",
+            M::INFO.name
+        ));
+    }
     if M::JACOBIAN_PATTERN.is_empty() {
         return invalid(format!(
             "{} has no generated Jacobian (it is differenced), whose pattern and values LinearSolver::Krylov needs for its products and preconditioner: use LinearSolver::Direct",
