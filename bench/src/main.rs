@@ -15,8 +15,10 @@
 //! `--auto` times `Method::Auto` against the best single method on every
 //! reference problem and an explicit pair on a stiff problem
 //! (`results/auto.md`);
-//! `--large` runs RADAU5 and RODAS5P against CVODE on the 1-D and 2-D
+//! `--large` runs RADAU5 and RODAS5P against CVODE and IDA on the 1-D and 2-D
 //! Brusselators and SUNDIALS' diurnal example (`results/large.md`);
+//! `--sensitivities` times runs with forward sensitivities against runs
+//! without (`results/sensitivities.md`);
 //! `--ensemble` times `daegen::Ensemble` on one thread and every core
 //! against heyoka's ensembles (`results/ensemble.md`);
 //! `--versus-heyoka` times our Taylor method and heyoka in alternation,
@@ -40,6 +42,7 @@ mod ensemble;
 mod large;
 mod peers;
 mod readme;
+mod sensitivities;
 #[cfg(feature = "sundials")]
 mod sundials;
 mod tape_cost;
@@ -494,6 +497,10 @@ fn main() {
         large::large_section();
         #[cfg(not(feature = "sundials"))]
         eprintln!("--large needs the `sundials` feature (peers/install-sundials.sh)");
+        return;
+    }
+    if has("--sensitivities") {
+        sensitivities::sensitivities_section();
         return;
     }
     if has("--ensemble") {

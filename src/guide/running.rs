@@ -46,6 +46,36 @@
 //! `"GMRES→sparse LU"` where GMRES failed three steps in a row and the run
 //! factored from there on); `Options::linear_solver` forces either.
 //!
+//! ## Sensitivities
+//!
+//! `#[dae_model(sensitivities = [k, init(x)])]` also generates
+//! `<Model>Sensitivities`: the model with the first variational equations
+//! S′ = (∂f/∂y)·S + ∂f/∂k as extra states, built symbolically and sharing
+//! their subexpressions with the right-hand side. `model.with_sensitivities()`
+//! makes one with the same parameters; every method integrates it (the
+//! implicit ones factor the model's own matrix once for all columns), and
+//! `Solution::sensitivity(t, "x", "k")` reads ∂x/∂k (`"init(x)"` for the
+//! initial value). ODE models have them; a DAE's are refused at compile
+//! time for now. `examples/fit_parameters.rs` fits a model's rates to
+//! noisy data by Levenberg–Marquardt with them.
+//!
+//! ```
+//! use daegen::prelude::*;
+//!
+//! /// y′ = −k·y: ∂y/∂k = −t·y(0)·e^(−kt).
+//! #[dae_model(sensitivities = [k])]
+//! fn decay() {
+//!     let k = param(0.5);
+//!     let y = state(2.0);
+//!     der(y) == -k * y;
+//! }
+//!
+//! let sol = Decay::default().with_sensitivities().simulate(0.0, 2.0, &Options::new())?;
+//! let exact = -2.0 * 2.0 * (-0.5f64 * 2.0).exp();
+//! assert!((sol.sensitivity(2.0, "y", "k")? - exact).abs() < 1e-6);
+//! # Ok::<(), daegen::Error>(())
+//! ```
+//!
 //! `Taylor` chooses its order from the tolerance and the model's cost per
 //! order (higher than Jorba & Zou's for small models, theirs when the
 //! convolutions dominate), among the orders of `unroll = [..]` unless the
