@@ -120,3 +120,32 @@ fn robertsons_rate_sensitivities_match_central_differences_to_six_digits() {
         }
     }
 }
+
+#[test]
+fn sensitivities_left_out_of_the_error_test_leave_the_steps_to_the_states() {
+    // S does not feed back into y, so an error test on y alone takes the
+    // model's own steps, exactly, where no Newton iteration is involved.
+    let (k, y0, t1, tol) = (0.7, 2.0, 3.0, 1e-8);
+    for method in [Method::Dopri5, Method::Dop853, Method::Rodas5P, Method::Radau5] {
+        let opts = Options::new().method(method).tolerance(tol);
+        let alone = Decay::default().simulate(0.0, t1, &opts).unwrap().stats().steps;
+        let with = Decay::default().with_sensitivities();
+        let controlled = with.simulate(0.0, t1, &opts).unwrap().stats().steps;
+        let free = opts.sensitivity_error_control(false);
+        let sol = with.simulate(0.0, t1, &free).unwrap();
+        let steps = sol.stats().steps;
+        match method {
+            // RADAU5's step also follows its Newton iterations, which
+            // converge on every state.
+            Method::Radau5 => {
+                assert!(steps.abs_diff(alone) <= alone / 10, "{steps} against {alone}")
+            }
+            _ => assert_eq!(steps, alone, "{method:?}"),
+        }
+        assert!(controlled >= steps, "{method:?}: {controlled} < {steps}");
+        // The sensitivities, uncontrolled, are still good to the order of tol.
+        let dk = sol.sensitivity(t1, "y", "k").unwrap();
+        let exact = -t1 * y0 * (-k * t1).exp();
+        assert!((dk - exact).abs() <= 1e3 * tol, "{method:?}: {dk} against {exact}");
+    }
+}

@@ -57,7 +57,7 @@ fn row<M, S>(
     text: &mut String,
     (name, model, with): (&str, M, S),
     (method, tol, atol_factor, t1): (Method, f64, f64, f64),
-    columns: usize,
+    (columns, controlled): (usize, bool),
     target: f64,
 ) where
     M: Model + Simulate,
@@ -66,6 +66,7 @@ fn row<M, S>(
     let options = Options::new().method(method).rtol(tol).atol(tol * atol_factor);
     let alone =
         median_seconds(&|| model.simulate(0.0, t1, &options).map_or(0, |s| s.stats().steps));
+    let options = options.sensitivity_error_control(controlled);
     let both = median_seconds(&|| with.simulate(0.0, t1, &options).map_or(0, |s| s.stats().steps));
     let ratio = both.0 / alone.0;
     let (goal, met) = match target {
@@ -75,7 +76,8 @@ fn row<M, S>(
         _ => ("–".to_string(), "–".to_string()),
     };
     text.push_str(&format!(
-        "| {name} | {method:?} | {tol:.0e} | {columns} | {:.1} µs ({} steps) | {:.1} µs ({} steps) | {ratio:.2} | {goal} | {met} |\n",
+        "| {name} | {method:?} | {tol:.0e} | {columns} | {} | {:.1} µs ({} steps) | {:.1} µs ({} steps) | {ratio:.2} | {goal} | {met} |\n",
+        if controlled { "all" } else { "y only" },
         alone.0 * 1e6,
         alone.1,
         both.0 * 1e6,
@@ -86,7 +88,7 @@ fn row<M, S>(
 /// Writes results/sensitivities.md.
 pub fn sensitivities_section() {
     let mut text = format!(
-        "# What sensitivities cost\n\nMachine: {}. Written by `cd bench && cargo run --release -- --sensitivities` (bench/src/sensitivities.rs). Each time is the median of at least five runs; the ratio is the run with the sensitivities (states and n_p columns, all in the error test) over the model alone, same method and tolerance. Targets: 1 + 0.5·n_p for the implicit methods, 1 + 0.3·n_p for Taylor; the explicit pairs have none (their cost is (1 + n_p) right-hand sides of the base model's size, at best).\n\n| model | method | tol | n_p | alone | with sensitivities | ratio | target | met |\n|---|---|---|---|---|---|---|---|---|\n",
+        "# What sensitivities cost\n\nMachine: {}. Written by `cd bench && cargo run --release -- --sensitivities` (bench/src/sensitivities.rs). Each time is the median of at least five runs; the ratio is the run with the sensitivities (states and n_p columns; in the error test with the states, or left out of it by `Options::sensitivity_error_control(false)`) over the model alone, same method and tolerance. Targets: 1 + 0.5·n_p for the implicit methods, 1 + 0.3·n_p for Taylor; the explicit pairs have none (their cost is (1 + n_p) right-hand sides of the base model's size, at best).\n\n| model | method | tol | n_p | error test | alone | with sensitivities | ratio | target | met |\n|---|---|---|---|---|---|---|---|---|---|\n",
         machine()
     );
     let lv = (
@@ -96,9 +98,12 @@ pub fn sensitivities_section() {
     );
     for tol in [1e-8, 1e-12] {
         for method in [Method::Dopri5, Method::Dop853] {
-            row(&mut text, lv.clone(), (method, tol, 1.0, 10.0), 4, f64::INFINITY);
+            for controlled in [true, false] {
+                let setting = (method, tol, 1.0, 10.0);
+                row(&mut text, lv.clone(), setting, (4, controlled), f64::INFINITY);
+            }
         }
-        row(&mut text, lv.clone(), (Method::Taylor, tol, 1.0, 10.0), 4, 1.0 + 0.3 * 4.0);
+        row(&mut text, lv.clone(), (Method::Taylor, tol, 1.0, 10.0), (4, true), 1.0 + 0.3 * 4.0);
     }
     let rober = (
         "Robertson to t = 1e5",
@@ -107,7 +112,10 @@ pub fn sensitivities_section() {
     );
     for tol in [1e-6, 1e-9] {
         for method in [Method::Radau5, Method::Rodas5P] {
-            row(&mut text, rober.clone(), (method, tol, 1e-6, 1e5), 3, 1.0 + 0.5 * 3.0);
+            for controlled in [true, false] {
+                let setting = (method, tol, 1e-6, 1e5);
+                row(&mut text, rober.clone(), setting, (3, controlled), 1.0 + 0.5 * 3.0);
+            }
         }
     }
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("results/sensitivities.md");

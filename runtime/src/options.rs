@@ -118,6 +118,7 @@ pub struct Options {
     pub(crate) dense_output: bool,
     pub(crate) formulation: Formulation,
     pub(crate) linear_solver: LinearSolver,
+    pub(crate) sensitivity_error_control: bool,
     pub(crate) keep_every: usize,
     pub(crate) stiffness_detection: bool,
     pub(crate) strict_initial_values: bool,
@@ -142,6 +143,7 @@ impl std::fmt::Debug for Options {
             .field("dense_output", &self.dense_output)
             .field("formulation", &self.formulation)
             .field("linear_solver", &self.linear_solver)
+            .field("sensitivity_error_control", &self.sensitivity_error_control)
             .field("keep_every", &self.keep_every)
             .field("stiffness_detection", &self.stiffness_detection)
             .field("strict_initial_values", &self.strict_initial_values)
@@ -173,6 +175,7 @@ impl PartialEq for Options {
             && self.dense_output == other.dense_output
             && self.formulation == other.formulation
             && self.linear_solver == other.linear_solver
+            && self.sensitivity_error_control == other.sensitivity_error_control
             && self.keep_every == other.keep_every
             && self.stiffness_detection == other.stiffness_detection
             && self.strict_initial_values == other.strict_initial_values
@@ -243,6 +246,7 @@ impl Default for Options {
             dense_output: true,
             formulation: Formulation::IndexOneProjected,
             linear_solver: LinearSolver::Auto,
+            sensitivity_error_control: true,
             keep_every: 1,
             stiffness_detection: true,
             strict_initial_values: false,
@@ -400,6 +404,27 @@ impl Options {
     /// [`LinearSolver::Auto`]).
     pub fn linear_solver(&self, linear_solver: LinearSolver) -> Options {
         Options { linear_solver, ..self.clone() }
+    }
+
+    /// Whether the sensitivities of a model made by `with_sensitivities()`
+    /// take part in the step's error test (default `true`). With `false`
+    /// the adaptive methods control the model's own states alone, as
+    /// CVODES does by default (`errconS`): the same steps as a run without
+    /// sensitivities, and sensitivities as accurate as those steps make
+    /// them, which is usually enough for fitting. `Method::Taylor` keeps
+    /// every state in its step rule either way.
+    pub fn sensitivity_error_control(&self, control: bool) -> Options {
+        Options { sensitivity_error_control: control, ..self.clone() }
+    }
+
+    /// The states the error test measures: all, or the model's own where
+    /// sensitivities are left out of it.
+    pub(crate) fn error_states<M: crate::Model>(&self) -> usize {
+        if self.sensitivity_error_control {
+            M::STATES
+        } else {
+            M::STATES / (1 + M::SENSITIVITY_COLUMNS)
+        }
     }
 
     /// The method chosen.

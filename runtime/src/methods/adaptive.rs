@@ -205,6 +205,10 @@ fn integrate_from<M: Model, P: EmbeddedPair>(
     let mut k = vec![M::State::zeros(); P::STAGES + P::DENSE_STAGES];
     let (mut y, mut y_new, mut stage) = (M::State::zeros(), M::State::zeros(), M::State::zeros());
     let mut sk = M::State::zeros();
+    // The error test's states (the model's own, where sensitivities are
+    // left out of it), and the factor from the norm over all to theirs.
+    let n_error = options.error_states::<M>();
+    let error_dilution = (n as f64 / n_error as f64).sqrt();
     let mut dense = vec![0.0; P::DENSE_WIDTH * n];
     let mut rhs = Rhs { model, evals: 0 };
     let mut events = EventWatch::new(model, t0, y0, 1);
@@ -281,7 +285,10 @@ fn integrate_from<M: Model, P: EmbeddedPair>(
             return Err(Error::Evaluation { t: ts, cause, partial: Box::new(solution) });
         }
         scale(atol, rtol, y.as_ref(), y_new.as_ref(), sk.as_mut());
-        let err = P::error(h, &k[..P::STAGES], &sk, M::LANES);
+        // Sensitivities left out of the error test weigh nothing, and the
+        // norm is the one over the states left in it.
+        sk.as_mut()[n_error..].fill(f64::INFINITY);
+        let err = P::error(h, &k[..P::STAGES], &sk, M::LANES) * error_dilution;
         if !err.is_finite() {
             // A stage left the domain of f: retry with a much smaller step,
             // and name the variable if the step underflows.

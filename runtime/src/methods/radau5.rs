@@ -222,6 +222,9 @@ fn step_loop<M: Model>(
     let mut cont = vec![0.0; 4 * n];
     let mut stage = vec![0.0; n];
     let mut scal = vec![0.0; n];
+    // The error test's states (the model's own, where sensitivities are
+    // left out of it); Newton converges on all.
+    let n_error = options.error_states::<M>();
     let mut scratch = vec![0.0; n];
     let mut events = EventWatch::new(model, t0, start, 1);
     let mut projector = Projector::new(model);
@@ -474,10 +477,13 @@ fn step_loop<M: Model>(
             scratch[i] = f2[i] + y0[i];
         }
         newton.solve_real(&mut scratch);
-        let mut err = (scratch.iter().zip(&scal).map(|(e, s)| (e / s).powi(2)).sum::<f64>()
-            / n as f64)
-            .sqrt()
-            .max(1e-10);
+        let estimate = |scratch: &[f64]| {
+            (scratch[..n_error].iter().zip(&scal).map(|(e, s)| (e / s).powi(2)).sum::<f64>()
+                / n_error as f64)
+                .sqrt()
+                .max(1e-10)
+        };
+        let mut err = estimate(&scratch);
         if err >= 1.0 && (first || reject) {
             for i in 0..n {
                 stage[i] = y[i] + scratch[i];
@@ -489,9 +495,7 @@ fn step_loop<M: Model>(
                 scratch[i] = f1[i] + f2[i];
             }
             newton.solve_real(&mut scratch);
-            err = (scratch.iter().zip(&scal).map(|(e, s)| (e / s).powi(2)).sum::<f64>() / n as f64)
-                .sqrt()
-                .max(1e-10);
+            err = estimate(&scratch);
         }
         if !err.is_finite() {
             refresh = retry(&mut h, 0.5, &mut reject, &mut last, caljac);

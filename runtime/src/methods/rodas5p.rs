@@ -285,6 +285,9 @@ pub(crate) fn integrate_watching<M: Model>(
     let Problem { model, t0, t1, y0: start, options } = problem;
     let n = M::STATES;
     let (rtol, atol) = (options.rtol, options.atol);
+    // The error test's states (the model's own, where sensitivities are
+    // left out of it).
+    let n_error = options.error_states::<M>();
     let direction = if t1 >= t0 { 1.0 } else { -1.0 };
     let hmax = options.max_step.unwrap_or((t1 - t0).abs()).min((t1 - t0).abs());
 
@@ -466,13 +469,18 @@ pub(crate) fn integrate_watching<M: Model>(
             .iter()
             .zip(&arg)
             .zip(&y)
-            .map(|((e, new), old)| {
+            .enumerate()
+            .map(|(i, ((e, new), old))| {
                 overflow |= !(new + e).is_finite();
                 let scale = atol + rtol * old.abs().max((new + e).abs());
-                (e / scale).powi(2)
+                if i < n_error {
+                    (e / scale).powi(2)
+                } else {
+                    0.0
+                }
             })
             .sum::<f64>()
-            / n as f64)
+            / n_error as f64)
             .sqrt()
             .max(1e-10);
         if overflow || !err.is_finite() {
