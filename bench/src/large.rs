@@ -192,36 +192,23 @@ impl<M: Benchmark> Large<M> {
     }
 
     fn ida(&self, tol: f64) -> Option<(Vec<f64>, usize)> {
-        let mut y = vec![0.0; M::STATES];
-        self.phases[0].1.initial_state(&mut y);
-        let (mut t, mut steps) = (0.0, 0);
-        for (end, model) in &self.phases {
-            let mut system = sundials::structured::ModelSystem(model);
-            let atol = tol * self.atol_factor;
-            let (next, counts) = sundials::ida_structured::solve(
-                &mut system,
-                t,
-                &y,
-                *end,
-                (tol, atol),
-                self.linear,
-            )?;
-            y = next;
-            steps += counts.steps;
-            t = *end;
-        }
-        Some((y, steps))
+        self.by_sundials(tol, sundials::ida_structured::solve)
     }
 
     fn cvode(&self, tol: f64) -> Option<(Vec<f64>, usize)> {
+        self.by_sundials(tol, sundials::cvode::solve)
+    }
+
+    /// The phases one after the other by a SUNDIALS integrator (CVODE's or
+    /// IDA's `solve`), each from where the last ended.
+    fn by_sundials<'s>(&'s self, tol: f64, solve: Solve<'s, M>) -> Option<(Vec<f64>, usize)> {
         let mut y = vec![0.0; M::STATES];
         self.phases[0].1.initial_state(&mut y);
         let (mut t, mut steps) = (0.0, 0);
         for (end, model) in &self.phases {
             let mut system = sundials::structured::ModelSystem(model);
             let atol = tol * self.atol_factor;
-            let (next, counts) =
-                sundials::cvode::solve(&mut system, t, &y, *end, (tol, atol), self.linear)?;
+            let (next, counts) = solve(&mut system, t, &y, *end, (tol, atol), self.linear)?;
             y = next;
             steps += counts.steps;
             t = *end;
@@ -229,6 +216,16 @@ impl<M: Benchmark> Large<M> {
         Some((y, steps))
     }
 }
+
+/// A SUNDIALS integrator's `solve` on a model's phase.
+type Solve<'m, M> = fn(
+    &mut sundials::structured::ModelSystem<'m, M>,
+    f64,
+    &[f64],
+    f64,
+    (f64, f64),
+    sundials::cvode::Linear,
+) -> Option<(Vec<f64>, sundials::cvode::Counts)>;
 
 /// The median time of `run` over three runs, or more while they take
 /// under a second in all (up to 51: a 1-D solve takes 20 ms, and three of

@@ -61,6 +61,26 @@ pub struct Counts {
     pub jacobian_evals: usize,
 }
 
+/// A SUNDIALS counter's getter (`CVodeGetNumSteps`, `IDAGetNumSteps`, …).
+pub(crate) type Getter = unsafe extern "C" fn(*mut c_void, *mut c_long) -> c_int;
+
+impl Counts {
+    /// The counters `getters` read from an integrator's memory `mem`:
+    /// steps, right-hand sides (residuals), error-test failures, Jacobian
+    /// (or preconditioner) evaluations.
+    ///
+    /// # Safety
+    /// `mem` is the memory of the integrator the getters belong to.
+    pub(crate) unsafe fn read(mem: *mut c_void, getters: [Getter; 4]) -> Counts {
+        let [steps, rhs, failures, jacobians] = getters.map(|get| {
+            let mut value: c_long = 0;
+            get(mem, &mut value);
+            value as usize
+        });
+        Counts { steps, rhs_evals: rhs, error_test_failures: failures, jacobian_evals: jacobians }
+    }
+}
+
 /// What the callbacks see through CVODE's `user_data`.
 struct Callbacks<'a, S: System> {
     system: &'a mut S,
@@ -202,6 +222,45 @@ pub(crate) fn compressed_columns(
     (slot, start)
 }
 
+/// The matrix (null for GMRES) and the linear solver `linear` calls for,
+/// for systems of `len` states with bandwidths `(ml, mu)` and `nnz`
+/// non-zeros.
+///
+/// # Safety
+/// `y` is a serial vector of `len` values of context `ctx`.
+pub(crate) unsafe fn matrix_and_solver(
+    linear: Linear,
+    y: sun::N_Vector,
+    (len, ml, mu, nnz): (sun::sunindextype, usize, usize, usize),
+    ctx: sun::SUNContext,
+) -> (sun::SUNMatrix, sun::SUNLinearSolver) {
+    match linear {
+        Linear::Dense => {
+            let a = sun::SUNDenseMatrix(len, len, ctx);
+            (a, sun::SUNLinSol_Dense(y, a, ctx))
+        }
+        Linear::Band => {
+            let a = sun::SUNBandMatrix(len, mu as sun::sunindextype, ml as sun::sunindextype, ctx);
+            (a, sun::SUNLinSol_Band(y, a, ctx))
+        }
+        Linear::Klu => {
+            let a = sun::SUNSparseMatrix(
+                len,
+                len,
+                nnz as sun::sunindextype,
+                sun::CSC_MAT as c_int,
+                ctx,
+            );
+            (a, sun::SUNLinSol_KLU(y, a, ctx))
+        }
+        Linear::Gmres { .. } => {
+            // SPGMR's default Krylov dimension (5), as cvDiurnal_kry.
+            let ls = sun::SUNLinSol_SPGMR(y, sun::SUN_PREC_LEFT as c_int, 0, ctx);
+            (std::ptr::null_mut(), ls)
+        }
+    }
+}
+
 /// Integrates `system` from `(t0, y0)` to `t1` by CVODE's BDF at (rtol,
 /// atol) with `linear`: the final state and the counters, or `None` where
 /// it stopped short.
@@ -230,32 +289,7 @@ pub fn solve<S: System>(
     // the callbacks outlive the solve.
     unsafe {
         let ctx = objects.ctx;
-        let (a, ls) = match linear {
-            Linear::Dense => {
-                let a = sun::SUNDenseMatrix(len, len, ctx);
-                (a, sun::SUNLinSol_Dense(y, a, ctx))
-            }
-            Linear::Band => {
-                let a =
-                    sun::SUNBandMatrix(len, mu as sun::sunindextype, ml as sun::sunindextype, ctx);
-                (a, sun::SUNLinSol_Band(y, a, ctx))
-            }
-            Linear::Klu => {
-                let a = sun::SUNSparseMatrix(
-                    len,
-                    len,
-                    nnz as sun::sunindextype,
-                    sun::CSC_MAT as c_int,
-                    ctx,
-                );
-                (a, sun::SUNLinSol_KLU(y, a, ctx))
-            }
-            Linear::Gmres { .. } => {
-                // SPGMR's default Krylov dimension (5), as cvDiurnal_kry.
-                let ls = sun::SUNLinSol_SPGMR(y, sun::SUN_PREC_LEFT as c_int, 0, ctx);
-                (std::ptr::null_mut(), ls)
-            }
-        };
+        let (a, ls) = matrix_and_solver(linear, y, (len, ml, mu, nnz), ctx);
         let krylov = matches!(linear, Linear::Gmres { .. });
         (objects.matrix, objects.solver) = (a, ls);
         let mut mem = sun::CVodeCreate(sun::CV_BDF, ctx);
@@ -285,21 +319,17 @@ pub fn solve<S: System>(
         }
         let mut counts = Counts::default();
         if ok {
-            let count = |get: unsafe extern "C" fn(*mut c_void, *mut c_long) -> c_int| {
-                let mut value: c_long = 0;
-                get(mem, &mut value);
-                value as usize
-            };
-            counts = Counts {
-                steps: count(sun::CVodeGetNumSteps),
-                rhs_evals: count(sun::CVodeGetNumRhsEvals),
-                error_test_failures: count(sun::CVodeGetNumErrTestFails),
-                jacobian_evals: if krylov {
-                    count(sun::CVodeGetNumPrecEvals)
-                } else {
-                    count(sun::CVodeGetNumJacEvals)
-                },
-            };
+            let jacobian_count =
+                if krylov { sun::CVodeGetNumPrecEvals } else { sun::CVodeGetNumJacEvals };
+            counts = Counts::read(
+                mem,
+                [
+                    sun::CVodeGetNumSteps,
+                    sun::CVodeGetNumRhsEvals,
+                    sun::CVodeGetNumErrTestFails,
+                    jacobian_count,
+                ],
+            );
         }
         let out = values(y, n).to_vec();
         sun::CVodeFree(&mut mem);

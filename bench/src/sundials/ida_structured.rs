@@ -6,9 +6,9 @@
 //! (as ModelingToolkit's and OpenModelica's users do) meet large problems.
 
 use super::block_jacobi::BlockJacobi;
-use super::cvode::{bandwidths, compressed_columns, Counts, Linear, System};
+use super::cvode::{bandwidths, compressed_columns, matrix_and_solver, Counts, Linear, System};
 use super::{quiet, values, Objects};
-use std::os::raw::{c_int, c_long, c_void};
+use std::os::raw::{c_int, c_void};
 use sundials_sys as sun;
 
 /// What the callbacks see through IDA's `user_data`.
@@ -191,31 +191,7 @@ pub fn solve<S: System>(
     // the callbacks outlive the solve.
     unsafe {
         let ctx = objects.ctx;
-        let (a, ls) = match linear {
-            Linear::Dense => {
-                let a = sun::SUNDenseMatrix(len, len, ctx);
-                (a, sun::SUNLinSol_Dense(y, a, ctx))
-            }
-            Linear::Band => {
-                let a =
-                    sun::SUNBandMatrix(len, mu as sun::sunindextype, ml as sun::sunindextype, ctx);
-                (a, sun::SUNLinSol_Band(y, a, ctx))
-            }
-            Linear::Klu => {
-                let a = sun::SUNSparseMatrix(
-                    len,
-                    len,
-                    nnz as sun::sunindextype,
-                    sun::CSC_MAT as c_int,
-                    ctx,
-                );
-                (a, sun::SUNLinSol_KLU(y, a, ctx))
-            }
-            Linear::Gmres { .. } => {
-                let ls = sun::SUNLinSol_SPGMR(y, sun::SUN_PREC_LEFT as c_int, 0, ctx);
-                (std::ptr::null_mut(), ls)
-            }
-        };
+        let (a, ls) = matrix_and_solver(linear, y, (len, ml, mu, nnz), ctx);
         let krylov = matches!(linear, Linear::Gmres { .. });
         (objects.matrix, objects.solver) = (a, ls);
         let mut mem = sun::IDACreate(ctx);
@@ -245,21 +221,17 @@ pub fn solve<S: System>(
         }
         let mut counts = Counts::default();
         if ok {
-            let count = |get: unsafe extern "C" fn(*mut c_void, *mut c_long) -> c_int| {
-                let mut value: c_long = 0;
-                get(mem, &mut value);
-                value as usize
-            };
-            counts = Counts {
-                steps: count(sun::IDAGetNumSteps),
-                rhs_evals: count(sun::IDAGetNumResEvals),
-                error_test_failures: count(sun::IDAGetNumErrTestFails),
-                jacobian_evals: if krylov {
-                    count(sun::IDAGetNumPrecEvals)
-                } else {
-                    count(sun::IDAGetNumJacEvals)
-                },
-            };
+            let jacobian_count =
+                if krylov { sun::IDAGetNumPrecEvals } else { sun::IDAGetNumJacEvals };
+            counts = Counts::read(
+                mem,
+                [
+                    sun::IDAGetNumSteps,
+                    sun::IDAGetNumResEvals,
+                    sun::IDAGetNumErrTestFails,
+                    jacobian_count,
+                ],
+            );
         }
         let out = values(y, n).to_vec();
         sun::IDAFree(&mut mem);
