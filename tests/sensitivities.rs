@@ -62,28 +62,20 @@ fn a_sensitivity_the_run_does_not_have_is_an_error_that_lists_the_names() {
     assert!(e.contains("d(y)/d(q)") && e.contains("d(y)/d(k)"), "{e}");
 }
 
-/// Robertson's reactions (Hairer–Wanner II, §IV.1) with the sensitivities
-/// to their three rate constants: stiff, so the implicit methods factor
-/// the base model's 3 × 3 matrix and substitute the columns.
-#[dae_model(sensitivities = [k1, k2, k3])]
-fn robertson() {
-    let k1 = param(0.04);
-    let k2 = param(3.0e7);
-    let k3 = param(1.0e4);
-    let y1 = state(1.0);
-    let y2 = state(0.0);
-    let y3 = state(0.0);
-    der(y1) == -k1 * y1 + k3 * y2 * y3;
-    der(y2) == k1 * y1 - k3 * y2 * y3 - k2 * y2 * y2;
-    der(y3) == k2 * y2 * y2;
-}
+include!("models/stiff.rs");
+
+// Robertson's reactions with the sensitivities to their three rate
+// constants: stiff, so the implicit methods factor the base model's 3 × 3
+// matrix and substitute the columns.
+robertson_rates_model!(sensitivities = [k1, k2, k3]);
 
 #[test]
 fn robertsons_rate_sensitivities_match_central_differences_to_six_digits() {
     let t1 = 40.0;
     let tight = Options::new().method(Method::Radau5).rtol(1e-12).atol(1e-20);
-    let final_state = |m: Robertson| m.simulate(0.0, t1, &tight).unwrap().final_state().to_vec();
-    let base = Robertson::default();
+    let final_state =
+        |m: RobertsonRates| m.simulate(0.0, t1, &tight).unwrap().final_state().to_vec();
+    let base = RobertsonRates::default();
     let mut differences = Vec::new();
     for (k, name) in ["k1", "k2", "k3"].iter().enumerate() {
         let value = [base.k1, base.k2, base.k3][k];

@@ -126,6 +126,8 @@ robertson_model!(
         .atol_factor(1e-6)
         .peer("robertson_1e11")
 );
+// Its rate constants as parameters, with their sensitivities (`--sensitivities`).
+robertson_rates_model!(sensitivities = [k1, k2, k3]);
 low_pass_model!();
 hires_model!(
     bench = Bench::until(321.8122)

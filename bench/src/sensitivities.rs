@@ -3,7 +3,8 @@
 //! states and n_p sensitivity columns) against a run of the model alone,
 //! same method and tolerances, as time ratios; the targets are
 //! ≤ 1 + 0.5·n_p for the implicit methods (which factor the base model's
-//! matrix once for every column) and ≤ 1 + 0.3·n_p for Taylor.
+//! matrix once for every column) and ≤ 1 + 0.3·n_p for Taylor. Robertson's
+//! model with its rates as parameters is the tests' (`main.rs`).
 
 use crate::*;
 
@@ -19,21 +20,6 @@ fn lotka_volterra() {
     let y = state(5.0);
     der(x) == a * x - b * x * y;
     der(y) == c * x * y - d * y;
-}
-
-/// Robertson's reactions (Hairer–Wanner II, §IV.1), stiff, with the
-/// sensitivities to its three rate constants.
-#[dae_model(sensitivities = [k1, k2, k3])]
-fn robertson_rates() {
-    let k1 = param(0.04);
-    let k2 = param(3.0e7);
-    let k3 = param(1.0e4);
-    let y1 = state(1.0);
-    let y2 = state(0.0);
-    let y3 = state(0.0);
-    der(y1) == -k1 * y1 + k3 * y2 * y3;
-    der(y2) == k1 * y1 - k3 * y2 * y3 - k2 * y2 * y2;
-    der(y3) == k2 * y2 * y2;
 }
 
 /// The median of `runs` timings of `run` (at least 5, more while under

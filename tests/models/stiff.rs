@@ -38,6 +38,26 @@ fn robertson() {
     };
 }
 
+#[allow(unused_macros)]
+macro_rules! robertson_rates_model {
+    ($($arguments:tt)*) => {
+/// Robertson's kinetics with its three rate constants as parameters (for
+/// their sensitivities).
+#[dae_model($($arguments)*)]
+fn robertson_rates() {
+    let k1 = param(0.04);
+    let k2 = param(3.0e7);
+    let k3 = param(1.0e4);
+    let y1 = state(1.0);
+    let y2 = state(0.0);
+    let y3 = state(0.0);
+    der(y1) == -k1 * y1 + k3 * y2 * y3;
+    der(y2) == k1 * y1 - k3 * y2 * y3 - k2 * y2 * y2;
+    der(y3) == k2 * y2 * y2;
+}
+    };
+}
+
 /// Robertson's kinetics as a semi-explicit index-1 DAE: the third equation
 /// replaced by the conservation law it implies (Hairer–Wanner II §IV.10),
 /// which the macro solves for y3.
