@@ -43,12 +43,7 @@ pub fn emit_program(
     symbol: &dyn Fn(SymbolId) -> TokenStream,
     assign: &dyn Fn(usize, TokenStream) -> TokenStream,
 ) -> TokenStream {
-    let mut symbols: Vec<Option<String>> = vec![None; g.symbols().count()];
-    for id in g.reachable(&program.outputs) {
-        if let Node::Symbol(s) = g.node(id) {
-            symbols[s.index()] = Some(symbol(*s).to_string());
-        }
-    }
+    let symbols = symbol_texts(g, program, symbol);
     let e = Emitter::new(g, program, symbols);
     let mut text = String::new();
     for t in &program.temps {
@@ -94,12 +89,7 @@ pub fn emit_rolled_program(
     (array, targets): (&str, &[usize]),
     states: &str,
 ) -> TokenStream {
-    let mut symbols: Vec<Option<String>> = vec![None; g.symbols().count()];
-    for id in g.reachable(&program.outputs) {
-        if let Node::Symbol(s) = g.node(id) {
-            symbols[s.index()] = Some(symbol(*s).to_string());
-        }
-    }
+    let symbols = symbol_texts(g, program, symbol);
     // The temporaries that depend on the states: inlined in a loop's body.
     let varying = varying_temps(g, program, state_slot);
     let plain = Emitter::new(g, program, symbols.clone());
@@ -272,6 +262,21 @@ fn needed_temps(g: &Graph, program: &Program, rolled: &[bool]) -> Vec<bool> {
         stack.extend_from_slice(g.operands(id));
     }
     needed
+}
+
+/// How each symbol the program reads is written (`None`: not read).
+fn symbol_texts(
+    g: &Graph,
+    program: &Program,
+    symbol: &dyn Fn(SymbolId) -> TokenStream,
+) -> Vec<Option<String>> {
+    let mut symbols: Vec<Option<String>> = vec![None; g.symbols().count()];
+    for id in g.reachable(&program.outputs) {
+        if let Node::Symbol(s) = g.node(id) {
+            symbols[s.index()] = Some(symbol(*s).to_string());
+        }
+    }
+    symbols
 }
 
 /// Lexes emitted text. It is well-formed by construction; should it ever not

@@ -102,15 +102,19 @@ impl Newton {
         shifts: Shifts,
     ) -> (Newton, f64) {
         let (structure, operations) = Structure::of(n, pattern);
+        (Newton::in_structure(n, structure, shifts), operations)
+    }
+
+    /// The matrices of `n` states stored as `structure` says.
+    pub(crate) fn in_structure(n: usize, structure: Structure, shifts: Shifts) -> Newton {
         let complex = shifts == Shifts::RealAndComplex;
-        let newton = match structure {
+        match structure {
             Structure::Dense => Newton::dense(n, shifts),
             Structure::Band(ordering) => Newton::Band(Box::new(BandNewton::new(ordering, complex))),
             Structure::Sparse(sparse) => {
                 Newton::Sparse(Box::new(SparseNewton::new(sparse, complex)))
             }
-        };
-        (newton, operations)
+        }
     }
 
     /// The matrices of a model whose states are `n` base states and

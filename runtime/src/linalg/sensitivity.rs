@@ -87,32 +87,19 @@ impl SensitivityNewton {
         for (v, &(_, _, k)) in self.coupling_values.iter_mut().zip(&self.coupling) {
             *v = values[k];
         }
-        if !self.dense.is_empty() {
-            self.scatter(base_values);
-        }
-        match self.base.factor_from(
-            gamma,
-            complex,
-            &[],
-            &self.dense,
-            base_values,
-            self.base_pattern,
-        ) {
-            Factored::NeedsDenseJacobian => {
-                // The sparse LU gave way to the dense one: the base block's
-                // dense matrix comes from the same non-zeros.
-                self.dense = vec![0.0; self.n * self.n];
+        loop {
+            if !self.dense.is_empty() {
                 self.scatter(base_values);
-                self.base.factor_from(
-                    gamma,
-                    complex,
-                    &[],
-                    &self.dense,
-                    base_values,
-                    self.base_pattern,
-                )
             }
-            other => other,
+            let (dense, pattern) = (&self.dense, self.base_pattern);
+            match self.base.factor_from(gamma, complex, &[], dense, base_values, pattern) {
+                // The sparse LU gave way to the dense one: the base block's
+                // dense matrix comes from the same non-zeros (once).
+                Factored::NeedsDenseJacobian if self.dense.is_empty() => {
+                    self.dense = vec![0.0; self.n * self.n];
+                }
+                other => return other,
+            }
         }
     }
 

@@ -177,6 +177,11 @@ const KRYLOV_FROM: usize = 1000;
 /// under `Auto` where a large pattern calls for a sparse LU (a grid no
 /// renumbering bands, whose LU fills in).
 pub(crate) fn krylov_for<M: Model>(choice: LinearSolver) -> bool {
+    krylov_in::<M>(choice, &Structure::of(M::STATES, M::JACOBIAN_PATTERN).0)
+}
+
+/// [`krylov_for`], the pattern's storage known.
+fn krylov_in<M: Model>(choice: LinearSolver, structure: &Structure) -> bool {
     match choice {
         LinearSolver::Krylov => true,
         LinearSolver::Direct => false,
@@ -184,8 +189,25 @@ pub(crate) fn krylov_for<M: Model>(choice: LinearSolver) -> bool {
             M::SENSITIVITY_COLUMNS == 0
                 && M::STATES >= KRYLOV_FROM
                 && !has_mass_matrix::<M>()
-                && matches!(Structure::of(M::STATES, M::JACOBIAN_PATTERN).0, Structure::Sparse(_))
+                && matches!(structure, Structure::Sparse(_))
         }
+    }
+}
+
+/// RODAS5P's matrices for `M` with Jacobian `pattern` (empty for a mass
+/// matrix): the base block's for a model with sensitivities, GMRES where
+/// [`krylov_for`] says, else the factorisation the pattern calls for.
+fn linear_systems<M: Model>(pattern: &'static [(usize, usize)], choice: LinearSolver) -> Newton {
+    let n = M::STATES;
+    if M::SENSITIVITY_COLUMNS > 0 && !pattern.is_empty() {
+        let columns = M::SENSITIVITY_COLUMNS;
+        return Newton::for_sensitivities(n / (1 + columns), columns, pattern, Shifts::Real).0;
+    }
+    let (structure, _) = Structure::of(n, pattern);
+    if krylov_in::<M>(choice, &structure) {
+        Newton::krylov(n, pattern)
+    } else {
+        Newton::in_structure(n, structure, Shifts::Real)
     }
 }
 
@@ -299,14 +321,7 @@ pub(crate) fn integrate_watching<M: Model>(
         crate::model::dense_mass_matrix(model)
     };
     let pattern = if has_mass_matrix::<M>() { &[] } else { M::JACOBIAN_PATTERN };
-    let mut newton = if M::SENSITIVITY_COLUMNS > 0 && !pattern.is_empty() {
-        let columns = M::SENSITIVITY_COLUMNS;
-        Newton::for_sensitivities(n / (1 + columns), columns, pattern, Shifts::Real).0
-    } else if krylov_for::<M>(options.linear_solver) {
-        Newton::krylov(n, pattern)
-    } else {
-        Newton::for_pattern(n, pattern, Shifts::Real).0
-    };
+    let mut newton = linear_systems::<M>(pattern, options.linear_solver);
     let mut d = Derivatives {
         model,
         jacobian: DenseJacobian::with_matrix::<M>(newton.dense_jacobian()),
