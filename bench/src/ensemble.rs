@@ -13,21 +13,8 @@
 use crate::*;
 use daegen::Ensemble;
 
-/// Robertson's kinetics (test set `rober`) with its rate constants as
-/// parameters (examples/robertson.rs writes the same model: an example is
-/// read alone).
-#[dae_model]
-fn robertson_rates() {
-    let k1 = param(0.04);
-    let k2 = param(3e7);
-    let k3 = param(1e4);
-    let y1 = state(1.0);
-    let y2 = state(0.0);
-    let y3 = state(0.0);
-    der(y1) == -k1 * y1 + k3 * y2 * y3;
-    der(y2) == k1 * y1 - k3 * y2 * y3 - k2 * y2 * y2;
-    der(y3) == k2 * y2 * y2;
-}
+// Robertson's kinetics with its rate constants as parameters is the
+// tests' `robertson_rates_model!` (main.rs).
 
 /// u in [0, 1) from SplitMix64 of `i` (Steele, Lea and Flood 2014).
 fn uniform(i: u64) -> f64 {
