@@ -276,6 +276,13 @@ contract_pendulum!(expansion_test! {
     cartesian_pendulum_as_an_index_3_dae, (), ["Pendulum::rhs", "Pendulum::constraints", "Pendulum::constraint_jacobian", "Pendulum::CONSTRAINTS", "PendulumMassForm::rhs"],
 });
 
+// The same pendulum with its sensitivities to its length: each constraint
+// linearised along the column (Φ_y·S + Φ_l), projected after the model's
+// own levels on the column's states.
+contract_pendulum!(expansion_test! {
+    cartesian_pendulum_with_sensitivities, (sensitivities = [l]), ["PendulumSensitivities::constraints", "PendulumSensitivities::PROJECTION", "PendulumSensitivities::CONSTRAINTS"],
+});
+
 double_pendulum_cartesian!(expansion_test! {
     cartesian_double_pendulum_reduces_its_kkt_system_to_the_multipliers, (), ["DoublePendulumCartesian::rhs", "DoublePendulumCartesian::output", "DoublePendulumCartesian::constraints"],
 } {});

@@ -141,3 +141,188 @@ fn sensitivities_left_out_of_the_error_test_leave_the_steps_to_the_states() {
         assert!((dk - exact).abs() <= 1e3 * tol, "{method:?}: {dk} against {exact}");
     }
 }
+
+/// x′ = −a·x + b·y, y′ = −b·x − a·y from (1, 0): a damped rotation,
+/// x = e^(−at)·cos bt, y = −e^(−at)·sin bt, so ∂x/∂a = −t·x, ∂y/∂a = −t·y,
+/// ∂x/∂b = −t·e^(−at)·sin bt = t·y, ∂y/∂b = −t·e^(−at)·cos bt = −t·x.
+#[dae_model(sensitivities = [a, b])]
+fn damped_rotation() {
+    let a = param(0.3);
+    let b = param(2.0);
+    let x = state(1.0);
+    let y = state(0.0);
+    der(x) == -a * x + b * y;
+    der(y) == -b * x - a * y;
+}
+
+#[test]
+fn a_linear_systems_sensitivities_follow_the_exact_ones() {
+    let model = DampedRotation::default();
+    let (a, b, tol) = (model.a, model.b, 1e-10);
+    for method in METHODS {
+        let opts = Options::new().method(method).tolerance(tol);
+        let sol = model.with_sensitivities().simulate(0.0, 5.0, &opts).unwrap();
+        for t in [0.7, 2.5, 5.0] {
+            let (x, y) = ((-a * t).exp() * (b * t).cos(), -(-a * t).exp() * (b * t).sin());
+            let exact =
+                [("x", "a", -t * x), ("y", "a", -t * y), ("x", "b", t * y), ("y", "b", -t * x)];
+            for (state, wrt, want) in exact {
+                let got = sol.sensitivity(t, state, wrt).unwrap();
+                assert!(
+                    (got - want).abs() <= 1e3 * tol,
+                    "{method:?} t = {t}: ∂{state}/∂{wrt} {got} against {want}"
+                );
+            }
+        }
+    }
+}
+
+include!("models/items.rs");
+
+// The contract's pendulum, an index-3 DAE in x, y, u, v, with the
+// sensitivities to its length and to gravity.
+contract_pendulum!(dae_model_with! { (sensitivities = [l, g], taylor = 1) });
+
+/// The same pendulum in its angle from the downward vertical
+/// (x = l·sin θ, y = −l·cos θ), released at rest from θ = π/2.
+#[dae_model(sensitivities = [l, g])]
+fn pendulum_angle() {
+    let l = param(1.0);
+    let g = param(9.81);
+    let theta = state(1.5707963267948966);
+    init(der(theta), 0.0);
+    l * der(der(theta)) == -g * sin(theta);
+}
+
+/// ∂θ/∂w of the Cartesian pendulum: θ = atan2(x, −y), so
+/// dθ = (−y·dx + x·dy)/(x² + y²).
+fn angle_sensitivity(sol: &Solution, t: f64, wrt: &str) -> f64 {
+    let (x, y) = (sol.at(t, "x").unwrap(), sol.at(t, "y").unwrap());
+    let (dx, dy) = (sol.sensitivity(t, "x", wrt).unwrap(), sol.sensitivity(t, "y", wrt).unwrap());
+    (-y * dx + x * dy) / (x * x + y * y)
+}
+
+#[test]
+fn the_dae_pendulums_sensitivities_match_the_angle_forms_and_its_central_differences() {
+    let t1 = 3.0;
+    let angle = PendulumAngle::default();
+    let tight = Options::new().method(Method::Dop853).tolerance(1e-13);
+    // ∂θ/∂l and ∂θ/∂g of the angle ODE by central differences (δ = 1e-4·w:
+    // truncation ≈ δ² ≈ 1e-8 relative).
+    let theta_at = |m: PendulumAngle| m.simulate(0.0, t1, &tight).unwrap().last("theta").unwrap();
+    let difference = |shift: &dyn Fn(&mut PendulumAngle, f64), value: f64| {
+        let delta = 1e-4 * value;
+        let (mut up, mut down) = (angle, angle);
+        shift(&mut up, delta);
+        shift(&mut down, -delta);
+        (theta_at(up) - theta_at(down)) / (2.0 * delta)
+    };
+    let by_l = difference(&|m, d| m.l += d, angle.l);
+    let by_g = difference(&|m, d| m.g += d, angle.g);
+    // The angle form's own sensitivities agree with them.
+    let angle_sol = angle.with_sensitivities().simulate(0.0, t1, &tight).unwrap();
+    for (wrt, fd) in [("l", by_l), ("g", by_g)] {
+        let got = angle_sol.sensitivity(t1, "theta", wrt).unwrap();
+        assert!((got - fd).abs() <= 1e-6 * fd.abs(), "angle form ∂θ/∂{wrt} {got} against {fd}");
+    }
+    let model = Pendulum::default();
+    for method in [Method::Dop853, Method::Dopri5, Method::Radau5, Method::Rodas5P, Method::Taylor]
+    {
+        let opts = Options::new().method(method).tolerance(1e-11);
+        let sol = model.with_sensitivities().simulate(0.0, t1, &opts).unwrap();
+        for (wrt, fd) in [("l", by_l), ("g", by_g)] {
+            let got = angle_sensitivity(&sol, t1, wrt);
+            // Six digits.
+            assert!(
+                (got - fd).abs() <= 1e-6 * fd.abs(),
+                "{method:?}: ∂θ/∂{wrt} {got} against {fd}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_dae_pendulums_sensitivities_keep_the_linearised_constraints_at_every_step() {
+    let model = Pendulum::default();
+    let l = model.l;
+    for method in [Method::Dop853, Method::Radau5, Method::Rodas5P, Method::Taylor] {
+        let opts = Options::new().method(method).tolerance(1e-8);
+        let sol = model.with_sensitivities().simulate(0.0, 20.0, &opts).unwrap();
+        let (mut position, mut velocity) = (0.0f64, 0.0f64);
+        for &t in sol.times() {
+            let at = |name: &str| sol.at(t, name).unwrap();
+            let (x, y, u, v) = (at("x"), at("y"), at("u"), at("v"));
+            for wrt in ["l", "g"] {
+                let s = |name: &str| sol.sensitivity(t, name, wrt).unwrap();
+                // Φ = x² + y² − l²: Φ_y·S + Φ_w = 0, and its time derivative.
+                let phi_w = if wrt == "l" { -2.0 * l } else { 0.0 };
+                position = position.max((2.0 * x * s("x") + 2.0 * y * s("y") + phi_w).abs());
+                velocity = velocity.max(
+                    (2.0 * u * s("x") + 2.0 * v * s("y") + 2.0 * x * s("u") + 2.0 * y * s("v"))
+                        .abs(),
+                );
+            }
+        }
+        // Projected after every step: to rounding of the sensitivities'
+        // size (∂y/∂g grows like t² to ≈ 10 over 20 s).
+        assert!(position <= 1e-12 && velocity <= 1e-12, "{method:?}: {position:e}, {velocity:e}");
+    }
+}
+
+// Two unit masses on unit rods in Cartesian coordinates (two constraints,
+// each with its velocity level) with the sensitivities to gravity.
+double_pendulum_cartesian!(dae_model_with! { (sensitivities = [g]) } {});
+
+/// The same double pendulum in its angles from the downward vertical,
+/// released with both rods horizontal.
+#[dae_model(sensitivities = [g])]
+fn double_pendulum_angles() {
+    let g = param(9.81);
+    let a = state(1.5707963267948966);
+    let b = state(1.5707963267948966);
+    let c = cos(a - b);
+    let s = sin(a - b);
+    2.0 * der(der(a)) + c * der(der(b)) == -s * der(b) * der(b) - 2.0 * g * sin(a);
+    c * der(der(a)) + der(der(b)) == s * der(a) * der(a) - g * sin(b);
+}
+
+#[test]
+fn the_cartesian_double_pendulums_gravity_sensitivities_follow_the_angle_forms() {
+    let reference = DoublePendulumAngles::default()
+        .with_sensitivities()
+        .simulate(0.0, 1.5, &Options::new().method(Method::Dop853).tolerance(1e-13))
+        .unwrap();
+    for method in [Method::Dop853, Method::Radau5, Method::Rodas5P] {
+        let opts = Options::new().method(method).tolerance(1e-11);
+        let sol = DoublePendulumCartesian::default().with_sensitivities().simulate(0.0, 1.5, &opts);
+        let sol = sol.unwrap();
+        for t in [0.5, 1.0, 1.5] {
+            let (a, b) = (reference.at(t, "a").unwrap(), reference.at(t, "b").unwrap());
+            let da = reference.sensitivity(t, "a", "g").unwrap();
+            let db = reference.sensitivity(t, "b", "g").unwrap();
+            // x2 = sin a + sin b, y2 = −cos a − cos b.
+            let want = [a.cos() * da + b.cos() * db, a.sin() * da + b.sin() * db];
+            let got =
+                [sol.sensitivity(t, "x2", "g").unwrap(), sol.sensitivity(t, "y2", "g").unwrap()];
+            for (w, g) in want.iter().zip(got) {
+                assert!(
+                    (g - w).abs() <= 1e-6 * want[0].abs().max(want[1].abs()),
+                    "{method:?} t = {t}: {got:?} against {want:?}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_mass_matrix_formulation_is_refused_with_sensitivities_saying_what_runs_them() {
+    let opts = Options::new().formulation(Formulation::MassMatrix);
+    let e = Pendulum::default().with_sensitivities().simulate(0.0, 1.0, &opts).unwrap_err();
+    let message = e.to_string();
+    assert!(
+        message.contains("IndexOneProjected") && message.contains("sensitivities"),
+        "{message}"
+    );
+    // The model alone has that form.
+    assert!(Pendulum::default().simulate(0.0, 1.0, &opts).is_ok());
+}

@@ -9,16 +9,15 @@ fn decay() {
     der(x) == -k * x;
 }
 
-/// Sensitivities of a DAE are not generated yet.
-#[dae_model(sensitivities = [l])]
-fn pendulum() {
-    let l = param(1.0);
-    let x = state(1.0);
-    let y = state(0.0);
-    let lambda = algebraic(0.0);
-    der(der(x)) == -lambda * x;
-    der(der(y)) == -lambda * y - 9.81;
-    constraint(x * x + y * y - l * l);
+/// An algebraic equation solved by Newton at run time: its sensitivities
+/// are not generated.
+#[dae_model(sensitivities = [k])]
+fn square_root_decay() {
+    let k = param(1.0);
+    let y = state(1.0);
+    let z = algebraic(0.9);
+    der(y) == -k * z;
+    z * z == y;
 }
 
 fn main() {}

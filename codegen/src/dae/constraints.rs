@@ -26,6 +26,9 @@ pub fn projection_levels(
     sys: &FirstOrder,
     slot_of: &FxHashMap<SymbolId, usize>,
 ) -> Vec<ProjectionLevel> {
+    if let Some(levels) = &sys.projection {
+        return levels.clone();
+    }
     let deepest = sys.invariants.iter().map(|i| i.level).max();
     let mut levels = Vec::new();
     let mut lower: Vec<usize> = Vec::new();

@@ -56,6 +56,10 @@ pub struct FirstOrder {
     pub algebraics: Vec<AlgebraicValue>,
     /// Constraints and hidden constraints to project onto.
     pub invariants: Vec<crate::dae::index_reduction::Invariant>,
+    /// Projection levels fixed by construction (a variational system's:
+    /// the model's levels, then the same levels for each sensitivity
+    /// column); `None` to group the invariants by level.
+    pub projection: Option<Vec<crate::dae::constraints::ProjectionLevel>>,
     /// The differentiation index.
     pub index: usize,
     /// Unknowns solved at run time: symbol, block, row.
@@ -206,6 +210,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         events,
         algebraics,
         invariants,
+        projection: None,
         index: reduction.index,
         block_unknowns,
         residuals,

@@ -7,6 +7,8 @@
 //! their subexpressions with the right-hand side when emitted, and every
 //! method integrates the result as it integrates any model.
 
+use crate::dae::constraints::ProjectionLevel;
+use crate::dae::index_reduction::Invariant;
 use crate::dae::reduce::{FirstOrder, Slot, SlotDerivative};
 use crate::front::ctxt::Ctxt;
 use crate::front::ir::ModelIr;
@@ -91,8 +93,15 @@ pub fn sensitivity_name(state: &str, wrt: &str) -> String {
 
 /// `sys` with the sensitivities with respect to `wrt` appended as states,
 /// in the order `wrt` lists them, each column in the order of the states.
-/// Only explicit systems have them so far: a DAE's sensitivities must also
-/// be projected onto the linearised constraints.
+///
+/// A DAE reduced to an explicit index-1 form keeps its constraints by
+/// projection; its sensitivities must keep theirs too. Differentiating an
+/// invariant Φ(t, y, p) = 0 along a column gives the linear invariant
+/// Φ_y·S_w + Φ_w = 0 (Φ_w = 0 for an initial value), projected after the
+/// model's own levels, level by level on the column's states with the same
+/// Jacobian: the minimal-norm correction of S_w, exact in one step (the
+/// derivative of the state's projection at the projected state; Hairer,
+/// Lubich, Wanner, *Geometric Numerical Integration* §IV.4).
 pub fn variational_system(
     g: &mut Graph,
     sys: &FirstOrder,
@@ -107,16 +116,9 @@ pub fn variational_system(
         })
         .collect();
     let f = match explicit {
-        Some(f)
-            if sys.blocks.is_empty()
-                && sys.newton.is_none()
-                && sys.invariants.is_empty()
-                && !sys.mass_only =>
-        {
-            f
-        }
+        Some(f) if sys.blocks.is_empty() && sys.newton.is_none() && !sys.mass_only => f,
         _ => {
-            return Err("sensitivities are generated for ODE models only so far (a DAE's must be projected onto its constraints too): write the model in independent coordinates (a pendulum in its angle) to have them".into())
+            return Err("sensitivities are generated for models whose derivatives solve symbolically; this one solves a linear or nonlinear system at run time (a mechanism's KKT system, an algebraic loop), whose sensitivities are not generated: write the model in independent coordinates (a pendulum in its angle), or difference two runs".into())
         }
     };
     let n = sys.slots.len();
@@ -126,9 +128,13 @@ pub fn variational_system(
     for &(r, c, e) in &jacobian.entries {
         rows[r].push((c, e));
     }
+    let slot_of: crate::FxHashMap<SymbolId, usize> =
+        slots.iter().enumerate().map(|(i, &s)| (s, i)).collect();
+    let levels = crate::dae::constraints::projection_levels(g, sys, &slot_of);
     let mut out = FirstOrder {
         algebraics: sys.algebraics.clone(),
-        invariants: Vec::new(),
+        invariants: sys.invariants.clone(),
+        projection: None,
         index: sys.index,
         block_unknowns: Vec::new(),
         residuals: sys.residuals.clone(),
@@ -146,7 +152,8 @@ pub fn variational_system(
         outputs: sys.outputs.clone(),
         events: sys.events.clone(),
     };
-    for w in wrt {
+    let mut projection = levels.clone();
+    for (c, w) in wrt.iter().enumerate() {
         let wrt_name = w.name();
         // The column's states first: each derivative reads all of them.
         let mut column = Vec::with_capacity(n);
@@ -179,11 +186,39 @@ pub fn variational_system(
                 name: column[i].0.clone(),
                 symbol: column[i].2,
                 init,
-                fixed: false,
-                velocity_like: false,
+                // A fixed initial value's sensitivity is its own too.
+                fixed: slot.fixed,
+                velocity_like: slot.velocity_like,
             });
             out.derivatives.push(SlotDerivative::Explicit(derivative));
         }
+        // Φ_y·S_w + Φ_w for each invariant, projected as its level is.
+        for invariant in &sys.invariants {
+            let mut terms = Vec::new();
+            for (k, column_state) in column.iter().enumerate() {
+                let d = g.partial(invariant.residual, slots[k]).map_err(|e| e.to_string())?;
+                if g.as_number(d).is_none_or(|v| !v.is_zero()) {
+                    terms.push(g.mul(d, column_state.1).map_err(|e| e.to_string())?);
+                }
+            }
+            if let Wrt::Parameter(p, _) = w {
+                terms.push(g.partial(invariant.residual, *p).map_err(|e| e.to_string())?);
+            }
+            out.invariants.push(Invariant {
+                equation: invariant.equation,
+                level: invariant.level,
+                residual: g.sum(&terms).map_err(|e| e.to_string())?,
+                text: format!("d({})/d({wrt_name})", invariant.text),
+            });
+        }
+        let (m, shift) = (sys.invariants.len(), c + 1);
+        for level in &levels {
+            projection.push(ProjectionLevel {
+                rows: level.rows.iter().map(|r| r + shift * m).collect(),
+                slots: level.slots.iter().map(|s| s + shift * n).collect(),
+            });
+        }
     }
+    out.projection = Some(projection);
     Ok(out)
 }

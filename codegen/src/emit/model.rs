@@ -77,7 +77,13 @@ pub fn expand(
         None => TokenStream::new(),
     };
     // Last, so its partial derivatives cannot change the code above.
-    let (mass_form_type, mass_form_method) = mass_form_items(ir, sys, &name)?;
+    // A model with sensitivities has none: they would need the variational
+    // equations of the mass-matrix form too.
+    let (mass_form_type, mass_form_method) = if attributes.sensitivity_columns > 0 {
+        (TokenStream::new(), TokenStream::new())
+    } else {
+        mass_form_items(ir, sys, &name)?
+    };
     let info = info(ir, sys);
     let parameter = parameter_method(ir);
     let degenerate = degenerate_parameters_method(&mut ir.graph, &layout, sys);

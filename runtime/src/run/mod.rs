@@ -157,9 +157,13 @@ fn initial_corrections<M: Model>(
     used: &[f64],
     options: &Options,
 ) -> Vec<InitialCorrection> {
+    // The model's own states: the sensitivities of the initial values move
+    // with them by construction.
+    let own = M::STATES / (1 + M::SENSITIVITY_COLUMNS);
     given
         .iter()
         .zip(used)
+        .take(own)
         .enumerate()
         .filter(|(_, (g, u))| (*u - *g).abs() > options.rtol * g.abs() + options.atol)
         .map(|(i, (&given, &used))| InitialCorrection { name: M::INFO.states[i], given, used })
@@ -249,6 +253,12 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
                     }
                     Err(e)
                 }
+                None if M::SENSITIVITY_COLUMNS > 0 => Err(Error::InvalidOptions {
+                    message: format!(
+                        "{} carries sensitivities, which are generated for the index-1 form with projection only: use Formulation::IndexOneProjected",
+                        M::INFO.name
+                    ),
+                }),
                 None => Err(Error::InvalidOptions {
                     message: format!(
                         "{} has no mass-matrix form (its differential equations do not solve symbolically for the highest derivatives, or a constraint needs more than two differentiations): use Formulation::IndexOneProjected",

@@ -153,6 +153,14 @@ impl Solution {
             .times
             .partition_point(|&s| if forward { s < t } else { s > t })
             .clamp(1, self.times.len() - 1);
+        // At a stored time, the stored state: a step's interpolant ends at
+        // the state as computed, before projection onto the constraints.
+        for j in [k - 1, k] {
+            if self.times[j] == t {
+                y.copy_from_slice(self.stored_state(j));
+                return Ok(());
+            }
+        }
         self.interpolate_stored(k, t, y);
         Ok(())
     }

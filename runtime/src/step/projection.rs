@@ -75,7 +75,10 @@ impl<'m, M: Model> Projector<'m, M> {
         }
         self.model.constraints(t, y, &mut self.residuals);
         let mut worst = Residuals::default();
-        for (r, info) in M::CONSTRAINTS.iter().enumerate() {
+        // The model's own constraints; a sensitivity column's linearised
+        // ones (after them) are not the solution's residuals.
+        let own = M::CONSTRAINTS.len() / (1 + M::SENSITIVITY_COLUMNS);
+        for (r, info) in M::CONSTRAINTS.iter().enumerate().take(own) {
             let v = self.residuals[r].abs();
             if !v.is_finite() {
                 return Err(Failure { row: r, message: "its residual is not finite".into() });
