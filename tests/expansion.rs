@@ -172,6 +172,23 @@ expansion_test! {
     }
 }
 
+expansion_test! {
+    /// Lotka–Volterra with the sensitivities to a: the Jacobian's entries
+    /// (a − b·y, c·x − d) distributed over the column, so that its two
+    /// convolutions y·S_x and x·S_y serve both rows of the Taylor tape.
+    lotka_volterra_with_sensitivities_shares_its_convolutions, (taylor = 1, sensitivities = [a]), ["LotkaVolterraSensitivities::taylor_tape"],
+    fn lotka_volterra() {
+        let a = param(1.5);
+        let b = param(1.0);
+        let c = param(1.0);
+        let d = param(3.0);
+        let x = state(10.0);
+        let y = state(5.0);
+        der(x) == a * x - b * x * y;
+        der(y) == c * x * y - d * y;
+    }
+}
+
 // Course notes Example 1.4 with the economic Taylor derivatives of order 4.
 example_1_4!(expansion_test! {
     example_1_4_with_taylor_derivatives_of_order_4, (taylor = 4), ["Example14::taylor_derivatives"],

@@ -118,7 +118,8 @@ fn sensitivities_left_out_of_the_error_test_leave_the_steps_to_the_states() {
     // S does not feed back into y, so an error test on y alone takes the
     // model's own steps, exactly, where no Newton iteration is involved.
     let (k, y0, t1, tol) = (0.7, 2.0, 3.0, 1e-8);
-    for method in [Method::Dopri5, Method::Dop853, Method::Rodas5P, Method::Radau5] {
+    for method in [Method::Dopri5, Method::Dop853, Method::Rodas5P, Method::Radau5, Method::Taylor]
+    {
         let opts = Options::new().method(method).tolerance(tol);
         let alone = Decay::default().simulate(0.0, t1, &opts).unwrap().stats().steps;
         let with = Decay::default().with_sensitivities();

@@ -1,5 +1,5 @@
 #!/bin/sh
-# SUNDIALS 6 (CVODE, IDA, KLU) for the benchmark's peers: the system
+# SUNDIALS 6 (CVODE, CVODES, IDA, KLU) for the benchmark's peers: the system
 # libraries, their headers, and libclang for the bindings sundials-sys
 # generates. Only `cd bench && cargo run --release` links them; the test
 # command never does.
@@ -15,7 +15,7 @@ set -eu
 here=$(cd "$(dirname "$0")/.." && pwd)
 export DEBIAN_FRONTEND=noninteractive
 apt-get install -y cmake libclang-dev libsuitesparse-dev \
-    libsundials-cvode6 libsundials-ida6 libsundials-nvecserial6 \
+    libsundials-cvode6 libsundials-cvodes6 libsundials-ida6 libsundials-nvecserial6 \
     libsundials-sunlinsol3 libsundials-sunmatrix4
 if apt-get install -y libsundials-dev; then
     exit 0

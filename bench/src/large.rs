@@ -51,8 +51,8 @@ fn brusselator_1d() {
 /// neighbours, as SciMLBenchmarks discretise it), from u = 22 y(1 − y)^1.5,
 /// v = 27 x(1 − x)^1.5, to t = 11.5; the forcing f = 5 in the disc of
 /// radius 0.1 about (0.3, 0.6) from t = 1.1 on (`forcing`, set by the run).
-#[dae_model(bench = Bench::until(11.5).methods([Radau5, Rodas5P]).tolerances(4, 8))]
-fn brusselator_2d() {
+#[dae_model(bench = Bench::until(11.5).methods([Radau5, Rodas5P]).tolerances(4, 8), sensitivities = [alpha])]
+pub(crate) fn brusselator_2d() {
     const N: usize = 32;
     let alpha = param(0.1);
     let forcing = param(0.0);

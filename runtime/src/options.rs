@@ -411,8 +411,8 @@ impl Options {
     /// the adaptive methods control the model's own states alone, as
     /// CVODES does by default (`errconS`): the same steps as a run without
     /// sensitivities, and sensitivities as accurate as those steps make
-    /// them, which is usually enough for fitting. `Method::Taylor` keeps
-    /// every state in its step rule either way.
+    /// them, which is usually enough for fitting. `Method::Taylor` then
+    /// takes its step from the model's own coefficients.
     pub fn sensitivity_error_control(&self, control: bool) -> Options {
         Options { sensitivity_error_control: control, ..self.clone() }
     }

@@ -304,6 +304,7 @@ pub(crate) fn integrate<M: Model>(
     let hmax = options.max_step.unwrap_or(f64::INFINITY);
     let safety = step_factor(tol, p);
     let (inv_pm1, inv_p) = (1.0 / (p - 1) as f64, 1.0 / p as f64);
+    let measured = options.error_states::<M>();
     let (mut t, mut compensation, mut steps) = (t0, 0.0f64, 0usize);
     while (t1 - t) * direction > 0.0 {
         if steps >= options.max_steps {
@@ -325,9 +326,11 @@ pub(crate) fn integrate<M: Model>(
         };
         let w = p + 1;
         solution.stats_mut().rhs_evals += 1;
+        // Over the states the error test measures (the model's own, where
+        // sensitivities are left out of it).
         let norm = |k: usize| match by_coefficient {
-            true => column_max(coefficients.get(k * n..(k + 1) * n).unwrap_or(&[]), 1, 0),
-            false => column_max(&coefficients[..n * w], w, k),
+            true => column_max(coefficients.get(k * n..k * n + measured).unwrap_or(&[]), 1, 0),
+            false => column_max(&coefficients[..measured * w], w, k),
         };
         // ρ_k = (N/‖x^[k]‖)^(1/k); of ρ_{p−1} and ρ_p the smaller, compared
         // through logarithms so that only one power is taken. The step
