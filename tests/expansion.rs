@@ -173,10 +173,10 @@ expansion_test! {
 }
 
 expansion_test! {
-    /// Lotka–Volterra with the sensitivities to a: the Jacobian's entries
-    /// (a − b·y, c·x − d) distributed over the column, so that its two
-    /// convolutions y·S_x and x·S_y serve both rows of the Taylor tape.
-    lotka_volterra_with_sensitivities_shares_its_convolutions, (taylor = 1, sensitivities = [a]), ["LotkaVolterraSensitivities::taylor_tape"],
+    /// Lotka–Volterra with the sensitivities to a: each Jacobian entry
+    /// (a − b·y, −b·x, c·y, c·x − d) one row of the Taylor tape, shared with
+    /// the right-hand side where it occurs there, times the column.
+    lotka_volterra_with_sensitivities_as_a_taylor_tape, (taylor = 1, sensitivities = [a]), ["LotkaVolterraSensitivities::taylor_tape"],
     fn lotka_volterra() {
         let a = param(1.5);
         let b = param(1.0);

@@ -91,10 +91,6 @@ pub fn sensitivity_name(state: &str, wrt: &str) -> String {
     format!("d({state})/d({wrt})")
 }
 
-/// Jacobian entries with at most this many terms are distributed over the
-/// sensitivity they multiply; longer ones (a mechanism's) stay one product.
-const DISTRIBUTED_TERMS: usize = 4;
-
 /// `sys` with the sensitivities with respect to `wrt` appended as states,
 /// in the order `wrt` lists them, each column in the order of the states.
 ///
@@ -169,18 +165,12 @@ pub fn variational_system(
         for (i, slot) in sys.slots.iter().enumerate() {
             // S_i′ = Σ_k ∂f_i/∂y_k · S_k (+ ∂f_i/∂p).
             let mut terms = Vec::with_capacity(rows[i].len() + 1);
+            // Each entry ∂f_i/∂y_k is one node, shared by every column
+            // (distributing a sum over S_k shares the state–column products
+            // between rows instead, but costs a Taylor tape more operations
+            // than the convolutions it saves).
             for &(k, entry) in &rows[i] {
-                // A sum is distributed over S_k, so that a product of a
-                // state and S_k (x·S_k in (a − b·x)·S_k) is one node that
-                // every row reading it shares: a Taylor jet pays one
-                // convolution for it, not one per row.
-                let summands: Vec<Id> = match g.node(entry) {
-                    crate::Node::Add(parts) if parts.len() <= DISTRIBUTED_TERMS => parts.to_vec(),
-                    _ => vec![entry],
-                };
-                for part in summands {
-                    terms.push(g.mul(part, column[k].1).map_err(|e| e.to_string())?);
-                }
+                terms.push(g.mul(entry, column[k].1).map_err(|e| e.to_string())?);
             }
             let init = match w {
                 Wrt::Parameter(p, _) => {
