@@ -164,7 +164,7 @@ expansion_test! {
 expansion_test! {
     /// y′ = −k·y with its sensitivities to k and to y(0): S′ = −k·S − y
     /// and S′ = −k·S, from S(0) = 0 and 1.
-    decay_with_sensitivities, (sensitivities = [k, init(y)]), ["DecaySensitivities::rhs", "DecaySensitivities::initial_state", "Decay::with_sensitivities"],
+    decay_with_sensitivities, (sensitivities = [k, init(y)]), ["DecaySensitivities::rhs", "DecaySensitivities::own_rhs", "DecaySensitivities::initial_state", "Decay::with_sensitivities"],
     fn decay() {
         let k = param(0.7);
         let y = state(2.0);

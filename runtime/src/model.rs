@@ -100,6 +100,17 @@ pub trait Model {
     /// Writes `dy = f(t, y)`. `y` and `dy` have [`Model::STATES`] entries.
     fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), EvalError>;
 
+    /// For a model with sensitivity columns
+    /// ([`Model::SENSITIVITY_COLUMNS`]): writes the derivatives of the
+    /// model's own states alone, the first `STATES / (1 +
+    /// SENSITIVITY_COLUMNS)`, into `dy` (that long), reading those states
+    /// of `y` (all [`Model::STATES`]): what a staggered corrector iterates
+    /// on before the columns. `None` where it is not generated.
+    fn own_rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> Option<Result<(), EvalError>> {
+        let _ = (t, y, dy);
+        None
+    }
+
     /// Writes the non-zero entries of `∂f/∂y` in the order of
     /// [`Model::JACOBIAN_PATTERN`]. Without it (the default, for a
     /// hand-written model) the implicit methods difference [`Model::rhs`].

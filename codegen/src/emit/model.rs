@@ -3,14 +3,14 @@
 //! `events`, `outputs`, `taylor_items`, `newton`, `docs`). The last step;
 //! everything it needs was decided before.
 
-use crate::dae::reduce::FirstOrder;
+use crate::dae::reduce::{FirstOrder, SlotDerivative};
 use crate::dae::variational::Wrt;
 use crate::emit::docs::{
     dae_analysis, info, info_with, parameter_method, struct_and_default, type_name,
 };
 use crate::emit::events::{event_rates_method, events_method};
 use crate::emit::jacobian::jacobian_items;
-use crate::emit::layout::{fixed_size_body, index, program, Layout};
+use crate::emit::layout::{fixed_size_body, index, program, rolled_program, Layout};
 use crate::emit::newton::newton_block_code;
 use crate::emit::outputs::output_arms;
 use crate::emit::rhs::{explicit_derivatives, rhs_items};
@@ -77,6 +77,7 @@ pub fn expand(
         None => TokenStream::new(),
     };
     // Last, so its partial derivatives cannot change the code above.
+    let own_rhs = own_rhs_method(&mut ir.graph, &layout, sys, attributes.sensitivity_columns);
     // A model with sensitivities has none: they would need the variational
     // equations of the mass-matrix form too.
     let (mass_form_type, mass_form_method) = if attributes.sensitivity_columns > 0 {
@@ -147,6 +148,8 @@ pub fn expand(
             fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
                 #rhs_method_body
             }
+
+            #own_rhs
 
             #[inline]
             fn jacobian(&self, t: f64, y: &[f64], values: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
@@ -355,6 +358,37 @@ pub fn stub(ir: &ModelIr) -> TokenStream {
             fn output(&self, index: usize, t: f64, y: &[f64]) -> f64 {
                 f64::NAN
             }
+        }
+    }
+}
+
+/// `own_rhs` of a model with `columns` sensitivity columns: the model's own
+/// derivatives (the first `n / (1 + columns)` slots, explicit in a
+/// variational system) without the columns'; nothing for other models.
+fn own_rhs_method(g: &mut Graph, layout: &Layout, sys: &FirstOrder, columns: usize) -> TokenStream {
+    if columns == 0 {
+        return TokenStream::new();
+    }
+    let n = sys.slots.len();
+    let own = n / (1 + columns);
+    let mut outputs = Vec::with_capacity(own);
+    for d in &sys.derivatives[..own] {
+        match d {
+            SlotDerivative::Explicit(e) => outputs.push(*e),
+            _ => return TokenStream::new(),
+        }
+    }
+    let slots: Vec<usize> = (0..own).collect();
+    let body = fixed_size_body(
+        &index(n),
+        "dy",
+        &index(own),
+        rolled_program(g, layout, &outputs, ("dy", &slots)),
+    );
+    quote! {
+        #[inline]
+        fn own_rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> ::core::option::Option<::core::result::Result<(), ::daegen::EvalError>> {
+            ::core::option::Option::Some((|| -> ::core::result::Result<(), ::daegen::EvalError> { #body })())
         }
     }
 }

@@ -256,6 +256,15 @@ impl Newton {
         true
     }
 
+    /// The matrices of a model with sensitivity columns, for a staggered
+    /// corrector; `None` for any other.
+    pub(crate) fn sensitivity(&mut self) -> Option<&mut SensitivityNewton> {
+        match self {
+            Newton::Sensitivity(s) => Some(s),
+            _ => None,
+        }
+    }
+
     /// Solves `((α + iβ)·M − J)(x + iy) = re + i·im` in place; only for
     /// matrices made with [`Shifts::RealAndComplex`].
     pub(crate) fn solve_complex(&mut self, re: &mut [f64], im: &mut [f64]) {

@@ -16,7 +16,10 @@
 //! exact Jacobian does (Maly & Petzold, "Numerical methods and software
 //! for sensitivity analysis of differential-algebraic systems", Appl.
 //! Numer. Math. 20, 1996); the solve is exact, so the methods keep their
-//! order and their Newton convergence.
+//! order and their Newton convergence. A staggered corrector (RADAU5's)
+//! solves the model's own block alone first, then the columns with the
+//! states fixed, where H_j drops out and each column is solved with the
+//! base block.
 
 use crate::linalg::newton::{Factored, Newton, Shifts};
 
@@ -120,6 +123,37 @@ impl SensitivityNewton {
         }
         for j in 1..=self.columns {
             self.base.solve_real(&mut b[j * n..(j + 1) * n]);
+        }
+    }
+
+    /// Solves `(γ·I − J) x = b` in place for the model's own states
+    /// (`b` of the base size): a staggered corrector's first part.
+    pub(crate) fn solve_own_real(&mut self, b: &mut [f64]) {
+        self.base.solve_real(b);
+    }
+
+    /// Solves `((α + iβ)·I − J)(x + iy) = re + i·im` in place for the
+    /// model's own states.
+    pub(crate) fn solve_own_complex(&mut self, re: &mut [f64], im: &mut [f64]) {
+        self.base.solve_complex(re, im);
+    }
+
+    /// Solves `(γ·I − J) x_j = b_j` in place for every column of `b` (all
+    /// states; the model's own are left alone): with the states fixed, the
+    /// columns' equations are uncoupled, each with the base matrix.
+    pub(crate) fn solve_columns_real(&mut self, b: &mut [f64]) {
+        let n = self.n;
+        for j in 1..=self.columns {
+            self.base.solve_real(&mut b[j * n..(j + 1) * n]);
+        }
+    }
+
+    /// The complex counterpart of [`SensitivityNewton::solve_columns_real`].
+    pub(crate) fn solve_columns_complex(&mut self, re: &mut [f64], im: &mut [f64]) {
+        let n = self.n;
+        for j in 1..=self.columns {
+            let block = j * n..(j + 1) * n;
+            self.base.solve_complex(&mut re[block.clone()], &mut im[block]);
         }
     }
 

@@ -4,7 +4,10 @@
 //! the eigenvectors of A⁻¹ (one real and one complex linear system of size
 //! n), Jacobian and factorisation reuse across steps, the embedded error
 //! estimate filtered through (γ/h − J)⁻¹, Gustafsson's predictive step
-//! control, and continuous output from the collocation polynomial.
+//! control, and continuous output from the collocation polynomial. A model
+//! with sensitivity columns is iterated staggered: its own states to
+//! convergence, then the columns, linear once the states are fixed, with
+//! the same LU.
 
 // Published coefficients are kept digit for digit as printed.
 #![allow(clippy::excessive_precision)]
@@ -136,6 +139,12 @@ impl<M: Model> Work<'_, M> {
     fn rhs(&mut self, t: f64, y: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
         self.evals += 1;
         self.model.rhs(t, y, out)
+    }
+
+    /// The model's own derivatives alone (`Model::own_rhs`).
+    fn own_rhs(&mut self, t: f64, y: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
+        self.evals += 1;
+        self.model.own_rhs(t, y, out).unwrap_or(Err(EvalError::JacobianUnavailable))
     }
 
     /// The dense Jacobian at `(t, y)`, `f0 = f(t, y)`.
@@ -275,9 +284,17 @@ fn step_loop<M: Model>(
     }
     let (mut h_old, mut h_acc, mut err_acc) = (h, h, 1e-2);
     let (mut first, mut reject) = (true, false);
-    let mut faccon = 1.0f64;
     let reuse = Reuse::for_factorisation(factor_operations);
-    let mut theta = reuse.thet;
+    // Newton's contraction and its convergence factor, carried from step to
+    // step: the model's states', and the sensitivity columns' when they are
+    // iterated apart.
+    let mut state_control = Contraction { theta: reuse.thet, faccon: 1.0 };
+    let mut column_control = state_control;
+    let own = n / (1 + M::SENSITIVITY_COLUMNS);
+    let staggered =
+        newton.sensitivity().is_some() && model.own_rhs(t0, &y, &mut scratch[..own]).is_some();
+    let parts: &[Part] =
+        if staggered { &[Part::Own(own), Part::Columns(own)] } else { &[Part::All] };
     let cfac = SAFE * (1 + 2 * NIT) as f64;
     let (mut accepted, mut rejected, mut singular) = (0usize, 0usize, 0usize);
     let mut newton_failures = 0usize;
@@ -364,100 +381,39 @@ fn step_loop<M: Model>(
                 f3[i] = TI[2][0] * z1i + TI[2][1] * z2i + TI[2][2] * z3i;
             }
         }
-        // Simplified Newton iteration on the transformed system.
+        // Simplified Newton iteration on the transformed system: on every
+        // state at once, or staggered (the model's own states first, then
+        // the sensitivity columns with those fixed).
+        let iteration = Iteration { t, h, y: &y, scal: &scal, mass: &mass, fnewt };
         let mut newt = 0usize;
-        faccon = faccon.max(f64::EPSILON).powf(0.8);
-        theta = theta.abs();
-        let (mut dyno_old, mut thq_old) = (0.0f64, 0.0f64);
-        loop {
-            if newt >= NIT {
-                newton_failures += 1;
-                refresh = retry(&mut h, 0.5, &mut reject, &mut last, caljac);
-                continue 'steps;
-            }
-            for (z, c) in [(&mut z1, C1), (&mut z2, C2), (&mut z3, 1.0)] {
-                for i in 0..n {
-                    stage[i] = y[i] + z[i];
-                }
-                if let Err(cause) = w.rhs(t + c * h, &stage, z) {
-                    return fail(solution, &w, accepted, rejected, t + c * h, cause);
-                }
-            }
-            for i in 0..n {
-                let (a1, a2, a3) = (z1[i], z2[i], z3[i]);
-                z1[i] = TI[0][0] * a1 + TI[0][1] * a2 + TI[0][2] * a3;
-                z2[i] = TI[1][0] * a1 + TI[1][1] * a2 + TI[1][2] * a3;
-                z3[i] = TI[2][0] * a1 + TI[2][1] * a2 + TI[2][2] * a3;
-            }
-            let (fac1, alphn, betan) = (gamma / h, alpha / h, beta / h);
-            if mass_matrix.is_empty() {
-                for i in 0..n {
-                    let m = mass[i];
-                    let (s2, s3) = (-m * f2[i], -m * f3[i]);
-                    z1[i] -= m * f1[i] * fac1;
-                    z2[i] += s2 * alphn - s3 * betan;
-                    z3[i] += s3 * alphn + s2 * betan;
-                }
-            } else {
-                for (out, f) in mass_applied.iter_mut().zip([&f1, &f2, &f3]) {
-                    apply_mass(&mass_matrix, f, out);
-                }
-                let [m1, m2, m3] = &mass_applied;
-                for i in 0..n {
-                    let (s2, s3) = (-m2[i], -m3[i]);
-                    z1[i] -= m1[i] * fac1;
-                    z2[i] += s2 * alphn - s3 * betan;
-                    z3[i] += s3 * alphn + s2 * betan;
-                }
-            }
-            newton.solve_real(&mut z1);
-            newton.solve_complex(&mut z2, &mut z3);
-            newt += 1;
-            let dyno = rms([&z1, &z2, &z3], &scal);
-            if !dyno.is_finite() {
-                newton_failures += 1;
-                refresh = retry(&mut h, 0.5, &mut reject, &mut last, caljac);
-                continue 'steps;
-            }
-            if newt > 1 && newt < NIT {
-                let thq = dyno / dyno_old;
-                theta = if newt == 2 { thq } else { (thq * thq_old).sqrt() };
-                thq_old = thq;
-                if theta < 0.99 {
-                    faccon = theta / (1.0 - theta);
-                    let dyth = faccon * dyno * theta.powi((NIT - 1 - newt) as i32) / fnewt;
-                    if dyth >= 1.0 {
-                        // Convergence too slow for the remaining iterations: shrink h.
-                        let qnewt = dyth.clamp(1e-4, 20.0);
-                        refresh = retry(
-                            &mut h,
-                            0.8 * qnewt.powf(-1.0 / (4.0 + (NIT - 1 - newt) as f64)),
-                            &mut reject,
-                            &mut last,
-                            caljac,
-                        );
-                        continue 'steps;
-                    }
-                } else {
-                    newton_failures += 1;
-                    refresh = retry(&mut h, 0.5, &mut reject, &mut last, caljac);
+        for &part in parts {
+            let control = match part {
+                Part::Columns(_) => &mut column_control,
+                _ => &mut state_control,
+            };
+            let stages = ([&mut z1, &mut z2, &mut z3], [&mut f1, &mut f2, &mut f3]);
+            let buffers = (&mut stage[..], &mut scratch[..], &mut mass_applied);
+            let outcome = simplified_newton(
+                &mut w,
+                &mut newton,
+                (&iteration, part, &mass_matrix),
+                stages,
+                buffers,
+                control,
+            );
+            match outcome {
+                Iterated::Converged(iterations) => newt = newt.max(iterations),
+                Iterated::Retry { factor, failed } => {
+                    newton_failures += usize::from(failed);
+                    refresh = retry(&mut h, factor, &mut reject, &mut last, caljac);
                     continue 'steps;
                 }
-            }
-            dyno_old = dyno.max(f64::EPSILON);
-            for i in 0..n {
-                let (a, b, c) = (f1[i] + z1[i], f2[i] + z2[i], f3[i] + z3[i]);
-                f1[i] = a;
-                f2[i] = b;
-                f3[i] = c;
-                z1[i] = T[0][0] * a + T[0][1] * b + T[0][2] * c;
-                z2[i] = T[1][0] * a + T[1][1] * b + T[1][2] * c;
-                z3[i] = T[2][0] * a + b;
-            }
-            if faccon * dyno <= fnewt {
-                break;
+                Iterated::Failed { at, cause } => {
+                    return fail(solution, &w, accepted, rejected, at, cause);
+                }
             }
         }
+        let theta = state_control.theta;
         newton_failures = 0;
         // Error estimate (ESTRAD): (γ/h − J)⁻¹ (f(y) + (DD·Z)/h), refined once
         // through f after a rejection or on the first step.
@@ -591,6 +547,180 @@ fn step_loop<M: Model>(
     }
     finish(&mut solution, accepted, rejected, &w);
     Ok((solution, Finish::Done))
+}
+
+/// Newton's contraction θ and the factor θ/(1 − θ) that turns the last
+/// increment into an error bound (`radau5.f`'s THETA and FACCON).
+#[derive(Clone, Copy)]
+struct Contraction {
+    theta: f64,
+    faccon: f64,
+}
+
+/// Which states a simplified Newton iteration solves for.
+#[derive(Clone, Copy)]
+enum Part {
+    /// Every state, with the whole Newton matrix.
+    All,
+    /// The model's own states (the first `own`), through `Model::own_rhs`
+    /// and the base block: the first half of the staggered corrector
+    /// (Feehery, Tolsma & Barton, "Efficient sensitivity analysis of
+    /// large-scale differential-algebraic systems", Appl. Numer. Math. 25,
+    /// 1997; CVODES's `CV_STAGGERED`).
+    Own(usize),
+    /// The sensitivity columns (the states from `own` on) with the model's
+    /// own stages fixed: linear and uncoupled, each with the base block.
+    Columns(usize),
+}
+
+/// How a simplified Newton iteration ended.
+enum Iterated {
+    /// Converged after this many iterations.
+    Converged(usize),
+    /// Retry the step with h times `factor`; `failed` when the iteration
+    /// diverged (rather than converging too slowly).
+    Retry { factor: f64, failed: bool },
+    /// The right-hand side could not be evaluated at `at`.
+    Failed { at: f64, cause: EvalError },
+}
+
+/// What an iteration reads: the step, the state, the error scale, the
+/// diagonal mass and Newton's tolerance.
+struct Iteration<'a> {
+    t: f64,
+    h: f64,
+    y: &'a [f64],
+    scal: &'a [f64],
+    mass: &'a [f64],
+    fnewt: f64,
+}
+
+/// `radau5.f`'s simplified Newton iteration on the transformed stages
+/// (Hairer & Wanner II, §IV.8, (8.13)–(8.16)) for the states of `part`:
+/// `z` the stage increments Z, `f` their transforms W = T⁻¹Z, updated in
+/// place.
+fn simplified_newton<M: Model>(
+    w: &mut Work<'_, M>,
+    newton: &mut Newton,
+    (it, part, mass_matrix): (&Iteration<'_>, Part, &[f64]),
+    (z, f): ([&mut Vec<f64>; 3], [&mut Vec<f64>; 3]),
+    (stage, scratch, mass_applied): (&mut [f64], &mut [f64], &mut [Vec<f64>; 3]),
+    control: &mut Contraction,
+) -> Iterated {
+    let n = it.y.len();
+    let range = match part {
+        Part::All => 0..n,
+        Part::Own(own) => 0..own,
+        Part::Columns(own) => own..n,
+    };
+    let (gamma, alpha, beta) = eigenvalues();
+    let [z1, z2, z3] = z;
+    let [f1, f2, f3] = f;
+    let mut newt = 0usize;
+    control.faccon = control.faccon.max(f64::EPSILON).powf(0.8);
+    control.theta = control.theta.abs();
+    let (mut dyno_old, mut thq_old) = (0.0f64, 0.0f64);
+    loop {
+        if newt >= NIT {
+            return Iterated::Retry { factor: 0.5, failed: true };
+        }
+        for (zk, c) in [(&mut *z1, C1), (&mut *z2, C2), (&mut *z3, 1.0)] {
+            let at = it.t + c * it.h;
+            // The columns' right-hand side reads the states' stages too.
+            let read = if let Part::Own(own) = part { 0..own } else { 0..n };
+            for i in read {
+                stage[i] = it.y[i] + zk[i];
+            }
+            let evaluated = match part {
+                Part::All => w.rhs(at, stage, zk),
+                Part::Own(own) => w.own_rhs(at, stage, &mut zk[..own]),
+                Part::Columns(own) => w.rhs(at, stage, scratch).map(|()| {
+                    zk[own..].copy_from_slice(&scratch[own..]);
+                }),
+            };
+            if let Err(cause) = evaluated {
+                return Iterated::Failed { at, cause };
+            }
+        }
+        for i in range.clone() {
+            let (a1, a2, a3) = (z1[i], z2[i], z3[i]);
+            z1[i] = TI[0][0] * a1 + TI[0][1] * a2 + TI[0][2] * a3;
+            z2[i] = TI[1][0] * a1 + TI[1][1] * a2 + TI[1][2] * a3;
+            z3[i] = TI[2][0] * a1 + TI[2][1] * a2 + TI[2][2] * a3;
+        }
+        let (fac1, alphn, betan) = (gamma / it.h, alpha / it.h, beta / it.h);
+        if mass_matrix.is_empty() {
+            for i in range.clone() {
+                let m = it.mass[i];
+                let (s2, s3) = (-m * f2[i], -m * f3[i]);
+                z1[i] -= m * f1[i] * fac1;
+                z2[i] += s2 * alphn - s3 * betan;
+                z3[i] += s3 * alphn + s2 * betan;
+            }
+        } else {
+            for (out, f) in mass_applied.iter_mut().zip([&*f1, &*f2, &*f3]) {
+                apply_mass(mass_matrix, f, out);
+            }
+            let [m1, m2, m3] = &*mass_applied;
+            for i in range.clone() {
+                let (s2, s3) = (-m2[i], -m3[i]);
+                z1[i] -= m1[i] * fac1;
+                z2[i] += s2 * alphn - s3 * betan;
+                z3[i] += s3 * alphn + s2 * betan;
+            }
+        }
+        match (part, newton.sensitivity()) {
+            (Part::Own(own), Some(s)) => {
+                s.solve_own_real(&mut z1[..own]);
+                s.solve_own_complex(&mut z2[..own], &mut z3[..own]);
+            }
+            (Part::Columns(_), Some(s)) => {
+                s.solve_columns_real(z1);
+                s.solve_columns_complex(z2, z3);
+            }
+            _ => {
+                newton.solve_real(z1);
+                newton.solve_complex(z2, z3);
+            }
+        }
+        newt += 1;
+        let r = range.clone();
+        let dyno = rms([&z1[r.clone()], &z2[r.clone()], &z3[r.clone()]], &it.scal[r]);
+        if !dyno.is_finite() {
+            return Iterated::Retry { factor: 0.5, failed: true };
+        }
+        if newt > 1 && newt < NIT {
+            let thq = dyno / dyno_old;
+            control.theta = if newt == 2 { thq } else { (thq * thq_old).sqrt() };
+            thq_old = thq;
+            let theta = control.theta;
+            if theta < 0.99 {
+                control.faccon = theta / (1.0 - theta);
+                let dyth = control.faccon * dyno * theta.powi((NIT - 1 - newt) as i32) / it.fnewt;
+                if dyth >= 1.0 {
+                    // Convergence too slow for the remaining iterations: shrink h.
+                    let qnewt = dyth.clamp(1e-4, 20.0);
+                    let factor = 0.8 * qnewt.powf(-1.0 / (4.0 + (NIT - 1 - newt) as f64));
+                    return Iterated::Retry { factor, failed: false };
+                }
+            } else {
+                return Iterated::Retry { factor: 0.5, failed: true };
+            }
+        }
+        dyno_old = dyno.max(f64::EPSILON);
+        for i in range.clone() {
+            let (a, b, c) = (f1[i] + z1[i], f2[i] + z2[i], f3[i] + z3[i]);
+            f1[i] = a;
+            f2[i] = b;
+            f3[i] = c;
+            z1[i] = T[0][0] * a + T[0][1] * b + T[0][2] * c;
+            z2[i] = T[1][0] * a + T[1][1] * b + T[1][2] * c;
+            z3[i] = T[2][0] * a + b;
+        }
+        if control.faccon * dyno <= it.fnewt {
+            return Iterated::Converged(newt);
+        }
+    }
 }
 
 /// After a failed Newton iteration or step: shrink h by `factor`, mark the
