@@ -304,12 +304,76 @@ fn pivot_class(g: &Graph, e: Id) -> Option<u8> {
     Some(if state_free { 1 } else { 2 })
 }
 
-/// Gaussian elimination on expressions, each column's pivot the safest
-/// entry (constants, then parameters, then the rest; a state-dependent
-/// pivot is the Schur complement G M⁻¹ Gᵀ of a mechanism, regular where
-/// the constraints are independent). `None` when a column has no
-/// structurally non-zero pivot left.
-fn solve_symbolic(
+/// Gaussian elimination on expressions while every column has a constant
+/// or parameter pivot; Cramer's rule once a pivot would depend on the
+/// state. An intermediate pivot of the elimination (sin θ of a slider-crank)
+/// can vanish where the system is regular, and the solution would divide
+/// by zero there; Cramer's rule divides by the determinant alone, which
+/// vanishes only where the block is singular (where the constraints of a
+/// mechanism are dependent: the determinant of its KKT system is the
+/// product of the constant pivots eliminated before and this one). `None`
+/// when the determinant is structurally zero.
+fn solve_symbolic(g: &mut Graph, a: Vec<Vec<Id>>, b: Vec<Id>) -> crate::Result<Option<Vec<Id>>> {
+    match eliminate_with_parameter_pivots(g, a.clone(), b.clone())? {
+        Some(w) => Ok(Some(w)),
+        None => cramer(g, &a, &b),
+    }
+}
+
+/// The determinant of the `n × n` matrix `a` (n ≤ 3 in use) by cofactor
+/// expansion along the first row.
+fn determinant(g: &mut Graph, a: &[Vec<Id>]) -> crate::Result<Id> {
+    let n = a.len();
+    match n {
+        0 => Ok(g.one()),
+        1 => Ok(a[0][0]),
+        _ => {
+            let mut terms = Vec::with_capacity(n);
+            for (c, &entry) in a[0].iter().enumerate() {
+                if g.as_number(entry).is_some_and(|v| v.is_zero()) {
+                    continue;
+                }
+                let minor: Vec<Vec<Id>> = a[1..]
+                    .iter()
+                    .map(|row| {
+                        row.iter().enumerate().filter(|&(j, _)| j != c).map(|(_, &v)| v).collect()
+                    })
+                    .collect();
+                let m = determinant(g, &minor)?;
+                let t = g.mul(entry, m)?;
+                terms.push(if c % 2 == 0 { t } else { g.negate_terms(t)? });
+            }
+            g.sum(&terms)
+        }
+    }
+}
+
+/// Cramer's rule: w_i = det(A with column i replaced by b) / det(A).
+fn cramer(g: &mut Graph, a: &[Vec<Id>], b: &[Id]) -> crate::Result<Option<Vec<Id>>> {
+    let det = determinant(g, a)?;
+    if g.as_number(det).is_some_and(|v| v.is_zero()) {
+        return Ok(None);
+    }
+    let one = g.one();
+    let inverse = g.div(one, det)?;
+    let mut w = Vec::with_capacity(a.len());
+    for i in 0..a.len() {
+        let replaced: Vec<Vec<Id>> = a
+            .iter()
+            .zip(b)
+            .map(|(row, &bi)| {
+                row.iter().enumerate().map(|(j, &v)| if j == i { bi } else { v }).collect()
+            })
+            .collect();
+        let numerator = determinant(g, &replaced)?;
+        w.push(g.mul(numerator, inverse)?);
+    }
+    Ok(Some(w))
+}
+
+/// Gaussian elimination on expressions, each column's pivot a constant or
+/// an expression of the parameters; `None` where a column has none.
+fn eliminate_with_parameter_pivots(
     g: &mut Graph,
     mut a: Vec<Vec<Id>>,
     mut b: Vec<Id>,
@@ -317,9 +381,12 @@ fn solve_symbolic(
     let n = a.len();
     for col in 0..n {
         let best = (col..n).filter_map(|r| pivot_class(g, a[r][col]).map(|c| (c, r))).min();
-        let Some((_, pivot)) = best else {
+        let Some((class, pivot)) = best else {
             return Ok(None);
         };
+        if class > 1 {
+            return Ok(None);
+        }
         a.swap(col, pivot);
         b.swap(col, pivot);
         for row in col + 1..n {

@@ -23,7 +23,19 @@ pub(crate) fn taylor_items(
 ) -> crate::Result<(TokenStream, Option<String>)> {
     Ok(match taylor {
         Some(order) => {
-            let f = explicit_rhs(sys)?;
+            let f = explicit_rhs(sys).map_err(|e| match (&e, attributes.taylor) {
+                // `unroll` alone asked for the scheme.
+                (crate::Error::Unsupported { message }, None) => crate::Error::Unsupported {
+                    message: message
+                        .replace("`taylor = p` needs", "`unroll = [..]` needs")
+                        .replace("remove `taylor = p`", "remove `unroll`")
+                        .replace(
+                            "without it, solving",
+                            "without it, on its interpreted tape, solving",
+                        ),
+                },
+                _ => e,
+            })?;
             let economic = economic_taylor(&mut ir.graph, layout, sys, ir.time, f.clone(), order)?;
             let tape =
                 taylor_tape_items(&mut ir.graph, layout, sys, ir.time, &f, &attributes.unroll)?;
@@ -33,7 +45,7 @@ pub(crate) fn taylor_items(
             TokenStream::new(),
             Some("it was expanded with `#[dae_model(taylor = 0)]`".to_string()),
         ),
-        None => match explicit_rhs(sys)
+        None => match tape_outputs(&mut ir.graph, sys)
             .and_then(|f| taylor_tape_items(&mut ir.graph, layout, sys, ir.time, &f, &[]))
         {
             Ok(tape) => (tape, None),
@@ -42,9 +54,9 @@ pub(crate) fn taylor_items(
     })
 }
 
-/// The right-hand side of an explicit ODE, slot by slot: what the Taylor
-/// methods differentiate. `Err` for a model that solves a mass matrix at
-/// run time.
+/// The right-hand side of an explicit ODE, slot by slot: what the
+/// economic scheme and the unrolled jets differentiate. `Err` for a model
+/// that solves a system at run time.
 pub(crate) fn explicit_rhs(sys: &FirstOrder) -> crate::Result<Vec<Id>> {
     if sys.newton.is_some() {
         return Err(crate::Error::Unsupported {
@@ -57,9 +69,33 @@ pub(crate) fn explicit_rhs(sys: &FirstOrder) -> crate::Result<Vec<Id>> {
             SlotDerivative::Explicit(e) => Ok(*e),
             SlotDerivative::Block { .. } | SlotDerivative::AfterSolve(_) => {
                 Err(crate::Error::Unsupported {
-                    message: "`taylor = p` needs an explicit ODE; this model solves a linear system of more than three coupled unknowns at run time (its mass matrix, or the constraint block of a mechanism), so its derivatives have no closed form".into(),
+                    message: "`taylor = p` needs an explicit ODE; this model solves a linear system of more than three coupled unknowns at run time (its mass matrix, or the constraint block of a mechanism), so its derivatives have no closed form: remove `taylor = p` from `#[dae_model]` (`Method::Taylor` runs the model without it, solving the system order by order)".into(),
                 })
             }
+        })
+        .collect()
+}
+
+/// What the tape differentiates: each slot's derivative, where a slot
+/// solved at run time reads its linear system's unknown (solved order by
+/// order by the tape's `Solve`). `Err` for a model that solves nonlinear
+/// equations by Newton's method.
+fn tape_outputs(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Vec<Id>> {
+    if sys.newton.is_some() {
+        return explicit_rhs(sys);
+    }
+    sys.derivatives
+        .iter()
+        .map(|d| match d {
+            SlotDerivative::Explicit(e) | SlotDerivative::AfterSolve(e) => Ok(*e),
+            SlotDerivative::Block { block, row } => sys
+                .block_unknowns
+                .iter()
+                .find(|&&(_, b, r)| b == *block && r == *row)
+                .map(|&(s, _, _)| g.symbol_node(s))
+                .ok_or_else(|| crate::Error::Unsupported {
+                    message: "a slot solved at run time without its unknown".into(),
+                }),
         })
         .collect()
 }
@@ -163,8 +199,40 @@ pub(crate) fn taylor_tape_items(
     // The AD tape for the adaptive Taylor method (compact layout).
     let slot_of = layout.slot_of.clone();
     let explicit: Vec<Id> = f.to_vec();
-    let negations = crate::taylor::tape::negated_sums(g, &explicit)?;
-    let tape = crate::taylor::tape::decompose(g, &explicit, &slot_of, time, &negations)?;
+    // The linear systems solved at run time, solved order by order on the
+    // tape (only on the compact layout: `unroll` needs an explicit ODE).
+    let unknowns: Vec<Vec<SymbolId>> = sys
+        .blocks
+        .iter()
+        .enumerate()
+        .map(|(b, block)| {
+            (0..block.rhs.len())
+                .filter_map(|r| {
+                    sys.block_unknowns.iter().find(|&&(_, bb, rr)| bb == b && rr == r).map(|u| u.0)
+                })
+                .collect()
+        })
+        .collect();
+    let systems: Vec<crate::taylor::tape::LinearSystem<'_>> = sys
+        .blocks
+        .iter()
+        .zip(&unknowns)
+        .map(|(block, unknowns)| crate::taylor::tape::LinearSystem {
+            unknowns,
+            matrix: &block.matrix,
+            rhs: &block.rhs,
+        })
+        .collect();
+    if !systems.is_empty() && !unroll.is_empty() {
+        return Err(crate::Error::Unsupported {
+            message: "`unroll = [..]` needs an explicit ODE; this model solves a linear system at run time (its mass matrix, or the constraint block of a mechanism), which only the compact tape solves order by order: remove `unroll` from `#[dae_model]`".into(),
+        });
+    }
+    let mut targets = explicit.clone();
+    targets.extend(systems.iter().flat_map(|s| s.matrix.iter().chain(s.rhs)));
+    let negations = crate::taylor::tape::negated_sums(g, &targets)?;
+    let tape =
+        crate::taylor::tape::decompose(g, &explicit, &systems, (&slot_of, time), &negations)?;
     let consts: Vec<Id> = tape
         .constants
         .iter()

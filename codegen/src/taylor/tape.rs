@@ -555,20 +555,47 @@ pub fn negated_sums(g: &mut Graph, outputs: &[Id]) -> crate::Result<FxHashMap<Id
     Ok(pairs)
 }
 
+/// A linear system E·z = g that the model solves at run time (a mass
+/// matrix, a mechanism's constraint block): its unknowns' symbols, E
+/// row-major and g, expressions of the states and of earlier systems'
+/// unknowns.
+pub struct LinearSystem<'a> {
+    /// The unknowns z, as the outputs and later systems read them.
+    pub unknowns: &'a [SymbolId],
+    /// E, row-major.
+    pub matrix: &'a [Id],
+    /// g.
+    pub rhs: &'a [Id],
+}
+
 /// Decomposes `outputs` (f of each slot) into a tape; `negations` from
-/// [`negated_sums`].
+/// [`negated_sums`]. Each of `systems` in turn becomes its entries' operations,
+/// their copies side by side, and a `Solve` whose u-variables are its
+/// unknowns (the runtime solves it order by order with one LU a step);
+/// the outputs come last.
 pub fn decompose(
     g: &Graph,
     outputs: &[Id],
-    slot_of: &FxHashMap<SymbolId, usize>,
-    time: SymbolId,
+    systems: &[LinearSystem<'_>],
+    (slot_of, time): (&FxHashMap<SymbolId, usize>, SymbolId),
     negations: &FxHashMap<Id, Id>,
 ) -> crate::Result<Tape> {
-    let order = g.reachable(outputs);
-    // A node depends on time when it reaches a state or the time symbol.
+    let entries: Vec<Id> =
+        systems.iter().flat_map(|s| s.matrix.iter().chain(s.rhs).copied()).collect();
+    let targets: Vec<Id> = entries.iter().chain(outputs).copied().collect();
+    let order = g.reachable(&targets);
+    let solved: FxHashMap<SymbolId, usize> =
+        systems.iter().flat_map(|s| s.unknowns.iter()).enumerate().map(|(k, &s)| (s, k)).collect();
+    // A node depends on time when it reaches a state, the time symbol or
+    // a system's unknown.
     let mut time_dependent: FxHashMap<Id, bool> = FxHashMap::default();
+    let mut unknown_nodes: FxHashMap<SymbolId, Id> = FxHashMap::default();
     for &id in &order {
         let own = match g.node(id) {
+            Node::Symbol(s) if solved.contains_key(s) => {
+                unknown_nodes.insert(*s, id);
+                true
+            }
             Node::Symbol(s) => *s == time || slot_of.contains_key(s),
             _ => false,
         };
@@ -589,23 +616,51 @@ pub fn decompose(
         negation_of: negations,
         negative_of: FxHashMap::default(),
     };
-    // Constant nodes get a slot only when a time-dependent node or an
-    // output uses them; their own constant operands are computed inside them.
-    let mut needed: std::collections::HashSet<Id> = outputs.iter().copied().collect();
+    // Constant nodes get a slot only when a time-dependent node, an output
+    // or a system's entry uses them; their own constant operands are
+    // computed inside them.
+    let mut needed: std::collections::HashSet<Id> = targets.iter().copied().collect();
     for &id in &order {
         if time_dependent[&id] {
             needed.insert(id);
             needed.extend(g.operands(id).iter().copied());
         }
     }
-    for &id in &order {
-        let dep = time_dependent[&id];
-        if !needed.contains(&id) {
-            continue;
+    let visit = |b: &mut Builder<'_>, targets: &[Id]| -> crate::Result<()> {
+        for id in g.reachable(targets) {
+            if b.operand_of.contains_key(&id) || !needed.contains(&id) {
+                continue;
+            }
+            let operand = b.node(id, time_dependent[&id])?;
+            b.operand_of.insert(id, operand);
         }
-        let operand = b.node(id, dep)?;
-        b.operand_of.insert(id, operand);
+        Ok(())
+    };
+    for system in systems {
+        let entries: Vec<Id> = system.matrix.iter().chain(system.rhs).copied().collect();
+        visit(&mut b, &entries)?;
+        let first = b.ops.len();
+        for &e in &entries {
+            let a = b.operand(e).tokens();
+            b.push(quote!(T::Copy(#a)), None);
+        }
+        let (size, first_lit) = (
+            proc_macro2::Literal::usize_unsuffixed(system.unknowns.len()),
+            proc_macro2::Literal::usize_unsuffixed(first),
+        );
+        for (row, unknown) in system.unknowns.iter().enumerate() {
+            let op = if row == 0 {
+                quote!(T::Solve { size: #size, first: #first_lit })
+            } else {
+                quote!(T::SolvedWithPrevious)
+            };
+            let z = b.push(op, None);
+            if let Some(&node) = unknown_nodes.get(unknown) {
+                b.operand_of.insert(node, z);
+            }
+        }
     }
+    visit(&mut b, outputs)?;
     let output_operands: Vec<Operand> = outputs.iter().map(|&o| b.operand(o)).collect();
     let outputs = output_operands.iter().map(Operand::tokens).collect();
     Ok(Tape {

@@ -30,6 +30,12 @@ pub trait Coefficient:
     fn zip(self, other: Self, f: impl Fn(f64, f64) -> f64) -> Self;
     /// `(sin, cos)` of every lane.
     fn sin_cos(self) -> (Self, Self);
+    /// The number of lanes.
+    const WIDTH: usize;
+    /// Lane `i`'s value.
+    fn lane(&self, i: usize) -> f64;
+    /// `self` with lane `i` replaced by `v`.
+    fn with_lane(self, i: usize, v: f64) -> Self;
 }
 
 impl Coefficient for f64 {
@@ -51,6 +57,15 @@ impl Coefficient for f64 {
     #[inline(always)]
     fn sin_cos(self) -> (Self, Self) {
         f64::sin_cos(self)
+    }
+    const WIDTH: usize = 1;
+    #[inline(always)]
+    fn lane(&self, _: usize) -> f64 {
+        *self
+    }
+    #[inline(always)]
+    fn with_lane(self, _: usize, v: f64) -> Self {
+        v
     }
 }
 
@@ -77,5 +92,17 @@ impl<const L: usize> Coefficient for Lanes<L> {
             (*s, *c) = x.sin_cos();
         }
         (Lanes(s), Lanes(c))
+    }
+    const WIDTH: usize = L;
+    #[inline(always)]
+    fn lane(&self, i: usize) -> f64 {
+        self.0.get(i).copied().unwrap_or(f64::NAN)
+    }
+    #[inline(always)]
+    fn with_lane(mut self, i: usize, v: f64) -> Self {
+        if let Some(x) = self.0.get_mut(i) {
+            *x = v;
+        }
+        self
     }
 }

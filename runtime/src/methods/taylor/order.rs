@@ -73,6 +73,14 @@ impl JetCost {
                 TapeOp::CosOfPrevious | TapeOp::CoshOfPrevious => (0.0, 0.0),
                 TapeOp::Inverse(..) => (2.0, 2.0),
                 TapeOp::Atan2(..) => (2.0, 3.0),
+                TapeOp::Copy(_) => (1.0, 0.0),
+                // Order k: g^[k] − Σ_j E^[j] z^[k−j] (k·n² multiply-adds)
+                // and the solve with the LU (n²).
+                TapeOp::Solve { size, .. } => {
+                    let n2 = (size * size) as f64;
+                    (n2, n2)
+                }
+                TapeOp::SolvedWithPrevious => (0.0, 0.0),
             };
             cost.linear += linear;
             cost.convolution += convolution;

@@ -63,6 +63,23 @@ pub enum TapeOp<C = f64> {
     Inverse(Inverse, Operand<C>, Operand<C>),
     /// `atan2(y, x)` with `d = x² + y²`: u' = (x·y' − y·x')/d.
     Atan2(Operand<C>, Operand<C>, Operand<C>),
+    /// `a` itself: gathers the entries of a linear system into consecutive
+    /// u-variables for [`TapeOp::Solve`].
+    Copy(Operand<C>),
+    /// The first unknown of the `size × size` linear system E·z = g whose
+    /// entries are the u-variables from `first` on (E row-major, then g):
+    /// a mass matrix or a mechanism's constraint block solved at run time.
+    /// Order by order, E^\[0\]·z^\[k\] = g^\[k\] − Σ_{j≥1} E^\[j\]·z^\[k−j\], with
+    /// one LU of E^\[0\] a step. The other unknowns are the next `size − 1`
+    /// u-variables ([`TapeOp::SolvedWithPrevious`]).
+    Solve {
+        /// The number of unknowns.
+        size: usize,
+        /// The u-variable of E's first entry.
+        first: usize,
+    },
+    /// An unknown after the first of the preceding [`TapeOp::Solve`].
+    SolvedWithPrevious,
 }
 
 /// A model's tape: its operations, and the operand that is each f_i.
@@ -101,6 +118,9 @@ impl<C> TapeOp<C> {
             TapeOp::CoshOfPrevious => TapeOp::CoshOfPrevious,
             TapeOp::Inverse(g, a, d) => TapeOp::Inverse(*g, o(a), o(d)),
             TapeOp::Atan2(y, x, d) => TapeOp::Atan2(o(y), o(x), o(d)),
+            TapeOp::Copy(a) => TapeOp::Copy(o(a)),
+            TapeOp::Solve { size, first } => TapeOp::Solve { size: *size, first: *first },
+            TapeOp::SolvedWithPrevious => TapeOp::SolvedWithPrevious,
         }
     }
 }
@@ -165,6 +185,27 @@ pub enum Step<T = f64> {
     Inverse(Inverse, usize, usize),
     /// `atan2(y, x)` with d = x² + y² (rows y, x, d).
     Atan2(usize, usize, usize),
+    /// `a` itself.
+    Copy(usize),
+    /// Linear system `b` of [`TaylorWork`]'s, its unknowns in this row and
+    /// the next ones: solved by [`TaylorWork::compute`], not by [`advance`].
+    Solve(usize),
+}
+
+/// A linear system of the tape (a [`TapeOp::Solve`]) with its
+/// factorisation, one per lane.
+struct LinearSystem {
+    size: usize,
+    /// The row of E's first entry (then E row-major, then g).
+    entries: usize,
+    /// The row of the first unknown.
+    unknowns: usize,
+    /// Per lane: E^\[0\] factored in place (L below the diagonal, U on and
+    /// above), then its row permutation.
+    lu: Vec<f64>,
+    pivots: Vec<usize>,
+    /// Per lane: the right-hand side being solved.
+    rhs: Vec<f64>,
 }
 
 /// The tape compiled for one order, with its coefficient storage. Rows of
@@ -177,6 +218,7 @@ pub struct TaylorWork<T: Coefficient = f64> {
     steps: Vec<(usize, Step<T>)>,
     outputs: Vec<usize>,
     rows: Vec<T>,
+    systems: Vec<LinearSystem>,
 }
 
 impl<T: Coefficient> TaylorWork<T> {
@@ -211,7 +253,11 @@ impl<T: Coefficient> TaylorWork<T> {
                 | TapeOp::Sinh(a) => vec![a],
                 TapeOp::Inverse(_, a, d) => vec![a, d],
                 TapeOp::Atan2(y, x, d) => vec![y, x, d],
-                TapeOp::CosOfPrevious | TapeOp::CoshOfPrevious => vec![],
+                TapeOp::Copy(a) => vec![a],
+                TapeOp::CosOfPrevious
+                | TapeOp::CoshOfPrevious
+                | TapeOp::Solve { .. }
+                | TapeOp::SolvedWithPrevious => vec![],
             })
             .chain(outputs.iter().copied());
         for o in operands {
@@ -227,6 +273,7 @@ impl<T: Coefficient> TaylorWork<T> {
             Operand::Const(c) => constant_row(c, constants),
         };
         let mut steps = Vec::with_capacity(tape.len());
+        let mut systems = Vec::new();
         for (v, op) in tape.iter().enumerate() {
             let mut r = |o| row(o, &mut constants);
             let step = match *op {
@@ -245,8 +292,23 @@ impl<T: Coefficient> TaylorWork<T> {
                 TapeOp::Sinh(a) => Step::SinhCosh(r(a)),
                 TapeOp::Inverse(f, a, d) => Step::Inverse(f, r(a), r(d)),
                 TapeOp::Atan2(y, x, d) => Step::Atan2(r(y), r(x), r(d)),
-                // Computed together with its sine.
-                TapeOp::CosOfPrevious | TapeOp::CoshOfPrevious => continue,
+                TapeOp::Copy(a) => Step::Copy(r(a)),
+                TapeOp::Solve { size, first } => {
+                    let lanes = T::WIDTH;
+                    systems.push(LinearSystem {
+                        size,
+                        entries: first_var + first,
+                        unknowns: first_var + v,
+                        lu: vec![0.0; lanes * size * size],
+                        pivots: vec![0; lanes * size],
+                        rhs: vec![0.0; lanes * size],
+                    });
+                    Step::Solve(systems.len() - 1)
+                }
+                // Computed together with its sine, or its system's first unknown.
+                TapeOp::CosOfPrevious | TapeOp::CoshOfPrevious | TapeOp::SolvedWithPrevious => {
+                    continue
+                }
             };
             steps.push((first_var + v, step));
         }
@@ -258,7 +320,7 @@ impl<T: Coefficient> TaylorWork<T> {
         if order > 0 {
             rows[time_row * w + 1] = T::splat(1.0);
         }
-        TaylorWork { order, states, time_row, steps, outputs, rows }
+        TaylorWork { order, states, time_row, steps, outputs, rows, systems }
     }
 
     /// All rows; state i's coefficients are row i.
@@ -284,13 +346,58 @@ impl<T: Coefficient> TaylorWork<T> {
         rows[self.time_row * w] = T::splat(t);
         for k in 0..self.order {
             for &(v, step) in &self.steps {
-                advance(rows, w, k, v, step);
+                match step {
+                    Step::Solve(s) => solve_order(&mut self.systems[s], rows, w, k),
+                    _ => advance(rows, w, k, v, step),
+                }
             }
             // x^[k+1] = f^[k] / (k + 1).
             let next = T::splat((k + 1) as f64);
             for (i, &out) in self.outputs.iter().enumerate() {
                 rows[i * w + k + 1] = rows[out * w + k] / next;
             }
+        }
+    }
+}
+
+/// Coefficient k of a linear system's unknowns, lane by lane: at k = 0
+/// E^\[0\] is factored (LU with partial pivoting) and z^\[0\] solved; above,
+/// z^\[k\] = (E^\[0\])⁻¹ (g^\[k\] − Σ_{j=1..k} E^\[j\] z^\[k−j\]), the
+/// coefficients of E·z = g matched order by order. A singular E^\[0\]
+/// gives NaN unknowns, which the step rule reports.
+fn solve_order<T: Coefficient>(system: &mut LinearSystem, rows: &mut [T], w: usize, k: usize) {
+    let n = system.size;
+    let (entries, rhs_rows, unknowns) = (system.entries, system.entries + n * n, system.unknowns);
+    for lane in 0..T::WIDTH {
+        let lu = &mut system.lu[lane * n * n..(lane + 1) * n * n];
+        let pivots = &mut system.pivots[lane * n..(lane + 1) * n];
+        let b = &mut system.rhs[lane * n..(lane + 1) * n];
+        let at = |r: usize, j: usize| rows[r * w + j].lane(lane);
+        for i in 0..n {
+            let mut v = at(rhs_rows + i, k);
+            for j in 1..=k {
+                for c in 0..n {
+                    v -= at(entries + i * n + c, j) * at(unknowns + c, k - j);
+                }
+            }
+            b[i] = v;
+        }
+        let regular = if k == 0 {
+            for (e, slot) in lu.iter_mut().enumerate() {
+                *slot = at(entries + e, 0);
+            }
+            crate::linalg::lu_factor(lu, n, pivots)
+        } else {
+            true
+        };
+        if regular {
+            crate::linalg::lu_solve(lu, n, pivots, b);
+        } else {
+            b.fill(f64::NAN);
+        }
+        for (i, &v) in b.iter().enumerate() {
+            let cell = &mut rows[(unknowns + i) * w + k];
+            *cell = cell.with_lane(lane, v);
         }
     }
 }
@@ -364,6 +471,9 @@ pub fn advance<T: Coefficient>(rows: &mut [T], w: usize, k: usize, v: usize, ste
             let (_, s) = convolutions(own, &d[1..]);
             ((numerator - s) / (kf * d[0]), zero)
         }
+        Step::Copy(a) => (at(a, k), zero),
+        // Solved by `TaylorWork::compute`, which holds the factorisation.
+        Step::Solve(_) => return,
         Step::SinCos(a) if k == 0 => at(a, 0).sin_cos(),
         Step::SinCos(a) => {
             // s' = a' c and c' = −a' s, both from the previous orders.
@@ -502,6 +612,63 @@ mod tests {
         let h = 0.1;
         let sum: f64 = work.state(0).iter().rev().fold(0.0, |acc, c| acc * h + c);
         assert!((sum - (t0 + h).sin().exp()).abs() < 1e-15);
+    }
+
+    /// x′ = z0, y′ = z1 with [[1 + x², x], [x, 2]]·z = (−y, x): the linear
+    /// system solved order by order against its closed form by Cramer's
+    /// rule (det = 2 + x²), written with quotients.
+    #[test]
+    fn a_linear_system_solved_order_by_order_matches_its_closed_form() {
+        use Operand::{Const, State, Var};
+        let solved = [
+            TapeOp::Mul(State(0), State(0)),
+            TapeOp::Add(Var(0), Const(1.0)),
+            TapeOp::Mul(State(1), Const(-1.0)),
+            TapeOp::Copy(Var(1)),
+            TapeOp::Copy(State(0)),
+            TapeOp::Copy(State(0)),
+            TapeOp::Copy(Const(2.0)),
+            TapeOp::Copy(Var(2)),
+            TapeOp::Copy(State(0)),
+            TapeOp::Solve { size: 2, first: 3 },
+            TapeOp::SolvedWithPrevious,
+        ];
+        let closed = [
+            TapeOp::Mul(State(0), State(0)),
+            TapeOp::Add(Var(0), Const(2.0)),
+            TapeOp::Mul(State(1), Const(-2.0)),
+            TapeOp::Mul(Var(0), Const(-1.0)),
+            TapeOp::Add(Var(2), Var(3)),
+            TapeOp::Div(Var(4), Var(1)),
+            TapeOp::Mul(State(0), State(1)),
+            TapeOp::Mul(Var(0), State(0)),
+            TapeOp::Add(Var(7), State(0)),
+            TapeOp::Add(Var(8), Var(6)),
+            TapeOp::Div(Var(9), Var(1)),
+        ];
+        let order = 12;
+        let mut a = TaylorWork::new(&solved, &[Var(9), Var(10)], 2, order);
+        let mut b = TaylorWork::new(&closed, &[Var(5), Var(10)], 2, order);
+        for _ in 0..2 {
+            a.compute(0.0, &[0.3, -0.7]);
+            b.compute(0.0, &[0.3, -0.7]);
+            for i in 0..2 {
+                for (k, (x, y)) in a.state(i).iter().zip(b.state(i)).enumerate() {
+                    assert!(
+                        (x - y).abs() <= 1e-14 * y.abs().max(1e-3),
+                        "state {i}, order {k}: {x} {y}"
+                    );
+                }
+            }
+        }
+        // A singular E^[0] (all zero at x = 0 once 1 and 2 are taken out)
+        // gives NaN, for the step rule to report.
+        let mut degenerate = solved;
+        degenerate[6] = TapeOp::Copy(Const(0.0));
+        degenerate[3] = TapeOp::Copy(Const(0.0));
+        let mut zero = TaylorWork::new(&degenerate, &[Var(9), Var(10)], 2, order);
+        zero.compute(0.0, &[0.0, 1.0]);
+        assert!(zero.state(0)[1].is_nan());
     }
 
     #[test]
