@@ -573,16 +573,24 @@ fn taylor_keeps_the_slider_cranks_energy_over_a_thousand_steps() {
 
 /// Ten coupled rods: a 10 × 10 mass matrix (recursive) or a KKT system
 /// (global) solved at run time, order by order on the Taylor tape, in
-/// agreement with DOP853 in both formulations.
+/// agreement with DOP853 in both formulations. Released from rest with
+/// every joint angle zero, the joint angles' series at the start vanish at
+/// the orders ≡ 3, 0 (mod 4): at orders 16 (tolerances 1e-10 and 1e-11)
+/// the last two coefficients are zero, which must not read as an infinite
+/// radius of convergence.
 #[test]
 fn taylor_runs_the_ten_rod_chain_in_both_formulations() {
-    let taylor = Options::new().method(Method::Taylor).tolerance(1e-13);
     let dop853 = Options::new().method(Method::Dop853).tolerance(1e-13);
     let reference = TenRodChainRecursive::default().simulate(0.0, 1.0, &dop853).unwrap();
-    let global = TenRodChain::default().simulate(0.0, 1.0, &taylor).unwrap();
-    let recursive = TenRodChainRecursive::default().simulate(0.0, 1.0, &taylor).unwrap();
-    assert_agree(&global, &reference, &["tip_x", "tip_y"], &[0.25, 0.5, 1.0], 1e-10);
-    assert_agree(&recursive, &reference, &["tip_x", "tip_y"], &[0.25, 0.5, 1.0], 1e-10);
+    for tol in [1e-10, 1e-13] {
+        let taylor = Options::new().method(Method::Taylor).tolerance(tol);
+        let global = TenRodChain::default().simulate(0.0, 1.0, &taylor).unwrap();
+        let recursive = TenRodChainRecursive::default().simulate(0.0, 1.0, &taylor).unwrap();
+        assert!(recursive.stats().steps >= 20, "{} steps", recursive.stats().steps);
+        let bound = 1e3 * tol;
+        assert_agree(&global, &reference, &["tip_x", "tip_y"], &[0.25, 0.5, 1.0], bound);
+        assert_agree(&recursive, &reference, &["tip_x", "tip_y"], &[0.25, 0.5, 1.0], bound);
+    }
 }
 
 /// At a dead centre of the slider-crank (crank and rod in line, θ = 0)

@@ -218,7 +218,10 @@ fn lanes_rho<const W: usize>(rows: &[Lanes<W>], w: usize, k: [usize; 2], inv_k: 
         let log_n = n0[l].max(1.0).ln();
         let log_rho =
             |nk: f64, inv_k: f64| if nk == 0.0 { f64::INFINITY } else { (log_n - nk.ln()) * inv_k };
-        let r = log_rho(n1[l], inv_k[0]).min(log_rho(n2[l], inv_k[1])).exp();
+        let mut r = log_rho(n1[l], inv_k[0]).min(log_rho(n2[l], inv_k[1])).exp();
+        if n1[l] == 0.0 && n2[l] == 0.0 {
+            r = super::radius_from_lower_orders(&|k| norm(k)[l], log_n, k[1]);
+        }
         if r.is_nan() || r < rho {
             rho = r;
         }

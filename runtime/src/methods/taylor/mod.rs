@@ -345,7 +345,10 @@ pub(crate) fn integrate<M: Model>(
                 (log_n - nk.ln()) * inv_k
             }
         };
-        let rho = log_rho(norm_pm1, inv_pm1).min(log_rho(norm_p, inv_p)).exp();
+        let mut rho = log_rho(norm_pm1, inv_pm1).min(log_rho(norm_p, inv_p)).exp();
+        if norm_pm1 == 0.0 && norm_p == 0.0 {
+            rho = radius_from_lower_orders(&norm, log_n, p);
+        }
         let remaining = (t1 - t).abs();
         // A polynomial solution has an infinite radius: the step is then
         // limited by the interval and max_step only.
@@ -419,6 +422,22 @@ pub(crate) fn integrate<M: Model>(
         after_accepted_step!(events, solution);
     }
     Ok(solution)
+}
+
+/// ρ when the last two coefficients vanish at this point but the solution
+/// is no polynomial of low degree: the least ρ_k = (N/‖x^\[k\]‖)^(1/k)
+/// over the upper half of the orders whose coefficients do not vanish
+/// (a chain released from rest in a symmetric pose has x^\[k\] = 0 for
+/// k ≡ 3, 0 mod 4 at its start, and the last two orders alone would read
+/// as an infinite radius); infinite when they all vanish (a polynomial of
+/// degree below p/2, whose radius is).
+pub(crate) fn radius_from_lower_orders(norm: &dyn Fn(usize) -> f64, log_n: f64, p: usize) -> f64 {
+    (p / 2..p.saturating_sub(1))
+        .filter(|&k| k > 0)
+        .map(|k| (k, norm(k)))
+        .filter(|&(_, nk)| nk > 0.0)
+        .map(|(k, nk)| ((log_n - nk.ln()) / k as f64).exp())
+        .fold(f64::INFINITY, f64::min)
 }
 
 #[cfg(test)]
