@@ -253,6 +253,12 @@ pub trait Model {
     /// [`Model::CONSTRAINTS`] by level, each with the states it corrects.
     const PROJECTION: &'static [ProjectionLevel] = &[];
 
+    /// Second-order coordinates that no constraint involves (a body free
+    /// to slide along a cylindrical joint's axis): each is a degree of
+    /// freedom beyond those the constraints leave of the coordinates they
+    /// involve.
+    const UNCONSTRAINED_COORDINATES: usize = 0;
+
     /// Writes the residual of every constraint in [`Model::CONSTRAINTS`].
     fn constraints(&self, t: f64, y: &[f64], out: &mut [f64]) {
         let _ = (t, y, out);

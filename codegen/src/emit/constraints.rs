@@ -71,11 +71,33 @@ pub fn constraint_methods(
             }
         });
     }
+    // Positions (slots whose derivative is another slot, their rate) that
+    // no level corrects: free coordinates, which the rank of Φ_q does not
+    // count.
+    let in_levels: std::collections::BTreeSet<usize> =
+        levels.iter().flat_map(|l| l.slots.iter().copied()).collect();
+    let unconstrained = (0..sys.slots.len())
+        .filter(|&i| !in_levels.contains(&i))
+        .filter(|&i| match sys.derivatives.get(i) {
+            Some(crate::dae::reduce::SlotDerivative::Explicit(e)) => {
+                g.as_symbol(*e).is_some_and(|s| slot_symbols.contains(&s))
+            }
+            _ => false,
+        })
+        .count();
+    let unconstrained = match unconstrained {
+        0 => TokenStream::new(),
+        k => {
+            let k = index(k);
+            quote!(const UNCONSTRAINED_COORDINATES: usize = #k;)
+        }
+    };
     let fixed = sys.slots.iter().enumerate().filter(|(_, s)| s.fixed).map(|(i, _)| index(i));
     Ok(quote! {
         const FIXED_STATES: &'static [usize] = &[#(#fixed),*];
         const CONSTRAINTS: &'static [::daegen::ConstraintInfo] = &[#(#infos),*];
         const PROJECTION: &'static [::daegen::ProjectionLevel] = &[#(#level_infos),*];
+        #unconstrained
 
         #[inline]
         fn constraints(&self, t: f64, y: &[f64], out: &mut [f64]) {

@@ -79,7 +79,16 @@ pub(crate) struct JointRecord {
 }
 
 /// Joint statements, which may be named by a `let`.
-pub(crate) const JOINTS: [&str; 5] = ["revolute", "distance", "prismatic", "fixed", "spherical"];
+pub(crate) const JOINTS: [&str; 8] = [
+    "revolute",
+    "distance",
+    "prismatic",
+    "fixed",
+    "spherical",
+    "universal",
+    "cylindrical",
+    "planar",
+];
 /// What `force` takes, in the plane and in space.
 pub(crate) const FORCE_USAGE: &str =
     "a body, the point of application in its coordinates and the force in world axes";

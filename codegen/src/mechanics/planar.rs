@@ -235,8 +235,8 @@ impl Lower<'_> {
         if self.scene.is_spatial() {
             return self.spatial_joint(kind, name, c, e);
         }
-        if kind == "spherical" {
-            return self.cx.error_at(c, "a planar scene has no spherical joint: use `revolute`, or declare the bodies with `spatial_body`");
+        if matches!(kind, "spherical" | "universal" | "cylindrical" | "planar") {
+            return self.cx.error_at(c, format!("a planar scene has no {kind} joint (its bodies move in one plane, turning about its normal): use `revolute` or `prismatic`, or declare the bodies with `spatial_body`"));
         }
         let extra = match kind {
             "distance" => Some("length"),

@@ -21,7 +21,18 @@
 //! prismatic(a, pa, b, pb, u);       // 5 rows: pb on the line (pa, u), relative attitude kept
 //! fixed(a, pa, b, pb);              // 6 rows: welded in the initial relative attitude
 //! distance(a, pa, b, pb, l);        // 1 row: a massless rod with ball joints
+//! universal(a, pa, b, pb, ua, ub);  // 4 rows: the points coincide, ua (in a) ⟂ ub (in b)
+//! cylindrical(a, pa, b, pb, u);     // 4 rows: pb on the line (pa, u), u kept in b: slides and turns
+//! planar(a, pa, b, pb, n);          // 3 rows: pb in the plane (pa, n), n kept in b
 //! ```
+//!
+//! The universal (Cardan) joint is a spherical joint whose two cross axes,
+//! one fixed in each body, stay perpendicular; the cylindrical one a
+//! revolute joint free to slide along its axis; the planar one keeps b on
+//! a plane of a, turning about its normal (Haug, *Computer-Aided
+//! Kinematics and Dynamics of Mechanical Systems*, 1989, §9.2: the
+//! universal joint as spherical + dot-1, the cylindrical as two dot-1 and
+//! two dot-2 constraints).
 
 use super::SpatialBody;
 use crate::front::lower::Binding;
@@ -158,8 +169,16 @@ struct Pose {
 }
 
 /// Spatial joints and their number of rows.
-pub(crate) const SPATIAL_JOINTS: [(&str, usize); 5] =
-    [("spherical", 3), ("revolute", 5), ("prismatic", 5), ("fixed", 6), ("distance", 1)];
+pub(crate) const SPATIAL_JOINTS: [(&str, usize); 8] = [
+    ("spherical", 3),
+    ("revolute", 5),
+    ("prismatic", 5),
+    ("fixed", 6),
+    ("distance", 1),
+    ("universal", 4),
+    ("cylindrical", 4),
+    ("planar", 3),
+];
 
 impl Lower<'_> {
     /// `let b = spatial_body(m, inertia, [x, y, z], [q0, q1, q2, q3])`, with
@@ -386,15 +405,29 @@ impl Lower<'_> {
         e: &Expr,
     ) {
         let Some(&(kind, _)) = SPATIAL_JOINTS.iter().find(|(k, _)| *k == kind) else {
-            return self.cx.error_at(c, format!("`{kind}` is not a spatial joint: use `spherical`, `revolute`, `prismatic`, `fixed` or `distance`"));
+            return self.cx.error_at(c, format!("`{kind}` is not a spatial joint: use `spherical`, `revolute`, `prismatic`, `fixed`, `distance`, `universal`, `cylindrical` or `planar`"));
         };
         let extra = match kind {
             "distance" => Some("length"),
-            "revolute" | "prismatic" => Some("axis_in_a"),
+            "revolute" | "prismatic" | "cylindrical" => Some("axis_in_a"),
+            "planar" => Some("normal_in_a"),
             _ => None,
         };
-        let Some((a, b)) = self.joint_frames(kind, c, extra) else {
-            return;
+        let (a, b) = if kind == "universal" {
+            if c.args.len() != 6 {
+                return self.cx.error_at(c, "`universal` takes 6 arguments: `universal(a, point_in_a, b, point_in_b, axis_in_a, axis_in_b)`, the two cross axes perpendicular at the start");
+            }
+            let mut four = c.clone();
+            four.args = c.args.iter().take(4).cloned().collect();
+            match self.joint_frames(kind, &four, None) {
+                Some(frames) => frames,
+                None => return,
+            }
+        } else {
+            match self.joint_frames(kind, c, extra) {
+                Some(frames) => frames,
+                None => return,
+            }
         };
         let Some([sa, sb]) = self.attachment_points(c) else {
             return;
@@ -404,7 +437,20 @@ impl Lower<'_> {
                 Some(l) => Some([l, l, l]),
                 None => return,
             },
-            "revolute" | "prismatic" => match self.vec3_arg(&c.args[4], "the axis") {
+            "revolute" | "prismatic" | "cylindrical" | "universal" => {
+                match self.vec3_arg(&c.args[4], "the axis") {
+                    Some(u) => Some(u),
+                    None => return,
+                }
+            }
+            "planar" => match self.vec3_arg(&c.args[4], "the plane's normal") {
+                Some(n) => Some(n),
+                None => return,
+            },
+            _ => None,
+        };
+        let cross_axis = match kind {
+            "universal" => match self.vec3_arg(&c.args[5], "the axis in b") {
                 Some(u) => Some(u),
                 None => return,
             },
@@ -449,8 +495,51 @@ impl Lower<'_> {
                 let length = g.sqrt(length)?;
                 Ok([g.div(u[0], length)?, g.div(u[1], length)?, g.div(u[2], length)?])
             };
+            // u in b's axes at the start, then in the world now: it stays
+            // normal to the two normals of u in a (the dot-2 rows of a
+            // revolute or cylindrical joint, the normal of a planar one).
+            let axis_kept = |g: &mut Graph, u: Vec3, rows: &mut Vec<Id>| -> crate::Result<()> {
+                let u_world0 = mat_vec(g, &pa.rot0, u)?;
+                let u_b = mat_t_vec(g, &pb.rot0, u_world0)?;
+                let u_b_world = mat_vec(g, &pb.rot, u_b)?;
+                for n in normals(g, u, axis_values.unwrap_or([1.0; 3]))? {
+                    let n_world = mat_vec(g, &pa.rot, n)?;
+                    rows.push(dot3(g, n_world, u_b_world)?);
+                }
+                Ok(())
+            };
+            // pb on the line through pa along u: the gap normal to u's normals.
+            let on_line = |g: &mut Graph, u: Vec3, rows: &mut Vec<Id>| -> crate::Result<()> {
+                for n in normals(g, u, axis_values.unwrap_or([1.0; 3]))? {
+                    let n_world = mat_vec(g, &pa.rot, n)?;
+                    rows.push(dot3(g, n_world, gap)?);
+                }
+                Ok(())
+            };
             let mut coordinate = None;
             match kind {
+                "universal" => {
+                    let (ua, ub) =
+                        (extra.unwrap_or([g.zero(); 3]), cross_axis.unwrap_or([g.zero(); 3]));
+                    rows.extend(gap);
+                    let ua_world = mat_vec(g, &pa.rot, ua)?;
+                    let ub_world = mat_vec(g, &pb.rot, ub)?;
+                    rows.push(dot3(g, ua_world, ub_world)?);
+                }
+                "cylindrical" => {
+                    let u = extra.unwrap_or([g.zero(); 3]);
+                    on_line(g, u, &mut rows)?;
+                    axis_kept(g, u, &mut rows)?;
+                    let u_hat = unit(g, u)?;
+                    let u_world = mat_vec(g, &pa.rot, u_hat)?;
+                    coordinate = Some(dot3(g, u_world, gap)?);
+                }
+                "planar" => {
+                    let n = extra.unwrap_or([g.zero(); 3]);
+                    let n_world = mat_vec(g, &pa.rot, n)?;
+                    rows.push(dot3(g, n_world, gap)?);
+                    axis_kept(g, n, &mut rows)?;
+                }
                 "spherical" => rows.extend(gap),
                 "fixed" => {
                     rows.extend(gap);
@@ -501,6 +590,14 @@ impl Lower<'_> {
         })();
         match rows {
             Ok((rows, coordinate)) => {
+                // A Cardan joint's cross axes are perpendicular: other axes
+                // are a mistake the dot-1 row would repair by turning a body.
+                if kind == "universal" {
+                    let cosine = self.numeric(rows[3]);
+                    if cosine.abs() > 1e-9 {
+                        return self.cx.error_at(c, format!("the two axes of `universal` must be perpendicular at the start, as a Cardan joint's cross axes are: axis_in_a and axis_in_b have the dot product {cosine} in world axes"));
+                    }
+                }
                 if self.add_joint_rows(kind, name, rows, e).is_none() {
                     return;
                 }

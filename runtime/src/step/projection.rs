@@ -198,7 +198,8 @@ impl<M: Model> Projector<'_, M> {
     }
 
     /// Degrees of freedom at `(t, y)`: the states of the first level minus
-    /// the rank of its Jacobian (n − rank Φ_q for a mechanism).
+    /// the rank of its Jacobian (n − rank Φ_q for a mechanism), plus the
+    /// coordinates no constraint involves.
     pub(crate) fn degrees_of_freedom(&mut self, t: f64, y: &[f64]) -> usize {
         let Some(level) = M::PROJECTION.first() else {
             return M::STATES;
@@ -206,7 +207,7 @@ impl<M: Model> Projector<'_, M> {
         let (m, cols) = (level.rows.len(), level.slots.len());
         let jacobian = &mut self.jacobian[..m * cols];
         self.model.constraint_jacobian(0, t, y, jacobian);
-        cols - rank(jacobian, m, cols)
+        cols - rank(jacobian, m, cols) + M::UNCONSTRAINED_COORDINATES
     }
 }
 
