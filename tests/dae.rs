@@ -12,16 +12,8 @@ include!("models/pendulum.rs");
 // The contract's pendulum, with the Taylor method's tape.
 contract_pendulum!(dae_model_with! { (taylor = 1) });
 
-/// The same pendulum in its angle θ from the downward vertical
-/// (`x = l sin θ`, `y = −l cos θ`): the minimal-coordinate ODE of the notes.
-#[dae_model]
-fn pendulum_angle() {
-    let l = param(1.0);
-    let g = param(9.81);
-    let theta = state(1.5707963267948966);
-    init(der(theta), 0.0);
-    l * der(der(theta)) == -g * sin(theta);
-}
+// The same pendulum in its angle θ from the downward vertical.
+contract_pendulum_angle!();
 
 #[test]
 fn the_cartesian_pendulum_has_index_three() {
@@ -678,18 +670,8 @@ double_pendulum_cartesian!(dae_model_with! { () } {
     );
 });
 
-/// The same double pendulum in its angles from the downward vertical:
-/// the mass matrix [[2, c], [c, 1]], c = cos(a − b).
-#[dae_model]
-fn double_pendulum_angles() {
-    let g = param(9.81);
-    let a = state(1.5707963267948966);
-    let b = state(1.5707963267948966);
-    let c = cos(a - b);
-    let s = sin(a - b);
-    2.0 * der(der(a)) + c * der(der(b)) == -s * der(b) * der(b) - 2.0 * g * sin(a);
-    c * der(der(a)) + der(der(b)) == s * der(a) * der(a) - g * sin(b);
-}
+// The same double pendulum in its angles: the mass matrix [[2, c], [c, 1]].
+double_pendulum_released_horizontal!();
 
 #[test]
 fn the_cartesian_double_pendulum_follows_its_angle_form() {

@@ -172,22 +172,14 @@ expansion_test! {
     }
 }
 
-expansion_test! {
+include!("models/lotka_volterra.rs");
+
+lotka_volterra!(expansion_test! {
     /// Lotka–Volterra with the sensitivities to a: each Jacobian entry
     /// (a − b·y, −b·x, c·y, c·x − d) one row of the Taylor tape, shared with
     /// the right-hand side where it occurs there, times the column.
     lotka_volterra_with_sensitivities_as_a_taylor_tape, (taylor = 1, sensitivities = [a]), ["LotkaVolterraSensitivities::taylor_tape"],
-    fn lotka_volterra() {
-        let a = param(1.5);
-        let b = param(1.0);
-        let c = param(1.0);
-        let d = param(3.0);
-        let x = state(10.0);
-        let y = state(5.0);
-        der(x) == a * x - b * x * y;
-        der(y) == c * x * y - d * y;
-    }
-}
+});
 
 // Course notes Example 1.4 with the economic Taylor derivatives of order 4.
 example_1_4!(expansion_test! {

@@ -184,16 +184,9 @@ include!("models/items.rs");
 // sensitivities to its length and to gravity.
 contract_pendulum!(dae_model_with! { (sensitivities = [l, g], taylor = 1) });
 
-/// The same pendulum in its angle from the downward vertical
-/// (x = l·sin θ, y = −l·cos θ), released at rest from θ = π/2.
-#[dae_model(sensitivities = [l, g])]
-fn pendulum_angle() {
-    let l = param(1.0);
-    let g = param(9.81);
-    let theta = state(1.5707963267948966);
-    init(der(theta), 0.0);
-    l * der(der(theta)) == -g * sin(theta);
-}
+// The same pendulum in its angle from the downward vertical, with the
+// same sensitivities.
+contract_pendulum_angle!(sensitivities = [l, g]);
 
 /// ∂θ/∂w of the Cartesian pendulum: θ = atan2(x, −y), so
 /// dθ = (−y·dx + x·dy)/(x² + y²).
@@ -274,18 +267,8 @@ fn the_dae_pendulums_sensitivities_keep_the_linearised_constraints_at_every_step
 // each with its velocity level) with the sensitivities to gravity.
 double_pendulum_cartesian!(dae_model_with! { (sensitivities = [g]) } {});
 
-/// The same double pendulum in its angles from the downward vertical,
-/// released with both rods horizontal.
-#[dae_model(sensitivities = [g])]
-fn double_pendulum_angles() {
-    let g = param(9.81);
-    let a = state(1.5707963267948966);
-    let b = state(1.5707963267948966);
-    let c = cos(a - b);
-    let s = sin(a - b);
-    2.0 * der(der(a)) + c * der(der(b)) == -s * der(b) * der(b) - 2.0 * g * sin(a);
-    c * der(der(a)) + der(der(b)) == s * der(a) * der(a) - g * sin(b);
-}
+// The same double pendulum in its angles, with the same sensitivity.
+double_pendulum_released_horizontal!(sensitivities = [g]);
 
 #[test]
 fn the_cartesian_double_pendulums_gravity_sensitivities_follow_the_angle_forms() {

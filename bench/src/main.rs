@@ -63,6 +63,8 @@ include!("../../tests/models/stiff.rs");
 include!("../../tests/models/pendulum.rs");
 include!("../../tests/models/slider_crank.rs");
 include!("../../tests/models/rod_chain.rs");
+include!("../../tests/models/items.rs");
+include!("../../tests/models/lotka_volterra.rs");
 
 // The Taylor orders unrolled are those `Method::Taylor` picks at the
 // tolerances swept, down to 1e-15 (`--orders` lists them),
@@ -128,6 +130,8 @@ robertson_model!(
 );
 // Its rate constants as parameters, with their sensitivities (`--sensitivities`).
 robertson_rates_model!(sensitivities = [k1, k2, k3]);
+// Lotka–Volterra with the sensitivities to its four rates (`--sensitivities`).
+lotka_volterra!(dae_model_with! { (sensitivities = [a, b, c, d]) });
 low_pass_model!();
 hires_model!(
     bench = Bench::until(321.8122)

@@ -4,24 +4,11 @@
 //! same method and tolerances, as time ratios; the targets are
 //! ≤ 1 + 0.5·n_p for the implicit methods (which factor the base model's
 //! matrix once for every column) and ≤ 1 + 0.3·n_p for Taylor. Robertson's
-//! model with its rates as parameters is the tests' (`main.rs`).
+//! model with its rates as parameters and Lotka–Volterra are the tests'
+//! (`main.rs`).
 
 use crate::*;
 use daegen_workprecision::mixed_error;
-
-/// Lotka–Volterra, x′ = a·x − b·x·y, y′ = c·x·y − d·y (non-stiff), with
-/// the sensitivities to its four rates.
-#[dae_model(sensitivities = [a, b, c, d])]
-fn lotka_volterra() {
-    let a = param(1.5);
-    let b = param(1.0);
-    let c = param(1.0);
-    let d = param(3.0);
-    let x = state(10.0);
-    let y = state(5.0);
-    der(x) == a * x - b * x * y;
-    der(y) == c * x * y - d * y;
-}
 
 /// The median of `runs` timings of `run` (at least 5, more while under
 /// half a second in all), and the steps of its last run.

@@ -35,6 +35,25 @@ macro_rules! contract_pendulum {
     };
 }
 
+/// `contract_pendulum_angle!(attributes)`: the contract's pendulum in its
+/// angle θ from the downward vertical (x = l·sin θ, y = −l·cos θ),
+/// released at rest from θ = π/2: the minimal-coordinate ODE of the notes,
+/// as `PendulumAngle`.
+#[allow(unused_macros)]
+macro_rules! contract_pendulum_angle {
+    ($($attr:tt)*) => {
+        /// The contract's pendulum in its angle from the downward vertical.
+        #[dae_model($($attr)*)]
+        fn pendulum_angle() {
+            let l = param(1.0);
+            let g = param(9.81);
+            let theta = state(1.5707963267948966);
+            init(der(theta), 0.0);
+            l * der(der(theta)) == -g * sin(theta);
+        }
+    };
+}
+
 /// `dae_model_with! { (attributes) item }`: `item` under
 /// `#[dae_model(attributes)]`.
 #[allow(unused_macros)]
@@ -139,6 +158,28 @@ macro_rules! example_1_4 {
                 let y = state(1.0);
                 der(y) == x * y + x;
             }
+        }
+    };
+}
+
+/// `double_pendulum_released_horizontal!(attributes)`: the Cartesian double
+/// pendulum's angle form (angles from the downward vertical, unit masses
+/// and lengths, both rods horizontal at rest), the mass matrix
+/// [[2, c], [c, 1]], c = cos(a − b), as `DoublePendulumAngles`.
+#[allow(unused_macros)]
+macro_rules! double_pendulum_released_horizontal {
+    ($($attr:tt)*) => {
+        /// The double pendulum in its angles from the downward vertical,
+        /// released with both rods horizontal.
+        #[dae_model($($attr)*)]
+        fn double_pendulum_angles() {
+            let g = param(9.81);
+            let a = state(1.5707963267948966);
+            let b = state(1.5707963267948966);
+            let c = cos(a - b);
+            let s = sin(a - b);
+            2.0 * der(der(a)) + c * der(der(b)) == -s * der(b) * der(b) - 2.0 * g * sin(a);
+            c * der(der(a)) + der(der(b)) == s * der(a) * der(a) - g * sin(b);
         }
     };
 }

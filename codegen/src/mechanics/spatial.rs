@@ -516,6 +516,12 @@ impl Lower<'_> {
                 }
                 Ok(())
             };
+            // The slide of pb from pa along the unit axis u (in a).
+            let slide = |g: &mut Graph, u: Vec3| -> crate::Result<Id> {
+                let u_hat = unit(g, u)?;
+                let u_world = mat_vec(g, &pa.rot, u_hat)?;
+                dot3(g, u_world, gap)
+            };
             let mut coordinate = None;
             match kind {
                 "universal" => {
@@ -530,9 +536,7 @@ impl Lower<'_> {
                     let u = extra.unwrap_or([g.zero(); 3]);
                     on_line(g, u, &mut rows)?;
                     axis_kept(g, u, &mut rows)?;
-                    let u_hat = unit(g, u)?;
-                    let u_world = mat_vec(g, &pa.rot, u_hat)?;
-                    coordinate = Some(dot3(g, u_world, gap)?);
+                    coordinate = Some(slide(g, u)?);
                 }
                 "planar" => {
                     let n = extra.unwrap_or([g.zero(); 3]);
@@ -564,26 +568,13 @@ impl Lower<'_> {
                     let one = g.one();
                     let twice_cos = g.sub(trace, one)?;
                     coordinate = Some(g.atan2(twice_sin, twice_cos)?);
-                    // u in b's axes at the start, then in the world now:
-                    // it stays normal to the two normals of u in a.
-                    let u_world0 = mat_vec(g, &pa.rot0, u)?;
-                    let u_b = mat_t_vec(g, &pb.rot0, u_world0)?;
-                    let u_b_world = mat_vec(g, &pb.rot, u_b)?;
-                    for n in normals(g, u, axis_values.unwrap_or([1.0; 3]))? {
-                        let n_world = mat_vec(g, &pa.rot, n)?;
-                        rows.push(dot3(g, n_world, u_b_world)?);
-                    }
+                    axis_kept(g, u, &mut rows)?;
                 }
                 _ => {
                     let u = extra.unwrap_or([g.zero(); 3]);
-                    for n in normals(g, u, axis_values.unwrap_or([1.0; 3]))? {
-                        let n_world = mat_vec(g, &pa.rot, n)?;
-                        rows.push(dot3(g, n_world, gap)?);
-                    }
+                    on_line(g, u, &mut rows)?;
                     rows.extend(attitude(g)?);
-                    let u_hat = unit(g, u)?;
-                    let u_world = mat_vec(g, &pa.rot, u_hat)?;
-                    coordinate = Some(dot3(g, u_world, gap)?);
+                    coordinate = Some(slide(g, u)?);
                 }
             }
             Ok((rows, coordinate))
