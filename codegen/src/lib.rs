@@ -83,7 +83,13 @@ pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
     let system = if cx.is_ok() { dae::reduce::reduce(&mut cx, &mut ir) } else { None };
     let sensitivities = match &system {
         Some(system) if cx.is_ok() => {
-            dae::variational::resolve(&mut cx, &attributes.sensitivities, &ir, system)
+            let wrt = dae::variational::resolve(&mut cx, &attributes.sensitivities, &ir, system);
+            // Said on the attribute's list, which asked for them.
+            if let (false, Some(why)) = (wrt.is_empty(), dae::variational::unsupported(system)) {
+                let list = &attributes.sensitivities;
+                cx.error_at(quote::quote!(#(#list),*), why);
+            }
+            wrt
         }
         _ => Vec::new(),
     };

@@ -91,6 +91,17 @@ pub fn sensitivity_name(state: &str, wrt: &str) -> String {
     format!("d({state})/d({wrt})")
 }
 
+const UNSUPPORTED: &str = "sensitivities are generated for models whose derivatives solve symbolically; this one solves a linear or nonlinear system at run time (a mechanism's KKT system, an algebraic loop), whose sensitivities are not generated: write the model in independent coordinates (a pendulum in its angle), or difference two runs";
+
+/// Why `sys` cannot have sensitivities generated, or `None`: its
+/// derivatives must be explicit in the states (no system solved at run
+/// time).
+pub fn unsupported(sys: &FirstOrder) -> Option<&'static str> {
+    let explicit = sys.derivatives.iter().all(|d| matches!(d, SlotDerivative::Explicit(_)));
+    let solved = explicit && sys.blocks.is_empty() && sys.newton.is_none() && !sys.mass_only;
+    (!solved).then_some(UNSUPPORTED)
+}
+
 /// `sys` with the sensitivities with respect to `wrt` appended as states,
 /// in the order `wrt` lists them, each column in the order of the states.
 ///
@@ -116,10 +127,8 @@ pub fn variational_system(
         })
         .collect();
     let f = match explicit {
-        Some(f) if sys.blocks.is_empty() && sys.newton.is_none() && !sys.mass_only => f,
-        _ => {
-            return Err("sensitivities are generated for models whose derivatives solve symbolically; this one solves a linear or nonlinear system at run time (a mechanism's KKT system, an algebraic loop), whose sensitivities are not generated: write the model in independent coordinates (a pendulum in its angle), or difference two runs".into())
-        }
+        Some(f) if unsupported(sys).is_none() => f,
+        _ => return Err(UNSUPPORTED.into()),
     };
     let n = sys.slots.len();
     let slots: Vec<SymbolId> = sys.slots.iter().map(|s| s.symbol).collect();
