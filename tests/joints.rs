@@ -137,8 +137,13 @@ fn a_body_on_a_cylindrical_joint_falls_along_its_axis_spinning_freely() {
         let z = t - 0.5 * 9.81 * t * t;
         let (half, turn) = (1.5 * t, [("body.q0", (1.5 * t).cos()), ("body.q3", (1.5 * t).sin())]);
         assert!((sol.at(t, "body.z").unwrap() - z).abs() <= 1e3 * tol, "t = {t}");
-        // The joint's coordinate: the slide along the axis.
+        // The joint's coordinates: the slide along the axis, and the turn
+        // about it (in (−π, π]).
         assert!((sol.at(t, "sleeve.q").unwrap() - z).abs() <= 1e3 * tol, "t = {t}");
+        let angle = sol.at(t, "sleeve.angle").unwrap();
+        let wrapped = (3.0 * t + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI)
+            - std::f64::consts::PI;
+        assert!((angle - wrapped).abs() <= 1e3 * tol, "t = {t}: angle {angle} against {wrapped}");
         assert!((sol.at(t, "body.wz").unwrap() - 3.0).abs() <= 1e3 * tol, "t = {t}");
         for (name, want) in turn {
             let got = sol.at(t, name).unwrap();

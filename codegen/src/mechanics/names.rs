@@ -114,6 +114,12 @@ impl Lower<'_> {
         self.push_output(format!("{name}.q"), q, doc, origin);
     }
 
+    /// `name.angle`: a cylindrical joint's rotation about its axis.
+    pub(crate) fn spatial_joint_angle(&mut self, name: String, angle: Id, origin: &TokenStream) {
+        let doc = "rotation of the second body relative to the first about the axis since the start (rad)";
+        self.push_output(format!("{name}.angle"), angle, doc, origin);
+    }
+
     /// `[x, y, θ]` of a frame: the body's coordinates, or zeros for the ground.
     fn frame_pose(&mut self, frame: Frame) -> [Id; 3] {
         match frame {

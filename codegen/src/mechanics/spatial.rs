@@ -457,8 +457,9 @@ impl Lower<'_> {
             _ => None,
         };
         let axis_values = extra.map(|u| u.map(|x| self.numeric(x)));
-        // The rows, and the joint's coordinate (revolute and prismatic).
-        let rows = (|| -> crate::Result<(Vec<Id>, Option<Id>)> {
+        // The rows, and the joint's coordinates (revolute, prismatic and
+        // cylindrical).
+        let rows = (|| -> crate::Result<(Vec<Id>, Option<Id>, Option<Id>)> {
             let (pa, pb, gap) = self.attachment_gap([a, b], [sa, sb])?;
             let g = &mut self.g;
             let mut rows = Vec::with_capacity(6);
@@ -522,7 +523,20 @@ impl Lower<'_> {
                 let u_world = mat_vec(g, &pa.rot, u_hat)?;
                 dot3(g, u_world, gap)
             };
+            // The angle the relative attitude D = R_aᵀ R_b C0ᵀ has turned
+            // about u: its axial vector is sin q · u, its trace 1 + 2 cos q.
+            let turn = |g: &mut Graph, u: Vec3| -> crate::Result<Id> {
+                let d = relative(g)?;
+                let axial = [g.sub(d[7], d[5])?, g.sub(d[2], d[6])?, g.sub(d[3], d[1])?];
+                let u_hat = unit(g, u)?;
+                let twice_sin = dot3(g, u_hat, axial)?;
+                let trace = g.sum(&[d[0], d[4], d[8]])?;
+                let one = g.one();
+                let twice_cos = g.sub(trace, one)?;
+                g.atan2(twice_sin, twice_cos)
+            };
             let mut coordinate = None;
+            let mut angle = None;
             match kind {
                 "universal" => {
                     let (ua, ub) =
@@ -537,6 +551,7 @@ impl Lower<'_> {
                     on_line(g, u, &mut rows)?;
                     axis_kept(g, u, &mut rows)?;
                     coordinate = Some(slide(g, u)?);
+                    angle = Some(turn(g, u)?);
                 }
                 "planar" => {
                     let n = extra.unwrap_or([g.zero(); 3]);
@@ -558,16 +573,7 @@ impl Lower<'_> {
                 "revolute" => {
                     let u = extra.unwrap_or([g.zero(); 3]);
                     rows.extend(gap);
-                    // D = R_aᵀ R_b C0ᵀ turns about u by the joint angle q:
-                    // its axial vector is sin q · u, its trace 1 + 2 cos q.
-                    let d = relative(g)?;
-                    let axial = [g.sub(d[7], d[5])?, g.sub(d[2], d[6])?, g.sub(d[3], d[1])?];
-                    let u_hat = unit(g, u)?;
-                    let twice_sin = dot3(g, u_hat, axial)?;
-                    let trace = g.sum(&[d[0], d[4], d[8]])?;
-                    let one = g.one();
-                    let twice_cos = g.sub(trace, one)?;
-                    coordinate = Some(g.atan2(twice_sin, twice_cos)?);
+                    coordinate = Some(turn(g, u)?);
                     axis_kept(g, u, &mut rows)?;
                 }
                 _ => {
@@ -577,10 +583,10 @@ impl Lower<'_> {
                     coordinate = Some(slide(g, u)?);
                 }
             }
-            Ok((rows, coordinate))
+            Ok((rows, coordinate, angle))
         })();
         match rows {
-            Ok((rows, coordinate)) => {
+            Ok((rows, coordinate, angle)) => {
                 // A Cardan joint's cross axes are perpendicular: other axes
                 // are a mistake the dot-1 row would repair by turning a body.
                 if kind == "universal" {
@@ -595,6 +601,11 @@ impl Lower<'_> {
                 if let (Some(q), Some((joint, ..))) = (coordinate, self.scene.joint_rows.last()) {
                     let joint = joint.clone();
                     self.spatial_joint_coordinate(joint, q, kind, &e.to_token_stream());
+                }
+                // A cylindrical joint turns as well as it slides.
+                if let (Some(q), Some((joint, ..))) = (angle, self.scene.joint_rows.last()) {
+                    let joint = joint.clone();
+                    self.spatial_joint_angle(joint, q, &e.to_token_stream());
                 }
             }
             Err(err) => self.cx.error_at(e, err),
