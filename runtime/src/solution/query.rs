@@ -102,7 +102,11 @@ impl Solution {
     /// a model made by `with_sensitivities()` (`#[dae_model(sensitivities
     /// = [k, init(x)])]`) keeps them as the states `d(x)/d(k)`, read like
     /// [`Solution::at`] reads any state. An [`Error::UnknownName`] lists
-    /// what the run has where it has no such sensitivity.
+    /// what the run has where it has no such sensitivity. For a DAE they
+    /// are those of the consistent solution: projected, as the state is,
+    /// onto the linearised constraints, so `init(x)` of a constrained `x`
+    /// is the sensitivity to the value initialization starts from, not to
+    /// a value the constraints would not let the state take.
     pub fn sensitivity(&self, t: f64, name: &str, wrt: &str) -> Result<f64, Error> {
         self.at(t, &format!("d({name})/d({wrt})"))
     }
