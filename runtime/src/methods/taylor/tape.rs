@@ -200,6 +200,10 @@ struct LinearSystem {
     entries: usize,
     /// The row of the first unknown.
     unknowns: usize,
+    /// The entries (i, c) of E that vary (not constants): only they enter
+    /// Σ_{j≥1} E^\[j\]·z^\[k−j\] (a mechanism's KKT system is mostly its
+    /// constant mass matrix and zeros).
+    varying: Vec<(usize, usize)>,
     /// Per lane: E^\[0\] factored in place (L below the diagonal, U on and
     /// above), then its row permutation.
     lu: Vec<f64>,
@@ -295,10 +299,17 @@ impl<T: Coefficient> TaylorWork<T> {
                 TapeOp::Copy(a) => Step::Copy(r(a)),
                 TapeOp::Solve { size, first } => {
                     let lanes = T::WIDTH;
+                    let varying = (0..size * size)
+                        .filter(|e| {
+                            !matches!(tape.get(first + e), Some(TapeOp::Copy(Operand::Const(_))))
+                        })
+                        .map(|e| (e / size, e % size))
+                        .collect();
                     systems.push(LinearSystem {
                         size,
                         entries: first_var + first,
                         unknowns: first_var + v,
+                        varying,
                         lu: vec![0.0; lanes * size * size],
                         pivots: vec![0; lanes * size],
                         rhs: vec![0.0; lanes * size],
@@ -373,14 +384,16 @@ fn solve_order<T: Coefficient>(system: &mut LinearSystem, rows: &mut [T], w: usi
         let pivots = &mut system.pivots[lane * n..(lane + 1) * n];
         let b = &mut system.rhs[lane * n..(lane + 1) * n];
         let at = |r: usize, j: usize| rows[r * w + j].lane(lane);
-        for i in 0..n {
-            let mut v = at(rhs_rows + i, k);
+        for (i, bi) in b.iter_mut().enumerate() {
+            *bi = at(rhs_rows + i, k);
+        }
+        for &(i, c) in &system.varying {
+            let (entry, unknown) = (entries + i * n + c, unknowns + c);
+            let mut sum = 0.0;
             for j in 1..=k {
-                for c in 0..n {
-                    v -= at(entries + i * n + c, j) * at(unknowns + c, k - j);
-                }
+                sum += at(entry, j) * at(unknown, k - j);
             }
-            b[i] = v;
+            b[i] -= sum;
         }
         let regular = if k == 0 {
             for (e, slot) in lu.iter_mut().enumerate() {
