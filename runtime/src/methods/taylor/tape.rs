@@ -167,6 +167,9 @@ pub enum Step<T = f64> {
     Quotient(usize, T),
     /// `a·b`, the Cauchy convolution.
     Mul(usize, usize),
+    /// `(a·b)·c` for a constant c, where nothing else reads `a·b`: one
+    /// step instead of a product and a scaling.
+    ScaledMul(usize, usize, T),
     /// `a·a`: the symmetric convolution, half the products.
     Square(usize),
     /// `a/b`.
@@ -323,7 +326,8 @@ impl<T: Coefficient> TaylorWork<T> {
             };
             steps.push((first_var + v, step));
         }
-        let outputs = outputs.iter().map(|&o| row(o, &mut constants)).collect();
+        let outputs: Vec<usize> = outputs.iter().map(|&o| row(o, &mut constants)).collect();
+        let steps = fuse_scaled_products(steps, &outputs);
         let mut rows = vec![T::splat(0.0); (first_var + tape.len()) * w];
         for (i, c) in constants.iter().enumerate() {
             rows[(time_row + 1 + i) * w] = *c;
@@ -368,6 +372,73 @@ impl<T: Coefficient> TaylorWork<T> {
                 rows[i * w + k + 1] = rows[out * w + k] / next;
             }
         }
+    }
+}
+
+/// Each scaling `c·u` of a product `u = a·b` that nothing else reads
+/// becomes one step: a product by a constant factor (m_j·dx·r³ of an
+/// N-body model, −b·x·S of a sensitivity) costs the interpreter one
+/// operation, not two.
+fn fuse_scaled_products<T: Coefficient>(
+    steps: Vec<(usize, Step<T>)>,
+    outputs: &[usize],
+) -> Vec<(usize, Step<T>)> {
+    let mut reads: FxCounts = FxCounts::default();
+    for &(_, step) in &steps {
+        for r in step_operands(&step) {
+            *reads.entry(r).or_insert(0) += 1;
+        }
+    }
+    for &o in outputs {
+        *reads.entry(o).or_insert(0) += 1;
+    }
+    let product_at: std::collections::HashMap<usize, (usize, usize)> = steps
+        .iter()
+        .filter_map(|&(v, step)| match step {
+            Step::Mul(a, b) => Some((v, (a, b))),
+            _ => None,
+        })
+        .collect();
+    let mut fused_away = std::collections::HashSet::new();
+    let mut out: Vec<(usize, Step<T>)> = steps
+        .iter()
+        .map(|&(v, step)| match step {
+            Step::Scale(u, c) if reads.get(&u) == Some(&1) => match product_at.get(&u) {
+                Some(&(a, b)) => {
+                    fused_away.insert(u);
+                    (v, Step::ScaledMul(a, b, c))
+                }
+                None => (v, step),
+            },
+            _ => (v, step),
+        })
+        .collect();
+    out.retain(|(v, step)| !(matches!(step, Step::Mul(..)) && fused_away.contains(v)));
+    out
+}
+
+type FxCounts = std::collections::HashMap<usize, usize>;
+
+/// The rows a step reads.
+fn step_operands<T>(step: &Step<T>) -> Vec<usize> {
+    match *step {
+        Step::Add(a, b) | Step::Mul(a, b) | Step::Div(a, b) | Step::ScaledMul(a, b, _) => {
+            vec![a, b]
+        }
+        Step::Scale(a, _)
+        | Step::Quotient(a, _)
+        | Step::Square(a)
+        | Step::Pow(a, _)
+        | Step::Exp(a)
+        | Step::Ln(a)
+        | Step::SinCos(a)
+        | Step::SinhCosh(a)
+        | Step::Copy(a) => vec![a],
+        Step::Inverse(_, a, d) => vec![a, d],
+        Step::Atan2(y, x, d) => vec![y, x, d],
+        // A linear system reads its entries' rows, which are copies that
+        // no scaling fuses with.
+        Step::Solve(_) => vec![],
     }
 }
 
@@ -432,6 +503,7 @@ pub fn advance<T: Coefficient>(rows: &mut [T], w: usize, k: usize, v: usize, ste
         Step::Scale(a, c) => (at(a, k) * c, zero),
         Step::Quotient(a, c) => (at(a, k) / c, zero),
         Step::Mul(a, b) => (convolution(row(a), row(b)), zero),
+        Step::ScaledMul(a, b, c) => (convolution(row(a), row(b)) * c, zero),
         Step::Square(a) => {
             // Σ_j a_j a_{k−j} = 2 Σ_{j<k−j} a_j a_{k−j} + a_{k/2}² (k even).
             let a = row(a);
@@ -606,6 +678,34 @@ mod tests {
         for (k, c) in work.state(0).iter().enumerate() {
             assert!((c - 0.5f64.powi(k as i32 + 1)).abs() < 1e-15);
         }
+    }
+
+    /// y′ = 2·y·z, z′ = −z with the product read once (fused with its
+    /// scaling into one step) or twice (kept): y = y0·exp(2·z0·(1 −
+    /// e^(−t))), the same coefficients either way.
+    #[test]
+    fn a_product_scaled_once_is_one_step_with_the_same_coefficients() {
+        use Operand::{Const, State, Var};
+        let fused = [
+            TapeOp::Mul(State(0), State(1)),
+            TapeOp::Mul(Var(0), Const(2.0)),
+            TapeOp::Mul(State(1), Const(-1.0)),
+        ];
+        // The same, with an operation that reads the product again.
+        let kept = [fused[0], fused[1], fused[2], TapeOp::Add(Var(0), Var(2))];
+        let order = 14;
+        let mut a = TaylorWork::new(&fused, &[Var(1), Var(2)], 2, order);
+        assert_eq!(a.steps.len(), 2, "the product and its scaling are one step");
+        let mut b = TaylorWork::new(&kept, &[Var(1), Var(2)], 2, order);
+        assert_eq!(b.steps.len(), 4, "a product read twice stays a step of its own");
+        let (y0, z0) = (0.7, 0.4);
+        a.compute(0.0, &[y0, z0]);
+        b.compute(0.0, &[y0, z0]);
+        assert_eq!(a.state(0), b.state(0));
+        let h = 0.1;
+        let sum: f64 = a.state(0).iter().rev().fold(0.0, |acc, c| acc * h + c);
+        let exact = y0 * (2.0 * z0 * (1.0 - (-h).exp())).exp();
+        assert!((sum - exact).abs() <= 1e-15, "{sum} against {exact}");
     }
 
     /// y' = cos(t) y: y = exp(sin t); with sin/cos pairs, exp via the tape of
