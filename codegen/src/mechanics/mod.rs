@@ -5,10 +5,12 @@
 //! Each is part of lowering: its statements are methods of
 //! `front::lower::Lower`, and the scene's data lives here.
 
+pub mod algebra;
 pub mod names;
 pub mod planar;
 pub mod recursive;
 pub mod spatial;
+pub mod spatial_recursive;
 pub mod topology;
 
 use crate::{Id, SymbolId};
@@ -53,6 +55,8 @@ pub(crate) struct Scene {
     pub joint_rows: Vec<(String, std::ops::Range<usize>, TokenStream)>,
     /// A `spatial_body` was declared (even one with an error).
     pub spatial_declared: bool,
+    /// Every spatial joint, for the recursive formulation.
+    pub spatial_records: Vec<SpatialJointRecord>,
 }
 
 impl Scene {
@@ -73,6 +77,28 @@ pub(crate) struct JointRecord {
     pub local_a: [Id; 2],
     pub local_b: [Id; 2],
     pub axis: Option<[Id; 2]>,
+    pub equations: std::ops::Range<usize>,
+    pub algebraics: std::ops::Range<usize>,
+    pub rows: std::ops::Range<usize>,
+}
+
+/// A spatial joint as declared: what the recursive formulation needs to
+/// place the child from the parent, and which equations and multipliers
+/// it added.
+#[derive(Clone)]
+pub(crate) struct SpatialJointRecord {
+    pub kind: &'static str,
+    pub name: String,
+    pub a: Frame,
+    pub b: Frame,
+    pub local_a: [Id; 3],
+    pub local_b: [Id; 3],
+    /// The axis (or normal, or length) in a's axes.
+    pub axis: Option<[Id; 3]>,
+    /// The axis's value at the defaults, which picks its normals.
+    pub axis_values: Option<[f64; 3]>,
+    /// A universal joint's axis in b's axes.
+    pub cross_axis: Option<[Id; 3]>,
     pub equations: std::ops::Range<usize>,
     pub algebraics: std::ops::Range<usize>,
     pub rows: std::ops::Range<usize>,

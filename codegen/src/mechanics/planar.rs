@@ -637,6 +637,9 @@ impl Lower<'_> {
             self.scene.joints,
             loops.max(0)
         );
+        if spatial && self.scene.recursive {
+            return self.spatial_recursive_equations(item);
+        }
         if spatial {
             let origin = item.sig.ident.to_token_stream();
             return self.spatial_equations(&origin);

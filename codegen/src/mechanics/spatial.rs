@@ -34,99 +34,15 @@
 //! universal joint as spherical + dot-1, the cylindrical as two dot-1 and
 //! two dot-2 constraints).
 
+use super::algebra::{
+    add3, cross3, dot3, mat_t_vec, mat_vec, quaternion_rates, rotation, scale3, sub3, Mat3, Vec3,
+};
 use super::SpatialBody;
 use crate::front::lower::Binding;
 use crate::front::lower::Lower;
 use crate::{Graph, Id, SymbolId};
 use quote::ToTokens;
 use syn::Expr;
-
-/// A 3 × 3 matrix, row-major.
-type Mat3 = [Id; 9];
-type Vec3 = [Id; 3];
-
-fn add3(g: &mut Graph, a: Vec3, b: Vec3) -> crate::Result<Vec3> {
-    Ok([g.add(a[0], b[0])?, g.add(a[1], b[1])?, g.add(a[2], b[2])?])
-}
-
-fn sub3(g: &mut Graph, a: Vec3, b: Vec3) -> crate::Result<Vec3> {
-    Ok([g.sub(a[0], b[0])?, g.sub(a[1], b[1])?, g.sub(a[2], b[2])?])
-}
-
-fn scale3(g: &mut Graph, s: Id, a: Vec3) -> crate::Result<Vec3> {
-    Ok([g.mul(s, a[0])?, g.mul(s, a[1])?, g.mul(s, a[2])?])
-}
-
-fn dot3(g: &mut Graph, a: Vec3, b: Vec3) -> crate::Result<Id> {
-    let t = [g.mul(a[0], b[0])?, g.mul(a[1], b[1])?, g.mul(a[2], b[2])?];
-    g.sum(&t)
-}
-
-fn cross3(g: &mut Graph, a: Vec3, b: Vec3) -> crate::Result<Vec3> {
-    let mut c = [a[0]; 3];
-    for k in 0..3 {
-        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
-        let p = g.mul(a[i], b[j])?;
-        let m = g.mul(a[j], b[i])?;
-        c[k] = g.sub(p, m)?;
-    }
-    Ok(c)
-}
-
-fn mat_vec(g: &mut Graph, m: &Mat3, v: Vec3) -> crate::Result<Vec3> {
-    let mut r = v;
-    for (i, out) in r.iter_mut().enumerate() {
-        *out = dot3(g, [m[3 * i], m[3 * i + 1], m[3 * i + 2]], v)?;
-    }
-    Ok(r)
-}
-
-fn mat_t_vec(g: &mut Graph, m: &Mat3, v: Vec3) -> crate::Result<Vec3> {
-    let mut r = v;
-    for (i, out) in r.iter_mut().enumerate() {
-        *out = dot3(g, [m[i], m[3 + i], m[6 + i]], v)?;
-    }
-    Ok(r)
-}
-
-/// R(q) of eq. 4.19 (body to world) for a unit quaternion.
-fn rotation(g: &mut Graph, q: [Id; 4]) -> crate::Result<Mat3> {
-    let [q0, q1, q2, q3] = q;
-    let mut entry = |terms: [(Id, Id, i64); 2], constant: i64| -> crate::Result<Id> {
-        let mut parts = Vec::with_capacity(3);
-        for (x, y, sign) in terms {
-            let p = g.mul(x, y)?;
-            let k = g.int(2 * sign);
-            parts.push(g.mul(k, p)?);
-        }
-        parts.push(g.int(constant));
-        g.sum(&parts)
-    };
-    Ok([
-        entry([(q0, q0, 1), (q1, q1, 1)], -1)?,
-        entry([(q1, q2, 1), (q0, q3, -1)], 0)?,
-        entry([(q0, q2, 1), (q1, q3, 1)], 0)?,
-        entry([(q0, q3, 1), (q1, q2, 1)], 0)?,
-        entry([(q0, q0, 1), (q2, q2, 1)], -1)?,
-        entry([(q2, q3, 1), (q0, q1, -1)], 0)?,
-        entry([(q1, q3, 1), (q0, q2, -1)], 0)?,
-        entry([(q0, q1, 1), (q2, q3, 1)], 0)?,
-        entry([(q1, q1, -1), (q2, q2, -1)], 1)?,
-    ])
-}
-
-/// `q' = ½ q ⊗ (0, ω)`: `(−½ q_v·ω, ½ (q0 ω + q_v × ω))`.
-fn quaternion_rates(g: &mut Graph, q: [Id; 4], w: Vec3) -> crate::Result<[Id; 4]> {
-    let half = g.rational(1, 2)?;
-    let qv = [q[1], q[2], q[3]];
-    let d = dot3(g, qv, w)?;
-    let d = g.mul(half, d)?;
-    let q0w = scale3(g, q[0], w)?;
-    let c = cross3(g, qv, w)?;
-    let v = add3(g, q0w, c)?;
-    let v = scale3(g, half, v)?;
-    Ok([g.neg(d)?, v[0], v[1], v[2]])
-}
 
 /// The frame of three points in natural coordinates (course notes §4.1.5,
 /// in space): origin P1, x axis along P1P2, z axis normal to the plane of
@@ -149,7 +65,7 @@ pub(crate) fn natural_frame(g: &mut Graph, p1: Vec3, p2: Vec3, p3: Vec3) -> crat
 /// Two vectors that span the plane normal to `u`: `u × e_k` for the axis
 /// `e_k` least aligned with `u` (by its value at the defaults), then `u × n1`.
 /// Polynomial in `u`, so exact for symbolic axes too.
-fn normals(g: &mut Graph, u: Vec3, values: [f64; 3]) -> crate::Result<[Vec3; 2]> {
+pub(super) fn normals(g: &mut Graph, u: Vec3, values: [f64; 3]) -> crate::Result<[Vec3; 2]> {
     let k = (0..3).min_by(|&i, &j| values[i].abs().total_cmp(&values[j].abs())).unwrap_or(0);
     let (zero, one) = (g.zero(), g.one());
     let mut e = [zero; 3];
@@ -195,9 +111,6 @@ impl Lower<'_> {
         self.bind(ident, Binding::BrokenBody);
         if !self.scene.bodies.is_empty() {
             return self.cx.error_at(local, "a scene is planar (`body`) or spatial (`spatial_body`), not both: declare every body with `spatial_body(m, inertia, [x, y, z], [q0, q1, q2, q3])`");
-        }
-        if self.scene.recursive {
-            return self.cx.error_at(local, "the recursive formulation is planar: remove `scene = recursive` to use the global formulation for spatial bodies");
         }
         if !(4..=6).contains(&call.args.len()) {
             return self.cx.error_at(call, "`spatial_body` takes a mass, the inertia about the centre of mass in body axes (`vec3` of principal moments or a `mat3`), the initial `[x, y, z]` and `[q0, q1, q2, q3]`, and optionally the initial `[vx, vy, vz]` and body rates `[wx, wy, wz]`");
@@ -595,9 +508,25 @@ impl Lower<'_> {
                         return self.cx.error_at(c, format!("the two axes of `universal` must be perpendicular at the start, as a Cardan joint's cross axes are: axis_in_a and axis_in_b have the dot product {cosine} in world axes"));
                     }
                 }
-                if self.add_joint_rows(kind, name, rows, e).is_none() {
+                let Some((equations, algebraics, rows)) = self.add_joint_rows(kind, name, rows, e)
+                else {
                     return;
-                }
+                };
+                let name = self.scene.joint_rows.last().map(|j| j.0.clone()).unwrap_or_default();
+                self.scene.spatial_records.push(super::SpatialJointRecord {
+                    kind,
+                    name,
+                    a,
+                    b,
+                    local_a: sa,
+                    local_b: sb,
+                    axis: extra,
+                    axis_values,
+                    cross_axis,
+                    equations,
+                    algebraics,
+                    rows,
+                });
                 if let (Some(q), Some((joint, ..))) = (coordinate, self.scene.joint_rows.last()) {
                     let joint = joint.clone();
                     self.spatial_joint_coordinate(joint, q, kind, &e.to_token_stream());
