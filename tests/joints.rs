@@ -1,5 +1,6 @@
-//! The universal (Cardan), cylindrical and planar joints of spatial scenes
-//! (global formulation), each against a motion derived by hand: the
+//! The universal (Cardan), cylindrical and planar joints of spatial scenes,
+//! in the global formulation and in joint coordinates (the recursive one),
+//! each against a motion derived by hand: the
 //! universal joint's pendulum swings about either cross axis as a compound
 //! pendulum, a body on a cylindrical joint falls along its axis spinning
 //! freely, and a body on a planar joint slides and turns in its plane.
@@ -9,6 +10,16 @@ use daegen::prelude::*;
 mod support;
 use support::tight;
 
+/// The same scene in the global formulation and in the recursive one.
+macro_rules! in_both_formulations {
+    ($global:ident, $recursive:ident, { $($body:tt)* }) => {
+        #[dae_model]
+        fn $global() { $($body)* }
+        #[dae_model(scene = recursive)]
+        fn $recursive() { $($body)* }
+    };
+}
+
 /// A rod-like body (m = 1, principal inertias 1/12, 0.2, 0.01 about its
 /// centre) hanging from the ground by a universal joint at its top, d = 0.5
 /// above its centre along body z; the cross axes are world x (in the
@@ -17,8 +28,7 @@ use support::tight;
 /// d·(−sin β, cos β sin α, −cos β cos α), angular velocity in body axes
 /// (α′ cos β, β′, α′ sin β). Started at α = 0.8, β = 0.3, α′ = 0.5,
 /// β′ = −0.4.
-#[dae_model]
-fn cardan_pendulum() {
+in_both_formulations!(cardan_pendulum, cardan_pendulum_in_joint_coordinates, {
     let g = param(9.81);
     let ground = ground();
     let a = 0.8;
@@ -52,7 +62,7 @@ fn cardan_pendulum() {
         vec3(0.0, 1.0, 0.0),
     );
     gravity(vec3(0.0, 0.0, -g));
-}
+});
 
 /// Its Lagrange equations in the Cardan angles: with
 /// A(β) = (m d² + I_x) cos²β + I_z sin²β and B = m d² + I_y,
@@ -82,36 +92,50 @@ fn cardan_angles() {
 #[test]
 fn a_cardan_pendulum_follows_its_lagrange_equations_in_the_cardan_angles() {
     let tol = 1e-11;
-    let sol = tight::<CardanPendulum>(3.0, tol);
     let reference = tight::<CardanAngles>(3.0, 1e-13);
-    assert_eq!(sol.degrees_of_freedom(), Some(2));
+    let global = tight::<CardanPendulum>(3.0, tol);
+    assert_eq!(global.degrees_of_freedom(), Some(2));
     // Consistent as given: nothing moved.
-    assert!(sol.initial_corrections().is_empty(), "{:?}", sol.initial_corrections());
-    let d = 0.5;
+    assert!(global.initial_corrections().is_empty(), "{:?}", global.initial_corrections());
+    assert!(global.max_constraint_residual() <= 1e-12);
+    let joint_coordinates = tight::<CardanPendulumInJointCoordinates>(3.0, tol);
+    for sol in [&global, &joint_coordinates] {
+        let d = 0.5;
+        for t in [0.5, 1.5, 3.0] {
+            let (x, y, z) = (
+                sol.at(t, "rod.x").unwrap(),
+                sol.at(t, "rod.y").unwrap(),
+                sol.at(t, "rod.z").unwrap(),
+            );
+            let (alpha, beta) = (y.atan2(-z), (-x / d).asin());
+            let (want_alpha, want_beta) =
+                (reference.at(t, "alpha").unwrap(), reference.at(t, "beta").unwrap());
+            assert!((alpha - want_alpha).abs() <= 1e3 * tol, "t = {t}: α {alpha} against {want_alpha}");
+            assert!((beta - want_beta).abs() <= 1e3 * tol, "t = {t}: β {beta} against {want_beta}");
+        }
+        // At every step, the centre at d from the pivot.
+        for &t in sol.times() {
+            let r: f64 =
+                ["rod.x", "rod.y", "rod.z"].iter().map(|n| sol.at(t, n).unwrap().powi(2)).sum();
+            assert!((r.sqrt() - d).abs() <= 1e-12, "t = {t}: {}", r.sqrt());
+        }
+    }
+    // In joint coordinates the Cardan angles are the states, from the start:
+    // R = R_x(0.8 + q1)·R_y(0.3 + q2).
     for t in [0.5, 1.5, 3.0] {
-        let (x, y, z) =
-            (sol.at(t, "rod.x").unwrap(), sol.at(t, "rod.y").unwrap(), sol.at(t, "rod.z").unwrap());
-        let (alpha, beta) = (y.atan2(-z), (-x / d).asin());
-        let (want_alpha, want_beta) =
-            (reference.at(t, "alpha").unwrap(), reference.at(t, "beta").unwrap());
-        assert!((alpha - want_alpha).abs() <= 1e3 * tol, "t = {t}: α {alpha} against {want_alpha}");
-        assert!((beta - want_beta).abs() <= 1e3 * tol, "t = {t}: β {beta} against {want_beta}");
+        let q1 = joint_coordinates.at(t, "cross.q1").unwrap();
+        let q2 = joint_coordinates.at(t, "cross.q2").unwrap();
+        let (alpha, beta) = (reference.at(t, "alpha").unwrap(), reference.at(t, "beta").unwrap());
+        assert!((0.8 + q1 - alpha).abs() <= 1e3 * tol, "t = {t}: q1 {q1}");
+        assert!((0.3 + q2 - beta).abs() <= 1e3 * tol, "t = {t}: q2 {q2}");
     }
-    // At every step (projected), the centre at d from the pivot.
-    for &t in sol.times() {
-        let r: f64 =
-            ["rod.x", "rod.y", "rod.z"].iter().map(|n| sol.at(t, n).unwrap().powi(2)).sum();
-        assert!((r.sqrt() - d).abs() <= 1e-12, "t = {t}: {}", r.sqrt());
-    }
-    assert!(sol.max_constraint_residual() <= 1e-12);
 }
 
 /// A body (m = 2, inertias 0.1, 0.2, 0.3) on a cylindrical joint along
 /// world z, started spinning at 3 rad/s about that axis and moving up at
 /// 1 m/s: it falls along the axis, z = t − g t²/2, spinning at a constant
 /// rate, its attitude turning about z by 3t.
-#[dae_model]
-fn spinning_slider() {
+in_both_formulations!(spinning_slider, spinning_slider_in_joint_coordinates, {
     let g = param(9.81);
     let ground = ground();
     let body = spatial_body(
@@ -125,45 +149,57 @@ fn spinning_slider() {
     let sleeve =
         cylindrical(ground, vec3(0.0, 0.0, 0.0), body, vec3(0.0, 0.0, 0.0), vec3(0.0, 0.0, 1.0));
     gravity(vec3(0.0, 0.0, -g));
-}
+});
 
 #[test]
 fn a_body_on_a_cylindrical_joint_falls_along_its_axis_spinning_freely() {
     let tol = 1e-11;
-    let sol = tight::<SpinningSlider>(2.0, tol);
-    assert_eq!(sol.degrees_of_freedom(), Some(2));
-    assert!(sol.initial_corrections().is_empty(), "{:?}", sol.initial_corrections());
-    for t in [0.5f64, 1.0, 2.0] {
-        let z = t - 0.5 * 9.81 * t * t;
-        let (half, turn) = (1.5 * t, [("body.q0", (1.5 * t).cos()), ("body.q3", (1.5 * t).sin())]);
-        assert!((sol.at(t, "body.z").unwrap() - z).abs() <= 1e3 * tol, "t = {t}");
-        // The joint's coordinates: the slide along the axis, and the turn
-        // about it (in (−π, π]).
-        assert!((sol.at(t, "sleeve.q").unwrap() - z).abs() <= 1e3 * tol, "t = {t}");
-        let angle = sol.at(t, "sleeve.angle").unwrap();
-        let wrapped = (3.0 * t + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI)
-            - std::f64::consts::PI;
-        assert!((angle - wrapped).abs() <= 1e3 * tol, "t = {t}: angle {angle} against {wrapped}");
-        assert!((sol.at(t, "body.wz").unwrap() - 3.0).abs() <= 1e3 * tol, "t = {t}");
-        for (name, want) in turn {
-            let got = sol.at(t, name).unwrap();
-            assert!(
-                (got - want).abs() <= 1e3 * tol,
-                "t = {t}, half-angle {half}: {name} {got} against {want}"
-            );
-        }
-        for name in ["body.x", "body.y", "body.wx", "body.wy"] {
-            assert!(sol.at(t, name).unwrap().abs() <= 1e3 * tol, "t = {t}: {name}");
+    let global = tight::<SpinningSlider>(2.0, tol);
+    assert_eq!(global.degrees_of_freedom(), Some(2));
+    assert!(global.initial_corrections().is_empty(), "{:?}", global.initial_corrections());
+    let joint_coordinates = tight::<SpinningSliderInJointCoordinates>(2.0, tol);
+    for sol in [&global, &joint_coordinates] {
+        for t in [0.5f64, 1.0, 2.0] {
+            let z = t - 0.5 * 9.81 * t * t;
+            let (half, turn) =
+                (1.5 * t, [("body.q0", (1.5 * t).cos()), ("body.q3", (1.5 * t).sin())]);
+            assert!((sol.at(t, "body.z").unwrap() - z).abs() <= 1e3 * tol, "t = {t}");
+            // The joint's coordinates: the slide along the axis, and the
+            // turn about it (compared in (−π, π]: the global formulation
+            // reads it from the attitudes, the recursive one integrates it).
+            assert!((sol.at(t, "sleeve.q").unwrap() - z).abs() <= 1e3 * tol, "t = {t}");
+            let angle = wrap(sol.at(t, "sleeve.angle").unwrap());
+            let wrapped = wrap(3.0 * t);
+            assert!((angle - wrapped).abs() <= 1e3 * tol, "t = {t}: angle {angle} against {wrapped}");
+            assert!((sol.at(t, "body.wz").unwrap() - 3.0).abs() <= 1e3 * tol, "t = {t}");
+            for (name, want) in turn {
+                let got = sol.at(t, name).unwrap();
+                assert!(
+                    (got - want).abs() <= 1e3 * tol,
+                    "t = {t}, half-angle {half}: {name} {got} against {want}"
+                );
+            }
+            for name in ["body.x", "body.y", "body.wx", "body.wy"] {
+                assert!(sol.at(t, name).unwrap().abs() <= 1e3 * tol, "t = {t}: {name}");
+            }
         }
     }
+    // Unwrapped in joint coordinates.
+    let angle = joint_coordinates.at(2.0, "sleeve.angle").unwrap();
+    assert!((angle - 6.0).abs() <= 1e3 * tol, "{angle}");
+}
+
+/// An angle in (−π, π].
+fn wrap(angle: f64) -> f64 {
+    use std::f64::consts::PI;
+    -((PI - angle).rem_euclid(2.0 * PI) - PI)
 }
 
 /// A puck (m = 0.5, inertias 0.01, 0.01, 0.02) on a planar joint keeping
 /// it on the ground's plane z = 0, gravity along −x in the plane, started
 /// at (0, 0, 0) moving at (1, 2, 0) and turning at 2 rad/s about z:
 /// x = t − g t²/2, y = 2t, z = 0, the attitude turning about z by 2t.
-#[dae_model]
-fn sliding_puck() {
+in_both_formulations!(sliding_puck, sliding_puck_in_joint_coordinates, {
     let g = param(9.81);
     let ground = ground();
     let puck = spatial_body(
@@ -176,27 +212,40 @@ fn sliding_puck() {
     );
     planar(ground, vec3(0.0, 0.0, 0.0), puck, vec3(0.0, 0.0, 0.0), vec3(0.0, 0.0, 1.0));
     gravity(vec3(-g, 0.0, 0.0));
-}
+});
 
 #[test]
 fn a_body_on_a_planar_joint_slides_and_turns_in_its_plane() {
     let tol = 1e-11;
-    let sol = tight::<SlidingPuck>(2.0, tol);
-    assert_eq!(sol.degrees_of_freedom(), Some(3));
-    assert!(sol.initial_corrections().is_empty(), "{:?}", sol.initial_corrections());
+    let global = tight::<SlidingPuck>(2.0, tol);
+    assert_eq!(global.degrees_of_freedom(), Some(3));
+    assert!(global.initial_corrections().is_empty(), "{:?}", global.initial_corrections());
+    let joint_coordinates = tight::<SlidingPuckInJointCoordinates>(2.0, tol);
+    for sol in [&global, &joint_coordinates] {
+        for t in [0.5f64, 1.0, 2.0] {
+            let want = [
+                ("puck.x", t - 0.5 * 9.81 * t * t),
+                ("puck.y", 2.0 * t),
+                ("puck.z", 0.0),
+                ("puck.wz", 2.0),
+                ("puck.q0", t.cos()),
+                ("puck.q3", t.sin()),
+                ("puck.q1", 0.0),
+                ("puck.q2", 0.0),
+            ];
+            for (name, value) in want {
+                let got = sol.at(t, name).unwrap();
+                assert!((got - value).abs() <= 1e3 * tol, "t = {t}: {name} {got} against {value}");
+            }
+        }
+    }
+    // Its coordinates: slides along the plane's two directions (n × e_x = e_y
+    // for the axis e_x least aligned with n, then n × e_y = −e_x), and the turn.
     for t in [0.5f64, 1.0, 2.0] {
-        let want = [
-            ("puck.x", t - 0.5 * 9.81 * t * t),
-            ("puck.y", 2.0 * t),
-            ("puck.z", 0.0),
-            ("puck.wz", 2.0),
-            ("puck.q0", t.cos()),
-            ("puck.q3", t.sin()),
-            ("puck.q1", 0.0),
-            ("puck.q2", 0.0),
-        ];
+        let want =
+            [("planar1.u", 2.0 * t), ("planar1.v", 0.5 * 9.81 * t * t - t), ("planar1.angle", 2.0 * t)];
         for (name, value) in want {
-            let got = sol.at(t, name).unwrap();
+            let got = joint_coordinates.at(t, name).unwrap();
             assert!((got - value).abs() <= 1e3 * tol, "t = {t}: {name} {got} against {value}");
         }
     }

@@ -257,7 +257,10 @@ impl Lower<'_> {
                 }
             }
         }
-        self.check_placement(&placed, &start, &free, &tree, &records)?;
+        if let Some((at, message)) = self.misplaced(&placed, &start, &free, &tree, &records) {
+            self.cx.error_at(&at, message);
+            return Ok(());
+        }
         let field = self.joint_field(&states, &attitudes, &free)?;
         // Velocities, bias accelerations and the motion subspace in world axes.
         let dynamics = self.tree_dynamics(&tree, &placed, &columns, &records, field)?;
@@ -501,7 +504,12 @@ impl Lower<'_> {
                 for (e, suffix) in [(e1, "u"), (e2, "v")] {
                     let s0 = dot3(g, gap0_in_a, e)?;
                     let rate = along(g, v_rel, e)?;
-                    let doc = format!("slide of the second body's point from the first's along the plane's {suffix} direction, {} (m)", if suffix == "u" { "normal × e_k normalised" } else { "normal × u" });
+                    let direction = if suffix == "u" {
+                        "n × e_k, e_k the axis of the first body least aligned with the normal n"
+                    } else {
+                        "n × u"
+                    };
+                    let doc = format!("slide of the second body's point from the first's along {direction}, normalised (m)");
                     let (q, speed, acceleration) = coordinate(g, suffix, s0, rate, &doc)?;
                     columns.push(Column { axis: Axis::Slide { axis: e }, speed, acceleration });
                     let step = scale3(g, q, e)?;
@@ -603,16 +611,16 @@ impl Lower<'_> {
         self.outputs.retain(|o| !drop_outputs.contains(&o.name));
     }
 
-    /// Each joint-placed body must start where the user put it: the
-    /// placement is checked at the defaults.
-    fn check_placement(
+    /// A body that starts away from where its tree joint places it (checked
+    /// at the defaults): the joint's statement and what to do.
+    fn misplaced(
         &mut self,
         placed: &[Placed],
         start: &[Start],
         free: &[bool],
         tree: &[Edge],
         records: &[SpatialJointRecord],
-    ) -> crate::Result<()> {
+    ) -> Option<(TokenStream, String)> {
         for (b, p) in placed.iter().enumerate() {
             if free[b] {
                 continue;
@@ -625,17 +633,21 @@ impl Lower<'_> {
                 worst = worst.max((got - want).abs());
                 scale = scale.max(want.abs());
             }
-            if worst > PLACEMENT_TOLERANCE * scale || worst.is_nan() {
-                let joint = tree
-                    .iter()
-                    .find(|e| e.child == b)
-                    .and_then(|e| e.joint)
-                    .map_or(String::new(), |r| records[r].name.clone());
-                let body = self.body_name(b);
-                return Err(unsupported(&format!("`{body}` starts {worst:.3e} m from where joint `{joint}` places it: in the recursive formulation a body's start follows from its joints', so give `{body}` an initial position (and attitude) that satisfies `{joint}`")));
+            if worst <= PLACEMENT_TOLERANCE * scale {
+                continue;
             }
+            let joint = tree.iter().find(|e| e.child == b).and_then(|e| e.joint)?;
+            let joint = records[joint].name.clone();
+            let at = self.scene.joint_rows.iter().find(|j| j.0 == joint)?.2.clone();
+            let body = self.body_name(b);
+            let worst = if worst >= 1e-4 {
+                format!("{worst:.4}").trim_end_matches('0').to_string()
+            } else {
+                format!("{worst:.1e}")
+            };
+            return Some((at, format!("`{body}` starts {worst} m from where joint `{joint}` places it: in the recursive formulation a body's start follows from its joint, so give `{body}` an initial position that satisfies `{joint}`")));
         }
-        Ok(())
+        None
     }
 
     /// The name a spatial body was declared with.
