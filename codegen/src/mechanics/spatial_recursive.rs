@@ -265,6 +265,12 @@ impl Lower<'_> {
         // Velocities, bias accelerations and the motion subspace in world axes.
         let dynamics = self.tree_dynamics(&tree, &placed, &columns, &records, field)?;
         let Dynamics { mut field, velocity, subspace } = dynamics;
+        if let Some((at, message)) =
+            self.moving_wrongly(&placed, &velocity, &start, &states, &free, &tree, &records)
+        {
+            self.cx.error_at(&at, message);
+            return Ok(());
+        }
         // Everything written in body coordinates is rewritten in joint ones.
         let replace = self.body_substitution(&placed, &velocity, &free, &mut field)?;
         let cut_rows = self.rewrite_spatial(&replace, &records, &cut)?;
@@ -646,6 +652,59 @@ impl Lower<'_> {
                 format!("{worst:.1e}")
             };
             return Some((at, format!("`{body}` starts {worst} m from where joint `{joint}` places it: in the recursive formulation a body's start follows from its joint, so give `{body}` an initial position that satisfies `{joint}`")));
+        }
+        None
+    }
+
+    /// A body whose given velocity or body rates differ from those its
+    /// joints' initial rates give it (checked at the defaults): the joint's
+    /// statement and what to do.
+    #[allow(clippy::too_many_arguments)]
+    fn moving_wrongly(
+        &mut self,
+        placed: &[Placed],
+        velocity: &[Spatial],
+        start: &[Start],
+        states: &[NewState],
+        free: &[bool],
+        tree: &[Edge],
+        records: &[SpatialJointRecord],
+    ) -> Option<(TokenStream, String)> {
+        let mut values = self.start_values();
+        for s in states {
+            if let Some(rate) = s.rate {
+                let v = self.numeric(rate);
+                let d = self.g.derivative(s.symbol, 1).ok()?;
+                values.insert(self.g.as_symbol(d)?, v);
+            }
+        }
+        let value = |g: &Graph, id: Id| g.eval(&[id], &|s| values.get(&s).copied().unwrap_or(f64::NAN))[0];
+        for (b, p) in placed.iter().enumerate() {
+            if free[b] {
+                continue;
+            }
+            let v = velocity[b];
+            let g = &mut self.g;
+            let turn = cross3(g, v.top, p.centre).ok()?;
+            let vc = add3(g, v.bottom, turn).ok()?;
+            let w = mat_t_vec(g, &p.rot, v.top).ok()?;
+            let got: Vec<f64> = vc.iter().chain(&w).map(|&x| value(g, x)).collect();
+            let want: Vec<f64> =
+                start[b].velocity.iter().chain(&start[b].rates).map(|&x| value(g, x)).collect();
+            let worst = got.iter().zip(&want).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+            let scale = want.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            if worst <= PLACEMENT_TOLERANCE * scale {
+                continue;
+            }
+            let joint = tree.iter().find(|e| e.child == b).and_then(|e| e.joint)?;
+            let joint = records[joint].name.clone();
+            let at = self.scene.joint_rows.iter().find(|j| j.0 == joint)?.2.clone();
+            let body = self.body_name(b);
+            let show = |x: &[f64]| {
+                let parts: Vec<String> = x.iter().map(|v| format!("{}", (v * 1e6).round() / 1e6)).collect();
+                format!("[{}], [{}]", parts[..3].join(", "), parts[3..].join(", "))
+            };
+            return Some((at, format!("`{body}` starts moving at {} (velocity, body rates) but joint `{joint}` moves it at {}: in the recursive formulation a body's motion follows from its joints' rates, so give `{body}` a velocity and body rates that satisfy `{joint}`", show(&want), show(&got))));
         }
         None
     }

@@ -29,7 +29,7 @@ const RELATIVE_TOLERANCE: f64 = 1e-9;
 impl Lower<'_> {
     /// The values of the parameters (their defaults) and of the states
     /// (their initial values) at the start.
-    fn start_values(&self) -> HashMap<SymbolId, f64> {
+    pub(crate) fn start_values(&self) -> HashMap<SymbolId, f64> {
         let mut values = HashMap::new();
         let by_name: HashMap<String, f64> =
             self.params.iter().map(|p| (p.ident.to_string(), p.default)).collect();
