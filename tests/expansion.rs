@@ -372,3 +372,18 @@ expansion_test! {
         der(z) == x * y - beta * z;
     }
 }
+
+expansion_test! {
+    /// A spatial compound pendulum in joint coordinates: one revolute
+    /// joint, its 1 × 1 mass matrix (the inertia about the axis) and its
+    /// bias force (gravity's moment) from the composite-rigid-body and
+    /// recursive Newton–Euler algorithms.
+    spatial_pendulum_in_joint_coordinates, (scene = recursive), ["SwingRecursive::rhs"],
+    fn swing_recursive() {
+        let g = param(9.81);
+        let ground = ground();
+        let rod = spatial_body(2.0, vec3(0.1, 0.2, 0.05), [0.0, 0.0, -0.5], [1.0, 0.0, 0.0, 0.0]);
+        let hinge = revolute(ground, vec3(0.0, 0.0, 0.0), rod, vec3(0.0, 0.0, 0.5), vec3(1.0, 0.0, 0.0));
+        gravity(vec3(0.0, 0.0, -g));
+    }
+}
