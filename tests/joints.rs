@@ -110,7 +110,10 @@ fn a_cardan_pendulum_follows_its_lagrange_equations_in_the_cardan_angles() {
             let (alpha, beta) = (y.atan2(-z), (-x / d).asin());
             let (want_alpha, want_beta) =
                 (reference.at(t, "alpha").unwrap(), reference.at(t, "beta").unwrap());
-            assert!((alpha - want_alpha).abs() <= 1e3 * tol, "t = {t}: α {alpha} against {want_alpha}");
+            assert!(
+                (alpha - want_alpha).abs() <= 1e3 * tol,
+                "t = {t}: α {alpha} against {want_alpha}"
+            );
             assert!((beta - want_beta).abs() <= 1e3 * tol, "t = {t}: β {beta} against {want_beta}");
         }
         // At every step, the centre at d from the pivot.
@@ -170,7 +173,10 @@ fn a_body_on_a_cylindrical_joint_falls_along_its_axis_spinning_freely() {
             assert!((sol.at(t, "sleeve.q").unwrap() - z).abs() <= 1e3 * tol, "t = {t}");
             let angle = wrap(sol.at(t, "sleeve.angle").unwrap());
             let wrapped = wrap(3.0 * t);
-            assert!((angle - wrapped).abs() <= 1e3 * tol, "t = {t}: angle {angle} against {wrapped}");
+            assert!(
+                (angle - wrapped).abs() <= 1e3 * tol,
+                "t = {t}: angle {angle} against {wrapped}"
+            );
             assert!((sol.at(t, "body.wz").unwrap() - 3.0).abs() <= 1e3 * tol, "t = {t}");
             for (name, want) in turn {
                 let got = sol.at(t, name).unwrap();
@@ -242,8 +248,11 @@ fn a_body_on_a_planar_joint_slides_and_turns_in_its_plane() {
     // Its coordinates: slides along the plane's two directions (n × e_x = e_y
     // for the axis e_x least aligned with n, then n × e_y = −e_x), and the turn.
     for t in [0.5f64, 1.0, 2.0] {
-        let want =
-            [("planar1.u", 2.0 * t), ("planar1.v", 0.5 * 9.81 * t * t - t), ("planar1.angle", 2.0 * t)];
+        let want = [
+            ("planar1.u", 2.0 * t),
+            ("planar1.v", 0.5 * 9.81 * t * t - t),
+            ("planar1.angle", 2.0 * t),
+        ];
         for (name, value) in want {
             let got = joint_coordinates.at(t, name).unwrap();
             assert!((got - value).abs() <= 1e3 * tol, "t = {t}: {name} {got} against {value}");

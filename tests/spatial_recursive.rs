@@ -80,7 +80,8 @@ fn momenta(sol: &Solution, t: f64, bodies: &[Body]) -> [f64; 6] {
         let (c, v, q, w) = body_state(sol, t, name);
         let spin = turn(q, [j[0] * w[0], j[1] * w[1], j[2] * w[2]]);
         let p = v.map(|x| m * x);
-        let orbit = [c[1] * p[2] - c[2] * p[1], c[2] * p[0] - c[0] * p[2], c[0] * p[1] - c[1] * p[0]];
+        let orbit =
+            [c[1] * p[2] - c[2] * p[1], c[2] * p[0] - c[0] * p[2], c[0] * p[1] - c[1] * p[0]];
         for k in 0..3 {
             out[k] += p[k];
             out[3 + k] += orbit[k] + spin[k];
@@ -136,7 +137,11 @@ fn the_spatial_four_bar_loop_matches_the_global_formulation() {
     assert_eq!(global.degrees_of_freedom(), Some(2));
     assert_eq!(recursive.degrees_of_freedom(), Some(2));
     // The cut joint holds at every step.
-    assert!(recursive.max_constraint_residual() <= 1e-10, "{}", recursive.max_constraint_residual());
+    assert!(
+        recursive.max_constraint_residual() <= 1e-10,
+        "{}",
+        recursive.max_constraint_residual()
+    );
     let times = [0.0, 0.5, 1.0, 1.5, 2.0];
     // Three bodies' coordinates and velocities, the two revolute joints'
     // angles, the cut joint's three multipliers and the two outputs.
@@ -260,7 +265,8 @@ in_both_formulations!(written_backwards, written_backwards_in_joint_coordinates,
         [-0.5, 0.0, 0.0],
         [0.0, 1.0, 0.0],
     );
-    let slide = prismatic(block, vec3(0.0, 0.0, 0.0), ground, vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.5));
+    let slide =
+        prismatic(block, vec3(0.0, 0.0, 0.0), ground, vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.5));
     let hinge = revolute(bob, vec3(0.0, 0.0, 0.5), block, vec3(0.0, 0.3, 0.0), vec3(0.0, 1.0, 0.0));
     gravity(vec3(0.0, 0.0, -g));
 });

@@ -160,6 +160,118 @@ fn formulations() {
     }
 }
 
+/// One spatial scene in one formulation: DOP853 from 0 to `t1` at `tol`,
+/// the run's median time, its steps and the outputs `names` at the end.
+fn spatial_run<M: Simulate + Default>(
+    t1: f64,
+    tol: f64,
+    names: &[&str],
+) -> (Duration, usize, Vec<f64>) {
+    let options = Options::new().method(Method::Dop853).tolerance(tol).dense_output(false);
+    let (run, result) = time(|| M::default().simulate(0.0, t1, &options));
+    match result {
+        Ok(sol) => {
+            let end = names.iter().map(|n| sol.last(n).unwrap_or(f64::NAN)).collect();
+            (run, sol.stats().steps, end)
+        }
+        Err(_) => (run, 0, vec![f64::NAN; names.len()]),
+    }
+}
+
+/// The spatial scenes in the global and the recursive formulation: the
+/// macro's expansion time, the generated code's size and rustc's time on
+/// it, and the run's cost per step by DOP853 at tol 1e-10, with the end
+/// error against the recursive formulation at 1e-13.
+fn spatial_formulations() {
+    println!("\n### Spatial scenes: global against recursive formulation (DOP853, tol 1e-10)\n");
+    println!("Expansion: median of 5; rustc (release): the faster of 2 (one above a minute). Error: max over the outputs at the end against the recursive formulation at tol 1e-13.\n");
+    println!("| scene | formulation | states | expansion (ms) | generated (kB) | rustc (s) | run (ms) | steps | µs/step | error |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    let file = include_str!("../../tests/models/spatial_chains.rs");
+    type Run = fn(f64) -> (Duration, usize, Vec<f64>);
+    let scenes: [(&str, &str, f64, [&str; 3], Run, Run, usize, usize); 3] = [
+        (
+            "double pendulum (2 spherical)",
+            "spatial_double_pendulum",
+            2.0,
+            ["tip_x", "tip_y", "tip_z"],
+            |tol| {
+                spatial_run::<SpatialDoublePendulumGlobal>(2.0, tol, &["tip_x", "tip_y", "tip_z"])
+            },
+            |tol| {
+                spatial_run::<SpatialDoublePendulumRecursive>(
+                    2.0,
+                    tol,
+                    &["tip_x", "tip_y", "tip_z"],
+                )
+            },
+            SpatialDoublePendulumGlobal::STATES,
+            SpatialDoublePendulumRecursive::STATES,
+        ),
+        (
+            "four-bar loop (RSSR)",
+            "rssr_loop",
+            2.0,
+            ["tip_y", "tip_z", "tip_z"],
+            |tol| spatial_run::<RssrLoopGlobal>(2.0, tol, &["tip_y", "tip_z", "tip_z"]),
+            |tol| spatial_run::<RssrLoopRecursive>(2.0, tol, &["tip_y", "tip_z", "tip_z"]),
+            RssrLoopGlobal::STATES,
+            RssrLoopRecursive::STATES,
+        ),
+        (
+            "seven-joint arm",
+            "seven_joint_arm",
+            1.0,
+            ["hand_x", "hand_y", "hand_z"],
+            |tol| spatial_run::<SevenJointArmGlobal>(1.0, tol, &["hand_x", "hand_y", "hand_z"]),
+            |tol| spatial_run::<SevenJointArmRecursive>(1.0, tol, &["hand_x", "hand_y", "hand_z"]),
+            SevenJointArmGlobal::STATES,
+            SevenJointArmRecursive::STATES,
+        ),
+    ];
+    for (scene, macro_name, t1, _, global, recursive, global_states, recursive_states) in scenes {
+        let (_, _, reference) = recursive(1e-13);
+        let Some(source) = crate::tape_cost::macro_model_source(file, macro_name, macro_name)
+        else {
+            println!("| {scene} | source not found | | | | | | | | |");
+            continue;
+        };
+        for (formulation, attr, run, states) in [
+            ("global", "", global, global_states),
+            ("recursive", "scene = recursive", recursive, recursive_states),
+        ] {
+            eprint!("\r\x1b[2Kspatial formulations: {scene}, {formulation}");
+            let cost = daegen_workprecision::expansion_cost(&source, attr, 5);
+            let (expansion, kb, rustc) = match &cost {
+                Ok(c) => {
+                    let name = format!("{macro_name}_{formulation}");
+                    // A second compile only where the first was short
+                    // enough for the machine's load to matter.
+                    let mut rustc = f64::INFINITY;
+                    for k in 0..2 {
+                        if let Ok(s) = rustc_seconds(&c.code, &format!("{name}{k}")) {
+                            rustc = rustc.min(s);
+                        }
+                        if rustc > 60.0 {
+                            break;
+                        }
+                    }
+                    (c.seconds * 1e3, c.bytes as f64 / 1e3, rustc)
+                }
+                Err(_) => (f64::NAN, f64::NAN, f64::NAN),
+            };
+            let (time_taken, steps, end) = run(1e-10);
+            let error = end.iter().zip(&reference).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+            println!(
+                "| {scene}, t = {t1} | {formulation} | {states} | {expansion:.1} | {kb:.0} | {rustc:.2} | {:.2} | {steps} | {:.1} | {error:.1e} |",
+                time_taken.as_secs_f64() * 1e3,
+                time_taken.as_secs_f64() * 1e6 / steps.max(1) as f64
+            );
+        }
+    }
+    eprintln!();
+}
+
 /// The ten-rod chain by the Taylor method, which solves its 10 × 10 mass
 /// matrix (recursive) or 30 + 20 KKT system (global) order by order with
 /// one LU a step, against DOP853, at tight tolerances: error in the tip's
@@ -374,6 +486,7 @@ pub fn dae_section(stiff_tols: &[f64]) {
     dae_against_ode();
     slider_crank_against_ode();
     formulations();
+    spatial_formulations();
     taylor_on_the_chain();
     let rd = RobertsonDae::default();
     let rober_dae_ours = vec![(

@@ -63,6 +63,7 @@ include!("../../tests/models/stiff.rs");
 include!("../../tests/models/pendulum.rs");
 include!("../../tests/models/slider_crank.rs");
 include!("../../tests/models/rod_chain.rs");
+include!("../../tests/models/spatial_chains.rs");
 include!("../../tests/models/items.rs");
 include!("../../tests/models/lotka_volterra.rs");
 
@@ -158,6 +159,12 @@ fn example_1_4() {
 
 rod_chain_model!(rod_chain_global, scene = global);
 rod_chain_model!(rod_chain_recursive, scene = recursive);
+spatial_double_pendulum!(spatial_double_pendulum_global,);
+spatial_double_pendulum!(spatial_double_pendulum_recursive, scene = recursive);
+rssr_loop!(rssr_loop_global,);
+rssr_loop!(rssr_loop_recursive, scene = recursive);
+seven_joint_arm!(seven_joint_arm_global,);
+seven_joint_arm!(seven_joint_arm_recursive, scene = recursive);
 cash_pendulum_model!(taylor = 1, unroll = [10, 14, 18]);
 
 /// The outer solar system at t = 20 000 days in the model's state order

@@ -31,6 +31,13 @@ fn function_source(file: &str, pattern: &str, name: &str) -> Option<String> {
     None
 }
 
+/// The text of the model that the macro `macro_name` of `file` writes,
+/// named `name`.
+pub(crate) fn macro_model_source(file: &str, macro_name: &str, name: &str) -> Option<String> {
+    let start = file.find(&format!("macro_rules! {macro_name}"))?;
+    function_source(&file[start..], "$name", name)
+}
+
 /// One model's costs: (expansion seconds, code bytes, rustc seconds) with
 /// and without the tape.
 struct Costs {

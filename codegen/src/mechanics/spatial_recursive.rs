@@ -352,7 +352,8 @@ impl Lower<'_> {
             }
             let norm = g.sum(&squares)?;
             let norm = g.sqrt(norm)?;
-            let quaternion = [g.div(q[0], norm)?, g.div(q[1], norm)?, g.div(q[2], norm)?, g.div(q[3], norm)?];
+            let quaternion =
+                [g.div(q[0], norm)?, g.div(q[1], norm)?, g.div(q[2], norm)?, g.div(q[3], norm)?];
             out.push(Start { centre, quaternion, velocity: v, rates });
         }
         Ok(out)
@@ -420,7 +421,13 @@ impl Lower<'_> {
             let full = format!("{name}.{suffix}");
             let node = g.state(&full)?;
             let symbol = g.as_symbol(node).ok_or_else(|| unsupported("a joint coordinate"))?;
-            states.push(NewState { name: full, symbol, init, doc: doc.to_string(), rate: Some(rate) });
+            states.push(NewState {
+                name: full,
+                symbol,
+                init,
+                doc: doc.to_string(),
+                rate: Some(rate),
+            });
             Ok((node, g.derivative(symbol, 1)?, g.derivative(symbol, 2)?))
         };
         let along = |g: &mut Graph, v: Vec3, u_in_a: Vec3| -> crate::Result<Id> {
@@ -552,7 +559,13 @@ impl Lower<'_> {
                     let symbol = g.as_symbol(node).ok_or_else(|| unsupported("a joint rate"))?;
                     ws.push(symbol);
                     let doc = "angular velocity of the second body relative to the first, second body's axes (rad/s)";
-                    states.push(NewState { name: full, symbol, init: w_in_b[k], doc: doc.into(), rate: None });
+                    states.push(NewState {
+                        name: full,
+                        symbol,
+                        init: w_in_b[k],
+                        doc: doc.into(),
+                        rate: None,
+                    });
                     let mut e = [zero; 3];
                     e[k] = one;
                     columns.push(Column {
@@ -678,7 +691,8 @@ impl Lower<'_> {
                 values.insert(self.g.as_symbol(d)?, v);
             }
         }
-        let value = |g: &Graph, id: Id| g.eval(&[id], &|s| values.get(&s).copied().unwrap_or(f64::NAN))[0];
+        let value =
+            |g: &Graph, id: Id| g.eval(&[id], &|s| values.get(&s).copied().unwrap_or(f64::NAN))[0];
         for (b, p) in placed.iter().enumerate() {
             if free[b] {
                 continue;
@@ -701,7 +715,8 @@ impl Lower<'_> {
             let at = self.scene.joint_rows.iter().find(|j| j.0 == joint)?.2.clone();
             let body = self.body_name(b);
             let show = |x: &[f64]| {
-                let parts: Vec<String> = x.iter().map(|v| format!("{}", (v * 1e6).round() / 1e6)).collect();
+                let parts: Vec<String> =
+                    x.iter().map(|v| format!("{}", (v * 1e6).round() / 1e6)).collect();
                 format!("[{}], [{}]", parts[..3].join(", "), parts[3..].join(", "))
             };
             return Some((at, format!("`{body}` starts moving at {} (velocity, body rates) but joint `{joint}` moves it at {}: in the recursive formulation a body's motion follows from its joints' rates, so give `{body}` a velocity and body rates that satisfy `{joint}`", show(&want), show(&got))));
@@ -862,7 +877,9 @@ impl Lower<'_> {
             roots.extend(self.outputs.iter().map(|o| o.value));
             roots.extend(self.events.iter().map(|e| e.value));
             roots.extend(self.invariants.iter().map(|i| i.value));
-            roots.extend(self.scene.spatial_loads.iter().flat_map(|(_, f, t)| f.iter().chain(t).copied()));
+            roots.extend(
+                self.scene.spatial_loads.iter().flat_map(|(_, f, t)| f.iter().chain(t).copied()),
+            );
             for r in roots {
                 read.extend(self.g.free_symbols(r));
             }
