@@ -46,6 +46,9 @@ pub(crate) enum Binding {
     /// A body whose declaration has an error (already reported): its uses
     /// stay quiet.
     BrokenBody,
+    /// A value whose definition has an error (already reported): its uses
+    /// stay quiet too, so each mistake is reported once.
+    Broken,
 }
 
 impl Binding {
@@ -63,6 +66,7 @@ impl Binding {
             Binding::Body(_) => "a body",
             Binding::Ground => "the ground",
             Binding::BrokenBody => "a body",
+            Binding::Broken => "a value",
         }
     }
 }
@@ -267,7 +271,11 @@ impl Lower<'_> {
     pub(crate) fn bind(&mut self, ident: &syn::Ident, binding: Binding) {
         let name = ident.to_string();
         if let Some(old) = self.lookup(&name) {
-            let is_value = |b: &Binding| matches!(b, Binding::Value { .. });
+            let is_value = |b: &Binding| matches!(b, Binding::Value { .. } | Binding::Broken);
+            // A broken value's error is reported: it redeclares nothing.
+            if matches!(binding, Binding::Broken) && !is_value(old) {
+                return;
+            }
             if !(is_value(old) && is_value(&binding)) {
                 let what = old.describe();
                 self.cx.error_at(
@@ -368,7 +376,9 @@ impl Lower<'_> {
             }
         }
         if self.mentions_tensor(e) {
-            let Some(t) = self.tensor(e) else { return };
+            let Some(t) = self.tensor(e) else {
+                return self.bind(&ident, Binding::Broken);
+            };
             match (t.as_scalar(), mutable) {
                 (Some(id), _) => self.bind(&ident, Binding::Value { id, mutable }),
                 (None, false) => self.bind(&ident, Binding::Tensor(t)),
@@ -381,8 +391,9 @@ impl Lower<'_> {
         }
         if let (Expr::Array(array), false) = (e, mutable) {
             let values: Vec<Option<Id>> = array.elems.iter().map(|v| self.value(v)).collect();
-            if let Some(values) = values.into_iter().collect::<Option<Vec<Id>>>() {
-                self.bind(&ident, Binding::ValueArray(values));
+            match values.into_iter().collect::<Option<Vec<Id>>>() {
+                Some(values) => self.bind(&ident, Binding::ValueArray(values)),
+                None => self.bind(&ident, Binding::Broken),
             }
             return;
         }
@@ -396,8 +407,9 @@ impl Lower<'_> {
             self.bind(&ident, Binding::ValueArray(vec![value; n]));
             return;
         }
-        if let Some(id) = self.value(e) {
-            self.bind(&ident, Binding::Value { id, mutable });
+        match self.value(e) {
+            Some(id) => self.bind(&ident, Binding::Value { id, mutable }),
+            None => self.bind(&ident, Binding::Broken),
         }
     }
 
@@ -932,6 +944,7 @@ impl Lower<'_> {
                     }
                 }
             }
+            Some(Binding::Broken) => {}
             Some(Binding::Value { mutable: false, .. }) => {
                 self.cx.error_at(whole, format!("`{name}` is not `mut`: declare it with `let mut {name} = ...;` to accumulate into it"))
             }
@@ -1181,7 +1194,7 @@ impl Lower<'_> {
                     ) => Some(id),
                     Some(Binding::Value { id, .. }) => Some(id),
                     Some(Binding::State(s)) => Some(self.g.symbol_node(s)),
-                    Some(Binding::BrokenBody) => None,
+                    Some(Binding::BrokenBody | Binding::Broken) => None,
                     Some(b @ (Binding::Body(_) | Binding::Ground)) => {
                         let what = b.describe();
                         self.cx.error_at(e, format!("`{name}` is {what}: use `position({name}, p)` for a point of it, or its coordinates `{name}.x`… in the solution"));
@@ -1218,6 +1231,7 @@ impl Lower<'_> {
                         s.into_iter().map(|s| self.g.symbol_node(s)).collect()
                     }
                     Some(Binding::ValueArray(v)) => v,
+                    Some(Binding::Broken) => return None,
                     Some(b) => {
                         let what = b.describe();
                         self.cx.error_at(&ix.expr, format!("`{name}` is {what}, not an array"));

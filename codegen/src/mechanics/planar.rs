@@ -119,10 +119,15 @@ impl Lower<'_> {
         match self.lookup(&name).cloned() {
             Some(Binding::Body(b)) => Some(Frame::Body(b)),
             Some(Binding::Ground) => Some(Frame::Ground),
-            Some(Binding::BrokenBody) => None,
+            Some(Binding::BrokenBody | Binding::Broken) => None,
             Some(other) => {
                 let what = other.describe();
-                self.cx.error_at(e, format!("`{name}` is {what}, not a body: declare it with `let {name} = body(m, j, [x, y, theta]);`"));
+                let declaration = if self.scene.is_spatial() {
+                    "spatial_body(m, inertia, [x, y, z], [q0, q1, q2, q3])"
+                } else {
+                    "body(m, j, [x, y, theta])"
+                };
+                self.cx.error_at(e, format!("`{name}` is {what}, not a body: declare it with `let {name} = {declaration};`"));
                 None
             }
             None => {
