@@ -144,3 +144,33 @@ pub(crate) fn mat_mul(g: &mut Graph, a: &Mat3, b: &Mat3) -> crate::Result<Mat3> 
     }
     Ok(c)
 }
+
+/// mᵀ.
+pub(crate) fn transpose(m: &Mat3) -> Mat3 {
+    [m[0], m[3], m[6], m[1], m[4], m[7], m[2], m[5], m[8]]
+}
+
+/// Rotation by `angle` about the unit axis `u` (Rodrigues):
+/// cos θ 1 + sin θ [u]× + (1 − cos θ) u uᵀ.
+pub(crate) fn rodrigues(g: &mut Graph, u: Vec3, angle: Id) -> crate::Result<Mat3> {
+    let (c, s) = (g.call(crate::Func::Cos, angle)?, g.call(crate::Func::Sin, angle)?);
+    let one = g.one();
+    let versine = g.sub(one, c)?;
+    let mut r = [c; 9];
+    for i in 0..3 {
+        for j in 0..3 {
+            let uu = g.mul(u[i], u[j])?;
+            let mut terms = vec![g.mul(versine, uu)?];
+            if i == j {
+                terms.push(c);
+            } else {
+                // [u]×_ij = −ε_ijk u_k.
+                let k = 3 - i - j;
+                let t = g.mul(s, u[k])?;
+                terms.push(if (i + 1) % 3 == j { g.neg(t)? } else { t });
+            }
+            r[3 * i + j] = g.sum(&terms)?;
+        }
+    }
+    Ok(r)
+}

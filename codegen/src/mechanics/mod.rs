@@ -1,16 +1,22 @@
 //! Multibody scenes lowered into equations (course notes §4.2): bodies
 //! and joints of a planar scene in the global formulation (`planar`) or
 //! the recursive one (`recursive`, on the spanning tree of `topology`),
-//! spatial scenes (`spatial`), and the names a scene answers to (`names`).
+//! spatial scenes in the global formulation (`spatial`) or the recursive
+//! one (`spatial_recursive`, with `spatial_joint_motion` and
+//! `joint_space_dynamics`, over `spatial_vectors` and `algebra`), and the
+//! names a scene answers to (`names`).
 //! Each is part of lowering: its statements are methods of
 //! `front::lower::Lower`, and the scene's data lives here.
 
 pub mod algebra;
+pub mod joint_space_dynamics;
 pub mod names;
 pub mod planar;
 pub mod recursive;
 pub mod spatial;
+pub mod spatial_joint_motion;
 pub mod spatial_recursive;
+pub mod spatial_vectors;
 pub mod topology;
 
 use crate::{Id, SymbolId};
@@ -177,4 +183,13 @@ pub(crate) fn spring_tension(
     let elastic = g.mul(k, stretch)?;
     let viscous = g.mul(damping, d_dot)?;
     Ok((d, g.add(elastic, viscous)?))
+}
+
+/// Removes the items at the positions `dropped` lists.
+pub(crate) fn retain_unlisted<T>(items: &mut Vec<T>, dropped: &std::collections::HashSet<usize>) {
+    let mut i = 0;
+    items.retain(|_| {
+        i += 1;
+        !dropped.contains(&(i - 1))
+    });
 }

@@ -11,7 +11,7 @@
 
 use crate::front::lower::Lower;
 use crate::mechanics::names::rotate;
-use crate::mechanics::{Frame, JointRecord};
+use crate::mechanics::{retain_unlisted, Frame, JointRecord};
 use crate::{FxHashMap, Graph, Id, SymbolId, VectorField};
 use proc_macro2::TokenStream;
 use quote::ToTokens;
@@ -616,13 +616,4 @@ fn joint_rate(
     let p2 = g.mul(dy, dir[1])?;
     let along = g.add(p1, p2)?;
     g.div(along, len)
-}
-
-/// Removes the items at the positions `dropped` lists.
-fn retain_unlisted<T>(items: &mut Vec<T>, dropped: &std::collections::HashSet<usize>) {
-    let mut i = 0;
-    items.retain(|_| {
-        i += 1;
-        !dropped.contains(&(i - 1))
-    });
 }
