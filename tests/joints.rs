@@ -20,14 +20,14 @@ macro_rules! in_both_formulations {
     };
 }
 
-/// A rod-like body (m = 1, principal inertias 1/12, 0.2, 0.01 about its
-/// centre) hanging from the ground by a universal joint at its top, d = 0.5
-/// above its centre along body z; the cross axes are world x (in the
-/// ground) and body y, so its attitude is R = R_x(α)·R_y(β): quaternion
-/// (c_a c_b, s_a c_b, c_a s_b, s_a s_b) with c_a = cos(α/2) …, centre
-/// d·(−sin β, cos β sin α, −cos β cos α), angular velocity in body axes
-/// (α′ cos β, β′, α′ sin β). Started at α = 0.8, β = 0.3, α′ = 0.5,
-/// β′ = −0.4.
+// A rod-like body (m = 1, principal inertias 1/12, 0.2, 0.01 about its
+// centre) hanging from the ground by a universal joint at its top, d = 0.5
+// above its centre along body z; the cross axes are world x (in the
+// ground) and body y, so its attitude is R = R_x(α)·R_y(β): quaternion
+// (c_a c_b, s_a c_b, c_a s_b, s_a s_b) with c_a = cos(α/2) …, centre
+// d·(−sin β, cos β sin α, −cos β cos α), angular velocity in body axes
+// (α′ cos β, β′, α′ sin β). Started at α = 0.8, β = 0.3, α′ = 0.5,
+// β′ = −0.4.
 in_both_formulations!(cardan_pendulum, cardan_pendulum_in_joint_coordinates, {
     let g = param(9.81);
     let ground = ground();
@@ -134,10 +134,10 @@ fn a_cardan_pendulum_follows_its_lagrange_equations_in_the_cardan_angles() {
     }
 }
 
-/// A body (m = 2, inertias 0.1, 0.2, 0.3) on a cylindrical joint along
-/// world z, started spinning at 3 rad/s about that axis and moving up at
-/// 1 m/s: it falls along the axis, z = t − g t²/2, spinning at a constant
-/// rate, its attitude turning about z by 3t.
+// A body (m = 2, inertias 0.1, 0.2, 0.3) on a cylindrical joint along
+// world z, started spinning at 3 rad/s about that axis and moving up at
+// 1 m/s: it falls along the axis, z = t − g t²/2, spinning at a constant
+// rate, its attitude turning about z by 3t.
 in_both_formulations!(spinning_slider, spinning_slider_in_joint_coordinates, {
     let g = param(9.81);
     let ground = ground();
@@ -201,10 +201,10 @@ fn wrap(angle: f64) -> f64 {
     -((PI - angle).rem_euclid(2.0 * PI) - PI)
 }
 
-/// A puck (m = 0.5, inertias 0.01, 0.01, 0.02) on a planar joint keeping
-/// it on the ground's plane z = 0, gravity along −x in the plane, started
-/// at (0, 0, 0) moving at (1, 2, 0) and turning at 2 rad/s about z:
-/// x = t − g t²/2, y = 2t, z = 0, the attitude turning about z by 2t.
+// A puck (m = 0.5, inertias 0.01, 0.01, 0.02) on a planar joint keeping
+// it on the ground's plane z = 0, gravity along −x in the plane, started
+// at (0, 0, 0) moving at (1, 2, 0) and turning at 2 rad/s about z:
+// x = t − g t²/2, y = 2t, z = 0, the attitude turning about z by 2t.
 in_both_formulations!(sliding_puck, sliding_puck_in_joint_coordinates, {
     let g = param(9.81);
     let ground = ground();
