@@ -10,15 +10,7 @@ use daegen::prelude::*;
 mod support;
 use support::tight;
 
-/// The same scene in the global formulation and in the recursive one.
-macro_rules! in_both_formulations {
-    ($global:ident, $recursive:ident, { $($body:tt)* }) => {
-        #[dae_model]
-        fn $global() { $($body)* }
-        #[dae_model(scene = recursive)]
-        fn $recursive() { $($body)* }
-    };
-}
+include!("models/both_formulations.rs");
 
 // A rod-like body (m = 1, principal inertias 1/12, 0.2, 0.01 about its
 // centre) hanging from the ground by a universal joint at its top, d = 0.5

@@ -7,15 +7,7 @@ use daegen::prelude::*;
 mod support;
 use support::{assert_agree, tight};
 
-/// The same scene in the global formulation and in the recursive one.
-macro_rules! in_both_formulations {
-    ($global:ident, $recursive:ident, { $($body:tt)* }) => {
-        #[dae_model]
-        fn $global() { $($body)* }
-        #[dae_model(scene = recursive)]
-        fn $recursive() { $($body)* }
-    };
-}
+include!("models/both_formulations.rs");
 
 include!("models/spatial_chains.rs");
 

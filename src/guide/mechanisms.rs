@@ -115,7 +115,10 @@
 //! | `spherical` | `j.q0` … `j.q3` (relative quaternion), `j.wx` … `j.wz` (relative rates, b's axes) |
 //!
 //! and the bodies' coordinates outputs, so both formulations answer to the
-//! same names. Two differences: in joint coordinates an angle does not
+//! same names. For chains and trees of more than a few bodies prefer it:
+//! a seven-joint arm has 14 states instead of 91 plus 35 multipliers, takes
+//! 14× less time a step and compiles (release) in about a second against
+//! six minutes (`bench/results/dae.md`). Two differences: in joint coordinates an angle does not
 //! wrap (the global formulation reads a spatial joint's angle from the
 //! attitudes, in (−π, π]), and the bodies must start where their joints
 //! put them, moving as the joints move them: a start the joints contradict

@@ -147,20 +147,27 @@ impl Lower<'_> {
             Some(u) => unit3(g, u)?,
             None => [zero; 3],
         };
+        // The relative rotation R_u(angle)·C0 about the joint's axis in a,
+        // as a quaternion and a matrix, and the column of that turn.
+        let turned = |g: &mut Graph, angle: Id| -> crate::Result<([Id; 4], Mat3)> {
+            let turn = axis_angle(g, axis, angle)?;
+            let matrix = rodrigues(g, axis, angle)?;
+            Ok((quaternion_product(g, turn, qc0)?, mat_mul(g, &matrix, &c0)?))
+        };
+        let turn_column = |(_, speed, acceleration): (Id, Id, Id)| Column {
+            axis: Axis::Turn { axis, in_b: false, fixed_in_b: true },
+            speed,
+            acceleration,
+        };
         let mut columns = Vec::new();
         let mut attitude = None;
         let (quaternion, rot, offset) = match rec.kind {
             "revolute" => {
                 let rate = along(g, w_rel, axis)?;
-                let (q, speed, acceleration) = coordinate(g, "q", zero, rate, turn_doc)?;
-                columns.push(Column {
-                    axis: Axis::Turn { axis, in_b: false, fixed_in_b: true },
-                    speed,
-                    acceleration,
-                });
-                let turn = axis_angle(g, axis, q)?;
-                let turned = rodrigues(g, axis, q)?;
-                (quaternion_product(g, turn, qc0)?, mat_mul(g, &turned, &c0)?, [zero; 3])
+                let q = coordinate(g, "q", zero, rate, turn_doc)?;
+                columns.push(turn_column(q));
+                let (quaternion, rot) = turned(g, q.0)?;
+                (quaternion, rot, [zero; 3])
             }
             "prismatic" => {
                 let s0 = dot3(g, gap0_in_a, axis)?;
@@ -175,15 +182,10 @@ impl Lower<'_> {
                 let (q, speed, acceleration) = coordinate(g, "q", s0, rate, slide_doc)?;
                 columns.push(Column { axis: Axis::Slide { axis }, speed, acceleration });
                 let rate = along(g, w_rel, axis)?;
-                let (angle, speed, acceleration) = coordinate(g, "angle", zero, rate, turn_doc)?;
-                columns.push(Column {
-                    axis: Axis::Turn { axis, in_b: false, fixed_in_b: true },
-                    speed,
-                    acceleration,
-                });
-                let turn = axis_angle(g, axis, angle)?;
-                let turned = rodrigues(g, axis, angle)?;
-                (quaternion_product(g, turn, qc0)?, mat_mul(g, &turned, &c0)?, scale3(g, q, axis)?)
+                let angle = coordinate(g, "angle", zero, rate, turn_doc)?;
+                columns.push(turn_column(angle));
+                let (quaternion, rot) = turned(g, angle.0)?;
+                (quaternion, rot, scale3(g, q, axis)?)
             }
             "universal" => {
                 let ub = match rec.cross_axis {
@@ -236,15 +238,10 @@ impl Lower<'_> {
                     offset = add3(g, offset, step)?;
                 }
                 let rate = along(g, w_rel, axis)?;
-                let (angle, speed, acceleration) = coordinate(g, "angle", zero, rate, turn_doc)?;
-                columns.push(Column {
-                    axis: Axis::Turn { axis, in_b: false, fixed_in_b: true },
-                    speed,
-                    acceleration,
-                });
-                let turn = axis_angle(g, axis, angle)?;
-                let turned = rodrigues(g, axis, angle)?;
-                (quaternion_product(g, turn, qc0)?, mat_mul(g, &turned, &c0)?, offset)
+                let angle = coordinate(g, "angle", zero, rate, turn_doc)?;
+                columns.push(turn_column(angle));
+                let (quaternion, rot) = turned(g, angle.0)?;
+                (quaternion, rot, offset)
             }
             "spherical" => {
                 let mut q = [zero; 4];

@@ -374,9 +374,7 @@ impl Lower<'_> {
             if worst <= PLACEMENT_TOLERANCE * scale {
                 continue;
             }
-            let joint = tree.iter().find(|e| e.child == b).and_then(|e| e.joint)?;
-            let joint = records[joint].name.clone();
-            let at = self.scene.joint_rows.iter().find(|j| j.0 == joint)?.2.clone();
+            let (joint, at) = self.tree_joint_of(b, tree, records)?;
             let body = self.body_name(b);
             let worst = if worst >= 1e-4 {
                 format!("{worst:.4}").trim_end_matches('0').to_string()
@@ -429,9 +427,7 @@ impl Lower<'_> {
             if worst <= PLACEMENT_TOLERANCE * scale {
                 continue;
             }
-            let joint = tree.iter().find(|e| e.child == b).and_then(|e| e.joint)?;
-            let joint = records[joint].name.clone();
-            let at = self.scene.joint_rows.iter().find(|j| j.0 == joint)?.2.clone();
+            let (joint, at) = self.tree_joint_of(b, tree, records)?;
             let body = self.body_name(b);
             let show = |x: &[f64]| {
                 let parts: Vec<String> =
@@ -441,6 +437,19 @@ impl Lower<'_> {
             return Some((at, format!("`{body}` starts moving at {} (velocity, body rates) but joint `{joint}` moves it at {}: in the recursive formulation a body's motion follows from its joints' rates, so give `{body}` a velocity and body rates that satisfy `{joint}`", show(&want), show(&got))));
         }
         None
+    }
+
+    /// The tree joint that places body `b`: its name and statement.
+    fn tree_joint_of(
+        &self,
+        b: usize,
+        tree: &[Edge],
+        records: &[SpatialJointRecord],
+    ) -> Option<(String, TokenStream)> {
+        let joint = tree.iter().find(|e| e.child == b).and_then(|e| e.joint)?;
+        let joint = records[joint].name.clone();
+        let at = self.scene.joint_rows.iter().find(|j| j.0 == joint)?.2.clone();
+        Some((joint, at))
     }
 
     /// The name a spatial body was declared with.
