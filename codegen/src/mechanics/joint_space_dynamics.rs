@@ -14,6 +14,7 @@ use super::spatial_vectors::{
     add, add_inertia, apply, body_inertia, cross_force, cross_motion, dot, negate, scale, sub,
     Spatial,
 };
+use super::unsupported;
 use super::{Frame, SpatialJointRecord};
 use crate::front::lower::Lower;
 use crate::{Graph, Id, VectorField};
@@ -261,8 +262,4 @@ impl Lower<'_> {
         }
         Ok(equations)
     }
-}
-
-fn unsupported(what: &str) -> crate::Error {
-    crate::Error::Unsupported { message: what.to_string() }
 }

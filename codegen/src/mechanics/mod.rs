@@ -193,3 +193,8 @@ pub(crate) fn retain_unlisted<T>(items: &mut Vec<T>, dropped: &std::collections:
         !dropped.contains(&(i - 1))
     });
 }
+
+/// An error for what the scene's lowering could not build (`what`).
+pub(crate) fn unsupported(what: &str) -> crate::Error {
+    crate::Error::Unsupported { message: what.to_string() }
+}

@@ -10,6 +10,7 @@ use super::algebra::{
     add3, axis_angle, conjugate, cross3, dot3, mat_mul, mat_t_vec, mat_vec, quaternion_product,
     rodrigues, rotation, scale3, sub3, unit3, Mat3, Vec3,
 };
+use super::unsupported;
 use super::{Frame, SpatialJointRecord};
 use crate::front::lower::Lower;
 use crate::{Graph, Id, SymbolId};
@@ -287,8 +288,4 @@ impl Lower<'_> {
         };
         Ok(Motion { quaternion, rot, offset, columns, states, attitude })
     }
-}
-
-fn unsupported(what: &str) -> crate::Error {
-    crate::Error::Unsupported { message: what.to_string() }
 }

@@ -37,6 +37,7 @@ use super::algebra::{
 use super::joint_space_dynamics::Dynamics;
 use super::spatial_joint_motion::{Axis, Column, NewState, Start};
 use super::spatial_vectors::Spatial;
+use super::unsupported;
 use super::{retain_unlisted, Frame, SpatialJointRecord};
 use crate::front::lower::Lower;
 use crate::{FxHashMap, Graph, Id, SymbolId, VectorField};
@@ -416,9 +417,7 @@ impl Lower<'_> {
             }
             let v = velocity[b];
             let g = &mut self.g;
-            let turn = cross3(g, v.top, p.centre).ok()?;
-            let vc = add3(g, v.bottom, turn).ok()?;
-            let w = mat_t_vec(g, &p.rot, v.top).ok()?;
+            let (vc, w) = centre_and_body_rates(g, p, v).ok()?;
             let got: Vec<f64> = vc.iter().chain(&w).map(|&x| value(g, x)).collect();
             let want: Vec<f64> =
                 start[b].velocity.iter().chain(&start[b].rates).map(|&x| value(g, x)).collect();
@@ -538,9 +537,7 @@ impl Lower<'_> {
             let g = &mut self.g;
             let v = velocity[b];
             // v_c = v_O + ω × c; ω in body axes = Rᵀ ω.
-            let turn = cross3(g, v.top, p.centre)?;
-            let vc = add3(g, v.bottom, turn)?;
-            let w_body = mat_t_vec(g, &p.rot, v.top)?;
+            let (vc, w_body) = centre_and_body_rates(g, &p, v)?;
             for k in 0..3 {
                 let s = body.position[k];
                 replace.insert(s, p.centre[k]);
@@ -625,9 +622,7 @@ impl Lower<'_> {
             let name = self.body_name(b);
             let g = &mut self.g;
             let v = velocity[b];
-            let turn = cross3(g, v.top, p.centre)?;
-            let vc = add3(g, v.bottom, turn)?;
-            let w_body = mat_t_vec(g, &p.rot, v.top)?;
+            let (vc, w_body) = centre_and_body_rates(g, &p, v)?;
             let mut outputs = Vec::new();
             for (k, c) in ["x", "y", "z"].iter().enumerate() {
                 outputs.push((format!("{name}.{c}"), p.centre[k], c.to_string()));
@@ -656,6 +651,13 @@ impl Lower<'_> {
         }
         Ok(())
     }
+}
+
+/// A body's centre velocity v_O + ω × c and its angular velocity in body
+/// axes Rᵀ ω, from its spatial velocity (ω; v_O).
+fn centre_and_body_rates(g: &mut Graph, p: &Placed, v: Spatial) -> crate::Result<(Vec3, Vec3)> {
+    let turn = cross3(g, v.top, p.centre)?;
+    Ok((add3(g, v.bottom, turn)?, mat_t_vec(g, &p.rot, v.top)?))
 }
 
 /// The spanning tree: grown from the ground through tree joints in either
@@ -700,8 +702,4 @@ fn spatial_tree(records: &[SpatialJointRecord], n: usize) -> Vec<Edge> {
             None => return tree,
         }
     }
-}
-
-fn unsupported(what: &str) -> crate::Error {
-    crate::Error::Unsupported { message: what.to_string() }
 }
