@@ -35,7 +35,7 @@ use super::algebra::{
     rotation, sub3, transpose, Mat3, Vec3,
 };
 use super::joint_space_dynamics::Dynamics;
-use super::spatial_joint_motion::{Axis, Column, NewState, Start};
+use super::spatial_joint_motion::{Axis, Column, Motion, NewState, Start};
 use super::spatial_vectors::Spatial;
 use super::unsupported;
 use super::{retain_unlisted, Frame, SpatialJointRecord};
@@ -96,34 +96,9 @@ impl Lower<'_> {
         let mut attitudes = Vec::new();
         for edge in &tree {
             let Some(r) = edge.joint else {
-                let body = self.scene.spatial[edge.child].clone();
-                let g = &mut self.g;
-                let quaternion = body.quaternion.map(|s| g.symbol_node(s));
-                let rot = rotation(g, quaternion)?;
-                let centre = body.position.map(|s| g.symbol_node(s));
-                placed[edge.child] = Some(Placed { quaternion, rot, centre });
-                let (zero, one) = (g.zero(), g.one());
-                for k in 0..3 {
-                    let mut e = [zero; 3];
-                    e[k] = one;
-                    let slide = Column {
-                        axis: Axis::Slide { axis: e },
-                        speed: g.derivative(body.position[k], 1)?,
-                        acceleration: g.derivative(body.position[k], 2)?,
-                    };
-                    // A slide along a world axis: the ground is its frame.
-                    columns[edge.child].push((slide, Frame::Ground, Frame::Body(edge.child), true));
-                }
-                for k in 0..3 {
-                    let mut e = [zero; 3];
-                    e[k] = one;
-                    let turn = Column {
-                        axis: Axis::Turn { axis: e, in_b: true, fixed_in_b: true },
-                        speed: g.symbol_node(body.rates[k]),
-                        acceleration: g.derivative(body.rates[k], 1)?,
-                    };
-                    columns[edge.child].push((turn, Frame::Ground, Frame::Body(edge.child), true));
-                }
+                let (body, axes) = self.free_joint(edge.child)?;
+                placed[edge.child] = Some(body);
+                columns[edge.child] = axes;
                 continue;
             };
             let rec = &records[r];
@@ -141,28 +116,8 @@ impl Lower<'_> {
                     Frame::Body(b) => placed[b].ok_or_else(|| unsupported("an unplaced body")),
                 }
             };
-            let g = &mut self.g;
-            let parent = frame_pose(edge.parent, g)?;
-            let child = if edge.child_is_b {
-                // Q_b = Q_a ⊗ Q_rel, and b's point is a's moved by the offset.
-                let quaternion = quaternion_product(g, parent.quaternion, motion.quaternion)?;
-                let rot = mat_mul(g, &parent.rot, &motion.rot)?;
-                let arm = add3(g, rec.local_a, motion.offset)?;
-                let arm = mat_vec(g, &parent.rot, arm)?;
-                let point = add3(g, parent.centre, arm)?;
-                let back = mat_vec(g, &rot, rec.local_b)?;
-                Placed { quaternion, rot, centre: sub3(g, point, back)? }
-            } else {
-                let inverse = conjugate(g, motion.quaternion)?;
-                let quaternion = quaternion_product(g, parent.quaternion, inverse)?;
-                let transposed = transpose(&motion.rot);
-                let rot = mat_mul(g, &parent.rot, &transposed)?;
-                let arm = mat_vec(g, &parent.rot, rec.local_b)?;
-                let point = add3(g, parent.centre, arm)?;
-                let back = add3(g, rec.local_a, motion.offset)?;
-                let back = mat_vec(g, &rot, back)?;
-                Placed { quaternion, rot, centre: sub3(g, point, back)? }
-            };
+            let parent = frame_pose(edge.parent, &mut self.g)?;
+            let child = place_child(&mut self.g, edge, rec, &motion, &parent)?;
             placed[edge.child] = Some(child);
             for column in motion.columns {
                 columns[edge.child].push((column, rec.a, rec.b, edge.child_is_b));
@@ -179,24 +134,7 @@ impl Lower<'_> {
         let cut: Vec<usize> =
             (0..records.len()).filter(|&r| !tree.iter().any(|e| e.joint == Some(r))).collect();
         self.tree_joints_out(&records, &cut, &free);
-        for s in &states {
-            self.states.push(crate::front::ir::StateDecl {
-                name: s.name.clone(),
-                symbol: s.symbol,
-                init: s.init,
-                origin: origin.clone(),
-                fixed: false,
-                doc: s.doc.clone(),
-            });
-        }
-        for s in &states {
-            if let Some(rate) = s.rate {
-                if !self.g.as_number(rate).is_some_and(|v| v.is_zero()) {
-                    self.init_rate(s.symbol, rate, origin)
-                        .ok_or_else(|| unsupported("a joint rate"))?;
-                }
-            }
-        }
+        self.declare_joint_states(&states, origin)?;
         if let Some((at, message)) = self.misplaced(&placed, &start, &free, &tree, &records) {
             self.cx.error_at(&at, message);
             return Ok(());
@@ -218,8 +156,26 @@ impl Lower<'_> {
         // Equations of motion.
         let equations = self.crba_rnea(&tree, &placed, &subspace, &cut_rows, &mut field)?;
         self.push_equations_of_motion(Ok(equations), origin);
+        self.quaternion_kinematics(&attitudes, &free, origin)?;
+        let coordinates = subspace.iter().map(Vec::len).sum::<usize>();
+        self.scene.summary.push_str(&format!(
+            " Recursive formulation: {coordinates} joint speeds on the spanning tree ({} free bodies), mass matrix by the composite-rigid-body algorithm, bias forces by recursive Newton–Euler, {} cut-joint constraint rows.",
+            free.iter().filter(|f| **f).count(),
+            cut_rows.len()
+        ));
+        Ok(())
+    }
+
+    /// q' = ½ q ⊗ ω for each spherical joint's quaternion (|q| = 1 kept
+    /// by projection) and each free body's.
+    fn quaternion_kinematics(
+        &mut self,
+        attitudes: &[([SymbolId; 4], [SymbolId; 3])],
+        free: &[bool],
+        origin: &TokenStream,
+    ) -> crate::Result<()> {
         let mut kinematics = Vec::new();
-        for (q, w) in &attitudes {
+        for (q, w) in attitudes {
             let g = &mut self.g;
             let qn = q.map(|s| g.symbol_node(s));
             let wn = w.map(|s| g.symbol_node(s));
@@ -245,12 +201,72 @@ impl Lower<'_> {
             }
         }
         self.push_equations_of_motion(Ok(kinematics), origin);
-        let coordinates = subspace.iter().map(Vec::len).sum::<usize>();
-        self.scene.summary.push_str(&format!(
-            " Recursive formulation: {coordinates} joint speeds on the spanning tree ({} free bodies), mass matrix by the composite-rigid-body algorithm, bias forces by recursive Newton–Euler, {} cut-joint constraint rows.",
-            free.iter().filter(|f| **f).count(),
-            cut_rows.len()
-        ));
+        Ok(())
+    }
+
+    /// A body on a free joint: its own coordinates, and six axes, three
+    /// slides along the world axes (its centre's velocity) and three turns
+    /// about its body axes through its centre (its body rates).
+    #[allow(clippy::type_complexity)]
+    fn free_joint(
+        &mut self,
+        b: usize,
+    ) -> crate::Result<(Placed, Vec<(Column, Frame, Frame, bool)>)> {
+        let mut axes = Vec::with_capacity(6);
+        let body = self.scene.spatial[b].clone();
+        let g = &mut self.g;
+        let quaternion = body.quaternion.map(|s| g.symbol_node(s));
+        let rot = rotation(g, quaternion)?;
+        let centre = body.position.map(|s| g.symbol_node(s));
+        let (zero, one) = (g.zero(), g.one());
+        for k in 0..3 {
+            let mut e = [zero; 3];
+            e[k] = one;
+            let slide = Column {
+                axis: Axis::Slide { axis: e },
+                speed: g.derivative(body.position[k], 1)?,
+                acceleration: g.derivative(body.position[k], 2)?,
+            };
+            // A slide along a world axis: the ground is its frame.
+            axes.push((slide, Frame::Ground, Frame::Body(b), true));
+        }
+        for k in 0..3 {
+            let mut e = [zero; 3];
+            e[k] = one;
+            let turn = Column {
+                axis: Axis::Turn { axis: e, in_b: true, fixed_in_b: true },
+                speed: g.symbol_node(body.rates[k]),
+                acceleration: g.derivative(body.rates[k], 1)?,
+            };
+            axes.push((turn, Frame::Ground, Frame::Body(b), true));
+        }
+        Ok((Placed { quaternion, rot, centre }, axes))
+    }
+
+    /// The joint coordinates as states, with their initial rates.
+    fn declare_joint_states(
+        &mut self,
+        states: &[NewState],
+        origin: &TokenStream,
+    ) -> crate::Result<()> {
+        for s in states {
+            self.states.push(crate::front::ir::StateDecl {
+                name: s.name.clone(),
+                symbol: s.symbol,
+                init: s.init,
+                origin: origin.clone(),
+                fixed: false,
+                doc: s.doc.clone(),
+            });
+        }
+        for s in states {
+            if let Some(rate) = s.rate {
+                if !self.g.as_number(rate).is_some_and(|v| v.is_zero()) {
+                    self.init_rate(s.symbol, rate, origin)
+                        .ok_or_else(|| unsupported("a joint rate"))?;
+                }
+            }
+        }
         Ok(())
     }
 
@@ -650,6 +666,36 @@ impl Lower<'_> {
             }
         }
         Ok(())
+    }
+}
+
+/// The child of a tree joint placed from its parent: Q_b = Q_a ⊗ Q_rel and
+/// b's joint point is a's moved by the offset (in a's axes), or the
+/// inverse where the child is the joint's first frame.
+fn place_child(
+    g: &mut Graph,
+    edge: &Edge,
+    rec: &SpatialJointRecord,
+    motion: &Motion,
+    parent: &Placed,
+) -> crate::Result<Placed> {
+    if edge.child_is_b {
+        let quaternion = quaternion_product(g, parent.quaternion, motion.quaternion)?;
+        let rot = mat_mul(g, &parent.rot, &motion.rot)?;
+        let arm = add3(g, rec.local_a, motion.offset)?;
+        let arm = mat_vec(g, &parent.rot, arm)?;
+        let point = add3(g, parent.centre, arm)?;
+        let back = mat_vec(g, &rot, rec.local_b)?;
+        Ok(Placed { quaternion, rot, centre: sub3(g, point, back)? })
+    } else {
+        let inverse = conjugate(g, motion.quaternion)?;
+        let quaternion = quaternion_product(g, parent.quaternion, inverse)?;
+        let rot = mat_mul(g, &parent.rot, &transpose(&motion.rot))?;
+        let arm = mat_vec(g, &parent.rot, rec.local_b)?;
+        let point = add3(g, parent.centre, arm)?;
+        let back = add3(g, rec.local_a, motion.offset)?;
+        let back = mat_vec(g, &rot, back)?;
+        Ok(Placed { quaternion, rot, centre: sub3(g, point, back)? })
     }
 }
 
