@@ -638,7 +638,7 @@ impl Lower<'_> {
             let name = self.body_name(b);
             let g = &mut self.g;
             let v = velocity[b];
-            let (vc, w_body) = centre_and_body_rates(g, &p, v)?;
+            let (vc, w_body) = centre_and_body_rates(g, p, v)?;
             let mut outputs = Vec::new();
             for (k, c) in ["x", "y", "z"].iter().enumerate() {
                 outputs.push((format!("{name}.{c}"), p.centre[k], c.to_string()));
