@@ -595,7 +595,7 @@ impl Lower<'_> {
         }
         let at = self.scene.first_body.clone().unwrap_or_else(|| item.sig.ident.to_token_stream());
         if !self.scene.ground {
-            return self.cx.error_at(at, "a scene needs a ground to hold it: add `let ground = ground();` and attach a body to it with a joint");
+            return self.cx.error_at(at, "a scene needs a ground, the world frame its joints and loads refer to: add `let ground = ground();` and attach a body to it with a joint (a scene whose bodies float declares it too)");
         }
         let spatial = !self.scene.spatial.is_empty();
         let n = self.scene.bodies.len() + self.scene.spatial.len();
