@@ -90,7 +90,7 @@ impl Lower<'_> {
     }
 
     /// The initial value of a state.
-    fn state_initial_value(&self, s: SymbolId) -> Option<Id> {
+    pub(crate) fn state_initial_value(&self, s: SymbolId) -> Option<Id> {
         self.states.iter().find(|d| d.symbol == s).map(|d| d.init)
     }
 

@@ -296,7 +296,7 @@ impl Lower<'_> {
         let mut out = Vec::with_capacity(bodies.len());
         for body in &bodies {
             let zero = self.g.zero();
-            let init = |this: &Self, s: SymbolId| this.state_init(s).unwrap_or(zero);
+            let init = |this: &Self, s: SymbolId| this.state_initial_value(s).unwrap_or(zero);
             let centre = body.position.map(|s| init(self, s));
             let q = body.quaternion.map(|s| init(self, s));
             let rates = body.rates.map(|s| init(self, s));
@@ -313,11 +313,6 @@ impl Lower<'_> {
             out.push(Start { centre, quaternion, velocity: v, rates });
         }
         Ok(out)
-    }
-
-    /// A state's initial value.
-    fn state_init(&self, s: SymbolId) -> Option<Id> {
-        self.states.iter().find(|d| d.symbol == s).map(|d| d.init)
     }
 
     /// Out of the model: the non-free bodies' states and quaternion norms,
@@ -376,6 +371,9 @@ impl Lower<'_> {
         tree: &[Edge],
         records: &[SpatialJointRecord],
     ) -> Option<(TokenStream, String)> {
+        let values = self.start_values();
+        let value =
+            |g: &Graph, id: Id| g.eval(&[id], &|s| values.get(&s).copied().unwrap_or(f64::NAN))[0];
         for (b, p) in placed.iter().enumerate() {
             if free[b] {
                 continue;
@@ -383,8 +381,8 @@ impl Lower<'_> {
             let mut worst: f64 = 0.0;
             let mut scale: f64 = 1.0;
             for k in 0..3 {
-                let got = self.numeric(p.centre[k]);
-                let want = self.numeric(start[b].centre[k]);
+                let got = value(&self.g, p.centre[k]);
+                let want = value(&self.g, start[b].centre[k]);
                 worst = worst.max((got - want).abs());
                 scale = scale.max(want.abs());
             }
@@ -420,7 +418,7 @@ impl Lower<'_> {
         let mut values = self.start_values();
         for s in states {
             if let Some(rate) = s.rate {
-                let v = self.numeric(rate);
+                let v = self.g.eval(&[rate], &|s| values.get(&s).copied().unwrap_or(f64::NAN))[0];
                 let d = self.g.derivative(s.symbol, 1).ok()?;
                 values.insert(self.g.as_symbol(d)?, v);
             }
