@@ -80,7 +80,12 @@ pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
         }
     };
     let mut ir = front::lower::lower_with(&mut cx, &item, attributes.recursive);
-    let system = if cx.is_ok() { dae::reduce::reduce(&mut cx, &mut ir) } else { None };
+    let system = if cx.is_ok() {
+        dae::structure::structure(&mut cx, &mut ir)
+            .and_then(|s| dae::reduce::reduce(&mut cx, &mut ir, s))
+    } else {
+        None
+    };
     let sensitivities = match &system {
         Some(system) if cx.is_ok() => {
             let wrt = dae::variational::resolve(&mut cx, &attributes.sensitivities, &ir, system);
@@ -130,7 +135,9 @@ pub fn diagnostics(item: TokenStream) -> Vec<String> {
     };
     let mut ir = front::lower::lower(&mut cx, &item);
     if cx.is_ok() {
-        if let Some(system) = dae::reduce::reduce(&mut cx, &mut ir) {
+        if let Some(system) = dae::structure::structure(&mut cx, &mut ir)
+            .and_then(|s| dae::reduce::reduce(&mut cx, &mut ir, s))
+        {
             if let Err(e) = emit::model::expand(&mut ir, &system, &Attributes::default(), &[]) {
                 cx.error_at(&item.sig.ident, e);
             }

@@ -8,17 +8,8 @@
 //! (Hairer–Wanner II §VII.2; Simbody's project-every-step policy), so a
 //! correction at one level leaves the levels below it satisfied.
 
-use crate::dae::reduce::FirstOrder;
+use crate::dae::system::{FirstOrder, ProjectionLevel};
 use crate::{FxHashMap, Graph, SymbolId};
-
-/// One projection level: which invariants and which states.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ProjectionLevel {
-    /// Indices into the invariants.
-    pub rows: Vec<usize>,
-    /// Slot indices the level corrects, ascending.
-    pub slots: Vec<usize>,
-}
 
 /// Groups the invariants by level and picks the states each level corrects.
 pub fn projection_levels(

@@ -18,17 +18,8 @@
 //! the rank is then the generic one, and a state where a pivot vanishes
 //! shows as a non-finite derivative.
 
+use crate::dae::system::RankCondition;
 use crate::{FxHashMap, Graph, Id, SymbolId, SymbolKind};
-
-/// A pivot of the elimination: an expression of the parameters that must
-/// not vanish for the generated code to hold.
-#[derive(Clone)]
-pub struct RankCondition {
-    /// The pivot.
-    pub pivot: Id,
-    /// What it is, for the error: "the coefficient of `der(y1)` in `…`".
-    pub text: String,
-}
 
 /// The equations with their derivative-free combinations.
 pub struct Separated {

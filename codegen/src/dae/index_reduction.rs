@@ -22,23 +22,10 @@
 //! (they need one more differentiation to have an equation of their own).
 
 use crate::dae::linear_pencil;
+use crate::dae::system::Invariant;
 use crate::front::ctxt::Ctxt;
 use crate::{FxHashMap, Graph, Id, Number, SymbolId, VectorField};
 use proc_macro2::TokenStream;
-
-/// A constraint or one of its derivatives that must hold along solutions
-/// but that the integrated system no longer enforces.
-#[derive(Clone, Debug)]
-pub struct Invariant {
-    /// The user's equation it comes from.
-    pub equation: usize,
-    /// How often the equation was differentiated to get it (0: itself).
-    pub level: usize,
-    /// `Φ^(level)(t, y)`, zero on the solution.
-    pub residual: Id,
-    /// The user's statement, as source text.
-    pub text: String,
-}
 
 /// The equations after index reduction.
 pub struct IndexReduction {

@@ -11,7 +11,7 @@
 //! solved for the highest derivatives with λ known; only when that solve
 //! is symbolic is the form emitted.
 
-use crate::dae::reduce::{FirstOrder, SlotDerivative};
+use crate::dae::system::{FirstOrder, SlotDerivative};
 use crate::{FxHashMap, Graph, Id, SymbolId, SymbolKind};
 
 /// The mass-matrix form's components and right-hand side.

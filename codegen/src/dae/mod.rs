@@ -15,4 +15,6 @@ pub mod matching;
 pub mod newton_block;
 pub mod reduce;
 pub mod solve_unknowns;
+pub mod structure;
+pub mod system;
 pub mod variational;

@@ -13,23 +13,8 @@
 //! where it is singular the model is not of index 1 there, and the run says
 //! so naming the equations.
 
+use crate::dae::system::NewtonBlock;
 use crate::{Graph, Id, SymbolId};
-
-/// The nonlinear algebraic equations and the variables they determine.
-pub struct NewtonBlock {
-    /// The variables, in declaration order.
-    pub unknowns: Vec<SymbolId>,
-    /// Their names.
-    pub names: Vec<String>,
-    /// Their initial guesses (`algebraic(z0)`).
-    pub guesses: Vec<Id>,
-    /// The equations (indices into the model's), in the model's order.
-    pub equations: Vec<usize>,
-    /// Their residuals `g(t, y, z)`.
-    pub residuals: Vec<Id>,
-    /// The equations as written, for the errors.
-    pub texts: Vec<String>,
-}
 
 /// What the finder reads of the reduced model.
 pub struct Candidates<'a> {

@@ -7,100 +7,12 @@
 //! symbolically when a block is one equation or has constant coefficients,
 //! by a dense solve at run time otherwise (the KKT system of a mechanism).
 
+use crate::dae::structure::Structure;
+use crate::dae::system::{AlgebraicValue, FirstOrder, Slot, SlotDerivative};
 use crate::front::ctxt::Ctxt;
 use crate::front::ir::{AlgebraicDecl, Init, ModelIr, StateDecl, UserInvariant};
-use crate::{FxHashMap, Graph, Id, SymbolId, SymbolKind};
+use crate::{FxHashMap, Graph, Id, SymbolId};
 use proc_macro2::TokenStream;
-
-/// One first-order state of the reduced system.
-#[derive(Clone)]
-pub struct Slot {
-    /// `x`, `der(x)`, `q[1]`, ...
-    pub name: String,
-    /// The symbol it reads as.
-    pub symbol: SymbolId,
-    /// Its initial value (constants and parameters).
-    pub init: Id,
-    /// Kept by consistent initialization (`state(x0).fixed()`).
-    pub fixed: bool,
-    /// The slot's derivative is determined by the dynamics (a velocity),
-    /// not by another slot or an explicit `der(x) == u` (a position).
-    pub velocity_like: bool,
-}
-
-/// How a slot's derivative is computed.
-#[derive(Clone)]
-pub enum SlotDerivative {
-    /// `f_i` as an expression.
-    Explicit(Id),
-    /// An expression of the state and of run-time block unknowns (an
-    /// acceleration eliminated from a KKT block), evaluated after the solve.
-    AfterSolve(Id),
-    /// Unknown `row` of mass block `block`, solved at run time.
-    Block {
-        /// Which block.
-        block: usize,
-        /// Which of its unknowns.
-        row: usize,
-    },
-}
-
-pub use crate::dae::solve_unknowns::MassBlock;
-
-/// How an algebraic variable's value is computed.
-pub type AlgebraicValue = SlotDerivative;
-
-/// The reduced system.
-pub struct FirstOrder {
-    /// Each algebraic variable's value at `(t, y)`, in declaration order.
-    pub algebraics: Vec<AlgebraicValue>,
-    /// Constraints and hidden constraints to project onto.
-    pub invariants: Vec<crate::dae::index_reduction::Invariant>,
-    /// Projection levels fixed by construction (a variational system's:
-    /// the model's levels, then the same levels for each sensitivity
-    /// column); `None` to group the invariants by level.
-    pub projection: Option<Vec<crate::dae::constraints::ProjectionLevel>>,
-    /// The differentiation index.
-    pub index: usize,
-    /// Unknowns solved at run time: symbol, block, row.
-    pub block_unknowns: Vec<(SymbolId, usize, usize)>,
-    /// The user's equations as residuals `lhs − rhs`, before index
-    /// reduction (a combination free of the highest derivatives in place
-    /// of an equation it made dependent).
-    pub residuals: Vec<Id>,
-    /// Equations replaced by such a combination, each with the equations
-    /// it combines.
-    pub combined: Vec<(usize, Vec<usize>)>,
-    /// The user's equations as residuals, as written.
-    pub written: Vec<Id>,
-    /// Pivots of that combination: expressions of the parameters a run
-    /// must not make zero.
-    pub rank_conditions: Vec<crate::dae::derivative_free::RankCondition>,
-    /// How often index reduction differentiated each equation.
-    pub differentiations: Vec<usize>,
-    /// The highest derivative of each state.
-    pub highest: Vec<SymbolId>,
-    /// The algebraic variables.
-    pub algebraic_symbols: Vec<SymbolId>,
-    /// Only the mass-matrix form exists (an algebraic equation is
-    /// nonlinear in the algebraic variables, and they do not close into a
-    /// Newton block): the model is emitted as it.
-    pub mass_only: bool,
-    /// Algebraic equations nonlinear in their variables, solved by Newton
-    /// at each evaluation; their variables are read as run-time block
-    /// `blocks.len()` (after the linear blocks).
-    pub newton: Option<crate::dae::newton_block::NewtonBlock>,
-    /// States in solution order.
-    pub slots: Vec<Slot>,
-    /// `dy_i` for each slot.
-    pub derivatives: Vec<SlotDerivative>,
-    /// Blocks solved at run time.
-    pub blocks: Vec<MassBlock>,
-    /// Output values, with highest derivatives replaced by their solutions.
-    pub outputs: Vec<Id>,
-    /// Event functions, likewise.
-    pub events: Vec<Id>,
-}
 
 struct Equation {
     residual: Id,
@@ -110,40 +22,24 @@ struct Equation {
     index: usize,
 }
 
-/// Reduces the model, or reports why it cannot: each pass below in turn,
-/// every mistake reported on the user's tokens.
-pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
-    let (mut residuals, order) = residuals_and_orders(cx, ir)?;
+/// Solves the structured model for its unknowns, or reports why it
+/// cannot: each pass below in turn, every mistake reported on the user's
+/// tokens.
+pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<FirstOrder> {
+    let Structure {
+        order,
+        mut z_symbols,
+        algebraic_symbols,
+        residuals,
+        written,
+        separated_combined,
+        rank_conditions,
+        reduction,
+        texts,
+        origins,
+    } = structure;
     let g = &mut ir.graph;
-    // The unknowns z: highest derivatives, one per state.
-    let mut z_symbols = Vec::with_capacity(ir.states.len() + ir.algebraics.len());
-    for (i, s) in ir.states.iter().enumerate() {
-        let id = g.derivative(s.symbol, order[i]).ok()?;
-        z_symbols.push(g.as_symbol(id)?);
-    }
     let n_states = z_symbols.len();
-    let algebraic_symbols: Vec<SymbolId> = ir.algebraics.iter().map(|a| a.symbol).collect();
-    let state_orders: Vec<(SymbolId, u32)> =
-        ir.states.iter().zip(&order).map(|(s, &k)| (s.symbol, k)).collect();
-    let origins: Vec<TokenStream> = ir.equations.iter().map(|e| e.origin.clone()).collect();
-    let texts: Vec<String> = origins.iter().map(crate::front::names::source_text).collect();
-    // Only a square system (as many equations as unknowns) is separated: in
-    // another, a repeated or missing equation is the mistake to report.
-    let square = residuals.len() == z_symbols.len() + ir.algebraics.len();
-    let separated = derivative_free(cx, g, &residuals, &z_symbols, &texts, &origins, square)?;
-    let written = std::mem::replace(&mut residuals, separated.residuals);
-    let reduction = crate::dae::index_reduction::reduce_index(
-        cx,
-        g,
-        &crate::dae::index_reduction::Unknowns {
-            time: ir.time,
-            states: &state_orders,
-            z: &z_symbols,
-            algebraics: &algebraic_symbols,
-        },
-        &residuals,
-        &origins,
-    )?;
     let newton = newton_block(cx, g, &ir.algebraics, &reduction, &z_symbols, &texts, &origins)?;
     let in_newton = |s: &SymbolId| newton.as_ref().is_some_and(|b| b.unknowns.contains(s));
     // The unknowns: z, then λ (but for the Newton block's).
@@ -214,9 +110,9 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         index: reduction.index,
         block_unknowns,
         residuals,
-        combined: separated.combined,
+        combined: separated_combined,
         written,
-        rank_conditions: separated.conditions,
+        rank_conditions,
         differentiations: reduction.differentiations,
         highest: z_symbols[..n_states].to_vec(),
         algebraic_symbols,
@@ -231,7 +127,7 @@ fn equations_in_unknowns(
     g: &Graph,
     written: &[crate::front::ir::Equation],
     residuals: &[Id],
-    newton: Option<&crate::dae::newton_block::NewtonBlock>,
+    newton: Option<&crate::dae::system::NewtonBlock>,
     z_index: &FxHashMap<SymbolId, usize>,
 ) -> Vec<Equation> {
     let mut equations = Vec::with_capacity(residuals.len());
@@ -256,7 +152,7 @@ fn observables(
     z: &[SymbolId],
     solved: &crate::dae::solve_unknowns::Solved,
     z_index: &FxHashMap<SymbolId, usize>,
-    newton: Option<&crate::dae::newton_block::NewtonBlock>,
+    newton: Option<&crate::dae::system::NewtonBlock>,
 ) -> Option<(Vec<Id>, Vec<Id>, bool)> {
     let in_newton = |s: &SymbolId| newton.is_some_and(|b| b.unknowns.contains(s));
     let replace: FxHashMap<SymbolId, Id> =
@@ -296,100 +192,6 @@ struct Unknowns<'a> {
     states: usize,
 }
 
-/// The equations as residuals `lhs − rhs`, and each state's order (the
-/// highest derivative any equation uses); an algebraic variable no
-/// equation reads, or a state without an equation for its derivative, is
-/// an error.
-fn residuals_and_orders(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<(Vec<Id>, Vec<u32>)> {
-    let g = &mut ir.graph;
-    let mut order = vec![0u32; ir.states.len()];
-    let state_of: FxHashMap<SymbolId, usize> =
-        ir.states.iter().enumerate().map(|(i, s)| (s.symbol, i)).collect();
-    let mut residuals = Vec::with_capacity(ir.equations.len());
-    for eq in &ir.equations {
-        let r = match g.sub(eq.lhs, eq.rhs) {
-            Ok(r) => r,
-            Err(e) => {
-                cx.error_at(&eq.origin, e);
-                return None;
-            }
-        };
-        for s in g.free_symbols(r) {
-            if let SymbolKind::Derivative { of, order: k } = g.symbol(s).kind {
-                if let Some(&i) = state_of.get(&of) {
-                    order[i] = order[i].max(k);
-                }
-            }
-        }
-        residuals.push(r);
-    }
-    let mut ok = true;
-    // An algebraic variable no equation reads has nothing to determine it
-    // (a constraint force left out of the dynamics).
-    for a in &ir.algebraics {
-        if !residuals.iter().any(|&r| g.free_symbols(r).contains(&a.symbol)) {
-            let name = &a.name;
-            cx.error_at(&a.origin, format!("algebraic variable `{name}` appears in no equation: use it where its constraint acts (a pendulum's `der(u) == -{name} * x;`), or remove it"));
-            ok = false;
-        }
-    }
-    for (i, s) in ir.states.iter().enumerate() {
-        if order[i] == 0 {
-            let name = &s.name;
-            cx.error_at(
-                &s.origin,
-                format!(
-                    "state `{name}` has no equation for its derivative: add `der({name}) == ...;`"
-                ),
-            );
-            ok = false;
-        }
-    }
-    ok.then_some((residuals, order))
-}
-
-/// Equations whose highest derivatives cancel in a combination become that
-/// combination (a circuit's node equations: `0 == f1 + f2`); a dependent
-/// equation is an error.
-fn derivative_free(
-    cx: &mut Ctxt,
-    g: &mut Graph,
-    residuals: &[Id],
-    z: &[SymbolId],
-    texts: &[String],
-    origins: &[TokenStream],
-    square: bool,
-) -> Option<crate::dae::derivative_free::Separated> {
-    let z_names: Vec<String> = z.iter().map(|&s| g.symbol(s).name.clone()).collect();
-    let separated = if !square {
-        Ok(crate::dae::derivative_free::Separated {
-            residuals: residuals.to_vec(),
-            combined: Vec::new(),
-            conditions: Vec::new(),
-        })
-    } else {
-        crate::dae::derivative_free::separate(g, residuals, z, texts, &z_names)
-    };
-    match separated {
-        Ok(separated) => Some(separated),
-        Err(crate::dae::derivative_free::Failure::Dependent { equation, of }) => {
-            let others: Vec<String> = of.iter().map(|&i| format!("`{}`", texts[i])).collect();
-            cx.error_at(
-                &origins[equation],
-                format!(
-                    "this equation is a combination of {}: it adds nothing; remove it or state what it was meant to add",
-                    others.join(" and ")
-                ),
-            );
-            None
-        }
-        Err(crate::dae::derivative_free::Failure::Graph(e)) => {
-            cx.error_at(&origins[0], e);
-            None
-        }
-    }
-}
-
 /// Algebraic equations nonlinear in their variables: a Newton block, its
 /// variables known to the rest of the reduction (`Some(None)`: there is
 /// none; `None`: an error was reported).
@@ -401,7 +203,7 @@ fn newton_block(
     z: &[SymbolId],
     texts: &[String],
     origins: &[TokenStream],
-) -> Option<Option<crate::dae::newton_block::NewtonBlock>> {
+) -> Option<Option<crate::dae::system::NewtonBlock>> {
     let candidates: Vec<(SymbolId, String, Id)> =
         algebraics.iter().map(|a| (a.symbol, a.name.clone(), a.init)).collect();
     let found = crate::dae::newton_block::find(
@@ -602,7 +404,7 @@ fn algebraic_values(
     declared: &[AlgebraicDecl],
     unknowns: &Unknowns,
     solved: &crate::dae::solve_unknowns::Solved,
-    newton: Option<&crate::dae::newton_block::NewtonBlock>,
+    newton: Option<&crate::dae::system::NewtonBlock>,
     mass_only: bool,
 ) -> Option<Vec<AlgebraicValue>> {
     let newton_block_index = solved.blocks.len();
@@ -634,8 +436,8 @@ fn invariants(
     g: &Graph,
     user: &[UserInvariant],
     z_index: &FxHashMap<SymbolId, usize>,
-    mut invariants: Vec<crate::dae::index_reduction::Invariant>,
-) -> (Vec<crate::dae::index_reduction::Invariant>, bool) {
+    mut invariants: Vec<crate::dae::system::Invariant>,
+) -> (Vec<crate::dae::system::Invariant>, bool) {
     let mut ok = true;
     for inv in user {
         if let Some(s) = g.free_symbols(inv.value).into_iter().find(|s| z_index.contains_key(s)) {
@@ -643,7 +445,7 @@ fn invariants(
             cx.error_at(&inv.origin, format!("an invariant is a function of the states, and this one reads `{name}`: write it without derivatives or algebraic variables"));
             ok = false;
         }
-        invariants.push(crate::dae::index_reduction::Invariant {
+        invariants.push(crate::dae::system::Invariant {
             equation: usize::MAX,
             level: 0,
             residual: inv.value,

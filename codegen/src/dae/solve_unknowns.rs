@@ -7,17 +7,8 @@
 //! (the KKT system of a mechanism), merged with the later blocks that read
 //! its unknowns so each run-time block is solved once per evaluation.
 
+use crate::dae::system::MassBlock;
 use crate::{Graph, Id, Number, SymbolId};
-
-/// `E z = g` for unknowns that no symbolic solve could separate.
-pub struct MassBlock {
-    /// Names of the unknowns, for the singular-matrix error.
-    pub unknowns: Vec<String>,
-    /// `E`, row-major, `k × k`.
-    pub matrix: Vec<Id>,
-    /// `g`.
-    pub rhs: Vec<Id>,
-}
 
 /// The solution: each unknown symbolic, or row `r` of run-time block `b`.
 pub struct Solved {

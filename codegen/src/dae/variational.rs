@@ -7,9 +7,9 @@
 //! their subexpressions with the right-hand side when emitted, and every
 //! method integrates the result as it integrates any model.
 
-use crate::dae::constraints::ProjectionLevel;
-use crate::dae::index_reduction::Invariant;
-use crate::dae::reduce::{FirstOrder, Slot, SlotDerivative};
+use crate::dae::system::Invariant;
+use crate::dae::system::ProjectionLevel;
+use crate::dae::system::{FirstOrder, Slot, SlotDerivative};
 use crate::front::ctxt::Ctxt;
 use crate::front::ir::ModelIr;
 use crate::{Graph, Id, SymbolId};

@@ -3,7 +3,7 @@
 //! right-hand sides at once, the model's own straight-line program run on
 //! `daegen::runtime::lanes::Lanes<L>` values (heyoka's batch mode).
 
-use crate::dae::reduce::{FirstOrder, SlotDerivative};
+use crate::dae::system::{FirstOrder, SlotDerivative};
 use crate::emit::docs::{doc_attr, type_name};
 use crate::emit::layout::{index, program, Layout};
 use crate::expr::node::Node;

@@ -3,7 +3,7 @@
 //! projection levels that `dae::constraints` found.
 
 use crate::dae::constraints::projection_levels;
-use crate::dae::reduce::FirstOrder;
+use crate::dae::system::FirstOrder;
 use crate::{FxHashMap, Graph, Id, SymbolId};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
@@ -79,7 +79,7 @@ pub fn constraint_methods(
     let unconstrained = (0..sys.slots.len())
         .filter(|&i| !in_levels.contains(&i))
         .filter(|&i| match sys.derivatives.get(i) {
-            Some(crate::dae::reduce::SlotDerivative::Explicit(e)) => {
+            Some(crate::dae::system::SlotDerivative::Explicit(e)) => {
                 g.as_symbol(*e).is_some_and(|s| slot_symbols.contains(&s))
             }
             _ => false,

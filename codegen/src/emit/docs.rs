@@ -2,7 +2,7 @@
 //! its `Default`, its documentation (what index reduction found), and
 //! `ModelInfo` with every name and doc comment.
 
-use crate::dae::reduce::FirstOrder;
+use crate::dae::system::FirstOrder;
 use crate::emit::layout::index;
 use crate::front::ir::{EventDirection, ModelIr};
 use crate::front::names::upper_camel_case;

@@ -3,7 +3,7 @@
 //! dg/dt = ∂g/∂t + ∇g·f, which let the runtime find two crossings between
 //! neighbouring samples. Nothing for a model without events.
 
-use crate::dae::reduce::FirstOrder;
+use crate::dae::system::FirstOrder;
 use crate::emit::layout::{index, program, Layout};
 use crate::{Graph, Id, SymbolId};
 use proc_macro2::TokenStream;

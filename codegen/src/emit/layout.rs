@@ -2,7 +2,7 @@
 //! from `self`, time from `t`, run-time unknowns from their solve's
 //! arrays), and straight-line programs written with it.
 
-use crate::dae::reduce::FirstOrder;
+use crate::dae::system::FirstOrder;
 use crate::emit::program::emit_rolled_program;
 use crate::{emit_program, Graph, Id, SymbolId, SymbolKind};
 use proc_macro2::{Literal, TokenStream};

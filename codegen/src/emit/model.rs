@@ -3,7 +3,7 @@
 //! `events`, `outputs`, `taylor_items`, `newton`, `docs`). The last step;
 //! everything it needs was decided before.
 
-use crate::dae::reduce::{FirstOrder, SlotDerivative};
+use crate::dae::system::{FirstOrder, SlotDerivative};
 use crate::dae::variational::Wrt;
 use crate::emit::docs::{
     dae_analysis, info, info_with, parameter_method, struct_and_default, type_name,

@@ -1,7 +1,7 @@
 //! Unknowns solved at run time: the Newton block of nonlinear algebraic
 //! equations, and the linear blocks a symbolic solve could not separate.
 
-use crate::dae::reduce::FirstOrder;
+use crate::dae::system::FirstOrder;
 use crate::emit::layout::{index, program, Layout};
 use crate::Graph;
 use proc_macro2::TokenStream;

@@ -2,7 +2,7 @@
 //! of one match; a value that reads an unknown solved at run time solves
 //! its blocks first.
 
-use crate::dae::reduce::{FirstOrder, SlotDerivative};
+use crate::dae::system::{FirstOrder, SlotDerivative};
 use crate::emit::layout::{index, program, Layout};
 use crate::emit::newton::block_solve_code;
 use crate::Graph;

@@ -1,7 +1,7 @@
 //! `Model::rhs`: the explicit entries of the first-order system, then each
 //! linear block's matrix and right-hand side, solved at run time.
 
-use crate::dae::reduce::{FirstOrder, SlotDerivative};
+use crate::dae::system::{FirstOrder, SlotDerivative};
 use crate::emit::layout::{index, program, rolled_program, Layout};
 use crate::{Graph, Id};
 use proc_macro2::TokenStream;

@@ -2,7 +2,7 @@
 //! derivatives (`taylor = p`), the adaptive method's tape and unrolled
 //! jets, or why there are none.
 
-use crate::dae::reduce::{FirstOrder, SlotDerivative};
+use crate::dae::system::{FirstOrder, SlotDerivative};
 use crate::emit::layout::{index, program, Layout};
 use crate::front::attributes::Attributes;
 use crate::front::ir::ModelIr;

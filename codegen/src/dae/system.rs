@@ -1,0 +1,154 @@
+//! The first-order system every pass after reduction reads: the states
+//! as slots, how each slot's derivative and each algebraic variable is
+//! computed, the blocks solved at run time, the invariants to project onto
+//! and their levels. Passes produce and read it; it depends on none of
+//! them.
+
+use crate::{Id, SymbolId};
+
+/// One first-order state of the reduced system.
+#[derive(Clone)]
+pub struct Slot {
+    /// `x`, `der(x)`, `q[1]`, ...
+    pub name: String,
+    /// The symbol it reads as.
+    pub symbol: SymbolId,
+    /// Its initial value (constants and parameters).
+    pub init: Id,
+    /// Kept by consistent initialization (`state(x0).fixed()`).
+    pub fixed: bool,
+    /// The slot's derivative is determined by the dynamics (a velocity),
+    /// not by another slot or an explicit `der(x) == u` (a position).
+    pub velocity_like: bool,
+}
+
+/// How a slot's derivative is computed.
+#[derive(Clone)]
+pub enum SlotDerivative {
+    /// `f_i` as an expression.
+    Explicit(Id),
+    /// An expression of the state and of run-time block unknowns (an
+    /// acceleration eliminated from a KKT block), evaluated after the solve.
+    AfterSolve(Id),
+    /// Unknown `row` of mass block `block`, solved at run time.
+    Block {
+        /// Which block.
+        block: usize,
+        /// Which of its unknowns.
+        row: usize,
+    },
+}
+
+/// The reduced system.
+pub struct FirstOrder {
+    /// Each algebraic variable's value at `(t, y)`, in declaration order.
+    pub algebraics: Vec<AlgebraicValue>,
+    /// Constraints and hidden constraints to project onto.
+    pub invariants: Vec<Invariant>,
+    /// Projection levels fixed by construction (a variational system's:
+    /// the model's levels, then the same levels for each sensitivity
+    /// column); `None` to group the invariants by level.
+    pub projection: Option<Vec<ProjectionLevel>>,
+    /// The differentiation index.
+    pub index: usize,
+    /// Unknowns solved at run time: symbol, block, row.
+    pub block_unknowns: Vec<(SymbolId, usize, usize)>,
+    /// The user's equations as residuals `lhs − rhs`, before index
+    /// reduction (a combination free of the highest derivatives in place
+    /// of an equation it made dependent).
+    pub residuals: Vec<Id>,
+    /// Equations replaced by such a combination, each with the equations
+    /// it combines.
+    pub combined: Vec<(usize, Vec<usize>)>,
+    /// The user's equations as residuals, as written.
+    pub written: Vec<Id>,
+    /// Pivots of that combination: expressions of the parameters a run
+    /// must not make zero.
+    pub rank_conditions: Vec<RankCondition>,
+    /// How often index reduction differentiated each equation.
+    pub differentiations: Vec<usize>,
+    /// The highest derivative of each state.
+    pub highest: Vec<SymbolId>,
+    /// The algebraic variables.
+    pub algebraic_symbols: Vec<SymbolId>,
+    /// Only the mass-matrix form exists (an algebraic equation is
+    /// nonlinear in the algebraic variables, and they do not close into a
+    /// Newton block): the model is emitted as it.
+    pub mass_only: bool,
+    /// Algebraic equations nonlinear in their variables, solved by Newton
+    /// at each evaluation; their variables are read as run-time block
+    /// `blocks.len()` (after the linear blocks).
+    pub newton: Option<NewtonBlock>,
+    /// States in solution order.
+    pub slots: Vec<Slot>,
+    /// `dy_i` for each slot.
+    pub derivatives: Vec<SlotDerivative>,
+    /// Blocks solved at run time.
+    pub blocks: Vec<MassBlock>,
+    /// Output values, with highest derivatives replaced by their solutions.
+    pub outputs: Vec<Id>,
+    /// Event functions, likewise.
+    pub events: Vec<Id>,
+}
+
+/// `E z = g` for unknowns that no symbolic solve could separate.
+pub struct MassBlock {
+    /// Names of the unknowns, for the singular-matrix error.
+    pub unknowns: Vec<String>,
+    /// `E`, row-major, `k × k`.
+    pub matrix: Vec<Id>,
+    /// `g`.
+    pub rhs: Vec<Id>,
+}
+
+/// A constraint or one of its derivatives that must hold along solutions
+/// but that the integrated system no longer enforces.
+#[derive(Clone, Debug)]
+pub struct Invariant {
+    /// The user's equation it comes from.
+    pub equation: usize,
+    /// How often the equation was differentiated to get it (0: itself).
+    pub level: usize,
+    /// `Φ^(level)(t, y)`, zero on the solution.
+    pub residual: Id,
+    /// The user's statement, as source text.
+    pub text: String,
+}
+
+/// A pivot of the elimination: an expression of the parameters that must
+/// not vanish for the generated code to hold.
+#[derive(Clone)]
+pub struct RankCondition {
+    /// The pivot.
+    pub pivot: Id,
+    /// What it is, for the error: "the coefficient of `der(y1)` in `…`".
+    pub text: String,
+}
+
+/// The nonlinear algebraic equations and the variables they determine.
+pub struct NewtonBlock {
+    /// The variables, in declaration order.
+    pub unknowns: Vec<SymbolId>,
+    /// Their names.
+    pub names: Vec<String>,
+    /// Their initial guesses (`algebraic(z0)`).
+    pub guesses: Vec<Id>,
+    /// The equations (indices into the model's), in the model's order.
+    pub equations: Vec<usize>,
+    /// Their residuals `g(t, y, z)`.
+    pub residuals: Vec<Id>,
+    /// The equations as written, for the errors.
+    pub texts: Vec<String>,
+}
+
+/// One projection level: which invariants and which states.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ProjectionLevel {
+    /// Indices into the invariants.
+    pub rows: Vec<usize>,
+    /// Slot indices the level corrects, ascending.
+    pub slots: Vec<usize>,
+}
+
+/// How an algebraic variable's value is computed.
+pub type AlgebraicValue = SlotDerivative;
