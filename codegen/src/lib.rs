@@ -47,6 +47,7 @@ mod error;
 pub mod expr;
 pub mod front;
 pub mod mechanics;
+pub mod pipeline;
 pub mod taylor;
 
 pub use emit::program::{emit_program, token_count};
@@ -61,14 +62,15 @@ pub use expr::number::{pow_f64, Number};
 pub use expr::rational::Rational;
 pub use taylor::economic::economic_taylor_derivatives;
 
-use front::attributes::Attributes;
 use front::ctxt::Ctxt;
 use proc_macro2::TokenStream;
 
-/// Expands `#[dae_model(attr)] item`.
+/// Expands `#[dae_model(attr)] item`: the pipeline's analysed model as
+/// tokens, or on any error the errors plus a stub of the type, so the user
+/// sees one error per mistake and the rest of their code still
+/// type-checks.
 pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
     let mut cx = Ctxt::default();
-    let attributes = front::attributes::attributes(&mut cx, attr);
     let item: syn::ItemFn = match syn::parse2(item) {
         Ok(item) => item,
         Err(e) => {
@@ -79,51 +81,14 @@ pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
             .to_compile_error()
         }
     };
-    let mut ir = front::lower::lower_with(&mut cx, &item, attributes.recursive);
-    let system = if cx.is_ok() {
-        dae::structure::structure(&mut cx, &mut ir)
-            .and_then(|s| dae::reduce::reduce(&mut cx, &mut ir, s))
-    } else {
-        None
-    };
-    let sensitivities = match &system {
-        Some(system) if cx.is_ok() => {
-            let wrt = dae::variational::resolve(&mut cx, &attributes.sensitivities, &ir, system);
-            // Said on the attribute's list, which asked for them.
-            if let (false, Some(why)) = (wrt.is_empty(), dae::variational::unsupported(system)) {
-                let list = &attributes.sensitivities;
-                cx.error_at(quote::quote!(#(#list),*), why);
-            }
-            wrt
-        }
-        _ => Vec::new(),
-    };
-    if let (Some(system), true) = (&system, cx.is_ok()) {
-        match emit::model::expand(&mut ir, system, &attributes, &sensitivities) {
-            Ok(mut tokens) => {
-                tokens.extend(emit::benchmark::benchmark_impl(&item, &ir, &attributes));
-                tokens.extend(front::warnings::odd_unrolled_orders(&attributes.odd_unrolled));
-                return tokens;
-            }
-            Err(e @ crate::Error::NotSmooth { node, .. }) => {
-                // The call itself when the right-hand side kept the node the
-                // user wrote; else the first such call.
-                let call = ir
-                    .non_smooth_calls
-                    .iter()
-                    .find(|(id, _)| *id == node)
-                    .or(ir.non_smooth_calls.first());
-                match call {
-                    Some((_, tokens)) => cx.error_at(tokens, e),
-                    None => cx.error_at(&item.sig.ident, e),
-                }
-            }
-            Err(e) => cx.error_at(&item.sig.ident, e),
+    match expand_or_report(&mut cx, attr, &item) {
+        Ok(tokens) => tokens,
+        Err(ir) => {
+            let mut out = cx.to_compile_errors();
+            out.extend(emit::model::stub(&ir));
+            out
         }
     }
-    let mut out = cx.to_compile_errors();
-    out.extend(emit::model::stub(&ir));
-    out
 }
 
 /// The errors `expand_dae_model` would report, as messages: for tests of
@@ -133,15 +98,35 @@ pub fn diagnostics(item: TokenStream) -> Vec<String> {
     let Ok(item) = syn::parse2::<syn::ItemFn>(item) else {
         return vec!["not a function".to_string()];
     };
-    let mut ir = front::lower::lower(&mut cx, &item);
-    if cx.is_ok() {
-        if let Some(system) = dae::structure::structure(&mut cx, &mut ir)
-            .and_then(|s| dae::reduce::reduce(&mut cx, &mut ir, s))
-        {
-            if let Err(e) = emit::model::expand(&mut ir, &system, &Attributes::default(), &[]) {
-                cx.error_at(&item.sig.ident, e);
+    let _ = expand_or_report(&mut cx, TokenStream::new(), &item);
+    cx.messages()
+}
+
+/// The pipeline, then emission; every error reported to `cx` on the
+/// user's tokens, with the IR as far as it got.
+fn expand_or_report(
+    cx: &mut Ctxt,
+    attr: TokenStream,
+    item: &syn::ItemFn,
+) -> std::result::Result<TokenStream, front::ir::ModelIr> {
+    let mut model = pipeline::analyse(cx, attr, item)?;
+    match emit::model::expand(&mut model) {
+        Ok(mut tokens) => {
+            let (ir, attributes) = (&model.ir, &model.attributes);
+            tokens.extend(emit::benchmark::benchmark_impl(item, ir, attributes));
+            tokens.extend(front::warnings::odd_unrolled_orders(&attributes.odd_unrolled));
+            return Ok(tokens);
+        }
+        Err(e @ crate::Error::NotSmooth { node, .. }) => {
+            // The call itself when the right-hand side kept the node the
+            // user wrote; else the first such call.
+            let calls = &model.ir.non_smooth_calls;
+            match calls.iter().find(|(id, _)| *id == node).or(calls.first()) {
+                Some((_, tokens)) => cx.error_at(tokens, e),
+                None => cx.error_at(&item.sig.ident, e),
             }
         }
+        Err(e) => cx.error_at(&item.sig.ident, e),
     }
-    cx.messages()
+    Err(model.ir)
 }

@@ -2,9 +2,8 @@
 //! `constraints`, `constraint_jacobian`), from the invariants and the
 //! projection levels that `dae::constraints` found.
 
-use crate::dae::constraints::projection_levels;
-use crate::dae::system::FirstOrder;
-use crate::{FxHashMap, Graph, Id, SymbolId};
+use crate::dae::system::{FirstOrder, ProjectionLevel};
+use crate::{Graph, Id, SymbolId};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
@@ -17,9 +16,9 @@ pub type Emit<'a> =
 pub fn constraint_methods(
     g: &mut Graph,
     emit: Emit<'_>,
-    slot_of: &FxHashMap<SymbolId, usize>,
     slot_symbols: &[SymbolId],
     sys: &FirstOrder,
+    levels: &[ProjectionLevel],
 ) -> crate::Result<TokenStream> {
     if sys.invariants.is_empty() {
         return Ok(TokenStream::new());
@@ -31,7 +30,6 @@ pub fn constraint_methods(
         let level = index(inv.level);
         quote!(::daegen::ConstraintInfo { equation: #text, level: #level })
     });
-    let levels = projection_levels(g, sys, slot_of);
     let level_infos = levels.iter().map(|l| {
         let rows = l.rows.iter().map(|&r| index(r));
         let slots = l.slots.iter().map(|&s| index(s));

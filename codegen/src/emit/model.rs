@@ -4,7 +4,6 @@
 //! everything it needs was decided before.
 
 use crate::dae::system::{FirstOrder, SlotDerivative};
-use crate::dae::variational::Wrt;
 use crate::emit::docs::{
     dae_analysis, info, info_with, parameter_method, struct_and_default, type_name,
 };
@@ -15,29 +14,34 @@ use crate::emit::newton::newton_block_code;
 use crate::emit::outputs::output_arms;
 use crate::emit::rhs::{explicit_derivatives, rhs_items};
 use crate::emit::taylor_items::taylor_items;
+use crate::front::attributes::Attributes;
 use crate::front::ir::ModelIr;
+use crate::pipeline::{Analysed, SensitivityAnalysis, SystemAnalysis};
 use crate::{Graph, Id, SymbolId};
 use proc_macro2::TokenStream;
 use quote::{quote, quote_spanned};
 
-/// The full expansion of a model that lowered and reduced without error:
-/// each item of the `Model` implementation from its emitter, in the order
-/// that fixes the shared subexpressions (the graph grows as they run).
-pub fn expand(
+/// The full expansion of an analysed model: each item of the `Model`
+/// implementation from its emitter, in the order that fixes the shared
+/// subexpressions (the graph grows as they run).
+pub fn expand(model: &mut Analysed) -> crate::Result<TokenStream> {
+    let Analysed { ir, attributes, model, sensitivities } = model;
+    expand_system(ir, model, attributes, sensitivities.as_ref())
+}
+
+/// The expansion of one first-order system of the model: its own, or its
+/// variational system's.
+fn expand_system(
     ir: &mut ModelIr,
-    sys: &FirstOrder,
-    attributes: &crate::front::attributes::Attributes,
-    sensitivities: &[Wrt],
+    analysis: &SystemAnalysis,
+    attributes: &Attributes,
+    sensitivities: Option<&SensitivityAnalysis>,
 ) -> crate::Result<TokenStream> {
     // Most of its length is the quoted `Model` implementation the items fill.
-    // `unroll` alone implies the Taylor tape (and the first-order scheme).
-    let taylor = match (attributes.taylor, attributes.unroll.is_empty()) {
-        (None, false) => Some(1),
-        (t, _) => t,
-    };
+    let sys = &analysis.system;
     let name = type_name(ir);
     if sys.mass_only {
-        return expand_mass_only(ir, sys);
+        return expand_mass_only(ir, analysis);
     }
     let n = sys.slots.len();
     let mut layout = Layout::of_system(sys);
@@ -59,9 +63,9 @@ pub fn expand(
     let constraint_methods = crate::emit::constraints::constraint_methods(
         g,
         &|g, ids, assign| program(g, &layout, ids, assign),
-        &layout.slot_of,
         &slot_symbols,
         sys,
+        &analysis.projection,
     )?;
     let events_method = events_method(g, &layout, sys);
     let rhs_method_body = fixed_size_body(
@@ -70,8 +74,8 @@ pub fn expand(
         &index(n),
         quote!(#newton_solve #block_setup #rhs_body #block_solve),
     );
-    let (taylor_tokens, taylor_unavailable) =
-        taylor_items(ir, &mut layout, sys, taylor, attributes)?;
+    let taylor = analysis.taylor.as_ref().map_err(Clone::clone)?;
+    let (taylor_tokens, taylor_unavailable) = taylor_items(g, &mut layout, n, taylor);
     let taylor_unavailable_const = match &taylor_unavailable {
         Some(reason) => quote!(const TAYLOR_UNAVAILABLE: &'static str = #reason;),
         None => TokenStream::new(),
@@ -80,11 +84,7 @@ pub fn expand(
     let own_rhs = own_rhs_method(&mut ir.graph, &layout, sys, attributes.sensitivity_columns);
     // A model with sensitivities has none: they would need the variational
     // equations of the mass-matrix form too.
-    let (mass_form_type, mass_form_method) = if attributes.sensitivity_columns > 0 {
-        (TokenStream::new(), TokenStream::new())
-    } else {
-        mass_form_items(ir, sys, &name)?
-    };
+    let (mass_form_type, mass_form_method) = mass_form_items(ir, analysis, &name)?;
     let info = info(ir, sys);
     let parameter = parameter_method(ir);
     let degenerate = degenerate_parameters_method(&mut ir.graph, &layout, sys);
@@ -112,10 +112,9 @@ pub fn expand(
         }
     };
     // Last too: the sensitivities' type is a model of its own.
-    let sensitivity_type = if sensitivities.is_empty() {
-        TokenStream::new()
-    } else {
-        sensitivity_items(ir, sys, attributes, sensitivities, &name)?
+    let sensitivity_type = match sensitivities {
+        Some(sensitivities) => sensitivity_items(ir, sensitivities, &name)?,
+        None => TokenStream::new(),
     };
     Ok(quote! {
         #struct_and_default
@@ -189,13 +188,11 @@ pub fn expand(
 /// `<Model>::with_sensitivities` that makes one with the same parameters.
 fn sensitivity_items(
     ir: &mut ModelIr,
-    sys: &FirstOrder,
-    attributes: &crate::front::attributes::Attributes,
-    wrt: &[Wrt],
+    sensitivities: &SensitivityAnalysis,
     name: &syn::Ident,
 ) -> crate::Result<TokenStream> {
-    let augmented = crate::dae::variational::variational_system(&mut ir.graph, sys, wrt)
-        .map_err(|message| crate::Error::Unsupported { message })?;
+    let augmented = sensitivities.model.as_ref().map_err(Clone::clone)?;
+    let wrt = &sensitivities.wrt;
     let listed: Vec<String> = wrt.iter().map(|w| format!("`{}`", w.name())).collect();
     let (fn_name, doc) = (ir.fn_name.clone(), ir.doc.clone());
     ir.fn_name = syn::Ident::new(&format!("{fn_name}_sensitivities"), fn_name.span());
@@ -203,13 +200,7 @@ fn sensitivity_items(
         "The model `{name}` with its forward sensitivities with respect to {}: its states, then for each of them the states `d(x)/d(w)` = ∂x/∂w, integrated with them by any method (`Solution::sensitivity(t, \"x\", \"w\")` reads them). Made by `{name}::with_sensitivities`.",
         listed.join(", ")
     );
-    let plain = crate::front::attributes::Attributes {
-        batch: None,
-        sensitivities: Vec::new(),
-        sensitivity_columns: wrt.len(),
-        ..attributes.clone()
-    };
-    let expanded = expand(ir, &augmented, &plain, &[]);
+    let expanded = expand_system(ir, augmented, &sensitivities.attributes, None);
     let sensitivity_name = type_name(ir);
     (ir.fn_name, ir.doc) = (fn_name, doc);
     let model = expanded?;
@@ -235,16 +226,16 @@ fn sensitivity_items(
 /// for a DAE whose differential equations solve symbolically.
 fn mass_form_items(
     ir: &mut ModelIr,
-    sys: &FirstOrder,
+    analysis: &SystemAnalysis,
     name: &syn::Ident,
 ) -> crate::Result<(TokenStream, TokenStream)> {
-    Ok(match crate::dae::mass_form::mass_form(&mut ir.graph, sys)? {
+    Ok(match analysis.mass_form.as_ref().map_err(Clone::clone)? {
         Some(form) => {
             let form_layout = Layout::of_components(&form.components);
             let params: Vec<syn::Ident> = ir.params.iter().map(|p| p.ident.clone()).collect();
             crate::emit::mass_form::emit_mass_form(
                 &mut ir.graph,
-                &form,
+                form,
                 name,
                 &ir.vis,
                 &params,
@@ -258,10 +249,12 @@ fn mass_form_items(
 /// A model whose algebraic equations are nonlinear in the algebraic
 /// variables: its own `Model` implementation is the mass-matrix form,
 /// integrated by RADAU5 (the algebraic variables are states).
-fn expand_mass_only(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenStream> {
+fn expand_mass_only(ir: &mut ModelIr, analysis: &SystemAnalysis) -> crate::Result<TokenStream> {
+    let sys = &analysis.system;
     let name = type_name(ir);
     let g = &mut ir.graph;
-    let form = crate::dae::mass_form::mass_form(g, sys)?.ok_or_else(|| crate::Error::Unsupported {
+    let form = analysis.mass_form.as_ref().map_err(Clone::clone)?;
+    let form = form.as_ref().ok_or_else(|| crate::Error::Unsupported {
         message: "an algebraic equation is nonlinear in the algebraic variables, and the differential equations do not solve symbolically for the highest derivatives: daegen cannot integrate this model yet".into(),
     })?;
     let layout = Layout::of_components(&form.components);
@@ -269,13 +262,10 @@ fn expand_mass_only(ir: &mut ModelIr, sys: &FirstOrder) -> crate::Result<TokenSt
     let mut inits: Vec<Id> = sys.slots.iter().map(|s| s.init).collect();
     inits.extend(ir.algebraics.iter().map(|a| a.init));
     inits.resize(form.components.len(), zero);
-    let items = crate::emit::mass_form::primary_items(
-        g,
-        &form,
-        &inits,
-        &sys.outputs,
-        &|g, ids, assign| program(g, &layout, ids, assign),
-    )?;
+    let items =
+        crate::emit::mass_form::primary_items(g, form, &inits, &sys.outputs, &|g, ids, assign| {
+            program(g, &layout, ids, assign)
+        })?;
     let model_index = index(sys.index);
     let struct_and_default = struct_and_default(ir, &dae_analysis(ir, sys));
     // The algebraic variables are states here.

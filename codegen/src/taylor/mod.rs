@@ -3,6 +3,7 @@
 //! jets (`unrolled`, the pass manager over `folding`, `factoring`,
 //! `layout`, `lanes`, `groups` and `sharing`).
 
+pub mod analysis;
 pub mod economic;
 pub mod factoring;
 pub mod folding;

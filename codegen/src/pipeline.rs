@@ -1,0 +1,134 @@
+//! The compile-time pipeline in one function, [`analyse`]: every stage in
+//! order, each a pass of its own, returning the analysed model that
+//! `emit` assembles into tokens.
+//!
+//! The order is part of the output: the graph grows as the stages run,
+//! and node ids order the generated code's operands and temporaries.
+
+use crate::dae::mass_form::MassForm;
+use crate::dae::system::{FirstOrder, ProjectionLevel};
+use crate::dae::variational::Wrt;
+use crate::front::attributes::Attributes;
+use crate::front::ctxt::Ctxt;
+use crate::front::ir::ModelIr;
+use crate::taylor::analysis::TaylorAnalysis;
+use crate::{FxHashMap, Graph, SymbolId};
+use proc_macro2::TokenStream;
+
+/// A model that lowered and reduced without error, with everything
+/// emission needs decided.
+pub struct Analysed {
+    /// The model IR: its graph, declarations, names and spans.
+    pub ir: ModelIr,
+    /// The attribute's arguments.
+    pub attributes: Attributes,
+    /// The model's first-order system and its analyses.
+    pub model: SystemAnalysis,
+    /// The forward sensitivities asked for with `sensitivities = [..]`.
+    pub sensitivities: Option<SensitivityAnalysis>,
+}
+
+/// A first-order system and what is derived from it. Analyses that can
+/// fail keep their error, raised where emission needs them, so a model
+/// with several problems reports the same one first as it always has.
+pub struct SystemAnalysis {
+    /// The reduced system.
+    pub system: FirstOrder,
+    /// The mass-matrix form, where the model has one and it is wanted
+    /// (never for a model with sensitivity columns).
+    pub mass_form: crate::Result<Option<MassForm>>,
+    /// The Taylor methods' part.
+    pub taylor: crate::Result<TaylorAnalysis>,
+    /// The invariants grouped by level, each with the states it corrects.
+    pub projection: Vec<ProjectionLevel>,
+}
+
+/// The variational system of the forward sensitivities.
+pub struct SensitivityAnalysis {
+    /// The parameters and initial values differentiated against.
+    pub wrt: Vec<Wrt>,
+    /// The attributes it is expanded with: the model's, with its columns.
+    pub attributes: Attributes,
+    /// The model with the sensitivities as states, and its analyses.
+    pub model: crate::Result<SystemAnalysis>,
+}
+
+/// Runs every stage in order: attributes → lower → structure → reduce →
+/// variational → mass form → Taylor → projection levels. `Err` holds the
+/// IR as far as it got (for the stub) when a stage reported errors to `cx`.
+pub fn analyse(cx: &mut Ctxt, attr: TokenStream, item: &syn::ItemFn) -> Result<Analysed, ModelIr> {
+    let attributes = crate::front::attributes::attributes(cx, attr);
+    let mut ir = crate::front::lower::lower_with(cx, item, attributes.recursive);
+    let system = match cx.is_ok() {
+        true => crate::dae::structure::structure(cx, &mut ir)
+            .and_then(|structure| crate::dae::reduce::reduce(cx, &mut ir, structure)),
+        false => None,
+    };
+    let Some(system) = system.filter(|_| cx.is_ok()) else { return Err(ir) };
+    let sensitivities = variational(cx, &mut ir, &attributes, &system);
+    if !cx.is_ok() {
+        return Err(ir);
+    }
+    let model = system_analysis(&mut ir.graph, ir.time, system, &attributes);
+    let sensitivities = sensitivities.map(|(wrt, augmented, attributes)| {
+        let model =
+            augmented.map(|system| system_analysis(&mut ir.graph, ir.time, system, &attributes));
+        SensitivityAnalysis { wrt, attributes, model }
+    });
+    Ok(Analysed { ir, attributes, model, sensitivities })
+}
+
+/// The forward sensitivities the attribute asks for, resolved against the
+/// model, with their variational system and the attributes it is expanded
+/// with; `None` when none were asked for.
+fn variational(
+    cx: &mut Ctxt,
+    ir: &mut ModelIr,
+    attributes: &Attributes,
+    system: &FirstOrder,
+) -> Option<(Vec<Wrt>, crate::Result<FirstOrder>, Attributes)> {
+    let wrt = crate::dae::variational::resolve(cx, &attributes.sensitivities, ir, system);
+    if wrt.is_empty() {
+        return None;
+    }
+    if let Some(why) = crate::dae::variational::unsupported(system) {
+        // Said on the attribute's list, which asked for them.
+        let list = &attributes.sensitivities;
+        cx.error_at(quote::quote!(#(#list),*), why);
+        return None;
+    }
+    let augmented = crate::dae::variational::variational_system(&mut ir.graph, system, &wrt)
+        .map_err(|message| crate::Error::Unsupported { message });
+    let plain = Attributes {
+        batch: None,
+        sensitivities: Vec::new(),
+        sensitivity_columns: wrt.len(),
+        ..attributes.clone()
+    };
+    Some((wrt, augmented, plain))
+}
+
+/// The analyses of one first-order system after its reduction: the
+/// mass-matrix form, the Taylor methods' part, the projection levels.
+fn system_analysis(
+    g: &mut Graph,
+    time: SymbolId,
+    system: FirstOrder,
+    attributes: &Attributes,
+) -> SystemAnalysis {
+    // A model with sensitivities has none: it would need the variational
+    // equations of the mass-matrix form too.
+    let mass_form = match system.mass_only || attributes.sensitivity_columns == 0 {
+        true => crate::dae::mass_form::mass_form(g, &system),
+        false => Ok(None),
+    };
+    // A model that runs in mass-matrix form only has no Taylor code.
+    let taylor = match system.mass_only {
+        true => Ok(TaylorAnalysis::Refused(String::new())),
+        false => crate::taylor::analysis::taylor_analysis(g, &system, time, attributes),
+    };
+    let slot_of: FxHashMap<SymbolId, usize> =
+        system.slots.iter().enumerate().map(|(i, s)| (s.symbol, i)).collect();
+    let projection = crate::dae::constraints::projection_levels(g, &system, &slot_of);
+    SystemAnalysis { system, mass_form, taylor, projection }
+}
