@@ -5,7 +5,6 @@
 
 pub mod attributes;
 pub mod ctxt;
-pub(crate) mod integers;
 pub mod ir;
 pub mod lower;
 pub mod names;

@@ -4,7 +4,7 @@
 //! and casts to integer types of them), so that `k / 2` divides as Rust
 //! does, truncating, and not as the real numbers do.
 
-use crate::front::lower::{Binding, Lower};
+use super::scopes::{Binding, Lower};
 use crate::Id;
 use syn::{BinOp, Expr, Lit, Type};
 

@@ -1,0 +1,468 @@
+//! Declarations: `param`, `state`, `state_array`, `algebraic`, `time`,
+//! `output`, `event`, and the scene's bodies, each checked and bound to
+//! its name.
+
+use super::scopes::{Binding, Lower};
+use crate::front::ir::{
+    AlgebraicDecl, Event, EventDirection, Init, Output, Param, StateDecl, UserInvariant,
+};
+
+use crate::{Id, SymbolId, SymbolKind};
+use quote::ToTokens;
+use std::collections::HashMap;
+use syn::{Expr, Pat};
+
+/// The declarations of the model language: `let x = state(1.0);` and the
+/// like, each a call by name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Declaration {
+    /// `event(g)`, with its settings chained after it.
+    Event,
+    /// `body(m, j, [x, y, theta])`: a planar rigid body.
+    Body,
+    /// `spatial_body(..)`: a rigid body in space.
+    SpatialBody,
+    /// `ground()`: the scene's fixed frame.
+    Ground,
+    /// `quaternion_state([1, 0, 0, 0])`: four states kept on the unit sphere.
+    QuaternionState,
+    /// `param(value)`.
+    Param,
+    /// `state(x0)`.
+    State,
+    /// `state_array([..])`.
+    StateArray,
+    /// `algebraic(z0)`.
+    Algebraic,
+    /// `time()`.
+    Time,
+    /// `output(value)`.
+    Output,
+}
+
+impl Declaration {
+    /// Every declaration, in the order the language reference lists them.
+    pub(crate) const ALL: [Declaration; 11] = [
+        Declaration::Event,
+        Declaration::Body,
+        Declaration::SpatialBody,
+        Declaration::Ground,
+        Declaration::QuaternionState,
+        Declaration::Param,
+        Declaration::State,
+        Declaration::StateArray,
+        Declaration::Algebraic,
+        Declaration::Time,
+        Declaration::Output,
+    ];
+
+    /// The function the user calls.
+    pub(crate) fn name(self) -> &'static str {
+        match self {
+            Declaration::Event => "event",
+            Declaration::Body => "body",
+            Declaration::SpatialBody => "spatial_body",
+            Declaration::Ground => "ground",
+            Declaration::QuaternionState => "quaternion_state",
+            Declaration::Param => "param",
+            Declaration::State => "state",
+            Declaration::StateArray => "state_array",
+            Declaration::Algebraic => "algebraic",
+            Declaration::Time => "time",
+            Declaration::Output => "output",
+        }
+    }
+
+    /// The declaration a call of `name` makes, if it makes one.
+    pub(crate) fn from_name(name: &str) -> Option<Declaration> {
+        Declaration::ALL.into_iter().find(|d| d.name() == name)
+    }
+}
+
+impl Lower<'_> {
+    /// A new state or algebraic symbol `name` and its node; `None` once
+    /// the clash with another name is reported at `at`.
+    pub(crate) fn new_symbol(
+        &mut self,
+        name: &str,
+        kind: SymbolKind,
+        at: &dyn quote::ToTokens,
+    ) -> Option<(Id, SymbolId)> {
+        let created =
+            if kind == SymbolKind::State { self.g.state(name) } else { self.g.algebraic(name) };
+        match created {
+            Ok(id) => Some((id, self.g.as_symbol(id)?)),
+            Err(e) => {
+                self.cx.error_at(at, e);
+                None
+            }
+        }
+    }
+
+    /// Declares the state `name` (a user's, or a scene's coordinate)
+    /// documented by `doc`; `None` once the clash with another name is
+    /// reported at `at`.
+    pub(crate) fn declare_state(
+        &mut self,
+        name: String,
+        init: Id,
+        at: &syn::Ident,
+        origin: &proc_macro2::TokenStream,
+        doc: &str,
+    ) -> Option<SymbolId> {
+        let (_, symbol) = self.new_symbol(&name, SymbolKind::State, at)?;
+        let (origin, doc) = (origin.clone(), doc.to_string());
+        self.states.push(StateDecl { name, symbol, init, origin, fixed: false, doc });
+        Some(symbol)
+    }
+
+    /// Declares the algebraic variable `name` (a user's, or a joint's
+    /// multiplier) documented by `doc`; its node, or `None` once the clash
+    /// with another name is reported at `at`.
+    pub(crate) fn declare_algebraic(
+        &mut self,
+        name: String,
+        init: Id,
+        at: &dyn quote::ToTokens,
+        origin: &proc_macro2::TokenStream,
+        doc: String,
+    ) -> Option<Id> {
+        let (id, symbol) = self.new_symbol(&name, SymbolKind::Algebraic, at)?;
+        let origin = origin.clone();
+        self.algebraics.push(AlgebraicDecl { name, symbol, init, origin, doc });
+        Some(id)
+    }
+
+    /// Starts `der(state)` at `value` (a body's or a joint's initial
+    /// rate); `None` where the state has no derivative to start.
+    pub(crate) fn init_rate(
+        &mut self,
+        state: SymbolId,
+        value: Id,
+        origin: &proc_macro2::TokenStream,
+    ) -> Option<()> {
+        let d = self.g.derivative(state, 1).ok()?;
+        let target = self.g.as_symbol(d)?;
+        self.inits.push(Init { target, value, origin: origin.clone() });
+        Some(())
+    }
+
+    /// Adds the equations of motion `(lhs, rhs)` the scene gave, or reports
+    /// at `origin` why it could not write them.
+    pub(crate) fn push_equations_of_motion(
+        &mut self,
+        equations: crate::Result<Vec<(Id, Id)>>,
+        origin: &proc_macro2::TokenStream,
+    ) {
+        match equations {
+            Ok(equations) => {
+                for (lhs, rhs) in equations {
+                    let origin = origin.clone();
+                    let eq = crate::front::ir::Equation { lhs, rhs, origin, is_constraint: false };
+                    self.equations.push(eq);
+                }
+            }
+            Err(e) => self.cx.error_at(origin, e),
+        }
+    }
+
+    /// Reports a second declaration of `ident`'s name.
+    pub(crate) fn already_declared(&mut self, ident: &syn::Ident) -> bool {
+        let name = ident.to_string();
+        let Some(what) = self.lookup(&name).map(Binding::describe) else {
+            return false;
+        };
+        self.cx.error_at(
+            ident,
+            format!("`{name}` is already declared as {what}: choose another name"),
+        );
+        true
+    }
+
+    /// `let e = event(g).rising().terminal();`
+    pub(crate) fn event(
+        &mut self,
+        ident: &syn::Ident,
+        call: &syn::ExprCall,
+        settings: &[&syn::ExprMethodCall],
+        doc: String,
+        local: &syn::Local,
+    ) {
+        let name = ident.to_string();
+        if self.already_declared(ident) {
+            return;
+        }
+        if !self.arity(call, "event", 1) {
+            return;
+        }
+        let (mut direction, mut terminal) = (EventDirection::Any, false);
+        for m in settings {
+            let setting = m.method.to_string();
+            if !m.args.is_empty() {
+                self.cx.error_at(&m.args, format!("`.{setting}()` takes no argument"));
+                continue;
+            }
+            let wanted = match setting.as_str() {
+                "rising" => EventDirection::Rising,
+                "falling" => EventDirection::Falling,
+                "terminal" => {
+                    terminal = true;
+                    continue;
+                }
+                _ => {
+                    self.cx.error_at(
+                        &m.method,
+                        format!("unknown event setting `.{setting}()`: use `.rising()`, `.falling()` or `.terminal()`"),
+                    );
+                    continue;
+                }
+            };
+            if direction != EventDirection::Any && direction != wanted {
+                self.cx.error_at(
+                    &m.method,
+                    "an event is `.rising()` or `.falling()`, not both: leave both out to catch every crossing",
+                );
+            }
+            direction = wanted;
+        }
+        let Some(value) = self.value(&call.args[0]) else {
+            return;
+        };
+        self.events.push(Event {
+            name,
+            value,
+            direction,
+            terminal,
+            doc,
+            origin: local.to_token_stream(),
+        });
+        self.bind(ident, Binding::Value { id: value, mutable: false });
+    }
+
+    pub(crate) fn arity(&mut self, call: &syn::ExprCall, name: &str, n: usize) -> bool {
+        if call.args.len() == n {
+            return true;
+        }
+        let args = match n {
+            0 => "no argument".to_string(),
+            1 => "one argument".to_string(),
+            n => format!("{n} arguments"),
+        };
+        self.cx.error_at(call, format!("`{name}` takes {args}, not {}", call.args.len()));
+        false
+    }
+
+    pub(crate) fn declaration(
+        &mut self,
+        ident: &syn::Ident,
+        kind: Declaration,
+        call: &syn::ExprCall,
+        doc: String,
+        local: &syn::Local,
+    ) {
+        // One match arm per declaration of the language (`param`, `state`, `algebraic`, …):
+        // long because the language is, each arm short.
+        let name = ident.to_string();
+        if self.already_declared(ident) {
+            return;
+        }
+        let origin = local.to_token_stream();
+        match kind {
+            Declaration::Body | Declaration::Ground => {
+                self.scene_declaration(ident, kind.name(), call, local)
+            }
+            Declaration::SpatialBody => self.spatial_declaration(ident, call, local),
+            Declaration::Param => {
+                if !self.arity(call, "param", 1) {
+                    return;
+                }
+                let v = self.constant(&call.args[0]).unwrap_or_else(|| self.g.zero());
+                let default = self.g.as_number(v).map_or(f64::NAN, |n| n.to_f64());
+                match self.g.parameter(&name) {
+                    Ok(id) => {
+                        self.params.push(Param { ident: ident.clone(), default, doc });
+                        self.bind(ident, Binding::Param(id));
+                    }
+                    Err(e) => self.cx.error_at(ident, e),
+                }
+            }
+            Declaration::State => {
+                if !self.arity(call, "state", 1) {
+                    return;
+                }
+                // A bad initial value is reported; the state is still
+                // declared, so its uses raise no second error.
+                let init = self.initial_value(&call.args[0]).unwrap_or_else(|| self.g.zero());
+                if let Some(symbol) = self.declare_state(name, init, ident, &origin, &doc) {
+                    self.bind(ident, Binding::State(symbol));
+                }
+            }
+            Declaration::StateArray | Declaration::QuaternionState => {
+                if !self.arity(call, kind.name(), 1) {
+                    return;
+                }
+                let inits: Vec<Option<Id>> = match &call.args[0] {
+                    Expr::Array(a) => a.elems.iter().map(|e| self.initial_value(e)).collect(),
+                    Expr::Repeat(r) => {
+                        let v = self.initial_value(&r.expr);
+                        match self.index_constant(&r.len) {
+                            Some(n) => vec![v; n],
+                            None => return,
+                        }
+                    }
+                    Expr::MethodCall(m) if m.method == "map" => {
+                        match self.initial_values_by_index(m) {
+                            Some(inits) => inits,
+                            None => return,
+                        }
+                    }
+                    other => {
+                        return self.cx.error_at(other, "`state_array` takes an array of initial values: `state_array([1.0, 0.0])`, `state_array([0.0; N])` or `state_array((0..N).map(|i| ...))`");
+                    }
+                };
+                if inits.is_empty() {
+                    return self
+                        .cx
+                        .error_at(&call.args[0], "a state array needs at least one element");
+                }
+                if kind == Declaration::QuaternionState && inits.len() != 4 {
+                    return self.cx.error_at(&call.args[0], "a quaternion has four components: `quaternion_state([1.0, 0.0, 0.0, 0.0])` (q0 = cos(θ/2) first)");
+                }
+                let mut symbols = Vec::new();
+                for (i, init) in inits.into_iter().enumerate() {
+                    let element = format!("{name}[{i}]");
+                    let (Some(init), Ok(id)) = (init, self.g.state(&element)) else {
+                        continue;
+                    };
+                    let symbol = self.g.as_symbol(id).unwrap_or(SymbolId(0));
+                    self.states.push(StateDecl {
+                        name: element,
+                        symbol,
+                        init,
+                        origin: origin.clone(),
+                        fixed: false,
+                        doc: doc.clone(),
+                    });
+                    symbols.push(symbol);
+                }
+                if kind == Declaration::QuaternionState && symbols.len() == 4 {
+                    // |q|² − 1, kept at zero by projection (course notes §4.1.3).
+                    let mut terms = Vec::with_capacity(5);
+                    for &s in &symbols {
+                        let q = self.g.symbol_node(s);
+                        match self.g.mul(q, q) {
+                            Ok(t) => terms.push(t),
+                            Err(e) => return self.cx.error_at(ident, e),
+                        }
+                    }
+                    terms.push(self.g.int(-1));
+                    match self.g.sum(&terms) {
+                        Ok(value) => {
+                            self.invariants.push(UserInvariant { value, origin: origin.clone() })
+                        }
+                        Err(e) => return self.cx.error_at(ident, e),
+                    }
+                }
+                self.bind(ident, Binding::StateArray(symbols));
+            }
+            Declaration::Algebraic => {
+                if !self.arity(call, "algebraic", 1) {
+                    return;
+                }
+                let init = self.initial_value(&call.args[0]).unwrap_or_else(|| self.g.zero());
+                if let Some(id) = self.declare_algebraic(name, init, ident, &origin, doc) {
+                    self.bind(ident, Binding::Algebraic(id));
+                }
+            }
+            Declaration::Time => {
+                if !self.arity(call, "time", 0) {
+                    return;
+                }
+                if self.time.is_some() {
+                    return self
+                        .cx
+                        .error_at(local, "the time is already declared: a model has one `time()`");
+                }
+                match self.g.time(&name) {
+                    Ok(id) => {
+                        self.time = self.g.as_symbol(id);
+                        self.bind(ident, Binding::Time(id));
+                    }
+                    Err(e) => self.cx.error_at(ident, e),
+                }
+            }
+            // Met first, with its settings, by the statement; here without.
+            Declaration::Event => self.event(ident, call, &[], doc, local),
+            Declaration::Output => {
+                if !self.arity(call, "output", 1) {
+                    return;
+                }
+                let Some(value) = self.value(&call.args[0]) else {
+                    return;
+                };
+                self.outputs.push(Output { name, value, doc, origin });
+                self.bind(ident, Binding::Value { id: value, mutable: false });
+            }
+        }
+    }
+
+    /// An initial value or guess: constants and parameters only.
+    /// The initial values of `(0..N).map(|i| value)`: `value` with `i`
+    /// bound to each index of the range in turn, as a loop binds it.
+    pub(crate) fn initial_values_by_index(
+        &mut self,
+        m: &syn::ExprMethodCall,
+    ) -> Option<Vec<Option<Id>>> {
+        let how = "write the initial values as `(0..N).map(|i| 1.0 + 0.1 * (i as f64))`";
+        let mut receiver = &*m.receiver;
+        while let Expr::Paren(p) = receiver {
+            receiver = &p.expr;
+        }
+        let (Expr::Range(range), [Expr::Closure(closure)]) =
+            (receiver, m.args.iter().collect::<Vec<_>>().as_slice())
+        else {
+            self.cx.error_at(m, how);
+            return None;
+        };
+        let (Some(start), Some(end), [Pat::Ident(var)]) =
+            (&range.start, &range.end, closure.inputs.iter().collect::<Vec<_>>().as_slice())
+        else {
+            self.cx.error_at(m, how);
+            return None;
+        };
+        let (start, end) = (self.index_constant(start)?, self.index_constant(end)?);
+        let end = match range.limits {
+            syn::RangeLimits::HalfOpen(_) => end,
+            syn::RangeLimits::Closed(_) => end + 1,
+        };
+        let values = (start..end)
+            .map(|i| {
+                let index = self.g.int(i as i64);
+                self.integer_names.insert(var.ident.to_string());
+                self.scopes.push(HashMap::from([(var.ident.to_string(), Binding::Const(index))]));
+                let value = self.initial_value(&closure.body);
+                self.scopes.pop();
+                value
+            })
+            .collect();
+        Some(values)
+    }
+
+    pub(crate) fn initial_value(&mut self, e: &Expr) -> Option<Id> {
+        let v = self.value(e)?;
+        let bad = self
+            .g
+            .free_symbols(v)
+            .into_iter()
+            .find(|s| self.g.symbol(*s).kind != SymbolKind::Parameter);
+        if let Some(s) = bad {
+            let name = self.g.symbol(s).name.clone();
+            self.cx.error_at(
+                e,
+                format!("an initial value may use constants and parameters, not `{name}`"),
+            );
+            return None;
+        }
+        Some(v)
+    }
+}

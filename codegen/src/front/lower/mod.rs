@@ -1,0 +1,103 @@
+//! Lowering: the function body, read as the model language, into a
+//! [`ModelIr`]. Names are resolved, `const`s evaluated, `for` loops and
+//! constant `if`s unrolled; every mistake is recorded with the user's tokens
+//! and lowering goes on, so all mistakes are reported together.
+//!
+//! One file per concern: the state and its scopes (`scopes`),
+//! statements, declarations, constants and unrolling, expressions, Rust's
+//! integer semantics (`integers`), and the shapes of syntax they ask about
+//! (`syntax`).
+
+mod constants;
+mod declarations;
+mod expressions;
+pub(crate) mod integers;
+mod scopes;
+mod statements;
+mod syntax;
+
+pub(crate) use scopes::{Binding, Lower};
+use syntax::doc_comment;
+
+use crate::front::ctxt::Ctxt;
+use crate::front::ir::ModelIr;
+
+use crate::mechanics::Scene;
+use crate::{Graph, SymbolId};
+use std::collections::HashMap;
+
+/// Lowers the body of `item`. Errors go to `cx`; the IR is returned even
+/// then (with the parts that could be read) so that a stub can be emitted.
+pub fn lower(cx: &mut Ctxt, item: &syn::ItemFn) -> ModelIr {
+    lower_with(cx, item, false)
+}
+
+/// Lowers `item`; a scene uses the recursive formulation when `recursive`
+/// (`#[dae_model(scene = recursive)]`), the global one otherwise.
+pub fn lower_with(cx: &mut Ctxt, item: &syn::ItemFn, recursive: bool) -> ModelIr {
+    let mut l = Lower {
+        cx,
+        g: Graph::new(),
+        scopes: vec![HashMap::new()],
+        time: None,
+        params: Vec::new(),
+        states: Vec::new(),
+        algebraics: Vec::new(),
+        outputs: Vec::new(),
+        events: Vec::new(),
+        equations: Vec::new(),
+        inits: Vec::new(),
+        invariants: Vec::new(),
+        scene: Scene { recursive, ..Scene::default() },
+        unrolled: 0,
+        non_smooth_calls: Vec::new(),
+        integer_names: Default::default(),
+    };
+    if !item.sig.inputs.is_empty() {
+        l.cx.error_at(
+            &item.sig.inputs,
+            "a model takes no arguments: declare parameters with `let m = param(1.0);`",
+        );
+    }
+    if let syn::ReturnType::Type(_, ty) = &item.sig.output {
+        l.cx.error_at(ty, "a model returns nothing: remove the return type");
+    }
+    for stmt in &item.block.stmts {
+        l.stmt(stmt);
+    }
+    // Without `time()`, the model is autonomous; it still gets a time symbol,
+    // under a name no declaration took.
+    let time = l.time.or_else(|| {
+        let names = std::iter::once("t".to_string()).chain((0..).map(|k| format!("__time{k}")));
+        names.into_iter().find_map(|n| l.g.time(&n).ok()).and_then(|id| l.g.as_symbol(id))
+    });
+    let time = time.unwrap_or(SymbolId(0));
+    l.scene_equations(item);
+    if l.states.is_empty() && l.cx.is_ok() {
+        l.cx.error_at(&item.sig.ident, "the model declares no state: add one with `let x = state(0.0);` and an equation `der(x) == ...;`");
+    }
+    let mut doc = doc_comment(&item.attrs);
+    if !l.scene.summary.is_empty() {
+        doc = if doc.is_empty() {
+            l.scene.summary.clone()
+        } else {
+            format!("{doc}\n\n{}", l.scene.summary)
+        };
+    }
+    ModelIr {
+        fn_name: item.sig.ident.clone(),
+        vis: item.vis.clone(),
+        doc,
+        graph: l.g,
+        time,
+        params: l.params,
+        states: l.states,
+        algebraics: l.algebraics,
+        outputs: l.outputs,
+        events: l.events,
+        equations: l.equations,
+        inits: l.inits,
+        invariants: l.invariants,
+        non_smooth_calls: l.non_smooth_calls,
+    }
+}

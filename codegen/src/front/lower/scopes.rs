@@ -1,0 +1,128 @@
+//! The lowering's state and its scopes: what each name stands for, and
+//! the struct every concern of the lowering is a method of.
+
+use crate::front::ctxt::Ctxt;
+use crate::front::ir::{
+    AlgebraicDecl, Equation, Event, Init, Output, Param, StateDecl, UserInvariant,
+};
+
+use crate::front::tensor::Tensor;
+use crate::mechanics::Scene;
+use crate::{Graph, Id, SymbolId};
+use std::collections::HashMap;
+
+/// What a name stands for.
+#[derive(Clone)]
+pub(crate) enum Binding {
+    Param(Id),
+    State(SymbolId),
+    StateArray(Vec<SymbolId>),
+    /// `let m = [a, b, ...];`: constant-indexed values (masses, lengths).
+    ValueArray(Vec<Id>),
+    Algebraic(Id),
+    Time(Id),
+    /// A `let` intermediate (possibly `mut`) or an output.
+    Value {
+        id: Id,
+        mutable: bool,
+    },
+    /// A `const` or a loop index.
+    Const(Id),
+    /// `let r = rot_z(theta);`: a vector or a matrix.
+    Tensor(Tensor),
+    /// `let crank = body(m, j, [x, y, theta]);`: a planar rigid body.
+    Body(usize),
+    /// `let ground = ground();`
+    Ground,
+    /// A body whose declaration has an error (already reported): its uses
+    /// stay quiet.
+    BrokenBody,
+    /// A value whose definition has an error (already reported): its uses
+    /// stay quiet too, so each mistake is reported once.
+    Broken,
+}
+
+impl Binding {
+    pub(crate) fn describe(&self) -> &'static str {
+        match self {
+            Binding::Param(_) => "a parameter",
+            Binding::State(_) => "a state",
+            Binding::StateArray(_) => "an array of states",
+            Binding::ValueArray(_) => "an array of values",
+            Binding::Algebraic(_) => "an algebraic variable",
+            Binding::Time(_) => "the time",
+            Binding::Value { .. } => "an intermediate value",
+            Binding::Const(_) => "a constant",
+            Binding::Tensor(_) => "a vector or matrix value",
+            Binding::Body(_) => "a body",
+            Binding::Ground => "the ground",
+            Binding::BrokenBody => "a body",
+            Binding::Broken => "a value",
+        }
+    }
+}
+
+pub(crate) struct Lower<'c> {
+    pub(crate) cx: &'c mut Ctxt,
+    pub(crate) g: Graph,
+    pub(crate) scopes: Vec<HashMap<String, Binding>>,
+    pub(crate) time: Option<SymbolId>,
+    pub(crate) params: Vec<Param>,
+    pub(crate) states: Vec<StateDecl>,
+    pub(crate) algebraics: Vec<AlgebraicDecl>,
+    pub(crate) outputs: Vec<Output>,
+    pub(crate) events: Vec<Event>,
+    pub(crate) equations: Vec<Equation>,
+    pub(crate) inits: Vec<Init>,
+    pub(crate) invariants: Vec<UserInvariant>,
+    pub(crate) scene: Scene,
+    pub(crate) unrolled: usize,
+    pub(crate) non_smooth_calls: Vec<(Id, proc_macro2::TokenStream)>,
+    /// Names of whole-number constants: loop indices and integer `const`s
+    /// (`front::lower::integers`).
+    pub(crate) integer_names: std::collections::HashSet<String>,
+}
+
+impl Lower<'_> {
+    pub(crate) fn lookup(&self, name: &str) -> Option<&Binding> {
+        self.scopes.iter().rev().find_map(|s| s.get(name))
+    }
+
+    pub(crate) fn known_names(&self) -> Vec<String> {
+        self.scopes.iter().flat_map(|s| s.keys().cloned()).collect()
+    }
+
+    pub(crate) fn in_loop(&self) -> bool {
+        self.scopes.len() > 1
+    }
+
+    /// Binds `name`, refusing to redeclare a model variable.
+    /// Replaces a binding of the innermost scope (a body declared at last).
+    pub(crate) fn rebind(&mut self, ident: &syn::Ident, binding: Binding) {
+        if let Some(scope) = self.scopes.last_mut() {
+            scope.insert(ident.to_string(), binding);
+        }
+    }
+
+    pub(crate) fn bind(&mut self, ident: &syn::Ident, binding: Binding) {
+        let name = ident.to_string();
+        if let Some(old) = self.lookup(&name) {
+            let is_value = |b: &Binding| matches!(b, Binding::Value { .. } | Binding::Broken);
+            // A broken value's error is reported: it redeclares nothing.
+            if matches!(binding, Binding::Broken) && !is_value(old) {
+                return;
+            }
+            if !(is_value(old) && is_value(&binding)) {
+                let what = old.describe();
+                self.cx.error_at(
+                    ident,
+                    format!("`{name}` is already declared as {what}: choose another name"),
+                );
+                return;
+            }
+        }
+        if let Some(scope) = self.scopes.last_mut() {
+            scope.insert(name, binding);
+        }
+    }
+}

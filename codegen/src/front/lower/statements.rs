@@ -1,0 +1,275 @@
+//! Statements: `let`, equations `lhs == rhs;`, `constraint(..)`,
+//! `init(..)`, assignments, and where each goes.
+
+use super::declarations::Declaration;
+use super::scopes::{Binding, Lower};
+use super::syntax::{call_name, doc_comment, event_call, is_compound_assignment};
+use crate::front::ir::{Equation, Init, UserInvariant};
+
+use crate::{Id, SymbolKind};
+use quote::ToTokens;
+use std::collections::HashMap;
+use syn::{BinOp, Expr, Pat, Stmt};
+
+impl Lower<'_> {
+    pub(crate) fn stmt(&mut self, stmt: &Stmt) {
+        match stmt {
+            Stmt::Local(local) => self.local(local),
+            Stmt::Item(syn::Item::Const(c)) => {
+                if let Some(v) = self.constant(&c.expr) {
+                    self.bind(&c.ident, Binding::Const(v));
+                    let name = c.ident.to_string();
+                    if crate::front::lower::integers::is_integer_type(&c.ty) {
+                        self.integer_names.insert(name);
+                    } else {
+                        self.integer_names.remove(&name);
+                    }
+                }
+            }
+            Stmt::Expr(e, _) => self.expr_stmt(e),
+            Stmt::Item(other) => {
+                self.cx.error_at(other, "only `const` items are allowed in a model")
+            }
+            Stmt::Macro(m) => self.cx.error_at(m, "macros are not part of the model language"),
+        }
+    }
+
+    pub(crate) fn local(&mut self, local: &syn::Local) {
+        let (ident, mutable) = match &local.pat {
+            Pat::Ident(p) => (p.ident.clone(), p.mutability.is_some()),
+            Pat::Type(t) => match &*t.pat {
+                Pat::Ident(p) => (p.ident.clone(), p.mutability.is_some()),
+                other => return self.cx.error_at(other, "bind a single name: `let x = ...;`"),
+            },
+            other => return self.cx.error_at(other, "bind a single name: `let x = ...;`"),
+        };
+        let Some(init) = &local.init else {
+            return self
+                .cx
+                .error_at(local, format!("`{ident}` needs a value: `let {ident} = ...;`"));
+        };
+        if let Some((_, else_branch)) = &init.diverge {
+            return self
+                .cx
+                .error_at(else_branch, "`let ... else` is not part of the model language");
+        }
+        let e = &*init.expr;
+        let doc = doc_comment(&local.attrs);
+        if let Some((call, settings)) = event_call(e) {
+            if self.in_loop() {
+                return self.cx.error_at(
+                    e,
+                    format!("declare `event(...)` outside loops: each iteration would declare `{ident}` again"),
+                );
+            }
+            return self.event(&ident, call, &settings, doc, local);
+        }
+        // `state(x0).fixed()`: a value consistent initialization keeps.
+        let (e, fixed) = match e {
+            Expr::MethodCall(m)
+                if m.method == "fixed"
+                    && m.args.is_empty()
+                    && matches!(call_name(&m.receiver), Some((n, _)) if n == "state" || n == "state_array") =>
+            {
+                (&*m.receiver, true)
+            }
+            _ => (e, false),
+        };
+        if let Some((name, call)) = call_name(e) {
+            if crate::mechanics::JOINTS.contains(&name.as_str()) {
+                if self.already_declared(&ident) {
+                    return;
+                }
+                return self.joint(&name, Some(&ident), call, e);
+            }
+            if let Some(declaration) = Declaration::from_name(&name) {
+                if self.in_loop() {
+                    return self.cx.error_at(e, format!("declare `{name}(...)` outside loops: each iteration would declare `{ident}` again"));
+                }
+                if mutable {
+                    self.cx.error_at(&local.pat, format!("a {name} cannot be `mut`: remove `mut`"));
+                }
+                let first = self.states.len();
+                self.declaration(&ident, declaration, call, doc, local);
+                for state in &mut self.states[first..] {
+                    state.fixed = fixed;
+                }
+                return;
+            }
+        }
+        if self.mentions_tensor(e) {
+            let Some(t) = self.tensor(e) else {
+                return self.bind(&ident, Binding::Broken);
+            };
+            match (t.as_scalar(), mutable) {
+                (Some(id), _) => self.bind(&ident, Binding::Value { id, mutable }),
+                (None, false) => self.bind(&ident, Binding::Tensor(t)),
+                (None, true) => self.cx.error_at(
+                    &local.pat,
+                    format!("a {} cannot be `mut`: bind each new value with `let`", t.shape()),
+                ),
+            }
+            return;
+        }
+        if let (Expr::Array(array), false) = (e, mutable) {
+            let values: Vec<Option<Id>> = array.elems.iter().map(|v| self.value(v)).collect();
+            match values.into_iter().collect::<Option<Vec<Id>>>() {
+                Some(values) => self.bind(&ident, Binding::ValueArray(values)),
+                None => self.bind(&ident, Binding::Broken),
+            }
+            return;
+        }
+        // `[value; N]`: N copies, as in `state_array([0.0; N])`.
+        if let (Expr::Repeat(repeat), false) = (e, mutable) {
+            let (Some(value), Some(n)) =
+                (self.value(&repeat.expr), self.index_constant(&repeat.len))
+            else {
+                return;
+            };
+            self.bind(&ident, Binding::ValueArray(vec![value; n]));
+            return;
+        }
+        match self.value(e) {
+            Some(id) => self.bind(&ident, Binding::Value { id, mutable }),
+            None => self.bind(&ident, Binding::Broken),
+        }
+    }
+
+    pub(crate) fn expr_stmt(&mut self, e: &Expr) {
+        match e {
+            Expr::Binary(b) if matches!(b.op, BinOp::Eq(_)) && (self.mentions_tensor(&b.left) || self.mentions_tensor(&b.right)) => {
+                // One equation per component.
+                let (lhs, rhs) = (self.tensor(&b.left), self.tensor(&b.right));
+                let (Some(lhs), Some(rhs)) = (lhs, rhs) else { return };
+                if (lhs.rows, lhs.cols) != (rhs.rows, rhs.cols) {
+                    return self.cx.error_at(e, format!("the two sides differ in shape: a {} and a {}", lhs.shape(), rhs.shape()));
+                }
+                for (&l, &r) in lhs.data.iter().zip(&rhs.data) {
+                    self.equations.push(Equation { lhs: l, rhs: r, origin: e.to_token_stream(), is_constraint: false });
+                }
+            }
+            Expr::Binary(b) if matches!(b.op, BinOp::Eq(_)) => {
+                let (lhs, rhs) = (self.value(&b.left), self.value(&b.right));
+                if let (Some(lhs), Some(rhs)) = (lhs, rhs) {
+                    self.equations.push(Equation { lhs, rhs, origin: e.to_token_stream(), is_constraint: false });
+                }
+            }
+            Expr::ForLoop(f) => self.for_loop(f),
+            Expr::If(i) => self.const_if(i),
+            Expr::Assign(a) if !matches!(&*a.left, Expr::Path(_)) => {
+                // `der(x) = f;`: an equation written with Rust's assignment.
+                let (lhs, rhs) = (
+                    crate::front::names::source_text(&a.left.to_token_stream()),
+                    crate::front::names::source_text(&a.right.to_token_stream()),
+                );
+                self.cx.error_at(
+                    a.eq_token,
+                    format!("`=` assigns; write an equation with `==`: `{lhs} == {rhs};`"),
+                );
+            }
+            Expr::Assign(a) => {
+                let v = self.value(&a.right);
+                self.assign(&a.left, v, e);
+            }
+            Expr::Binary(b) if is_compound_assignment(&b.op) => {
+                let current = self.value(&b.left);
+                let rhs = self.value(&b.right);
+                let combined = match (current, rhs) {
+                    (Some(c), Some(r)) => self.arith(&b.op, c, r, e),
+                    _ => None,
+                };
+                self.assign(&b.left, combined, e);
+            }
+            Expr::Block(b) => {
+                self.scopes.push(HashMap::new());
+                for s in &b.block.stmts {
+                    self.stmt(s);
+                }
+                self.scopes.pop();
+            }
+                        _ if event_call(e).is_some() => self.cx.error_at(
+                e,
+                "an event needs a name to be looked up by: write `let hit = event(...);`",
+            ),
+            _ => match call_name(e) {
+                Some((name, call)) if name == "constraint" => {
+                    if self.arity(call, "constraint", 1) {
+                        // A vector constraint is one per component.
+                        if let Some(phi) = self.tensor(&call.args[0]) {
+                            let zero = self.g.zero();
+                            for &c in &phi.data {
+                                self.equations.push(Equation { lhs: c, rhs: zero, origin: e.to_token_stream(), is_constraint: true });
+                            }
+                        }
+                    }
+                }
+                Some((name, call)) if crate::mechanics::JOINTS.contains(&name.as_str()) => {
+                    self.joint(&name, None, call, e)
+                }
+                Some((name, call)) if crate::mechanics::LOADS.contains(&name.as_str()) => self.load(&name, call, e),
+                Some((name, call)) if name == "invariant" => {
+                    if self.arity(call, "invariant", 1) {
+                        if let Some(value) = self.tensor(&call.args[0]) {
+                            for &v in &value.data {
+                                self.invariants.push(UserInvariant { value: v, origin: e.to_token_stream() });
+                            }
+                        }
+                    }
+                }
+                Some((name, call)) if name == "init" => self.init(call, e),
+                Some((name, _)) if Declaration::from_name(&name).is_some() => {
+                    self.cx.error_at(e, format!("`{name}(...)` declares a variable: write `let x = {name}(...);`"))
+                }
+                _ => self.cx.error_at(
+                    e,
+                    "a model statement is `let`, an equation `lhs == rhs;`, `constraint(...)`, `init(...)`, `const` or `for`",
+                ),
+            },
+        }
+    }
+
+    pub(crate) fn assign(&mut self, target: &Expr, value: Option<Id>, whole: &Expr) {
+        let name = match target {
+            Expr::Path(p) => p.path.get_ident().map(|i| i.to_string()),
+            _ => None,
+        };
+        let Some(name) = name else {
+            return self.cx.error_at(target, "only `let mut` intermediates can be assigned to");
+        };
+        match self.lookup(&name).cloned() {
+            Some(Binding::Value { mutable: true, .. }) => {
+                if let Some(id) = value {
+                    // Assign in the scope that declared it, so loops can accumulate.
+                    if let Some(scope) = self.scopes.iter_mut().rev().find(|s| s.contains_key(&name)) {
+                        scope.insert(name, Binding::Value { id, mutable: true });
+                    }
+                }
+            }
+            Some(Binding::Broken) => {}
+            Some(Binding::Value { mutable: false, .. }) => {
+                self.cx.error_at(whole, format!("`{name}` is not `mut`: declare it with `let mut {name} = ...;` to accumulate into it"))
+            }
+            Some(b) => {
+                let what = b.describe();
+                self.cx.error_at(whole, format!("cannot assign to `{name}`, {what}: state its dynamics as an equation, e.g. `der({name}) == ...;`"))
+            }
+            None => self.unknown_name(target, &name),
+        }
+    }
+
+    pub(crate) fn init(&mut self, call: &syn::ExprCall, whole: &Expr) {
+        if !self.arity(call, "init", 2) {
+            return;
+        }
+        let (target, value) = (self.value(&call.args[0]), self.initial_value(&call.args[1]));
+        let (Some(target), Some(value)) = (target, value) else {
+            return;
+        };
+        match self.g.as_symbol(target).map(|s| (s, self.g.symbol(s).kind)) {
+            Some((s, SymbolKind::Derivative { .. })) => {
+                self.inits.push(Init { target: s, value, origin: whole.to_token_stream() })
+            }
+            _ => self.cx.error_at(&call.args[0], "`init` sets a derivative of a state: `init(der(x), 0.0)`; set the state itself in `state(...)`"),
+        }
+    }
+}
