@@ -9,7 +9,7 @@
 
 use super::algebra::{add3, cross3, mat_vec, scale3, Mat3};
 use super::spatial_joint_motion::{Axis, Column};
-use super::spatial_recursive::{Edge, Placed};
+use super::spatial_tree::{Edge, Placed};
 use super::spatial_vectors::{
     add, add_inertia, apply, body_inertia, cross_force, cross_motion, dot, negate, scale, sub,
     Spatial,

@@ -16,6 +16,7 @@ pub mod recursive;
 pub mod spatial;
 pub mod spatial_joint_motion;
 pub mod spatial_recursive;
+pub mod spatial_tree;
 pub mod spatial_vectors;
 pub mod topology;
 

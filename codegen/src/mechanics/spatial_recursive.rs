@@ -32,10 +32,11 @@
 
 use super::algebra::{
     add3, conjugate, cross3, mat_mul, mat_t_vec, mat_vec, quaternion_product, quaternion_rates,
-    rotation, sub3, transpose, Mat3, Vec3,
+    rotation, sub3, transpose, Vec3,
 };
 use super::joint_space_dynamics::Dynamics;
 use super::spatial_joint_motion::{Axis, Column, Motion, NewState, Start};
+use super::spatial_tree::{Edge, Placed};
 use super::spatial_vectors::Spatial;
 use super::unsupported;
 use super::{retain_unlisted, Frame, SpatialJointRecord};
@@ -51,26 +52,6 @@ const TREE_JOINTS: [&str; 7] =
 /// A child body positioned more than this far from where its tree joint
 /// places it (relative to the scene's size, 1 m at least) is a mistake.
 const PLACEMENT_TOLERANCE: f64 = 1e-9;
-
-/// A joint of the spanning tree (`joint: None`, a free joint from the
-/// ground), the parent frame, the child body, and whether the child is
-/// the joint's second frame.
-#[derive(Clone, Copy)]
-pub(super) struct Edge {
-    pub joint: Option<usize>,
-    pub parent: Frame,
-    pub child: usize,
-    pub child_is_b: bool,
-}
-
-/// A placed body: quaternion, rotation (body to world) and centre of mass,
-/// as expressions of the joint coordinates.
-#[derive(Clone, Copy)]
-pub(super) struct Placed {
-    pub quaternion: [Id; 4],
-    pub rot: Mat3,
-    pub centre: Vec3,
-}
 
 impl Lower<'_> {
     /// Replaces a spatial scene's body coordinates by joint coordinates and
