@@ -254,3 +254,25 @@ fn perfect_matching(rows: &[Vec<(usize, Id)>], n: usize) -> Option<Vec<usize>> {
     }
     owner.into_iter().collect()
 }
+
+/// The mass-matrix form as its tests read it: each component with its
+/// row of `M w' = F(t, w)`.
+impl std::fmt::Display for crate::expr::display::WithGraph<'_, MassForm> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (g, form) = (self.graph, self.value);
+        for (i, (name, &row)) in form.names.iter().zip(&form.rows).enumerate() {
+            let kind = match (i < form.differential, form.index2.contains(&i)) {
+                (true, _) => "differential",
+                (false, true) => "index 2",
+                (false, false) => "algebraic",
+            };
+            writeln!(f, "{name} ({kind}): {}", g.show(row))?;
+        }
+        if let Some(general) = &form.general {
+            for &(r, c, e) in general {
+                writeln!(f, "M[{r}, {c}] = {}", g.show(e))?;
+            }
+        }
+        Ok(())
+    }
+}

@@ -175,3 +175,37 @@ fn derivative_free(
         }
     }
 }
+
+/// The structure as its tests read it: each state's order, each equation
+/// after combination and index reduction with how often it was
+/// differentiated, and the invariants index reduction left.
+impl std::fmt::Display for crate::expr::display::WithGraph<'_, Structure> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (g, s) = (self.graph, self.value);
+        writeln!(f, "index {}", s.reduction.index)?;
+        for (&z, order) in s.z_symbols.iter().zip(&s.order) {
+            writeln!(f, "unknown {} (order {order})", g.symbol(z).name)?;
+        }
+        for &a in &s.algebraic_symbols {
+            writeln!(f, "unknown {}", g.symbol(a).name)?;
+        }
+        for (e, (&r, &k)) in
+            s.reduction.residuals.iter().zip(&s.reduction.differentiations).enumerate()
+        {
+            writeln!(f, "equation {e} differentiated {k}: {} = 0", g.show(r))?;
+        }
+        for (e, of) in &s.separated_combined {
+            writeln!(f, "equation {e} combines {of:?}")?;
+        }
+        for inv in &s.reduction.invariants {
+            writeln!(
+                f,
+                "invariant of {} level {}: {} = 0",
+                inv.equation,
+                inv.level,
+                g.show(inv.residual)
+            )?;
+        }
+        Ok(())
+    }
+}

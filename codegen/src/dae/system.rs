@@ -152,3 +152,63 @@ pub struct ProjectionLevel {
 
 /// How an algebraic variable's value is computed.
 pub type AlgebraicValue = SlotDerivative;
+
+/// The first-order system as its tests read it: each slot with its start
+/// and derivative, then the run-time blocks, the invariants with their
+/// levels, the outputs and the event functions.
+impl std::fmt::Display for crate::expr::display::WithGraph<'_, FirstOrder> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (g, sys) = (self.graph, self.value);
+        let name = |s: SymbolId| g.symbol(s).name.clone();
+        let value = |d: &SlotDerivative| match d {
+            SlotDerivative::Explicit(e) => g.show(*e).to_string(),
+            SlotDerivative::AfterSolve(e) => format!("{} after the solve", g.show(*e)),
+            SlotDerivative::Block { block, row } => format!("block {block} unknown {row}"),
+        };
+        writeln!(f, "index {}", sys.index)?;
+        for (slot, d) in sys.slots.iter().zip(&sys.derivatives) {
+            let fixed = if slot.fixed { " fixed" } else { "" };
+            let velocity = if slot.velocity_like { " velocity" } else { "" };
+            writeln!(f, "slot {} = {}{fixed}{velocity}", slot.name, g.show(slot.init))?;
+            writeln!(f, "  der = {}", value(d))?;
+        }
+        for (&s, d) in sys.algebraic_symbols.iter().zip(&sys.algebraics) {
+            writeln!(f, "algebraic {} = {}", name(s), value(d))?;
+        }
+        for (b, block) in sys.blocks.iter().enumerate() {
+            let k = block.rhs.len();
+            writeln!(f, "block {b} in {}", block.unknowns.join(", "))?;
+            for r in 0..k {
+                let row: Vec<String> = block.matrix[r * k..(r + 1) * k]
+                    .iter()
+                    .map(|&e| g.show(e).to_string())
+                    .collect();
+                writeln!(f, "  [{}] = {}", row.join(", "), g.show(block.rhs[r]))?;
+            }
+        }
+        if let Some(newton) = &sys.newton {
+            writeln!(f, "newton in {}", newton.names.join(", "))?;
+            for &r in &newton.residuals {
+                writeln!(f, "  0 = {}", g.show(r))?;
+            }
+        }
+        for inv in &sys.invariants {
+            writeln!(f, "invariant level {}: {} = 0", inv.level, g.show(inv.residual))?;
+        }
+        if let Some(levels) = &sys.projection {
+            for (k, level) in levels.iter().enumerate() {
+                writeln!(f, "projection {k}: rows {:?} slots {:?}", level.rows, level.slots)?;
+            }
+        }
+        for c in &sys.rank_conditions {
+            writeln!(f, "nonzero {} ({})", g.show(c.pivot), c.text)?;
+        }
+        for &o in &sys.outputs {
+            writeln!(f, "output {}", g.show(o))?;
+        }
+        for &e in &sys.events {
+            writeln!(f, "event {}", g.show(e))?;
+        }
+        Ok(())
+    }
+}

@@ -184,3 +184,20 @@ fn sum_text(g: &Graph, terms: &[Id]) -> (String, Prec) {
     }
     (s, Prec::Sum)
 }
+
+/// A value whose expressions live in a graph, ready to print: the IRs'
+/// printers (`dae::system`, `dae::structure`, `dae::mass_form`,
+/// `taylor::analysis`) are `Display` for it. See [`Graph::with`].
+pub struct WithGraph<'a, T: ?Sized> {
+    /// The graph the value's ids point into.
+    pub graph: &'a Graph,
+    /// The value.
+    pub value: &'a T,
+}
+
+impl Graph {
+    /// `value`, whose ids point into this graph, ready to print.
+    pub fn with<'a, T: ?Sized>(&'a self, value: &'a T) -> WithGraph<'a, T> {
+        WithGraph { graph: self, value }
+    }
+}

@@ -148,3 +148,49 @@ pub struct ModelIr {
     /// found after lowering (the Taylor methods refuse them).
     pub non_smooth_calls: Vec<(Id, proc_macro2::TokenStream)>,
 }
+
+/// The model as its tests read it: one declaration or statement a line,
+/// in the order written, expressions in the graph's text syntax.
+impl std::fmt::Display for ModelIr {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let g = &self.graph;
+        let name = |s: SymbolId| g.symbol(s).name.clone();
+        writeln!(f, "model {}", self.fn_name)?;
+        writeln!(f, "time {}", name(self.time))?;
+        for p in &self.params {
+            writeln!(f, "param {} = {}", p.ident, p.default)?;
+        }
+        for s in &self.states {
+            let fixed = if s.fixed { " fixed" } else { "" };
+            writeln!(f, "state {} = {}{fixed}", s.name, g.show(s.init))?;
+        }
+        for a in &self.algebraics {
+            writeln!(f, "algebraic {} = {}", a.name, g.show(a.init))?;
+        }
+        for e in &self.equations {
+            match e.is_constraint {
+                true => writeln!(f, "constraint {} == {}", g.show(e.lhs), g.show(e.rhs))?,
+                false => writeln!(f, "equation {} == {}", g.show(e.lhs), g.show(e.rhs))?,
+            }
+        }
+        for i in &self.inits {
+            writeln!(f, "init {} = {}", name(i.target), g.show(i.value))?;
+        }
+        for i in &self.invariants {
+            writeln!(f, "invariant {}", g.show(i.value))?;
+        }
+        for o in &self.outputs {
+            writeln!(f, "output {} = {}", o.name, g.show(o.value))?;
+        }
+        for e in &self.events {
+            let direction = match e.direction {
+                EventDirection::Any => "",
+                EventDirection::Rising => " rising",
+                EventDirection::Falling => " falling",
+            };
+            let terminal = if e.terminal { " terminal" } else { "" };
+            writeln!(f, "event {} = {}{direction}{terminal}", e.name, g.show(e.value))?;
+        }
+        Ok(())
+    }
+}

@@ -259,3 +259,41 @@ fn tape_analysis(
         .collect();
     Ok(TapeAnalysis { tape, constants, jets })
 }
+
+/// The tape as its tests read it: the constants, one operation a line,
+/// then the outputs.
+impl std::fmt::Display for crate::expr::display::WithGraph<'_, TapeAnalysis> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (g, a) = (self.graph, self.value);
+        for (k, &c) in a.constants.iter().enumerate() {
+            writeln!(f, "c{k} = {}", g.show(c))?;
+        }
+        // Tokens print spaced (`T :: Sin (O :: State (0))`); read as written.
+        let tight = |t: &proc_macro2::TokenStream| {
+            t.to_string().replace(" :: ", "::").replace(" (", "(").replace(" , ", ", ")
+        };
+        for (k, op) in a.tape.ops.iter().enumerate() {
+            writeln!(f, "u{k} = {}", tight(op))?;
+        }
+        for (i, out) in a.tape.outputs.iter().enumerate() {
+            writeln!(f, "out{i} = {}", tight(out))?;
+        }
+        for (order, jet) in &a.jets {
+            writeln!(f, "unrolled order {order}: buffer {}", jet.buffer)?;
+        }
+        Ok(())
+    }
+}
+
+/// The economic scheme's derivatives as their tests read them.
+impl std::fmt::Display for crate::expr::display::WithGraph<'_, EconomicDerivatives> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (g, e) = (self.graph, self.value);
+        for (k, level) in e.levels.iter().enumerate() {
+            for (i, &d) in level.iter().enumerate() {
+                writeln!(f, "D{}[{i}] = {}", k + 1, g.show(d))?;
+            }
+        }
+        Ok(())
+    }
+}

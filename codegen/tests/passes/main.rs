@@ -1,0 +1,144 @@
+//! One pass's output on one small model each, printed in the language of
+//! its IR and pinned as a snapshot, as cranelift's filetests do: a change
+//! to a pass is read here, apart from the generated code.
+
+use daegen_codegen::dae::structure::{structure, Structure};
+use daegen_codegen::dae::system::FirstOrder;
+use daegen_codegen::front::ctxt::Ctxt;
+use daegen_codegen::front::ir::ModelIr;
+use daegen_codegen::taylor::analysis::{taylor_analysis, TaylorAnalysis};
+use proc_macro2::TokenStream;
+use quote::quote;
+
+/// The model `item` lowered with the attribute's arguments `attr`.
+fn lowered(cx: &mut Ctxt, attr: TokenStream, item: TokenStream) -> ModelIr {
+    let item: syn::ItemFn = syn::parse2(item).expect("a function");
+    let attributes = daegen_codegen::front::attributes::attributes(cx, attr);
+    let ir = daegen_codegen::front::lower::lower_with(cx, &item, attributes.recursive);
+    assert!(cx.is_ok(), "{:?}", cx.messages());
+    ir
+}
+
+/// The structure and the reduced system of `item`.
+fn reduced(item: TokenStream) -> (ModelIr, Structure, FirstOrder) {
+    let mut cx = Ctxt::default();
+    let mut ir = lowered(&mut cx, TokenStream::new(), item);
+    let s = structure(&mut cx, &mut ir).expect("a structure");
+    let printed = ir.graph.with(&s).to_string();
+    // `reduce` takes the structure; a second, equal one is printed.
+    let again = structure(&mut cx, &mut ir).expect("a structure");
+    assert_eq!(ir.graph.with(&again).to_string(), printed, "structure is deterministic");
+    let sys = daegen_codegen::dae::reduce::reduce(&mut cx, &mut ir, again).expect("reduced");
+    assert!(cx.is_ok(), "{:?}", cx.messages());
+    (ir, s, sys)
+}
+
+/// The planar pendulum in Cartesian coordinates, index 3 (course notes
+/// §2, Hairer–Wanner II §VII.1).
+fn pendulum() -> TokenStream {
+    quote! {
+        fn pendulum() {
+            let l = param(1.0);
+            let g = param(9.81);
+            let x = state(1.0);
+            let y = state(0.0);
+            let lambda = algebraic(0.0);
+            der(der(x)) == -lambda * x;
+            der(der(y)) == -lambda * y - g;
+            constraint(x * x + y * y - l * l);
+        }
+    }
+}
+
+#[test]
+fn lower_unrolls_loops_and_evaluates_constants() {
+    let mut cx = Ctxt::default();
+    let ir = lowered(
+        &mut cx,
+        TokenStream::new(),
+        quote! {
+            fn chain() {
+                const N: usize = 3;
+                let k = param(2.0);
+                let x = state_array([1.0, 0.0, 0.0]);
+                der(x[0]) == -k * x[0];
+                for i in 1..N {
+                    der(x[i]) == k * (x[i - 1] - x[i]);
+                }
+                let total = output(x[0] + x[1] + x[2]);
+                let empty = event(x[0] - 0.5).falling().terminal();
+            }
+        },
+    );
+    insta::assert_snapshot!("lower", ir.to_string());
+}
+
+#[test]
+fn index_reduction_differentiates_the_pendulum_constraint_twice() {
+    let (ir, s, _) = reduced(pendulum());
+    insta::assert_snapshot!("index_reduction", ir.graph.with(&s).to_string());
+}
+
+#[test]
+fn reduce_solves_the_pendulum_for_accelerations_and_the_multiplier() {
+    let (ir, _, sys) = reduced(pendulum());
+    insta::assert_snapshot!("reduce", ir.graph.with(&sys).to_string());
+}
+
+#[test]
+fn variational_system_of_exponential_decay() {
+    let mut cx = Ctxt::default();
+    let item = quote! {
+        fn decay() {
+            let k = param(0.5);
+            let x = state(2.0);
+            der(x) == -k * x;
+        }
+    };
+    let attr = quote!(sensitivities = [k, init(x)]);
+    let mut ir = lowered(&mut cx, attr.clone(), item.clone());
+    let attributes = daegen_codegen::front::attributes::attributes(&mut cx, attr);
+    let s = structure(&mut cx, &mut ir).expect("a structure");
+    let sys = daegen_codegen::dae::reduce::reduce(&mut cx, &mut ir, s).expect("reduced");
+    let wrt =
+        daegen_codegen::dae::variational::resolve(&mut cx, &attributes.sensitivities, &ir, &sys);
+    assert_eq!(wrt.len(), 2);
+    let augmented = daegen_codegen::dae::variational::variational_system(&mut ir.graph, &sys, &wrt)
+        .expect("a variational system");
+    insta::assert_snapshot!("variational", ir.graph.with(&augmented).to_string());
+}
+
+#[test]
+fn mass_form_of_the_pendulum_is_the_ggl_index_2_form() {
+    let (mut ir, _, sys) = reduced(pendulum());
+    let form = daegen_codegen::dae::mass_form::mass_form(&mut ir.graph, &sys)
+        .expect("no error")
+        .expect("a mass-matrix form");
+    insta::assert_snapshot!("mass_form", ir.graph.with(&form).to_string());
+}
+
+#[test]
+fn taylor_tape_and_economic_derivatives_of_the_pendulum_in_its_angle() {
+    let mut cx = Ctxt::default();
+    let attr = quote!(taylor = 3);
+    let mut ir = lowered(
+        &mut cx,
+        attr.clone(),
+        quote! {
+            fn swing() {
+                let theta = state(0.5);
+                der(der(theta)) == -sin(theta);
+            }
+        },
+    );
+    let attributes = daegen_codegen::front::attributes::attributes(&mut cx, attr);
+    let s = structure(&mut cx, &mut ir).expect("a structure");
+    let sys = daegen_codegen::dae::reduce::reduce(&mut cx, &mut ir, s).expect("reduced");
+    let analysis =
+        taylor_analysis(&mut ir.graph, &sys, ir.time, &attributes).expect("a Taylor analysis");
+    let TaylorAnalysis::Scheme { economic, tape } = &analysis else {
+        panic!("`taylor = 3` asks for the economic scheme and the tape");
+    };
+    insta::assert_snapshot!("taylor_tape", ir.graph.with(tape).to_string());
+    insta::assert_snapshot!("economic_derivatives", ir.graph.with(economic).to_string());
+}
