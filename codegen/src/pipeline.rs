@@ -58,7 +58,7 @@ pub struct SensitivityAnalysis {
 /// IR as far as it got (for the stub) when a stage reported errors to `cx`.
 pub fn analyse(cx: &mut Ctxt, attr: TokenStream, item: &syn::ItemFn) -> Result<Analysed, ModelIr> {
     let attributes = crate::front::attributes::attributes(cx, attr);
-    let mut ir = crate::front::lower::lower_with(cx, item, attributes.recursive);
+    let mut ir = lower(cx, item, attributes.recursive);
     let system = match cx.is_ok() {
         true => crate::dae::structure::structure(cx, &mut ir)
             .and_then(|structure| crate::dae::reduce::reduce(cx, &mut ir, structure)),
@@ -76,6 +76,14 @@ pub fn analyse(cx: &mut Ctxt, attr: TokenStream, item: &syn::ItemFn) -> Result<A
         SensitivityAnalysis { wrt, attributes, model }
     });
     Ok(Analysed { ir, attributes, model, sensitivities })
+}
+
+/// The model function lowered into the model IR, its scenes by
+/// `mechanics` (in relative joint coordinates when `recursive`). Errors go
+/// to `cx`; the IR is returned even then, with the parts that could be
+/// read.
+pub fn lower(cx: &mut Ctxt, item: &syn::ItemFn, recursive: bool) -> ModelIr {
+    crate::front::lower::lower_with::<crate::mechanics::Scene>(cx, item, recursive)
 }
 
 /// The forward sensitivities the attribute asks for, resolved against the

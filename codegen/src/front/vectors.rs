@@ -14,13 +14,13 @@
 //! scalar, indexing `p[0]`, `r[1][2]`; an equation or a constraint between
 //! vectors stands for one per component.
 
-use crate::front::lower::{Binding, Lower};
+use crate::front::lower::{Binding, Lower, SceneLanguage};
 use crate::front::tensor::{transposed, Tensor, TENSOR_FUNCTIONS, VECTOR_SCALARS};
 use crate::Id;
 use quote::ToTokens;
 use syn::{BinOp, Expr, UnOp};
 
-impl Lower<'_> {
+impl<S: SceneLanguage> Lower<'_, S> {
     /// Whether `e` involves a vector or a matrix (a tensor function or a
     /// name bound to one): such expressions are lowered by [`Lower::tensor`].
     pub(crate) fn mentions_tensor(&self, e: &Expr) -> bool {
@@ -257,22 +257,22 @@ impl Lower<'_> {
                     self.cx.error_at(c, "`orientation` is the rotation matrix of a `spatial_body`; in a planar scene use `rot_z(body.theta)`");
                     return None;
                 }
-                let r = self.orientation(c, e)?;
+                let r = S::orientation(self, c, e)?;
                 Some(Tensor::matrix(3, 3, r.to_vec()))
             }
             "natural_frame" => {
                 let a = self.tensor_args(c, name, &[3, 3, 3])?;
                 let p = |k: usize| [a[k].data[0], a[k].data[1], a[k].data[2]];
-                let r = crate::mechanics::spatial::natural_frame(&mut self.g, p(0), p(1), p(2));
+                let r = S::natural_frame(&mut self.g, p(0), p(1), p(2));
                 let r = self.graph_result_all(r.map(|m| m.to_vec()), e)?;
                 Some(Tensor::matrix(3, 3, r))
             }
-            "position" if !self.scene.spatial.is_empty() && c.args.len() == 2 => {
-                let p = self.spatial_position(c, e)?;
+            "position" if self.scene.has_spatial_bodies() && c.args.len() == 2 => {
+                let p = S::spatial_position(self, c, e)?;
                 Some(Tensor::vector(p.to_vec()))
             }
             "position" => {
-                let [x, y] = self.position(c, e)?;
+                let [x, y] = S::position(self, c, e)?;
                 Some(Tensor::vector(vec![x, y, zero]))
             }
             "rot_seq" | "inverse_rot_seq" | "omega_seq" => {

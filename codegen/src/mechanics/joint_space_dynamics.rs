@@ -15,6 +15,7 @@ use super::spatial_vectors::{
     Spatial,
 };
 use super::unsupported;
+use super::Scene;
 use super::{Frame, SpatialJointRecord};
 use crate::front::lower::Lower;
 use crate::{Graph, Id, VectorField};
@@ -36,7 +37,7 @@ pub(super) struct Dynamics {
     pub subspace: Vec<Vec<Subspace>>,
 }
 
-impl Lower<'_> {
+impl Lower<'_, Scene> {
     /// Velocities V_i = V_parent + Σ S_k u_k and the motion subspace in
     /// world axes, with the axes' rates Ṡ_k = V_F × S_k.
     pub(super) fn tree_dynamics(

@@ -20,6 +20,7 @@ pub mod spatial_tree;
 pub mod spatial_vectors;
 pub mod topology;
 
+use crate::front::lower::Lower;
 use crate::{Id, SymbolId};
 use proc_macro2::TokenStream;
 
@@ -70,6 +71,85 @@ impl Scene {
     /// Whether joints and loads are spatial.
     pub(crate) fn is_spatial(&self) -> bool {
         self.spatial_declared
+    }
+}
+
+/// The scene library the model language lowers bodies, joints and loads
+/// with: each entry hands over to this module's lowering.
+impl crate::front::lower::SceneLanguage for Scene {
+    fn new(recursive: bool) -> Self {
+        Scene { recursive, ..Scene::default() }
+    }
+    fn is_joint(name: &str) -> bool {
+        JOINTS.contains(&name)
+    }
+    fn is_load(name: &str) -> bool {
+        LOADS.contains(&name)
+    }
+    fn is_spatial(&self) -> bool {
+        self.spatial_declared
+    }
+    fn has_spatial_bodies(&self) -> bool {
+        !self.spatial.is_empty()
+    }
+    fn summary(&self) -> &str {
+        &self.summary
+    }
+    fn body(
+        l: &mut Lower<'_, Self>,
+        ident: &syn::Ident,
+        kind: &str,
+        call: &syn::ExprCall,
+        local: &syn::Local,
+    ) {
+        l.scene_declaration(ident, kind, call, local)
+    }
+    fn spatial_body(
+        l: &mut Lower<'_, Self>,
+        ident: &syn::Ident,
+        call: &syn::ExprCall,
+        local: &syn::Local,
+    ) {
+        l.spatial_declaration(ident, call, local)
+    }
+    fn joint(
+        l: &mut Lower<'_, Self>,
+        kind: &str,
+        name: Option<&syn::Ident>,
+        call: &syn::ExprCall,
+        e: &syn::Expr,
+    ) {
+        l.joint(kind, name, call, e)
+    }
+    fn load(l: &mut Lower<'_, Self>, kind: &str, call: &syn::ExprCall, e: &syn::Expr) {
+        l.load(kind, call, e)
+    }
+    fn body_coordinate(l: &mut Lower<'_, Self>, f: &syn::ExprField, e: &syn::Expr) -> Option<Id> {
+        l.body_coordinate(f, e)
+    }
+    fn orientation(l: &mut Lower<'_, Self>, c: &syn::ExprCall, e: &syn::Expr) -> Option<[Id; 9]> {
+        l.orientation(c, e)
+    }
+    fn position(l: &mut Lower<'_, Self>, c: &syn::ExprCall, e: &syn::Expr) -> Option<[Id; 2]> {
+        l.position(c, e)
+    }
+    fn spatial_position(
+        l: &mut Lower<'_, Self>,
+        c: &syn::ExprCall,
+        e: &syn::Expr,
+    ) -> Option<[Id; 3]> {
+        l.spatial_position(c, e)
+    }
+    fn natural_frame(
+        g: &mut crate::Graph,
+        p1: [Id; 3],
+        p2: [Id; 3],
+        p3: [Id; 3],
+    ) -> crate::Result<[Id; 9]> {
+        spatial::natural_frame(g, p1, p2, p3)
+    }
+    fn equations(l: &mut Lower<'_, Self>, item: &syn::ItemFn) {
+        l.scene_equations(item)
     }
 }
 

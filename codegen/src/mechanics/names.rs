@@ -13,13 +13,14 @@
 //! is the rotation of b relative to a about the axis since the start (0
 //! there), a spatial prismatic joint's the slide along the axis.
 
+use super::Scene;
 use crate::front::ir::Output;
 use crate::front::lower::Lower;
 use crate::mechanics::Frame;
 use crate::{Id, SymbolId};
 use proc_macro2::TokenStream;
 
-impl Lower<'_> {
+impl Lower<'_, Scene> {
     /// `joint.q` and `der(joint.q)` of the revolute and prismatic joints
     /// among `joints` (indices into the scene's records), in the body
     /// coordinates (which the recursive formulation then rewrites).

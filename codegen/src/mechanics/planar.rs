@@ -19,6 +19,7 @@
 //! ```
 
 use super::names::{point, rotate};
+use super::Scene;
 use super::{Body, Frame, JointRecord, FORCE_USAGE};
 use crate::front::lower::Binding;
 use crate::front::lower::Lower;
@@ -26,7 +27,7 @@ use crate::{Id, SymbolId};
 use quote::ToTokens;
 use syn::Expr;
 
-impl Lower<'_> {
+impl Lower<'_, Scene> {
     /// `let b = body(m, j, [x, y, θ])` or `let g = ground()`.
     pub(crate) fn scene_declaration(
         &mut self,

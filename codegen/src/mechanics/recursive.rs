@@ -9,6 +9,7 @@
 //! coordinates (`crank.x`, …) become expressions, so outputs and the cut
 //! constraints read them unchanged.
 
+use super::Scene;
 use crate::front::lower::Lower;
 use crate::mechanics::names::rotate;
 use crate::mechanics::{retain_unlisted, Frame, JointRecord};
@@ -16,7 +17,7 @@ use crate::{FxHashMap, Graph, Id, SymbolId, VectorField};
 use proc_macro2::TokenStream;
 use quote::ToTokens;
 
-impl Lower<'_> {
+impl Lower<'_, Scene> {
     /// Replaces the global coordinates of a scene by joint coordinates and
     /// writes Lagrange's equations: the spanning tree, the bodies placed
     /// along it, their motion, the tree joints replaced by coordinates,

@@ -37,6 +37,7 @@
 use super::algebra::{
     add3, cross3, dot3, mat_t_vec, mat_vec, quaternion_rates, rotation, scale3, sub3, Mat3, Vec3,
 };
+use super::Scene;
 use super::SpatialBody;
 use crate::front::lower::Binding;
 use crate::front::lower::Lower;
@@ -96,7 +97,7 @@ pub(crate) const SPATIAL_JOINTS: [(&str, usize); 8] = [
     ("planar", 3),
 ];
 
-impl Lower<'_> {
+impl Lower<'_, Scene> {
     /// `let b = spatial_body(m, inertia, [x, y, z], [q0, q1, q2, q3])`, with
     /// optional initial `[vx, vy, vz]` and `[ωx, ωy, ωz]` (body axes).
     pub(crate) fn spatial_declaration(

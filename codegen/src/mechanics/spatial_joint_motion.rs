@@ -11,6 +11,7 @@ use super::algebra::{
     rodrigues, rotation, scale3, sub3, unit3, Mat3, Vec3,
 };
 use super::unsupported;
+use super::Scene;
 use super::{Frame, SpatialJointRecord};
 use crate::front::lower::Lower;
 use crate::{Graph, Id, SymbolId};
@@ -67,7 +68,7 @@ pub(super) struct Motion {
     pub attitude: Option<([SymbolId; 4], [SymbolId; 3])>,
 }
 
-impl Lower<'_> {
+impl Lower<'_, Scene> {
     /// The relative motion a tree joint allows, its coordinates, their
     /// initial values and rates.
     pub(super) fn joint_motion(

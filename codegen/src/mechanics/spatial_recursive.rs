@@ -39,6 +39,7 @@ use super::spatial_joint_motion::{Axis, Column, Motion, NewState, Start};
 use super::spatial_tree::{Edge, Placed};
 use super::spatial_vectors::Spatial;
 use super::unsupported;
+use super::Scene;
 use super::{retain_unlisted, Frame, SpatialJointRecord};
 use crate::front::lower::Lower;
 use crate::{FxHashMap, Graph, Id, SymbolId, VectorField};
@@ -53,7 +54,7 @@ const TREE_JOINTS: [&str; 7] =
 /// places it (relative to the scene's size, 1 m at least) is a mistake.
 const PLACEMENT_TOLERANCE: f64 = 1e-9;
 
-impl Lower<'_> {
+impl Lower<'_, Scene> {
     /// Replaces a spatial scene's body coordinates by joint coordinates and
     /// writes its equations of motion by CRBA and RNEA.
     pub(crate) fn spatial_recursive_equations(&mut self, item: &syn::ItemFn) {

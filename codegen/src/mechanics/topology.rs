@@ -10,6 +10,7 @@
 //! minus rows) cannot see redundancy: a spatial four-bar with four revolute
 //! joints has 18 − 20 = −2 by it, and moves.
 
+use super::Scene;
 use crate::front::lower::Lower;
 use crate::{Graph, Id, SymbolId, SymbolKind};
 use std::collections::HashMap;
@@ -26,7 +27,7 @@ pub(crate) struct Mobility {
 /// components along the kept rows is this small relative to its norm.
 const RELATIVE_TOLERANCE: f64 = 1e-9;
 
-impl Lower<'_> {
+impl Lower<'_, Scene> {
     /// The values of the parameters (their defaults) and of the states
     /// (their initial values) at the start.
     pub(crate) fn start_values(&self) -> HashMap<SymbolId, f64> {

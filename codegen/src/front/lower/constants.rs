@@ -1,6 +1,7 @@
 //! Constants and unrolling: `const`s evaluated, whole-number indices,
 //! `for` loops and constant `if`s unrolled.
 
+use super::scene::SceneLanguage;
 use super::scopes::{Binding, Lower};
 use super::syntax::is_comparison;
 
@@ -11,7 +12,7 @@ use syn::{BinOp, Expr, Lit, Pat, Stmt, UnOp};
 /// Most loop iterations, over all loops, before unrolling is refused.
 pub(super) const MAX_UNROLLED: usize = 100_000;
 
-impl Lower<'_> {
+impl<S: SceneLanguage> Lower<'_, S> {
     /// A compile-time constant (literals, `const`s, loop indices, arithmetic).
     pub(crate) fn constant(&mut self, e: &Expr) -> Option<Id> {
         let v = self.value(e)?;

@@ -2,6 +2,7 @@
 //! `output`, `event`, and the scene's bodies, each checked and bound to
 //! its name.
 
+use super::scene::SceneLanguage;
 use super::scopes::{Binding, Lower};
 use crate::front::ir::{
     AlgebraicDecl, Event, EventDirection, Init, Output, Param, StateDecl, UserInvariant,
@@ -79,7 +80,7 @@ impl Declaration {
     }
 }
 
-impl Lower<'_> {
+impl<S: SceneLanguage> Lower<'_, S> {
     /// A new state or algebraic symbol `name` and its node; `None` once
     /// the clash with another name is reported at `at`.
     pub(crate) fn new_symbol(
@@ -269,9 +270,9 @@ impl Lower<'_> {
         let origin = local.to_token_stream();
         match kind {
             Declaration::Body | Declaration::Ground => {
-                self.scene_declaration(ident, kind.name(), call, local)
+                S::body(self, ident, kind.name(), call, local)
             }
-            Declaration::SpatialBody => self.spatial_declaration(ident, call, local),
+            Declaration::SpatialBody => S::spatial_body(self, ident, call, local),
             Declaration::Param => {
                 if !self.arity(call, "param", 1) {
                     return;

@@ -2,6 +2,7 @@
 //! the graph.
 
 use super::declarations::Declaration;
+use super::scene::SceneLanguage;
 use super::scopes::{Binding, Lower};
 use super::syntax::call_name;
 use crate::front::names::did_you_mean;
@@ -33,7 +34,7 @@ pub(super) const FUNCTIONS: [&str; 20] = [
     "powf",
 ];
 
-impl Lower<'_> {
+impl<S: SceneLanguage> Lower<'_, S> {
     pub(crate) fn unknown_name(&mut self, at: impl ToTokens, name: &str) {
         let known = self.known_names();
         let mut candidates: Vec<&str> = known.iter().map(String::as_str).collect();
@@ -199,7 +200,7 @@ impl Lower<'_> {
             Expr::Assign(_) => self.unsupported(e, "assignments inside expressions"),
             Expr::Macro(_) => self.unsupported(e, "macros"),
             Expr::Reference(_) => self.unsupported(e, "references"),
-            Expr::Field(f) => self.body_coordinate(f, e),
+            Expr::Field(f) => S::body_coordinate(self, f, e),
             _ => {
                 self.cx.error_at(e, "this expression is not part of the model language");
                 None

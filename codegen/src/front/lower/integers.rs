@@ -4,6 +4,7 @@
 //! and casts to integer types of them), so that `k / 2` divides as Rust
 //! does, truncating, and not as the real numbers do.
 
+use super::scene::SceneLanguage;
 use super::scopes::{Binding, Lower};
 use crate::Id;
 use syn::{BinOp, Expr, Lit, Type};
@@ -19,7 +20,7 @@ pub(crate) fn is_integer_type(ty: &Type) -> bool {
     })
 }
 
-impl Lower<'_> {
+impl<S: SceneLanguage> Lower<'_, S> {
     /// Whether `e` is whole-number typed in Rust.
     pub(crate) fn is_integer_expr(&self, e: &Expr) -> bool {
         match e {

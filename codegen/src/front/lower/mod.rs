@@ -12,30 +12,31 @@ mod constants;
 mod declarations;
 mod expressions;
 pub(crate) mod integers;
+mod scene;
 mod scopes;
 mod statements;
 mod syntax;
 
+pub(crate) use scene::SceneLanguage;
 pub(crate) use scopes::{Binding, Lower};
 use syntax::doc_comment;
 
 use crate::front::ctxt::Ctxt;
 use crate::front::ir::ModelIr;
 
-use crate::mechanics::Scene;
 use crate::{Graph, SymbolId};
 use std::collections::HashMap;
 
-/// Lowers the body of `item`. Errors go to `cx`; the IR is returned even
-/// then (with the parts that could be read) so that a stub can be emitted.
-pub fn lower(cx: &mut Ctxt, item: &syn::ItemFn) -> ModelIr {
-    lower_with(cx, item, false)
-}
-
 /// Lowers `item`; a scene uses the recursive formulation when `recursive`
 /// (`#[dae_model(scene = recursive)]`), the global one otherwise.
-pub fn lower_with(cx: &mut Ctxt, item: &syn::ItemFn, recursive: bool) -> ModelIr {
-    let mut l = Lower {
+/// Errors go to `cx`; the IR is returned even then (with the parts that
+/// could be read) so that a stub can be emitted.
+pub(crate) fn lower_with<S: SceneLanguage>(
+    cx: &mut Ctxt,
+    item: &syn::ItemFn,
+    recursive: bool,
+) -> ModelIr {
+    let mut l = Lower::<S> {
         cx,
         g: Graph::new(),
         scopes: vec![HashMap::new()],
@@ -48,7 +49,7 @@ pub fn lower_with(cx: &mut Ctxt, item: &syn::ItemFn, recursive: bool) -> ModelIr
         equations: Vec::new(),
         inits: Vec::new(),
         invariants: Vec::new(),
-        scene: Scene { recursive, ..Scene::default() },
+        scene: S::new(recursive),
         unrolled: 0,
         non_smooth_calls: Vec::new(),
         integer_names: Default::default(),
@@ -72,16 +73,16 @@ pub fn lower_with(cx: &mut Ctxt, item: &syn::ItemFn, recursive: bool) -> ModelIr
         names.into_iter().find_map(|n| l.g.time(&n).ok()).and_then(|id| l.g.as_symbol(id))
     });
     let time = time.unwrap_or(SymbolId(0));
-    l.scene_equations(item);
+    S::equations(&mut l, item);
     if l.states.is_empty() && l.cx.is_ok() {
         l.cx.error_at(&item.sig.ident, "the model declares no state: add one with `let x = state(0.0);` and an equation `der(x) == ...;`");
     }
     let mut doc = doc_comment(&item.attrs);
-    if !l.scene.summary.is_empty() {
+    if !l.scene.summary().is_empty() {
         doc = if doc.is_empty() {
-            l.scene.summary.clone()
+            l.scene.summary().to_string()
         } else {
-            format!("{doc}\n\n{}", l.scene.summary)
+            format!("{doc}\n\n{}", l.scene.summary())
         };
     }
     ModelIr {

@@ -7,7 +7,6 @@ use crate::front::ir::{
 };
 
 use crate::front::tensor::Tensor;
-use crate::mechanics::Scene;
 use crate::{Graph, Id, SymbolId};
 use std::collections::HashMap;
 
@@ -62,7 +61,7 @@ impl Binding {
     }
 }
 
-pub(crate) struct Lower<'c> {
+pub(crate) struct Lower<'c, S> {
     pub(crate) cx: &'c mut Ctxt,
     pub(crate) g: Graph,
     pub(crate) scopes: Vec<HashMap<String, Binding>>,
@@ -75,7 +74,7 @@ pub(crate) struct Lower<'c> {
     pub(crate) equations: Vec<Equation>,
     pub(crate) inits: Vec<Init>,
     pub(crate) invariants: Vec<UserInvariant>,
-    pub(crate) scene: Scene,
+    pub(crate) scene: S,
     pub(crate) unrolled: usize,
     pub(crate) non_smooth_calls: Vec<(Id, proc_macro2::TokenStream)>,
     /// Names of whole-number constants: loop indices and integer `const`s
@@ -83,7 +82,7 @@ pub(crate) struct Lower<'c> {
     pub(crate) integer_names: std::collections::HashSet<String>,
 }
 
-impl Lower<'_> {
+impl<S> Lower<'_, S> {
     pub(crate) fn lookup(&self, name: &str) -> Option<&Binding> {
         self.scopes.iter().rev().find_map(|s| s.get(name))
     }

@@ -2,6 +2,7 @@
 //! `init(..)`, assignments, and where each goes.
 
 use super::declarations::Declaration;
+use super::scene::SceneLanguage;
 use super::scopes::{Binding, Lower};
 use super::syntax::{call_name, doc_comment, event_call, is_compound_assignment};
 use crate::front::ir::{Equation, Init, UserInvariant};
@@ -11,7 +12,7 @@ use quote::ToTokens;
 use std::collections::HashMap;
 use syn::{BinOp, Expr, Pat, Stmt};
 
-impl Lower<'_> {
+impl<S: SceneLanguage> Lower<'_, S> {
     pub(crate) fn stmt(&mut self, stmt: &Stmt) {
         match stmt {
             Stmt::Local(local) => self.local(local),
@@ -76,11 +77,11 @@ impl Lower<'_> {
             _ => (e, false),
         };
         if let Some((name, call)) = call_name(e) {
-            if crate::mechanics::JOINTS.contains(&name.as_str()) {
+            if S::is_joint(&name) {
                 if self.already_declared(&ident) {
                     return;
                 }
-                return self.joint(&name, Some(&ident), call, e);
+                return S::joint(self, &name, Some(&ident), call, e);
             }
             if let Some(declaration) = Declaration::from_name(&name) {
                 if self.in_loop() {
@@ -203,10 +204,10 @@ impl Lower<'_> {
                         }
                     }
                 }
-                Some((name, call)) if crate::mechanics::JOINTS.contains(&name.as_str()) => {
-                    self.joint(&name, None, call, e)
+                Some((name, call)) if S::is_joint(&name) => {
+                    S::joint(self, &name, None, call, e)
                 }
-                Some((name, call)) if crate::mechanics::LOADS.contains(&name.as_str()) => self.load(&name, call, e),
+                Some((name, call)) if S::is_load(&name) => S::load(self, &name, call, e),
                 Some((name, call)) if name == "invariant" => {
                     if self.arity(call, "invariant", 1) {
                         if let Some(value) = self.tensor(&call.args[0]) {

@@ -1,0 +1,67 @@
+//! What the model language asks of a scene library (bodies, joints,
+//! loads): the lowering is generic over it, so the front end names no
+//! scene type and the scene library depends on the front end, not the
+//! other way round. `mechanics::Scene` is the one the pipeline uses.
+
+use super::scopes::Lower;
+use crate::{Graph, Id};
+use syn::Expr;
+
+/// The statements, declarations and functions of the language that a scene
+/// library lowers, each entered with the lowering it extends.
+pub(crate) trait SceneLanguage: Sized {
+    /// An empty scene; joints in relative coordinates when `recursive`.
+    fn new(recursive: bool) -> Self;
+    /// Whether `name(..)` is a joint statement.
+    fn is_joint(name: &str) -> bool;
+    /// Whether `name(..)` is a load statement.
+    fn is_load(name: &str) -> bool;
+    /// Whether the scene is in space (a `spatial_body` was declared).
+    fn is_spatial(&self) -> bool;
+    /// Whether it has spatial bodies.
+    fn has_spatial_bodies(&self) -> bool;
+    /// What the scene's coordinates are, for the model's documentation.
+    fn summary(&self) -> &str;
+    /// `let b = body(..);` or `let ground = ground();` (`kind`).
+    fn body(
+        l: &mut Lower<'_, Self>,
+        ident: &syn::Ident,
+        kind: &str,
+        call: &syn::ExprCall,
+        local: &syn::Local,
+    );
+    /// `let b = spatial_body(..);`
+    fn spatial_body(
+        l: &mut Lower<'_, Self>,
+        ident: &syn::Ident,
+        call: &syn::ExprCall,
+        local: &syn::Local,
+    );
+    /// A joint statement `kind(..)`, named when written as a `let`.
+    fn joint(
+        l: &mut Lower<'_, Self>,
+        kind: &str,
+        name: Option<&syn::Ident>,
+        call: &syn::ExprCall,
+        e: &Expr,
+    );
+    /// A load statement `kind(..)`.
+    fn load(l: &mut Lower<'_, Self>, kind: &str, call: &syn::ExprCall, e: &Expr);
+    /// `crank.theta`: a body's coordinate.
+    fn body_coordinate(l: &mut Lower<'_, Self>, f: &syn::ExprField, e: &Expr) -> Option<Id>;
+    /// `orientation(b)`: a spatial body's rotation matrix, row-major.
+    fn orientation(l: &mut Lower<'_, Self>, c: &syn::ExprCall, e: &Expr) -> Option<[Id; 9]>;
+    /// `position(b, p)` in a planar scene: the world point, x and y.
+    fn position(l: &mut Lower<'_, Self>, c: &syn::ExprCall, e: &Expr) -> Option<[Id; 2]>;
+    /// `position(b, p)` in space.
+    fn spatial_position(l: &mut Lower<'_, Self>, c: &syn::ExprCall, e: &Expr) -> Option<[Id; 3]>;
+    /// `natural_frame(p1, p2, p3)`: the frame of three points, row-major.
+    fn natural_frame(
+        g: &mut Graph,
+        p1: [Id; 3],
+        p2: [Id; 3],
+        p3: [Id; 3],
+    ) -> crate::Result<[Id; 9]>;
+    /// The scene's equations of motion, after the last statement.
+    fn equations(l: &mut Lower<'_, Self>, item: &syn::ItemFn);
+}
