@@ -40,6 +40,7 @@
 // The symbolic kernels index several arrays by one position (y, f, scale, …):
 // an index loop says so more plainly than zipped iterators.
 #![allow(clippy::needless_range_loop)]
+#![warn(missing_docs)]
 
 pub mod dae;
 pub mod emit;

@@ -3,6 +3,8 @@
 //! ([`daegen_codegen::expand_dae_model`]), a plain library that is tested
 //! without compiling a macro.
 
+#![warn(missing_docs)]
+
 use proc_macro::TokenStream;
 
 /// Turns a function written in the model language into a model type that

@@ -11,6 +11,8 @@
 //! Peers (other crates, Python) live in the benchmark binary, not here, so
 //! the test command never compiles them.
 
+#![warn(missing_docs)]
+
 mod arithmetic;
 mod expansion;
 mod peer;

@@ -37,7 +37,12 @@ pub enum Failure {
     Graph(crate::Error),
     /// A combination vanishes identically: equation `equation` repeats the
     /// equations `of`.
-    Dependent { equation: usize, of: Vec<usize> },
+    Dependent {
+        /// The equation that adds nothing.
+        equation: usize,
+        /// The equations it is a combination of.
+        of: Vec<usize>,
+    },
 }
 
 impl From<crate::Error> for Failure {
