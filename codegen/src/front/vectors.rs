@@ -23,7 +23,7 @@ use syn::{BinOp, Expr, UnOp};
 impl<S: SceneLanguage> Lower<'_, S> {
     /// Whether `e` involves a vector or a matrix (a tensor function or a
     /// name bound to one): such expressions are lowered by [`Lower::tensor`].
-    pub(crate) fn mentions_tensor(&self, e: &Expr) -> bool {
+    pub(in crate::front) fn mentions_tensor(&self, e: &Expr) -> bool {
         match e {
             Expr::Paren(p) => self.mentions_tensor(&p.expr),
             Expr::Group(g) => self.mentions_tensor(&g.expr),
@@ -119,7 +119,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
     }
 
     /// `e` as a scalar, with a message when it is a vector or a matrix.
-    pub(crate) fn scalar_of(&mut self, e: &Expr) -> Option<Id> {
+    pub(in crate::front) fn scalar_of(&mut self, e: &Expr) -> Option<Id> {
         let t = self.tensor(e)?;
         match t.as_scalar() {
             Some(id) => Some(id),

@@ -14,7 +14,7 @@ pub(super) const MAX_UNROLLED: usize = 100_000;
 
 impl<S: SceneLanguage> Lower<'_, S> {
     /// A compile-time constant (literals, `const`s, loop indices, arithmetic).
-    pub(crate) fn constant(&mut self, e: &Expr) -> Option<Id> {
+    pub(in crate::front) fn constant(&mut self, e: &Expr) -> Option<Id> {
         let v = self.value(e)?;
         if self.g.as_number(v).is_some() {
             return Some(v);
@@ -24,7 +24,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
     }
 
     /// Says which variable keeps `e` from being a compile-time constant.
-    pub(crate) fn not_constant(&mut self, e: &Expr, v: Id) {
+    pub(in crate::front) fn not_constant(&mut self, e: &Expr, v: Id) {
         let culprit = self.g.free_symbols(v).into_iter().next().map(|s| {
             let kind = match self.g.symbol(s).kind {
                 SymbolKind::Parameter => "a parameter, known only at run time",
@@ -38,7 +38,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
     }
 
     /// A non-negative whole constant (loop bound, array index or length).
-    pub(crate) fn index_constant(&mut self, e: &Expr) -> Option<usize> {
+    pub(in crate::front) fn index_constant(&mut self, e: &Expr) -> Option<usize> {
         let v = self.value(e)?;
         match self.g.as_number(v).and_then(|n| n.as_integer()).and_then(|n| usize::try_from(n).ok())
         {
@@ -54,7 +54,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
     }
 
-    pub(crate) fn for_loop(&mut self, f: &syn::ExprForLoop) {
+    pub(in crate::front) fn for_loop(&mut self, f: &syn::ExprForLoop) {
         let Pat::Ident(var) = &*f.pat else {
             return self.cx.error_at(&f.pat, "loop over one index: `for i in 0..N`");
         };
@@ -92,7 +92,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
     }
 
-    pub(crate) fn const_if(&mut self, i: &syn::ExprIf) {
+    pub(in crate::front) fn const_if(&mut self, i: &syn::ExprIf) {
         let Some(taken) = self.condition(&i.cond) else {
             return;
         };
@@ -125,7 +125,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
 
     /// `if i == 0 { 1.0 } else { u[i - 1] }`, a condition on constants as a
     /// value: the value of the branch taken.
-    pub(crate) fn const_if_value(&mut self, i: &syn::ExprIf) -> Option<Id> {
+    pub(in crate::front) fn const_if_value(&mut self, i: &syn::ExprIf) -> Option<Id> {
         let taken = self.condition(&i.cond)?;
         if taken {
             return self.branch_value(&i.then_branch);
@@ -142,7 +142,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
     }
 
     /// The value of a branch of an `if` used as a value: one expression.
-    pub(crate) fn branch_value(&mut self, b: &syn::Block) -> Option<Id> {
+    pub(in crate::front) fn branch_value(&mut self, b: &syn::Block) -> Option<Id> {
         match b.stmts.as_slice() {
             [Stmt::Expr(e, None)] => self.value(e),
             _ => {
@@ -153,7 +153,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
     }
 
     /// A condition on constants (loop indices): `i != j`, `i < N && j > 0`.
-    pub(crate) fn condition(&mut self, e: &Expr) -> Option<bool> {
+    pub(in crate::front) fn condition(&mut self, e: &Expr) -> Option<bool> {
         match e {
             Expr::Paren(p) => self.condition(&p.expr),
             Expr::Unary(u) if matches!(u.op, UnOp::Not(_)) => self.condition(&u.expr).map(|b| !b),

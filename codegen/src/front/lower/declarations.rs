@@ -58,7 +58,7 @@ impl Declaration {
     ];
 
     /// The function the user calls.
-    pub(crate) fn name(self) -> &'static str {
+    pub(in crate::front) fn name(self) -> &'static str {
         match self {
             Declaration::Event => "event",
             Declaration::Body => "body",
@@ -75,7 +75,7 @@ impl Declaration {
     }
 
     /// The declaration a call of `name` makes, if it makes one.
-    pub(crate) fn from_name(name: &str) -> Option<Declaration> {
+    pub(in crate::front) fn from_name(name: &str) -> Option<Declaration> {
         Declaration::ALL.into_iter().find(|d| d.name() == name)
     }
 }
@@ -83,7 +83,7 @@ impl Declaration {
 impl<S: SceneLanguage> Lower<'_, S> {
     /// A new state or algebraic symbol `name` and its node; `None` once
     /// the clash with another name is reported at `at`.
-    pub(crate) fn new_symbol(
+    pub(in crate::front) fn new_symbol(
         &mut self,
         name: &str,
         kind: SymbolKind,
@@ -168,7 +168,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
     }
 
     /// Reports a second declaration of `ident`'s name.
-    pub(crate) fn already_declared(&mut self, ident: &syn::Ident) -> bool {
+    pub(in crate::front) fn already_declared(&mut self, ident: &syn::Ident) -> bool {
         let name = ident.to_string();
         let Some(what) = self.lookup(&name).map(Binding::describe) else {
             return false;
@@ -181,7 +181,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
     }
 
     /// `let e = event(g).rising().terminal();`
-    pub(crate) fn event(
+    pub(in crate::front) fn event(
         &mut self,
         ident: &syn::Ident,
         call: &syn::ExprCall,
@@ -253,7 +253,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         false
     }
 
-    pub(crate) fn declaration(
+    pub(in crate::front) fn declaration(
         &mut self,
         ident: &syn::Ident,
         kind: Declaration,
@@ -410,7 +410,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
     /// An initial value or guess: constants and parameters only.
     /// The initial values of `(0..N).map(|i| value)`: `value` with `i`
     /// bound to each index of the range in turn, as a loop binds it.
-    pub(crate) fn initial_values_by_index(
+    pub(in crate::front) fn initial_values_by_index(
         &mut self,
         m: &syn::ExprMethodCall,
     ) -> Option<Vec<Option<Id>>> {

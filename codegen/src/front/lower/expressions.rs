@@ -55,7 +55,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
     }
 
-    pub(crate) fn arith(&mut self, op: &BinOp, a: Id, b: Id, at: &Expr) -> Option<Id> {
+    pub(in crate::front) fn arith(&mut self, op: &BinOp, a: Id, b: Id, at: &Expr) -> Option<Id> {
         let r = match op {
             BinOp::Add(_) | BinOp::AddAssign(_) => self.g.add(a, b),
             BinOp::Sub(_) | BinOp::SubAssign(_) => self.g.sub(a, b),
@@ -208,12 +208,12 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
     }
 
-    pub(crate) fn unsupported(&mut self, e: &Expr, what: &str) -> Option<Id> {
+    pub(in crate::front) fn unsupported(&mut self, e: &Expr, what: &str) -> Option<Id> {
         self.cx.error_at(e, format!("{what} are not part of the model language"));
         None
     }
 
-    pub(crate) fn literal(&mut self, lit: &Lit) -> Option<Id> {
+    pub(in crate::front) fn literal(&mut self, lit: &Lit) -> Option<Id> {
         let parsed = match lit {
             Lit::Int(i) => i.base10_parse::<f64>(),
             Lit::Float(f) => f.base10_parse::<f64>(),
@@ -262,7 +262,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
     }
 
-    pub(crate) fn call(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<Id> {
+    pub(in crate::front) fn call(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<Id> {
         let Some((name, _)) = call_name(e) else {
             self.cx.error_at(&c.func, "call a function by name: `sin(x)`");
             return None;
@@ -308,7 +308,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         self.graph_result(r, e)
     }
 
-    pub(crate) fn der(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<Id> {
+    pub(in crate::front) fn der(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<Id> {
         if !self.arity(c, "der", 1) {
             return None;
         }
@@ -345,7 +345,11 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
     }
 
-    pub(crate) fn method_call(&mut self, m: &syn::ExprMethodCall, e: &Expr) -> Option<Id> {
+    pub(in crate::front) fn method_call(
+        &mut self,
+        m: &syn::ExprMethodCall,
+        e: &Expr,
+    ) -> Option<Id> {
         let method = m.method.to_string();
         match method.as_str() {
             "powi" | "powf" if m.args.len() == 1 => {

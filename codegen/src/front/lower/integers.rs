@@ -22,7 +22,7 @@ pub(crate) fn is_integer_type(ty: &Type) -> bool {
 
 impl<S: SceneLanguage> Lower<'_, S> {
     /// Whether `e` is whole-number typed in Rust.
-    pub(crate) fn is_integer_expr(&self, e: &Expr) -> bool {
+    pub(in crate::front) fn is_integer_expr(&self, e: &Expr) -> bool {
         match e {
             Expr::Lit(l) => match &l.lit {
                 Lit::Int(i) => !matches!(i.suffix(), "f32" | "f64"),
@@ -52,7 +52,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
     /// division is; `None` (and an error at `at`) for a zero divisor, and
     /// for numbers written as integers that do not divide (`1 / 3`, which
     /// Rust makes 0: a real number was meant).
-    pub(crate) fn integer_division(&mut self, a: Id, b: Id, at: &Expr) -> Option<Id> {
+    pub(in crate::front) fn integer_division(&mut self, a: Id, b: Id, at: &Expr) -> Option<Id> {
         let whole = |x: Id| self.g.as_number(x).and_then(|n| n.as_integer());
         match (whole(a), whole(b)) {
             (Some(_), Some(0)) => {

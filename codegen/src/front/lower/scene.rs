@@ -2,6 +2,15 @@
 //! loads): the lowering is generic over it, so the front end names no
 //! scene type and the scene library depends on the front end, not the
 //! other way round. `mechanics::Scene` is the one the pipeline uses.
+//!
+//! A scene library's lowering sees a narrow part of the front end: the
+//! model being built (graph, diagnostics, parameters, states, algebraic
+//! variables, equations, initial values, invariants, outputs, events) and
+//! the operations `pub(crate)` in `front::lower` (lower a value or a
+//! tensor, look up, bind and rebind names, declare states and algebraic
+//! variables, push equations of motion, check an arity, report an unknown
+//! name). The scopes, unrolling and integer semantics stay private to the
+//! front end (`pub(in crate::front)`).
 
 use super::scopes::Lower;
 use crate::{Graph, Id};

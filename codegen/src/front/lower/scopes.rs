@@ -64,8 +64,8 @@ impl Binding {
 pub(crate) struct Lower<'c, S> {
     pub(crate) cx: &'c mut Ctxt,
     pub(crate) g: Graph,
-    pub(crate) scopes: Vec<HashMap<String, Binding>>,
-    pub(crate) time: Option<SymbolId>,
+    pub(in crate::front) scopes: Vec<HashMap<String, Binding>>,
+    pub(in crate::front) time: Option<SymbolId>,
     pub(crate) params: Vec<Param>,
     pub(crate) states: Vec<StateDecl>,
     pub(crate) algebraics: Vec<AlgebraicDecl>,
@@ -75,11 +75,11 @@ pub(crate) struct Lower<'c, S> {
     pub(crate) inits: Vec<Init>,
     pub(crate) invariants: Vec<UserInvariant>,
     pub(crate) scene: S,
-    pub(crate) unrolled: usize,
-    pub(crate) non_smooth_calls: Vec<(Id, proc_macro2::TokenStream)>,
+    pub(in crate::front) unrolled: usize,
+    pub(in crate::front) non_smooth_calls: Vec<(Id, proc_macro2::TokenStream)>,
     /// Names of whole-number constants: loop indices and integer `const`s
     /// (`front::lower::integers`).
-    pub(crate) integer_names: std::collections::HashSet<String>,
+    pub(in crate::front) integer_names: std::collections::HashSet<String>,
 }
 
 impl<S> Lower<'_, S> {
@@ -87,11 +87,11 @@ impl<S> Lower<'_, S> {
         self.scopes.iter().rev().find_map(|s| s.get(name))
     }
 
-    pub(crate) fn known_names(&self) -> Vec<String> {
+    pub(in crate::front) fn known_names(&self) -> Vec<String> {
         self.scopes.iter().flat_map(|s| s.keys().cloned()).collect()
     }
 
-    pub(crate) fn in_loop(&self) -> bool {
+    pub(in crate::front) fn in_loop(&self) -> bool {
         self.scopes.len() > 1
     }
 

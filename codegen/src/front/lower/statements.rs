@@ -13,7 +13,7 @@ use std::collections::HashMap;
 use syn::{BinOp, Expr, Pat, Stmt};
 
 impl<S: SceneLanguage> Lower<'_, S> {
-    pub(crate) fn stmt(&mut self, stmt: &Stmt) {
+    pub(in crate::front) fn stmt(&mut self, stmt: &Stmt) {
         match stmt {
             Stmt::Local(local) => self.local(local),
             Stmt::Item(syn::Item::Const(c)) => {
@@ -35,7 +35,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
     }
 
-    pub(crate) fn local(&mut self, local: &syn::Local) {
+    pub(in crate::front) fn local(&mut self, local: &syn::Local) {
         let (ident, mutable) = match &local.pat {
             Pat::Ident(p) => (p.ident.clone(), p.mutability.is_some()),
             Pat::Type(t) => match &*t.pat {
@@ -136,7 +136,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
     }
 
-    pub(crate) fn expr_stmt(&mut self, e: &Expr) {
+    pub(in crate::front) fn expr_stmt(&mut self, e: &Expr) {
         match e {
             Expr::Binary(b) if matches!(b.op, BinOp::Eq(_)) && (self.mentions_tensor(&b.left) || self.mentions_tensor(&b.right)) => {
                 // One equation per component.
@@ -229,7 +229,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
     }
 
-    pub(crate) fn assign(&mut self, target: &Expr, value: Option<Id>, whole: &Expr) {
+    pub(in crate::front) fn assign(&mut self, target: &Expr, value: Option<Id>, whole: &Expr) {
         let name = match target {
             Expr::Path(p) => p.path.get_ident().map(|i| i.to_string()),
             _ => None,
@@ -258,7 +258,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
     }
 
-    pub(crate) fn init(&mut self, call: &syn::ExprCall, whole: &Expr) {
+    pub(in crate::front) fn init(&mut self, call: &syn::ExprCall, whole: &Expr) {
         if !self.arity(call, "init", 2) {
             return;
         }
