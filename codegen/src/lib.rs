@@ -1,16 +1,27 @@
 //! `daegen-codegen`: daegen's symbolic engine, a plain library that the
 //! `#[dae_model]` macro calls and that tests use directly.
 //!
-//! The pipeline is [`expand_dae_model`], one folder per stage:
+//! The pipeline is [`pipeline::analyse`], one function that runs every
+//! stage in order and returns the analysed model; [`expand_dae_model`]
+//! emits it (and [`diagnostics`] reports its errors):
 //!
-//! 1. `front/`: the attribute's arguments, the model function lowered into
-//!    the model IR, every mistake collected with the user's tokens;
-//!    `mechanics/` lowers scenes of bodies and joints into equations.
-//! 2. `dae/`: index reduction, the unknowns solved block by block, the
-//!    first-order system (and the mass-matrix form).
-//! 3. `taylor/`: the Taylor methods' derivatives, tape and unrolled jets.
-//! 4. `emit/`: common-subexpression elimination into straight-line
-//!    programs ([`Program`]) and the model's items as Rust tokens.
+//! 1. attributes (`front/attributes`): what the model asks to generate;
+//! 2. lower (`front/lower/`): the function read as the model language into
+//!    the model IR ([`front::ir::ModelIr`]); scenes of bodies and joints
+//!    through `mechanics/`;
+//! 3. structure (`dae/structure`): each state's order, derivative-free
+//!    combinations, index reduction;
+//! 4. reduce (`dae/reduce`): the unknowns solved block by block into the
+//!    first-order system ([`dae::system::FirstOrder`]);
+//! 5. variational (`dae/variational`): forward sensitivities, a system of
+//!    their own;
+//! 6. mass form (`dae/mass_form`): `M w' = F(t, w)` for RADAU5;
+//! 7. Taylor (`taylor/analysis`): the economic scheme, the AD tape, the
+//!    unrolled jets;
+//! 8. projection levels (`dae/constraints`);
+//!
+//! then `emit/`: common-subexpression elimination into straight-line
+//! programs ([`Program`]) and each item of the model as Rust tokens.
 //!
 //! Under all of them, `expr/`: [`Graph`], a hash-consed DAG of canonical
 //! nodes with exact rational constants whose constructors simplify without
