@@ -1,10 +1,12 @@
-//! From the model IR to a first-order system: equations whose highest
-//! derivatives cancel combined (`derivative_free`), the index reduced
-//! (`index_reduction`, `linear_pencil`), the unknowns solved block by block
-//! (`reduce`, `solve_unknowns`, `newton_block`, over the equations matched
-//! to their unknowns by `matching`), the constraints' projection levels
-//! (`constraints`), and the mass-matrix form (`mass_form`), as values that
-//! `emit` writes out.
+//! From the model IR to a first-order system (`system`, which every pass
+//! after reduction reads and which imports none of them): the structure
+//! (`structure`: equations whose highest derivatives cancel combined by
+//! `derivative_free`, the index reduced by `index_reduction` and
+//! `linear_pencil`), the unknowns solved block by block (`reduce`,
+//! `solve_unknowns`, `newton_block`, over the equations matched to their
+//! unknowns by `matching`), forward sensitivities (`variational`), the
+//! mass-matrix form (`mass_form`) and the constraints' projection levels
+//! (`constraints`), as values that `emit` writes out.
 
 pub mod constraints;
 pub mod derivative_free;

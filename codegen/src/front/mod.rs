@@ -1,7 +1,8 @@
 //! The front end: the attribute's arguments, the model function lowered
-//! into the model IR (`lower`, with `vectors` expanding vector and
-//! matrix expressions into `tensor` values), diagnostics collected with the user's tokens (`ctxt`,
-//! `names`, `warnings`).
+//! into the model IR (`ir`, by `lower/`, with `vectors` expanding vector
+//! and matrix expressions into `tensor` values), diagnostics collected
+//! with the user's tokens (`ctxt`, `names`, `warnings`). Scenes enter
+//! through `lower::SceneLanguage`; the front end names no scene type.
 
 pub mod attributes;
 pub mod ctxt;

@@ -3,10 +3,12 @@
 //! the recursive one (`recursive`, on the spanning tree of `topology`),
 //! spatial scenes in the global formulation (`spatial`) or the recursive
 //! one (`spatial_recursive`, with `spatial_joint_motion` and
-//! `joint_space_dynamics`, over `spatial_vectors` and `algebra`), and the
-//! names a scene answers to (`names`).
-//! Each is part of lowering: its statements are methods of
-//! `front::lower::Lower`, and the scene's data lives here.
+//! `joint_space_dynamics` over the tree of `spatial_tree`, and
+//! `spatial_vectors` and `algebra`), and the names a scene answers to
+//! (`names`). The lowering hands scene statements over through
+//! `front::lower::SceneLanguage`, which `Scene` implements; a scene sees
+//! the model being built and the lowering's public operations, nothing of
+//! its scopes.
 
 pub mod algebra;
 pub mod joint_space_dynamics;

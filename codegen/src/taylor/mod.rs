@@ -1,5 +1,6 @@
-//! The Taylor methods' code: the economic scheme's derivatives
-//! (`economic`), the adaptive method's AD tape (`tape`), and its unrolled
+//! The Taylor methods' code: what a model gives them (`analysis`: which
+//! of the following it has, or why not), the economic scheme's
+//! derivatives (`economic`), the adaptive method's AD tape (`tape`), and its unrolled
 //! jets (`unrolled`, the pass manager over `folding`, `factoring`,
 //! `layout`, `lanes`, `groups` and `sharing`).
 
