@@ -120,7 +120,7 @@ fn expand_or_report(
     cx: &mut Ctxt,
     attr: TokenStream,
     item: &syn::ItemFn,
-) -> std::result::Result<TokenStream, front::ir::ModelIr> {
+) -> std::result::Result<TokenStream, Box<front::ir::ModelIr>> {
     let mut model = pipeline::analyse(cx, attr, item)?;
     match emit::model::expand(&mut model) {
         Ok(mut tokens) => {
@@ -140,5 +140,5 @@ fn expand_or_report(
         }
         Err(e) => cx.error_at(&item.sig.ident, e),
     }
-    Err(model.ir)
+    Err(Box::new(model.ir))
 }

@@ -56,7 +56,11 @@ pub struct SensitivityAnalysis {
 /// Runs every stage in order: attributes → lower → structure → reduce →
 /// variational → mass form → Taylor → projection levels. `Err` holds the
 /// IR as far as it got (for the stub) when a stage reported errors to `cx`.
-pub fn analyse(cx: &mut Ctxt, attr: TokenStream, item: &syn::ItemFn) -> Result<Analysed, ModelIr> {
+pub fn analyse(
+    cx: &mut Ctxt,
+    attr: TokenStream,
+    item: &syn::ItemFn,
+) -> Result<Analysed, Box<ModelIr>> {
     let attributes = crate::front::attributes::attributes(cx, attr);
     let mut ir = lower(cx, item, attributes.recursive);
     let system = match cx.is_ok() {
@@ -64,10 +68,10 @@ pub fn analyse(cx: &mut Ctxt, attr: TokenStream, item: &syn::ItemFn) -> Result<A
             .and_then(|structure| crate::dae::reduce::reduce(cx, &mut ir, structure)),
         false => None,
     };
-    let Some(system) = system.filter(|_| cx.is_ok()) else { return Err(ir) };
+    let Some(system) = system.filter(|_| cx.is_ok()) else { return Err(Box::new(ir)) };
     let sensitivities = variational(cx, &mut ir, &attributes, &system);
     if !cx.is_ok() {
-        return Err(ir);
+        return Err(Box::new(ir));
     }
     let model = system_analysis(&mut ir.graph, ir.time, system, &attributes);
     let sensitivities = sensitivities.map(|(wrt, augmented, attributes)| {
