@@ -86,25 +86,6 @@ fn explicit_pair<M: Model, P: EmbeddedPair>(
     adaptive::integrate::<M, P>(problem, stiffness, solution).map(|r| r.0)
 }
 
-fn method_name(method: Method) -> &'static str {
-    match method {
-        Method::Auto => "Auto",
-        Method::Taylor => "Taylor",
-        Method::TaylorFixed { .. } => "TaylorFixed",
-        Method::Euler => "Euler",
-        Method::BackwardEuler => "BackwardEuler",
-        Method::Rk4 => "Rk4",
-        Method::Rk38 => "Rk38",
-        Method::Midpoint => "Midpoint",
-        Method::Heun => "Heun",
-        Method::Ralston => "Ralston",
-        Method::Dopri5 => "Dopri5",
-        Method::Dop853 => "Dop853",
-        Method::Radau5 => "Radau5",
-        Method::Rodas5P => "Rodas5P",
-    }
-}
-
 /// Notes the method and formulation in the solution's statistics, on
 /// success and on failure alike.
 fn labelled<M: Model>(
@@ -148,7 +129,7 @@ pub fn simulate_from<M: Model + Clone + Send + Sync + 'static>(
     options: &Options,
 ) -> Result<Solution, Error> {
     let problem = Problem { model, t0, t1, y0, options };
-    labelled::<M>(checked_run(problem), method_name(options.method))
+    labelled::<M>(checked_run(problem), options.method.name())
 }
 
 /// The values initialization moved by more than `rtol·|given| + atol`.
