@@ -27,10 +27,10 @@ mod options;
 mod run;
 mod solution;
 mod step;
+pub mod taylor_tape;
 
 // The methods' public helpers, where users and generated code find them.
 pub use linalg::{band_lu, dense_lu};
-pub use methods::taylor::tape as taylor_tape;
 pub use methods::taylor::{self as taylor, order as taylor_order, series as taylor_series};
 pub use methods::{dop853, dopri5, explicit_rk, implicit_tableau};
 pub use step::control as step_control;

@@ -464,16 +464,6 @@ impl Options {
         Options { sensitivity_error_control: control, ..self.clone() }
     }
 
-    /// The states the error test measures: all, or the model's own where
-    /// sensitivities are left out of it.
-    pub(crate) fn error_states<M: crate::Model>(&self) -> usize {
-        if self.sensitivity_error_control {
-            M::STATES
-        } else {
-            M::STATES / (1 + M::SENSITIVITY_COLUMNS)
-        }
-    }
-
     /// The method chosen.
     pub fn get_method(&self) -> Method {
         self.method

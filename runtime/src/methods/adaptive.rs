@@ -207,7 +207,7 @@ fn integrate_from<M: Model, P: EmbeddedPair>(
     let mut sk = M::State::zeros();
     // The error test's states (the model's own, where sensitivities are
     // left out of it), and the factor from the norm over all to theirs.
-    let n_error = options.error_states::<M>();
+    let n_error = crate::methods::error_states::<M>(options);
     let error_dilution = (n as f64 / n_error as f64).sqrt();
     let mut dense = vec![0.0; P::DENSE_WIDTH * n];
     let mut rhs = Rhs { model, evals: 0 };

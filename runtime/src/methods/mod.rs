@@ -14,6 +14,7 @@ pub(crate) mod rodas5p;
 pub(crate) mod stiffness;
 pub mod taylor;
 
+use crate::model::Model;
 use crate::options::Options;
 
 /// The initial-value problem a method is asked to solve: `model` from the
@@ -33,3 +34,13 @@ impl<M> Clone for Problem<'_, M> {
 }
 
 impl<M> Copy for Problem<'_, M> {}
+
+/// The states the error test measures: all, or the model's own where
+/// [`Options::sensitivity_error_control`] leaves the sensitivities out.
+pub(crate) fn error_states<M: Model>(options: &Options) -> usize {
+    if options.sensitivity_error_control {
+        M::STATES
+    } else {
+        M::STATES / (1 + M::SENSITIVITY_COLUMNS)
+    }
+}

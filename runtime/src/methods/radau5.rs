@@ -233,7 +233,7 @@ fn step_loop<M: Model>(
     let mut scal = vec![0.0; n];
     // The error test's states (the model's own, where sensitivities are
     // left out of it); Newton converges on all.
-    let n_error = options.error_states::<M>();
+    let n_error = crate::methods::error_states::<M>(options);
     let mut scratch = vec![0.0; n];
     let mut events = EventWatch::new(model, t0, start, 1);
     let mut projector = Projector::new(model);

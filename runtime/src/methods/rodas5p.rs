@@ -309,7 +309,7 @@ pub(crate) fn integrate_watching<M: Model>(
     let (rtol, atol) = (options.rtol, options.atol);
     // The error test's states (the model's own, where sensitivities are
     // left out of it).
-    let n_error = options.error_states::<M>();
+    let n_error = crate::methods::error_states::<M>(options);
     let direction = if t1 >= t0 { 1.0 } else { -1.0 };
     let hmax = options.max_step.unwrap_or((t1 - t0).abs()).min((t1 - t0).abs());
 

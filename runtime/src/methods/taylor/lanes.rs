@@ -6,7 +6,6 @@
 //! method's (`mod.rs`); the step is the least of the lanes' steps.
 
 use super::order::{choose_order, step_factor, JetCost};
-use super::tape::{Tape, TapeOp, TaylorWork};
 use super::{horner_by_coefficient, interpolate};
 use crate::error::Error;
 use crate::lanes::Lanes;
@@ -14,6 +13,7 @@ use crate::methods::Problem;
 use crate::model::Model;
 use crate::options::Options;
 use crate::solution::Solution;
+use crate::taylor_tape::{Tape, TapeOp, TaylorWork};
 
 /// Integrates the batch `model` from `t0` to `t1`, its members' tapes
 /// stepped together on lanes.
@@ -294,7 +294,7 @@ fn gather<const W: usize>(constants: &[Vec<f64>]) -> impl FnMut(&f64) -> Lanes<W
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::methods::taylor::tape::Operand;
+    use crate::taylor_tape::Operand;
 
     /// Lanes of one tape with different constants give each lane the
     /// coefficients its own tape gives alone, to the bit: y' = −k·y + c
