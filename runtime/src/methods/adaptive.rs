@@ -166,6 +166,17 @@ pub(crate) enum Stiffness {
     Switch(StiffnessTest),
 }
 
+/// An explicit pair on its own: it stops with `Error::Stiff` where the
+/// problem turns stiff, unless told not to look.
+pub(crate) fn integrate_alone<M: Model, P: EmbeddedPair>(
+    problem: Problem<'_, M>,
+    solution: Solution,
+) -> Result<Solution, Error> {
+    let watch = problem.options.stiffness_detection;
+    let stiffness = if watch { Stiffness::Fail } else { Stiffness::Ignore };
+    integrate::<M, P>(problem, stiffness, solution).map(|r| r.0)
+}
+
 /// Integrates `model` from `t0` to `t1` (either direction) with pair `P`.
 pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
     problem: Problem<'_, M>,

@@ -23,13 +23,9 @@ pub(crate) fn integrate<M: Model>(
 ) -> Result<Solution, Error> {
     let Problem { model, t0, t1, y0, options } = problem;
     let Some(tapes) = model.taylor_member_tapes() else {
-        return Err(Error::InvalidOptions {
-            message: format!(
-                "Method::Taylor is not available for {}: {}. Use Method::Dop853 for a non-stiff run at tight tolerances, or Method::Radau5 for a stiff model",
-                M::INFO.name,
-                if M::TAYLOR_UNAVAILABLE.is_empty() { "its members have no Taylor tape" } else { M::TAYLOR_UNAVAILABLE }
-            ),
-        });
+        // Members with their reason are refused before the run.
+        let message = crate::methods::taylor_refusal::<M>("its members have no Taylor tape");
+        return Err(Error::InvalidOptions { message });
     };
     let run = Batch { tapes: &tapes, states: M::STATES / M::LANES, t0, t1, y0, options };
     run.integrate(M::INFO.states, solution)

@@ -263,17 +263,10 @@ pub(crate) fn integrate<M: Model>(
     // One function for the step loop: the order, the step-size rule, the compensated time and
     // the dense output act on the same step.
     let Some((tape, outputs)) = model.taylor_tape() else {
-        let reason = if M::TAYLOR_UNAVAILABLE.is_empty() {
-            "it has no Taylor tape"
-        } else {
-            M::TAYLOR_UNAVAILABLE
-        };
-        return Err(Error::InvalidOptions {
-            message: format!(
-                "Method::Taylor is not available for {}: {reason}. Use Method::Dop853 for a non-stiff run at tight tolerances (Method::Auto switches to Radau5 where it turns stiff), or Method::Radau5 for a stiff model",
-                M::INFO.name
-            ),
-        });
+        // A model with its reason is refused before the run; this one
+        // hands over no tape and gives none.
+        let message = crate::methods::taylor_refusal::<M>("it has no Taylor tape");
+        return Err(Error::InvalidOptions { message });
     };
     let n = M::STATES;
     let tol = if options.rtol > 0.0 { options.rtol } else { options.atol };
