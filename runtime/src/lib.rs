@@ -3,11 +3,17 @@
 //! [`Solution`], [`Error`]), the integrators, and small numerical helpers the
 //! generated code calls.
 //!
-//! Layout: [`model`] and [`info`] are what a model gives; `run` checks a
-//! request and hands it to one of the `methods`, which advance with the
-//! helpers of `step` (step-size control, events, projection, Jacobians)
-//! and [`linalg`], and fill a [`Solution`].
+//! Layout: [`model`] and [`info`] are what a model gives (with the
+//! [`taylor_tape`] it hands to the Taylor method); `run` checks a request,
+//! asks [`Method::refusal`] whether the method runs the model, and hands
+//! it to the method's module, every one through the same entry point; the
+//! `methods` advance with the helpers of `step` (step-size control,
+//! events, projection, Jacobians) and [`linalg`], and fill a
+//! [`Solution`]. No module imports one that imports it back, but for
+//! [`Error`] and [`Solution`], which hold each other.
 
+// Every public item says what it is for.
+#![warn(missing_docs)]
 // The numerical kernels index several arrays by one position (y, f, scale, …):
 // an index loop says so more plainly than zipped iterators.
 #![allow(clippy::needless_range_loop)]
