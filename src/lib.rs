@@ -29,6 +29,9 @@
 //! The crates behind it: [`codegen`] is the symbolic engine, [`runtime`]
 //! the integrators and the run API. Start with the [`guide`].
 
+// Every public item says what it is for.
+#![warn(missing_docs)]
+
 pub use daegen_codegen as codegen;
 pub use daegen_macros::dae_model;
 pub use daegen_runtime as runtime;

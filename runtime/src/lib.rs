@@ -3,11 +3,17 @@
 //! [`Solution`], [`Error`]), the integrators, and small numerical helpers the
 //! generated code calls.
 //!
-//! Layout: [`model`] and [`info`] are what a model gives; `run` checks a
-//! request and hands it to one of the `methods`, which advance with the
-//! helpers of `step` (step-size control, events, projection, Jacobians)
-//! and [`linalg`], and fill a [`Solution`].
+//! Layout: [`model`] and [`info`] are what a model gives (with the
+//! [`taylor_tape`] it hands to the Taylor method); `run` checks a request,
+//! asks [`Method::refusal`] whether the method runs the model, and hands
+//! it to the method's module, every one through the same entry point; the
+//! `methods` advance with the helpers of `step` (step-size control,
+//! events, projection, Jacobians) and [`linalg`], and fill a
+//! [`Solution`]. No module imports one that imports it back, but for
+//! [`Error`] and [`Solution`], which hold each other.
 
+// Every public item says what it is for.
+#![warn(missing_docs)]
 // The numerical kernels index several arrays by one position (y, f, scale, …):
 // an index loop says so more plainly than zipped iterators.
 #![allow(clippy::needless_range_loop)]
@@ -27,10 +33,10 @@ mod options;
 mod run;
 mod solution;
 mod step;
+pub mod taylor_tape;
 
 // The methods' public helpers, where users and generated code find them.
 pub use linalg::{band_lu, dense_lu};
-pub use methods::taylor::tape as taylor_tape;
 pub use methods::taylor::{self as taylor, order as taylor_order, series as taylor_series};
 pub use methods::{dop853, dopri5, explicit_rk, implicit_tableau};
 pub use step::control as step_control;

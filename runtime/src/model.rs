@@ -192,17 +192,14 @@ pub trait Model {
     #[allow(clippy::type_complexity)]
     fn taylor_tape(
         &self,
-    ) -> Option<(
-        Vec<crate::methods::taylor::tape::TapeOp>,
-        Vec<crate::methods::taylor::tape::Operand>,
-    )> {
+    ) -> Option<(Vec<crate::taylor_tape::TapeOp>, Vec<crate::taylor_tape::Operand>)> {
         None
     }
 
     /// A batch model's members' tapes, lane by lane (see [`Model::LANES`]):
     /// the adaptive Taylor method runs them as one tape on lanes. `None`
     /// for every other model, and for a batch whose members have no tape.
-    fn taylor_member_tapes(&self) -> Option<Vec<crate::methods::taylor::tape::Tape>> {
+    fn taylor_member_tapes(&self) -> Option<Vec<crate::taylor_tape::Tape>> {
         None
     }
 

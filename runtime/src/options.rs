@@ -68,6 +68,53 @@ pub enum Method {
     Rodas5P,
 }
 
+impl Method {
+    /// Every method, each once, in the order of the enum: to run a
+    /// problem through all of them. `TaylorFixed` stands here with order 4
+    /// (that of `Rk4`, its fixed-step peer) and a step of 1e-3; the model
+    /// must be expanded with `#[dae_model(taylor = 4)]` or higher, or the
+    /// run is refused. To use other parameters, map the list:
+    /// `Method::ALL.map(|m| match m { Method::TaylorFixed { .. } =>
+    /// Method::TaylorFixed { order: 6, step: h }, m => m })`.
+    pub const ALL: [Method; 14] = [
+        Method::Auto,
+        Method::Taylor,
+        Method::TaylorFixed { order: 4, step: 1e-3 },
+        Method::Euler,
+        Method::BackwardEuler,
+        Method::Rk4,
+        Method::Rk38,
+        Method::Midpoint,
+        Method::Heun,
+        Method::Ralston,
+        Method::Dopri5,
+        Method::Dop853,
+        Method::Radau5,
+        Method::Rodas5P,
+    ];
+
+    /// The variant's name without its parameters (`"TaylorFixed"`), as
+    /// [`crate::Stats::method`] reports a run that did not switch.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Auto => "Auto",
+            Method::Taylor => "Taylor",
+            Method::TaylorFixed { .. } => "TaylorFixed",
+            Method::Euler => "Euler",
+            Method::BackwardEuler => "BackwardEuler",
+            Method::Rk4 => "Rk4",
+            Method::Rk38 => "Rk38",
+            Method::Midpoint => "Midpoint",
+            Method::Heun => "Heun",
+            Method::Ralston => "Ralston",
+            Method::Dopri5 => "Dopri5",
+            Method::Dop853 => "Dop853",
+            Method::Radau5 => "Radau5",
+            Method::Rodas5P => "Rodas5P",
+        }
+    }
+}
+
 /// What [`Options::on_step`] sees of each accepted step.
 #[derive(Clone, Copy, Debug)]
 pub struct Step<'a> {
@@ -417,18 +464,21 @@ impl Options {
         Options { sensitivity_error_control: control, ..self.clone() }
     }
 
-    /// The states the error test measures: all, or the model's own where
-    /// sensitivities are left out of it.
-    pub(crate) fn error_states<M: crate::Model>(&self) -> usize {
-        if self.sensitivity_error_control {
-            M::STATES
-        } else {
-            M::STATES / (1 + M::SENSITIVITY_COLUMNS)
-        }
-    }
-
     /// The method chosen.
     pub fn get_method(&self) -> Method {
         self.method
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_method_is_listed_once_under_its_own_name() {
+        let names: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
+        for (k, name) in names.iter().enumerate() {
+            assert!(!names[..k].contains(name), "{name} is listed twice");
+        }
     }
 }

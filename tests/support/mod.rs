@@ -6,6 +6,8 @@
 
 use daegen::prelude::*;
 
+pub mod harness;
+
 /// max |got − want| over the components.
 pub fn max_error(got: &[f64], want: &[f64]) -> f64 {
     got.iter().zip(want).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max)

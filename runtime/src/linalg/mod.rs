@@ -1,14 +1,14 @@
 //! Linear algebra: the LU factorisations of the implicit methods (dense,
-//! banded, sparse, GMRES in `krylov`, and `newton` choosing among them), the product with a
-//! dense mass matrix, and dense solves for the small mass-matrix blocks
-//! that generated code cannot solve symbolically (`M(q) q'' = f` with `M`
-//! full and configuration-dependent; stack arrays, no allocation).
+//! banded, sparse, GMRES in `krylov`, and `newton` choosing among them),
+//! the product with a dense mass matrix, the spectral radius by the power
+//! iteration, and dense solves for the small mass-matrix blocks that
+//! generated code cannot solve symbolically (`M(q) q'' = f` with `M` full
+//! and configuration-dependent; stack arrays, no allocation).
 
 pub mod band_lu;
 pub mod dense_lu;
 pub(crate) mod krylov;
 pub(crate) mod newton;
-pub(crate) mod sensitivity;
 pub mod sparse_lu;
 
 /// `out = M x` for the dense row-major mass matrix `m`.
@@ -111,6 +111,48 @@ pub(crate) fn lu_solve(lu: &[f64], n: usize, pivots: &[usize], b: &mut [f64]) {
     }
 }
 
+/// ρ(J) by the power iteration, `multiply(v, w)` writing w = J v: a lower
+/// bound, close for the well-separated stiff eigenvalues that matter here,
+/// and enough to a few percent for the decisions it serves. `v` holds the
+/// start (the last call's eigenvector, warm; zeros make a fresh start) and
+/// ends with the new one; `w` is scratch of the state's length. Stops when
+/// the estimate settles to 1 %, after at most 30 products.
+pub(crate) fn spectral_radius(
+    v: &mut [f64],
+    w: &mut [f64],
+    mut multiply: impl FnMut(&[f64], &mut [f64]),
+) -> f64 {
+    let norm = |x: &[f64]| x.iter().map(|a| a * a).sum::<f64>().sqrt();
+    let start = norm(v);
+    if start == 0.0 || !start.is_finite() {
+        for (i, x) in v.iter_mut().enumerate() {
+            // A start with a component along every eigenvector, almost surely.
+            *x = 1.0 + (i as f64 * 0.618_033_988_749_895) % 1.0;
+        }
+    }
+    let mut norm_v = norm(v);
+    let mut rho = f64::NAN;
+    for _ in 0..30 {
+        multiply(v, w);
+        let norm_w = norm(w);
+        if norm_w == 0.0 || !norm_w.is_finite() {
+            v.fill(0.0);
+            return if norm_w == 0.0 { 0.0 } else { f64::INFINITY };
+        }
+        let estimate = norm_w / norm_v;
+        for (x, y) in v.iter_mut().zip(w.iter()) {
+            *x = y / norm_w;
+        }
+        norm_v = 1.0;
+        let settled = (estimate - rho).abs() <= 0.01 * estimate;
+        rho = estimate;
+        if settled {
+            break;
+        }
+    }
+    rho
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -153,5 +195,20 @@ mod tests {
         let mut a = [[1.0, 2.0], [2.0, 4.0]];
         let mut b = [1.0, 2.0];
         assert!(!solve_in_place(&mut a, &mut b));
+    }
+
+    #[test]
+    fn the_power_iteration_finds_the_dominant_eigenvalue() {
+        // J = [[-1000, 1], [0, -1]]: ρ = 1000, to the 1 % asked for, from
+        // a fresh start and again from the eigenvector found.
+        let (mut v, mut w) = ([0.0; 2], [0.0; 2]);
+        let j = |v: &[f64], w: &mut [f64]| {
+            w[0] = -1000.0 * v[0] + v[1];
+            w[1] = -v[1];
+        };
+        for _ in 0..2 {
+            let rho = spectral_radius(&mut v, &mut w, j);
+            assert!((rho - 1000.0).abs() < 1e-2 * 1000.0, "{rho}");
+        }
     }
 }

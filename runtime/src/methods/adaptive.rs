@@ -166,6 +166,17 @@ pub(crate) enum Stiffness {
     Switch(StiffnessTest),
 }
 
+/// An explicit pair on its own: it stops with `Error::Stiff` where the
+/// problem turns stiff, unless told not to look.
+pub(crate) fn integrate_alone<M: Model, P: EmbeddedPair>(
+    problem: Problem<'_, M>,
+    solution: Solution,
+) -> Result<Solution, Error> {
+    let watch = problem.options.stiffness_detection;
+    let stiffness = if watch { Stiffness::Fail } else { Stiffness::Ignore };
+    integrate::<M, P>(problem, stiffness, solution).map(|r| r.0)
+}
+
 /// Integrates `model` from `t0` to `t1` (either direction) with pair `P`.
 pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
     problem: Problem<'_, M>,
@@ -207,7 +218,7 @@ fn integrate_from<M: Model, P: EmbeddedPair>(
     let mut sk = M::State::zeros();
     // The error test's states (the model's own, where sensitivities are
     // left out of it), and the factor from the norm over all to theirs.
-    let n_error = options.error_states::<M>();
+    let n_error = crate::methods::error_states::<M>(options);
     let error_dilution = (n as f64 / n_error as f64).sqrt();
     let mut dense = vec![0.0; P::DENSE_WIDTH * n];
     let mut rhs = Rhs { model, evals: 0 };

@@ -38,7 +38,7 @@ use crate::methods::dopri5::Dopri5;
 use crate::methods::stiffness::{Finish, NonStiffWatch, StiffnessTest};
 use crate::methods::Problem;
 use crate::methods::{radau5, rodas5p};
-use crate::model::Model;
+use crate::model::{has_mass_matrix, Model};
 use crate::options::Options;
 use crate::solution::Solution;
 
@@ -83,11 +83,17 @@ impl StiffMethod {
 }
 
 /// Integrates `model` from `t0` to `t1` with the pair and the stiff
-/// method in turn.
+/// method in turn; a model with a singular mass matrix with RADAU5 alone.
 pub(crate) fn integrate<M: Model>(
     problem: Problem<'_, M>,
     solution: Solution,
 ) -> Result<Solution, Error> {
+    if has_mass_matrix::<M>() {
+        // A singular mass matrix: only RADAU5 integrates it.
+        let mut solution = solution;
+        solution.stats_mut().method = "Radau5";
+        return radau5::integrate(problem, solution);
+    }
     let stiff = StiffMethod::for_problem::<M>(problem.options);
     if problem.options.rtol >= 1e-7 {
         switching::<M, Dopri5>(problem, 0, stiff, solution)

@@ -436,6 +436,17 @@ fn norm(v: &[f64], weights: &[f64]) -> f64 {
 /// 2⁻³⁰ ≈ 1e-9 of the step asked for.
 const MAX_HALVINGS: i32 = 30;
 
+/// Integrates `problem` in equal steps of [`crate::Options::step`] (see
+/// [`crate::Method::BackwardEuler`]).
+pub(crate) fn integrate<M: Model>(
+    problem: Problem<'_, M>,
+    solution: Solution,
+) -> Result<Solution, Error> {
+    let Problem { t0, t1, options, .. } = problem;
+    let (steps, solution) = crate::step::option_steps(t0, t1, options, solution)?;
+    integrate_in_steps(problem, steps, solution)
+}
+
 /// Integrates with `steps` equal steps from `t0` to `t1`.
 ///
 /// A step that cannot be taken is taken as two halves instead,
@@ -451,7 +462,7 @@ const MAX_HALVINGS: i32 = 30;
 /// steps follow the jump instead. Each halving counts as a rejected step in
 /// [`crate::Stats`], and the solution keeps every step taken; the grid
 /// points are always among them.
-pub(crate) fn integrate<M: Model>(
+fn integrate_in_steps<M: Model>(
     problem: Problem<'_, M>,
     steps: usize,
     mut solution: Solution,

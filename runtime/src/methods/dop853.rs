@@ -6,12 +6,24 @@
 // Published coefficients are kept digit for digit as printed.
 #![allow(clippy::excessive_precision)]
 
-use crate::methods::adaptive::{worst_lane, EmbeddedPair};
+use crate::error::Error;
+use crate::methods::adaptive::{self, worst_lane, EmbeddedPair};
+use crate::methods::Problem;
+use crate::model::Model;
 use crate::model::StateVector;
+use crate::solution::Solution;
 use crate::step::control::Controller;
 
 /// The DOP853 method.
 pub struct Dop853;
+
+/// Integrates `problem` with DOP853 alone (see [`crate::Method::Dop853`]).
+pub(crate) fn integrate<M: Model>(
+    problem: Problem<'_, M>,
+    solution: Solution,
+) -> Result<Solution, Error> {
+    adaptive::integrate_alone::<M, Dop853>(problem, solution)
+}
 
 /// Nodes c of the 12 stages, the new point, and the 3 dense-output stages.
 const C: [f64; 16] = [

@@ -3,12 +3,24 @@
 //! code `dopri5.f`). Seven stages, the last one evaluated at the new point
 //! and reused as the first of the next step (FSAL).
 
-use crate::methods::adaptive::{worst_lane, EmbeddedPair};
+use crate::error::Error;
+use crate::methods::adaptive::{self, worst_lane, EmbeddedPair};
+use crate::methods::Problem;
+use crate::model::Model;
 use crate::model::StateVector;
+use crate::solution::Solution;
 use crate::step::control::Controller;
 
 /// The DOPRI5 pair.
 pub struct Dopri5;
+
+/// Integrates `problem` with DOPRI5 alone (see [`crate::Method::Dopri5`]).
+pub(crate) fn integrate<M: Model>(
+    problem: Problem<'_, M>,
+    solution: Solution,
+) -> Result<Solution, Error> {
+    adaptive::integrate_alone::<M, Dopri5>(problem, solution)
+}
 
 const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
 const A: [&[f64]; 7] = [

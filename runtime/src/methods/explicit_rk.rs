@@ -3,7 +3,9 @@
 //! §II.1). The tableaux are data; one stepping routine serves them all.
 
 use crate::error::Error;
+use crate::methods::Problem;
 use crate::model::Model;
+use crate::options::Method;
 use crate::solution::Solution;
 use crate::step::events::{after_accepted_step, EventWatch};
 use crate::step::projection::{project_onto_constraints, Projector};
@@ -64,9 +66,30 @@ pub const RK38: Tableau = Tableau {
     c: &[0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0],
 };
 
+/// Integrates `problem` with the tableau of its method (`Euler`, `Rk4`,
+/// `Rk38`, `Midpoint`, `Heun` or `Ralston`) in equal steps of
+/// [`crate::Options::step`].
+pub(crate) fn integrate<M: Model>(
+    problem: Problem<'_, M>,
+    solution: Solution,
+) -> Result<Solution, Error> {
+    let Problem { model, t0, t1, y0, options } = problem;
+    let (steps, solution) = crate::step::option_steps(t0, t1, options, solution)?;
+    let tableau = match options.method {
+        Method::Rk4 => &RK4,
+        Method::Rk38 => &RK38,
+        Method::Euler => &EULER,
+        Method::Midpoint => &MIDPOINT,
+        Method::Heun => &HEUN,
+        Method::Ralston => &RALSTON,
+        other => return Err(Error::MethodNotAvailable { method: other }),
+    };
+    integrate_tableau(model, tableau, t0, t1, y0, steps, solution)
+}
+
 /// Integrates `model` from `t0` to `t1` in `steps` equal steps, landing
 /// exactly on `t1`. Stage buffers are allocated once, before the loop.
-pub(crate) fn integrate<M: Model>(
+fn integrate_tableau<M: Model>(
     model: &M,
     tableau: &Tableau,
     t0: f64,

@@ -233,7 +233,7 @@ fn step_loop<M: Model>(
     let mut scal = vec![0.0; n];
     // The error test's states (the model's own, where sensitivities are
     // left out of it); Newton converges on all.
-    let n_error = options.error_states::<M>();
+    let n_error = crate::methods::error_states::<M>(options);
     let mut scratch = vec![0.0; n];
     let mut events = EventWatch::new(model, t0, start, 1);
     let mut projector = Projector::new(model);
@@ -317,13 +317,27 @@ fn step_loop<M: Model>(
             let factor_mass = if mass_matrix.is_empty() { M::MASS } else { &mass_matrix[..] };
             let pattern = M::JACOBIAN_PATTERN;
             let shifts = (gamma / h, (alpha / h, beta / h));
-            let mut factored = newton.factor(shifts.0, shifts.1, factor_mass, &w.jacobian, pattern);
+            let mut factored = newton.factor(
+                shifts.0,
+                shifts.1,
+                factor_mass,
+                &w.jacobian.matrix,
+                w.jacobian.values(),
+                pattern,
+            );
             if factored == Factored::NeedsDenseJacobian {
                 w.jacobian = DenseJacobian::new::<M>();
                 if let Err(cause) = w.evaluate_jacobian(t, &mut y, &y0) {
                     return fail(solution, &w, accepted, rejected, t, cause);
                 }
-                factored = newton.factor(shifts.0, shifts.1, factor_mass, &w.jacobian, pattern);
+                factored = newton.factor(
+                    shifts.0,
+                    shifts.1,
+                    factor_mass,
+                    &w.jacobian.matrix,
+                    w.jacobian.values(),
+                    pattern,
+                );
                 w.linear_solver = newton.label();
             }
             if factored != Factored::Yes {
@@ -747,7 +761,7 @@ fn finish<M: Model>(solution: &mut Solution, steps: usize, rejected: usize, w: &
 }
 
 #[cfg(test)]
-mod mass_matrix_tests {
+mod tests {
     use super::*;
     use crate::info::ModelInfo;
     use crate::options::Options;

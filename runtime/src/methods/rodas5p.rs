@@ -309,7 +309,7 @@ pub(crate) fn integrate_watching<M: Model>(
     let (rtol, atol) = (options.rtol, options.atol);
     // The error test's states (the model's own, where sensitivities are
     // left out of it).
-    let n_error = options.error_states::<M>();
+    let n_error = crate::methods::error_states::<M>(options);
     let direction = if t1 >= t0 { 1.0 } else { -1.0 };
     let hmax = options.max_step.unwrap_or((t1 - t0).abs()).min((t1 - t0).abs());
 
@@ -384,13 +384,27 @@ pub(crate) fn integrate_watching<M: Model>(
         }
         let shift = 1.0 / (h * GAMMA);
         let factor_mass = if mass_matrix.is_empty() { M::MASS } else { &mass_matrix[..] };
-        let mut factored = newton.factor(shift, (0.0, 0.0), factor_mass, &d.jacobian, pattern);
+        let mut factored = newton.factor(
+            shift,
+            (0.0, 0.0),
+            factor_mass,
+            &d.jacobian.matrix,
+            d.jacobian.values(),
+            pattern,
+        );
         if factored == Factored::NeedsDenseJacobian {
             d.jacobian = DenseJacobian::new::<M>();
             if let Err(cause) = d.evaluate(&mut counts, t, &mut y, &f0) {
                 return fail(solution, &counts, t, cause);
             }
-            factored = newton.factor(shift, (0.0, 0.0), factor_mass, &d.jacobian, pattern);
+            factored = newton.factor(
+                shift,
+                (0.0, 0.0),
+                factor_mass,
+                &d.jacobian.matrix,
+                d.jacobian.values(),
+                pattern,
+            );
             let after_gmres = counts.linear_solver.starts_with("GMRES");
             counts.linear_solver = if after_gmres { newton.after_gmres() } else { newton.label() };
         }

@@ -1,5 +1,6 @@
 //! How stiff a problem is where the step is: Hairer's test in the explicit
-//! pairs, and the spectral radius of the Jacobian for RADAU5, which
+//! pairs, and the spectral radius of the Jacobian for RADAU5 (by the
+//! power iteration of `linalg`), which
 //! [`crate::Method::Auto`] compares with the explicit pair's stability
 //! boundary to switch between the two.
 //!
@@ -115,48 +116,6 @@ pub(crate) fn stage_quotient(
     }
 }
 
-/// ρ(J) by the power iteration, `multiply(v, w)` writing w = J v: a lower
-/// bound, close for the well-separated stiff eigenvalues that matter here,
-/// and enough to a few percent for the decisions it serves. `v` holds the
-/// start (the last call's eigenvector, warm; zeros make a fresh start) and
-/// ends with the new one; `w` is scratch of the state's length. Stops when
-/// the estimate settles to 1 %, after at most 30 products.
-pub(crate) fn spectral_radius(
-    v: &mut [f64],
-    w: &mut [f64],
-    mut multiply: impl FnMut(&[f64], &mut [f64]),
-) -> f64 {
-    let norm = |x: &[f64]| x.iter().map(|a| a * a).sum::<f64>().sqrt();
-    let start = norm(v);
-    if start == 0.0 || !start.is_finite() {
-        for (i, x) in v.iter_mut().enumerate() {
-            // A start with a component along every eigenvector, almost surely.
-            *x = 1.0 + (i as f64 * 0.618_033_988_749_895) % 1.0;
-        }
-    }
-    let mut norm_v = norm(v);
-    let mut rho = f64::NAN;
-    for _ in 0..30 {
-        multiply(v, w);
-        let norm_w = norm(w);
-        if norm_w == 0.0 || !norm_w.is_finite() {
-            v.fill(0.0);
-            return if norm_w == 0.0 { 0.0 } else { f64::INFINITY };
-        }
-        let estimate = norm_w / norm_v;
-        for (x, y) in v.iter_mut().zip(w.iter()) {
-            *x = y / norm_w;
-        }
-        norm_v = 1.0;
-        let settled = (estimate - rho).abs() <= 0.01 * estimate;
-        rho = estimate;
-        if settled {
-            break;
-        }
-    }
-    rho
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -188,19 +147,7 @@ mod tests {
     }
 
     #[test]
-    fn the_power_iteration_finds_the_dominant_eigenvalue() {
-        // J = [[-1000, 1], [0, -1]]: ρ = 1000, to the 1 % asked for, from
-        // a fresh start and again from the eigenvector found.
-        let (mut v, mut w) = ([0.0; 2], [0.0; 2]);
-        let j = |v: &[f64], w: &mut [f64]| {
-            w[0] = -1000.0 * v[0] + v[1];
-            w[1] = -v[1];
-        };
-        for _ in 0..2 {
-            let rho = spectral_radius(&mut v, &mut w, j);
-            assert!((rho - 1000.0).abs() < 1e-2 * 1000.0, "{rho}");
-        }
-        // The stage quotient of a linear problem is h|λ| exactly.
+    fn the_stage_quotient_of_a_linear_problem_is_h_lambda() {
         let q = stage_quotient(0.01, &[-1000.0 * 2.0], &[-1000.0 * 1.5], &[2.0], &[1.5]);
         assert!((q - 10.0).abs() < 1e-12, "{q}");
     }

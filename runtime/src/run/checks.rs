@@ -32,19 +32,6 @@ pub(crate) fn check_request<M: Model>(
         return invalid(format!("the interval [{t0}, {t1}] must be finite"));
     }
     check_options::<M>(options)?;
-    if M::LANES > 1
-        && matches!(
-            options.method,
-            Method::Auto | Method::Radau5 | Method::Rodas5P | Method::BackwardEuler
-        )
-    {
-        return invalid(format!(
-            "{} steps {} members together, and only the explicit pairs and the explicit fixed-step methods keep each member to its own tolerance: use Method::Dopri5 or Method::Dop853 (or Rk4 with a step), or run the members one by one for {:?}",
-            M::INFO.name,
-            M::LANES,
-            options.method
-        ));
-    }
     if let Some(times) = &options.output_times {
         check_output_times(times, t0, t1, options)?;
     }
@@ -100,13 +87,10 @@ fn check_options<M: Model>(options: &Options) -> Result<(), Error> {
     if options.max_steps == 0 {
         return invalid("max_steps(0): a run needs at least one step".to_string());
     }
-    if let Method::TaylorFixed { order, step } = options.method {
-        if order == 0 || order > M::TAYLOR_ORDER {
-            return invalid(format!(
-                "TaylorFixed of order {order} needs the model expanded with #[dae_model(taylor = {order})] or higher; it has {}",
-                M::TAYLOR_ORDER
-            ));
-        }
+    if let Some(message) = options.method.refusal::<M>() {
+        return invalid(message);
+    }
+    if let Method::TaylorFixed { step, .. } = options.method {
         if !(step.is_finite() && step > 0.0) {
             return invalid(format!(
                 "TaylorFixed {{ step: {step}, .. }}: the step must be positive and finite"
@@ -116,36 +100,6 @@ fn check_options<M: Model>(options: &Options) -> Result<(), Error> {
     if let Some(order) = options.taylor_order.filter(|&p| p < 2) {
         return invalid(format!(
             "taylor_order({order}): the adaptive Taylor method needs an order of 2 or more"
-        ));
-    }
-    // A singular mass matrix: RADAU5 integrates it (Auto picks it), RODAS5P
-    // too where no variable is of index 2.
-    if has_mass_matrix::<M>()
-        && options.method == Method::Rodas5P
-        && !M::INDEX2_COMPONENTS.is_empty()
-    {
-        let index2: Vec<&str> = M::INDEX2_COMPONENTS.iter().map(|&i| M::INFO.states[i]).collect();
-        return invalid(format!(
-            "{} has variables of index 2 ({}), which a Rosenbrock method does not converge on: integrate it with Method::Radau5 (or Method::Auto)",
-            M::INFO.name,
-            index2.join(", ")
-        ));
-    }
-    if has_mass_matrix::<M>()
-        && !matches!(options.method, Method::Radau5 | Method::Rodas5P | Method::Auto)
-    {
-        let algebraic: Vec<&str> = (0..M::STATES)
-            .filter(|&i| M::MASS.get(i) == Some(&0.0))
-            .map(|i| M::INFO.states[i])
-            .collect();
-        let which = if algebraic.is_empty() {
-            String::new()
-        } else {
-            format!(" (algebraic components {})", algebraic.join(", "))
-        };
-        return invalid(format!(
-            "{} has a singular mass matrix{which}: integrate it with Method::Radau5 (or Method::Auto, or Method::Rodas5P where it is of index 1)",
-            M::INFO.name,
         ));
     }
     let mass_form = options.formulation == crate::options::Formulation::MassMatrix

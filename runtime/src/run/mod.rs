@@ -4,19 +4,9 @@ mod checks;
 mod observables;
 
 use crate::error::Error;
-use crate::methods::adaptive::{self, EmbeddedPair, Stiffness};
-use crate::methods::auto;
-use crate::methods::backward_euler;
-use crate::methods::dop853::Dop853;
-use crate::methods::dopri5::Dopri5;
-use crate::methods::explicit_rk;
-use crate::methods::radau5;
-use crate::methods::rodas5p;
-use crate::methods::taylor;
-use crate::methods::taylor::fixed as taylor_fixed;
 use crate::methods::Problem;
 use crate::model::{has_mass_matrix, Model};
-use crate::options::{Method, Options};
+use crate::options::Options;
 use crate::solution::{InitialCorrection, Solution};
 
 /// Running a model: `model.simulate(t0, t1, &options)`, for every
@@ -75,36 +65,6 @@ fn formulation<M: Model>() -> &'static str {
     }
 }
 
-/// An explicit pair on its own: it stops with `Error::Stiff` where the
-/// problem turns stiff, unless told not to look.
-fn explicit_pair<M: Model, P: EmbeddedPair>(
-    problem: Problem<'_, M>,
-    solution: Solution,
-) -> Result<Solution, Error> {
-    let watch = problem.options.stiffness_detection;
-    let stiffness = if watch { Stiffness::Fail } else { Stiffness::Ignore };
-    adaptive::integrate::<M, P>(problem, stiffness, solution).map(|r| r.0)
-}
-
-fn method_name(method: Method) -> &'static str {
-    match method {
-        Method::Auto => "Auto",
-        Method::Taylor => "Taylor",
-        Method::TaylorFixed { .. } => "TaylorFixed",
-        Method::Euler => "Euler",
-        Method::BackwardEuler => "BackwardEuler",
-        Method::Rk4 => "Rk4",
-        Method::Rk38 => "Rk38",
-        Method::Midpoint => "Midpoint",
-        Method::Heun => "Heun",
-        Method::Ralston => "Ralston",
-        Method::Dopri5 => "Dopri5",
-        Method::Dop853 => "Dop853",
-        Method::Radau5 => "Radau5",
-        Method::Rodas5P => "Rodas5P",
-    }
-}
-
 /// Notes the method and formulation in the solution's statistics, on
 /// success and on failure alike.
 fn labelled<M: Model>(
@@ -148,7 +108,7 @@ pub fn simulate_from<M: Model + Clone + Send + Sync + 'static>(
     options: &Options,
 ) -> Result<Solution, Error> {
     let problem = Problem { model, t0, t1, y0, options };
-    labelled::<M>(checked_run(problem), method_name(options.method))
+    labelled::<M>(checked_run(problem), options.method.name())
 }
 
 /// The values initialization moved by more than `rtol·|given| + atol`.
@@ -275,41 +235,5 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     }
     solution.push_initial(t0, &y0);
     let problem = Problem { model, t0, t1, y0: &y0, options };
-    match options.method {
-        Method::Auto if has_mass_matrix::<M>() => {
-            // A singular mass matrix: only RADAU5 integrates it.
-            let mut solution = solution;
-            solution.stats_mut().method = "Radau5";
-            radau5::integrate(problem, solution)
-        }
-        Method::Auto => auto::integrate(problem, solution),
-        Method::Dopri5 => explicit_pair::<M, Dopri5>(problem, solution),
-        Method::Dop853 => explicit_pair::<M, Dop853>(problem, solution),
-        Method::Radau5 => radau5::integrate(problem, solution),
-        Method::Rodas5P => rodas5p::integrate(problem, solution),
-        Method::Taylor => taylor::integrate(problem, solution),
-        Method::TaylorFixed { .. } => taylor_fixed::integrate(problem, solution),
-        fixed => {
-            let step = options.step.unwrap_or((t1 - t0).abs() / 1000.0);
-            if !(step.is_finite() && step > 0.0) && t1 != t0 {
-                return Err(Error::InvalidOptions {
-                    message: format!("the step must be positive and finite, not {step}"),
-                });
-            }
-            let (steps, solution) = crate::step::equal_steps(t0, t1, step, options, solution)?;
-            let tableau = match fixed {
-                Method::Rk4 => &explicit_rk::RK4,
-                Method::Rk38 => &explicit_rk::RK38,
-                Method::Euler => &explicit_rk::EULER,
-                Method::Midpoint => &explicit_rk::MIDPOINT,
-                Method::Heun => &explicit_rk::HEUN,
-                Method::Ralston => &explicit_rk::RALSTON,
-                Method::BackwardEuler => {
-                    return backward_euler::integrate(problem, steps, solution)
-                }
-                other => return Err(Error::MethodNotAvailable { method: other }),
-            };
-            explicit_rk::integrate(model, tableau, t0, t1, &y0, steps, solution)
-        }
-    }
+    crate::methods::integrator::<M>(options.method)(problem, solution)
 }

@@ -127,7 +127,7 @@ impl DenseJacobian {
         let n = M::STATES;
         if self.analytic {
             let values = &self.values;
-            crate::methods::stiffness::spectral_radius(v, w, |v, w| {
+            crate::linalg::spectral_radius(v, w, |v, w| {
                 w.fill(0.0);
                 for (&(r, c), &value) in M::JACOBIAN_PATTERN.iter().zip(values) {
                     w[r] += value * v[c];
@@ -135,7 +135,7 @@ impl DenseJacobian {
             })
         } else {
             let matrix = &self.matrix;
-            crate::methods::stiffness::spectral_radius(v, w, |v, w| {
+            crate::linalg::spectral_radius(v, w, |v, w| {
                 for (i, wi) in w.iter_mut().enumerate() {
                     *wi = matrix[i * n..(i + 1) * n].iter().zip(v.iter()).map(|(a, b)| a * b).sum();
                 }

@@ -6,7 +6,6 @@
 //! method's (`mod.rs`); the step is the least of the lanes' steps.
 
 use super::order::{choose_order, step_factor, JetCost};
-use super::tape::{Tape, TapeOp, TaylorWork};
 use super::{horner_by_coefficient, interpolate};
 use crate::error::Error;
 use crate::lanes::Lanes;
@@ -14,6 +13,7 @@ use crate::methods::Problem;
 use crate::model::Model;
 use crate::options::Options;
 use crate::solution::Solution;
+use crate::taylor_tape::{Tape, TapeOp, TaylorWork};
 
 /// Integrates the batch `model` from `t0` to `t1`, its members' tapes
 /// stepped together on lanes.
@@ -23,13 +23,9 @@ pub(crate) fn integrate<M: Model>(
 ) -> Result<Solution, Error> {
     let Problem { model, t0, t1, y0, options } = problem;
     let Some(tapes) = model.taylor_member_tapes() else {
-        return Err(Error::InvalidOptions {
-            message: format!(
-                "Method::Taylor is not available for {}: {}. Use Method::Dop853 for a non-stiff run at tight tolerances, or Method::Radau5 for a stiff model",
-                M::INFO.name,
-                if M::TAYLOR_UNAVAILABLE.is_empty() { "its members have no Taylor tape" } else { M::TAYLOR_UNAVAILABLE }
-            ),
-        });
+        // Members with their reason are refused before the run.
+        let message = crate::methods::taylor_refusal::<M>("its members have no Taylor tape");
+        return Err(Error::InvalidOptions { message });
     };
     let run = Batch { tapes: &tapes, states: M::STATES / M::LANES, t0, t1, y0, options };
     run.integrate(M::INFO.states, solution)
@@ -294,7 +290,7 @@ fn gather<const W: usize>(constants: &[Vec<f64>]) -> impl FnMut(&f64) -> Lanes<W
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::methods::taylor::tape::Operand;
+    use crate::taylor_tape::Operand;
 
     /// Lanes of one tape with different constants give each lane the
     /// coefficients its own tape gives alone, to the bit: y' = −k·y + c

@@ -1,6 +1,6 @@
 //! The adaptive Taylor method (Jorba & Zou 2005, as in heyoka's
 //! `taylor_determine_h`): coefficients from the model's AD tape
-//! (`taylor_tape.rs`) or the macro's straight-line recurrences, the order
+//! (`taylor_tape`) or the macro's straight-line recurrences, the order
 //! of least work per unit time for the tolerance (`taylor_order.rs`;
 //! Jorba & Zou's p₀ = ⌈−ln(tol)/2 + 1⌉ when the convolutions dominate),
 //! step h = min(ρ_{p−1}, ρ_p)·[`step_factor`] with
@@ -9,22 +9,24 @@
 //! rejected. Time is summed with compensation, and each step's polynomial
 //! is the dense output.
 
-pub mod coefficient;
 pub(crate) mod fixed;
 pub(crate) mod lanes;
 pub mod order;
 pub mod series;
-pub mod tape;
+
+// The tape lies below the model, which hands it over; the method reads it here.
+pub use crate::taylor_tape as tape;
+pub use crate::taylor_tape::coefficient;
 
 use crate::error::Error;
 use crate::methods::taylor::order::{choose_order, step_factor, JetCost};
-use crate::methods::taylor::tape::{mul_add, TaylorWork};
 use crate::methods::Problem;
 use crate::model::Model;
 use crate::solution::Solution;
 use crate::step::events::{after_accepted_step, EventWatch};
 use crate::step::projection::{project_onto_constraints, Projector};
 use crate::step::return_if_not_finite;
+use crate::taylor_tape::{mul_add, TaylorWork};
 
 /// Sub-intervals of each step on which event functions are checked for a
 /// sign change.
@@ -261,17 +263,10 @@ pub(crate) fn integrate<M: Model>(
     // One function for the step loop: the order, the step-size rule, the compensated time and
     // the dense output act on the same step.
     let Some((tape, outputs)) = model.taylor_tape() else {
-        let reason = if M::TAYLOR_UNAVAILABLE.is_empty() {
-            "it has no Taylor tape"
-        } else {
-            M::TAYLOR_UNAVAILABLE
-        };
-        return Err(Error::InvalidOptions {
-            message: format!(
-                "Method::Taylor is not available for {}: {reason}. Use Method::Dop853 for a non-stiff run at tight tolerances (Method::Auto switches to Radau5 where it turns stiff), or Method::Radau5 for a stiff model",
-                M::INFO.name
-            ),
-        });
+        // A model with its reason is refused before the run; this one
+        // hands over no tape and gives none.
+        let message = crate::methods::taylor_refusal::<M>("it has no Taylor tape");
+        return Err(Error::InvalidOptions { message });
     };
     let n = M::STATES;
     let tol = if options.rtol > 0.0 { options.rtol } else { options.atol };
@@ -304,7 +299,7 @@ pub(crate) fn integrate<M: Model>(
     let hmax = options.max_step.unwrap_or(f64::INFINITY);
     let safety = step_factor(tol, p);
     let (inv_pm1, inv_p) = (1.0 / (p - 1) as f64, 1.0 / p as f64);
-    let measured = options.error_states::<M>();
+    let measured = crate::methods::error_states::<M>(options);
     let (mut t, mut compensation, mut steps) = (t0, 0.0f64, 0usize);
     while (t1 - t) * direction > 0.0 {
         if steps >= options.max_steps {

@@ -19,8 +19,8 @@
 //! the less that estimate errs on the safe side. For the same reason the
 //! step stays within [`MAX_STEP_FACTOR`]·ρ, which bounds the order.
 
-use crate::methods::taylor::tape::{Operand, TapeOp};
 use crate::model::Model;
+use crate::taylor_tape::{Operand, TapeOp};
 
 /// The fixed work of a step (the norms and logarithms of the step-size
 /// rule, the bookkeeping), in multiply-adds of the jet. Measured on Kepler

@@ -6,7 +6,9 @@
 //! sin/cos as a pair. This is the compact layout: one loop over the tape
 //! per order, the same code for every model.
 
-use super::coefficient::Coefficient;
+pub mod coefficient;
+
+use coefficient::Coefficient;
 
 /// `a·b + c`, fused (one rounding, one instruction) where the target has
 /// FMA, as the straight-line recurrences emitted by `#[dae_model(unroll =
