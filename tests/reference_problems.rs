@@ -222,6 +222,20 @@ fn every_method_meets_every_reference_within_its_bound() {
         tables.iter().find(|(n, _)| *n == name).map(|(_, t)| t.clone()).unwrap_or_default()
     };
     insta::assert_snapshot!(table("kepler"), @r"
+Auto (Dopri5)         1e-6      52 steps   17 rejected    416 f    0 J
+Auto (Dop853)         1e-8      42 steps   17 rejected    836 f    0 J
+Auto (Dop853)         1e-10     70 steps   30 rejected   1412 f    0 J
+Taylor                1e-6      50 steps    0 rejected     50 f    0 J
+Taylor                1e-8      49 steps    0 rejected     49 f    0 J
+Taylor                1e-10     51 steps    0 rejected     51 f    0 J
+TaylorFixed           refused: TaylorFixed of order 4 needs the model expanded with #[dae_model(taylor = 4)] or higher; it has 0
+Euler                 h       1000 steps    0 rejected   1000 f    0 J
+BackwardEuler         h      Error::StepSizeUnderflow at t = 5.165e0
+Rk4                   h       1000 steps    0 rejected   4000 f    0 J
+Rk38                  h       1000 steps    0 rejected   4000 f    0 J
+Midpoint              h       1000 steps    0 rejected   2000 f    0 J
+Heun                  h       1000 steps    0 rejected   2000 f    0 J
+Ralston               h       1000 steps    0 rejected   2000 f    0 J
 Dopri5                1e-6      52 steps   17 rejected    416 f    0 J
 Dopri5                1e-8     118 steps    9 rejected    764 f    0 J
 Dopri5                1e-10    294 steps    1 rejected   1772 f    0 J
@@ -234,39 +248,78 @@ Radau5                1e-10    390 steps    0 rejected   2718 f   42 J
 Rodas5P               1e-6      78 steps    1 rejected    631 f   78 J
 Rodas5P               1e-8     181 steps    0 rejected   1448 f  181 J
 Rodas5P               1e-10    442 steps    0 rejected   3536 f  442 J
-Taylor                1e-6      50 steps    0 rejected     50 f    0 J
-Taylor                1e-8      49 steps    0 rejected     49 f    0 J
-Taylor                1e-10     51 steps    0 rejected     51 f    0 J
-Auto (Dopri5)         1e-6      52 steps   17 rejected    416 f    0 J
-Auto (Dop853)         1e-8      42 steps   17 rejected    836 f    0 J
-Auto (Dop853)         1e-10     70 steps   30 rejected   1412 f    0 J
     ");
     insta::assert_snapshot!(table("arenstorf"), @r"
+Auto (Dopri5)         1e-7     216 steps   24 rejected   1442 f    0 J
+Auto (Dop853)         1e-9     136 steps   50 rejected   2642 f    0 J
+Auto (Dop853)         1e-11    229 steps   69 rejected   4265 f    0 J
+Taylor                1e-7     138 steps    0 rejected    138 f    0 J
+Taylor                1e-9     145 steps    0 rejected    145 f    0 J
+Taylor                1e-11    125 steps    0 rejected    125 f    0 J
+TaylorFixed           refused: TaylorFixed of order 4 needs the model expanded with #[dae_model(taylor = 4)] or higher; it has 0
+Euler                 h       1001 steps    0 rejected   1001 f    0 J
+BackwardEuler         h      Error::StepSizeUnderflow at t = 1.341e1
+Rk4                   h       1001 steps    0 rejected   4004 f    0 J
+Rk38                  h       1001 steps    0 rejected   4004 f    0 J
+Midpoint              h       1001 steps    0 rejected   2002 f    0 J
+Heun                  h       1001 steps    0 rejected   2002 f    0 J
+Ralston               h       1001 steps    0 rejected   2002 f    0 J
 Dopri5                1e-7     216 steps   24 rejected   1442 f    0 J
 Dopri5                1e-9     530 steps    5 rejected   3212 f    0 J
 Dopri5                1e-11   1333 steps    2 rejected   8012 f    0 J
 Dop853                1e-7      83 steps   33 rejected   1643 f    0 J
 Dop853                1e-9     136 steps   50 rejected   2642 f    0 J
 Dop853                1e-11    229 steps   69 rejected   4265 f    0 J
-Taylor                1e-7     138 steps    0 rejected    138 f    0 J
-Taylor                1e-9     145 steps    0 rejected    145 f    0 J
-Taylor                1e-11    125 steps    0 rejected    125 f    0 J
-Auto (Dopri5)         1e-7     216 steps   24 rejected   1442 f    0 J
-Auto (Dop853)         1e-9     136 steps   50 rejected   2642 f    0 J
-Auto (Dop853)         1e-11    229 steps   69 rejected   4265 f    0 J
+Radau5                1e-7     303 steps    0 rejected   2112 f  265 J
+Radau5                1e-9     650 steps    0 rejected   4544 f  241 J
+Radau5                1e-11   1409 steps    0 rejected   9857 f  135 J
+Rodas5P               1e-7     340 steps    2 rejected   2734 f  340 J
+Rodas5P               1e-9     836 steps    0 rejected   6688 f  836 J
+Rodas5P               1e-11   2083 steps    0 rejected  16664 f 2083 J
     ");
     insta::assert_snapshot!(table("lorenz"), @r"
+Auto (Dop853)         1e-8     401 steps  112 rejected   7361 f    0 J
+Auto (Dop853)         1e-10    693 steps   62 rejected  11141 f    0 J
+Auto (Dop853)         1e-12   1228 steps   46 rejected  18974 f    0 J
+Taylor                1e-8     352 steps    0 rejected    352 f    0 J
+Taylor                1e-10    364 steps    0 rejected    364 f    0 J
+Taylor                1e-12    374 steps    0 rejected    374 f    0 J
+TaylorFixed           refused: TaylorFixed of order 4 needs the model expanded with #[dae_model(taylor = 4)] or higher; it has 0
+Euler                 h       1000 steps    0 rejected   1000 f    0 J
+BackwardEuler         h       1787 steps  929 rejected  10040 f 6276 J
+Rk4                   h       1000 steps    0 rejected   4000 f    0 J
+Rk38                  h       1000 steps    0 rejected   4000 f    0 J
+Midpoint              h       1000 steps    0 rejected   2000 f    0 J
+Heun                  h       1000 steps    0 rejected   2000 f    0 J
+Ralston               h       1000 steps    0 rejected   2000 f    0 J
 Dopri5                1e-8    1713 steps    3 rejected  10298 f    0 J
 Dopri5                1e-10   4279 steps    0 rejected  25676 f    0 J
 Dopri5                1e-12  10731 steps    0 rejected  64388 f    0 J
 Dop853                1e-8     401 steps  112 rejected   7361 f    0 J
 Dop853                1e-10    693 steps   62 rejected  11141 f    0 J
 Dop853                1e-12   1228 steps   46 rejected  18974 f    0 J
-Taylor                1e-8     352 steps    0 rejected    352 f    0 J
-Taylor                1e-10    364 steps    0 rejected    364 f    0 J
-Taylor                1e-12    374 steps    0 rejected    374 f    0 J
+Radau5                1e-8    2070 steps    2 rejected  14508 f 1080 J
+Radau5                1e-10   4492 steps    0 rejected  31435 f  691 J
+Radau5                1e-12   9741 steps    0 rejected  68178 f  365 J
+Rodas5P               1e-8    2452 steps    3 rejected  19637 f 2452 J
+Rodas5P               1e-10   6144 steps    1 rejected  49159 f 6144 J
+Rodas5P               1e-12  15432 steps    1 rejected 123463 f 15432 J
     ");
     insta::assert_snapshot!(table("cash_pendulum"), @r"
+Auto (Dopri5)         1e-6      60 steps    4 rejected    446 f    0 J
+Auto (Dop853)         1e-8      37 steps    6 rejected    666 f    0 J
+Auto (Dop853)         1e-10     63 steps   10 rejected   1130 f    0 J
+Taylor                1e-6      42 steps    0 rejected     42 f    0 J
+Taylor                1e-8      36 steps    0 rejected     36 f    0 J
+Taylor                1e-10     37 steps    0 rejected     37 f    0 J
+TaylorFixed           refused: TaylorFixed of order 4 needs the model expanded with #[dae_model(taylor = 4)] or higher; it has 0
+Euler                 h       1000 steps    0 rejected   1000 f    0 J
+BackwardEuler         h       1027 steps   31 rejected   3323 f 2112 J
+Rk4                   h       1000 steps    0 rejected   4000 f    0 J
+Rk38                  h       1000 steps    0 rejected   4000 f    0 J
+Midpoint              h       1000 steps    0 rejected   2000 f    0 J
+Heun                  h       1000 steps    0 rejected   2000 f    0 J
+Ralston               h       1000 steps    0 rejected   2000 f    0 J
 Dopri5                1e-6      60 steps    4 rejected    446 f    0 J
 Dopri5                1e-8     144 steps    0 rejected   1010 f    0 J
 Dopri5                1e-10    359 steps    0 rejected   2515 f    0 J
@@ -279,56 +332,115 @@ Radau5                1e-10    410 steps    0 rejected   2858 f  111 J
 Rodas5P               1e-6      95 steps    2 rejected    774 f   95 J
 Rodas5P               1e-8     218 steps    3 rejected   1765 f  218 J
 Rodas5P               1e-10    530 steps    0 rejected   4240 f  530 J
-Taylor                1e-6      42 steps    0 rejected     42 f    0 J
-Taylor                1e-8      36 steps    0 rejected     36 f    0 J
-Taylor                1e-10     37 steps    0 rejected     37 f    0 J
-Auto (Dopri5)         1e-6      60 steps    4 rejected    446 f    0 J
-Auto (Dop853)         1e-8      37 steps    6 rejected    666 f    0 J
-Auto (Dop853)         1e-10     63 steps   10 rejected   1130 f    0 J
     ");
     insta::assert_snapshot!(table("van_der_pol"), @r"
+Auto (Dopri5⇄Radau5)  1e-5     264 steps   50 rejected   2552 f   62 J
+Auto (Dopri5⇄Radau5)  1e-7     623 steps   19 rejected   4758 f  114 J
+Auto (Dop853⇄Radau5)  1e-9     522 steps   86 rejected   7781 f  269 J
+Taylor                1e-5   Error::MaxSteps at t = 7.435e-2
+Taylor                1e-7   Error::MaxSteps at t = 1.017e-1
+Taylor                1e-9   Error::MaxSteps at t = 1.155e-1
+TaylorFixed           refused: TaylorFixed of order 4 needs the model expanded with #[dae_model(taylor = 4)] or higher; it has 0
+Euler                 h      Error::NonFinite at t = 1.400e-2
+BackwardEuler         h       1869 steps  877 rejected  15896 f 6771 J
+Rk4                   h      Error::NonFinite at t = 4.000e-3
+Rk38                  h      Error::NonFinite at t = 4.000e-3
+Midpoint              h      Error::NonFinite at t = 6.000e-3
+Heun                  h      Error::NonFinite at t = 6.000e-3
+Ralston               h      Error::NonFinite at t = 6.000e-3
+Dopri5                1e-5   Error::Stiff at t = 2.818e-5
+Dopri5                1e-7   Error::Stiff at t = 3.180e-5
+Dopri5                1e-9   Error::Stiff at t = 2.712e-5
+Dop853                1e-5   Error::Stiff at t = 4.053e-5
+Dop853                1e-7   Error::Stiff at t = 4.053e-5
+Dop853                1e-9   Error::Stiff at t = 4.838e-5
 Radau5                1e-5     339 steps    8 rejected   2962 f  222 J
 Radau5                1e-7     711 steps    8 rejected   5735 f  434 J
 Radau5                1e-9    1538 steps    4 rejected  11908 f  530 J
 Rodas5P               1e-5     350 steps   20 rejected   2954 f  350 J
 Rodas5P               1e-7    1097 steps   11 rejected   8867 f 1097 J
 Rodas5P               1e-9    3665 steps   11 rejected  29418 f 3665 J
-Auto (Dopri5⇄Radau5)  1e-5     264 steps   50 rejected   2552 f   62 J
-Auto (Dopri5⇄Radau5)  1e-7     623 steps   19 rejected   4758 f  114 J
-Auto (Dop853⇄Radau5)  1e-9     522 steps   86 rejected   7781 f  269 J
 Rodas5P GMRES         1e-5     351 steps   17 rejected   2941 f  351 J  2929 GMRES it
 Rodas5P GMRES         1e-7    1097 steps   13 rejected   8881 f 1097 J  8868 GMRES it
 Rodas5P GMRES         1e-9    3666 steps   12 rejected  29433 f 3666 J 29429 GMRES it
     ");
     insta::assert_snapshot!(table("robertson"), @r"
+Auto (Dopri5→Radau5)  1e-6     299 steps    1 rejected   2189 f  253 J
+Auto (Dop853→Radau5)  1e-8     566 steps    4 rejected   4552 f  357 J
+Auto (Dop853→Radau5)  1e-10   1193 steps    3 rejected   9369 f  485 J
+Taylor                1e-6   Error::MaxSteps at t = 7.670e1
+Taylor                1e-8   Error::MaxSteps at t = 9.613e1
+Taylor                1e-10  Error::MaxSteps at t = 1.051e2
+TaylorFixed           refused: TaylorFixed of order 4 needs the model expanded with #[dae_model(taylor = 4)] or higher; it has 0
+Euler                 h      Error::NonFinite at t = 4.000e8
+BackwardEuler         h      Error::StepSizeUnderflow at t = 0.000e0
+Rk4                   h      Error::NonFinite at t = 1.000e8
+Rk38                  h      Error::NonFinite at t = 1.000e8
+Midpoint              h      Error::NonFinite at t = 2.000e8
+Heun                  h      Error::NonFinite at t = 2.000e8
+Ralston               h      Error::NonFinite at t = 2.000e8
+Dopri5                1e-6   Error::Stiff at t = 3.811e-2
+Dopri5                1e-8   Error::Stiff at t = 5.529e0
+Dopri5                1e-10  Error::Stiff at t = 4.118e1
+Dop853                1e-6   Error::Stiff at t = 6.063e-2
+Dop853                1e-8   Error::Stiff at t = 6.147e-2
+Dop853                1e-10  Error::Stiff at t = 7.932e0
 Radau5                1e-6     299 steps    2 rejected   2222 f  279 J
 Radau5                1e-8     620 steps    2 rejected   4655 f  376 J
 Radau5                1e-10   1326 steps    2 rejected   9960 f  499 J
 Rodas5P               1e-6     284 steps    2 rejected   2286 f  284 J
 Rodas5P               1e-8     723 steps    3 rejected   5805 f  723 J
 Rodas5P               1e-10   2405 steps    9 rejected  19303 f 2405 J
-Auto (Dopri5→Radau5)  1e-6     299 steps    1 rejected   2189 f  253 J
-Auto (Dop853→Radau5)  1e-8     566 steps    4 rejected   4552 f  357 J
-Auto (Dop853→Radau5)  1e-10   1193 steps    3 rejected   9369 f  485 J
 Rodas5P GMRES         1e-6     284 steps    2 rejected   2286 f  284 J  2284 GMRES it
 Rodas5P GMRES         1e-8     723 steps    3 rejected   5805 f  723 J  5807 GMRES it
 Rodas5P GMRES         1e-10   2406 steps   10 rejected  19318 f 2406 J 19328 GMRES it
     ");
     insta::assert_snapshot!(table("hires"), @r"
+Auto (Dopri5→Radau5)  1e-6     328 steps    2 rejected   2299 f   24 J
+Auto (Dop853→Radau5)  1e-8     181 steps    4 rejected   2089 f   79 J
+Auto (Dop853→Radau5)  1e-10    473 steps    6 rejected   5692 f  124 J
+Taylor                1e-6    6792 steps    0 rejected   6792 f    0 J
+Taylor                1e-8    5240 steps    0 rejected   5240 f    0 J
+Taylor                1e-10   4705 steps    0 rejected   4705 f    0 J
+TaylorFixed           refused: TaylorFixed of order 4 needs the model expanded with #[dae_model(taylor = 4)] or higher; it has 0
+Euler                 h      Error::NonFinite at t = 3.858e0
+BackwardEuler         h       1909 steps  920 rejected  11068 f 7931 J
+Rk4                   h      Error::NonFinite at t = 1.286e0
+Rk38                  h      Error::NonFinite at t = 1.286e0
+Midpoint              h      Error::NonFinite at t = 1.929e0
+Heun                  h      Error::NonFinite at t = 1.929e0
+Ralston               h      Error::NonFinite at t = 1.929e0
+Dopri5                1e-6   Error::Stiff at t = 6.596e0
+Dopri5                1e-8   Error::Stiff at t = 1.585e1
+Dopri5                1e-10  19199 steps    0 rejected 115196 f    0 J
+Dop853                1e-6   Error::Stiff at t = 3.549e0
+Dop853                1e-8   Error::Stiff at t = 5.656e0
+Dop853                1e-10  Error::Stiff at t = 9.790e0
 Radau5                1e-6     117 steps    2 rejected   1140 f   73 J
 Radau5                1e-8     235 steps    1 rejected   2050 f  134 J
 Radau5                1e-10    501 steps    1 rejected   4110 f  229 J
 Rodas5P               1e-6     212 steps    1 rejected   1703 f  212 J
 Rodas5P               1e-8     787 steps    4 rejected   6324 f  787 J
 Rodas5P               1e-10   2854 steps    4 rejected  22860 f 2854 J
-Auto (Dopri5→Radau5)  1e-6     328 steps    2 rejected   2299 f   24 J
-Auto (Dop853→Radau5)  1e-8     181 steps    4 rejected   2089 f   79 J
-Auto (Dop853→Radau5)  1e-10    473 steps    6 rejected   5692 f  124 J
 Rodas5P GMRES         1e-6     212 steps    1 rejected   1703 f  212 J  3642 GMRES it
 Rodas5P GMRES         1e-8     787 steps    4 rejected   6324 f  787 J 13679 GMRES it
 Rodas5P GMRES         1e-10   2854 steps    4 rejected  22860 f 2854 J 49637 GMRES it
     ");
     insta::assert_snapshot!(table("low_pass"), @r"
+Auto (Dopri5→Radau5)  1e-6      61 steps    9 rejected    352 f   10 J
+Auto (Dop853→Radau5)  1e-8     101 steps    7 rejected    714 f    8 J
+Auto (Dop853→Radau5)  1e-10    223 steps    4 rejected   1424 f    5 J
+Taylor                1e-6     497 steps    0 rejected    497 f    0 J
+Taylor                1e-8     385 steps    0 rejected    385 f    0 J
+Taylor                1e-10    347 steps    0 rejected    347 f    0 J
+TaylorFixed           refused: TaylorFixed of order 4 needs the model expanded with #[dae_model(taylor = 4)] or higher; it has 0
+Euler                 h       1000 steps    0 rejected   1000 f    0 J
+BackwardEuler         h       1399 steps  401 rejected   5319 f 3518 J
+Rk4                   h       1000 steps    0 rejected   4000 f    0 J
+Rk38                  h       1000 steps    0 rejected   4000 f    0 J
+Midpoint              h       1000 steps    0 rejected   2000 f    0 J
+Heun                  h       1000 steps    0 rejected   2000 f    0 J
+Ralston               h       1000 steps    0 rejected   2000 f    0 J
 Dopri5                1e-6    1361 steps    4 rejected   8192 f    0 J
 Dopri5                1e-8    3116 steps    6 rejected  18734 f    0 J
 Dopri5                1e-10   7504 steps    7 rejected  45068 f    0 J
@@ -341,9 +453,6 @@ Radau5                1e-10    222 steps    8 rejected   1127 f    9 J
 Rodas5P               1e-6      83 steps    5 rejected    699 f   83 J
 Rodas5P               1e-8     275 steps    4 rejected   2228 f  275 J
 Rodas5P               1e-10    830 steps    4 rejected   6668 f  830 J
-Auto (Dopri5→Radau5)  1e-6      61 steps    9 rejected    352 f   10 J
-Auto (Dop853→Radau5)  1e-8     101 steps    7 rejected    714 f    8 J
-Auto (Dop853→Radau5)  1e-10    223 steps    4 rejected   1424 f    5 J
 Rodas5P GMRES         1e-6      82 steps    4 rejected    684 f   82 J   683 GMRES it
 Rodas5P GMRES         1e-8     275 steps    4 rejected   2228 f  275 J  2228 GMRES it
 Rodas5P GMRES         1e-10    830 steps    5 rejected   6675 f  830 J  6677 GMRES it
