@@ -101,6 +101,53 @@ pub fn fixed_step_methods() -> impl Iterator<Item = Method> {
     Method::ALL.into_iter().filter(|&m| !is_adaptive(m))
 }
 
+/// Whether `method` is an adaptive explicit pair (DOPRI5, DOP853): an
+/// error estimate from an embedded formula and a stiffness test.
+pub fn is_explicit_pair(method: Method) -> bool {
+    kind(method) == Kind::ExplicitPair
+}
+
+/// Whether `method` is adaptive and stable on stiff problems (RADAU5,
+/// RODAS5P, and `Auto`, which switches to them).
+pub fn is_stiff_method(method: Method) -> bool {
+    kind(method) == Kind::Stiff
+}
+
+/// Whether `method` solves a linear system with the Jacobian every step
+/// (a Newton iteration or a Rosenbrock stage): the stiff methods and the
+/// A-stable fixed-step ones (backward Euler).
+pub fn is_implicit(method: Method) -> bool {
+    match kind(method) {
+        Kind::Stiff => true,
+        Kind::FixedStep { boundary, .. } => boundary.is_infinite(),
+        Kind::ExplicitPair | Kind::Taylor => false,
+    }
+}
+
+/// Whether `method` steps a non-stiff problem at a tight tolerance (rtol
+/// 1e-10 and below) with a formula of order 8 or more: DOP853, the
+/// adaptive Taylor method (whose order grows with the digits asked), and
+/// `Auto`, whose pair is DOP853 below rtol 1e-7. Not DOPRI5, RADAU5 and
+/// RODAS5P (order 5) nor the fixed-step methods: where a test asks for
+/// nearly every digit over a long run, their error grows past it.
+pub fn is_high_order_at_tight_tolerances(method: Method) -> bool {
+    matches!(method, Method::Dop853 | Method::Taylor | Method::Auto)
+}
+
+/// The methods of [`Method::ALL`] that run models of type `M` (those
+/// [`Method::refusal`] does not refuse for `M`) and satisfy `keep`, in the
+/// order of [`Method::ALL`]. A test that means "every method of some
+/// class that runs this model" lists its methods by this, so that a method
+/// added to [`Method::ALL`] is tested wherever it qualifies.
+pub fn methods_for<M: Model>(keep: impl Fn(Method) -> bool) -> Vec<Method> {
+    Method::ALL.into_iter().filter(|&m| m.refusal::<M>().is_none() && keep(m)).collect()
+}
+
+/// Every adaptive method (see [`is_adaptive`]) that runs models of type `M`.
+pub fn adaptive_methods_for<M: Model>() -> Vec<Method> {
+    methods_for::<M>(is_adaptive)
+}
+
 /// Most steps any run of the harness may take: above the longest run
 /// that meets its bound (Dopri5 on Lorenz at 1e-12, about 11 000), so that
 /// a Taylor run held by stiffness stops early.
