@@ -127,7 +127,7 @@ example_1_1!(expansion_test! {
 include!("models/n_body.rs");
 
 gravitating_bodies!(@then expansion_test {
-    three_body_with_state_arrays_and_loops, (), ["ThreeBody::rhs", "ThreeBody::JACOBIAN_PATTERN"],
+    three_body_with_state_arrays_and_loops, (), ["ThreeBody::rhs", "ThreeBody::JACOBIAN"],
 } fn three_body(planar) {
     const N: usize = 3;
     let g = param(1.0);
@@ -331,7 +331,7 @@ expansion_test! {
     /// equation without derivatives (differentiated once: index 1). The
     /// capacitance divides the combination, so a run checks it is not zero
     /// (`degenerate_parameters`); the mass-matrix form keeps the singular
-    /// matrix as written (`MASS_PATTERN`).
+    /// matrix as written (`MassMatrix::Pattern`).
     a_capacitor_between_two_nodes_combines_their_equations, (), ["TwoNodes::rhs", "TwoNodes::degenerate_parameters", "TwoNodes::CONSTRAINTS", "TwoNodesMassForm::mass_values"],
     fn two_nodes() {
         let c = param(1e-6);

@@ -242,7 +242,8 @@ impl Model for SkewOscillators {
         algebraics: &[],
         algebraic_docs: &[],
     };
-    const JACOBIAN_PATTERN: &'static [(usize, usize)] = &SKEW_PATTERN;
+    const JACOBIAN: daegen::Jacobian =
+        daegen::Jacobian::Symbolic { pattern: &SKEW_PATTERN, time_derivative: true };
     fn initial_state(&self, y: &mut [f64]) {
         for (i, v) in y.iter_mut().enumerate() {
             *v = (i as f64).sin();

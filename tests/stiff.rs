@@ -329,7 +329,7 @@ fn a_banded_newton_solve_follows_the_exact_damped_mode() {
     use daegen::runtime::band_lu::BandOrdering;
     let n = <DampedString as Model>::STATES;
     let ordering =
-        BandOrdering::reverse_cuthill_mckee(n, <DampedString as Model>::JACOBIAN_PATTERN);
+        BandOrdering::reverse_cuthill_mckee(n, <DampedString as Model>::JACOBIAN.pattern());
     assert!(ordering.pays(), "the banded path is the one tested: {ordering:?}");
     // Start in the first mode v_j = sin(jπ/51) at rest: it stays in that
     // mode, q(t) = v·(A e^(s1 t) + B e^(s2 t)) with s² + c s − λ = 0,

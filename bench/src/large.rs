@@ -278,11 +278,11 @@ fn report<M: Benchmark>(title: &str, problem: &Large<M>, failed_checks: &mut usi
         }
         Err(e) => (format!("failed: {e}"), "–".into()),
     };
-    let (ml, mu) = sundials::cvode::bandwidths(M::JACOBIAN_PATTERN);
+    let (ml, mu) = sundials::cvode::bandwidths(M::JACOBIAN.pattern());
     text.push_str(&format!(
         "{} states, {} Jacobian non-zeros (bandwidths {ml} below, {mu} above). Macro expansion {expand}; rustc -C opt-level=3 on the generated code and a function that runs it {rustc}.\n\n",
         M::STATES,
-        M::JACOBIAN_PATTERN.len()
+        M::JACOBIAN.pattern().len()
     ));
     eprintln!("large: {title}: reference");
     let reference = problem.ours((Method::Radau5, LinearSolver::Direct), 1e-11).map(|(y, _)| y);

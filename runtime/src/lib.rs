@@ -3,7 +3,8 @@
 //! [`Solution`], [`Error`]), the integrators, and small numerical helpers the
 //! generated code calls.
 //!
-//! Layout: [`model`] and [`info`] are what a model gives (with the
+//! Layout: [`model`] and [`info`] are what a model gives, by capability
+//! (a core, then groups each led by one typed descriptor, with the
 //! [`taylor_tape`] it hands to the Taylor method); `run` checks a request,
 //! asks [`Method::refusal`] whether the method runs the model, and hands
 //! it to the method's module, every one through the same entry point; the
@@ -44,7 +45,7 @@ pub use step::control as step_control;
 pub use ensemble::{Batch, Ensemble, FinalState, FinalStates, Shard};
 pub use error::Error;
 pub use info::{ConstraintInfo, EvalError, EventDirection, EventInfo, ModelInfo, ProjectionLevel};
-pub use model::{Model, StateVector};
+pub use model::{Availability, Jacobian, MassMatrix, Model, StateVector};
 /// The linear-algebra crate of [`kinematics`], re-exported so users get the
 /// same version.
 pub use nalgebra;

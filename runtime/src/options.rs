@@ -18,7 +18,7 @@ pub enum Method {
     /// Taylor series with adaptive order and step (Jorba–Zou; heyoka's
     /// step rule) from the model's AD tape, which every explicit model
     /// with a smooth right-hand side has (others refuse the run with the
-    /// reason, `Model::TAYLOR_UNAVAILABLE`).
+    /// reason, `Model::TAYLOR_TAPE`).
     Taylor,
     /// The economic Taylor scheme of the given order with a fixed step
     /// (course notes §1.3.1); the model must be expanded with

@@ -118,13 +118,13 @@ impl Runner {
                 }
             };
             let jacobian = |t: f64, y: &[f64], j: &mut [f64]| {
-                let mut values = vec![0.0; M::JACOBIAN_PATTERN.len()];
+                let mut values = vec![0.0; M::JACOBIAN.pattern().len()];
                 j.iter_mut().for_each(|v| *v = 0.0);
                 if model.jacobian(t, y, &mut values).is_err() {
                     j.iter_mut().for_each(|v| *v = f64::NAN);
                     return;
                 }
-                for (&(r, c), v) in M::JACOBIAN_PATTERN.iter().zip(values) {
+                for (&(r, c), v) in M::JACOBIAN.pattern().iter().zip(values) {
                     j[r * n + c] = v;
                 }
             };

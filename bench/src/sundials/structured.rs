@@ -1,5 +1,5 @@
 //! A daegen model as a CVODE system: its generated right-hand side and
-//! sparse Jacobian (`Model::jacobian`, in `JACOBIAN_PATTERN` order), as a
+//! sparse Jacobian (`Model::jacobian`, in the `Model::JACOBIAN` pattern's order), as a
 //! user of CVODE with a hand-written sparse Jacobian would give them.
 
 use super::cvode::System;
@@ -16,7 +16,7 @@ impl<M: Model> System for ModelSystem<'_, M> {
         self.0.rhs(t, y, dy).is_ok()
     }
     fn pattern(&self) -> &[(usize, usize)] {
-        M::JACOBIAN_PATTERN
+        M::JACOBIAN.pattern()
     }
     fn jacobian(&mut self, t: f64, y: &[f64], values: &mut [f64]) -> bool {
         self.0.jacobian(t, y, values).is_ok()

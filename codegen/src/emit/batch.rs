@@ -111,7 +111,7 @@ pub(crate) fn batch_items(
             type State = [f64; #nl_lit];
             const INDEX: usize = 0;
             const LANES: usize = #l_lit;
-            const TAYLOR_UNAVAILABLE: &'static str = <#name as ::daegen::Model>::TAYLOR_UNAVAILABLE;
+            const TAYLOR_TAPE: ::daegen::Availability = <#name as ::daegen::Model>::TAYLOR_TAPE;
             const INFO: ::daegen::ModelInfo = ::daegen::ModelInfo {
                 name: #name_str,
                 doc: "",

@@ -61,12 +61,13 @@ pub(crate) fn event_rates_method(
                 quote!(dg[#i] = #v;)
             });
             quote! {
+                const EVENT_RATES: ::daegen::Availability = ::daegen::Availability::Available;
+
                 #[inline]
-                fn event_rates(&self, t: f64, y: &[f64], dg: &mut [f64]) -> bool {
+                fn event_rates(&self, t: f64, y: &[f64], dg: &mut [f64]) {
                     let (::core::result::Result::Ok(y), ::core::result::Result::Ok(dg)) =
-                        (<&[f64; #n_lit]>::try_from(y), <&mut [f64; #m]>::try_from(dg)) else { return false };
+                        (<&[f64; #n_lit]>::try_from(y), <&mut [f64; #m]>::try_from(dg)) else { return };
                     #body
-                    true
                 }
             }
         }

@@ -1,19 +1,21 @@
 //! `Model::jacobian` and `Model::time_derivative`: the sparse Jacobian
-//! ∂f/∂y and ∂f/∂t, symbolic when f is explicit, else refused at run time.
+//! ∂f/∂y and ∂f/∂t, symbolic when f is explicit, else left to the
+//! runtime's differences.
 
 use crate::emit::layout::{fixed_size_body, index, rolled_program, Layout};
 use crate::{Graph, Id, SymbolId};
 use proc_macro2::TokenStream;
 use quote::quote;
 
-/// `JACOBIAN_PATTERN` and the bodies of `jacobian` and `time_derivative`.
+/// `JACOBIAN` with `jacobian` and `time_derivative` where f is explicit;
+/// nothing otherwise (`Jacobian::Differenced`, the default).
 pub(crate) fn jacobian_items(
     g: &mut Graph,
     layout: &Layout,
     slots: &[SymbolId],
     time: SymbolId,
     explicit: Option<Vec<Id>>,
-) -> crate::Result<(TokenStream, TokenStream, TokenStream)> {
+) -> crate::Result<TokenStream> {
     let n = slots.len();
     Ok(match explicit {
         Some(f) => {
@@ -36,16 +38,25 @@ pub(crate) fn jacobian_items(
                 f.iter().map(|&e| g.partial(e, time)).collect::<crate::Result<_>>()?;
             let components: Vec<usize> = (0..dfdt.len()).collect();
             let time = rolled_program(g, layout, &dfdt, ("dfdt", &components));
-            (
-                quote!(&[#(#pattern),*]),
-                fixed_size_body(&nn, "values", &nnz, values),
-                fixed_size_body(&nn, "dfdt", &nn, time),
-            )
+            let values = fixed_size_body(&nn, "values", &nnz, values);
+            let time = fixed_size_body(&nn, "dfdt", &nn, time);
+            quote! {
+                const JACOBIAN: ::daegen::Jacobian = ::daegen::Jacobian::Symbolic {
+                    pattern: &[#(#pattern),*],
+                    time_derivative: true,
+                };
+
+                #[inline]
+                fn jacobian(&self, t: f64, y: &[f64], values: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
+                    #values
+                }
+
+                #[inline]
+                fn time_derivative(&self, t: f64, y: &[f64], dfdt: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
+                    #time
+                }
+            }
         }
-        None => (
-            quote!(&[]),
-            quote!(::core::result::Result::Err(::daegen::EvalError::JacobianUnavailable)),
-            quote!(::core::result::Result::Err(::daegen::EvalError::JacobianUnavailable)),
-        ),
+        None => TokenStream::new(),
     })
 }

@@ -37,7 +37,7 @@ fn model_items(g: &mut Graph, form: &MassForm, emit: Emit<'_>) -> crate::Result<
                     quote!(0.0)
                 }
             });
-            quote!(const MASS: &'static [f64] = &[#(#diagonal),*];)
+            quote!(const MASS: ::daegen::MassMatrix = ::daegen::MassMatrix::Diagonal(&[#(#diagonal),*]);)
         }
         Some(entries) => {
             let pattern = entries.iter().map(|&(r, c, _)| {
@@ -51,7 +51,7 @@ fn model_items(g: &mut Graph, form: &MassForm, emit: Emit<'_>) -> crate::Result<
                 quote!(values[#i] = #v;)
             });
             quote! {
-                const MASS_PATTERN: &'static [(usize, usize)] = &[#(#pattern),*];
+                const MASS: ::daegen::MassMatrix = ::daegen::MassMatrix::Pattern(&[#(#pattern),*]);
                 fn mass_values(&self, values: &mut [f64]) {
                     let ::core::result::Result::Ok(values) = <&mut [f64; #k]>::try_from(values) else { return };
                     let t = 0.0f64;
@@ -66,7 +66,10 @@ fn model_items(g: &mut Graph, form: &MassForm, emit: Emit<'_>) -> crate::Result<
     Ok(quote! {
         const STATES: usize = #n;
         type State = [f64; #n];
-        const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[#(#pattern),*];
+        const JACOBIAN: ::daegen::Jacobian = ::daegen::Jacobian::Symbolic {
+            pattern: &[#(#pattern),*],
+            time_derivative: false,
+        };
         #mass
         const INDEX2_COMPONENTS: &'static [usize] = &[#(#index2),*];
         fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
@@ -74,9 +77,6 @@ fn model_items(g: &mut Graph, form: &MassForm, emit: Emit<'_>) -> crate::Result<
         }
         fn jacobian(&self, t: f64, y: &[f64], values: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
             #values
-        }
-        fn time_derivative(&self, t: f64, y: &[f64], dfdt: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
-            ::core::result::Result::Err(::daegen::EvalError::JacobianUnavailable)
         }
     })
 }

@@ -57,8 +57,7 @@ fn expand_system(
     let explicit = explicit_derivatives(sys);
     let event_rates_method = event_rates_method(g, &layout, sys, ir.time, explicit.as_ref())?;
     let slot_symbols: Vec<SymbolId> = sys.slots.iter().map(|s| s.symbol).collect();
-    let (pattern, jacobian_body, time_body) =
-        jacobian_items(g, &layout, &slot_symbols, ir.time, explicit)?;
+    let jacobian = jacobian_items(g, &layout, &slot_symbols, ir.time, explicit)?;
     let output_arms = output_arms(g, &mut layout, sys, &newton_solve_for_outputs)?;
     let constraint_methods = crate::emit::constraints::constraint_methods(
         g,
@@ -77,8 +76,12 @@ fn expand_system(
     let taylor = analysis.taylor.as_ref().map_err(Clone::clone)?;
     let (taylor_tokens, taylor_unavailable) = taylor_items(g, &mut layout, n, taylor);
     let taylor_unavailable_const = match &taylor_unavailable {
-        Some(reason) => quote!(const TAYLOR_UNAVAILABLE: &'static str = #reason;),
-        None => TokenStream::new(),
+        Some(reason) => {
+            quote!(const TAYLOR_TAPE: ::daegen::Availability = ::daegen::Availability::Unavailable(#reason);)
+        }
+        None => quote!(
+            const TAYLOR_TAPE: ::daegen::Availability = ::daegen::Availability::Available;
+        ),
     };
     // Last, so its partial derivatives cannot change the code above.
     let own_rhs = own_rhs_method(&mut ir.graph, &layout, sys, attributes.sensitivity_columns);
@@ -133,7 +136,6 @@ fn expand_system(
             type State = [f64; #n_lit];
             const INDEX: usize = #model_index;
             const INFO: ::daegen::ModelInfo = #info;
-            const JACOBIAN_PATTERN: &'static [(usize, usize)] = #pattern;
             #sensitivity_columns
 
             #parameter
@@ -150,15 +152,7 @@ fn expand_system(
 
             #own_rhs
 
-            #[inline]
-            fn jacobian(&self, t: f64, y: &[f64], values: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
-                #jacobian_body
-            }
-
-            #[inline]
-            fn time_derivative(&self, t: f64, y: &[f64], dfdt: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
-                #time_body
-            }
+            #jacobian
 
             #taylor_tokens
             #taylor_unavailable_const
@@ -280,7 +274,7 @@ fn expand_mass_only(ir: &mut ModelIr, analysis: &SystemAnalysis) -> crate::Resul
         impl ::daegen::Model for #name {
             const INDEX: usize = #model_index;
             const INFO: ::daegen::ModelInfo = #info;
-            const TAYLOR_UNAVAILABLE: &'static str = #reason;
+            const TAYLOR_TAPE: ::daegen::Availability = ::daegen::Availability::Unavailable(#reason);
             #parameter
             #items
         }
@@ -334,15 +328,8 @@ pub fn stub(ir: &ModelIr) -> TokenStream {
                 name: #name_str, doc: "", states: &[], state_docs: &[], parameters: &[], parameter_docs: &[],
                 outputs: &[], output_docs: &[], equations: 0, events: &[], algebraics: &[], algebraic_docs: &[],
             };
-            const JACOBIAN_PATTERN: &'static [(usize, usize)] = &[];
             fn initial_state(&self, y: &mut [f64]) {}
             fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
-                ::core::result::Result::Ok(())
-            }
-            fn jacobian(&self, t: f64, y: &[f64], values: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
-                ::core::result::Result::Ok(())
-            }
-            fn time_derivative(&self, t: f64, y: &[f64], dfdt: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
                 ::core::result::Result::Ok(())
             }
             fn output(&self, index: usize, t: f64, y: &[f64]) -> f64 {

@@ -154,7 +154,7 @@ fn chain(pair: usize, stiff: StiffMethod, segments: usize) -> &'static str {
 /// vector update.
 pub(crate) fn step_cost_ratio<M: Model, P: EmbeddedPair>(stiff: StiffMethod) -> f64 {
     let n = M::STATES as f64;
-    let rhs = (M::JACOBIAN_PATTERN.len() as f64).max(n) + n;
+    let rhs = (M::JACOBIAN.pattern().len() as f64).max(n) + n;
     let (factorisation, solve) = radau5::newton_operations::<M>();
     let step = match stiff {
         StiffMethod::Radau5 => 7.0 * rhs + 0.7 * (factorisation + rhs) + 2.5 * solve + 40.0 * n,

@@ -113,7 +113,7 @@ enum Refresh {
 /// where [`Newton::for_pattern`] bands it, dense otherwise.
 pub(crate) fn newton_operations<M: Model>() -> (f64, f64) {
     let n = M::STATES as f64;
-    let pattern = if M::MASS.is_empty() { M::JACOBIAN_PATTERN } else { &[] };
+    let pattern = if M::MASS.diagonal().is_empty() { M::JACOBIAN.pattern() } else { &[] };
     match Structure::of(M::STATES, pattern) {
         (Structure::Band(ordering), _) => {
             let (kl, ku) = (ordering.lower as f64, ordering.upper as f64);
@@ -207,13 +207,14 @@ fn step_loop<M: Model>(
 
     // A singular mass matrix (Hairer's IMAS = 1): diagonal, or general and
     // dense (`mass_matrix`, applied by `apply_mass`); dense Newton either way.
-    let mass: Vec<f64> = if M::MASS.len() == n { M::MASS.to_vec() } else { vec![1.0; n] };
-    let mass_matrix = if M::MASS_PATTERN.is_empty() {
+    let mass: Vec<f64> =
+        if M::MASS.diagonal().len() == n { M::MASS.diagonal().to_vec() } else { vec![1.0; n] };
+    let mass_matrix = if M::MASS.pattern().is_empty() {
         Vec::new()
     } else {
         crate::model::dense_mass_matrix(model)
     };
-    let pattern = if has_mass_matrix::<M>() { &[] } else { M::JACOBIAN_PATTERN };
+    let pattern = if has_mass_matrix::<M>() { &[] } else { M::JACOBIAN.pattern() };
     let (mut newton, factor_operations) = if M::SENSITIVITY_COLUMNS > 0 && !pattern.is_empty() {
         let columns = M::SENSITIVITY_COLUMNS;
         Newton::for_sensitivities(n / (1 + columns), columns, pattern, Shifts::RealAndComplex)
@@ -314,8 +315,9 @@ fn step_loop<M: Model>(
             caljac = false;
         }
         if refresh != Refresh::Nothing {
-            let factor_mass = if mass_matrix.is_empty() { M::MASS } else { &mass_matrix[..] };
-            let pattern = M::JACOBIAN_PATTERN;
+            let factor_mass =
+                if mass_matrix.is_empty() { M::MASS.diagonal() } else { &mass_matrix[..] };
+            let pattern = M::JACOBIAN.pattern();
             let shifts = (gamma / h, (alpha / h, beta / h));
             let mut factored = newton.factor(
                 shifts.0,
@@ -764,6 +766,7 @@ fn finish<M: Model>(solution: &mut Solution, steps: usize, rejected: usize, w: &
 mod tests {
     use super::*;
     use crate::info::ModelInfo;
+    use crate::model::MassMatrix;
     use crate::options::Options;
 
     /// Cash's pendulum (g = 1) in the Gear–Gupta–Leimkuhler index-2 form,
@@ -779,7 +782,7 @@ mod tests {
         const INDEX: usize = 2;
         const INFO: ModelInfo =
             ModelInfo::bare("GglPendulum", &["x", "y", "u", "v", "lambda", "mu"], 6);
-        const MASS: &'static [f64] = &[1.0, 1.0, 1.0, 1.0, 0.0, 0.0];
+        const MASS: MassMatrix = MassMatrix::Diagonal(&[1.0, 1.0, 1.0, 1.0, 0.0, 0.0]);
         const INDEX2_COMPONENTS: &'static [usize] = &[4, 5];
         fn initial_state(&self, y: &mut [f64]) {
             y.copy_from_slice(&[1.0, 0.0, 0.0, 1.0, 1.0, 0.0]);

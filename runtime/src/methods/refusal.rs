@@ -39,7 +39,7 @@ impl Method {
             && !matches!(self, Method::Radau5 | Method::Rodas5P | Method::Auto)
         {
             let algebraic: Vec<&str> = (0..M::STATES)
-                .filter(|&i| M::MASS.get(i) == Some(&0.0))
+                .filter(|&i| M::MASS.is_algebraic(i))
                 .map(|i| M::INFO.states[i])
                 .collect();
             let which = if algebraic.is_empty() {
@@ -65,15 +65,15 @@ impl Method {
                 self
             ));
         }
-        if self == Method::Taylor && !M::TAYLOR_UNAVAILABLE.is_empty() {
-            return Some(taylor_refusal::<M>(M::TAYLOR_UNAVAILABLE));
+        if let (Method::Taylor, Some(reason)) = (self, M::TAYLOR_TAPE.reason()) {
+            return Some(taylor_refusal::<M>(reason));
         }
         None
     }
 }
 
 /// Why `Method::Taylor` does not run `M`, for `reason`: the tape the
-/// macro could not make (`Model::TAYLOR_UNAVAILABLE`), or a model that
+/// macro could not make (`Model::TAYLOR_TAPE`), or a model that
 /// hands over none. A batch has no `Auto` to suggest.
 pub(crate) fn taylor_refusal<M: Model>(reason: &str) -> String {
     if M::LANES > 1 {

@@ -177,7 +177,7 @@ const KRYLOV_FROM: usize = 1000;
 /// under `Auto` where a large pattern calls for a sparse LU (a grid no
 /// renumbering bands, whose LU fills in).
 pub(crate) fn krylov_for<M: Model>(choice: LinearSolver) -> bool {
-    krylov_in::<M>(choice, &Structure::of(M::STATES, M::JACOBIAN_PATTERN).0)
+    krylov_in::<M>(choice, &Structure::of(M::STATES, M::JACOBIAN.pattern()).0)
 }
 
 /// [`krylov_for`], the pattern's storage known.
@@ -278,19 +278,19 @@ impl<M: Model> Derivatives<'_, M> {
     ) -> Result<(), EvalError> {
         counts.jacobian_evals += 1;
         self.jacobian.evaluate(self.model, t, y, f0, &mut counts.evals)?;
-        match self.model.time_derivative(t, y, &mut self.dfdt) {
-            Ok(()) if self.dfdt.iter().all(|v| v.is_finite()) => Ok(()),
-            Ok(()) | Err(EvalError::JacobianUnavailable) => {
-                let delta = (f64::EPSILON * t.abs().max(1e-5)).sqrt();
-                counts.evals += 1;
-                self.model.rhs(t + delta, y, &mut self.shifted)?;
-                for ((d, s), f) in self.dfdt.iter_mut().zip(&self.shifted).zip(f0) {
-                    *d = (s - f) / delta;
-                }
-                Ok(())
+        if M::JACOBIAN.has_time_derivative() {
+            self.model.time_derivative(t, y, &mut self.dfdt)?;
+            if self.dfdt.iter().all(|v| v.is_finite()) {
+                return Ok(());
             }
-            other => other,
         }
+        let delta = (f64::EPSILON * t.abs().max(1e-5)).sqrt();
+        counts.evals += 1;
+        self.model.rhs(t + delta, y, &mut self.shifted)?;
+        for ((d, s), f) in self.dfdt.iter_mut().zip(&self.shifted).zip(f0) {
+            *d = (s - f) / delta;
+        }
+        Ok(())
     }
 }
 
@@ -314,13 +314,14 @@ pub(crate) fn integrate_watching<M: Model>(
     let hmax = options.max_step.unwrap_or((t1 - t0).abs()).min((t1 - t0).abs());
 
     // A mass matrix: its diagonal, or the dense matrix (`mass_matrix`).
-    let mass: Vec<f64> = if M::MASS.len() == n { M::MASS.to_vec() } else { vec![1.0; n] };
-    let mass_matrix = if M::MASS_PATTERN.is_empty() {
+    let mass: Vec<f64> =
+        if M::MASS.diagonal().len() == n { M::MASS.diagonal().to_vec() } else { vec![1.0; n] };
+    let mass_matrix = if M::MASS.pattern().is_empty() {
         Vec::new()
     } else {
         crate::model::dense_mass_matrix(model)
     };
-    let pattern = if has_mass_matrix::<M>() { &[] } else { M::JACOBIAN_PATTERN };
+    let pattern = if has_mass_matrix::<M>() { &[] } else { M::JACOBIAN.pattern() };
     let mut newton = linear_systems::<M>(pattern, options.linear_solver);
     let mut d = Derivatives {
         model,
@@ -383,7 +384,8 @@ pub(crate) fn integrate_watching<M: Model>(
             return Err(Error::StepSizeUnderflow { t, h, partial: Box::new(solution) });
         }
         let shift = 1.0 / (h * GAMMA);
-        let factor_mass = if mass_matrix.is_empty() { M::MASS } else { &mass_matrix[..] };
+        let factor_mass =
+            if mass_matrix.is_empty() { M::MASS.diagonal() } else { &mass_matrix[..] };
         let mut factored = newton.factor(
             shift,
             (0.0, 0.0),

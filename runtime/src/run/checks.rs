@@ -142,7 +142,7 @@ fn check_krylov<M: Model>(options: &Options) -> Result<(), Error> {
             M::INFO.name
         ));
     }
-    if M::JACOBIAN_PATTERN.is_empty() {
+    if M::JACOBIAN.pattern().is_empty() {
         return invalid(format!(
             "{} has no generated Jacobian (it is differenced), whose pattern and values LinearSolver::Krylov needs for its products and preconditioner: use LinearSolver::Direct",
             M::INFO.name

@@ -51,10 +51,10 @@ fn formulation<M: Model>() -> &'static str {
     if !M::INDEX2_COMPONENTS.is_empty() {
         return "DAE in mass-matrix form with RADAU5: the Gear–Gupta–Leimkuhler index-2 form (position and velocity constraints kept by the multipliers mu, no projection)";
     }
-    if !M::MASS_PATTERN.is_empty() {
+    if !M::MASS.pattern().is_empty() {
         return "DAE in mass-matrix form: M y' = f(t, y) with the singular mass matrix as written (index 1)";
     }
-    if !M::MASS.is_empty() {
+    if !M::MASS.diagonal().is_empty() {
         return "DAE in mass-matrix form: the algebraic equations kept as written (index 1)";
     }
     match (M::INDEX, M::CONSTRAINTS.is_empty()) {

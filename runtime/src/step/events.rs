@@ -88,7 +88,10 @@ impl<'m, M: Model> EventWatch<'m, M> {
         }
         let (mut g_old, mut rate_old) = (vec![0.0; m], vec![0.0; m]);
         model.events(t0, y0, &mut g_old);
-        let has_rates = model.event_rates(t0, y0, &mut rate_old);
+        let has_rates = M::EVENT_RATES.is_available();
+        if has_rates {
+            model.event_rates(t0, y0, &mut rate_old);
+        }
         Some(EventWatch {
             model,
             g_old,

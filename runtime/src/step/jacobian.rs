@@ -9,7 +9,7 @@ use crate::model::Model;
 pub(crate) struct DenseJacobian {
     /// Row-major ∂f/∂y at the last evaluation.
     pub(crate) matrix: Vec<f64>,
-    /// The generated Jacobian's non-zeros, in [`Model::JACOBIAN_PATTERN`] order.
+    /// The generated Jacobian's non-zeros, in [`Model::JACOBIAN`] pattern order.
     values: Vec<f64>,
     /// f at a perturbed point (finite differences only).
     perturbed: Vec<f64>,
@@ -31,7 +31,7 @@ impl DenseJacobian {
     pub(crate) fn with_matrix<M: Model>(dense: bool) -> DenseJacobian {
         DenseJacobian {
             matrix: if dense { vec![0.0; M::STATES * M::STATES] } else { Vec::new() },
-            values: vec![0.0; M::JACOBIAN_PATTERN.len()],
+            values: vec![0.0; M::JACOBIAN.pattern().len()],
             perturbed: vec![0.0; M::STATES],
             analytic: false,
             power: (vec![0.0; M::STATES], vec![0.0; M::STATES]),
@@ -52,42 +52,37 @@ impl DenseJacobian {
         let n = M::STATES;
         self.matrix.iter_mut().for_each(|v| *v = 0.0);
         self.analytic = false;
-        match model.jacobian(t, y, &mut self.values) {
-            Ok(()) if self.matrix.is_empty() => {
-                self.analytic = true;
-                Ok(())
-            }
-            Ok(()) => {
-                for (&(r, c), &v) in M::JACOBIAN_PATTERN.iter().zip(&self.values) {
+        if M::JACOBIAN.is_symbolic() {
+            model.jacobian(t, y, &mut self.values)?;
+            // A banded or sparse LU reads the non-zeros themselves.
+            if !self.matrix.is_empty() {
+                for (&(r, c), &v) in M::JACOBIAN.pattern().iter().zip(&self.values) {
                     self.matrix[r * n + c] = v;
                 }
-                self.analytic = true;
-                Ok(())
             }
-            Err(EvalError::JacobianUnavailable) if self.matrix.is_empty() => {
-                Err(EvalError::JacobianUnavailable)
-            }
-            Err(EvalError::JacobianUnavailable) => {
-                for j in 0..n {
-                    let saved = y[j];
-                    let delta = (f64::EPSILON * saved.abs().max(1e-5)).sqrt();
-                    y[j] = saved + delta;
-                    *evals += 1;
-                    let r = model.rhs(t, y, &mut self.perturbed);
-                    y[j] = saved;
-                    r?;
-                    for i in 0..n {
-                        self.matrix[i * n + j] = (self.perturbed[i] - f0[i]) / delta;
-                    }
-                }
-                Ok(())
-            }
-            Err(e) => Err(e),
+            self.analytic = true;
+            return Ok(());
         }
+        if self.matrix.is_empty() {
+            return Err(EvalError::JacobianUnavailable);
+        }
+        for j in 0..n {
+            let saved = y[j];
+            let delta = (f64::EPSILON * saved.abs().max(1e-5)).sqrt();
+            y[j] = saved + delta;
+            *evals += 1;
+            let r = model.rhs(t, y, &mut self.perturbed);
+            y[j] = saved;
+            r?;
+            for i in 0..n {
+                self.matrix[i * n + j] = (self.perturbed[i] - f0[i]) / delta;
+            }
+        }
+        Ok(())
     }
 
     /// The generated Jacobian's non-zeros at the last evaluation, in
-    /// [`Model::JACOBIAN_PATTERN`] order.
+    /// [`Model::JACOBIAN`] pattern order.
     pub(crate) fn values(&self) -> &[f64] {
         &self.values
     }
@@ -104,17 +99,16 @@ impl DenseJacobian {
         direction: &[f64],
         out: &mut [f64],
     ) -> Result<bool, EvalError> {
-        match model.jacobian(t, y, &mut self.values) {
-            Ok(()) => {}
-            Err(EvalError::JacobianUnavailable) => return Ok(false),
-            Err(e) => return Err(e),
+        if !M::JACOBIAN.is_symbolic() {
+            return Ok(false);
         }
+        model.jacobian(t, y, &mut self.values)?;
         let n = M::STATES;
         for (i, o) in out.iter_mut().enumerate() {
             let row = &self.matrix[i * n..(i + 1) * n];
             *o = -row.iter().zip(direction).map(|(a, d)| a * d).sum::<f64>();
         }
-        for (&(r, c), &v) in M::JACOBIAN_PATTERN.iter().zip(&self.values) {
+        for (&(r, c), &v) in M::JACOBIAN.pattern().iter().zip(&self.values) {
             out[r] += v * direction[c];
         }
         Ok(true)
@@ -129,7 +123,7 @@ impl DenseJacobian {
             let values = &self.values;
             crate::linalg::spectral_radius(v, w, |v, w| {
                 w.fill(0.0);
-                for (&(r, c), &value) in M::JACOBIAN_PATTERN.iter().zip(values) {
+                for (&(r, c), &value) in M::JACOBIAN.pattern().iter().zip(values) {
                     w[r] += value * v[c];
                 }
             })

@@ -377,14 +377,14 @@ pub(crate) fn consistent_algebraic_components<M: Model>(
     w: &mut [f64],
     solution: Solution,
 ) -> Result<Solution, Error> {
-    let algebraic: Vec<usize> = (0..M::STATES).filter(|&i| M::MASS.get(i) == Some(&0.0)).collect();
+    let algebraic: Vec<usize> = (0..M::STATES).filter(|&i| M::MASS.is_algebraic(i)).collect();
     let m = algebraic.len();
     if m == 0 {
         return Ok(solution);
     }
     let n = M::STATES;
     let (mut f, mut scratch) = (vec![0.0; n], vec![0.0; n]);
-    let mut values = vec![0.0; M::JACOBIAN_PATTERN.len()];
+    let mut values = vec![0.0; M::JACOBIAN.pattern().len()];
     let mut jaa = vec![0.0; m * m];
     let fail = |i: usize, message: String, solution: Solution| Error::Constraint {
         t: t0,
@@ -404,7 +404,7 @@ pub(crate) fn consistent_algebraic_components<M: Model>(
         }
         jaa.iter_mut().for_each(|v| *v = 0.0);
         if model.jacobian(t0, w, &mut values).is_ok() {
-            for (&(r, c), &v) in M::JACOBIAN_PATTERN.iter().zip(&values) {
+            for (&(r, c), &v) in M::JACOBIAN.pattern().iter().zip(&values) {
                 let a = algebraic.iter().position(|&i| i == r);
                 let b = algebraic.iter().position(|&i| i == c);
                 if let (Some(a), Some(b)) = (a, b) {
