@@ -88,3 +88,55 @@ pub(crate) fn taylor_refusal<M: Model>(reason: &str) -> String {
         )
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::info::{EvalError, ModelInfo};
+    use crate::model::MassMatrix;
+
+    /// y' = −y and z' = y − z, or, with a singular mass matrix, z
+    /// algebraic (0 = y − z): written by hand, its mass matrix the
+    /// identity (`KIND` 0), diagonal (1) or a general pattern (2).
+    struct Written<const KIND: u8>;
+
+    impl<const KIND: u8> Model for Written<KIND> {
+        const STATES: usize = 2;
+        type State = [f64; 2];
+        const INDEX: usize = 1;
+        const INFO: ModelInfo = ModelInfo::bare("Written", &["y", "z"], 2);
+        const MASS: MassMatrix = match KIND {
+            0 => MassMatrix::Identity,
+            1 => MassMatrix::Diagonal(&[1.0, 0.0]),
+            _ => MassMatrix::Pattern(&[(0, 0)]),
+        };
+        fn initial_state(&self, y: &mut [f64]) {
+            y.copy_from_slice(&[1.0, 1.0]);
+        }
+        fn rhs(&self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), EvalError> {
+            dy.copy_from_slice(&[-y[0], y[0] - y[1]]);
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn a_model_says_what_it_lacks_once_and_the_refusal_reads_it_there() {
+        // No tape: the trait's default says so, with the reason Taylor
+        // gives before the first step.
+        let taylor = Method::Taylor.refusal::<Written<0>>().unwrap();
+        assert!(taylor.contains("Written: it has no Taylor tape"), "{taylor}");
+        // A diagonal mass matrix names its algebraic components; a general
+        // one cannot, and says only that it is singular.
+        let diagonal = Method::Dopri5.refusal::<Written<1>>().unwrap();
+        assert!(diagonal.contains("singular mass matrix (algebraic components z)"), "{diagonal}");
+        let general = Method::Dopri5.refusal::<Written<2>>().unwrap();
+        assert!(
+            general.contains("singular mass matrix: integrate it with Method::Radau5"),
+            "{general}"
+        );
+        assert_eq!(Method::Dopri5.refusal::<Written<0>>(), None);
+        for method in [Method::Radau5, Method::Rodas5P, Method::Auto] {
+            assert_eq!(method.refusal::<Written<2>>(), None, "{method:?}");
+        }
+    }
+}
