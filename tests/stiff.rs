@@ -13,6 +13,7 @@ hires_model!();
 low_pass_model!();
 
 mod support;
+use support::harness::{is_explicit_pair, is_implicit, methods_for};
 use support::{final_state as last_state, mixed_error, ProtheroRobinson};
 
 const TOLERANCES: [f64; 5] = [1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
@@ -125,7 +126,8 @@ fn auto_switches_to_radau5_when_the_problem_turns_stiff() {
 /// dozen steps, with an error that says so and what to use instead.
 #[test]
 fn an_explicit_pair_stops_where_the_problem_turns_stiff() {
-    for method in [Method::Dopri5, Method::Dop853] {
+    // Every explicit pair that runs the model: each has a stiffness test.
+    for method in methods_for::<Robertson>(is_explicit_pair) {
         let err =
             Robertson::default().simulate(0.0, 1e5, &Options::new().method(method)).unwrap_err();
         let message = err.to_string();
@@ -424,7 +426,11 @@ fn square_root() {
 
 #[test]
 fn a_newton_matrix_that_stays_singular_is_an_error_with_the_time() {
-    for method in [Method::BackwardEuler, Method::Radau5] {
+    // Every implicit method that runs the model (each factors a matrix
+    // with the Jacobian from its first step) but Auto, which starts with an
+    // explicit pair and needs no matrix here.
+    let from_the_start = |m: Method| is_implicit(m) && m != Method::Auto;
+    for method in methods_for::<SquareRoot>(from_the_start) {
         match SquareRoot::default().simulate(0.0, 1.0, &Options::new().method(method)) {
             Err(Error::SingularMatrix { t, partial, .. }) => {
                 assert!(t < 1e-6, "{method:?}: t = {t}");
