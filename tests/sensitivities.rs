@@ -3,6 +3,9 @@
 
 use daegen::prelude::*;
 
+mod support;
+use support::harness::{is_adaptive, is_stiff_method, methods_running};
+
 /// y′ = −k·y, y(0) = y0: y = y0·e^(−kt), ∂y/∂k = −t·y0·e^(−kt),
 /// ∂y/∂y0 = e^(−kt).
 #[dae_model(sensitivities = [k, init(y)])]
@@ -20,16 +23,15 @@ fn oscillator() {
     der(der(x)) == -omega * omega * x;
 }
 
-const METHODS: [Method; 6] =
-    [Method::Dopri5, Method::Dop853, Method::Radau5, Method::Rodas5P, Method::Taylor, Method::Auto];
-
 #[test]
 fn decay_sensitivities_follow_the_exact_ones() {
     let (k, y0, t1) = (0.7, 2.0, 3.0);
-    for method in METHODS {
+    let model = Decay::default().with_sensitivities();
+    // Every adaptive method that runs the model with its sensitivities.
+    for method in methods_running(&model, is_adaptive) {
         let tol = 1e-9;
         let opts = Options::new().method(method).tolerance(tol);
-        let sol = Decay::default().with_sensitivities().simulate(0.0, t1, &opts).unwrap();
+        let sol = model.simulate(0.0, t1, &opts).unwrap();
         for t in [0.0, 1.3, t1] {
             let e = (-k * t).exp();
             let dk = sol.sensitivity(t, "y", "k").unwrap();
@@ -44,10 +46,12 @@ fn decay_sensitivities_follow_the_exact_ones() {
 #[test]
 fn the_oscillators_frequency_sensitivity_grows_with_time() {
     let (omega, t1) = (2.0f64, 10.0);
-    for method in METHODS {
+    let model = Oscillator::default().with_sensitivities();
+    // Every adaptive method that runs the model with its sensitivities.
+    for method in methods_running(&model, is_adaptive) {
         let tol = 1e-10;
         let opts = Options::new().method(method).tolerance(tol);
-        let sol = Oscillator::default().with_sensitivities().simulate(0.0, t1, &opts).unwrap();
+        let sol = model.simulate(0.0, t1, &opts).unwrap();
         let want = -t1 * (omega * t1).sin();
         let got = sol.sensitivity(t1, "x", "omega").unwrap();
         // ∂x/∂ω grows like t: the bound grows with it.
@@ -93,9 +97,12 @@ fn robertsons_rate_sensitivities_match_central_differences_to_six_digits() {
         differences
             .push((name, (0..3).map(|i| (up[i] - down[i]) / (2.0 * delta)).collect::<Vec<_>>()));
     }
-    for method in [Method::Radau5, Method::Rodas5P, Method::Auto] {
+    let model = base.with_sensitivities();
+    // Every stiff method that runs the model with its sensitivities: each
+    // factors the base model's matrix.
+    for method in methods_running(&model, is_stiff_method) {
         let opts = Options::new().method(method).rtol(1e-10).atol(1e-18);
-        let sol = base.with_sensitivities().simulate(0.0, t1, &opts).unwrap();
+        let sol = model.simulate(0.0, t1, &opts).unwrap();
         // The base model's 3 × 3 matrix, not the 12 × 12 one.
         assert_eq!(sol.stats().linear_solver, "dense LU", "{method:?}");
         for (name, fd) in &differences {
@@ -118,8 +125,8 @@ fn sensitivities_left_out_of_the_error_test_leave_the_steps_to_the_states() {
     // S does not feed back into y, so an error test on y alone takes the
     // model's own steps, exactly, where no Newton iteration is involved.
     let (k, y0, t1, tol) = (0.7, 2.0, 3.0, 1e-8);
-    for method in [Method::Dopri5, Method::Dop853, Method::Rodas5P, Method::Radau5, Method::Taylor]
-    {
+    // Every adaptive method that runs the model with its sensitivities.
+    for method in methods_running(&Decay::default().with_sensitivities(), is_adaptive) {
         let opts = Options::new().method(method).tolerance(tol);
         let alone = Decay::default().simulate(0.0, t1, &opts).unwrap().stats().steps;
         let with = Decay::default().with_sensitivities();
@@ -160,9 +167,11 @@ fn damped_rotation() {
 fn a_linear_systems_sensitivities_follow_the_exact_ones() {
     let model = DampedRotation::default();
     let (a, b, tol) = (model.a, model.b, 1e-10);
-    for method in METHODS {
+    let model = model.with_sensitivities();
+    // Every adaptive method that runs the model with its sensitivities.
+    for method in methods_running(&model, is_adaptive) {
         let opts = Options::new().method(method).tolerance(tol);
-        let sol = model.with_sensitivities().simulate(0.0, 5.0, &opts).unwrap();
+        let sol = model.simulate(0.0, 5.0, &opts).unwrap();
         for t in [0.7, 2.5, 5.0] {
             let (x, y) = ((-a * t).exp() * (b * t).cos(), -(-a * t).exp() * (b * t).sin());
             let exact =
@@ -219,11 +228,11 @@ fn the_dae_pendulums_sensitivities_match_the_angle_forms_and_its_central_differe
         let got = angle_sol.sensitivity(t1, "theta", wrt).unwrap();
         assert!((got - fd).abs() <= 1e-6 * fd.abs(), "angle form ∂θ/∂{wrt} {got} against {fd}");
     }
-    let model = Pendulum::default();
-    for method in [Method::Dop853, Method::Dopri5, Method::Radau5, Method::Rodas5P, Method::Taylor]
-    {
+    let model = Pendulum::default().with_sensitivities();
+    // Every adaptive method that runs the model with its sensitivities.
+    for method in methods_running(&model, is_adaptive) {
         let opts = Options::new().method(method).tolerance(1e-11);
-        let sol = model.with_sensitivities().simulate(0.0, t1, &opts).unwrap();
+        let sol = model.simulate(0.0, t1, &opts).unwrap();
         for (wrt, fd) in [("l", by_l), ("g", by_g)] {
             let got = angle_sensitivity(&sol, t1, wrt);
             // Six digits.
@@ -239,9 +248,12 @@ fn the_dae_pendulums_sensitivities_match_the_angle_forms_and_its_central_differe
 fn the_dae_pendulums_sensitivities_keep_the_linearised_constraints_at_every_step() {
     let model = Pendulum::default();
     let l = model.l;
-    for method in [Method::Dop853, Method::Radau5, Method::Rodas5P, Method::Taylor] {
+    let with = model.with_sensitivities();
+    // Every adaptive method that runs the model with its sensitivities:
+    // each projects them after every step.
+    for method in methods_running(&with, is_adaptive) {
         let opts = Options::new().method(method).tolerance(1e-8);
-        let sol = model.with_sensitivities().simulate(0.0, 20.0, &opts).unwrap();
+        let sol = with.simulate(0.0, 20.0, &opts).unwrap();
         let (mut position, mut velocity) = (0.0f64, 0.0f64);
         for &t in sol.times() {
             let at = |name: &str| sol.at(t, name).unwrap();
@@ -276,9 +288,11 @@ fn the_cartesian_double_pendulums_gravity_sensitivities_follow_the_angle_forms()
         .with_sensitivities()
         .simulate(0.0, 1.5, &Options::new().method(Method::Dop853).tolerance(1e-13))
         .unwrap();
-    for method in [Method::Dop853, Method::Radau5, Method::Rodas5P] {
+    let model = DoublePendulumCartesian::default().with_sensitivities();
+    // Every adaptive method that runs the model with its sensitivities.
+    for method in methods_running(&model, is_adaptive) {
         let opts = Options::new().method(method).tolerance(1e-11);
-        let sol = DoublePendulumCartesian::default().with_sensitivities().simulate(0.0, 1.5, &opts);
+        let sol = model.simulate(0.0, 1.5, &opts);
         let sol = sol.unwrap();
         for t in [0.5, 1.0, 1.5] {
             let (a, b) = (reference.at(t, "a").unwrap(), reference.at(t, "b").unwrap());

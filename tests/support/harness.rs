@@ -148,6 +148,12 @@ pub fn adaptive_methods_for<M: Model>() -> Vec<Method> {
     methods_for::<M>(is_adaptive)
 }
 
+/// [`methods_for`] the type of `model`, for a type awkward to name (a
+/// model with its sensitivities).
+pub fn methods_running<M: Model>(_model: &M, keep: impl Fn(Method) -> bool) -> Vec<Method> {
+    methods_for::<M>(keep)
+}
+
 /// Most steps any run of the harness may take: above the longest run
 /// that meets its bound (Dopri5 on Lorenz at 1e-12, about 11 000), so that
 /// a Taylor run held by stiffness stops early.
