@@ -132,6 +132,11 @@ impl<'m, M: Model> EventWatch<'m, M> {
             }
             let bad = self.g_new.iter().chain(&self.rate_new).position(|g| !g.is_finite());
             if let Some(i) = bad {
+                // The solution ends where the event function stopped being
+                // finite: past it nothing was checked.
+                if j < self.subdivisions {
+                    solution.end_last_step_at(b, &self.y);
+                }
                 return Err(Error::NonFinite {
                     t: b,
                     variable: M::INFO.events[i % M::INFO.events.len()].name,
