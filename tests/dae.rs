@@ -568,7 +568,10 @@ fn the_gear_gupta_leimkuhler_form_with_radau5_matches_the_references() {
     // Cash's pendulum: w = (x, y, u, v, λ, μ), index 2, no projection.
     let names = CashPendulumMassForm::INFO.states;
     assert_eq!(names, &["x", "y", "u", "v", "lambda", "mu[0]"]);
-    assert_eq!(CashPendulumMassForm::MASS, daegen::MassMatrix::Diagonal(&[1.0, 1.0, 1.0, 1.0, 0.0, 0.0]));
+    assert_eq!(
+        CashPendulumMassForm::MASS,
+        daegen::MassMatrix::Diagonal(&[1.0, 1.0, 1.0, 1.0, 0.0, 0.0])
+    );
     for tol in [1e-6, 1e-8, 1e-10] {
         let opts = Options::new()
             .method(Method::Radau5)
