@@ -48,7 +48,7 @@ fn structural_mistakes_name_the_derivative() {
         ),
         (
             quote! { fn m() { let x = state(1.0); let y = state(1.0); der(x) + der(y) == x; } },
-            "no equation determines `der(y)`",
+            "nothing determines `der(y)`: `der(x) + der(y) == x` is left for 2 unknowns",
         ),
         (quote! { fn m() { let x = state(1.0); der(x) * der(x) == x; } }, "not linear in `der(x)`"),
         (

@@ -12,7 +12,9 @@
 //! of about (h/τ)^(p+1), τ the problem's shortest time scale, which the
 //! problem amplifies by its `bound`, so the global error stays below
 //! `bound · (t1 − t0)/τ · (h/τ)^p`. Where that is 1 or more no digit is
-//! promised: the run ends with a finite state, or backward Euler, whose
+//! promised: the run ends with a finite state, or with `Error::NonFinite`
+//! where a step longer than τ carries a state out of the model's domain
+//! (a concentration below zero under a square root), or backward Euler, whose
 //! Newton iteration does not converge on a step that large, halves it
 //! until it stops with `Error::StepSizeUnderflow`. An explicit
 //! method whose h·ρ(J) lies beyond its stability boundary on the negative
@@ -179,6 +181,10 @@ pub struct Problem<M> {
     pub bound: f64,
     /// The solution's shortest time scale (a close approach, a period).
     pub time_scale: f64,
+    /// Where the solution slows down after a fast transient (a reaction
+    /// settling onto its slow manifold), its time scale from then on:
+    /// stiffness is judged against it.
+    pub settled_time_scale: Option<f64>,
     /// ρ(J) along the solution, the magnitude of its stiffest eigenvalue.
     pub stiffness: f64,
     /// RODAS5P with `LinearSolver::Krylov` too.
@@ -187,9 +193,9 @@ pub struct Problem<M> {
 
 impl<M> Problem<M> {
     /// Whether the problem is stiff: its Jacobian has eigenvalues over a
-    /// hundred times faster than the solution changes.
+    /// hundred times faster than the solution changes (once settled).
     pub fn is_stiff(&self) -> bool {
-        self.stiffness * self.time_scale > 100.0
+        self.stiffness * self.settled_time_scale.unwrap_or(self.time_scale) > 100.0
     }
 
     /// The fixed-step methods' step: the runtime's default.
@@ -312,6 +318,7 @@ pub fn run_every_method<M: Simulate>(problem: &Problem<M>) -> (String, Vec<Strin
                     match &error {
                         _ if h_rho > boundary => Ok(()),
                         Ok(e) if bound >= 1.0 && e.is_finite() => Ok(()),
+                        Err(Error::NonFinite { .. }) if bound >= 1.0 => Ok(()),
                         Err(Error::StepSizeUnderflow { .. })
                             if bound >= 1.0 && method == Method::BackwardEuler =>
                         {

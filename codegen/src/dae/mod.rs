@@ -2,12 +2,14 @@
 //! after reduction reads and which imports none of them): the structure
 //! (`structure`: equations whose highest derivatives cancel combined by
 //! `derivative_free`, the index reduced by `index_reduction` and
-//! `linear_pencil`), the unknowns solved block by block (`reduce`,
-//! `solve_unknowns`, `newton_block`, over the equations matched to their
-//! unknowns by `matching`), forward sensitivities (`variational`), the
+//! `linear_pencil`), aliases removed (`alias`), the equations matched to
+//! their unknowns and sorted into blocks in causal order (`sorting`, over
+//! `matching`), the blocks solved (`reduce`, `solve_unknowns`,
+//! `newton_block`), forward sensitivities (`variational`), the
 //! mass-matrix form (`mass_form`) and the constraints' projection levels
 //! (`constraints`), as values that `emit` writes out.
 
+pub mod alias;
 pub mod constraints;
 pub mod derivative_free;
 pub mod index_reduction;
@@ -17,6 +19,7 @@ pub mod matching;
 pub mod newton_block;
 pub mod reduce;
 pub mod solve_unknowns;
+pub mod sorting;
 pub mod structure;
 pub mod system;
 pub mod variational;

@@ -23,12 +23,14 @@ struct Equation {
 }
 
 /// Solves the structured model for its unknowns, or reports why it
-/// cannot: each pass below in turn, every mistake reported on the user's
+/// cannot: aliases removed, the equations sorted into blocks in causal
+/// order (the single ones solved there), the blocks left solved by Newton,
+/// symbolically or at run time; every mistake reported on the user's
 /// tokens.
 pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<FirstOrder> {
     let Structure {
         order,
-        mut z_symbols,
+        z_symbols,
         algebraic_symbols,
         residuals,
         written,
@@ -40,18 +42,61 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
     } = structure;
     let g = &mut ir.graph;
     let n_states = z_symbols.len();
-    let newton = newton_block(cx, g, &ir.algebraics, &reduction, &z_symbols, &texts, &origins)?;
+    if !check_structure(
+        cx,
+        g,
+        (&ir.states, &ir.algebraics),
+        &z_symbols,
+        &reduction,
+        (&texts, &origins),
+    ) {
+        return None;
+    }
+    let aliases = match crate::dae::alias::eliminate_aliases(
+        g,
+        &reduction.residuals,
+        &reduction.differentiations,
+        &algebraic_symbols,
+    ) {
+        Ok(aliases) => aliases,
+        Err(e) => {
+            cx.error_at(&origins[0], e);
+            return None;
+        }
+    };
+    let removed: FxHashMap<SymbolId, Id> = aliases.removed.iter().copied().collect();
+    let kept_algebraics: Vec<AlgebraicDecl> =
+        ir.algebraics.iter().filter(|a| !removed.contains_key(&a.symbol)).cloned().collect();
+    let sorted =
+        sort(cx, g, (&ir.states, &kept_algebraics), &z_symbols, &aliases, (&texts, &origins))?;
+    let newton =
+        newton_block(cx, g, &kept_algebraics, &sorted, &reduction, &z_symbols, &texts, &origins)?;
     let in_newton = |s: &SymbolId| newton.as_ref().is_some_and(|b| b.unknowns.contains(s));
-    // The unknowns: z, then λ (but for the Newton block's).
-    let linear_algebraics: Vec<crate::front::ir::AlgebraicDecl> =
-        ir.algebraics.iter().filter(|a| !in_newton(&a.symbol)).cloned().collect();
-    z_symbols.extend(linear_algebraics.iter().map(|a| a.symbol));
+    // The unknowns: z, then λ (but for the Newton block's); those the
+    // sorting solved are known, the rest go to the linear solve.
+    let linear_algebraics: Vec<AlgebraicDecl> =
+        kept_algebraics.iter().filter(|a| !in_newton(&a.symbol)).cloned().collect();
+    let mut all = z_symbols.clone();
+    all.extend(linear_algebraics.iter().map(|a| a.symbol));
     let z_index: FxHashMap<SymbolId, usize> =
-        z_symbols.iter().enumerate().map(|(j, &s)| (s, j)).collect();
-    let equations =
-        equations_in_unknowns(g, &ir.equations, &reduction.residuals, newton.as_ref(), &z_index);
-    let owner = matched(cx, g, &ir.states, &linear_algebraics, &equations, &z_symbols)?;
-    let unknowns = Unknowns { z: &z_symbols, index: &z_index, states: n_states };
+        all.iter().enumerate().map(|(j, &s)| (s, j)).collect();
+    let rest: Vec<usize> =
+        (0..all.len()).filter(|&j| !sorted.explicit.contains_key(&all[j])).collect();
+    let rest_symbols: Vec<SymbolId> = rest.iter().map(|&j| all[j]).collect();
+    let rest_index: FxHashMap<SymbolId, usize> =
+        rest_symbols.iter().enumerate().map(|(k, &s)| (s, k)).collect();
+    let done = |e: usize| {
+        aliases.alias_equations[e]
+            || sorted.solved_equations[e]
+            || newton.as_ref().is_some_and(|b| b.equations.contains(&e))
+    };
+    let equations = equations_in_unknowns(g, &ir.equations, &sorted.residuals, &done, &rest_index);
+    let owner = local_owner(&sorted, &equations, &rest_symbols, &z_index);
+    let unknowns = Unknowns {
+        z: &rest_symbols,
+        index: &rest_index,
+        states: rest.iter().filter(|&&j| j < n_states).count(),
+    };
     let linear = linear_system(
         cx,
         g,
@@ -60,7 +105,9 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
         &unknowns,
         &reduction.differentiations,
     )?;
-    let solved = solve(cx, g, &linear, &owner, &equations, &z_symbols)?;
+    let local = solve(cx, g, &linear, &owner, &equations, &rest_symbols)?;
+    let solved = with_explicit(local, &rest, &all, &sorted.explicit);
+    let unknowns = Unknowns { z: &all, index: &z_index, states: n_states };
     let mut ok = true;
     let (slots, derivatives) = slots(
         g,
@@ -71,24 +118,24 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
         linear.mass_only,
     )?;
     ok &= inits_are_below_the_highest_derivatives(cx, g, (&ir.states, &ir.inits), &slots);
-    let (outputs, events, observed) = observables(
-        cx,
-        g,
-        (&ir.outputs, &ir.events),
-        &z_symbols,
-        &solved,
-        &z_index,
-        newton.as_ref(),
-    )?;
+    let known = known_values(g, &all, &solved, &removed)?;
+    let (outputs, events, observed) =
+        observables(cx, g, (&ir.outputs, &ir.events), &known, &z_index, newton.as_ref())?;
     ok &= observed;
-    let algebraics =
-        algebraic_values(g, &ir.algebraics, &unknowns, &solved, newton.as_ref(), linear.mass_only)?;
+    let algebraics = algebraic_values(
+        g,
+        &ir.algebraics,
+        &unknowns,
+        &solved,
+        newton.as_ref(),
+        (&known, linear.mass_only),
+    )?;
     let (invariants, invariants_ok) =
         invariants(cx, g, &ir.invariants, &z_index, reduction.invariants);
     ok &= invariants_ok;
     // Run-time unknowns: the linear blocks', then the Newton block's.
     let newton_block_index = solved.blocks.len();
-    let mut block_unknowns: Vec<(SymbolId, usize, usize)> = z_symbols
+    let mut block_unknowns: Vec<(SymbolId, usize, usize)> = all
         .iter()
         .enumerate()
         .filter_map(|(j, &s)| solved.block_of[j].map(|(b, r)| (s, b, r)))
@@ -121,18 +168,81 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
     })
 }
 
-/// Each equation left to the linear solve (not the Newton block's) with
-/// the unknowns it involves.
+/// The structural check of the equations as index reduction left them,
+/// over every highest derivative and algebraic variable.
+fn check_structure(
+    cx: &mut Ctxt,
+    g: &Graph,
+    (states, algebraics): (&[StateDecl], &[AlgebraicDecl]),
+    z: &[SymbolId],
+    reduction: &crate::dae::index_reduction::IndexReduction,
+    (texts, origins): (&[String], &[TokenStream]),
+) -> bool {
+    let unknowns = sorting_unknowns(states, algebraics, z);
+    let problem = crate::dae::sorting::Problem {
+        residuals: &reduction.residuals,
+        gone: &vec![false; reduction.residuals.len()],
+        texts,
+        origins,
+        unknowns: &unknowns,
+    };
+    crate::dae::sorting::check(cx, g, &problem)
+}
+
+/// The unknowns of the sorting: the highest derivatives, then the
+/// algebraic variables, each with its declaration.
+fn sorting_unknowns(
+    states: &[StateDecl],
+    algebraics: &[AlgebraicDecl],
+    z: &[SymbolId],
+) -> Vec<crate::dae::sorting::Unknown> {
+    use crate::dae::sorting::Unknown;
+    let mut unknowns: Vec<Unknown> = states
+        .iter()
+        .zip(z)
+        .map(|(s, &symbol)| Unknown { symbol, origin: s.origin.clone(), derivative: true })
+        .collect();
+    unknowns.extend(algebraics.iter().map(|a| Unknown {
+        symbol: a.symbol,
+        origin: a.origin.clone(),
+        derivative: false,
+    }));
+    unknowns
+}
+
+/// The sorting of the equations left after the aliases, over the highest
+/// derivatives and the algebraic variables kept.
+fn sort(
+    cx: &mut Ctxt,
+    g: &mut Graph,
+    (states, algebraics): (&[StateDecl], &[AlgebraicDecl]),
+    z: &[SymbolId],
+    aliases: &crate::dae::alias::Aliases,
+    (texts, origins): (&[String], &[TokenStream]),
+) -> Option<crate::dae::sorting::Sorted> {
+    let unknowns = sorting_unknowns(states, algebraics, z);
+    let problem = crate::dae::sorting::Problem {
+        residuals: &aliases.residuals,
+        gone: &aliases.alias_equations,
+        texts,
+        origins,
+        unknowns: &unknowns,
+    };
+    crate::dae::sorting::sort(cx, g, &problem)
+}
+
+/// Each equation left to the linear solve (not solved by the sorting, not
+/// the Newton block's) with the unknowns it involves.
 fn equations_in_unknowns(
     g: &Graph,
     written: &[crate::front::ir::Equation],
     residuals: &[Id],
-    newton: Option<&crate::dae::system::NewtonBlock>,
+    done: &dyn Fn(usize) -> bool,
     z_index: &FxHashMap<SymbolId, usize>,
 ) -> Vec<Equation> {
     let mut equations = Vec::with_capacity(residuals.len());
     for (e, (eq, &r)) in written.iter().zip(residuals).enumerate() {
-        if newton.is_some_and(|b| b.equations.contains(&e)) {
+        if done(e) {
             continue;
         }
         let unknowns: Vec<usize> =
@@ -142,6 +252,62 @@ fn equations_in_unknowns(
     equations
 }
 
+/// The sorting's matching restricted to the linear solve: `owner[k]` is
+/// the position in `equations` of the equation matched to `rest[k]`.
+fn local_owner(
+    sorted: &crate::dae::sorting::Sorted,
+    equations: &[Equation],
+    rest: &[SymbolId],
+    all_index: &FxHashMap<SymbolId, usize>,
+) -> Vec<usize> {
+    let position: FxHashMap<usize, usize> =
+        equations.iter().enumerate().map(|(k, eq)| (eq.index, k)).collect();
+    rest.iter().map(|s| position.get(&sorted.owner[all_index[s]]).copied().unwrap_or(0)).collect()
+}
+
+/// The linear solve's result over the unknowns `rest` (indices into
+/// `all`), with the sorting's explicit solutions for the others.
+fn with_explicit(
+    local: crate::dae::solve_unknowns::Solved,
+    rest: &[usize],
+    all: &[SymbolId],
+    explicit: &FxHashMap<SymbolId, Id>,
+) -> crate::dae::solve_unknowns::Solved {
+    let n = all.len();
+    let mut solved = crate::dae::solve_unknowns::Solved {
+        symbolic: all.iter().map(|s| explicit.get(s).copied()).collect(),
+        block_of: vec![None; n],
+        blocks: local.blocks,
+        after_solve: vec![None; n],
+    };
+    for (k, &j) in rest.iter().enumerate() {
+        solved.symbolic[j] = local.symbolic[k];
+        solved.block_of[j] = local.block_of[k];
+        solved.after_solve[j] = local.after_solve[k];
+    }
+    solved
+}
+
+/// Every unknown solved symbolically, by its symbol, and each alias with
+/// its variable's value in those terms: what outputs, events and the
+/// algebraic variables read in place of the unknowns.
+fn known_values(
+    g: &mut Graph,
+    all: &[SymbolId],
+    solved: &crate::dae::solve_unknowns::Solved,
+    removed: &FxHashMap<SymbolId, Id>,
+) -> Option<FxHashMap<SymbolId, Id>> {
+    let mut known: FxHashMap<SymbolId, Id> =
+        all.iter().enumerate().filter_map(|(j, &s)| solved.symbolic[j].map(|v| (s, v))).collect();
+    let mut aliases: Vec<(SymbolId, Id)> = removed.iter().map(|(&s, &v)| (s, v)).collect();
+    aliases.sort_unstable();
+    for (s, v) in aliases {
+        let v = g.substitute(v, &known).ok()?;
+        known.insert(s, v);
+    }
+    Some(known)
+}
+
 /// The outputs and event functions with the highest derivatives replaced
 /// by their solutions; an event that reads an unknown solved at run time
 /// is an error (`false`), an output may solve the blocks it reads.
@@ -149,17 +315,14 @@ fn observables(
     cx: &mut Ctxt,
     g: &mut Graph,
     (declared_outputs, declared_events): (&[crate::front::ir::Output], &[crate::front::ir::Event]),
-    z: &[SymbolId],
-    solved: &crate::dae::solve_unknowns::Solved,
+    replace: &FxHashMap<SymbolId, Id>,
     z_index: &FxHashMap<SymbolId, usize>,
     newton: Option<&crate::dae::system::NewtonBlock>,
 ) -> Option<(Vec<Id>, Vec<Id>, bool)> {
     let in_newton = |s: &SymbolId| newton.is_some_and(|b| b.unknowns.contains(s));
-    let replace: FxHashMap<SymbolId, Id> =
-        z.iter().enumerate().filter_map(|(j, &s)| solved.symbolic[j].map(|v| (s, v))).collect();
     let mut ok = true;
     let mut observe = |value: Id, origin: &TokenStream, what: &str| -> Option<Id> {
-        let v = g.substitute(value, &replace).ok()?;
+        let v = g.substitute(value, replace).ok()?;
         if what == "output" {
             // Outputs may solve the blocks they read (λ of a mechanism).
             return Some(v);
@@ -192,24 +355,30 @@ struct Unknowns<'a> {
     states: usize,
 }
 
-/// Algebraic equations nonlinear in their variables: a Newton block, its
-/// variables known to the rest of the reduction (`Some(None)`: there is
-/// none; `None`: an error was reported).
+/// Algebraic equations nonlinear in their algebraic variables: a Newton
+/// block, its variables known to the rest of the reduction (`Some(None)`:
+/// there is none; `None`: an error was reported). It is looked for among
+/// the equations the sorting left, with its solutions substituted.
+#[allow(clippy::too_many_arguments)]
 fn newton_block(
     cx: &mut Ctxt,
     g: &mut Graph,
     algebraics: &[AlgebraicDecl],
+    sorted: &crate::dae::sorting::Sorted,
     reduction: &crate::dae::index_reduction::IndexReduction,
     z: &[SymbolId],
     texts: &[String],
     origins: &[TokenStream],
 ) -> Option<Option<crate::dae::system::NewtonBlock>> {
-    let candidates: Vec<(SymbolId, String, Id)> =
-        algebraics.iter().map(|a| (a.symbol, a.name.clone(), a.init)).collect();
+    let candidates: Vec<(SymbolId, String, Id)> = algebraics
+        .iter()
+        .filter(|a| !sorted.explicit.contains_key(&a.symbol))
+        .map(|a| (a.symbol, a.name.clone(), a.init))
+        .collect();
     let found = crate::dae::newton_block::find(
         g,
         &crate::dae::newton_block::Candidates {
-            residuals: &reduction.residuals,
+            residuals: &sorted.residuals,
             differentiations: &reduction.differentiations,
             highest: z,
             algebraics: &candidates,
@@ -397,15 +566,16 @@ fn inits_are_below_the_highest_derivatives(
     ok
 }
 
-/// Each algebraic variable in declaration order: from the linear solve, or
-/// from the Newton block (read as block `solved.blocks.len()`).
+/// Each algebraic variable in declaration order: from the sorting or the
+/// linear solve, from its alias, or from the Newton block (read as block
+/// `solved.blocks.len()`).
 fn algebraic_values(
     g: &mut Graph,
     declared: &[AlgebraicDecl],
     unknowns: &Unknowns,
     solved: &crate::dae::solve_unknowns::Solved,
     newton: Option<&crate::dae::system::NewtonBlock>,
-    mass_only: bool,
+    (known, mass_only): (&FxHashMap<SymbolId, Id>, bool),
 ) -> Option<Vec<AlgebraicValue>> {
     let newton_block_index = solved.blocks.len();
     let mut algebraics = Vec::with_capacity(declared.len());
@@ -414,7 +584,11 @@ fn algebraic_values(
             algebraics.push(SlotDerivative::Block { block: newton_block_index, row: k });
             continue;
         }
-        let j = *unknowns.index.get(&a.symbol)?;
+        let Some(&j) = unknowns.index.get(&a.symbol) else {
+            // An alias: its variable's value.
+            algebraics.push(SlotDerivative::Explicit(*known.get(&a.symbol)?));
+            continue;
+        };
         algebraics.push(match (solved.symbolic[j], solved.block_of[j]) {
             (Some(v), _) => SlotDerivative::Explicit(v),
             (None, Some((block, row))) => SlotDerivative::Block { block, row },
@@ -453,81 +627,4 @@ fn invariants(
         });
     }
     (invariants, ok)
-}
-
-/// A perfect matching of equations to unknowns (highest derivatives, then
-/// algebraic variables; Kuhn's augmenting paths). An equation left over is
-/// reported with the structurally singular subsystem it belongs to (the
-/// equations reached by alternating paths, which share fewer unknowns than
-/// they number); an unknown left over has no equation.
-fn matched(
-    cx: &mut Ctxt,
-    g: &crate::Graph,
-    states: &[crate::front::ir::StateDecl],
-    algebraics: &[crate::front::ir::AlgebraicDecl],
-    equations: &[Equation],
-    unknowns: &[SymbolId],
-) -> Option<Vec<usize>> {
-    let n = unknowns.len();
-    let mut owner: Vec<Option<usize>> = vec![None; n];
-    let columns = |e: usize| equations[e].unknowns.iter().copied();
-    let name = |j: usize| format!("`{}`", g.symbol(unknowns[j]).name);
-    let text = |e: usize| format!("`{}`", crate::front::names::source_text(&equations[e].origin));
-    let mut ok = true;
-    for e in 0..equations.len() {
-        let mut seen = vec![false; n];
-        if crate::dae::matching::augment(e, &columns, &mut owner, &mut seen) {
-            continue;
-        }
-        ok = false;
-        let reached: Vec<usize> = (0..n).filter(|&j| seen[j]).collect();
-        let mut subsystem: Vec<usize> = reached.iter().filter_map(|&j| owner[j]).collect();
-        subsystem.sort_unstable();
-        if let ([j], [other]) = (&reached[..], &subsystem[..]) {
-            let name = name(*j);
-            cx.error_at(&equations[e].origin, format!("{name} already has an equation: remove one of the two (or there are more equations than unknowns)"));
-            cx.error_at(
-                &equations[*other].origin,
-                format!("the other equation that determines {name}"),
-            );
-            continue;
-        }
-        let listed: Vec<String> = subsystem.iter().map(|&k| text(k)).collect();
-        let unknown_names: Vec<String> = reached.iter().map(|&j| name(j)).collect();
-        let message = if reached.is_empty() {
-            "this equation determines no unknown: it involves no highest derivative and no algebraic variable, and differentiating it does not help".to_string()
-        } else {
-            format!(
-                "the system is structurally singular: this equation and {} determine only {} ({} equations for {} unknowns); remove an equation or add an algebraic variable",
-                listed.join(", "),
-                unknown_names.join(", "),
-                subsystem.len() + 1,
-                reached.len()
-            )
-        };
-        cx.error_at(&equations[e].origin, message);
-    }
-    for (j, o) in owner.iter().enumerate() {
-        if o.is_some() {
-            continue;
-        }
-        ok = false;
-        let name = name(j);
-        match states.get(j) {
-            Some(state) => {
-                // unknowns[j] is the highest derivative of state j.
-                let message = format!("no equation determines {name}: add `{} == ...;` (there are fewer equations than unknowns)", &name[1..name.len() - 1]);
-                cx.error_at(&state.origin, message);
-            }
-            None => {
-                let a = &algebraics[j - states.len()];
-                cx.error_at(&a.origin, format!("no equation determines the algebraic variable {name}: add an equation or a constraint that involves it (there are fewer equations than unknowns)"));
-            }
-        }
-    }
-    if ok {
-        owner.into_iter().collect()
-    } else {
-        None
-    }
 }

@@ -407,60 +407,14 @@ fn eliminate_with_parameter_pivots(
 }
 
 /// The equations grouped into strongly connected components of "equation
-/// i reads the unknown matched to equation k", each component after the
-/// ones it reads (Tarjan 1972, iterative).
+/// i reads the unknown matched to equation k", each after the ones it reads.
 fn blt_order(e: &[Vec<(usize, Id)>], owner: &[usize]) -> Vec<Vec<usize>> {
-    let m = e.len();
-    let successors = |i: usize| e[i].iter().map(|&(j, _)| owner[j]).filter(move |&k| k != i);
-    let (mut index, mut low) = (vec![usize::MAX; m], vec![0; m]);
-    let mut on_stack = vec![false; m];
-    let (mut stack, mut out) = (Vec::new(), Vec::new());
-    let mut next = 0;
-    for root in 0..m {
-        if index[root] != usize::MAX {
-            continue;
-        }
-        // (node, position in its successor list)
-        let mut call: Vec<(usize, usize)> = vec![(root, 0)];
-        index[root] = next;
-        low[root] = next;
-        next += 1;
-        stack.push(root);
-        on_stack[root] = true;
-        while let Some(&mut (v, ref mut pos)) = call.last_mut() {
-            if let Some(w) = successors(v).nth(*pos) {
-                *pos += 1;
-                if index[w] == usize::MAX {
-                    index[w] = next;
-                    low[w] = next;
-                    next += 1;
-                    stack.push(w);
-                    on_stack[w] = true;
-                    call.push((w, 0));
-                } else if on_stack[w] {
-                    low[v] = low[v].min(index[w]);
-                }
-                continue;
-            }
-            call.pop();
-            if let Some(&(parent, _)) = call.last() {
-                low[parent] = low[parent].min(low[v]);
-            }
-            if low[v] == index[v] {
-                let mut component = Vec::new();
-                while let Some(w) = stack.pop() {
-                    on_stack[w] = false;
-                    component.push(w);
-                    if w == v {
-                        break;
-                    }
-                }
-                component.sort_unstable();
-                out.push(component);
-            }
-        }
-    }
-    out
+    let successors: Vec<Vec<usize>> = e
+        .iter()
+        .enumerate()
+        .map(|(i, row)| row.iter().map(|&(j, _)| owner[j]).filter(|&k| k != i).collect())
+        .collect();
+    crate::dae::matching::strongly_connected(&successors)
 }
 
 /// `w = M⁻¹ g` for a constant matrix, by Gaussian elimination with exact

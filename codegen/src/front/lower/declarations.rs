@@ -35,15 +35,19 @@ pub(crate) enum Declaration {
     StateArray,
     /// `algebraic(z0)`.
     Algebraic,
+    /// `algebraic_array([..])`.
+    AlgebraicArray,
     /// `time()`.
     Time,
     /// `output(value)`.
     Output,
+    /// `output_array([..])`.
+    OutputArray,
 }
 
 impl Declaration {
     /// Every declaration, in the order the language reference lists them.
-    pub(crate) const ALL: [Declaration; 11] = [
+    pub(crate) const ALL: [Declaration; 13] = [
         Declaration::Event,
         Declaration::Body,
         Declaration::SpatialBody,
@@ -53,8 +57,10 @@ impl Declaration {
         Declaration::State,
         Declaration::StateArray,
         Declaration::Algebraic,
+        Declaration::AlgebraicArray,
         Declaration::Time,
         Declaration::Output,
+        Declaration::OutputArray,
     ];
 
     /// The function the user calls.
@@ -69,8 +75,10 @@ impl Declaration {
             Declaration::State => "state",
             Declaration::StateArray => "state_array",
             Declaration::Algebraic => "algebraic",
+            Declaration::AlgebraicArray => "algebraic_array",
             Declaration::Time => "time",
             Declaration::Output => "output",
+            Declaration::OutputArray => "output_array",
         }
     }
 
@@ -302,29 +310,9 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 if !self.arity(call, kind.name(), 1) {
                     return;
                 }
-                let inits: Vec<Option<Id>> = match &call.args[0] {
-                    Expr::Array(a) => a.elems.iter().map(|e| self.initial_value(e)).collect(),
-                    Expr::Repeat(r) => {
-                        let v = self.initial_value(&r.expr);
-                        match self.index_constant(&r.len) {
-                            Some(n) => vec![v; n],
-                            None => return,
-                        }
-                    }
-                    Expr::MethodCall(m) if m.method == "map" => {
-                        match self.initial_values_by_index(m) {
-                            Some(inits) => inits,
-                            None => return,
-                        }
-                    }
-                    other => {
-                        return self.cx.error_at(other, "`state_array` takes an array of initial values: `state_array([1.0, 0.0])`, `state_array([0.0; N])` or `state_array((0..N).map(|i| ...))`");
-                    }
-                };
+                let Some(inits) = self.array_values(&call.args[0], kind) else { return };
                 if inits.is_empty() {
-                    return self
-                        .cx
-                        .error_at(&call.args[0], "a state array needs at least one element");
+                    return self.cx.error_at(&call.args[0], "an array needs at least one element");
                 }
                 if kind == Declaration::QuaternionState && inits.len() != 4 {
                     return self.cx.error_at(&call.args[0], "a quaternion has four components: `quaternion_state([1.0, 0.0, 0.0, 0.0])` (q0 = cos(θ/2) first)");
@@ -375,6 +363,25 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     self.bind(ident, Binding::Algebraic(id));
                 }
             }
+            Declaration::AlgebraicArray => {
+                if !self.arity(call, "algebraic_array", 1) {
+                    return;
+                }
+                let Some(guesses) = self.array_values(&call.args[0], kind) else { return };
+                if guesses.is_empty() {
+                    return self.cx.error_at(&call.args[0], "an array needs at least one element");
+                }
+                let mut elements = Vec::with_capacity(guesses.len());
+                for (i, guess) in guesses.into_iter().enumerate() {
+                    let guess = guess.unwrap_or_else(|| self.g.zero());
+                    let element = format!("{name}[{i}]");
+                    match self.declare_algebraic(element, guess, ident, &origin, doc.clone()) {
+                        Some(id) => elements.push(id),
+                        None => return,
+                    }
+                }
+                self.bind(ident, Binding::AlgebraicArray(elements));
+            }
             Declaration::Time => {
                 if !self.arity(call, "time", 0) {
                     return;
@@ -404,15 +411,59 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 self.outputs.push(Output { name, value, doc, origin });
                 self.bind(ident, Binding::Value { id: value, mutable: false });
             }
+            Declaration::OutputArray => {
+                if !self.arity(call, "output_array", 1) {
+                    return;
+                }
+                let Some(values) = self.array_values(&call.args[0], kind) else { return };
+                if values.is_empty() {
+                    return self.cx.error_at(&call.args[0], "an array needs at least one element");
+                }
+                let Some(values) = values.into_iter().collect::<Option<Vec<Id>>>() else {
+                    return self.bind(ident, Binding::Broken);
+                };
+                for (i, &value) in values.iter().enumerate() {
+                    let (name, doc, origin) = (format!("{name}[{i}]"), doc.clone(), origin.clone());
+                    self.outputs.push(Output { name, value, doc, origin });
+                }
+                self.bind(ident, Binding::ValueArray(values));
+            }
+        }
+    }
+
+    /// The elements of an array declaration's argument: `[a, b]`,
+    /// `[a; N]` or `(0..N).map(|i| ..)`, each an initial value (constants
+    /// and parameters) but for `output_array`'s, which may read anything;
+    /// `None` once the shape is reported.
+    fn array_values(&mut self, argument: &Expr, kind: Declaration) -> Option<Vec<Option<Id>>> {
+        let any_value = kind == Declaration::OutputArray;
+        let element = |this: &mut Self, e: &Expr| match any_value {
+            true => this.value(e),
+            false => this.initial_value(e),
+        };
+        match argument {
+            Expr::Array(a) => Some(a.elems.iter().map(|e| element(self, e)).collect()),
+            Expr::Repeat(r) => {
+                let v = element(self, &r.expr);
+                self.index_constant(&r.len).map(|n| vec![v; n])
+            }
+            Expr::MethodCall(m) if m.method == "map" => self.values_by_index(m, any_value),
+            other => {
+                let name = kind.name();
+                let what = if any_value { "values" } else { "initial values" };
+                self.cx.error_at(other, format!("`{name}` takes an array of {what}: `{name}([1.0, 0.0])`, `{name}([0.0; N])` or `{name}((0..N).map(|i| ...))`"));
+                None
+            }
         }
     }
 
     /// An initial value or guess: constants and parameters only.
     /// The initial values of `(0..N).map(|i| value)`: `value` with `i`
     /// bound to each index of the range in turn, as a loop binds it.
-    pub(in crate::front) fn initial_values_by_index(
+    pub(in crate::front) fn values_by_index(
         &mut self,
         m: &syn::ExprMethodCall,
+        any_value: bool,
     ) -> Option<Vec<Option<Id>>> {
         let how = "write the initial values as `(0..N).map(|i| 1.0 + 0.1 * (i as f64))`";
         let mut receiver = &*m.receiver;
@@ -441,7 +492,10 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 let index = self.g.int(i as i64);
                 self.integer_names.insert(var.ident.to_string());
                 self.scopes.push(HashMap::from([(var.ident.to_string(), Binding::Const(index))]));
-                let value = self.initial_value(&closure.body);
+                let value = match any_value {
+                    true => self.value(&closure.body),
+                    false => self.initial_value(&closure.body),
+                };
                 self.scopes.pop();
                 value
             })

@@ -135,7 +135,11 @@ impl<S: SceneLanguage> Lower<'_, S> {
                             None
                         }
                     },
-                    Some(b @ (Binding::StateArray(_) | Binding::ValueArray(_))) => {
+                    Some(
+                        b @ (Binding::StateArray(_)
+                        | Binding::ValueArray(_)
+                        | Binding::AlgebraicArray(_)),
+                    ) => {
                         let what = b.describe();
                         self.cx.error_at(e, format!("`{name}` is {what}: index it, `{name}[0]`"));
                         None
@@ -157,7 +161,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     Some(Binding::StateArray(s)) => {
                         s.into_iter().map(|s| self.g.symbol_node(s)).collect()
                     }
-                    Some(Binding::ValueArray(v)) => v,
+                    Some(Binding::ValueArray(v) | Binding::AlgebraicArray(v)) => v,
                     Some(Binding::Broken) => return None,
                     Some(b) => {
                         let what = b.describe();

@@ -19,6 +19,8 @@ pub(crate) enum Binding {
     /// `let m = [a, b, ...];`: constant-indexed values (masses, lengths).
     ValueArray(Vec<Id>),
     Algebraic(Id),
+    /// `let i = algebraic_array([..]);`
+    AlgebraicArray(Vec<Id>),
     Time(Id),
     /// A `let` intermediate (possibly `mut`) or an output.
     Value {
@@ -49,6 +51,7 @@ impl Binding {
             Binding::StateArray(_) => "an array of states",
             Binding::ValueArray(_) => "an array of values",
             Binding::Algebraic(_) => "an algebraic variable",
+            Binding::AlgebraicArray(_) => "an array of algebraic variables",
             Binding::Time(_) => "the time",
             Binding::Value { .. } => "an intermediate value",
             Binding::Const(_) => "a constant",
