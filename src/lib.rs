@@ -36,10 +36,10 @@ pub use daegen_codegen as codegen;
 pub use daegen_macros::dae_model;
 pub use daegen_runtime as runtime;
 pub use daegen_runtime::{
-    Availability, Batch, ConstraintInfo, Ensemble, Error, EvalError, EventDirection, EventInfo,
-    FinalState, FinalStates, Flow, Formulation, InitialCorrection, Jacobian, LinearSolver,
-    MassMatrix, Method, Model, ModelInfo, Options, ProjectionLevel, Shard, Simulate, Solution,
-    Stats, Step, Table,
+    Availability, Batch, BlockInfo, BlockSolution, ConstraintInfo, Ensemble, Error, EvalError,
+    EventDirection, EventInfo, FinalState, FinalStates, Flow, Formulation, InitialCorrection,
+    Jacobian, LinearSolver, MassMatrix, Method, Model, ModelInfo, Options, ProjectionLevel, Shard,
+    Simulate, Solution, Stats, Step, StructureInfo, Table,
 };
 
 pub mod guide;

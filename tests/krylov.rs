@@ -3,7 +3,7 @@
 //! refuses with what to use instead.
 
 use daegen::prelude::*;
-use daegen::{EvalError, ModelInfo};
+use daegen::{EvalError, ModelInfo, StructureInfo};
 
 mod support;
 use support::harness::{is_implicit, is_stiff_method, methods_for};
@@ -133,6 +133,7 @@ impl Model for HandWritten {
         events: &[],
         algebraics: &[],
         algebraic_docs: &[],
+        structure: StructureInfo::NONE,
     };
     fn initial_state(&self, y: &mut [f64]) {
         y[0] = 1.0;
@@ -251,6 +252,7 @@ impl Model for SkewOscillators {
         events: &[],
         algebraics: &[],
         algebraic_docs: &[],
+        structure: StructureInfo::NONE,
     };
     const JACOBIAN: daegen::Jacobian =
         daegen::Jacobian::Symbolic { pattern: &SKEW_PATTERN, time_derivative: true };

@@ -2,7 +2,7 @@
 //! the `Display` of [`ModelInfo`], which list every name with its doc
 //! comment.
 
-use crate::info::{EventDirection, ModelInfo};
+use crate::info::{BlockSolution, EventDirection, ModelInfo, StructureInfo};
 use std::fmt::Write;
 
 /// The description of a model: with `parameter` (a parameter's value by
@@ -64,8 +64,44 @@ pub(crate) fn describe(info: &ModelInfo, parameter: Option<&dyn Fn(usize) -> f64
             let _ = writeln!(out, "  {name}{:pad$}  {doc}", "");
         }
     }
+    structure(&mut out, &info.structure);
     // No trailing spaces on lines without a doc comment.
     out.lines().map(str::trim_end).collect::<Vec<_>>().join("\n") + "\n"
+}
+
+/// The "structure" section: aliases, equations solved one at a time, and
+/// each block with its size before and after tearing; nothing where all
+/// equations are solved one at a time (an ODE).
+fn structure(out: &mut String, s: &StructureInfo) {
+    if s.aliases == 0 && s.blocks.is_empty() {
+        return;
+    }
+    let plural = |n: usize, what: &str| {
+        let ending = match (n, what.ends_with('s')) {
+            (1, _) => "",
+            (_, true) => "es",
+            (_, false) => "s",
+        };
+        format!("{n} {what}{ending}")
+    };
+    let _ = writeln!(
+        out,
+        "structure: {} removed, {} solved one at a time, {}",
+        plural(s.aliases, "alias"),
+        plural(s.one_at_a_time, "equation"),
+        plural(s.blocks.len(), "block"),
+    );
+    for b in s.blocks {
+        let how = match b.solution {
+            BlockSolution::Symbolic => "linear, solved symbolically".to_string(),
+            BlockSolution::Linear { lu } => format!("linear, LU of {lu} at run time"),
+            BlockSolution::Newton { tearing } => {
+                format!("nonlinear, Newton on {}", plural(tearing, "tearing variable"))
+            }
+            BlockSolution::MassMatrix => "nonlinear, in the mass-matrix form".to_string(),
+        };
+        let _ = writeln!(out, "  block of {}: {how}", plural(b.size, "equation"));
+    }
 }
 
 fn owned(names: &[&str]) -> Vec<String> {
@@ -107,6 +143,7 @@ mod tests {
         }],
         algebraics: &[],
         algebraic_docs: &[],
+        structure: crate::info::StructureInfo::NONE,
     };
 
     #[test]

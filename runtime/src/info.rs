@@ -97,6 +97,61 @@ pub struct EventInfo {
     pub doc: &'static str,
 }
 
+/// How a model's equations are solved for their unknowns (the highest
+/// derivatives and the algebraic variables) at each evaluation, as the
+/// sorting at compile time found it: aliases removed, then the equations
+/// in causal order, one at a time where one equation determines one
+/// unknown, in blocks where several determine several together.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StructureInfo {
+    /// Equations removed with one of their variables as aliases (`a ==
+    /// b`, `a == -b`, `a + b == 0`, `a == c`): the variable reads its
+    /// alias's value.
+    pub aliases: usize,
+    /// Equations solved one at a time, symbolically, each for its unknown
+    /// from what the equations before it determined.
+    pub one_at_a_time: usize,
+    /// The blocks of equations solved together, in causal order.
+    pub blocks: &'static [BlockInfo],
+}
+
+impl StructureInfo {
+    /// The structure of a model written by hand: nothing known.
+    pub const NONE: StructureInfo = StructureInfo { aliases: 0, one_at_a_time: 0, blocks: &[] };
+}
+
+/// Equations that determine their unknowns together.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BlockInfo {
+    /// Its equations, as many as its unknowns (before tearing).
+    pub size: usize,
+    /// How it is solved.
+    pub solution: BlockSolution,
+}
+
+/// How a block of equations is solved at each evaluation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BlockSolution {
+    /// Linear in its unknowns and solved symbolically at compile time.
+    Symbolic,
+    /// Linear, solved by an LU factorization at run time of `lu` unknowns
+    /// (the others eliminated symbolically around it: accelerations with a
+    /// constant mass matrix, around a mechanism's multipliers).
+    Linear {
+        /// The unknowns of the run-time factorization.
+        lu: usize,
+    },
+    /// Nonlinear, solved by Newton's method on `tearing` variables, the
+    /// others computed from them equation by equation.
+    Newton {
+        /// The variables Newton iterates on.
+        tearing: usize,
+    },
+    /// Nonlinear in algebraic variables that do not close into a block:
+    /// left to the Newton iteration of the mass-matrix form (RADAU5).
+    MassMatrix,
+}
+
 /// Names and documentation of a model, known at compile time.
 #[derive(Clone, Copy, Debug)]
 pub struct ModelInfo {
@@ -127,6 +182,8 @@ pub struct ModelInfo {
     pub algebraics: &'static [&'static str],
     /// Each algebraic variable's doc comment.
     pub algebraic_docs: &'static [&'static str],
+    /// How the equations are solved for their unknowns.
+    pub structure: StructureInfo,
 }
 
 #[cfg(test)]
@@ -151,6 +208,7 @@ impl ModelInfo {
             events: &[],
             algebraics: &[],
             algebraic_docs: &[],
+            structure: StructureInfo::NONE,
         }
     }
 }

@@ -44,7 +44,10 @@ pub use step::control as step_control;
 
 pub use ensemble::{Batch, Ensemble, FinalState, FinalStates, Shard};
 pub use error::Error;
-pub use info::{ConstraintInfo, EvalError, EventDirection, EventInfo, ModelInfo, ProjectionLevel};
+pub use info::{
+    BlockInfo, BlockSolution, ConstraintInfo, EvalError, EventDirection, EventInfo, ModelInfo,
+    ProjectionLevel, StructureInfo,
+};
 pub use model::{Availability, Jacobian, MassMatrix, Model, StateVector};
 /// The linear-algebra crate of [`kinematics`], re-exported so users get the
 /// same version.

@@ -9,12 +9,15 @@
 //! The block is the smallest set of algebraic variables closed under the
 //! derivative-free, undifferentiated equations that involve them, starting
 //! from the variables that enter some such equation nonlinearly; it must
-//! have as many equations as variables. Its Jacobian ∂g/∂z is generated;
-//! where it is singular the model is not of index 1 there, and the run says
-//! so naming the equations.
+//! have as many equations as variables. It is torn: Newton iterates on a
+//! few tearing variables, and the others are computed from them, one
+//! equation each, in order (`tear`). The Jacobian of the torn residuals
+//! with respect to the tearing variables is generated; where it is
+//! singular the model is not of index 1 there, and the run says so naming
+//! the equations.
 
 use crate::dae::system::NewtonBlock;
-use crate::{Graph, Id, SymbolId};
+use crate::{FxHashMap, Graph, Id, SymbolId};
 
 /// What the finder reads of the reduced model.
 pub struct Candidates<'a> {
@@ -89,12 +92,110 @@ pub fn find(g: &mut Graph, model: &Candidates<'_>) -> crate::Result<Option<Newto
     if members.len() != equations.len() {
         return Ok(None);
     }
+    let symbols: Vec<SymbolId> = members.iter().map(|&a| model.algebraics[a].0).collect();
+    let residuals: Vec<Id> = equations.iter().map(|&e| model.residuals[e]).collect();
+    let torn = tear(g, &residuals, &symbols)?;
     Ok(Some(NewtonBlock {
-        unknowns: members.iter().map(|&a| model.algebraics[a].0).collect(),
-        names: members.iter().map(|&a| model.algebraics[a].1.clone()).collect(),
-        guesses: members.iter().map(|&a| model.algebraics[a].2).collect(),
-        residuals: equations.iter().map(|&e| model.residuals[e]).collect(),
+        unknowns: torn.tearing.iter().map(|&k| symbols[k]).collect(),
+        names: torn.tearing.iter().map(|&k| model.algebraics[members[k]].1.clone()).collect(),
+        guesses: torn.tearing.iter().map(|&k| model.algebraics[members[k]].2).collect(),
+        residuals: torn.residuals,
+        computed: torn.computed,
+        size: members.len(),
         texts: equations.iter().map(|&e| model.texts[e].clone()).collect(),
         equations,
     }))
+}
+
+/// A block torn: the variables Newton iterates on, the others computed
+/// from them, and the residuals left in the tearing variables alone.
+struct Torn {
+    /// The tearing variables (indices into the block's variables).
+    tearing: Vec<usize>,
+    /// The computed variables in the order computed, each an expression
+    /// of the tearing variables, the states and the parameters.
+    computed: Vec<(SymbolId, Id)>,
+    /// The equations not used to compute a variable, with the computed
+    /// variables substituted: as many as tearing variables.
+    residuals: Vec<Id>,
+}
+
+/// Tears a square block of `residuals` in `variables` with the greedy
+/// heuristic of Cellier & Kofman (Continuous System Simulation, 2006,
+/// §7.3; after Elmqvist & Otter 1994): while some equation has one
+/// variable left that it determines explicitly (linearly, with a
+/// coefficient that reads no block variable, so the division cannot
+/// vanish during the iteration), compute that variable from it; when none
+/// has, make the variable that appears in most of the equations left a
+/// tearing variable, and go on. Every block squares: each computed
+/// variable uses one equation, so the equations left are as many as the
+/// tearing variables.
+fn tear(g: &mut Graph, residuals: &[Id], variables: &[SymbolId]) -> crate::Result<Torn> {
+    let index: FxHashMap<SymbolId, usize> =
+        variables.iter().enumerate().map(|(k, &s)| (s, k)).collect();
+    let incidence: Vec<Vec<usize>> = residuals
+        .iter()
+        .map(|&r| g.free_symbols(r).into_iter().filter_map(|s| index.get(&s).copied()).collect())
+        .collect();
+    let n = variables.len();
+    let mut known = vec![false; n];
+    let mut used = vec![false; residuals.len()];
+    let (mut tearing, mut computed) = (Vec::new(), Vec::new());
+    let mut value: FxHashMap<SymbolId, Id> = FxHashMap::default();
+    while known.contains(&false) {
+        let mut progress = false;
+        for (e, vars) in incidence.iter().enumerate() {
+            let left: Vec<usize> = vars.iter().copied().filter(|&k| !known[k]).collect();
+            let [k] = left[..] else { continue };
+            if used[e] {
+                continue;
+            }
+            let r = g.substitute(residuals[e], &value)?;
+            let Some(v) = solve_explicitly(g, r, variables[k], &index)? else { continue };
+            value.insert(variables[k], v);
+            computed.push((variables[k], v));
+            known[k] = true;
+            used[e] = true;
+            progress = true;
+        }
+        if progress {
+            continue;
+        }
+        let appearances = |k: usize| {
+            incidence.iter().enumerate().filter(|(e, vars)| !used[*e] && vars.contains(&k)).count()
+        };
+        let Some(k) = (0..n).filter(|&k| !known[k]).max_by_key(|&k| (appearances(k), n - k)) else {
+            break;
+        };
+        tearing.push(k);
+        known[k] = true;
+    }
+    tearing.sort_unstable();
+    let mut left = Vec::new();
+    for (e, &r) in residuals.iter().enumerate() {
+        if !used[e] {
+            left.push(g.substitute(r, &value)?);
+        }
+    }
+    Ok(Torn { tearing, computed, residuals: left })
+}
+
+/// `u` from `r = 0` when `r` is linear in `u` with a coefficient that
+/// reads none of the block's variables (and is not zero).
+fn solve_explicitly(
+    g: &mut Graph,
+    r: Id,
+    u: SymbolId,
+    block: &FxHashMap<SymbolId, usize>,
+) -> crate::Result<Option<Id>> {
+    let c = g.partial(r, u)?;
+    if g.as_number(c).is_some_and(|v| v.is_zero())
+        || g.free_symbols(c).iter().any(|s| block.contains_key(s))
+    {
+        return Ok(None);
+    }
+    let zero = g.zero();
+    let r0 = g.substitute(r, &FxHashMap::from_iter([(u, zero)]))?;
+    let numerator = g.negate_terms(r0)?;
+    Ok(Some(g.div(numerator, c)?))
 }

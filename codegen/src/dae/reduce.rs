@@ -71,7 +71,15 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
         sort(cx, g, (&ir.states, &kept_algebraics), &z_symbols, &aliases, (&texts, &origins))?;
     let newton =
         newton_block(cx, g, &kept_algebraics, &sorted, &reduction, &z_symbols, &texts, &origins)?;
-    let in_newton = |s: &SymbolId| newton.as_ref().is_some_and(|b| b.unknowns.contains(s));
+    let in_newton = |s: &SymbolId| newton.as_ref().is_some_and(|b| b.determines(s));
+    // The variables the Newton block computes from its tearing variables,
+    // in every equation left.
+    let computed: FxHashMap<SymbolId, Id> =
+        newton.iter().flat_map(|b| b.computed.iter().copied()).collect();
+    let residuals_left = match computed.is_empty() {
+        true => sorted.residuals.clone(),
+        false => g.substitute_all(&sorted.residuals, &computed).ok()?,
+    };
     // The unknowns: z, then λ (but for the Newton block's); those the
     // sorting solved are known, the rest go to the linear solve.
     let linear_algebraics: Vec<AlgebraicDecl> =
@@ -90,7 +98,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
             || sorted.solved_equations[e]
             || newton.as_ref().is_some_and(|b| b.equations.contains(&e))
     };
-    let equations = equations_in_unknowns(g, &ir.equations, &sorted.residuals, &done, &rest_index);
+    let equations = equations_in_unknowns(g, &ir.equations, &residuals_left, &done, &rest_index);
     let owner = local_owner(&sorted, &equations, &rest_symbols, &z_index);
     let unknowns = Unknowns {
         z: &rest_symbols,
@@ -118,7 +126,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
         linear.mass_only,
     )?;
     ok &= inits_are_below_the_highest_derivatives(cx, g, (&ir.states, &ir.inits), &slots);
-    let known = known_values(g, &all, &solved, &removed)?;
+    let known = known_values(g, &all, &solved, (&computed, &removed))?;
     let (outputs, events, observed) =
         observables(cx, g, (&ir.outputs, &ir.events), &known, &z_index, newton.as_ref())?;
     ok &= observed;
@@ -145,7 +153,18 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
             block_unknowns.push((s, newton_block_index, k));
         }
     }
+    let sorted_symbols: Vec<SymbolId> =
+        z_symbols.iter().copied().chain(kept_algebraics.iter().map(|a| a.symbol)).collect();
+    let structure = structure_report(
+        &sorted,
+        &sorted_symbols,
+        (&solved, &z_index),
+        newton.as_ref(),
+        linear.mass_only,
+        aliases.removed.clone(),
+    );
     ok.then_some(FirstOrder {
+        structure,
         slots,
         derivatives,
         blocks: solved.blocks,
@@ -166,6 +185,56 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
         mass_only: linear.mass_only,
         newton,
     })
+}
+
+/// How each block of the sorting ended up solved, blocks that share a
+/// run-time solve (the Newton block, one LU) reported once, where the
+/// first of them stands in the causal order.
+fn structure_report(
+    sorted: &crate::dae::sorting::Sorted,
+    symbols: &[SymbolId],
+    (solved, all_index): (&crate::dae::solve_unknowns::Solved, &FxHashMap<SymbolId, usize>),
+    newton: Option<&crate::dae::system::NewtonBlock>,
+    mass_only: bool,
+    aliases: Vec<(SymbolId, Id)>,
+) -> crate::dae::system::StructureReport {
+    use crate::dae::sorting::BlockSolution;
+    use crate::dae::system::{BlockReport, BlockSolve};
+    let mut report = crate::dae::system::StructureReport { aliases, ..Default::default() };
+    // Where each shared solve's report is, by its key.
+    let mut shared: FxHashMap<(u8, usize), usize> = FxHashMap::default();
+    for block in &sorted.blocks {
+        let unknowns: Vec<SymbolId> = block.unknowns.iter().map(|&j| symbols[j]).collect();
+        if block.solution == BlockSolution::Explicit {
+            report.one_at_a_time.push(unknowns[0]);
+            continue;
+        }
+        let run_time_block = unknowns
+            .iter()
+            .find_map(|s| all_index.get(s).and_then(|&j| solved.block_of[j]).map(|(b, _)| b));
+        let (key, solution) = if mass_only {
+            ((0, 0), BlockSolve::MassMatrix)
+        } else if let Some(b) = newton.filter(|b| unknowns.iter().any(|s| b.determines(s))) {
+            ((1, 0), BlockSolve::Newton { tearing: b.unknowns.len() })
+        } else if let Some(b) = run_time_block {
+            ((2, b), BlockSolve::Linear { lu: solved.blocks[b].unknowns.len() })
+        } else if unknowns.len() == 1 {
+            // Solved symbolically after a block it reads.
+            report.one_at_a_time.push(unknowns[0]);
+            continue;
+        } else {
+            report.blocks.push(BlockReport { unknowns, solution: BlockSolve::Symbolic });
+            continue;
+        };
+        match shared.get(&key) {
+            Some(&k) => report.blocks[k].unknowns.extend(unknowns),
+            None => {
+                shared.insert(key, report.blocks.len());
+                report.blocks.push(BlockReport { unknowns, solution });
+            }
+        }
+    }
+    report
 }
 
 /// The structural check of the equations as index reduction left them,
@@ -288,17 +357,19 @@ fn with_explicit(
     solved
 }
 
-/// Every unknown solved symbolically, by its symbol, and each alias with
+/// Every unknown solved symbolically, by its symbol, each variable the
+/// Newton block computes from its tearing variables, and each alias with
 /// its variable's value in those terms: what outputs, events and the
 /// algebraic variables read in place of the unknowns.
 fn known_values(
     g: &mut Graph,
     all: &[SymbolId],
     solved: &crate::dae::solve_unknowns::Solved,
-    removed: &FxHashMap<SymbolId, Id>,
+    (computed, removed): (&FxHashMap<SymbolId, Id>, &FxHashMap<SymbolId, Id>),
 ) -> Option<FxHashMap<SymbolId, Id>> {
     let mut known: FxHashMap<SymbolId, Id> =
         all.iter().enumerate().filter_map(|(j, &s)| solved.symbolic[j].map(|v| (s, v))).collect();
+    known.extend(computed.iter().map(|(&s, &v)| (s, v)));
     let mut aliases: Vec<(SymbolId, Id)> = removed.iter().map(|(&s, &v)| (s, v)).collect();
     aliases.sort_unstable();
     for (s, v) in aliases {
@@ -319,7 +390,7 @@ fn observables(
     z_index: &FxHashMap<SymbolId, usize>,
     newton: Option<&crate::dae::system::NewtonBlock>,
 ) -> Option<(Vec<Id>, Vec<Id>, bool)> {
-    let in_newton = |s: &SymbolId| newton.is_some_and(|b| b.unknowns.contains(s));
+    let in_newton = |s: &SymbolId| newton.is_some_and(|b| b.determines(s));
     let mut ok = true;
     let mut observe = |value: Id, origin: &TokenStream, what: &str| -> Option<Id> {
         let v = g.substitute(value, replace).ok()?;

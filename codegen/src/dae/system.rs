@@ -89,6 +89,50 @@ pub struct FirstOrder {
     pub outputs: Vec<Id>,
     /// Event functions, likewise.
     pub events: Vec<Id>,
+    /// How the equations are solved for their unknowns, in causal order.
+    pub structure: StructureReport,
+}
+
+/// How the equations are solved for their unknowns: the aliases removed,
+/// then in causal order the unknowns solved one equation at a time and the
+/// blocks solved together.
+#[derive(Clone, Debug, Default)]
+pub struct StructureReport {
+    /// Variables removed as aliases, with their values.
+    pub aliases: Vec<(SymbolId, Id)>,
+    /// Unknowns solved one equation at a time, symbolically, in causal
+    /// order.
+    pub one_at_a_time: Vec<SymbolId>,
+    /// The blocks solved together, in causal order.
+    pub blocks: Vec<BlockReport>,
+}
+
+/// Equations that determine their unknowns together.
+#[derive(Clone, Debug)]
+pub struct BlockReport {
+    /// The unknowns (as many as the equations) before tearing.
+    pub unknowns: Vec<SymbolId>,
+    /// How they are solved.
+    pub solution: BlockSolve,
+}
+
+/// How a block is solved at each evaluation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BlockSolve {
+    /// Linear, solved symbolically.
+    Symbolic,
+    /// Linear, by a run-time LU of `lu` unknowns.
+    Linear {
+        /// The LU's unknowns.
+        lu: usize,
+    },
+    /// Nonlinear, by Newton on `tearing` variables.
+    Newton {
+        /// The tearing variables.
+        tearing: usize,
+    },
+    /// Left to the mass-matrix form.
+    MassMatrix,
 }
 
 /// `E z = g` for unknowns that no symbolic solve could separate.
@@ -125,20 +169,36 @@ pub struct RankCondition {
     pub text: String,
 }
 
-/// The nonlinear algebraic equations and the variables they determine.
+/// The nonlinear algebraic equations and the variables they determine,
+/// torn: Newton iterates on the tearing variables, the others are
+/// computed from them.
 pub struct NewtonBlock {
-    /// The variables, in declaration order.
+    /// The tearing variables, in declaration order.
     pub unknowns: Vec<SymbolId>,
     /// Their names.
     pub names: Vec<String>,
     /// Their initial guesses (`algebraic(z0)`).
     pub guesses: Vec<Id>,
-    /// The equations (indices into the model's), in the model's order.
+    /// The block's equations (indices into the model's), in the model's
+    /// order.
     pub equations: Vec<usize>,
-    /// Their residuals `g(t, y, z)`.
+    /// The residuals left after tearing, `g(t, y, z)` in the tearing
+    /// variables `z` alone: as many as they.
     pub residuals: Vec<Id>,
-    /// The equations as written, for the errors.
+    /// The other variables of the block, in the order computed, each an
+    /// expression of the tearing variables, the states and the parameters.
+    pub computed: Vec<(SymbolId, Id)>,
+    /// The block's size before tearing: its equations and variables.
+    pub size: usize,
+    /// The block's equations as written, for the errors.
     pub texts: Vec<String>,
+}
+
+impl NewtonBlock {
+    /// Whether the block determines `s` (iterated on or computed).
+    pub fn determines(&self, s: &SymbolId) -> bool {
+        self.unknowns.contains(s) || self.computed.iter().any(|(c, _)| c == s)
+    }
 }
 
 /// One projection level: which invariants and which states.
@@ -166,6 +226,24 @@ impl std::fmt::Display for crate::expr::display::WithGraph<'_, FirstOrder> {
             SlotDerivative::Block { block, row } => format!("block {block} unknown {row}"),
         };
         writeln!(f, "index {}", sys.index)?;
+        let report = &sys.structure;
+        for &(a, v) in &report.aliases {
+            writeln!(f, "alias {} = {}", name(a), g.show(v))?;
+        }
+        if !report.one_at_a_time.is_empty() {
+            let order: Vec<String> = report.one_at_a_time.iter().map(|&s| name(s)).collect();
+            writeln!(f, "one at a time: {}", order.join(", "))?;
+        }
+        for b in &report.blocks {
+            let unknowns: Vec<String> = b.unknowns.iter().map(|&s| name(s)).collect();
+            let how = match b.solution {
+                BlockSolve::Symbolic => "symbolic".to_string(),
+                BlockSolve::Linear { lu } => format!("LU of {lu}"),
+                BlockSolve::Newton { tearing } => format!("Newton on {tearing}"),
+                BlockSolve::MassMatrix => "mass-matrix form".to_string(),
+            };
+            writeln!(f, "block {}: {how}", unknowns.join(", "))?;
+        }
         for (slot, d) in sys.slots.iter().zip(&sys.derivatives) {
             let fixed = if slot.fixed { " fixed" } else { "" };
             let velocity = if slot.velocity_like { " velocity" } else { "" };
@@ -187,7 +265,10 @@ impl std::fmt::Display for crate::expr::display::WithGraph<'_, FirstOrder> {
             }
         }
         if let Some(newton) = &sys.newton {
-            writeln!(f, "newton in {}", newton.names.join(", "))?;
+            writeln!(f, "newton in {} (torn from {})", newton.names.join(", "), newton.size)?;
+            for &(s, v) in &newton.computed {
+                writeln!(f, "  {} = {}", name(s), g.show(v))?;
+            }
             for &r in &newton.residuals {
                 writeln!(f, "  0 = {}", g.show(r))?;
             }

@@ -160,6 +160,7 @@ pub fn variational_system(
         blocks: Vec::new(),
         outputs: sys.outputs.clone(),
         events: sys.events.clone(),
+        structure: sys.structure.clone(),
     };
     let mut projection = levels.clone();
     for (c, w) in wrt.iter().enumerate() {

@@ -125,6 +125,7 @@ pub(crate) fn batch_items(
                 events: &[],
                 algebraics: &[],
                 algebraic_docs: &[],
+                structure: <#name as ::daegen::Model>::INFO.structure,
             };
             fn initial_state(&self, y: &mut [f64]) {
                 for lane in 0..#l_lit {

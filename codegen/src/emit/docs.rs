@@ -2,7 +2,7 @@
 //! its `Default`, its documentation (what index reduction found), and
 //! `ModelInfo` with every name and doc comment.
 
-use crate::dae::system::FirstOrder;
+use crate::dae::system::{BlockSolve, FirstOrder, StructureReport};
 use crate::emit::layout::index;
 use crate::front::ir::{EventDirection, ModelIr};
 use crate::front::names::upper_camel_case;
@@ -135,11 +135,46 @@ pub(crate) fn parameter_method(ir: &ModelIr) -> TokenStream {
 pub(crate) fn info(ir: &ModelIr, sys: &FirstOrder) -> TokenStream {
     let states: Vec<&str> = sys.slots.iter().map(|s| s.name.as_str()).collect();
     let algebraics: Vec<&str> = ir.algebraics.iter().map(|a| a.name.as_str()).collect();
-    info_with(ir, &states, &algebraics)
+    info_with(ir, &states, &algebraics, &sys.structure)
+}
+
+/// `StructureInfo`: the sizes of what the sorting found.
+fn structure_info(report: &StructureReport) -> TokenStream {
+    let aliases = index(report.aliases.len());
+    let one_at_a_time = index(report.one_at_a_time.len());
+    let blocks = report.blocks.iter().map(|b| {
+        let size = index(b.unknowns.len());
+        let solution = match b.solution {
+            BlockSolve::Symbolic => quote!(Symbolic),
+            BlockSolve::Linear { lu } => {
+                let lu = index(lu);
+                quote!(Linear { lu: #lu })
+            }
+            BlockSolve::Newton { tearing } => {
+                let tearing = index(tearing);
+                quote!(Newton { tearing: #tearing })
+            }
+            BlockSolve::MassMatrix => quote!(MassMatrix),
+        };
+        quote!(::daegen::BlockInfo { size: #size, solution: ::daegen::BlockSolution::#solution })
+    });
+    quote! {
+        ::daegen::StructureInfo {
+            aliases: #aliases,
+            one_at_a_time: #one_at_a_time,
+            blocks: &[#(#blocks),*],
+        }
+    }
 }
 
 /// `ModelInfo` with these state and algebraic-variable names.
-pub(crate) fn info_with(ir: &ModelIr, states: &[&str], algebraics: &[&str]) -> TokenStream {
+pub(crate) fn info_with(
+    ir: &ModelIr,
+    states: &[&str],
+    algebraics: &[&str],
+    structure: &StructureReport,
+) -> TokenStream {
+    let structure = structure_info(structure);
     let name = type_name(ir).to_string();
     let doc = &ir.doc;
     let params: Vec<String> = ir.params.iter().map(|p| p.ident.to_string()).collect();
@@ -181,6 +216,7 @@ pub(crate) fn info_with(ir: &ModelIr, states: &[&str], algebraics: &[&str]) -> T
             events: &[#(#events),*],
             algebraics: &[#(#algebraics),*],
             algebraic_docs: &[#(#algebraic_docs),*],
+            structure: #structure,
         }
     }
 }

@@ -264,7 +264,7 @@ fn expand_mass_only(ir: &mut ModelIr, analysis: &SystemAnalysis) -> crate::Resul
     let struct_and_default = struct_and_default(ir, &dae_analysis(ir, sys));
     // The algebraic variables are states here.
     let states: Vec<&str> = form.names.iter().map(String::as_str).collect();
-    let info = info_with(ir, &states, &[]);
+    let info = info_with(ir, &states, &[], &sys.structure);
     let parameter = parameter_method(ir);
     let reason = "the model runs in mass-matrix form only (an algebraic equation is nonlinear in its variable)";
     Ok(quote! {
@@ -327,6 +327,7 @@ pub fn stub(ir: &ModelIr) -> TokenStream {
             const INFO: ::daegen::ModelInfo = ::daegen::ModelInfo {
                 name: #name_str, doc: "", states: &[], state_docs: &[], parameters: &[], parameter_docs: &[],
                 outputs: &[], output_docs: &[], equations: 0, events: &[], algebraics: &[], algebraic_docs: &[],
+                structure: ::daegen::StructureInfo::NONE,
             };
             fn initial_state(&self, y: &mut [f64]) {}
             fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {

@@ -142,3 +142,51 @@ fn taylor_tape_and_economic_derivatives_of_the_pendulum_in_its_angle() {
     insta::assert_snapshot!("taylor_tape", ir.graph.with(tape).to_string());
     insta::assert_snapshot!("economic_derivatives", ir.graph.with(economic).to_string());
 }
+
+#[test]
+fn sorting_solves_akzo_nobel_one_equation_at_a_time() {
+    // y6 from its algebraic equation first, then each rate with y6 in it.
+    let (ir, _, sys) = reduced(quote! {
+        fn akzo() {
+            let k1 = param(18.7);
+            let k4 = param(0.42);
+            let ks = param(115.83);
+            let y1 = state(0.444);
+            let y2 = state(0.00123);
+            let y4 = state(0.007);
+            let y6 = algebraic(0.36);
+            let r1 = k1 * y1.powi(4) * sqrt(y2);
+            let r5 = k4 * y6 * y6 * sqrt(y2);
+            der(y1) == -2.0 * r1;
+            der(y2) == -0.5 * r1 - 0.5 * r5;
+            der(y4) == r5;
+            0.0 == ks * y1 * y4 - y6;
+        }
+    });
+    insta::assert_snapshot!("sorting", ir.graph.with(&sys).to_string());
+}
+
+#[test]
+fn aliases_and_tearing_leave_newton_one_variable() {
+    // A capacitor discharging through a resistor and a diode: `vd` is an
+    // alias of `v_anode`, and of the block in `i`, `vr`, `vd` Newton
+    // iterates on `i` alone.
+    let (ir, _, sys) = reduced(quote! {
+        fn diode_discharge() {
+            let r = param(10.0);
+            let is = param(1e-9);
+            let vt = param(0.025);
+            let v = state(1.0);
+            let i = algebraic(0.0);
+            let vr = algebraic(0.0);
+            let v_anode = algebraic(0.0);
+            let vd = algebraic(0.0);
+            der(v) == -i;
+            v == vr + vd;
+            vd == v_anode;
+            vr == r * i;
+            i == is * (exp(v_anode / vt) - 1.0);
+        }
+    });
+    insta::assert_snapshot!("tearing", ir.graph.with(&sys).to_string());
+}
