@@ -12,6 +12,10 @@
 //! (`results/dop853_versus_dop853.md`);
 //! `--tape-cost` measures what the default Taylor tape costs the macro and
 //! rustc (`results/default_tape.md`);
+//! `--structure` measures what sorting the equations costs the
+//! right-hand side, the expansion time against the number of equations,
+//! and Akzo Nobel with its algebraic variable against IDA
+//! (`results/structure.md`);
 //! `--auto` times `Method::Auto` against the best single method on every
 //! reference problem and an explicit pair on a stiff problem
 //! (`results/auto.md`);
@@ -43,6 +47,7 @@ mod large;
 mod peers;
 mod readme;
 mod sensitivities;
+mod structure;
 #[cfg(feature = "sundials")]
 mod sundials;
 mod tape_cost;
@@ -134,6 +139,8 @@ robertson_rates_model!(sensitivities = [k1, k2, k3]);
 // Lotka–Volterra with the sensitivities to its four rates (`--sensitivities`).
 lotka_volterra!(dae_model_with! { (sensitivities = [a, b, c, d]) });
 low_pass_model!();
+// Akzo Nobel as its authors write it, y6 algebraic (`--structure`).
+akzo_nobel_model!();
 hires_model!(
     bench = Bench::until(321.8122)
         .reference(HIRES_AT_END, "IVP test set hires, published")
@@ -522,6 +529,13 @@ fn main() {
     }
     if has("--auto") {
         auto::auto_section();
+        return;
+    }
+    if has("--structure") {
+        let text = structure::structure_section();
+        let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join("structure.md");
+        let _ = std::fs::write(&out, &text);
+        println!("{text}");
         return;
     }
     if has("--readme") {
