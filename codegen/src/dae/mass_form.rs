@@ -41,7 +41,8 @@ pub fn mass_form(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Option<MassFo
         return Ok(None);
     }
     let z = &sys.highest;
-    let is_z = |s: &SymbolId| z.contains(s);
+    let z_index: FxHashMap<SymbolId, usize> = z.iter().enumerate().map(|(j, &s)| (s, j)).collect();
+    let is_z = |s: &SymbolId| z_index.contains_key(s);
     let mut differential = Vec::new();
     let mut algebraic = Vec::new();
     let mut constraints = Vec::new();
@@ -65,7 +66,7 @@ pub fn mass_form(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Option<MassFo
     for &e in &differential {
         let r = sys.residuals[e];
         let mut row = Vec::new();
-        for (j, &s) in z.iter().enumerate() {
+        for (j, s) in highest_in(g, r, &z_index) {
             let c = g.partial(r, s)?;
             if g.free_symbols(c).iter().any(is_z) {
                 return Ok(None);
@@ -95,7 +96,7 @@ pub fn mass_form(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Option<MassFo
     for (slot, derivative) in sys.slots.iter().zip(&sys.derivatives) {
         // A top slot's derivative with λ as a component (not the index-1
         // form's, which eliminated it); a lower slot's is the next slot.
-        let row = match (z.iter().position(|&s| is_next(g, slot.symbol, s)), derivative) {
+        let row = match (next_of(g, slot.symbol, &z_index), derivative) {
             (Some(j), _) => match solved.symbolic[j] {
                 Some(w) => w,
                 None => return Ok(None),
@@ -172,6 +173,7 @@ pub fn mass_form(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Option<MassFo
 /// constant) or the equations do not square with the components.
 fn linearly_implicit(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Option<MassForm>> {
     let z = &sys.highest;
+    let z_index: FxHashMap<SymbolId, usize> = z.iter().enumerate().map(|(j, &s)| (s, j)).collect();
     let zero = g.zero();
     let one = g.one();
     let mut components: Vec<SymbolId> = sys.slots.iter().map(|s| s.symbol).collect();
@@ -186,7 +188,7 @@ fn linearly_implicit(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Option<Ma
     let mut rows = Vec::new();
     let mut entries = Vec::new();
     for (i, (slot, derivative)) in sys.slots.iter().zip(&sys.derivatives).enumerate() {
-        match z.iter().position(|&s| is_next(g, slot.symbol, s)) {
+        match next_of(g, slot.symbol, &z_index) {
             Some(j) => top_slot[j] = i,
             None => {
                 let SlotDerivative::Explicit(next) = derivative else {
@@ -203,7 +205,7 @@ fn linearly_implicit(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Option<Ma
     let replace_zero: FxHashMap<SymbolId, Id> = z.iter().map(|&s| (s, zero)).collect();
     for &r in &sys.written {
         let row = rows.len();
-        for (j, &s) in z.iter().enumerate() {
+        for (j, s) in highest_in(g, r, &z_index) {
             let c = g.partial(r, s)?;
             if c == zero {
                 continue;
@@ -233,26 +235,30 @@ fn linearly_implicit(g: &mut Graph, sys: &FirstOrder) -> crate::Result<Option<Ma
     }))
 }
 
-/// Whether `z` is the derivative of the slot `slot` (`der^(k+1)(x)` of `der^k(x)`).
-fn is_next(g: &Graph, slot: SymbolId, z: SymbolId) -> bool {
-    let level = |s: SymbolId| match g.symbol(s).kind {
-        SymbolKind::Derivative { of, order } => (of, order),
-        _ => (s, 0),
-    };
-    let ((a, k), (b, m)) = (level(slot), level(z));
-    a == b && m == k + 1
+/// The highest derivatives `r` reads, with their positions, in the order
+/// of the positions.
+fn highest_in(g: &Graph, r: Id, z_index: &FxHashMap<SymbolId, usize>) -> Vec<(usize, SymbolId)> {
+    let mut found: Vec<(usize, SymbolId)> =
+        g.free_symbols(r).into_iter().filter_map(|s| z_index.get(&s).map(|&j| (j, s))).collect();
+    found.sort_unstable();
+    found
 }
 
-/// A perfect matching of rows to columns (Kuhn), as the row of each column.
+/// The position of the highest derivative that is the derivative of the
+/// slot `slot` (`der^(k+1)(x)` of `der^k(x)`), if one is.
+fn next_of(g: &Graph, slot: SymbolId, z_index: &FxHashMap<SymbolId, usize>) -> Option<usize> {
+    let (of, order) = match g.symbol(slot).kind {
+        SymbolKind::Derivative { of, order } => (of, order),
+        _ => (slot, 0),
+    };
+    z_index.get(&g.existing_derivative(of, order + 1)?).copied()
+}
+
+/// A perfect matching of rows to columns, as the row of each column.
 fn perfect_matching(rows: &[Vec<(usize, Id)>], n: usize) -> Option<Vec<usize>> {
-    let columns = |r: usize| rows[r].iter().map(|&(c, _)| c);
-    let mut owner = vec![None; n];
-    for r in 0..rows.len() {
-        if !crate::dae::matching::augment(r, &columns, &mut owner, &mut vec![false; n]) {
-            return None;
-        }
-    }
-    owner.into_iter().collect()
+    let columns: Vec<Vec<usize>> =
+        rows.iter().map(|r| r.iter().map(|&(c, _)| c).collect()).collect();
+    crate::dae::matching::maximum_matching(&columns, n).into_iter().collect()
 }
 
 /// The mass-matrix form as its tests read it: each component with its

@@ -92,6 +92,7 @@ fn residuals_and_orders(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<(Vec<Id>, Vec
     let state_of: FxHashMap<SymbolId, usize> =
         ir.states.iter().enumerate().map(|(i, s)| (s.symbol, i)).collect();
     let mut residuals = Vec::with_capacity(ir.equations.len());
+    let mut read: FxHashMap<SymbolId, ()> = FxHashMap::default();
     for eq in &ir.equations {
         let r = match g.sub(eq.lhs, eq.rhs) {
             Ok(r) => r,
@@ -101,6 +102,7 @@ fn residuals_and_orders(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<(Vec<Id>, Vec
             }
         };
         for s in g.free_symbols(r) {
+            read.insert(s, ());
             if let SymbolKind::Derivative { of, order: k } = g.symbol(s).kind {
                 if let Some(&i) = state_of.get(&of) {
                     order[i] = order[i].max(k);
@@ -113,7 +115,7 @@ fn residuals_and_orders(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<(Vec<Id>, Vec
     // An algebraic variable no equation reads has nothing to determine it
     // (a constraint force left out of the dynamics).
     for a in &ir.algebraics {
-        if !residuals.iter().any(|&r| g.free_symbols(r).contains(&a.symbol)) {
+        if !read.contains_key(&a.symbol) {
             let name = &a.name;
             cx.error_at(&a.origin, format!("algebraic variable `{name}` appears in no equation: use it where its constraint acts (a pendulum's `der(u) == -{name} * x;`), or remove it"));
             ok = false;

@@ -259,7 +259,10 @@ fn needed_temps(g: &Graph, program: &Program, rolled: &[bool]) -> Vec<bool> {
         if let Some(root) = program.shared_root(id) {
             stack.push(root);
         }
-        stack.extend_from_slice(g.operands(id));
+        match program.negation_of(id) {
+            Some(positive) => stack.push(positive),
+            None => stack.extend_from_slice(g.operands(id)),
+        }
     }
     needed
 }
@@ -432,6 +435,10 @@ impl<'a> Emitter<'a> {
                 _ => (self.symbol_text(*s), Prec::Postfix),
             },
             Node::Add(terms) => self.sum(terms),
+            Node::Mul(_) if self.program.negation_of(id).is_some() => {
+                let positive = self.program.negation_of(id).unwrap_or(id);
+                (format!("-{}", self.at(positive, Prec::Product)), Prec::Product)
+            }
             Node::Mul(factors) => {
                 let (negative, body, prec) = self.product(factors);
                 if negative {
@@ -506,6 +513,10 @@ impl<'a> Emitter<'a> {
     /// A term of a sum without its sign: `(is_negative, text of |term|, precedence)`.
     fn term(&self, id: Id) -> (bool, String, Prec) {
         match self.g.node(id) {
+            Node::Mul(_) if !self.named(id) && self.program.negation_of(id).is_some() => {
+                let positive = self.program.negation_of(id).unwrap_or(id);
+                (true, self.at(positive, Prec::Product), Prec::Product)
+            }
             Node::Mul(factors) if !self.named(id) => self.product(factors),
             Node::Number(n) => {
                 let (t, p) = number(n.abs());

@@ -34,6 +34,9 @@ pub struct Program {
     temp_of: FxHashMap<Id, usize>,
     /// For half-integer powers `b^(k/2)`: the shared `b^(1/2)` they are built from.
     root_of: BTreeMap<Id, Id>,
+    /// For a product `-1 · f…` whose positive `f…` the outputs also read:
+    /// that positive, which it is the negation of.
+    negation_of: BTreeMap<Id, Id>,
 }
 
 impl Program {
@@ -50,6 +53,13 @@ impl Program {
     /// The shared square root `b^(1/2)` that emission builds `id = b^(k/2)` from.
     pub fn shared_root(&self, id: Id) -> Option<Id> {
         self.root_of.get(&id).copied()
+    }
+
+    /// The node `id` is the negation of, where emission writes `id` as
+    /// `-that` (a current read with its sign by one node of a ladder and
+    /// against it by the next is computed once).
+    pub fn negation_of(&self, id: Id) -> Option<Id> {
+        self.negation_of.get(&id).copied()
     }
 
     /// Evaluates the program as emitted code would: temporaries in order, each
@@ -141,7 +151,8 @@ impl Graph {
     /// outputs give the same temporaries with the same names.
     pub fn schedule(&mut self, outputs: &[Id]) -> Program {
         let root_of = self.shared_square_roots(outputs);
-        let order = self.dependency_order(outputs, &root_of);
+        let negation_of = self.negated_products(outputs);
+        let order = self.dependency_order(outputs, &root_of, &negation_of);
         let position: FxHashMap<Id, usize> =
             order.iter().enumerate().map(|(i, &id)| (id, i)).collect();
         let mut uses = vec![0u32; order.len()];
@@ -149,8 +160,14 @@ impl Graph {
             uses[position[o]] += 1;
         }
         for &id in &order {
-            for c in self.operands(id) {
-                uses[position[c]] += 1;
+            // A negation reads its positive, not its factors.
+            match negation_of.get(&id) {
+                Some(p) => uses[position[p]] += 1,
+                None => {
+                    for c in self.operands(id) {
+                        uses[position[c]] += 1;
+                    }
+                }
             }
             if let Some(b) = duplicated_operand(self, id) {
                 uses[position[&b]] += 1;
@@ -165,7 +182,10 @@ impl Graph {
             if is_leaf(self, id) || is_negated_leaf(self, id) {
                 continue;
             }
-            let d = 1 + self.operands(id).iter().map(|c| depth[position[c]]).max().unwrap_or(0);
+            let d = match negation_of.get(&id) {
+                Some(p) => 1 + depth[position[p]],
+                None => 1 + self.operands(id).iter().map(|c| depth[position[c]]).max().unwrap_or(0),
+            };
             let named = matches!(self.node(id), Node::Symbol(_));
             if named || uses[i] > 1 || d > MAX_INLINE_DEPTH {
                 is_temp[i] = true;
@@ -196,14 +216,19 @@ impl Graph {
             temp_of.insert(id, temps.len());
             temps.push(Temp { node: id, name });
         }
-        Program { temps, outputs: outputs.to_vec(), temp_of, root_of }
+        Program { temps, outputs: outputs.to_vec(), temp_of, root_of, negation_of }
     }
 
     /// Every node the outputs need, dependencies first: operands, and for a
     /// half-integer power its shared root (which may have a larger id than the
     /// power, so id order is not enough). Deterministic: a depth-first
     /// post-order visiting operands in ascending id order.
-    fn dependency_order(&self, outputs: &[Id], root_of: &BTreeMap<Id, Id>) -> Vec<Id> {
+    fn dependency_order(
+        &self,
+        outputs: &[Id],
+        root_of: &BTreeMap<Id, Id>,
+        negation_of: &BTreeMap<Id, Id>,
+    ) -> Vec<Id> {
         let mut visited = vec![false; self.len()];
         let mut order = Vec::new();
         let mut starts: Vec<Id> = outputs.to_vec();
@@ -221,6 +246,7 @@ impl Graph {
             stack.push((id, true));
             let mut deps: Vec<Id> = self.operands(id).to_vec();
             deps.extend(root_of.get(&id));
+            deps.extend(negation_of.get(&id));
             deps.sort_unstable();
             stack
                 .extend(deps.into_iter().rev().filter(|d| !visited[d.index()]).map(|d| (d, false)));
@@ -259,6 +285,43 @@ impl Graph {
             }
         }
         root_of
+    }
+
+    /// Products `-1 · f…` whose positive (`f…`, or the single `f`) the
+    /// outputs also read, each mapped to that positive: hash-consing folds
+    /// the sign into the product, so `x·y` and `-x·y` are two nodes that
+    /// would be computed twice.
+    fn negated_products(&self, outputs: &[Id]) -> BTreeMap<Id, Id> {
+        let reachable = self.reachable(outputs);
+        // How often each node is read: by the outputs and by other nodes.
+        let mut reads: FxHashMap<Id, u32> = FxHashMap::default();
+        for &id in outputs.iter().chain(reachable.iter().flat_map(|&id| self.operands(id))) {
+            *reads.entry(id).or_default() += 1;
+        }
+        let mut negation_of = BTreeMap::new();
+        for &id in &reachable {
+            let Node::Mul(factors) = self.node(id) else { continue };
+            let Some(k) =
+                factors.iter().position(|&f| self.as_number(f) == Some(crate::Number::MINUS_ONE))
+            else {
+                continue;
+            };
+            let rest: Vec<Id> =
+                factors.iter().enumerate().filter(|&(i, _)| i != k).map(|(_, &f)| f).collect();
+            // The positive must be read elsewhere too (the single factor
+            // of `-1 · f` is read by this product itself).
+            let (positive, elsewhere) = match rest[..] {
+                [single] => (Some(single), 2),
+                _ => (self.lookup(&Node::Mul(rest.into())), 1),
+            };
+            // A leaf's negation is cheaper to repeat than to share.
+            let shared =
+                |p: &Id| reads.get(p).is_some_and(|&n| n >= elsewhere) && !is_leaf(self, *p);
+            if let Some(p) = positive.filter(shared) {
+                negation_of.insert(id, p);
+            }
+        }
+        negation_of
     }
 
     /// Number of distinct nodes reachable from `roots`: the size of the DAG

@@ -112,6 +112,11 @@ impl Graph {
     ///
     /// # Panics
     /// If the arena exceeds 2^32 nodes (hundreds of gigabytes of memory).
+    /// The id of `node` if the graph already holds it (nothing is created).
+    pub(crate) fn lookup(&self, node: &Node) -> Option<Id> {
+        self.interned.get(node).copied()
+    }
+
     pub(crate) fn intern(&mut self, node: Node) -> Id {
         if let Some(&id) = self.interned.get(&node) {
             return id;
@@ -277,6 +282,12 @@ impl Graph {
             self.derivatives.insert((base, order), *s);
         }
         Ok(id)
+    }
+
+    /// The symbol of `der^order(of)` if the graph has made it (`of` not a
+    /// derivative itself).
+    pub fn existing_derivative(&self, of: SymbolId, order: u32) -> Option<SymbolId> {
+        self.derivatives.get(&(of, order)).copied()
     }
 
     /// Every node reachable from `roots` (through intermediate definitions),
