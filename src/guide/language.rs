@@ -12,9 +12,11 @@
 //! | `let x = state(1.0);` | a state with its initial value (constants and parameters) |
 //! | `let q = state_array([1.0, 0.0]);`, `state_array([0.0; N])`, `state_array((0..N).map(|i| ...))` | an array of states, `q[i]`; initial values by index with `map` |
 //! | `der(x) == f;`, `der(der(x)) == a;` | an equation; second derivatives are reduced to first order (`init(der(x), v0)` sets the initial rate) |
-//! | `lhs == rhs;` | any equation, also implicit in the derivatives (solved symbolically) |
+//! | `lhs == rhs;` | any equation, in any order, also implicit in the derivatives (solved symbolically; see [`super::structure`]) |
 //! | `let y = algebraic(0.0);` and `constraint(g);` | a DAE: see [`super::daes`] |
+//! | `let i = algebraic_array([0.0; N]);` | an array of algebraic variables, `i[k]`: see [`super::structure`] |
 //! | `let e = output(expr);` | a value computed from the solution, only when asked for |
+//! | `let p = output_array((0..N).map(\|k\| expr));` | an array of outputs, read as `"p[k]"` |
 //! | `let hit = event(g).falling().terminal();` | a zero crossing of `g`, located to machine precision |
 //! | `let t = time();` | the independent variable |
 //! | `const N: usize = 3; for i in 0..N { ... }` | loops over constants, unrolled into equations; where the cells' equations differ only in the states they read, the generated right-hand side and Jacobian loop over a table of indices again (a 2048-state grid compiles in seconds); `if` on indices, `u[(i + 1) % N]` for a periodic neighbour, and `k / 2` truncating as in Rust (indices are integers; `1 / 3` of two literals is refused: write `1.0 / 3.0`) |

@@ -9,13 +9,16 @@
 //!    times, CSV, plots, streaming a run and stopping it, progress.
 //! 4. [`daes`]: constraints and algebraic variables, what the macro does
 //!    with them (index reduction, projection), and the two formulations.
-//! 5. [`mechanisms`]: multibody scenes, planar and spatial, global and
+//! 5. [`structure`]: equations in any order: aliases, matching and
+//!    sorting into blocks, tearing, arrays of algebraic variables and
+//!    outputs, and the structural errors.
+//! 6. [`mechanisms`]: multibody scenes, planar and spatial, global and
 //!    recursive, and the names they answer to.
-//! 6. [`kinematics`]: rotations, angle sequences, quaternions, angular
+//! 7. [`kinematics`]: rotations, angle sequences, quaternions, angular
 //!    velocities and frames, in the model language and numerically.
-//! 7. [`ensembles`]: one model run many times, on every core, and shards
+//! 8. [`ensembles`]: one model run many times, on every core, and shards
 //!    of it spread over machines.
-//! 8. [`work_precision`]: registering a model in the benchmarks and
+//! 9. [`work_precision`]: registering a model in the benchmarks and
 //!    reading a work-precision diagram.
 
 pub mod daes;
@@ -25,4 +28,5 @@ pub mod language;
 pub mod mechanisms;
 pub mod results;
 pub mod running;
+pub mod structure;
 pub mod work_precision;
