@@ -305,3 +305,83 @@ fn describe_reports_the_blocks_before_and_after_tearing() {
     assert_eq!((s.aliases, s.one_at_a_time, s.blocks.len()), (5, 1, 0));
     assert!(AliasChain::default().describe().contains("structure: 5 aliases removed"));
 }
+
+/// A resistive ladder heating up: its shunt conductances grow with the
+/// dissipated energy `e`, so the node voltages form a linear block whose
+/// coefficients depend on the state, and the power `u[0]² / r` that heats
+/// it reads that block's first unknown squared.
+#[dae_model]
+fn heating_ladder() {
+    const M: usize = 6;
+    let r = param(1.0);
+    let g = param(2.0);
+    let vs = param(1.0);
+    let e = state(0.0);
+    let u = algebraic_array([0.0; M]);
+    der(e) == u[0] * u[0] / r;
+    (vs - u[0]) / r == u[0] * g * (1.0 + e) + (u[0] - u[1]) / r;
+    for k in 1..M - 1 {
+        (u[k - 1] - u[k]) / r == u[k] * g * (1.0 + e) + (u[k] - u[k + 1]) / r;
+    }
+    (u[M - 2] - u[M - 1]) / r == u[M - 1] * g * (1.0 + e);
+}
+
+/// The node voltages of [`HeatingLadder`] at energy `e`: its tridiagonal
+/// Kirchhoff system solved by the Thomas algorithm.
+fn heating_ladder_nodes(e: f64, m: usize, r: f64, g: f64, vs: f64) -> Vec<f64> {
+    let shunt = g * (1.0 + e);
+    // Row k: −u[k−1]/r + (2/r + shunt) u[k] − u[k+1]/r = (vs/r at k = 0);
+    // the last row has one neighbour: (1/r + shunt).
+    let diagonal: Vec<f64> =
+        (0..m).map(|k| if k + 1 < m { 2.0 / r + shunt } else { 1.0 / r + shunt }).collect();
+    let off = -1.0 / r;
+    let mut rhs = vec![0.0; m];
+    rhs[0] = vs / r;
+    let (mut c, mut d) = (vec![0.0; m], vec![0.0; m]);
+    c[0] = off / diagonal[0];
+    d[0] = rhs[0] / diagonal[0];
+    for k in 1..m {
+        let denominator = diagonal[k] - off * c[k - 1];
+        c[k] = off / denominator;
+        d[k] = (rhs[k] - off * d[k - 1]) / denominator;
+    }
+    let mut u = vec![0.0; m];
+    u[m - 1] = d[m - 1];
+    for k in (0..m - 1).rev() {
+        u[k] = d[k] - c[k] * u[k + 1];
+    }
+    u
+}
+
+#[test]
+fn a_value_read_squared_from_a_run_time_block_is_solved_after_it() {
+    let m = HeatingLadder::default();
+    let rate = |e: f64| heating_ladder_nodes(e, 6, m.r, m.g, m.vs)[0].powi(2) / m.r;
+    // The reference: RK4 with 4000 steps on e' = u0(e)²/r.
+    let (t1, n) = (2.0, 4000);
+    let h = t1 / n as f64;
+    let mut e = 0.0;
+    for _ in 0..n {
+        let k1 = rate(e);
+        let k2 = rate(e + 0.5 * h * k1);
+        let k3 = rate(e + 0.5 * h * k2);
+        let k4 = rate(e + h * k3);
+        e += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    }
+    for method in [Method::Dopri5, Method::Radau5, Method::Rodas5P] {
+        let sol = m.simulate(0.0, t1, &Options::new().method(method).tolerance(1e-11)).unwrap();
+        let got = sol.last("e").unwrap();
+        assert!((got - e).abs() <= 1e-9, "{method:?}: e = {got}, reference {e}");
+        let nodes = heating_ladder_nodes(got, 6, m.r, m.g, m.vs);
+        for (k, node) in nodes.iter().enumerate() {
+            let u = sol.last(&format!("u[{k}]")).unwrap();
+            assert!((u - node).abs() <= 1e-13, "u[{k}] = {u}, Thomas gives {node}");
+        }
+    }
+    // The six node voltages in one linear block, the power after it.
+    let s = HeatingLadder::INFO.structure;
+    assert_eq!(s.one_at_a_time, 1);
+    assert_eq!(s.blocks.len(), 1);
+    assert_eq!(s.blocks[0].size, 6);
+    assert!(matches!(s.blocks[0].solution, BlockSolution::Symbolic | BlockSolution::Linear { .. }));
+}

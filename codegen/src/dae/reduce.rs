@@ -114,7 +114,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
         &reduction.differentiations,
     )?;
     let local = solve(cx, g, &linear, &owner, &equations, &rest_symbols)?;
-    let solved = with_explicit(local, &rest, &all, &sorted.explicit);
+    let solved = with_explicit(g, local, (&rest, &all), (&sorted.explicit, &computed))?;
     let unknowns = Unknowns { z: &all, index: &z_index, states: n_states };
     let mut ok = true;
     let (slots, derivatives) = slots(
@@ -126,7 +126,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
         linear.mass_only,
     )?;
     ok &= inits_are_below_the_highest_derivatives(cx, g, (&ir.states, &ir.inits), &slots);
-    let known = known_values(g, &all, &solved, (&computed, &removed))?;
+    let known = known_values(g, &all, (&solved, &sorted.explicit), (&computed, &removed))?;
     let (outputs, events, observed) =
         observables(cx, g, (&ir.outputs, &ir.events), &known, &z_index, newton.as_ref())?;
     ok &= observed;
@@ -335,40 +335,71 @@ fn local_owner(
 }
 
 /// The linear solve's result over the unknowns `rest` (indices into
-/// `all`), with the sorting's explicit solutions for the others.
+/// `all`), with the sorting's explicit solutions for the others: those
+/// that read an unknown the linear solve left to run time are evaluated
+/// after it, with what it solved symbolically substituted.
 fn with_explicit(
+    g: &mut Graph,
     local: crate::dae::solve_unknowns::Solved,
-    rest: &[usize],
-    all: &[SymbolId],
-    explicit: &FxHashMap<SymbolId, Id>,
-) -> crate::dae::solve_unknowns::Solved {
+    (rest, all): (&[usize], &[SymbolId]),
+    (explicit, computed): (&FxHashMap<SymbolId, Id>, &FxHashMap<SymbolId, Id>),
+) -> Option<crate::dae::solve_unknowns::Solved> {
     let n = all.len();
     let mut solved = crate::dae::solve_unknowns::Solved {
-        symbolic: all.iter().map(|s| explicit.get(s).copied()).collect(),
+        symbolic: vec![None; n],
         block_of: vec![None; n],
         blocks: local.blocks,
         after_solve: vec![None; n],
     };
+    // What the linear solve and the Newton block determined, symbolically.
+    let mut replace: FxHashMap<SymbolId, Id> = computed.clone();
     for (k, &j) in rest.iter().enumerate() {
         solved.symbolic[j] = local.symbolic[k];
         solved.block_of[j] = local.block_of[k];
         solved.after_solve[j] = local.after_solve[k];
+        if let Some(v) = local.symbolic[k].or(local.after_solve[k]) {
+            replace.insert(all[j], v);
+        }
     }
-    solved
+    // The Newton block is solved first, before every expression that reads
+    // it; a linear block's unknowns are known only after its solve.
+    let at_run_time = |s: &SymbolId| rest.iter().any(|&j| all[j] == *s);
+    for (j, s) in all.iter().enumerate() {
+        let Some(&value) = explicit.get(s) else { continue };
+        let reads_run_time =
+            g.free_symbols(value).iter().any(|x| replace.contains_key(x) || at_run_time(x));
+        if !reads_run_time {
+            solved.symbolic[j] = Some(value);
+            continue;
+        }
+        let value = g.substitute(value, &replace).ok()?;
+        match g.free_symbols(value).iter().any(at_run_time) {
+            true => solved.after_solve[j] = Some(value),
+            false => solved.symbolic[j] = Some(value),
+        }
+    }
+    Some(solved)
 }
 
-/// Every unknown solved symbolically, by its symbol, each variable the
+/// Every unknown solved symbolically (or by the sorting, in terms of the
+/// run-time unknowns), by its symbol, each variable the
 /// Newton block computes from its tearing variables, and each alias with
 /// its variable's value in those terms: what outputs, events and the
 /// algebraic variables read in place of the unknowns.
 fn known_values(
     g: &mut Graph,
     all: &[SymbolId],
-    solved: &crate::dae::solve_unknowns::Solved,
+    (solved, explicit): (&crate::dae::solve_unknowns::Solved, &FxHashMap<SymbolId, Id>),
     (computed, removed): (&FxHashMap<SymbolId, Id>, &FxHashMap<SymbolId, Id>),
 ) -> Option<FxHashMap<SymbolId, Id>> {
+    // The sorting's solutions evaluated after a run-time solve too: an
+    // output may read them (it solves the blocks first), an event not.
+    let value = |j: usize| match explicit.contains_key(&all[j]) {
+        true => solved.symbolic[j].or(solved.after_solve[j]),
+        false => solved.symbolic[j],
+    };
     let mut known: FxHashMap<SymbolId, Id> =
-        all.iter().enumerate().filter_map(|(j, &s)| solved.symbolic[j].map(|v| (s, v))).collect();
+        all.iter().enumerate().filter_map(|(j, &s)| value(j).map(|v| (s, v))).collect();
     known.extend(computed.iter().map(|(&s, &v)| (s, v)));
     let mut aliases: Vec<(SymbolId, Id)> = removed.iter().map(|(&s, &v)| (s, v)).collect();
     aliases.sort_unstable();
@@ -511,7 +542,7 @@ fn linear_system(
                 }
                 let name = g.symbol(bad).name.clone();
                 let message = if algebraics.iter().any(|a| a.symbol == bad) {
-                    format!("this equation is not linear in the algebraic variable `{name}`: daegen needs the algebraic variables to enter linearly (Newton on a nonlinear algebraic equation is not there yet); solve the equation for `{name}` by hand or make `{name}` an output")
+                    format!("this equation is nonlinear in the algebraic variable `{name}` and is solved together with a highest derivative: Newton solves nonlinear blocks of algebraic equations only; determine `{name}` by equations without derivatives, or solve this one for it by hand")
                 } else {
                     format!("this equation is not linear in `{name}`: daegen needs the form `E(t, y) * der(..) == g(t, y)`")
                 };

@@ -50,6 +50,11 @@ pub struct Unknown {
 pub enum BlockSolution {
     /// One equation, linear in its unknown: solved symbolically here.
     Explicit,
+    /// One equation, linear in its unknown, solved symbolically in terms
+    /// of unknowns a block before it leaves to run time (a power `u²/r`
+    /// from the node voltages of a linear block): evaluated after that
+    /// block's solve.
+    ExplicitAfterSolve,
     /// Left to `reduce`: a linear system, a nonlinear equation or system,
     /// or a block that reads such a block's unknowns.
     Deferred,
@@ -71,7 +76,8 @@ pub struct Sorted {
     /// The blocks, each after the ones whose unknowns it reads.
     pub blocks: Vec<Block>,
     /// The symbolic solution of each unknown of an explicit block: an
-    /// expression of the time, the states and the parameters.
+    /// expression of the time, the states and the parameters, and for an
+    /// `ExplicitAfterSolve` block of the unknowns solved at run time.
     pub explicit: FxHashMap<SymbolId, Id>,
     /// Each equation's residual with the explicit solutions substituted
     /// (an explicit block's own equation is zero: it is solved).
@@ -145,19 +151,23 @@ pub fn sort(cx: &mut Ctxt, g: &mut Graph, problem: &Problem<'_>) -> Option<Sorte
                 residuals[e] = g.substitute(residuals[e], &explicit).ok()?;
             }
         }
-        let reads_deferred = component.iter().any(|&k| rows[k].iter().any(|&j| deferred[j]));
         let solved = match (&equations[..], &unknowns[..]) {
-            ([e], [j]) if !reads_deferred => {
-                solve_linear(g, residuals[*e], problem.unknowns[*j].symbol, &column)
-            }
+            ([e], [j]) => solve_linear(g, residuals[*e], problem.unknowns[*j].symbol, &column),
             _ => None,
         };
         let solution = match solved {
             Some(value) => {
+                let after = g
+                    .free_symbols(value)
+                    .iter()
+                    .any(|s| column.get(s).is_some_and(|&j| deferred[j]));
                 explicit.insert(problem.unknowns[unknowns[0]].symbol, value);
                 residuals[equations[0]] = zero;
                 solved_equations[equations[0]] = true;
-                BlockSolution::Explicit
+                match after {
+                    true => BlockSolution::ExplicitAfterSolve,
+                    false => BlockSolution::Explicit,
+                }
             }
             None => {
                 unknowns.iter().for_each(|&j| deferred[j] = true);
