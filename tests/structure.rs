@@ -11,46 +11,8 @@ mod support;
 include!("models/stiff.rs");
 akzo_nobel_model!();
 
-/// An RC ladder: a source `vs` behind `r`, then N sections of a capacitor
-/// to ground and a resistor to the next node, written as a circuit is
-/// read: Ohm's law for each resistor's current, Kirchhoff's current law at
-/// each node, in that order.
-#[dae_model]
-fn rc_ladder_with_currents() {
-    const N: usize = 40;
-    let r = param(1.0);
-    let c = param(1.0);
-    let vs = param(1.0);
-    let v = state_array([0.0; N]);
-    let i = algebraic_array([0.0; N]);
-    // Kirchhoff first: the capacitor of node k takes what flows in less
-    // what flows on.
-    for k in 0..N - 1 {
-        c * der(v[k]) == i[k] - i[k + 1];
-    }
-    c * der(v[N - 1]) == i[N - 1];
-    // Then Ohm.
-    r * i[0] == vs - v[0];
-    for k in 1..N {
-        r * i[k] == v[k - 1] - v[k];
-    }
-    let drop = output_array((0..N).map(|k| r * i[k]));
-}
-
-/// The same ladder substituted by hand: an ODE in the node voltages.
-#[dae_model]
-fn rc_ladder_substituted() {
-    const N: usize = 40;
-    let r = param(1.0);
-    let c = param(1.0);
-    let vs = param(1.0);
-    let v = state_array([0.0; N]);
-    der(v[0]) == ((vs - v[0]) - (v[0] - v[1])) / (r * c);
-    for k in 1..N - 1 {
-        der(v[k]) == ((v[k - 1] - v[k]) - (v[k] - v[k + 1])) / (r * c);
-    }
-    der(v[N - 1]) == (v[N - 2] - v[N - 1]) / (r * c);
-}
+include!("models/ladders.rs");
+rc_ladders!(40);
 
 #[test]
 fn a_ladder_with_algebraic_currents_runs_as_its_substituted_ode() {
@@ -59,14 +21,19 @@ fn a_ladder_with_algebraic_currents_runs_as_its_substituted_ode() {
     for method in [Method::Dopri5, Method::Radau5, Method::Rodas5P, Method::Auto] {
         let opts = Options::new().method(method).tolerance(1e-10);
         let sorted = RcLadderWithCurrents::default().simulate(0.0, t1, &opts).unwrap();
-        let by_hand = RcLadderSubstituted::default().simulate(0.0, t1, &opts).unwrap();
-        // The same ODE, its terms grouped otherwise: the same steps, the
-        // same states but for rounding, which each run's error control
-        // keeps within its tolerance.
-        assert_eq!(sorted.stats().steps, by_hand.stats().steps, "{method:?}");
-        let (a, b) = (sorted.final_state(), by_hand.final_state());
-        let gap = a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
-        assert!(gap <= 1e2 * 1e-10, "{method:?}: the two ladders differ by {gap:e}");
+        // The same ODE, its terms as substituted or grouped otherwise: the
+        // same steps, the same states but for rounding, which each run's
+        // error control keeps within its tolerance.
+        let a = sorted.final_state();
+        for by_hand in [
+            RcLadderSubstituted::default().simulate(0.0, t1, &opts).unwrap(),
+            RcLadderFactored::default().simulate(0.0, t1, &opts).unwrap(),
+        ] {
+            assert_eq!(sorted.stats().steps, by_hand.stats().steps, "{method:?}");
+            let b = by_hand.final_state();
+            let gap = a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+            assert!(gap <= 1e2 * 1e-10, "{method:?}: the two ladders differ by {gap:e}");
+        }
         // Each current is readable, and it is Ohm's: (v[k-1] − v[k]) / r.
         for k in 1..N {
             let current = sorted.last(&format!("i[{k}]")).unwrap();

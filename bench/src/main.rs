@@ -141,6 +141,7 @@ lotka_volterra!(dae_model_with! { (sensitivities = [a, b, c, d]) });
 low_pass_model!();
 // Akzo Nobel as its authors write it, y6 algebraic (`--structure`).
 akzo_nobel_model!();
+akzo_nobel_by_hand_model!();
 hires_model!(
     bench = Bench::until(321.8122)
         .reference(HIRES_AT_END, "IVP test set hires, published")

@@ -11,89 +11,8 @@ use proc_macro2::TokenStream;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-/// Akzo Nobel with y6 = ks·y1·y4 substituted by hand into the two rates
-/// that read it: the ODE the sorting should produce.
-#[dae_model]
-fn akzo_nobel_by_hand() {
-    let k1 = param(18.7);
-    let k2 = param(0.58);
-    let k3 = param(0.09);
-    let k4 = param(0.42);
-    let kbig = param(34.4);
-    let kla = param(3.3);
-    let ks = param(115.83);
-    let po2 = param(0.9);
-    let hen = param(737.0);
-    let y1 = state(0.444);
-    let y2 = state(0.00123);
-    let y3 = state(0.0);
-    let y4 = state(0.007);
-    let y5 = state(0.0);
-    let y6 = ks * y1 * y4;
-    let r1 = k1 * y1.powi(4) * sqrt(y2);
-    let r2 = k2 * y3 * y4;
-    let r3 = k2 / kbig * y1 * y5;
-    let r4 = k3 * y1 * y4 * y4;
-    let r5 = k4 * y6 * y6 * sqrt(y2);
-    let f_in = kla * (po2 / hen - y2);
-    der(y1) == -2.0 * r1 + r2 - r3 - r4;
-    der(y2) == -0.5 * r1 - r4 - 0.5 * r5 + f_in;
-    der(y3) == r1 - r2 + r3;
-    der(y4) == -r2 + r3 - 2.0 * r4;
-    der(y5) == r2 - r3 + r5;
-}
-
-/// A 200-node RC ladder with its resistor currents algebraic, Kirchhoff's
-/// laws before Ohm's.
-#[dae_model]
-fn ladder_200_with_currents() {
-    const N: usize = 200;
-    let r = param(1.0);
-    let c = param(1.0);
-    let vs = param(1.0);
-    let v = state_array([0.0; N]);
-    let i = algebraic_array([0.0; N]);
-    for k in 0..N - 1 {
-        c * der(v[k]) == i[k] - i[k + 1];
-    }
-    c * der(v[N - 1]) == i[N - 1];
-    r * i[0] == vs - v[0];
-    for k in 1..N {
-        r * i[k] == v[k - 1] - v[k];
-    }
-}
-
-/// The same ladder as an ODE simplified by hand: each node's two
-/// currents over one common `r c`.
-#[dae_model]
-fn ladder_200_by_hand() {
-    const N: usize = 200;
-    let r = param(1.0);
-    let c = param(1.0);
-    let vs = param(1.0);
-    let v = state_array([0.0; N]);
-    der(v[0]) == ((vs - v[0]) - (v[0] - v[1])) / (r * c);
-    for k in 1..N - 1 {
-        der(v[k]) == ((v[k - 1] - v[k]) - (v[k] - v[k + 1])) / (r * c);
-    }
-    der(v[N - 1]) == (v[N - 2] - v[N - 1]) / (r * c);
-}
-
-/// The same ladder with the currents substituted by hand, term for term:
-/// `(i[k] − i[k+1]) / c` with `i[k] = (v[k−1] − v[k]) / r`, unfactored.
-#[dae_model]
-fn ladder_200_substituted() {
-    const N: usize = 200;
-    let r = param(1.0);
-    let c = param(1.0);
-    let vs = param(1.0);
-    let v = state_array([0.0; N]);
-    der(v[0]) == ((vs - v[0]) / r - (v[0] - v[1]) / r) / c;
-    for k in 1..N - 1 {
-        der(v[k]) == ((v[k - 1] - v[k]) / r - (v[k] - v[k + 1]) / r) / c;
-    }
-    der(v[N - 1]) == ((v[N - 2] - v[N - 1]) / r) / c;
-}
+include!("../../tests/models/ladders.rs");
+rc_ladders!(200);
 
 /// Nanoseconds per `rhs` of `a` and of `b` at their initial states (moved
 /// off zero), timed in alternation: the median of 21 rounds each.
@@ -300,12 +219,12 @@ pub fn structure_section() -> String {
     out.push_str("| model | sorted (ns) | by hand (ns) | ratio |\n|---|---|---|---|\n");
     let (a, b) = rhs_ns(&AkzoNobel::default(), &AkzoNobelByHand::default());
     out.push_str(&format!("| Akzo Nobel (y6 algebraic) | {a:.1} | {b:.1} | {:.3}× |\n", a / b));
-    let (a, b) = rhs_ns(&Ladder200WithCurrents::default(), &Ladder200Substituted::default());
+    let (a, b) = rhs_ns(&RcLadderWithCurrents::default(), &RcLadderSubstituted::default());
     out.push_str(&format!(
         "| RC ladder, 200 nodes, algebraic currents (by hand: the currents substituted) | {a:.1} | {b:.1} | {:.3}× |\n",
         a / b
     ));
-    let (a, b) = rhs_ns(&Ladder200WithCurrents::default(), &Ladder200ByHand::default());
+    let (a, b) = rhs_ns(&RcLadderWithCurrents::default(), &RcLadderFactored::default());
     out.push_str(&format!(
         "| RC ladder, 200 nodes, algebraic currents (by hand: factored, `((v[k−1] − v[k]) − (v[k] − v[k+1])) / (r c)`) | {a:.1} | {b:.1} | {:.3}× |\n\n",
         a / b

@@ -176,6 +176,43 @@ fn akzo_nobel() {
     };
 }
 
+#[allow(unused_macros)]
+macro_rules! akzo_nobel_by_hand_model {
+    ($($arguments:tt)*) => {
+/// Akzo Nobel with y6 = ks·y1·y4 substituted by hand into the rate that
+/// reads it: the ODE in five concentrations.
+#[dae_model($($arguments)*)]
+fn akzo_nobel_by_hand() {
+    let k1 = param(18.7);
+    let k2 = param(0.58);
+    let k3 = param(0.09);
+    let k4 = param(0.42);
+    let kbig = param(34.4);
+    let kla = param(3.3);
+    let ks = param(115.83);
+    let po2 = param(0.9);
+    let hen = param(737.0);
+    let y1 = state(0.444);
+    let y2 = state(0.00123);
+    let y3 = state(0.0);
+    let y4 = state(0.007);
+    let y5 = state(0.0);
+    let y6 = ks * y1 * y4;
+    let r1 = k1 * y1.powi(4) * sqrt(y2);
+    let r2 = k2 * y3 * y4;
+    let r3 = k2 / kbig * y1 * y5;
+    let r4 = k3 * y1 * y4 * y4;
+    let r5 = k4 * y6 * y6 * sqrt(y2);
+    let f_in = kla * (po2 / hen - y2);
+    der(y1) == -2.0 * r1 + r2 - r3 - r4;
+    der(y2) == -0.5 * r1 - r4 - 0.5 * r5 + f_in;
+    der(y3) == r1 - r2 + r3;
+    der(y4) == -r2 + r3 - 2.0 * r4;
+    der(y5) == r2 - r3 + r5;
+}
+    };
+}
+
 /// `chemakzo` at t = 180: y1 … y5, then y6 (the test set's `SOLN`,
 /// computed by PSIDE at tolerance 1e-19; Mazzia & Magherini, Test Set for
 /// IVP Solvers, release 2.4).
