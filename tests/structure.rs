@@ -267,6 +267,10 @@ fn describe_reports_the_blocks_before_and_after_tearing() {
     // Akzo Nobel: y6 and the five rates, one at a time, no block.
     let s = AkzoNobel::INFO.structure;
     assert_eq!((s.aliases, s.one_at_a_time, s.blocks.len()), (0, 6, 0));
+    // Kepler's radius from `r * r == x * x + y * y` pulls the forces that
+    // divide by it into its Newton block; tearing leaves Newton `r`.
+    let s = KeplerAnyOrder::INFO.structure;
+    assert_eq!(s.blocks, &[BlockInfo { size: 3, solution: BlockSolution::Newton { tearing: 1 } }]);
     // Aliases only.
     let s = AliasChain::INFO.structure;
     assert_eq!((s.aliases, s.one_at_a_time, s.blocks.len()), (5, 1, 0));

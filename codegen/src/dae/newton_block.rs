@@ -124,8 +124,8 @@ struct Torn {
 /// heuristic of Cellier & Kofman (Continuous System Simulation, 2006,
 /// §7.3; after Elmqvist & Otter 1994): while some equation has one
 /// variable left that it determines explicitly (linearly, with a
-/// coefficient that reads no block variable, so the division cannot
-/// vanish during the iteration), compute that variable from it; when none
+/// coefficient that reads only variables already known: `fx` from
+/// `fx * r³ == -x` once `r` is), compute that variable from it; when none
 /// has, make the variable that appears in most of the equations left a
 /// tearing variable, and go on. Every block squares: each computed
 /// variable uses one equation, so the equations left are as many as the
@@ -151,7 +151,12 @@ fn tear(g: &mut Graph, residuals: &[Id], variables: &[SymbolId]) -> crate::Resul
                 continue;
             }
             let r = g.substitute(residuals[e], &value)?;
-            let Some(v) = solve_explicitly(g, r, variables[k], &index)? else { continue };
+            let unknown: FxHashMap<SymbolId, usize> = index
+                .iter()
+                .filter(|&(_, &j)| !known[j] || j == k)
+                .map(|(&s, &j)| (s, j))
+                .collect();
+            let Some(v) = solve_explicitly(g, r, variables[k], &unknown)? else { continue };
             value.insert(variables[k], v);
             computed.push((variables[k], v));
             known[k] = true;
@@ -181,16 +186,16 @@ fn tear(g: &mut Graph, residuals: &[Id], variables: &[SymbolId]) -> crate::Resul
 }
 
 /// `u` from `r = 0` when `r` is linear in `u` with a coefficient that
-/// reads none of the block's variables (and is not zero).
+/// reads none of the block's variables still `unknown` (and is not zero).
 fn solve_explicitly(
     g: &mut Graph,
     r: Id,
     u: SymbolId,
-    block: &FxHashMap<SymbolId, usize>,
+    unknown: &FxHashMap<SymbolId, usize>,
 ) -> crate::Result<Option<Id>> {
     let c = g.partial(r, u)?;
     if g.as_number(c).is_some_and(|v| v.is_zero())
-        || g.free_symbols(c).iter().any(|s| block.contains_key(s))
+        || g.free_symbols(c).iter().any(|s| unknown.contains_key(s))
     {
         return Ok(None);
     }
