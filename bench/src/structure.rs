@@ -242,7 +242,7 @@ pub fn structure_section() -> String {
     out.push_str(
         "The whole macro (lowering, aliases, matching, sorting, emission), called as a \
          library, best of 3. ModelingToolkit's users report `mtkcompile` not finishing after \
-         20 hours on 5,000–6,000 equations (its issue #3919) and `structural_simplify` taking \
+         20 hours on 5,000–6,000 equations (its tracker, #3919) and `structural_simplify` taking \
          471 s on a 1,100-unknown reaction network (#3557).\n\n",
     );
     out.push_str("| network | cells or nodes | equations | expansion (s) | µs per equation |\n|---|---|---|---|---|\n");
