@@ -488,6 +488,14 @@ fn newton_block(
         },
     );
     match found {
+        Ok(Some(newton)) if newton.unknowns.len() > NEWTON_VARIABLES_MAX => {
+            let (k, n) = (newton.unknowns.len(), newton.equations.len());
+            cx.error_at(
+                &origins[newton.equations[0]],
+                format!("this equation is one of the model's {n} nonlinear algebraic equations, which one Newton system solves on {k} variables after tearing, and at most {NEWTON_VARIABLES_MAX} at once (its Jacobian lives on the stack): make some of them linear in a variable of their own, or their variables states"),
+            );
+            None
+        }
         Ok(newton) => Some(newton),
         Err(e) => {
             cx.error_at(&origins[0], e);
@@ -495,6 +503,11 @@ fn newton_block(
         }
     }
 }
+
+/// Most variables the Newton block iterates on: its dense Jacobian and the
+/// copies the iteration makes live on the stack (320 KB each at 200), of
+/// which a rayon worker has 2 MB.
+const NEWTON_VARIABLES_MAX: usize = 200;
 
 /// The equations as `E (z, λ) = g`, linear in the unknowns.
 struct LinearSystem {
