@@ -356,3 +356,38 @@ fn a_value_read_squared_from_a_run_time_block_is_solved_after_it() {
     assert_eq!(s.blocks[0].size, 6);
     assert!(matches!(s.blocks[0].solution, BlockSolution::Symbolic | BlockSolution::Linear { .. }));
 }
+
+/// Fifty cells at quasi-steady state, each with its own quadratic
+/// equation: `z[k]² == x[k]` gives `x' = −√x`, so
+/// `x(t) = (√x0 − t/2)²`.
+#[dae_model]
+fn quasi_steady_cells() {
+    const N: usize = 50;
+    let x = state_array((0..N).map(|k| 1.0 + (k as f64) / 50.0));
+    let z = algebraic_array([1.0; N]);
+    for k in 0..N {
+        der(x[k]) == -z[k];
+        z[k] * z[k] == x[k];
+    }
+}
+
+#[test]
+fn independent_nonlinear_cells_are_solved_one_by_one() {
+    for method in [Method::Dop853, Method::Radau5, Method::Rodas5P] {
+        let opts = Options::new().method(method).tolerance(1e-10);
+        let sol = QuasiSteadyCells::default().simulate(0.0, 1.0, &opts).unwrap();
+        for k in 0..50 {
+            let x0: f64 = 1.0 + k as f64 / 50.0;
+            let exact = (x0.sqrt() - 0.5).powi(2);
+            let x = sol.last(&format!("x[{k}]")).unwrap();
+            assert!((x - exact).abs() <= 1e-8, "{method:?}: x[{k}] = {x}, exact {exact}");
+            let z = sol.last(&format!("z[{k}]")).unwrap();
+            assert!((z - exact.sqrt()).abs() <= 1e-8, "z[{k}] = {z}");
+        }
+    }
+    // Fifty blocks of one equation, each its own Newton iteration.
+    let s = QuasiSteadyCells::INFO.structure;
+    assert_eq!(s.blocks.len(), 50);
+    let one = BlockInfo { size: 1, solution: BlockSolution::Newton { tearing: 1 } };
+    assert!(s.blocks.iter().all(|b| *b == one), "{:?}", s.blocks);
+}

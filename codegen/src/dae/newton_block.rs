@@ -95,7 +95,10 @@ pub fn find(g: &mut Graph, model: &Candidates<'_>) -> crate::Result<Option<Newto
     let symbols: Vec<SymbolId> = members.iter().map(|&a| model.algebraics[a].0).collect();
     let residuals: Vec<Id> = equations.iter().map(|&e| model.residuals[e]).collect();
     let torn = tear(g, &residuals, &symbols)?;
+    let tearing: Vec<SymbolId> = torn.tearing.iter().map(|&k| symbols[k]).collect();
+    let components = components(g, &torn.residuals, &tearing);
     Ok(Some(NewtonBlock {
+        components,
         unknowns: torn.tearing.iter().map(|&k| symbols[k]).collect(),
         names: torn.tearing.iter().map(|&k| model.algebraics[members[k]].1.clone()).collect(),
         guesses: torn.tearing.iter().map(|&k| model.algebraics[members[k]].2).collect(),
@@ -105,6 +108,40 @@ pub fn find(g: &mut Graph, model: &Candidates<'_>) -> crate::Result<Option<Newto
         texts: equations.iter().map(|&e| model.texts[e].clone()).collect(),
         equations,
     }))
+}
+
+/// The torn system split into its strongly connected parts in causal
+/// order, each `(tearing variables, residuals)` by index: independent
+/// cells of a grid are solved one by one, each part with the values of
+/// the parts before it. One part when the residuals do not match their
+/// variables one to one.
+fn components(g: &Graph, residuals: &[Id], tearing: &[SymbolId]) -> Vec<(Vec<usize>, Vec<usize>)> {
+    let index: FxHashMap<SymbolId, usize> =
+        tearing.iter().enumerate().map(|(k, &s)| (s, k)).collect();
+    let rows: Vec<Vec<usize>> = residuals
+        .iter()
+        .map(|&r| g.free_symbols(r).into_iter().filter_map(|s| index.get(&s).copied()).collect())
+        .collect();
+    let whole = vec![((0..tearing.len()).collect(), (0..residuals.len()).collect())];
+    let owner = crate::dae::matching::maximum_matching(&rows, tearing.len());
+    let Some(owner) = owner.into_iter().collect::<Option<Vec<usize>>>() else { return whole };
+    let mut variable_of = vec![0; rows.len()];
+    for (k, &r) in owner.iter().enumerate() {
+        variable_of[r] = k;
+    }
+    let successors: Vec<Vec<usize>> = rows
+        .iter()
+        .enumerate()
+        .map(|(r, vars)| vars.iter().map(|&k| owner[k]).filter(|&o| o != r).collect())
+        .collect();
+    crate::dae::matching::strongly_connected(&successors)
+        .into_iter()
+        .map(|rows| {
+            let mut variables: Vec<usize> = rows.iter().map(|&r| variable_of[r]).collect();
+            variables.sort_unstable();
+            (variables, rows)
+        })
+        .collect()
 }
 
 /// A block torn: the variables Newton iterates on, the others computed

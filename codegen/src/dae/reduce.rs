@@ -215,7 +215,8 @@ fn structure_report(
         let (key, solution) = if mass_only {
             ((0, 0), BlockSolve::MassMatrix)
         } else if let Some(b) = newton.filter(|b| unknowns.iter().any(|s| b.determines(s))) {
-            ((1, 0), BlockSolve::Newton { tearing: b.unknowns.len() })
+            let c = newton_part(b, &unknowns);
+            ((1, c), BlockSolve::Newton { tearing: b.components.get(c).map_or(0, |p| p.0.len()) })
         } else if let Some(b) = run_time_block {
             ((2, b), BlockSolve::Linear { lu: solved.blocks[b].unknowns.len() })
         } else if unknowns.len() == 1 {
@@ -235,6 +236,17 @@ fn structure_report(
         }
     }
     report
+}
+
+/// The part of the Newton block that solves `unknowns`: the part of the
+/// first of them it iterates on, else of the first tearing variable a
+/// computed one reads.
+fn newton_part(b: &crate::dae::system::NewtonBlock, unknowns: &[SymbolId]) -> usize {
+    let part_of = |s: &SymbolId| {
+        let k = b.unknowns.iter().position(|u| u == s)?;
+        b.components.iter().position(|(variables, _)| variables.contains(&k))
+    };
+    unknowns.iter().find_map(part_of).unwrap_or(0)
 }
 
 /// The structural check of the equations as index reduction left them,
@@ -488,11 +500,14 @@ fn newton_block(
         },
     );
     match found {
-        Ok(Some(newton)) if newton.unknowns.len() > NEWTON_VARIABLES_MAX => {
-            let (k, n) = (newton.unknowns.len(), newton.equations.len());
+        Ok(Some(newton))
+            if newton.components.iter().any(|(v, _)| v.len() > NEWTON_VARIABLES_MAX) =>
+        {
+            let k = newton.components.iter().map(|(v, _)| v.len()).max().unwrap_or(0);
+            let n = newton.equations.len();
             cx.error_at(
                 &origins[newton.equations[0]],
-                format!("this equation is one of the model's {n} nonlinear algebraic equations, which one Newton system solves on {k} variables after tearing, and at most {NEWTON_VARIABLES_MAX} at once (its Jacobian lives on the stack): make some of them linear in a variable of their own, or their variables states"),
+                format!("this equation is one of the model's {n} nonlinear algebraic equations, which tearing leaves coupled through {k} variables; Newton solves at most {NEWTON_VARIABLES_MAX} at once (its Jacobian lives on the stack): make some of them linear in a variable of their own, or their variables states"),
             );
             None
         }
@@ -504,7 +519,8 @@ fn newton_block(
     }
 }
 
-/// Most variables the Newton block iterates on: its dense Jacobian and the
+/// Most variables one part of the Newton block iterates on: its dense
+/// Jacobian and the
 /// copies the iteration makes live on the stack (320 KB each at 200), of
 /// which a rayon worker has 2 MB.
 const NEWTON_VARIABLES_MAX: usize = 200;

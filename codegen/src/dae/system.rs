@@ -190,6 +190,10 @@ pub struct NewtonBlock {
     pub computed: Vec<(SymbolId, Id)>,
     /// The block's size before tearing: its equations and variables.
     pub size: usize,
+    /// The torn system's strongly connected parts in causal order, each
+    /// `(tearing variables, residuals)` by index into `unknowns` and
+    /// `residuals`: solved one after the other.
+    pub components: Vec<(Vec<usize>, Vec<usize>)>,
     /// The block's equations as written, for the errors.
     pub texts: Vec<String>,
 }

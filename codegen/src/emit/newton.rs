@@ -5,7 +5,7 @@ use crate::dae::system::FirstOrder;
 use crate::emit::layout::{index, program, Layout};
 use crate::Graph;
 use proc_macro2::TokenStream;
-use quote::{format_ident, quote};
+use quote::{format_ident, quote, ToTokens};
 
 /// The Newton block (see `newton_block`): an inherent method that solves
 /// its equations for its variables, warm-started from the last solution on
@@ -21,6 +21,9 @@ pub(crate) fn newton_block_code(
     let Some(newton) = &sys.newton else {
         return (TokenStream::new(), TokenStream::new(), TokenStream::new());
     };
+    if newton.components.len() > 1 {
+        return by_components(g, layout, sys, newton, name);
+    }
     let k = newton.unknowns.len();
     let (kk, n) = (index(k), index(sys.slots.len()));
     let array = format_ident!("rhs{}", sys.blocks.len());
@@ -87,6 +90,122 @@ pub(crate) fn newton_block_code(
                         singular: trouble == ::daegen::runtime::algebraic::AlgebraicTrouble::Singular,
                     }),
                 }
+            }
+        }
+    };
+    let solve = quote!(let #array = self.__daegen_algebraics(t, y)?;);
+    let for_outputs = quote! {
+        let ::core::result::Result::Ok(#array) = self.__daegen_algebraics(t, y) else { return f64::NAN };
+    };
+    (method, solve, for_outputs)
+}
+
+/// The Newton block solved part by part, in causal order, each part by
+/// its own Newton iteration on its few variables with the parts before it
+/// known (a grid's independent cells one by one): one method returning
+/// all the block's variables, warm-started from the last solution.
+fn by_components(
+    g: &mut Graph,
+    layout: &Layout,
+    sys: &FirstOrder,
+    newton: &crate::dae::system::NewtonBlock,
+    name: &syn::Ident,
+) -> (TokenStream, TokenStream, TokenStream) {
+    let whole = sys.blocks.len();
+    let (k, n) = (newton.unknowns.len(), index(sys.slots.len()));
+    let (kk, array) = (index(k), format_ident!("rhs{}", whole));
+    let (texts, names) = (&newton.texts, &newton.names);
+    let mut parts = TokenStream::new();
+    for (c, (variables, rows)) in newton.components.iter().enumerate() {
+        let kc = index(variables.len());
+        // This part's variables from the iteration's array, the parts
+        // before it from the block's.
+        let local = whole + 1 + c;
+        let part = format_ident!("rhs{}", local);
+        let mut part_layout = Layout {
+            slot_of: layout.slot_of.clone(),
+            block_of: layout.block_of.clone(),
+            taylor_of: Default::default(),
+        };
+        for (i, &v) in variables.iter().enumerate() {
+            part_layout.block_of.insert(newton.unknowns[v], (local, i));
+        }
+        let mut values = Vec::new();
+        let mut targets: Vec<TokenStream> = Vec::new();
+        for (i, &r) in rows.iter().enumerate() {
+            let il = index(i);
+            values.push(newton.residuals[r]);
+            targets.push(quote!(residual[#il]));
+            for (j, &v) in variables.iter().enumerate() {
+                let Ok(d) = g.partial(newton.residuals[r], newton.unknowns[v]) else { continue };
+                if g.as_number(d).is_some_and(|x| x.is_zero()) {
+                    continue;
+                }
+                values.push(d);
+                let jl = index(j);
+                targets.push(quote!(jacobian[#il][#jl]));
+            }
+        }
+        let body = program(g, &part_layout, &values, &|i, v| {
+            let target = &targets[i];
+            quote!(#target = #v;)
+        });
+        let guess_values: Vec<crate::Id> = variables.iter().map(|&v| newton.guesses[v]).collect();
+        let guesses = program(g, layout, &guess_values, &|i, v| {
+            let i = index(i);
+            quote!(guess[#i] = #v;)
+        });
+        let positions: Vec<TokenStream> =
+            variables.iter().map(|&v| index(v).into_token_stream()).collect();
+        let locals: Vec<TokenStream> =
+            (0..variables.len()).map(|i| index(i).into_token_stream()).collect();
+        parts.extend(quote! {
+            {
+                let eval = |#part: &[f64; #kc], residual: &mut [f64; #kc], jacobian: &mut [[f64; #kc]; #kc]| {
+                    *jacobian = [[0.0f64; #kc]; #kc];
+                    #body
+                };
+                let mut guess = [0.0f64; #kc];
+                #guesses
+                let solved = match last {
+                    ::core::option::Option::Some(last) => {
+                        ::daegen::runtime::algebraic::newton([#(last[#positions]),*], eval)
+                            .or_else(|_| ::daegen::runtime::algebraic::newton(guess, eval))
+                    }
+                    ::core::option::Option::None => ::daegen::runtime::algebraic::newton(guess, eval),
+                };
+                match solved {
+                    ::core::result::Result::Ok(z) => {
+                        #(#array[#positions] = z[#locals];)*
+                    }
+                    ::core::result::Result::Err(trouble) => {
+                        return ::core::result::Result::Err(::daegen::EvalError::NonlinearAlgebraic {
+                            equations: ::std::vec![#(#texts),*],
+                            unknowns: ::std::vec![#(#names),*],
+                            singular: trouble == ::daegen::runtime::algebraic::AlgebraicTrouble::Singular,
+                        });
+                    }
+                }
+            }
+        });
+    }
+    let method = quote! {
+        #[allow(unused_variables, unused_mut, clippy::all, clippy::pedantic)]
+        impl #name {
+            /// The model's nonlinear algebraic equations solved part by
+            /// part by Newton's method at `(t, y)` (generated by
+            /// `#[dae_model]`).
+            #[doc(hidden)]
+            fn __daegen_algebraics(&self, t: f64, y: &[f64; #n]) -> ::core::result::Result<[f64; #kk], ::daegen::EvalError> {
+                ::std::thread_local! {
+                    static LAST: ::core::cell::Cell<::core::option::Option<[f64; #kk]>> =
+                        const { ::core::cell::Cell::new(::core::option::Option::None) };
+                }
+                let last = LAST.with(|last| last.get());
+                let mut #array = [0.0f64; #kk];
+                #parts
+                LAST.with(|last| last.set(::core::option::Option::Some(#array)));
+                ::core::result::Result::Ok(#array)
             }
         }
     };
