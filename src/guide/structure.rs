@@ -23,11 +23,15 @@
 //!    to three unknowns, elimination with constant pivots beyond), else by
 //!    an LU factorization at run time. Nonlinear algebraic equations are
 //!    solved by Newton's method with their generated Jacobian, warm-started
-//!    from the last solution.
+//!    from the last solution, part by part: a grid's independent cells
+//!    each by an iteration of their own.
 //! 4. **Tearing.** Newton iterates on as few variables as it can: while
-//!    some equation of the block determines one variable explicitly, that
-//!    variable is computed from it; when none does, the variable that
-//!    appears in most equations is torn (Cellier & Kofman's heuristic).
+//!    some equation of the block determines one variable explicitly (its
+//!    coefficient reading only variables already known), that variable
+//!    is computed from it; when none does, the variable that appears in
+//!    most equations is torn (Cellier & Kofman's heuristic). A part of
+//!    more than 200 tearing variables is a compile error (its Jacobian
+//!    lives on the stack).
 //!
 //! The chemical Akzo Nobel problem of the IVP test set, as its authors
 //! write it, with its algebraic equation last and `y6` squared in two
