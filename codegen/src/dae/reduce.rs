@@ -375,7 +375,8 @@ fn with_explicit(
     }
     // The Newton block is solved first, before every expression that reads
     // it; a linear block's unknowns are known only after its solve.
-    let at_run_time = |s: &SymbolId| rest.iter().any(|&j| all[j] == *s);
+    let rest_symbols: FxHashMap<SymbolId, ()> = rest.iter().map(|&j| (all[j], ())).collect();
+    let at_run_time = |s: &SymbolId| rest_symbols.contains_key(s);
     for (j, s) in all.iter().enumerate() {
         let Some(&value) = explicit.get(s) else { continue };
         let reads_run_time =

@@ -26,7 +26,7 @@ pub struct Problem<'a> {
     pub residuals: &'a [Id],
     /// Equations already gone (aliases): neither matched nor sorted.
     pub gone: &'a [bool],
-    /// Each equation as written, and its tokens.
+    /// Each equation as written, for the messages.
     pub texts: &'a [String],
     /// Each equation's tokens.
     pub origins: &'a [TokenStream],

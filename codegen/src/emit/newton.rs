@@ -27,25 +27,7 @@ pub(crate) fn newton_block_code(
     let k = newton.unknowns.len();
     let (kk, n) = (index(k), index(sys.slots.len()));
     let array = format_ident!("rhs{}", sys.blocks.len());
-    // Residuals and ∂g/∂z, sharing their subexpressions.
-    let mut values = newton.residuals.clone();
-    let mut targets: Vec<TokenStream> = (0..k)
-        .map(|i| {
-            let i = index(i);
-            quote!(residual[#i])
-        })
-        .collect();
-    for (i, &r) in newton.residuals.iter().enumerate() {
-        for (j, &z) in newton.unknowns.iter().enumerate() {
-            let Ok(d) = g.partial(r, z) else { continue };
-            if g.as_number(d).is_some_and(|v| v.is_zero()) {
-                continue;
-            }
-            values.push(d);
-            let (i, j) = (index(i), index(j));
-            targets.push(quote!(jacobian[#i][#j]));
-        }
-    }
+    let (values, targets) = residuals_and_jacobian(g, &newton.residuals, &newton.unknowns);
     let body = program(g, layout, &values, &|i, v| {
         let target = &targets[i];
         quote!(#target = #v;)
@@ -100,6 +82,35 @@ pub(crate) fn newton_block_code(
     (method, solve, for_outputs)
 }
 
+/// The residuals and their non-zero derivatives `∂g_i/∂z_j`, to be
+/// written into `residual[i]` and `jacobian[i][j]` by one program that
+/// shares their subexpressions.
+fn residuals_and_jacobian(
+    g: &mut Graph,
+    residuals: &[crate::Id],
+    unknowns: &[crate::SymbolId],
+) -> (Vec<crate::Id>, Vec<TokenStream>) {
+    let mut values = residuals.to_vec();
+    let mut targets: Vec<TokenStream> = (0..residuals.len())
+        .map(|i| {
+            let i = index(i);
+            quote!(residual[#i])
+        })
+        .collect();
+    for (i, &r) in residuals.iter().enumerate() {
+        for (j, &z) in unknowns.iter().enumerate() {
+            let Ok(d) = g.partial(r, z) else { continue };
+            if g.as_number(d).is_some_and(|v| v.is_zero()) {
+                continue;
+            }
+            values.push(d);
+            let (i, j) = (index(i), index(j));
+            targets.push(quote!(jacobian[#i][#j]));
+        }
+    }
+    (values, targets)
+}
+
 /// The Newton block solved part by part, in causal order, each part by
 /// its own Newton iteration on its few variables with the parts before it
 /// known (a grid's independent cells one by one): one method returning
@@ -130,22 +141,10 @@ fn by_components(
         for (i, &v) in variables.iter().enumerate() {
             part_layout.block_of.insert(newton.unknowns[v], (local, i));
         }
-        let mut values = Vec::new();
-        let mut targets: Vec<TokenStream> = Vec::new();
-        for (i, &r) in rows.iter().enumerate() {
-            let il = index(i);
-            values.push(newton.residuals[r]);
-            targets.push(quote!(residual[#il]));
-            for (j, &v) in variables.iter().enumerate() {
-                let Ok(d) = g.partial(newton.residuals[r], newton.unknowns[v]) else { continue };
-                if g.as_number(d).is_some_and(|x| x.is_zero()) {
-                    continue;
-                }
-                values.push(d);
-                let jl = index(j);
-                targets.push(quote!(jacobian[#il][#jl]));
-            }
-        }
+        let residuals: Vec<crate::Id> = rows.iter().map(|&r| newton.residuals[r]).collect();
+        let unknowns: Vec<crate::SymbolId> =
+            variables.iter().map(|&v| newton.unknowns[v]).collect();
+        let (values, targets) = residuals_and_jacobian(g, &residuals, &unknowns);
         let body = program(g, &part_layout, &values, &|i, v| {
             let target = &targets[i];
             quote!(#target = #v;)
