@@ -33,7 +33,9 @@
 #![warn(missing_docs)]
 
 pub use daegen_codegen as codegen;
-pub use daegen_macros::dae_model;
+pub use daegen_macros::{component, dae_model};
+#[doc(hidden)]
+pub use daegen_macros::{__component_parts, __dae_model_parts};
 pub use daegen_runtime as runtime;
 pub use daegen_runtime::{
     Availability, Batch, BlockInfo, BlockSolution, ConstraintInfo, Ensemble, Error, EvalError,
@@ -49,7 +51,7 @@ pub mod plot;
 /// Everything a model file needs: `use daegen::prelude::*;`.
 pub mod prelude {
     pub use crate::{
-        dae_model, Error, Flow, Formulation, LinearSolver, Method, Model, Options, Simulate,
+        component, dae_model, Error, Flow, Formulation, LinearSolver, Method, Model, Options, Simulate,
         Solution, Step,
     };
 }

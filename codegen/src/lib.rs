@@ -59,6 +59,7 @@ mod error;
 pub mod expr;
 pub mod front;
 pub mod mechanics;
+pub mod parts;
 pub mod pipeline;
 pub mod taylor;
 
@@ -74,6 +75,7 @@ pub use expr::number::{pow_f64, Number};
 pub use expr::rational::Rational;
 pub use taylor::economic::economic_taylor_derivatives;
 
+use front::components::definitions::Definitions;
 use front::ctxt::Ctxt;
 use proc_macro2::TokenStream;
 
@@ -82,25 +84,53 @@ use proc_macro2::TokenStream;
 /// sees one error per mistake and the rest of their code still
 /// type-checks.
 pub fn expand_dae_model(attr: TokenStream, item: TokenStream) -> TokenStream {
+    match expand_model_with(attr.clone(), item.clone(), Definitions::default()) {
+        parts::Expansion::Done(tokens) => tokens,
+        parts::Expansion::Fetch(missing) => match syn::parse2::<syn::ItemFn>(item) {
+            Ok(item) => parts::fetch_for_model(attr, &item, &Definitions::default(), missing),
+            Err(e) => e.to_compile_error(),
+        },
+    }
+}
+
+/// `#[dae_model]` with the user's components `parts` callable: the
+/// model's tokens, or the parts it calls that `parts` lacks.
+pub(crate) fn expand_model_with(
+    attr: TokenStream,
+    item: TokenStream,
+    parts: Definitions,
+) -> parts::Expansion {
     let mut cx = Ctxt::default();
     let item: syn::ItemFn = match syn::parse2(item) {
         Ok(item) => item,
         Err(e) => {
-            return syn::Error::new(
-                e.span(),
-                "`#[dae_model]` goes on a function: `fn pendulum() { ... }`",
+            return parts::Expansion::Done(
+                syn::Error::new(e.span(), "`#[dae_model]` goes on a function: `fn pendulum() { ... }`")
+                    .to_compile_error(),
             )
-            .to_compile_error()
         }
     };
-    match expand_or_report(&mut cx, attr, &item) {
-        Ok(tokens) => tokens,
+    match expand_or_report(&mut cx, attr, &item, parts) {
+        Ok(tokens) => parts::Expansion::Done(tokens),
+        Err(ir) if !ir.missing_parts.is_empty() => parts::Expansion::Fetch(ir.missing_parts),
         Err(ir) => {
             let mut out = cx.to_compile_errors();
             out.extend(emit::model::stub(&ir));
-            out
+            parts::Expansion::Done(out)
         }
     }
+}
+
+/// `#[component] fn part() { .. }`: a component of the model language,
+/// checked, and the `macro_rules!` that hands it to the models that call
+/// it (see [`parts`]).
+pub fn expand_component(attr: TokenStream, item: TokenStream) -> TokenStream {
+    parts::expand_component(attr, item)
+}
+
+/// The callback of a fetch of the user's components (see [`parts`]).
+pub fn expand_parts(input: TokenStream) -> TokenStream {
+    parts::expand_parts(input)
 }
 
 /// The errors `expand_dae_model` would report, as messages: for tests of
@@ -110,7 +140,7 @@ pub fn diagnostics(item: TokenStream) -> Vec<String> {
     let Ok(item) = syn::parse2::<syn::ItemFn>(item) else {
         return vec!["not a function".to_string()];
     };
-    let _ = expand_or_report(&mut cx, TokenStream::new(), &item);
+    let _ = expand_or_report(&mut cx, TokenStream::new(), &item, Definitions::default());
     cx.messages()
 }
 
@@ -120,8 +150,9 @@ fn expand_or_report(
     cx: &mut Ctxt,
     attr: TokenStream,
     item: &syn::ItemFn,
+    parts: Definitions,
 ) -> std::result::Result<TokenStream, Box<front::ir::ModelIr>> {
-    let mut model = pipeline::analyse(cx, attr, item)?;
+    let mut model = pipeline::analyse_with_parts(cx, attr, item, parts)?;
     match emit::model::expand(&mut model) {
         Ok(mut tokens) => {
             let (ir, attributes) = (&model.ir, &model.attributes);

@@ -9,6 +9,7 @@ use crate::dae::mass_form::MassForm;
 use crate::dae::system::{FirstOrder, ProjectionLevel};
 use crate::dae::variational::Wrt;
 use crate::front::attributes::Attributes;
+use crate::front::components::definitions::Definitions;
 use crate::front::ctxt::Ctxt;
 use crate::front::ir::ModelIr;
 use crate::taylor::analysis::TaylorAnalysis;
@@ -53,7 +54,8 @@ pub struct SensitivityAnalysis {
     pub model: crate::Result<SystemAnalysis>,
 }
 
-/// Runs every stage in order: attributes → lower → structure → reduce →
+/// Runs every stage in order: attributes → lower → tied states →
+/// structure → reduce →
 /// variational → mass form → Taylor → projection levels. `Err` holds the
 /// IR as far as it got (for the stub) when a stage reported errors to `cx`.
 pub fn analyse(
@@ -61,8 +63,26 @@ pub fn analyse(
     attr: TokenStream,
     item: &syn::ItemFn,
 ) -> Result<Analysed, Box<ModelIr>> {
+    analyse_with_parts(cx, attr, item, Definitions::default())
+}
+
+/// [`analyse`], with the user's components `parts` callable by the model.
+/// A part the model calls and `parts` lacks ends the analysis after
+/// lowering (`Err`, with `ir.missing_parts` naming them).
+pub fn analyse_with_parts(
+    cx: &mut Ctxt,
+    attr: TokenStream,
+    item: &syn::ItemFn,
+    parts: Definitions,
+) -> Result<Analysed, Box<ModelIr>> {
     let attributes = crate::front::attributes::attributes(cx, attr);
-    let mut ir = lower(cx, item, attributes.recursive);
+    let mut ir = lower(cx, item, attributes.recursive, parts);
+    if !ir.missing_parts.is_empty() {
+        return Err(Box::new(ir));
+    }
+    if cx.is_ok() && !ir.instances.is_empty() {
+        crate::dae::tied_states::eliminate_tied_states(cx, &mut ir);
+    }
     let system = match cx.is_ok() {
         true => crate::dae::structure::structure(cx, &mut ir)
             .and_then(|structure| crate::dae::reduce::reduce(cx, &mut ir, structure)),
@@ -86,8 +106,8 @@ pub fn analyse(
 /// `mechanics` (in relative joint coordinates when `recursive`). Errors go
 /// to `cx`; the IR is returned even then, with the parts that could be
 /// read.
-pub fn lower(cx: &mut Ctxt, item: &syn::ItemFn, recursive: bool) -> ModelIr {
-    crate::front::lower::lower_with::<crate::mechanics::Scene>(cx, item, recursive)
+pub fn lower(cx: &mut Ctxt, item: &syn::ItemFn, recursive: bool, parts: Definitions) -> ModelIr {
+    crate::front::lower::lower_with::<crate::mechanics::Scene>(cx, item, recursive, parts)
 }
 
 /// The forward sensitivities the attribute asks for, resolved against the

@@ -1,5 +1,6 @@
 //! From the model IR to a first-order system (`system`, which every pass
-//! after reduction reads and which imports none of them): the structure
+//! after reduction reads and which imports none of them): the states that
+//! connections tie eliminated (`tied_states`), the structure
 //! (`structure`: equations whose highest derivatives cancel combined by
 //! `derivative_free`, the index reduced by `index_reduction` and
 //! `linear_pencil`), aliases removed (`alias`), the equations matched to
@@ -22,4 +23,5 @@ pub mod solve_unknowns;
 pub mod sorting;
 pub mod structure;
 pub mod system;
+pub mod tied_states;
 pub mod variational;

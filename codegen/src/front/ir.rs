@@ -12,6 +12,9 @@ pub struct Param {
     pub default: f64,
     /// Its doc comment.
     pub doc: String,
+    /// Its path in the hierarchy of instances (`r1.r`); the field's name
+    /// at the model's level.
+    pub path: String,
 }
 
 /// One scalar state (`state(x0)` or an element of `state_array`).
@@ -28,6 +31,9 @@ pub struct StateDecl {
     pub fixed: bool,
     /// Its doc comment (for a scene's coordinates, what they are).
     pub doc: String,
+    /// `state(x0).avoid()`: when an equation ties it to other states, it
+    /// is the one eliminated.
+    pub avoid: bool,
 }
 
 /// `let z = algebraic(guess);`
@@ -147,6 +153,19 @@ pub struct ModelIr {
     /// Calls of non-smooth functions (`abs`) and their tokens, for errors
     /// found after lowering (the Taylor methods refuse them).
     pub non_smooth_calls: Vec<(Id, proc_macro2::TokenStream)>,
+    /// The instances of components, parents first.
+    pub instances: Vec<InstanceSummary>,
+    /// Parts the model calls that no definition provided: the user's
+    /// components, which the expansion fetches and lowers again with.
+    pub missing_parts: Vec<syn::Path>,
+}
+
+/// An instance of a component, for the hierarchy `describe()` shows.
+pub struct InstanceSummary {
+    /// Its path: `motor.emf`.
+    pub path: String,
+    /// The part: `emf`.
+    pub part: String,
 }
 
 /// The model as its tests read it: one declaration or statement a line,

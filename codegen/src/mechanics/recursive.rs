@@ -306,6 +306,7 @@ impl Lower<'_, Scene> {
                 origin: origin.clone(),
                 fixed: false,
                 doc: crate::mechanics::names::planar_joint_doc(kind).to_string(),
+                avoid: false,
             });
             if self.g.as_number(rate).is_some_and(|v| v.is_zero()) {
                 continue;

@@ -239,6 +239,7 @@ impl Lower<'_, Scene> {
                 origin: origin.clone(),
                 fixed: false,
                 doc: s.doc.clone(),
+                avoid: false,
             });
         }
         for s in states {

@@ -121,7 +121,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
     ) -> Option<SymbolId> {
         let (_, symbol) = self.new_symbol(&name, SymbolKind::State, at)?;
         let (origin, doc) = (origin.clone(), doc.to_string());
-        self.states.push(StateDecl { name, symbol, init, origin, fixed: false, doc });
+        self.states.push(StateDecl { name, symbol, init, origin, fixed: false, doc, avoid: false });
         Some(symbol)
     }
 
@@ -197,7 +197,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         doc: String,
         local: &syn::Local,
     ) {
-        let name = ident.to_string();
+        let name = format!("{}{ident}", self.prefix);
         if self.already_declared(ident) {
             return;
         }
@@ -271,12 +271,18 @@ impl<S: SceneLanguage> Lower<'_, S> {
     ) {
         // One match arm per declaration of the language (`param`, `state`, `algebraic`, …):
         // long because the language is, each arm short.
-        let name = ident.to_string();
+        let name = format!("{}{ident}", self.prefix);
         if self.already_declared(ident) {
             return;
         }
         let origin = local.to_token_stream();
+        let in_component = self.instance.is_some();
         match kind {
+            Declaration::Body | Declaration::SpatialBody | Declaration::QuaternionState
+                if in_component =>
+            {
+                self.cx.error_at(local, format!("a component declares no `{}`: bodies and joints belong to the model, which connects the component to them through flanges", kind.name()));
+            }
             Declaration::Body | Declaration::Ground => {
                 S::body(self, ident, kind.name(), call, local)
             }
@@ -285,11 +291,27 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 if !self.arity(call, "param", 1) {
                     return;
                 }
-                let v = self.constant(&call.args[0]).unwrap_or_else(|| self.g.zero());
+                // An instance's argument replaces the default: a number
+                // makes the instance's own parameter, an expression of
+                // the enclosing parameters binds it.
+                let given = self.overrides.get(&ident.to_string()).copied();
+                if let Some(v) = given.filter(|&v| self.g.as_number(v).is_none()) {
+                    return self.bind(ident, Binding::Value { id: v, mutable: false });
+                }
+                let v = match given {
+                    Some(v) => v,
+                    None => self.constant(&call.args[0]).unwrap_or_else(|| self.g.zero()),
+                };
                 let default = self.g.as_number(v).map_or(f64::NAN, |n| n.to_f64());
-                match self.g.parameter(&name) {
+                let field = format!("{}{ident}", self.field_prefix);
+                if let Some(other) = self.params.iter().find(|p| p.ident == field) {
+                    let message = format!("the parameter `{name}` would be the field `{field}`, which `{}` already is: rename an instance", other.path);
+                    return self.cx.error_at(ident, message);
+                }
+                match self.g.parameter(&field) {
                     Ok(id) => {
-                        self.params.push(Param { ident: ident.clone(), default, doc });
+                        let field = syn::Ident::new(&field, ident.span());
+                        self.params.push(Param { ident: field, default, doc, path: name });
                         self.bind(ident, Binding::Param(id));
                     }
                     Err(e) => self.cx.error_at(ident, e),
@@ -331,6 +353,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                         origin: origin.clone(),
                         fixed: false,
                         doc: doc.clone(),
+                        avoid: false,
                     });
                     symbols.push(symbol);
                 }
@@ -384,6 +407,22 @@ impl<S: SceneLanguage> Lower<'_, S> {
             }
             Declaration::Time => {
                 if !self.arity(call, "time", 0) {
+                    return;
+                }
+                // A component reads the model's time, declared or not.
+                if let Some(time) = self.time.filter(|_| in_component || self.time_implicit) {
+                    self.time_implicit &= in_component;
+                    let id = self.g.symbol_node(time);
+                    return self.bind(ident, Binding::Time(id));
+                }
+                if in_component {
+                    let names = std::iter::once("t".to_string()).chain((0..).map(|k| format!("__time{k}")));
+                    let created = names.into_iter().find_map(|n| self.g.time(&n).ok());
+                    if let Some(id) = created {
+                        self.time = self.g.as_symbol(id);
+                        self.time_implicit = true;
+                        self.bind(ident, Binding::Time(id));
+                    }
                     return;
                 }
                 if self.time.is_some() {

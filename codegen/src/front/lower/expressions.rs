@@ -2,6 +2,7 @@
 //! the graph.
 
 use super::declarations::Declaration;
+use super::instances::Member;
 use super::scene::SceneLanguage;
 use super::scopes::{Binding, Lower};
 use super::syntax::call_name;
@@ -11,7 +12,7 @@ use crate::{Func, Graph, Id, Node, SymbolKind};
 use quote::ToTokens;
 use syn::{BinOp, Expr, Lit, Stmt, UnOp};
 
-pub(super) const FUNCTIONS: [&str; 20] = [
+pub(super) const FUNCTIONS: [&str; 21] = [
     "sin",
     "cos",
     "tan",
@@ -26,6 +27,7 @@ pub(super) const FUNCTIONS: [&str; 20] = [
     "ln",
     "sqrt",
     "abs",
+    "heaviside",
     "der",
     "init",
     "constraint",
@@ -122,6 +124,9 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     Some(Binding::Value { id, .. }) => Some(id),
                     Some(Binding::State(s)) => Some(self.g.symbol_node(s)),
                     Some(Binding::BrokenBody | Binding::Broken) => None,
+                    Some(b @ (Binding::Connector(_) | Binding::Instance(_) | Binding::InstanceArray(_))) => {
+                        self.member_value(b, e)
+                    }
                     Some(b @ (Binding::Body(_) | Binding::Ground)) => {
                         let what = b.describe();
                         self.cx.error_at(e, format!("`{name}` is {what}: use `position({name}, p)` for a point of it, or its coordinates `{name}.x`… in the solution"));
@@ -151,6 +156,12 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 }
             }
             Expr::Index(ix) if self.mentions_tensor(&ix.expr) => self.scalar_of(e),
+            Expr::Index(_) | Expr::Field(_) if self.is_member_path(e) => {
+                match self.member(e) {
+                    Member::Found(b) => self.member_value(b, e),
+                    _ => None,
+                }
+            }
             Expr::Index(ix) => {
                 let Expr::Path(p) = &*ix.expr else {
                     self.cx.error_at(&ix.expr, "only arrays declared in the model can be indexed");
@@ -281,6 +292,22 @@ impl<S: SceneLanguage> Lower<'_, S> {
         if matches!(name.as_str(), "init" | "constraint" | "invariant") {
             self.cx.error_at(e, format!("`{name}(...)` is a statement, not a value"));
             return None;
+        }
+        if name == "heaviside" {
+            // 0 below zero, 1 above, ½ at zero: (1 + sign x) / 2.
+            if !self.arity(c, "heaviside", 1) {
+                return None;
+            }
+            let x = self.value(&c.args[0])?;
+            let sign = self.g.call(Func::Sign, x);
+            let sign = self.graph_result(sign, e)?;
+            self.non_smooth_calls.push((sign, e.to_token_stream()));
+            let one = self.g.one();
+            let r = self.g.add(one, sign).and_then(|s| {
+                let half = self.g.rational(1, 2)?;
+                self.g.mul(half, s)
+            });
+            return self.graph_result(r, e);
         }
         let func = Func::ALL.iter().copied().find(|f| f.name() == name && *f != Func::Sign);
         let arity = match name.as_str() {

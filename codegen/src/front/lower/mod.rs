@@ -11,6 +11,7 @@
 mod constants;
 mod declarations;
 mod expressions;
+mod instances;
 pub(crate) mod integers;
 mod scene;
 mod scopes;
@@ -19,10 +20,11 @@ mod syntax;
 
 pub(crate) use scene::SceneLanguage;
 pub(crate) use scopes::{Binding, Lower};
-use syntax::doc_comment;
+pub(crate) use syntax::doc_comment;
 
+use crate::front::components::definitions::Definitions;
 use crate::front::ctxt::Ctxt;
-use crate::front::ir::ModelIr;
+use crate::front::ir::{InstanceSummary, ModelIr};
 
 use crate::{Graph, SymbolId};
 use std::collections::HashMap;
@@ -35,25 +37,9 @@ pub(crate) fn lower_with<S: SceneLanguage>(
     cx: &mut Ctxt,
     item: &syn::ItemFn,
     recursive: bool,
+    parts: Definitions,
 ) -> ModelIr {
-    let mut l = Lower::<S> {
-        cx,
-        g: Graph::new(),
-        scopes: vec![HashMap::new()],
-        time: None,
-        params: Vec::new(),
-        states: Vec::new(),
-        algebraics: Vec::new(),
-        outputs: Vec::new(),
-        events: Vec::new(),
-        equations: Vec::new(),
-        inits: Vec::new(),
-        invariants: Vec::new(),
-        scene: S::new(recursive),
-        unrolled: 0,
-        non_smooth_calls: Vec::new(),
-        integer_names: Default::default(),
-    };
+    let mut l = new_lower::<S>(cx, recursive, parts);
     if !item.sig.inputs.is_empty() {
         l.cx.error_at(
             &item.sig.inputs,
@@ -73,6 +59,7 @@ pub(crate) fn lower_with<S: SceneLanguage>(
         names.into_iter().find_map(|n| l.g.time(&n).ok()).and_then(|id| l.g.as_symbol(id))
     });
     let time = time.unwrap_or(SymbolId(0));
+    l.connection_equations();
     S::equations(&mut l, item);
     if l.states.is_empty() && l.cx.is_ok() {
         l.cx.error_at(&item.sig.ident, "the model declares no state: add one with `let x = state(0.0);` and an equation `der(x) == ...;`");
@@ -100,5 +87,56 @@ pub(crate) fn lower_with<S: SceneLanguage>(
         inits: l.inits,
         invariants: l.invariants,
         non_smooth_calls: l.non_smooth_calls,
+        instances: l.instances.iter().map(|i| InstanceSummary { path: i.path.clone(), part: i.part.clone() }).collect(),
+        missing_parts: l.missing_parts,
     }
+}
+
+/// An empty lowering, the user's `parts` callable.
+fn new_lower<S: SceneLanguage>(cx: &mut Ctxt, recursive: bool, parts: Definitions) -> Lower<'_, S> {
+    Lower::<S> {
+        cx,
+        g: Graph::new(),
+        scopes: vec![HashMap::new()],
+        time: None,
+        params: Vec::new(),
+        states: Vec::new(),
+        algebraics: Vec::new(),
+        outputs: Vec::new(),
+        events: Vec::new(),
+        equations: Vec::new(),
+        inits: Vec::new(),
+        invariants: Vec::new(),
+        scene: S::new(recursive),
+        unrolled: 0,
+        non_smooth_calls: Vec::new(),
+        integer_names: Default::default(),
+        parts: std::rc::Rc::new(parts),
+        library: std::rc::Rc::new(Definitions::standard_library()),
+        missing_parts: Vec::new(),
+        prefix: String::new(),
+        field_prefix: String::new(),
+        instance: None,
+        overrides: HashMap::new(),
+        instances: Vec::new(),
+        connectors: Vec::new(),
+        connections: Vec::new(),
+        ground_pins: HashMap::new(),
+        time_implicit: false,
+    }
+}
+
+/// Lowers one instance of the component `definition` (its `parts`
+/// callable) with its defaults and reports what is wrong in it, with the
+/// user's tokens; `#[component]` checks a body so. The parts its body
+/// calls that no definition provides are returned (the user's
+/// components, to fetch first).
+pub(crate) fn check_component<S: SceneLanguage>(
+    cx: &mut Ctxt,
+    definition: std::rc::Rc<crate::front::components::definitions::Definition>,
+) -> Vec<syn::Path> {
+    let mut l = new_lower::<S>(cx, false, Definitions::default());
+    l.parts = definition.parts.clone();
+    l.check_part(&definition);
+    l.missing_parts
 }

@@ -6,6 +6,8 @@ use crate::front::ir::{
     AlgebraicDecl, Equation, Event, Init, Output, Param, StateDecl, UserInvariant,
 };
 
+use crate::front::components::definitions::Definitions;
+use crate::front::components::{Connection, Connector, Instance};
 use crate::front::tensor::Tensor;
 use crate::{Graph, Id, SymbolId};
 use std::collections::HashMap;
@@ -41,6 +43,12 @@ pub(crate) enum Binding {
     /// A value whose definition has an error (already reported): its uses
     /// stay quiet too, so each mistake is reported once.
     Broken,
+    /// `let r1 = resistor(100.0);`: an instance of a component.
+    Instance(usize),
+    /// `let r = [resistor(1.0); N];`: instances, `r[k]`.
+    InstanceArray(Vec<usize>),
+    /// `let p = pin();`: a connector.
+    Connector(usize),
 }
 
 impl Binding {
@@ -60,6 +68,9 @@ impl Binding {
             Binding::Ground => "the ground",
             Binding::BrokenBody => "a body",
             Binding::Broken => "a value",
+            Binding::Instance(_) => "an instance of a component",
+            Binding::InstanceArray(_) => "an array of instances",
+            Binding::Connector(_) => "a connector",
         }
     }
 }
@@ -83,6 +94,32 @@ pub(crate) struct Lower<'c, S> {
     /// Names of whole-number constants: loop indices and integer `const`s
     /// (`front::lower::integers`).
     pub(in crate::front) integer_names: std::collections::HashSet<String>,
+    /// The user's parts a call may instantiate at this level, by path.
+    pub(in crate::front) parts: std::rc::Rc<Definitions>,
+    /// The standard library.
+    pub(in crate::front) library: std::rc::Rc<Definitions>,
+    /// Parts called that nothing here defines: the user's components the
+    /// expansion fetches before lowering again.
+    pub(crate) missing_parts: Vec<syn::Path>,
+    /// The path of the instance being lowered and a dot (`motor.emf.`);
+    /// empty at the model's level.
+    pub(crate) prefix: String,
+    /// The same for parameter fields (`motor_emf_`).
+    pub(in crate::front) field_prefix: String,
+    /// The instance being lowered.
+    pub(in crate::front) instance: Option<usize>,
+    /// The parameters its call set, by name.
+    pub(in crate::front) overrides: HashMap<String, Id>,
+    /// Every instance, in the order declared (parents first).
+    pub(crate) instances: Vec<Instance>,
+    /// Every connector.
+    pub(crate) connectors: Vec<Connector>,
+    /// Every `connect`.
+    pub(crate) connections: Vec<Connection>,
+    /// The time was declared by a component's `time()`, not the model's.
+    pub(in crate::front) time_implicit: bool,
+    /// The pins of grounds used in circuits, by the ground's path.
+    pub(in crate::front) ground_pins: HashMap<String, usize>,
 }
 
 impl<S> Lower<'_, S> {

@@ -5,6 +5,7 @@ use super::declarations::Declaration;
 use super::scene::SceneLanguage;
 use super::scopes::{Binding, Lower};
 use super::syntax::{call_name, doc_comment, event_call, is_compound_assignment};
+use crate::front::components::connectors::ConnectorKind;
 use crate::front::ir::{Equation, Init, UserInvariant};
 
 use crate::{Id, SymbolKind};
@@ -65,18 +66,36 @@ impl<S: SceneLanguage> Lower<'_, S> {
             }
             return self.event(&ident, call, &settings, doc, local);
         }
-        // `state(x0).fixed()`: a value consistent initialization keeps.
-        let (e, fixed) = match e {
-            Expr::MethodCall(m)
-                if m.method == "fixed"
-                    && m.args.is_empty()
-                    && matches!(call_name(&m.receiver), Some((n, _)) if n == "state" || n == "state_array") =>
-            {
-                (&*m.receiver, true)
+        // `state(x0).fixed()`: a value consistent initialization keeps;
+        // `state(x0).avoid()`: the state eliminated when tied to others.
+        let (mut e, mut fixed, mut avoid) = (e, false, false);
+        while let Expr::MethodCall(m) = e {
+            let is_state = |r: &Expr| {
+                let mut r = r;
+                while let Expr::MethodCall(inner) = r {
+                    r = &inner.receiver;
+                }
+                matches!(call_name(r), Some((n, _)) if n == "state" || n == "state_array")
+            };
+            match m.method.to_string().as_str() {
+                "fixed" if m.args.is_empty() && is_state(&m.receiver) => fixed = true,
+                "avoid" if m.args.is_empty() && is_state(&m.receiver) => avoid = true,
+                _ => break,
             }
-            _ => (e, false),
-        };
+            e = &m.receiver;
+        }
         if let Some((name, call)) = call_name(e) {
+            if let Some(kind) = ConnectorKind::from_name(&name) {
+                return self.connector(&ident, kind, call, local, doc);
+            }
+        }
+        if self.instance_statement(&ident, e) {
+            return;
+        }
+        if let Some((name, call)) = call_name(e) {
+            if S::is_joint(&name) && self.instance.is_some() {
+                return self.cx.error_at(e, format!("a component declares no `{name}`: bodies and joints belong to the model, which connects the component to them through flanges"));
+            }
             if S::is_joint(&name) {
                 if self.already_declared(&ident) {
                     return;
@@ -94,6 +113,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 self.declaration(&ident, declaration, call, doc, local);
                 for state in &mut self.states[first..] {
                     state.fixed = fixed;
+                    state.avoid = avoid;
                 }
                 return;
             }
@@ -218,12 +238,13 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     }
                 }
                 Some((name, call)) if name == "init" => self.init(call, e),
+                Some((name, call)) if name == "connect" => self.connect(call, e),
                 Some((name, _)) if Declaration::from_name(&name).is_some() => {
                     self.cx.error_at(e, format!("`{name}(...)` declares a variable: write `let x = {name}(...);`"))
                 }
                 _ => self.cx.error_at(
                     e,
-                    "a model statement is `let`, an equation `lhs == rhs;`, `constraint(...)`, `init(...)`, `const` or `for`",
+                    "a model statement is `let`, an equation `lhs == rhs;`, `constraint(...)`, `init(...)`, `connect(...)`, `const` or `for`",
                 ),
             },
         }

@@ -1,0 +1,341 @@
+//! Tied states: connections tie the states of different parts by
+//! equations linear in them alone (an EMF's shaft angle to the rotor's,
+//! two inertias joined rigidly, the two sides of a gear, an inertia to a
+//! fixed flange). Each such tie is solved for one of the states, which is
+//! replaced, with its derivatives, everywhere: the connected model keeps
+//! the states a hand-written one has, instead of a constraint between
+//! states that index reduction would differentiate and projection hold.
+//! Modelica tools reach the same by index reduction and dummy derivatives
+//! (Mattsson & Söderlind 1993); a linear tie with constant coefficients
+//! needs neither.
+//!
+//! A tie is found after alias substitution (`a == ±b`, so the chain
+//! `emf.phi == emf.flange.phi == rotor.flange_a.phi == rotor.phi`
+//! reads `emf.phi == rotor.phi`), or from two equations that give the
+//! same highest derivative from states (`der(phi) == w1` and
+//! `der(phi) == w2` tie `w1` and `w2`). Only states declared in
+//! components are eliminated; `state(x0).avoid()` marks the one to
+//! prefer, and of two the later declared goes. The eliminated state
+//! stays readable by name.
+
+use crate::front::ctxt::Ctxt;
+use crate::front::ir::{ModelIr, Output};
+use crate::{FxHashMap, Graph, Id, SymbolId, SymbolKind};
+
+/// Eliminates every tie among the states of `ir`'s components.
+pub fn eliminate_tied_states(cx: &mut Ctxt, ir: &mut ModelIr) {
+    if let Err(e) = eliminate(ir) {
+        let at = ir.equations.first().map(|e| e.origin.clone());
+        match at {
+            Some(at) => cx.error_at(at, e),
+            None => cx.error_at(&ir.fn_name, e),
+        }
+    }
+}
+
+fn eliminate(ir: &mut ModelIr) -> crate::Result<()> {
+    let mut gone = vec![false; ir.equations.len()];
+    loop {
+        let orders = highest_orders(ir);
+        let residuals = residuals_after_aliases(ir, &gone)?;
+        match find_tie(ir, &residuals, &gone, &orders)? {
+            None => break,
+            Some(Tie::Redundant { equation }) => gone[equation] = true,
+            Some(Tie::State { equation, state, value }) => {
+                gone[equation] = true;
+                replace_state(ir, state, value, orders.get(&state).copied().unwrap_or(1))?;
+            }
+        }
+    }
+    let mut k = 0;
+    ir.equations.retain(|_| {
+        k += 1;
+        !gone[k - 1]
+    });
+    Ok(())
+}
+
+/// What `find_tie` found.
+enum Tie {
+    /// The equation ties `state` to `value`.
+    State { equation: usize, state: SymbolId, value: Id },
+    /// The equation repeats another.
+    Redundant { equation: usize },
+}
+
+/// Each equation's residual `lhs − rhs` with the algebraic aliases
+/// substituted (zero for an alias equation or a removed one).
+fn residuals_after_aliases(ir: &mut ModelIr, gone: &[bool]) -> crate::Result<Vec<Id>> {
+    let g = &mut ir.graph;
+    let mut residuals = Vec::with_capacity(ir.equations.len());
+    for (e, eq) in ir.equations.iter().enumerate() {
+        residuals.push(if gone[e] { g.zero() } else { g.sub(eq.lhs, eq.rhs)? });
+    }
+    let algebraics: Vec<SymbolId> = ir.algebraics.iter().map(|a| a.symbol).collect();
+    let differentiations = vec![0; residuals.len()];
+    let aliases =
+        crate::dae::alias::eliminate_aliases(g, &residuals, &differentiations, &algebraics)?;
+    Ok(aliases.residuals)
+}
+
+/// The highest derivative each state reaches in the equations (1 for a
+/// state whose derivative appears, or none does).
+fn highest_orders(ir: &ModelIr) -> FxHashMap<SymbolId, u32> {
+    let g = &ir.graph;
+    let mut orders: FxHashMap<SymbolId, u32> = ir.states.iter().map(|s| (s.symbol, 1)).collect();
+    let roots: Vec<Id> = ir.equations.iter().flat_map(|e| [e.lhs, e.rhs]).collect();
+    for n in g.reachable(&roots) {
+        if let Some(s) = g.as_symbol(n) {
+            if let SymbolKind::Derivative { of, order } = g.symbol(s).kind {
+                let k = orders.entry(of).or_insert(1);
+                *k = (*k).max(order);
+            }
+        }
+    }
+    orders
+}
+
+/// What a symbol is to a tie: a state or a derivative below the highest
+/// (a value the integrator carries), or a highest derivative.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Role {
+    Carried,
+    Highest,
+    Other,
+}
+
+fn role(g: &Graph, s: SymbolId, orders: &FxHashMap<SymbolId, u32>) -> Role {
+    match g.symbol(s).kind {
+        SymbolKind::State => Role::Carried,
+        SymbolKind::Derivative { of, order } => match orders.get(&of) {
+            Some(&top) if order < top => Role::Carried,
+            Some(_) => Role::Highest,
+            None => Role::Other,
+        },
+        _ => Role::Other,
+    }
+}
+
+/// `Σ c_k y_k + b` over states and derivatives, with `c_k` and `b`
+/// reading parameters only.
+struct Linear {
+    terms: Vec<(SymbolId, Id)>,
+    constant: Id,
+}
+
+impl Linear {
+    /// `r` so; `None` when it is not linear so or reads another variable.
+    fn of(g: &mut Graph, r: Id) -> crate::Result<Option<Linear>> {
+        let variables: Vec<SymbolId> = g
+            .free_symbols(r)
+            .into_iter()
+            .filter(|&s| g.symbol(s).kind != SymbolKind::Parameter)
+            .collect();
+        let mut terms = Vec::with_capacity(variables.len());
+        let mut zeros = FxHashMap::default();
+        for &y in &variables {
+            if !matches!(g.symbol(y).kind, SymbolKind::State | SymbolKind::Derivative { .. }) {
+                return Ok(None);
+            }
+            let c = g.partial(r, y)?;
+            if !is_constant(g, c) {
+                return Ok(None);
+            }
+            terms.push((y, c));
+            zeros.insert(y, g.zero());
+        }
+        let constant = g.substitute(r, &zeros)?;
+        Ok(Some(Linear { terms, constant }))
+    }
+
+    fn coefficient(&self, y: SymbolId) -> Option<Id> {
+        self.terms.iter().find(|t| t.0 == y).map(|t| t.1)
+    }
+
+    /// `self / a − other / b`, term by term.
+    fn difference(&self, a: Id, other: &Linear, b: Id, g: &mut Graph) -> crate::Result<Linear> {
+        let mut symbols: Vec<SymbolId> = self.terms.iter().map(|t| t.0).collect();
+        for &(y, _) in &other.terms {
+            if !symbols.contains(&y) {
+                symbols.push(y);
+            }
+        }
+        let zero = g.zero();
+        let scaled = |l: &Linear, y: Option<SymbolId>, by: Id, g: &mut Graph| {
+            let c = match y {
+                Some(y) => l.coefficient(y).unwrap_or(zero),
+                None => l.constant,
+            };
+            g.div(c, by)
+        };
+        let mut terms = Vec::new();
+        for y in symbols {
+            let c = scaled(self, Some(y), a, g)?;
+            let d = scaled(other, Some(y), b, g)?;
+            let c = g.sub(c, d)?;
+            if !g.as_number(c).is_some_and(|n| n.is_zero()) {
+                terms.push((y, c));
+            }
+        }
+        let c = scaled(self, None, a, g)?;
+        let d = scaled(other, None, b, g)?;
+        let constant = g.sub(c, d)?;
+        Ok(Linear { terms, constant })
+    }
+
+    /// `Σ c_k y_k + b` as an expression.
+    fn value(&self, g: &mut Graph) -> crate::Result<Id> {
+        let mut sum = Vec::with_capacity(self.terms.len() + 1);
+        for &(y, c) in &self.terms {
+            let y = g.symbol_node(y);
+            sum.push(g.mul(c, y)?);
+        }
+        sum.push(self.constant);
+        g.sum(&sum)
+    }
+}
+
+/// The first tie.
+fn find_tie(
+    ir: &mut ModelIr,
+    residuals: &[Id],
+    gone: &[bool],
+    orders: &FxHashMap<SymbolId, u32>,
+) -> crate::Result<Option<Tie>> {
+    // Equations that give a highest derivative `d` from carried values,
+    // `c d + Σ a_k y_k + b = 0`, by `d`.
+    let mut by_highest: FxHashMap<SymbolId, (Id, Linear)> = FxHashMap::default();
+    for (e, &r) in residuals.iter().enumerate() {
+        if gone[e] || ir.equations[e].is_constraint || ir.graph.as_number(r).is_some() {
+            continue;
+        }
+        let Some(linear) = Linear::of(&mut ir.graph, r)? else { continue };
+        let g = &ir.graph;
+        if linear.terms.iter().any(|(y, _)| role(g, *y, orders) == Role::Other) {
+            continue;
+        }
+        let highest: Vec<(SymbolId, Id)> = linear
+            .terms
+            .iter()
+            .copied()
+            .filter(|(y, _)| role(g, *y, orders) == Role::Highest)
+            .collect();
+        match highest.as_slice() {
+            [] => {
+                if let Some((state, value)) = solve_for_component_state(ir, &linear)? {
+                    return Ok(Some(Tie::State { equation: e, state, value }));
+                }
+            }
+            &[(d, c)] if g.as_number(c).is_some() => match by_highest.get(&d) {
+                Some((c_first, first)) => {
+                    let tie = first.difference(*c_first, &linear, c, &mut ir.graph)?;
+                    let g = &ir.graph;
+                    let constant_zero = g.as_number(tie.constant).is_some_and(|n| n.is_zero());
+                    if tie.terms.is_empty() && constant_zero {
+                        return Ok(Some(Tie::Redundant { equation: e }));
+                    }
+                    if let Some((state, value)) = solve_for_component_state(ir, &tie)? {
+                        return Ok(Some(Tie::State { equation: e, state, value }));
+                    }
+                }
+                None => {
+                    by_highest.insert(d, (c, linear));
+                }
+            },
+            _ => {}
+        }
+    }
+    Ok(None)
+}
+
+fn is_constant(g: &Graph, c: Id) -> bool {
+    g.free_symbols(c).iter().all(|&s| g.symbol(s).kind == SymbolKind::Parameter)
+}
+
+/// The tie `Σ c_k y_k + b = 0` solved for a state of a component (an
+/// `.avoid()` one first, then the latest declared) with a numeric
+/// coefficient: `y = −(Σ_{k≠y} c_k y_k + b) / c_y`.
+fn solve_for_component_state(
+    ir: &mut ModelIr,
+    tie: &Linear,
+) -> crate::Result<Option<(SymbolId, Id)>> {
+    let in_component = |name: &str| {
+        ir.instances.iter().any(|i| {
+            name.len() > i.path.len() + 1
+                && name.starts_with(&i.path)
+                && name.as_bytes()[i.path.len()] == b'.'
+        })
+    };
+    let mut best: Option<((bool, usize), SymbolId, Id)> = None;
+    for &(y, c) in &tie.terms {
+        let Some(k) = ir.states.iter().position(|s| s.symbol == y) else { continue };
+        let decl = &ir.states[k];
+        if !in_component(&decl.name) || !ir.graph.as_number(c).is_some_and(|n| !n.is_zero()) {
+            continue;
+        }
+        let key = (decl.avoid && !decl.fixed, k);
+        if best.as_ref().is_none_or(|(b, _, _)| key > *b) {
+            best = Some((key, y, c));
+        }
+    }
+    let Some((_, y, c)) = best else { return Ok(None) };
+    let g = &mut ir.graph;
+    let minus_one = g.int(-1);
+    let scale = g.div(minus_one, c)?;
+    let mut terms = Vec::with_capacity(tie.terms.len());
+    for &(z, a) in &tie.terms {
+        if z != y {
+            terms.push((z, g.mul(scale, a)?));
+        }
+    }
+    let constant = g.mul(scale, tie.constant)?;
+    let value = Linear { terms, constant }.value(g)?;
+    Ok(Some((y, value)))
+}
+
+/// Replaces `state` (reaching derivative `top`) by `value` and its
+/// derivatives everywhere, and keeps it readable as an output.
+fn replace_state(ir: &mut ModelIr, state: SymbolId, value: Id, top: u32) -> crate::Result<()> {
+    let g = &mut ir.graph;
+    let mut replace = FxHashMap::from_iter([(state, value)]);
+    let mut current = value;
+    for k in 1..=top {
+        current = time_derivative_of_linear(g, current)?;
+        if let Some(d) = g.existing_derivative(state, k) {
+            replace.insert(d, current);
+        }
+    }
+    for eq in &mut ir.equations {
+        eq.lhs = g.substitute(eq.lhs, &replace)?;
+        eq.rhs = g.substitute(eq.rhs, &replace)?;
+    }
+    for o in &mut ir.outputs {
+        o.value = g.substitute(o.value, &replace)?;
+    }
+    for e in &mut ir.events {
+        e.value = g.substitute(e.value, &replace)?;
+    }
+    for i in &mut ir.invariants {
+        i.value = g.substitute(i.value, &replace)?;
+    }
+    ir.inits.retain(|i| !replace.contains_key(&i.target));
+    let Some(k) = ir.states.iter().position(|s| s.symbol == state) else { return Ok(()) };
+    let decl = ir.states.remove(k);
+    ir.outputs.push(Output { name: decl.name, value, doc: decl.doc, origin: decl.origin });
+    Ok(())
+}
+
+/// d/dt of `Σ c_k y_k + b` with constant `c_k`, `b`: `Σ c_k y_k'`.
+fn time_derivative_of_linear(g: &mut Graph, v: Id) -> crate::Result<Id> {
+    let Some(linear) = Linear::of(g, v)? else {
+        return Err(crate::Error::Unsupported {
+            message: format!("`{}` ties states nonlinearly", g.show(v)),
+        });
+    };
+    let mut sum = Vec::with_capacity(linear.terms.len());
+    for (y, c) in linear.terms {
+        let d = g.derivative(y, 1)?;
+        sum.push(g.mul(c, d)?);
+    }
+    g.sum(&sum)
+}

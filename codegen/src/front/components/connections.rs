@@ -1,0 +1,127 @@
+//! Connection sets into equations (Modelica Language Specification
+//! §9.2): the connectors joined by `connect`, directly or through
+//! others, form a set; in each set the potentials are equal and the
+//! flows sum to zero, a flow counted positive into a part through an
+//! inside connector (one of a sub-instance) and negative through an
+//! outside one (the connecting component's own, seen from within). A
+//! connector no connection reaches from outside has zero flow.
+
+use super::{Connection, Connector};
+use crate::front::ir::Equation;
+use crate::{Graph, Id};
+use proc_macro2::TokenStream;
+
+/// The equations of the connections, or the errors found (with the
+/// tokens to report them on).
+pub fn connection_equations(
+    g: &mut Graph,
+    connectors: &[Connector],
+    connections: &[Connection],
+) -> Result<Vec<Equation>, Vec<(TokenStream, String)>> {
+    // Node 2c is connector c as its owner's parent connects it (Modelica's
+    // inside connector), 2c + 1 as its owner's own body connects it
+    // (Modelica's outside connector).
+    let node = |c: usize, level: Option<usize>| 2 * c + usize::from(connectors[c].owner == level);
+    let mut parent: Vec<usize> = (0..2 * connectors.len()).collect();
+    let mut origin_of_set: Vec<Option<&TokenStream>> = vec![None; 2 * connectors.len()];
+    let mut reached_from_outside = vec![false; connectors.len()];
+    for connection in connections {
+        let first = node(connection.members[0], connection.level);
+        for &c in &connection.members {
+            let n = node(c, connection.level);
+            if n % 2 == 0 {
+                reached_from_outside[c] = true;
+            }
+            let (a, b) = (find(&mut parent, first), find(&mut parent, n));
+            parent[b] = a;
+        }
+        origin_of_set[first] = Some(&connection.origin);
+    }
+    let mut sets: Vec<Vec<usize>> = vec![Vec::new(); parent.len()];
+    let mut origins: Vec<Option<&TokenStream>> = vec![None; parent.len()];
+    for n in 0..parent.len() {
+        let root = find(&mut parent, n);
+        if origin_of_set[n].is_some() {
+            origins[root] = origins[root].or(origin_of_set[n]);
+        }
+        sets[root].push(n);
+    }
+    let mut equations = Vec::new();
+    let mut errors = Vec::new();
+    for (root, set) in sets.iter().enumerate() {
+        let Some(origin) = origins[root] else { continue };
+        // (connector, seen in its owner's own body)
+        let members: Vec<(usize, bool)> = set.iter().map(|&n| (n / 2, n % 2 == 1)).collect();
+        let kind = connectors[members[0].0].kind;
+        if kind.is_signal() {
+            // A set has one source: an output seen from outside, or the
+            // connecting component's own input seen from inside.
+            let sources: Vec<&str> = members
+                .iter()
+                .filter(|&&(c, own_body)| {
+                    let k = connectors[c].kind;
+                    (k == super::ConnectorKind::RealOutput) != own_body
+                })
+                .map(|&(c, _)| connectors[c].path.as_str())
+                .collect();
+            if sources.len() > 1 {
+                let list = sources.iter().map(|s| format!("`{s}`")).collect::<Vec<_>>().join(", ");
+                errors.push((origin.clone(), format!("a signal has one source, and these connections join {} of them: {list}; connect each input to one output", sources.len())));
+                continue;
+            }
+        }
+        let first = connectors[members[0].0].potential;
+        for &(c, _) in &members[1..] {
+            let potential = connectors[c].potential;
+            if potential != first {
+                equations.push(equation(first, potential, origin));
+            }
+        }
+        if kind.is_signal() {
+            continue;
+        }
+        let mut terms = Vec::with_capacity(members.len());
+        for &(c, own_body) in &members {
+            let Some(flow) = connectors[c].flow else { continue };
+            let term = match own_body {
+                false => Ok(flow),
+                true => g.neg(flow),
+            };
+            match term {
+                Ok(t) => terms.push(t),
+                Err(e) => errors.push((origin.clone(), e.to_string())),
+            }
+        }
+        match g.sum(&terms) {
+            Ok(sum) => {
+                let zero = g.zero();
+                equations.push(equation(sum, zero, origin));
+            }
+            Err(e) => errors.push((origin.clone(), e.to_string())),
+        }
+    }
+    // An unconnected flow is zero: a pin left open carries no current.
+    for (c, connector) in connectors.iter().enumerate() {
+        let (Some(flow), Some(_)) = (connector.flow, connector.owner) else { continue };
+        if !reached_from_outside[c] {
+            let zero = g.zero();
+            equations.push(equation(flow, zero, &connector.origin));
+        }
+    }
+    match errors.is_empty() {
+        true => Ok(equations),
+        false => Err(errors),
+    }
+}
+
+fn equation(lhs: Id, rhs: Id, origin: &TokenStream) -> Equation {
+    Equation { lhs, rhs, origin: origin.clone(), is_constraint: false }
+}
+
+fn find(parent: &mut [usize], mut n: usize) -> usize {
+    while parent[n] != n {
+        parent[n] = parent[parent[n]];
+        n = parent[n];
+    }
+    n
+}
