@@ -1,6 +1,6 @@
 //! Components and connectors: circuits, drives and thermal networks built
-//! from the standard library and from the user's components, each checked
-//! against an exact solution or the same physics written flat.
+//! from the standard library and from the user's own components, each
+//! checked against an exact solution or the same physics written flat.
 
 use daegen::prelude::*;
 
@@ -28,6 +28,159 @@ fn rc_charging_follows_the_exponential() {
         assert!((v - exact).abs() < 1e-7, "t = {t}: {v} vs {exact}");
         let i: f64 = sol.at(t, "r1.i").unwrap();
         assert!((i - (10.0 - exact) / 100.0).abs() < 1e-9, "t = {t}: i = {i}");
+        // Kirchhoff at the source: the current leaves `p` and returns at `n`.
+        let (p, n): (f64, f64) = (sol.at(t, "source.p.i").unwrap(), sol.at(t, "source.n.i").unwrap());
+        assert!((p + n).abs() < 1e-12 && (p + i).abs() < 1e-9);
     }
-    println!("{}", model.describe());
+    // One state, as by hand; every connector variable still reads.
+    assert_eq!(<RcCharging as Model>::INFO.states, ["c1.v"]);
+    let model = RcCharging { r1_r: 50.0, ..RcCharging::default() };
+    let sol = model.simulate(0.0, 0.05, &opts).unwrap();
+    let exact = 10.0 * (1.0 - (-0.05f64 / 0.05).exp());
+    assert!((sol.last("c1.v").unwrap() - exact).abs() < 1e-7);
+}
+
+/// A series RLC circuit switched onto 1 V: R = 1 Ω, L = 1 H, C = 0.25 F,
+/// underdamped (α = 0.5 s⁻¹, ω_d = √3.75 rad/s).
+#[dae_model]
+fn rlc_series() {
+    let source = constant_voltage(1.0);
+    let r = resistor(1.0);
+    let l = inductor(1.0);
+    let c = capacitor(0.25);
+    let gnd = ground();
+    connect(source.p, r.p);
+    connect(r.n, l.p);
+    connect(l.n, c.p);
+    connect(c.n, source.n, gnd.p);
+}
+
+#[test]
+fn rlc_series_rings_as_the_exact_solution() {
+    let (alpha, wd) = (0.5f64, 3.75f64.sqrt());
+    let v_c = |t: f64| 1.0 - (-alpha * t).exp() * ((wd * t).cos() + alpha / wd * (wd * t).sin());
+    let i = |t: f64| (-alpha * t).exp() * (wd * t).sin() / wd;
+    for method in [Method::Radau5, Method::Dop853, Method::Rodas5P, Method::Taylor] {
+        let opts = Options::new().method(method).rtol(1e-10).atol(1e-10);
+        let sol = RlcSeries::default().simulate(0.0, 10.0, &opts).unwrap();
+        for &t in &[0.5, 2.0, 5.0, 10.0] {
+            let (vc, il): (f64, f64) = (sol.at(t, "c.v").unwrap(), sol.at(t, "l.i").unwrap());
+            assert!((vc - v_c(t)).abs() < 1e-7, "{method:?} t = {t}: v_c {vc} vs {}", v_c(t));
+            assert!((il - i(t)).abs() < 1e-7, "{method:?} t = {t}: i {il} vs {}", i(t));
+            let vr: f64 = sol.at(t, "r.v").unwrap();
+            assert!((vr - il).abs() < 1e-9);
+        }
+    }
+    assert_eq!(<RlcSeries as Model>::INFO.states.len(), 2);
+}
+
+/// A permanent-magnet DC motor: armature resistance and inductance, the
+/// EMF, and the rotor's inertia, between two pins and a shaft.
+#[component]
+fn dc_motor() {
+    /// Armature resistance (Ω).
+    let r = param(1.0);
+    /// Armature inductance (H).
+    let l = param(0.5e-3);
+    /// Motor constant (V s/rad).
+    let k = param(0.05);
+    /// Rotor inertia (kg m²).
+    let j = param(1e-4);
+    let p = pin();
+    let n = pin();
+    let shaft = flange();
+    let armature = resistor(r);
+    let winding = inductor(l);
+    let emf = emf(k);
+    let rotor = inertia(j);
+    connect(p, armature.p);
+    connect(armature.n, winding.p);
+    connect(winding.n, emf.p);
+    connect(emf.n, n);
+    connect(emf.flange, rotor.flange_a);
+    connect(rotor.flange_b, shaft);
+}
+
+/// The motor under a PI speed controller, with viscous friction and a
+/// load torque of 0.02 N m from t = 0.3 s.
+#[dae_model]
+fn speed_drive() {
+    let reference = constant(100.0);
+    let controller = pi_controller(kp = 0.02, ki = 0.5);
+    let sensor = speed_sensor();
+    let supply = signal_voltage();
+    let motor = dc_motor(k = 0.05);
+    let friction = damper(1e-5);
+    let housing = fixed();
+    let load = torque_source();
+    let load_torque = step(height = -0.02, start_time = 0.3);
+    let gnd = ground();
+    connect(reference.y, controller.u_s);
+    connect(sensor.w, controller.u_m);
+    connect(controller.y, supply.u);
+    connect(supply.p, motor.p);
+    connect(supply.n, motor.n, gnd.p);
+    connect(motor.shaft, friction.flange_a, sensor.flange, load.flange);
+    connect(friction.flange_b, housing.flange);
+    connect(load_torque.y, load.u);
+}
+
+/// The same drive written flat, by hand.
+#[dae_model]
+fn speed_drive_flat() {
+    let r = param(1.0);
+    let l = param(0.5e-3);
+    let k = param(0.05);
+    let j = param(1e-4);
+    let b = param(1e-5);
+    let kp = param(0.02);
+    let ki = param(0.5);
+    let w_ref = param(100.0);
+    let tau_load = param(0.02);
+    let t_load = param(0.3);
+    let t = time();
+    let i = state(0.0);
+    let phi = state(0.0);
+    let w = state(0.0);
+    let x = state(0.0);
+    let e = w_ref - w;
+    let v = kp * e + x;
+    l * der(i) == v - r * i - k * w;
+    der(phi) == w;
+    j * der(w) == k * i - b * w - tau_load * heaviside(t - t_load);
+    der(x) == ki * e;
+}
+
+#[test]
+fn a_speed_drive_of_components_is_the_flat_drive() {
+    let info = <SpeedDrive as Model>::INFO;
+    let flat = <SpeedDriveFlat as Model>::INFO;
+    assert_eq!(info.states.len(), flat.states.len(), "{:?}", info.states);
+    // Stiff (L/R = 0.5 ms against J R/k² = 40 ms): the explicit methods
+    // report it, and Auto switches.
+    for method in [Method::Radau5, Method::Rodas5P, Method::Auto] {
+        let opts = Options::new().method(method).rtol(1e-9).atol(1e-9);
+        let a = SpeedDrive::default().simulate(0.0, 1.0, &opts).unwrap();
+        let b = SpeedDriveFlat::default().simulate(0.0, 1.0, &opts).unwrap();
+        for &t in &[0.1, 0.29, 0.35, 0.6, 1.0] {
+            for (x, y) in [("motor.winding.i", "i"), ("motor.rotor.w", "w"), ("controller.x", "x"), ("motor.rotor.phi", "phi")] {
+                let (u, v): (f64, f64) = (a.at(t, x).unwrap(), b.at(t, y).unwrap());
+                assert!((u - v).abs() < 1e-6 * (1.0 + v.abs()), "{method:?} t = {t}: {x} = {u}, {y} = {v}");
+            }
+        }
+    }
+}
+
+#[test]
+fn the_speed_drive_settles_at_the_exact_steady_state() {
+    // ω = ω_ref, and the motor's torque k i carries friction and load:
+    // i = (b ω_ref + τ_L) / k.
+    let opts = Options::new().method(Method::Radau5).rtol(1e-10).atol(1e-12);
+    let sol = SpeedDrive::default().simulate(0.0, 20.0, &opts).unwrap();
+    let (w, i): (f64, f64) = (sol.last("sensor.w").unwrap(), sol.last("motor.winding.i").unwrap());
+    let exact_i = (1e-5 * 100.0 + 0.02) / 0.05;
+    assert!((w - 100.0).abs() < 1e-6, "ω = {w}");
+    assert!((i - exact_i).abs() < 1e-7, "i = {i} vs {exact_i}");
+    let v: f64 = sol.last("supply.v").unwrap();
+    assert!((v - (1.0 * exact_i + 0.05 * 100.0)).abs() < 1e-6, "v = {v}");
 }
