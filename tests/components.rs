@@ -184,3 +184,81 @@ fn the_speed_drive_settles_at_the_exact_steady_state() {
     let v: f64 = sol.last("supply.v").unwrap();
     assert!((v - (1.0 * exact_i + 0.05 * 100.0)).abs() < 1e-6, "v = {v}");
 }
+
+const LAYERS: usize = 4;
+
+/// A wall of four layers between 40 °C inside and 0 °C outside: each
+/// layer a heat capacity, conductances between them and to either side.
+#[dae_model]
+fn thermal_wall() {
+    const LAYERS: usize = 4;
+    let g = [2.0, 5.0, 1.0, 4.0, 3.0];
+    let inside = fixed_temperature(313.15);
+    let outside = fixed_temperature(273.15);
+    let layers = (0..LAYERS).map(|k| heat_capacitor(c = 500.0 * (1.0 + k as f64), t0 = 293.15));
+    let conductors = (0..LAYERS + 1).map(|k| thermal_conductor(g[k]));
+    connect(inside.port, conductors[0].port_a);
+    for k in 0..LAYERS {
+        connect(conductors[k].port_b, layers[k].port);
+        connect(layers[k].port, conductors[k + 1].port_a);
+    }
+    connect(conductors[LAYERS].port_b, outside.port);
+}
+
+#[test]
+fn a_thermal_wall_settles_at_the_series_conduction_profile() {
+    // Steady state: one heat flow q = ΔT / Σ 1/g through every
+    // conductor, and each layer below the previous by q / g.
+    let g = [2.0, 5.0, 1.0, 4.0, 3.0];
+    let q = 40.0 / g.iter().map(|g| 1.0 / g).sum::<f64>();
+    let opts = Options::new().method(Method::Radau5).rtol(1e-10).atol(1e-10);
+    let sol = ThermalWall::default().simulate(0.0, 1e5, &opts).unwrap();
+    let mut t = 313.15;
+    for k in 0..LAYERS {
+        t -= q / g[k];
+        let got: f64 = sol.last(&format!("layers[{k}].t")).unwrap();
+        assert!((got - t).abs() < 1e-7, "layer {k}: {got} vs {t}");
+        let flow: f64 = sol.last(&format!("conductors[{k}].q")).unwrap();
+        assert!((flow - q).abs() < 1e-7, "conductor {k}: {flow} vs {q}");
+    }
+    assert_eq!(<ThermalWall as Model>::INFO.states.len(), LAYERS);
+}
+
+/// A resistor heating up: 2 A through R(T) = 10 Ω (1 + 0.004/K (T − 20 °C)),
+/// its losses into a heat capacity of 50 J/K that convects 1.5 W/K to
+/// 20 °C air.
+#[dae_model]
+fn heating_up() {
+    let source = constant_current(2.0);
+    let heater = heating_resistor(r = 10.0, t_ref = 293.15, alpha = 0.004);
+    let body = heat_capacitor(c = 50.0, t0 = 293.15);
+    let air = convection(1.5);
+    let ambient = fixed_temperature(293.15);
+    let gnd = ground();
+    connect(source.n, heater.p);
+    connect(heater.n, source.p, gnd.p);
+    connect(heater.heat_port, body.port, air.solid);
+    connect(air.fluid, ambient.port);
+}
+
+#[test]
+fn a_resistor_heats_up_as_the_exact_solution() {
+    // C dT/dt = I² R0 (1 + α (T − T_ref)) − G (T − T_amb): linear in T,
+    // T = T* + (T0 − T*) e^{λ t}.
+    let (i, r0, alpha, t_ref, c, g, t_amb) = (2.0f64, 10.0, 0.004, 293.15, 50.0, 1.5, 293.15);
+    let lambda = (i * i * r0 * alpha - g) / c;
+    let b = (i * i * r0 * (1.0 - alpha * t_ref) + g * t_amb) / c;
+    let t_star = -b / lambda;
+    let exact = |t: f64| t_star + (293.15 - t_star) * (lambda * t).exp();
+    for method in [Method::Radau5, Method::Dop853, Method::Taylor] {
+        let opts = Options::new().method(method).rtol(1e-11).atol(1e-11);
+        let sol = HeatingUp::default().simulate(0.0, 200.0, &opts).unwrap();
+        for &t in &[10.0, 50.0, 200.0] {
+            let got: f64 = sol.at(t, "body.t").unwrap();
+            assert!((got - exact(t)).abs() < 1e-6, "{method:?} t = {t}: {got} vs {}", exact(t));
+            // The heater's losses are v i at its temperature.
+            let (v, r): (f64, f64) = (sol.at(t, "heater.v").unwrap(), sol.at(t, "heater.r_actual").unwrap());
+            assert!((v - 2.0 * r).abs() < 1e-9 && (r - r0 * (1.0 + alpha * (got - t_ref))).abs() < 1e-9);
+        }
+    }
+}

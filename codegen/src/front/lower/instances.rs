@@ -78,10 +78,14 @@ impl<S: SceneLanguage> Lower<'_, S> {
             }
             return true;
         }
-        let Some((count, element)) = self.instance_array(e) else { return false };
+        let Some(array) = self.instance_array(e) else { return false };
         if self.already_declared(ident) {
             return true;
         }
+        let Some((count, element)) = array else {
+            self.bind(ident, Binding::Broken);
+            return true;
+        };
         let mut members = Vec::with_capacity(count);
         for k in 0..count {
             let (call, index) = element(k);
@@ -102,16 +106,18 @@ impl<S: SceneLanguage> Lower<'_, S> {
     }
 
     /// `[part(..); N]` or `(0..N).map(|k| part(..))`: the count, and for
-    /// each element its call and the loop variable's binding.
+    /// each element its call and the loop variable's binding; `Some(None)`
+    /// once a mistake in it is reported, `None` for another shape.
     #[allow(clippy::type_complexity)]
     fn instance_array<'e>(
         &mut self,
         e: &'e Expr,
-    ) -> Option<(usize, Box<dyn Fn(usize) -> (&'e Expr, Option<(String, Binding)>) + 'e>)> {
+    ) -> Option<Option<(usize, Box<dyn Fn(usize) -> (&'e Expr, Option<(String, Binding)>) + 'e>)>>
+    {
         match e {
             Expr::Repeat(r) if self.part_call(&r.expr) => {
-                let n = self.index_constant(&r.len)?;
-                Some((n, Box::new(move |_| (&*r.expr, None))))
+                let Some(n) = self.index_constant(&r.len) else { return Some(None) };
+                Some(Some((n, Box::new(move |_| (&*r.expr, None)))))
             }
             Expr::MethodCall(m) if m.method == "map" && m.args.len() == 1 => {
                 let Expr::Closure(closure) = &m.args[0] else { return None };
@@ -122,13 +128,21 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 while let Expr::Paren(p) = receiver {
                     receiver = &p.expr;
                 }
+                let how = "write an array of instances as `(0..N).map(|k| part(..))` or `[part(..); N]`";
                 let (Expr::Range(range), [syn::Pat::Ident(var)]) =
                     (receiver, closure.inputs.iter().collect::<Vec<_>>().as_slice())
                 else {
-                    return None;
+                    self.cx.error_at(e, how);
+                    return Some(None);
                 };
-                let (Some(start), Some(end)) = (&range.start, &range.end) else { return None };
-                let (start, end) = (self.index_constant(start)?, self.index_constant(end)?);
+                let (Some(start), Some(end)) = (&range.start, &range.end) else {
+                    self.cx.error_at(e, how);
+                    return Some(None);
+                };
+                let (Some(start), Some(end)) = (self.index_constant(start), self.index_constant(end))
+                else {
+                    return Some(None);
+                };
                 let end = match range.limits {
                     syn::RangeLimits::HalfOpen(_) => end,
                     syn::RangeLimits::Closed(_) => end + 1,
@@ -138,10 +152,10 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     (start..end.max(start)).map(|i| self.g.int(i as i64)).collect();
                 let name = var.ident.to_string();
                 let body = &*closure.body;
-                Some((
+                Some(Some((
                     indices.len(),
                     Box::new(move |k| (body, Some((name.clone(), Binding::Const(indices[k]))))),
-                ))
+                )))
             }
             _ => None,
         }
