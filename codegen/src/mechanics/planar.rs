@@ -40,9 +40,6 @@ impl Lower<'_, Scene> {
             if !self.arity(call, "ground", 0) {
                 return;
             }
-            if self.scene.ground {
-                return self.cx.error_at(local, "a scene has one ground: remove this one");
-            }
             self.scene.ground = true;
             return self.bind(ident, Binding::Ground);
         }

@@ -14,7 +14,7 @@ use quote::quote;
 fn lowered(cx: &mut Ctxt, attr: TokenStream, item: TokenStream) -> ModelIr {
     let item: syn::ItemFn = syn::parse2(item).expect("a function");
     let attributes = daegen_codegen::front::attributes::attributes(cx, attr);
-    let ir = daegen_codegen::pipeline::lower(cx, &item, attributes.recursive);
+    let ir = daegen_codegen::pipeline::lower(cx, &item, attributes.recursive, Default::default());
     assert!(cx.is_ok(), "{:?}", cx.messages());
     ir
 }

@@ -3,7 +3,7 @@
 //! zero), and which kinds connect.
 
 /// A kind of connector, declared in a component with `let p = pin();`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ConnectorKind {
     /// Electrical: potential `v` (V), current `i` (A).
     Pin,

@@ -12,6 +12,7 @@
 pub mod connections;
 pub mod connectors;
 pub mod definitions;
+pub mod diagnostics;
 
 use crate::front::lower::Binding;
 use crate::Id;

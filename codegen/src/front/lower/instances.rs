@@ -50,12 +50,28 @@ impl<S: SceneLanguage> Lower<'_, S> {
             return Some(Some(d));
         }
         let single = f.path.get_ident().map(|i| i.to_string());
+        // `ground()` declares the scene's frame, whose pin `p` is the
+        // library's electrical ground when a circuit uses it.
+        if single.as_deref().and_then(super::declarations::Declaration::from_name).is_some() {
+            return None;
+        }
         if let Some(d) = single.as_deref().and_then(|n| self.library.get(n)) {
             return Some(Some(d));
         }
         let known_function = single.as_deref().is_some_and(|n| self.is_known_function(n));
         if known_function {
             return None;
+        }
+        // A misspelt function or part is a mistake here, not a component
+        // to fetch from elsewhere.
+        if let Some(name) = single.as_deref() {
+            if did_you_mean(name, super::expressions::FUNCTIONS.into_iter()).is_some() {
+                return None;
+            }
+            if let Some(part) = did_you_mean(name, self.library.paths()) {
+                self.cx.error_at(&c.func, format!("unknown part `{name}`; did you mean `{part}`?"));
+                return Some(None);
+            }
         }
         if !self.missing_parts.iter().any(|p| path_text(p) == path) {
             self.missing_parts.push(f.path.clone());
@@ -170,7 +186,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
             return true;
         }
         match f.path.get_ident().map(|i| i.to_string()) {
-            Some(n) => self.library.get(&n).is_some() || !self.is_known_function(&n),
+            Some(n) => !self.is_known_function(&n),
             None => true,
         }
     }
@@ -603,6 +619,25 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     self.cx.error_at(at, message);
                 }
             }
+        }
+        if !self.cx.is_ok() || self.connectors.is_empty() {
+            return;
+        }
+        use crate::front::components::diagnostics;
+        let mut found =
+            diagnostics::sources_in_parallel(&self.connectors, &self.connections, &self.instances);
+        match diagnostics::floating_potentials(
+            &mut self.g,
+            &self.connectors,
+            &self.connections,
+            &self.instances,
+            &self.equations,
+        ) {
+            Ok(floating) => found.extend(floating),
+            Err(e) => found.push((proc_macro2::TokenStream::new(), e.to_string())),
+        }
+        for (at, message) in found {
+            self.cx.error_at(at, message);
         }
     }
 
