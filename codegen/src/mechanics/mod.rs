@@ -150,6 +150,12 @@ impl crate::front::lower::SceneLanguage for Scene {
     ) -> crate::Result<[Id; 9]> {
         spatial::natural_frame(g, p1, p2, p3)
     }
+    fn joint_axis(l: &Lower<'_, Self>, name: &str) -> Option<&'static str> {
+        l.joint_axis(name)
+    }
+    fn joint_flange(l: &mut Lower<'_, Self>, name: &str, flow: Id, at: &syn::Expr) -> Option<Id> {
+        l.joint_flange(name, flow, at)
+    }
     fn equations(l: &mut Lower<'_, Self>, item: &syn::ItemFn) {
         l.scene_equations(item)
     }

@@ -522,6 +522,102 @@ impl Lower<'_, Scene> {
         }
     }
 
+    /// The kind of the named planar joint `name` a flange drives.
+    pub(crate) fn joint_axis(&self, name: &str) -> Option<&'static str> {
+        let record = self.scene.records.iter().find(|r| r.name == name)?;
+        matches!(record.kind, "revolute" | "prismatic").then_some(record.kind)
+    }
+
+    /// `joint.flange`: the joint's relative angle `θ_b − θ_a` (a revolute)
+    /// or the displacement of b's joint point from a's along the axis (a
+    /// prismatic), and `flow` acting across it: a torque on b and −torque
+    /// on a, or a force along the axis at b's joint point and its reaction.
+    pub(crate) fn joint_flange(&mut self, name: &str, flow: Id, at: &Expr) -> Option<Id> {
+        if self.scene.is_spatial() {
+            self.cx.error_at(at, "a flange drives a joint of a planar scene; a spatial joint has none yet: apply `torque(body, axis * tau)` with `tau` a variable of the drive");
+            return None;
+        }
+        let record = self.scene.records.iter().find(|r| r.name == name)?.clone();
+        let angle = |this: &mut Self, f: Frame| match f {
+            Frame::Ground => this.g.zero(),
+            Frame::Body(b) => this.g.symbol_node(this.scene.bodies[b].theta),
+        };
+        let zero = self.g.zero();
+        if record.kind == "revolute" {
+            let (ta, tb) = (angle(self, record.a), angle(self, record.b));
+            let relative = self.g.sub(tb, ta);
+            let relative = self.graph_result(relative, at)?;
+            if let Frame::Body(b) = record.b {
+                self.scene.loads.push((b, zero, zero, flow));
+            }
+            if let Frame::Body(a) = record.a {
+                let reaction = self.g.neg(flow);
+                let reaction = self.graph_result(reaction, at)?;
+                self.scene.loads.push((a, zero, zero, reaction));
+            }
+            return Some(relative);
+        }
+        // Prismatic: the axis in a's frame, turned into the world.
+        let axis = record.axis?;
+        let world = |this: &mut Self, f: Frame, p: [Id; 2]| -> Option<[Id; 2]> {
+            match f {
+                Frame::Ground => Some(p),
+                Frame::Body(b) => {
+                    let body = &this.scene.bodies[b];
+                    let pose = [body.x, body.y, body.theta].map(|s| this.g.symbol_node(s));
+                    let r = point(&mut this.g, pose, p);
+                    this.graph_result_pair(r, at)
+                }
+            }
+        };
+        let (pa, pb) = (world(self, record.a, record.local_a)?, world(self, record.b, record.local_b)?);
+        let ta = angle(self, record.a);
+        let u = rotate(&mut self.g, ta, axis);
+        let u = self.graph_result_pair(u, at)?;
+        let s = (|| {
+            let g = &mut self.g;
+            let dx = g.sub(pb[0], pa[0])?;
+            let dy = g.sub(pb[1], pa[1])?;
+            let along_x = g.mul(dx, u[0])?;
+            let along_y = g.mul(dy, u[1])?;
+            let along = g.add(along_x, along_y)?;
+            let norm = {
+                let xx = g.mul(u[0], u[0])?;
+                let yy = g.mul(u[1], u[1])?;
+                let n2 = g.add(xx, yy)?;
+                g.sqrt(n2)?
+            };
+            let fx = g.mul(flow, u[0])?;
+            let fy = g.mul(flow, u[1])?;
+            let (fx, fy) = (g.div(fx, norm)?, g.div(fy, norm)?);
+            Ok((g.div(along, norm)?, fx, fy))
+        })();
+        let (s, fx, fy) = self.graph_result_triple(s, at)?;
+        if let Frame::Body(b) = record.b {
+            self.apply(b, pb, fx, fy, at);
+        }
+        if let Frame::Body(a) = record.a {
+            let (rx, ry) = (self.g.neg(fx), self.g.neg(fy));
+            let (rx, ry) = (self.graph_result(rx, at)?, self.graph_result(ry, at)?);
+            self.apply(a, pb, rx, ry, at);
+        }
+        Some(s)
+    }
+
+    fn graph_result_triple(
+        &mut self,
+        r: crate::Result<(Id, Id, Id)>,
+        at: &Expr,
+    ) -> Option<(Id, Id, Id)> {
+        match r {
+            Ok(v) => Some(v),
+            Err(e) => {
+                self.cx.error_at(at, e);
+                None
+            }
+        }
+    }
+
     /// A world force `(fx, fy)` at the world point `p` of body `b`: the force
     /// and its moment `(p − c) × f` about the centre of mass.
     fn apply(&mut self, b: usize, p: [Id; 2], fx: Id, fy: Id, e: &Expr) {

@@ -455,6 +455,11 @@ impl<S: SceneLanguage> Lower<'_, S> {
                             Some((g, Some(Binding::Ground))) if name == "p" => {
                                 return self.ground_pin(g, e);
                             }
+                            Some((j, Some(Binding::Tensor(_))))
+                                if name == "flange" && S::joint_axis(self, j).is_some() =>
+                            {
+                                return self.joint_flange_connector(j, e);
+                            }
                             _ => return Member::NotMember,
                         }
                     }
@@ -538,15 +543,70 @@ impl<S: SceneLanguage> Lower<'_, S> {
             Some(Binding::Ground) => {
                 matches!(first_field, Some(syn::Member::Named(m)) if m == "p")
             }
+            Some(Binding::Tensor(_)) => {
+                matches!(first_field, Some(syn::Member::Named(m)) if m == "flange")
+                    && S::joint_axis(self, &ident.to_string()).is_some()
+            }
             _ => false,
         }
+    }
+
+    /// The flange of the named joint `name`, made on first use: a
+    /// connector of its own pseudo-instance whose potential is the joint's
+    /// relative coordinate and whose flow acts across the joint.
+    fn joint_flange_connector(&mut self, name: &str, at: &Expr) -> Member {
+        let key = format!("{}{name}.flange", self.prefix);
+        if let Some(&c) = self.lazy_connectors.get(&key) {
+            return Member::Found(Binding::Connector(c));
+        }
+        let kind = match S::joint_axis(self, name) {
+            Some("revolute") => ConnectorKind::Flange,
+            _ => ConnectorKind::TranslationalFlange,
+        };
+        let (Some(p), Some(f)) = (kind.potential(), kind.flow()) else { return Member::Reported };
+        let origin = at.to_token_stream();
+        let zero = self.g.zero();
+        let k = self.instances.len();
+        self.instances.push(Instance {
+            path: format!("{}{name}", self.prefix),
+            part: S::joint_axis(self, name).unwrap_or("revolute").to_string(),
+            parent: self.instance,
+            members: Vec::new(),
+            origin: origin.clone(),
+        });
+        let doc = |what: &str| format!("{what} of the joint's flange");
+        let potential =
+            self.declare_algebraic(format!("{key}.{p}"), zero, at, &origin, doc("the coordinate"));
+        let flow = self.declare_algebraic(format!("{key}.{f}"), zero, at, &origin, doc("the load"));
+        let (Some(potential), Some(flow)) = (potential, flow) else { return Member::Reported };
+        let Some(coordinate) = S::joint_flange(self, name, flow, at) else {
+            return Member::Reported;
+        };
+        self.equations.push(crate::front::ir::Equation {
+            lhs: potential,
+            rhs: coordinate,
+            origin: origin.clone(),
+            is_constraint: false,
+        });
+        self.connectors.push(Connector {
+            path: key.clone(),
+            kind,
+            potential,
+            flow: Some(flow),
+            owner: Some(k),
+            origin,
+        });
+        let c = self.connectors.len() - 1;
+        self.instances[k].members.push(("flange".to_string(), Binding::Connector(c)));
+        self.lazy_connectors.insert(key, c);
+        Member::Found(Binding::Connector(c))
     }
 
     /// The pin `p` of the ground `name` declared at this level, an
     /// instance of the library's electrical ground made on first use.
     fn ground_pin(&mut self, name: &str, at: &Expr) -> Member {
         let key = format!("{}{name}", self.prefix);
-        if let Some(&c) = self.ground_pins.get(&key) {
+        if let Some(&c) = self.lazy_connectors.get(&key) {
             return Member::Found(Binding::Connector(c));
         }
         let Some(definition) = self.library.get("ground") else { return Member::Reported };
@@ -561,7 +621,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         });
         match pin {
             Some(c) => {
-                self.ground_pins.insert(key, c);
+                self.lazy_connectors.insert(key, c);
                 Member::Found(Binding::Connector(c))
             }
             None => Member::Reported,
@@ -620,6 +680,12 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 }
             }
         }
+    }
+
+    /// The mistakes of a connected model said in its terms (see
+    /// `components::diagnostics`); a component alone is not checked so,
+    /// as its pins are meant to be connected.
+    pub(in crate::front) fn connection_diagnostics(&mut self) {
         if !self.cx.is_ok() || self.connectors.is_empty() {
             return;
         }

@@ -60,6 +60,7 @@ pub(crate) fn lower_with<S: SceneLanguage>(
     });
     let time = time.unwrap_or(SymbolId(0));
     l.connection_equations();
+    l.connection_diagnostics();
     S::equations(&mut l, item);
     if l.states.is_empty() && l.cx.is_ok() {
         l.cx.error_at(&item.sig.ident, "the model declares no state: add one with `let x = state(0.0);` and an equation `der(x) == ...;`");
@@ -121,7 +122,7 @@ fn new_lower<S: SceneLanguage>(cx: &mut Ctxt, recursive: bool, parts: Definition
         instances: Vec::new(),
         connectors: Vec::new(),
         connections: Vec::new(),
-        ground_pins: HashMap::new(),
+        lazy_connectors: HashMap::new(),
         time_implicit: false,
     }
 }

@@ -71,6 +71,15 @@ pub(crate) trait SceneLanguage: Sized {
         p2: [Id; 3],
         p3: [Id; 3],
     ) -> crate::Result<[Id; 9]>;
+    /// The kind of the named joint `name` as its flange sees it:
+    /// `"revolute"` (a rotational flange on its angle) or `"prismatic"` (a
+    /// translational one along its axis); `None` for another joint or none.
+    fn joint_axis(l: &Lower<'_, Self>, name: &str) -> Option<&'static str>;
+    /// The named joint's relative coordinate (the angle of the second body
+    /// from the first, or the displacement along the axis), with the loads
+    /// that make `flow` (a torque or a force) act across the joint: on the
+    /// second body, its reaction on the first. `None` once reported.
+    fn joint_flange(l: &mut Lower<'_, Self>, name: &str, flow: Id, at: &Expr) -> Option<Id>;
     /// The scene's equations of motion, after the last statement.
     fn equations(l: &mut Lower<'_, Self>, item: &syn::ItemFn);
 }

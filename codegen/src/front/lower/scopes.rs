@@ -118,8 +118,8 @@ pub(crate) struct Lower<'c, S> {
     pub(crate) connections: Vec<Connection>,
     /// The time was declared by a component's `time()`, not the model's.
     pub(in crate::front) time_implicit: bool,
-    /// The pins of grounds used in circuits, by the ground's path.
-    pub(in crate::front) ground_pins: HashMap<String, usize>,
+    /// Connectors made on first use (a ground's pin, a joint's flange), by path.
+    pub(in crate::front) lazy_connectors: HashMap<String, usize>,
 }
 
 impl<S> Lower<'_, S> {
