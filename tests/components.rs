@@ -346,3 +346,30 @@ fn a_motor_turns_a_slider_crank_through_a_gear_in_both_formulations() {
         }
     }
 }
+
+#[test]
+fn describe_shows_the_hierarchy_and_every_path_reads() {
+    let text = SpeedDrive::default().describe();
+    println!("{text}");
+    let section: Vec<&str> =
+        text.lines().skip_while(|l| *l != "components:").skip(1).take_while(|l| l.starts_with("  ")).collect();
+    assert!(section.iter().any(|l| l.trim_start().starts_with("motor") && l.trim_end().ends_with("dc_motor")));
+    // The motor's parts sit one level deeper than the motor.
+    let indent = |l: &&str| l.len() - l.trim_start().len();
+    let motor = section.iter().find(|l| l.trim_start().starts_with("motor ")).unwrap();
+    let emf = section.iter().find(|l| l.trim_start().starts_with("emf ")).unwrap();
+    assert_eq!(indent(emf), indent(motor) + 2);
+    let info = <SpeedDrive as Model>::INFO;
+    assert!(info.components.iter().any(|c| c.path == "motor.emf" && c.part == "emf"));
+    // Every connector variable and internal variable reads by its path,
+    // also those that alias elimination or tied states removed.
+    let opts = Options::new().method(Method::Radau5).rtol(1e-8).atol(1e-8);
+    let sol = SpeedDrive::default().simulate(0.0, 0.1, &opts).unwrap();
+    for name in ["motor.emf.i", "motor.emf.w", "motor.emf.phi", "motor.shaft.tau", "friction.flange_b.phi", "sensor.w", "motor.p.v", "supply.i"] {
+        assert!(sol.last(name).unwrap().is_finite(), "{name}");
+    }
+    let (w, emf_w): (f64, f64) = (sol.last("motor.rotor.w").unwrap(), sol.last("motor.emf.w").unwrap());
+    assert!((w - emf_w).abs() < 1e-12);
+    let (i, emf_i): (f64, f64) = (sol.last("motor.winding.i").unwrap(), sol.last("motor.emf.i").unwrap());
+    assert!((i - emf_i).abs() < 1e-12);
+}

@@ -134,6 +134,7 @@ impl Model for HandWritten {
         algebraics: &[],
         algebraic_docs: &[],
         structure: StructureInfo::NONE,
+        components: &[],
     };
     fn initial_state(&self, y: &mut [f64]) {
         y[0] = 1.0;
@@ -253,6 +254,7 @@ impl Model for SkewOscillators {
         algebraics: &[],
         algebraic_docs: &[],
         structure: StructureInfo::NONE,
+        components: &[],
     };
     const JACOBIAN: daegen::Jacobian =
         daegen::Jacobian::Symbolic { pattern: &SKEW_PATTERN, time_derivative: true };

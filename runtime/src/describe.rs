@@ -18,12 +18,13 @@ pub(crate) fn describe(info: &ModelInfo, parameter: Option<&dyn Fn(usize) -> f64
             let _ = writeln!(out, "{}", info.name);
         }
     }
+    components(&mut out, info.components);
     let parameters: Vec<String> = info
         .parameters
         .iter()
         .enumerate()
         .map(|(k, name)| match parameter {
-            Some(value) => format!("{name} = {}", value(k)),
+            Some(value) => format!("{name} = {}", number(value(k))),
             None => name.to_string(),
         })
         .collect();
@@ -104,6 +105,38 @@ fn structure(out: &mut String, s: &StructureInfo) {
     }
 }
 
+/// The "components" section: each instance under its parent, with the
+/// part it instantiates.
+fn components(out: &mut String, components: &[crate::info::ComponentInfo]) {
+    if components.is_empty() {
+        return;
+    }
+    let _ = writeln!(out, "components:");
+    let depth = |path: &str| path.matches('.').count();
+    let width = components
+        .iter()
+        .map(|c| 2 * depth(c.path) + c.path.rsplit('.').next().unwrap_or("").chars().count())
+        .max()
+        .unwrap_or(0);
+    for c in components {
+        let name = c.path.rsplit('.').next().unwrap_or(c.path);
+        let indent = 2 * depth(c.path);
+        let pad = width - indent - name.chars().count();
+        let _ = writeln!(out, "  {:indent$}{name}{:pad$}  {}", "", "", c.part);
+    }
+}
+
+/// A parameter's value as people write it: `0.001`, `1e100`.
+fn number(x: f64) -> String {
+    let plain = format!("{x}");
+    let short = format!("{x:e}");
+    if short.len() < plain.len() {
+        short
+    } else {
+        plain
+    }
+}
+
 fn owned(names: &[&str]) -> Vec<String> {
     names.iter().map(|s| s.to_string()).collect()
 }
@@ -144,6 +177,7 @@ mod tests {
         algebraics: &[],
         algebraic_docs: &[],
         structure: crate::info::StructureInfo::NONE,
+        components: &[],
     };
 
     #[test]

@@ -184,6 +184,18 @@ pub struct ModelInfo {
     pub algebraic_docs: &'static [&'static str],
     /// How the equations are solved for their unknowns.
     pub structure: StructureInfo,
+    /// The instances of components the model was built from, parents
+    /// first: the hierarchy its names follow (`motor.emf.i`).
+    pub components: &'static [ComponentInfo],
+}
+
+/// One instance of a component in a model built from parts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ComponentInfo {
+    /// Its path: `motor.emf`.
+    pub path: &'static str,
+    /// The part it instantiates: `emf`, or the user's `parts::dc_motor`.
+    pub part: &'static str,
 }
 
 #[cfg(test)]
@@ -209,6 +221,7 @@ impl ModelInfo {
             algebraics: &[],
             algebraic_docs: &[],
             structure: StructureInfo::NONE,
+            components: &[],
         }
     }
 }

@@ -45,6 +45,7 @@ pub use step::control as step_control;
 pub use ensemble::{Batch, Ensemble, FinalState, FinalStates, Shard};
 pub use error::Error;
 pub use info::{
+    ComponentInfo,
     BlockInfo, BlockSolution, ConstraintInfo, EvalError, EventDirection, EventInfo, ModelInfo,
     ProjectionLevel, StructureInfo,
 };

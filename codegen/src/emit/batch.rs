@@ -126,6 +126,7 @@ pub(crate) fn batch_items(
                 algebraics: &[],
                 algebraic_docs: &[],
                 structure: <#name as ::daegen::Model>::INFO.structure,
+                components: <#name as ::daegen::Model>::INFO.components,
             };
             fn initial_state(&self, y: &mut [f64]) {
                 for lane in 0..#l_lit {

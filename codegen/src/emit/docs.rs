@@ -184,6 +184,10 @@ pub(crate) fn info_with(
     let state_docs: Vec<String> = states.iter().map(|s| value_doc(ir, s)).collect();
     let algebraic_docs: Vec<String> = algebraics.iter().map(|s| value_doc(ir, s)).collect();
     let equations = index(ir.equations.len());
+    let components = ir.instances.iter().map(|i| {
+        let (path, part) = (&i.path, &i.part);
+        quote!(::daegen::ComponentInfo { path: #path, part: #part })
+    });
     let events = ir.events.iter().map(|e| {
         let name = &e.name;
         let doc = &e.doc;
@@ -217,6 +221,7 @@ pub(crate) fn info_with(
             algebraics: &[#(#algebraics),*],
             algebraic_docs: &[#(#algebraic_docs),*],
             structure: #structure,
+            components: &[#(#components),*],
         }
     }
 }

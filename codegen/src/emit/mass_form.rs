@@ -161,6 +161,7 @@ pub fn emit_mass_form(
                 output_docs: <#name as ::daegen::Model>::INFO.output_docs,
                 equations: #n, events: &[], algebraics: &[], algebraic_docs: &[],
                 structure: <#name as ::daegen::Model>::INFO.structure,
+                components: <#name as ::daegen::Model>::INFO.components,
             };
             // The model's constraints, measured at every step but never
             // projected onto: the form keeps them itself.

@@ -328,6 +328,7 @@ pub fn stub(ir: &ModelIr) -> TokenStream {
                 name: #name_str, doc: "", states: &[], state_docs: &[], parameters: &[], parameter_docs: &[],
                 outputs: &[], output_docs: &[], equations: 0, events: &[], algebraics: &[], algebraic_docs: &[],
                 structure: ::daegen::StructureInfo::NONE,
+                components: &[],
             };
             fn initial_state(&self, y: &mut [f64]) {}
             fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
