@@ -226,7 +226,7 @@ fn find_tie(
                     return Ok(Some(Tie::State { equation: e, state, value }));
                 }
             }
-            &[(d, c)] if g.as_number(c).is_some() => match by_highest.get(&d) {
+            &[(d, c)] if is_constant(g, c) => match by_highest.get(&d) {
                 Some((c_first, first)) => {
                     let tie = first.difference(*c_first, &linear, c, &mut ir.graph)?;
                     let g = &ir.graph;
