@@ -55,6 +55,12 @@ impl<S: SceneLanguage> Lower<'_, S> {
         if single.as_deref().and_then(super::declarations::Declaration::from_name).is_some() {
             return None;
         }
+        // `fixed` and `spring` are also a scene's joint and load, with
+        // bodies and points for arguments: four or more.
+        let scene_call = single.as_deref().is_some_and(|n| S::is_joint(n) || S::is_load(n));
+        if scene_call && c.args.len() >= 4 {
+            return None;
+        }
         if let Some(d) = single.as_deref().and_then(|n| self.library.get(n)) {
             return Some(Some(d));
         }
@@ -186,6 +192,9 @@ impl<S: SceneLanguage> Lower<'_, S> {
             return true;
         }
         match f.path.get_ident().map(|i| i.to_string()) {
+            Some(n) if self.library.get(&n).is_some() => {
+                !((S::is_joint(&n) || S::is_load(&n)) && c.args.len() >= 4)
+            }
             Some(n) => !self.is_known_function(&n),
             None => true,
         }
