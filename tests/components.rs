@@ -373,3 +373,31 @@ fn describe_shows_the_hierarchy_and_every_path_reads() {
     let (i, emf_i): (f64, f64) = (sol.last("motor.winding.i").unwrap(), sol.last("motor.emf.i").unwrap());
     assert!((i - emf_i).abs() < 1e-12);
 }
+
+/// A tank draining through an orifice, its flow a function of the model
+/// written once: Torricelli, `q = cd a √(2 g Δh)`.
+#[dae_model]
+fn draining_tank() {
+    let cd = param(0.6);
+    let a = param(1e-3);
+    let area = param(0.5);
+    let orifice = |dh| cd * a * sqrt(2.0 * 9.81 * dh);
+    let h = state(2.0);
+    area * der(h) == -orifice(h);
+    let flow = output(orifice(h));
+}
+
+#[test]
+fn a_function_of_the_model_is_inlined_where_it_is_called() {
+    // √h falls linearly: √h = √h0 − cd a √(2g) t / (2 A).
+    let rate = 0.6 * 1e-3 * (2.0f64 * 9.81).sqrt() / (2.0 * 0.5);
+    let opts = Options::new().method(Method::Dop853).rtol(1e-11).atol(1e-11);
+    let sol = DrainingTank::default().simulate(0.0, 500.0, &opts).unwrap();
+    for &t in &[100.0, 300.0, 500.0] {
+        let exact = (2.0f64.sqrt() - rate * t).powi(2);
+        let h = sol.at(t, "h").unwrap();
+        assert!((h - exact).abs() < 1e-8, "t = {t}: {h} vs {exact}");
+    }
+    let h = sol.last("h").unwrap();
+    assert!((sol.last("flow").unwrap() - 0.6 * 1e-3 * (2.0 * 9.81 * h).sqrt()).abs() < 1e-14);
+}

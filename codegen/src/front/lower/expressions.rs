@@ -127,6 +127,10 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     Some(b @ (Binding::Connector(_) | Binding::Instance(_) | Binding::InstanceArray(_))) => {
                         self.member_value(b, e)
                     }
+                    Some(Binding::Function(_)) => {
+                        self.cx.error_at(e, format!("`{name}` is a function: call it, `{name}(..)`"));
+                        None
+                    }
                     Some(b @ (Binding::Body(_) | Binding::Ground)) => {
                         let what = b.describe();
                         self.cx.error_at(e, format!("`{name}` is {what}: use `position({name}, p)` for a point of it, or its coordinates `{name}.x`… in the solution"));
@@ -204,7 +208,10 @@ impl<S: SceneLanguage> Lower<'_, S> {
             Expr::Call(_) if crate::front::tensor::is_tensor_call(e) => self.scalar_of(e),
             Expr::Call(c) => self.call(c, e),
             Expr::MethodCall(m) => self.method_call(m, e),
-            Expr::Closure(_) => self.unsupported(e, "closures"),
+            Expr::Closure(_) => {
+                self.cx.error_at(e, "a closure is a function of the model: bind it, `let f = |x| ...;`, and call it, `f(x)`");
+                None
+            }
             Expr::If(i) => self.const_if_value(i),
             Expr::Match(_) => self.unsupported(e, "`match`"),
             // `{ expr }`, as rustfmt writes a long closure's body.
@@ -288,6 +295,9 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
         if name == "der" {
             return self.der(c, e);
+        }
+        if let Some(Binding::Function(function)) = self.lookup(&name).cloned() {
+            return self.call_function(&name, &function, c);
         }
         if matches!(name.as_str(), "init" | "constraint" | "invariant") {
             self.cx.error_at(e, format!("`{name}(...)` is a statement, not a value"));

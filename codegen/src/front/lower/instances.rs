@@ -64,7 +64,9 @@ impl<S: SceneLanguage> Lower<'_, S> {
         if let Some(d) = single.as_deref().and_then(|n| self.library.get(n)) {
             return Some(Some(d));
         }
-        let known_function = single.as_deref().is_some_and(|n| self.is_known_function(n));
+        let known_function = single
+            .as_deref()
+            .is_some_and(|n| self.is_known_function(n) || self.lookup(n).is_some());
         if known_function {
             return None;
         }
@@ -195,7 +197,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
             Some(n) if self.library.get(&n).is_some() => {
                 !((S::is_joint(&n) || S::is_load(&n)) && c.args.len() >= 4)
             }
-            Some(n) => !self.is_known_function(&n),
+            Some(n) => !self.is_known_function(&n) && self.lookup(&n).is_none(),
             None => true,
         }
     }

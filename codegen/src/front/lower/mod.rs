@@ -11,6 +11,7 @@
 mod constants;
 mod declarations;
 mod expressions;
+mod functions;
 mod instances;
 pub(crate) mod integers;
 mod scene;
@@ -124,6 +125,7 @@ fn new_lower<S: SceneLanguage>(cx: &mut Ctxt, recursive: bool, parts: Definition
         connections: Vec::new(),
         lazy_connectors: HashMap::new(),
         time_implicit: false,
+        function_depth: 0,
     }
 }
 

@@ -49,6 +49,8 @@ pub(crate) enum Binding {
     InstanceArray(Vec<usize>),
     /// `let p = pin();`: a connector.
     Connector(usize),
+    /// `let f = |x| ...;`: a function of the model.
+    Function(std::rc::Rc<super::functions::Function>),
 }
 
 impl Binding {
@@ -71,6 +73,7 @@ impl Binding {
             Binding::Instance(_) => "an instance of a component",
             Binding::InstanceArray(_) => "an array of instances",
             Binding::Connector(_) => "a connector",
+            Binding::Function(_) => "a function",
         }
     }
 }
@@ -116,6 +119,8 @@ pub(crate) struct Lower<'c, S> {
     pub(crate) connectors: Vec<Connector>,
     /// Every `connect`.
     pub(crate) connections: Vec<Connection>,
+    /// How deep calls of the model's functions are nested.
+    pub(in crate::front) function_depth: usize,
     /// The time was declared by a component's `time()`, not the model's.
     pub(in crate::front) time_implicit: bool,
     /// Connectors made on first use (a ground's pin, a joint's flange), by path.

@@ -84,6 +84,12 @@ impl<S: SceneLanguage> Lower<'_, S> {
             }
             e = &m.receiver;
         }
+        if let (Expr::Closure(closure), false) = (e, mutable) {
+            if self.already_declared(&ident) {
+                return;
+            }
+            return self.function(&ident, closure);
+        }
         if let Some((name, call)) = call_name(e) {
             if let Some(kind) = ConnectorKind::from_name(&name) {
                 return self.connector(&ident, kind, call, local, doc);
