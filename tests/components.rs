@@ -401,3 +401,18 @@ fn a_function_of_the_model_is_inlined_where_it_is_called() {
     let h = sol.last("h").unwrap();
     assert!((sol.last("flow").unwrap() - 0.6 * 1e-3 * (2.0 * 9.81 * h).sqrt()).abs() < 1e-14);
 }
+
+#[test]
+fn the_guide_lists_every_part_of_the_standard_library() {
+    let guide = include_str!("../src/guide/components.rs");
+    let library = daegen::codegen::front::components::definitions::LIBRARY_SOURCE;
+    let parts: Vec<&str> = library
+        .lines()
+        .filter_map(|l| l.strip_prefix("fn "))
+        .filter_map(|l| l.split('(').next())
+        .collect();
+    assert!(parts.len() >= 45, "{parts:?}");
+    for part in parts {
+        assert!(guide.contains(&format!("`{part}(")), "the guide does not list `{part}`");
+    }
+}

@@ -21,9 +21,12 @@
 //! | `let t = time();` | the independent variable |
 //! | `const N: usize = 3; for i in 0..N { ... }` | loops over constants, unrolled into equations; where the cells' equations differ only in the states they read, the generated right-hand side and Jacobian loop over a table of indices again (a 2048-state grid compiles in seconds); `if` on indices, `u[(i + 1) % N]` for a periodic neighbour, and `k / 2` truncating as in Rust (indices are integers; `1 / 3` of two literals is refused: write `1.0 / 3.0`) |
 //! | `let r = rot_z(theta); let p = r * vec3(1.0, 0.0, 0.0);` | vectors and 3 × 3 matrices: see [`super::mechanisms`] |
+//! | `let r1 = resistor(100.0);`, `r1.v`, `r1.p.i`, `let r = [resistor(1.0); N];` | an instance of a part (the standard library's or your `#[component]`), its variables by path: see [`super::components`] |
+//! | `let p = pin();` (in a part), `connect(a.p, b.n);` | connectors, and equal potentials with flows summing to zero |
+//! | `let f = \|dh\| cd * sqrt(dh);`, `f(h)` | a function of the model, inlined where it is called |
 //!
 //! Functions: `sin cos tan asin acos atan atan2 sinh cosh tanh exp ln sqrt
-//! abs`, `x.powi(n)`, `x.powf(a)`. Everything must be smooth for the Taylor
+//! abs heaviside`, `x.powi(n)`, `x.powf(a)`. Everything must be smooth for the Taylor
 //! methods (`abs` is refused there, with its span). Mistakes are compile
 //! errors on the tokens at fault, with the fix: an unknown name suggests the
 //! nearest declared one, `ln(0.0)` is refused as it is written.

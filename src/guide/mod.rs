@@ -12,15 +12,20 @@
 //! 5. [`structure`]: equations in any order: aliases, matching and
 //!    sorting into blocks, tearing, arrays of algebraic variables and
 //!    outputs, and the structural errors.
-//! 6. [`mechanisms`]: multibody scenes, planar and spatial, global and
+//! 6. [`components`]: models built from parts of several domains
+//!    (electrical, mechanical, thermal, control) joined by `connect`; the
+//!    standard library; parts of your own, shared across crates; functions
+//!    of the model.
+//! 7. [`mechanisms`]: multibody scenes, planar and spatial, global and
 //!    recursive, and the names they answer to.
-//! 7. [`kinematics`]: rotations, angle sequences, quaternions, angular
+//! 8. [`kinematics`]: rotations, angle sequences, quaternions, angular
 //!    velocities and frames, in the model language and numerically.
-//! 8. [`ensembles`]: one model run many times, on every core, and shards
+//! 9. [`ensembles`]: one model run many times, on every core, and shards
 //!    of it spread over machines.
-//! 9. [`work_precision`]: registering a model in the benchmarks and
-//!    reading a work-precision diagram.
+//! 10. [`work_precision`]: registering a model in the benchmarks and
+//!     reading a work-precision diagram.
 
+pub mod components;
 pub mod daes;
 pub mod ensembles;
 pub mod kinematics;

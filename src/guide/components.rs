@@ -1,0 +1,304 @@
+//! # Components and connectors
+//!
+//! A mechatronic model is built from parts of several domains, as in
+//! Modelica or ModelingToolkit: each part is written once with its
+//! parameters, its connectors and its equations, instantiated by name as
+//! often as needed, and joined to others with `connect`, without saying
+//! which variable is an input and which an output. The macro flattens
+//! the parts into one model and simplifies it at compile time (aliases,
+//! states tied by the connections, sorting, tearing), so the generated
+//! code is that of the same physics written flat by hand.
+//!
+//! ## A circuit from the standard library
+//!
+//! ```
+//! use daegen::prelude::*;
+//!
+//! /// RC charging: a 10 V source through 100 Ω into 1 mF.
+//! #[dae_model]
+//! fn rc_charging() {
+//!     let source = constant_voltage(10.0);
+//!     let r1 = resistor(100.0);
+//!     let c1 = capacitor(c = 1e-3, v0 = 0.0);
+//!     let gnd = ground();
+//!     connect(source.p, r1.p);
+//!     connect(r1.n, c1.p);
+//!     connect(c1.n, source.n, gnd.p);
+//! }
+//!
+//! # fn main() -> Result<(), daegen::Error> {
+//! let model = RcCharging { r1_r: 50.0, ..RcCharging::default() };
+//! let sol = model.simulate(0.0, 0.2, &Options::new().rtol(1e-9).atol(1e-9))?;
+//! let exact = 10.0 * (1.0 - (-0.2f64 / 0.05).exp());
+//! assert!((sol.last("c1.v")? - exact).abs() < 1e-6);
+//! // Every variable of every part reads by its path.
+//! assert!((sol.last("r1.i")? - (10.0 - exact) / 50.0).abs() < 1e-7);
+//! assert_eq!(<RcCharging as Model>::INFO.states, ["c1.v"]);
+//! # Ok(())
+//! # }
+//! ```
+//!
+//! - `let r1 = resistor(100.0);` instantiates a part: its parameters in the
+//!   order the part declares them, or by name (`capacitor(c = 1e-3)`),
+//!   the rest at their defaults. A wrong name or too many arguments is a
+//!   compile error that lists the part's parameters.
+//! - Each parameter set to a number is a field of the generated struct,
+//!   named by its path with `_` for `.`: `r1.r` is `model.r1_r`,
+//!   `motor.emf.k` is `model.motor_emf_k`. A parameter set to an
+//!   expression of the enclosing part's parameters (`resistor(r)` in a
+//!   motor whose `r` is a parameter) is bound to it and has no field.
+//! - Every variable reads by its path in a `Solution`: `r1.v`, `r1.p.i`,
+//!   `motor.emf.w`, also when simplification removed it (its value is
+//!   then computed from what it was replaced by).
+//! - Arrays of parts: `let r = [resistor(1.0); N];` or
+//!   `let cells = (0..N).map(|k| heat_capacitor(c = 10.0 * (k as f64 + 1.0)));`,
+//!   read as `r[2].p`, `"cells[2].t"`.
+//! - `describe()` shows the hierarchy of instances, and
+//!   `ModelInfo::components` lists them.
+//!
+//! ## Connectors and `connect`
+//!
+//! | declared in a part | kind | potential | flow |
+//! |---|---|---|---|
+//! | `let p = pin();` | electrical | `v` (V) | `i` (A) |
+//! | `let f = flange();` | rotational | `phi` (rad) | `tau` (N m) |
+//! | `let f = translational_flange();` | translational | `s` (m) | `f` (N) |
+//! | `let port = heat_port();` | thermal | `t` (K) | `q` (W) |
+//! | `let u = real_input();`, `let y = real_output();` | signal | the value itself | none |
+//!
+//! A flow is positive into the part through the connector (Modelica's
+//! convention). `connect(a, b, ...)` joins two or more connectors of one
+//! kind: their potentials are equal and their flows sum to zero
+//! (Kirchhoff's laws; Modelica Language Specification §9.2). Inside a
+//! part, its own connectors count with the opposite sign, so a motor's pin
+//! `p` joined to its armature's `p` carries the same current out that
+//! enters the motor. A connector that nothing connects from outside has
+//! zero flow, as in Modelica: an open pin carries no current. A signal
+//! has one source (an output, or the part's own input seen from inside);
+//! joining two outputs is a compile error, as is joining a pin to a
+//! flange.
+//!
+//! `ground()` is both the scene's world frame and, through its pin
+//! `gnd.p`, the electrical ground (`p.v = 0`); a model may declare as
+//! many as its drawing has.
+//!
+//! ## Writing parts
+//!
+//! A part is a function in the model language under `#[component]`: its
+//! parameters (`param`, with defaults), connectors, variables, equations,
+//! and parts of its own. It needs no ground and no state; it is checked
+//! when it is defined, with errors on its own tokens.
+//!
+//! ```
+//! use daegen::prelude::*;
+//!
+//! /// A permanent-magnet DC motor between the pins `p` and `n`, driving
+//! /// the flange `shaft`.
+//! #[component]
+//! fn dc_motor() {
+//!     /// Armature resistance (Ω).
+//!     let r = param(1.0);
+//!     /// Motor constant (V s/rad).
+//!     let k = param(0.05);
+//!     /// Rotor inertia (kg m²).
+//!     let j = param(1e-4);
+//!     let p = pin();
+//!     let n = pin();
+//!     let shaft = flange();
+//!     let armature = resistor(r);
+//!     let winding = inductor(0.5e-3);
+//!     let emf = emf(k);
+//!     let rotor = inertia(j);
+//!     connect(p, armature.p);
+//!     connect(armature.n, winding.p);
+//!     connect(winding.n, emf.p);
+//!     connect(emf.n, n);
+//!     connect(emf.flange, rotor.flange_a);
+//!     connect(rotor.flange_b, shaft);
+//! }
+//!
+//! /// The motor on 12 V with viscous friction at its shaft.
+//! #[dae_model]
+//! fn run_up() {
+//!     let supply = constant_voltage(12.0);
+//!     let motor = dc_motor(k = 0.05);
+//!     let friction = damper(1e-4);
+//!     let housing = fixed();
+//!     let gnd = ground();
+//!     connect(supply.p, motor.p);
+//!     connect(supply.n, motor.n, gnd.p);
+//!     connect(motor.shaft, friction.flange_a);
+//!     connect(friction.flange_b, housing.flange);
+//! }
+//!
+//! # fn main() -> Result<(), daegen::Error> {
+//! let sol = RunUp::default().simulate(0.0, 5.0, &Options::new().rtol(1e-9).atol(1e-9))?;
+//! // At rest: k i = b ω and V = R i + k ω, so ω = k V / (R b + k²).
+//! let exact = 0.05 * 12.0 / (1.0 * 1e-4 + 0.05 * 0.05);
+//! assert!((sol.last("motor.rotor.w")? - exact).abs() < 1e-6);
+//! // The EMF's shaft angle, the damper's relative angle and the rotor's
+//! // angle are one state: three states remain, as written by hand.
+//! assert_eq!(<RunUp as Model>::INFO.states.len(), 3);
+//! # Ok(())
+//! # }
+//! ```
+//!
+//! A part is an item like any other: it is called by the path it is
+//! reachable by (`parts::dc_motor(..)`, or `dc_motor(..)` after a `use`),
+//! from another module or another crate. A proc-macro sees only its own
+//! item, so `#[component]` expands to a `macro_rules!` that carries the
+//! part's definition (with the definitions of the parts it uses, fetched
+//! when it is defined); a model that calls parts it does not know expands
+//! to a call of their macros, which hand the definitions back to the
+//! model's expansion (the tt-call pattern). A crate of parts needs no
+//! more than `#[component]` on public functions and a dependency on
+//! `daegen` under that name (see the workspace's `parts-example` crate,
+//! used from another crate in its tests). A library part's name wins over
+//! a part of yours with the same name: call yours by path
+//! (`self::resistor(..)`).
+//!
+//! A state a part declares only to differentiate a connector's potential
+//! (an EMF's shaft angle, a damper's relative angle, a speed sensor's
+//! angle) is marked `state(0.0).avoid()`: when the connections tie it to
+//! other states, it is the one eliminated.
+//!
+//! ## What simplification does with a connected model
+//!
+//! The connections write many trivial equations (equal potentials,
+//! opposite flows); alias elimination removes them. States that the
+//! connections tie by an equation linear in them alone (a rotor and the
+//! EMF on its shaft, two inertias joined rigidly, the two sides of a
+//! gear, an inertia and a fixed flange) are then reduced to one: the tie
+//! is solved for one of them, which is replaced with its derivatives
+//! everywhere and stays readable. Modelica tools reach the same by index
+//! reduction and dummy derivatives; a linear tie with constant
+//! coefficients needs neither. What remains is sorted and torn as in
+//! [`super::structure`]. A connected model then has as many states as the
+//! same physics written flat (a motor driving a slider-crank through a
+//! gear keeps the winding's current and the crank's angle and rate).
+//!
+//! ## Mechanics and components together
+//!
+//! A named joint of a planar scene has a flange: `pivot.flange` of a
+//! `revolute` is a rotational flange on the relative angle `θ_b − θ_a`,
+//! whose torque acts on the second body and its reaction on the first;
+//! `slide.flange` of a `prismatic` is a translational flange along its
+//! axis. A motor, a gear or a spring-damper drives the mechanism through
+//! it, in the global and the recursive formulation alike:
+//!
+//! ```text
+//! let pivot = revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5 * r, 0.0, 0.0));
+//! let motor = dc_motor();
+//! let gear = ideal_gear(10.0);
+//! connect(motor.shaft, gear.flange_a);
+//! connect(gear.flange_b, pivot.flange);
+//! ```
+//!
+//! ## Mistakes said in the model's terms
+//!
+//! - A circuit with no ground: "the node voltages of the circuit of
+//!   `source`, `r1`, `c1` are fixed only up to a constant: connect a
+//!   ground"; the same for springs nothing holds (connect an inertia or a
+//!   `fixed()`) and conductors with no temperature fixed. The test is
+//!   exact: adding a constant to every potential of the group leaves each
+//!   equation unchanged, so the system is singular.
+//! - Two ideal voltage sources across the same nodes.
+//! - A misspelt part ("unknown part `resistr`; did you mean
+//!   `resistor`?"), a wrong parameter name, connectors of different kinds,
+//!   a member a part does not have.
+//!
+//! ## Functions
+//!
+//! A formula used in several places is a function of the model, a closure
+//! bound by `let` and called like the built-in functions; each call is
+//! inlined, reading the names the function saw where it was defined:
+//!
+//! ```
+//! use daegen::prelude::*;
+//!
+//! /// A tank draining through an orifice (Torricelli).
+//! #[dae_model]
+//! fn draining_tank() {
+//!     let cd = param(0.6);
+//!     let a = param(1e-3);
+//!     let orifice = |dh| cd * a * sqrt(2.0 * 9.81 * dh);
+//!     let h = state(2.0);
+//!     0.5 * der(h) == -orifice(h);
+//!     let flow = output(orifice(h));
+//! }
+//! # fn main() {}
+//! ```
+//!
+//! ## The standard library
+//!
+//! Each part as `library.dae` in `daegen-codegen` writes it; parameters in
+//! call order, with their defaults.
+//!
+//! **Electrical** (pins `p`, `n`; `v = p.v − n.v`, `i = p.i = −n.i` for
+//! the one-ports):
+//!
+//! | part | parameters | equations |
+//! |---|---|---|
+//! | `ground()` | | `p.v = 0` |
+//! | `resistor(r = 1)` | | `v = r i` |
+//! | `capacitor(c = 1, v0 = 0)` | | `c dv/dt = i`, `v` a state |
+//! | `inductor(l = 1, i0 = 0)` | | `l di/dt = v`, `i` a state |
+//! | `constant_voltage(voltage = 1)` | | `v = voltage` |
+//! | `step_voltage(height = 1, start_time = 0, offset = 0)` | | `v = offset + height H(t − start_time)` |
+//! | `sine_voltage(amplitude = 1, f = 1, phase = 0, offset = 0)` | | `v = offset + amplitude sin(2π f t + phase)` |
+//! | `signal_voltage()` | input `u` | `v = u` |
+//! | `constant_current(current = 1)`, `step_current(..)`, `sine_current(..)`, `signal_current()` | as the voltages | `i = ..` |
+//! | `diode(ids = 1e-6, vt = 0.04)` | | `i = ids (exp(v / vt) − 1)` |
+//! | `emf(k = 1)` | flange `flange` | `v = k w`, `w = dφ/dt`, `flange.tau = −k i` |
+//! | `ideal_opamp()` | pins `in_p`, `in_n`, `out` | `in_p.v = in_n.v`, `in_p.i = in_n.i = 0` |
+//! | `voltage_sensor()`, `current_sensor()` | output `v`, `i` | no current, no voltage drop |
+//!
+//! **Rotational** (flanges `flange_a`, `flange_b`; `phi_rel = flange_b.phi − flange_a.phi`):
+//!
+//! | part | equations |
+//! |---|---|
+//! | `inertia(j = 1, phi0 = 0, w0 = 0)` | `dφ/dt = w`, `j dw/dt = flange_a.tau + flange_b.tau`, both flanges at `φ` |
+//! | `spring(c = 1, phi_rel0 = 0)` | `tau = c (phi_rel − phi_rel0)` |
+//! | `damper(d = 1)` | `tau = d dphi_rel/dt` |
+//! | `spring_damper(c = 1, d = 1, phi_rel0 = 0)` | `tau = c (phi_rel − phi_rel0) + d dphi_rel/dt` |
+//! | `ideal_gear(ratio = 1)` | `flange_a.phi = ratio flange_b.phi`, `flange_b.tau = −ratio flange_a.tau` |
+//! | `fixed(phi0 = 0)` | `flange.phi = phi0` |
+//! | `constant_torque(tau = 1)`, `torque_source()` (input `u`) | `flange.tau = −tau`, `−u` |
+//! | `speed_sensor()`, `angle_sensor()`, `torque_sensor()` | output `w = dφ/dt`, `phi`, `tau` |
+//!
+//! **Translational**: `mass(m = 1, s0 = 0, v0 = 0)`,
+//! `translational_spring(c = 1, s_rel0 = 0)`, `translational_damper(d = 1)`,
+//! `translational_fixed(s0 = 0)`, `constant_force(force = 1)`,
+//! `force_source()` (input `u`), `position_sensor()` (output `s`), as the
+//! rotational ones with `s`, `v`, `f`.
+//!
+//! **Thermal** (ports `port`, or `port_a`/`port_b`):
+//!
+//! | part | equations |
+//! |---|---|
+//! | `heat_capacitor(c = 1, t0 = 293.15)` | `c dT/dt = port.q`, `T` a state |
+//! | `thermal_conductor(g = 1)` | `q = g (port_a.t − port_b.t)` |
+//! | `convection(h_a = 1)` | `q = h_a (solid.t − fluid.t)` |
+//! | `fixed_temperature(t = 293.15)` | `port.t = t` |
+//! | `fixed_heat_flow(q = 0)`, `heat_flow_source()` (input `u`) | `port.q = −q`, `−u` |
+//! | `temperature_sensor()` | output `t = port.t` |
+//! | `heating_resistor(r = 1, t_ref = 293.15, alpha = 0)` | pins and `heat_port`: `v = r (1 + alpha (T − t_ref)) i`, `heat_port.q = −v i` |
+//!
+//! **Blocks** (inputs `u`, `u1`, `u2`, or `u_s` set point and `u_m`
+//! measurement; output `y`):
+//!
+//! | part | equations |
+//! |---|---|
+//! | `constant(k = 1)`, `step(height = 1, start_time = 0, offset = 0)`, `ramp(height = 1, duration = 1, start_time = 0, offset = 0)`, `sine(amplitude = 1, f = 1, phase = 0, offset = 0)` | sources |
+//! | `gain(k = 1)`, `add(k1 = 1, k2 = 1)`, `feedback()` | `y = k u`, `y = k1 u1 + k2 u2`, `y = u1 − u2` |
+//! | `integrator(k = 1, y0 = 0)` | `dy/dt = k u` |
+//! | `first_order(k = 1, t = 1, y0 = 0)` | `t dy/dt + y = k u` |
+//! | `saturation(y_max = 1, y_min = −1, eps = 1e-3)` | `y = u` within the limits, corners rounded over `eps` (`\|y − clamp(u)\| ≤ eps/2`) |
+//! | `pi_controller(kp = 1, ki = 1)` | `y = kp e + x`, `dx/dt = ki e`, `e = u_s − u_m` |
+//! | `pid_controller(kp = 1, ki = 1, kd = 0, td = 1e-3)` | plus `kd (e − d)/td`, `td dd/dt = e − d` |
+//! | `limited_pi(kp, ki, y_max = 1, y_min = −1, k_aw = 1, eps = 1e-3)`, `limited_pid(kp, ki, kd, td, y_max, y_min, k_aw, eps)` | `y = sat(v)`, `dx/dt = ki e + k_aw (y − v)` (back-calculation anti-windup) |
+//!
+//! Sources switching in time (`step_voltage`, `step`, `ramp`) use the
+//! step function `heaviside(x)` (0 below zero, 1 above), which the
+//! adaptive methods step across with their error control; the Taylor
+//! methods refuse it, as they refuse `abs`.
