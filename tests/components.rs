@@ -4,6 +4,9 @@
 
 use daegen::prelude::*;
 
+include!("models/drives.rs");
+include!("models/ladders_of_parts.rs");
+
 /// RC charging: a 10 V source through R = 100 Ω into C = 1 mF.
 #[dae_model]
 fn rc_charging() {
@@ -40,115 +43,41 @@ fn rc_charging_follows_the_exponential() {
     assert!((sol.last("c1.v").unwrap() - exact).abs() < 1e-7);
 }
 
-/// A series RLC circuit switched onto 1 V: R = 1 Ω, L = 1 H, C = 0.25 F,
-/// underdamped (α = 0.5 s⁻¹, ω_d = √3.75 rad/s).
-#[dae_model]
-fn rlc_series() {
-    let source = constant_voltage(1.0);
-    let r = resistor(1.0);
-    let l = inductor(1.0);
-    let c = capacitor(0.25);
-    let gnd = ground();
-    connect(source.p, r.p);
-    connect(r.n, l.p);
-    connect(l.n, c.p);
-    connect(c.n, source.n, gnd.p);
-}
-
 #[test]
 fn rlc_series_rings_as_the_exact_solution() {
-    let (alpha, wd) = (0.5f64, 3.75f64.sqrt());
-    let v_c = |t: f64| 1.0 - (-alpha * t).exp() * ((wd * t).cos() + alpha / wd * (wd * t).sin());
-    let i = |t: f64| (-alpha * t).exp() * (wd * t).sin() / wd;
     for method in [Method::Radau5, Method::Dop853, Method::Rodas5P, Method::Taylor] {
         let opts = Options::new().method(method).rtol(1e-10).atol(1e-10);
         let sol = RlcSeries::default().simulate(0.0, 10.0, &opts).unwrap();
         for &t in &[0.5, 2.0, 5.0, 10.0] {
+            let [v_c, i] = rlc_exact(t);
             let (vc, il): (f64, f64) = (sol.at(t, "c.v").unwrap(), sol.at(t, "l.i").unwrap());
-            assert!((vc - v_c(t)).abs() < 1e-7, "{method:?} t = {t}: v_c {vc} vs {}", v_c(t));
-            assert!((il - i(t)).abs() < 1e-7, "{method:?} t = {t}: i {il} vs {}", i(t));
+            assert!((vc - v_c).abs() < 1e-7, "{method:?} t = {t}: v_c {vc} vs {v_c}");
+            assert!((il - i).abs() < 1e-7, "{method:?} t = {t}: i {il} vs {i}");
             let vr: f64 = sol.at(t, "r.v").unwrap();
             assert!((vr - il).abs() < 1e-9);
         }
     }
-    assert_eq!(<RlcSeries as Model>::INFO.states.len(), 2);
+    assert_eq!(<RlcSeries as Model>::INFO.states.len(), <RlcSeriesFlat as Model>::INFO.states.len());
 }
 
-/// A permanent-magnet DC motor: armature resistance and inductance, the
-/// EMF, and the rotor's inertia, between two pins and a shaft.
-#[component]
-fn dc_motor() {
-    /// Armature resistance (Ω).
-    let r = param(1.0);
-    /// Armature inductance (H).
-    let l = param(0.5e-3);
-    /// Motor constant (V s/rad).
-    let k = param(0.05);
-    /// Rotor inertia (kg m²).
-    let j = param(1e-4);
-    let p = pin();
-    let n = pin();
-    let shaft = flange();
-    let armature = resistor(r);
-    let winding = inductor(l);
-    let emf = emf(k);
-    let rotor = inertia(j);
-    connect(p, armature.p);
-    connect(armature.n, winding.p);
-    connect(winding.n, emf.p);
-    connect(emf.n, n);
-    connect(emf.flange, rotor.flange_a);
-    connect(rotor.flange_b, shaft);
-}
+rc_ladder_of_parts!(rc_ladder_of_parts_20, 20);
+rc_ladder_flat!(rc_ladder_flat_20, 20);
 
-/// The motor under a PI speed controller, with viscous friction and a
-/// load torque of 0.02 N m from t = 0.3 s.
-#[dae_model]
-fn speed_drive() {
-    let reference = constant(100.0);
-    let controller = pi_controller(kp = 0.02, ki = 0.5);
-    let sensor = speed_sensor();
-    let supply = signal_voltage();
-    let motor = dc_motor(k = 0.05);
-    let friction = damper(1e-5);
-    let housing = fixed();
-    let load = torque_source();
-    let load_torque = step(height = -0.02, start_time = 0.3);
-    let gnd = ground();
-    connect(reference.y, controller.u_s);
-    connect(sensor.w, controller.u_m);
-    connect(controller.y, supply.u);
-    connect(supply.p, motor.p);
-    connect(supply.n, motor.n, gnd.p);
-    connect(motor.shaft, friction.flange_a, sensor.flange, load.flange);
-    connect(friction.flange_b, housing.flange);
-    connect(load_torque.y, load.u);
-}
-
-/// The same drive written flat, by hand.
-#[dae_model]
-fn speed_drive_flat() {
-    let r = param(1.0);
-    let l = param(0.5e-3);
-    let k = param(0.05);
-    let j = param(1e-4);
-    let b = param(1e-5);
-    let kp = param(0.02);
-    let ki = param(0.5);
-    let w_ref = param(100.0);
-    let tau_load = param(0.02);
-    let t_load = param(0.3);
-    let t = time();
-    let i = state(0.0);
-    let phi = state(0.0);
-    let w = state(0.0);
-    let x = state(0.0);
-    let e = w_ref - w;
-    let v = kp * e + x;
-    l * der(i) == v - r * i - k * w;
-    der(phi) == w;
-    j * der(w) == k * i - b * w - tau_load * heaviside(t - t_load);
-    der(x) == ki * e;
+#[test]
+fn a_ladder_of_forty_parts_is_the_flat_ladder() {
+    let (parts, flat) = (<RcLadderOfParts20 as Model>::INFO, <RcLadderFlat20 as Model>::INFO);
+    assert_eq!(parts.states.len(), flat.states.len());
+    // Nothing is left to solve at run time: every equation is solved in
+    // turn, as in the flat ladder.
+    assert!(parts.structure.blocks.is_empty(), "{:?}", parts.structure);
+    let opts = Options::new().method(Method::Radau5).rtol(1e-10).atol(1e-10);
+    let a = RcLadderOfParts20::default().simulate(0.0, 50.0, &opts).unwrap();
+    let b = RcLadderFlat20::default().simulate(0.0, 50.0, &opts).unwrap();
+    assert_eq!(a.stats().steps, b.stats().steps);
+    for k in 0..20 {
+        let (x, y) = (a.last(&format!("c[{k}].v")).unwrap(), b.last(&format!("v[{k}]")).unwrap());
+        assert!((x - y).abs() < 1e-12, "node {k}: {x} vs {y}");
+    }
 }
 
 #[test]

@@ -50,11 +50,15 @@ impl fmt::Display for Error {
             }
             Error::Parse { position, message } => write!(f, "at byte {position}: {message}"),
             Error::Unsupported { message } => f.write_str(message),
-            Error::NotSmooth { function, .. } => write!(
+            Error::NotSmooth { function, .. } => {
+                // A model writes `sign` only as a step, `heaviside`.
+                let function = if *function == "sign" { "heaviside" } else { function };
+                write!(
                 f,
                 "`{function}` is not smooth and the Taylor methods need a smooth right-hand side: \
                  remove `taylor = ...` from `#[dae_model]`, or write the model without `{function}`"
-            ),
+                )
+            }
         }
     }
 }
