@@ -16,6 +16,9 @@
 //! right-hand side, the expansion time against the number of equations,
 //! and Akzo Nobel with its algebraic variable against IDA
 //! (`results/structure.md`);
+//! `--components` compares models built from components with the same
+//! physics written flat, and times the expansion of ladders of parts
+//! (`results/components.md`);
 //! `--auto` times `Method::Auto` against the best single method on every
 //! reference problem and an explicit pair on a stiff problem
 //! (`results/auto.md`);
@@ -40,6 +43,7 @@
 #![allow(deprecated)]
 
 mod auto;
+mod components;
 mod dae;
 mod ensemble;
 #[cfg(feature = "sundials")]
@@ -530,6 +534,13 @@ fn main() {
     }
     if has("--auto") {
         auto::auto_section();
+        return;
+    }
+    if has("--components") {
+        let text = components::components_section();
+        let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join("components.md");
+        let _ = std::fs::write(&out, &text);
+        println!("{text}");
         return;
     }
     if has("--structure") {

@@ -16,7 +16,7 @@ rc_ladders!(200);
 
 /// Nanoseconds per `rhs` of `a` and of `b` at their initial states (moved
 /// off zero), timed in alternation: the median of 21 rounds each.
-fn rhs_ns<A: Model, B: Model>(a: &A, b: &B) -> (f64, f64) {
+pub(crate) fn rhs_ns<A: Model, B: Model>(a: &A, b: &B) -> (f64, f64) {
     fn state<M: Model>(m: &M) -> Vec<f64> {
         let mut y = vec![0.0; M::STATES];
         m.initial_state(&mut y);
@@ -102,7 +102,7 @@ fn grid_tokens(n: usize) -> TokenStream {
 
 /// Seconds to expand `item` (the whole macro: analysis and emission), the
 /// best of `repeats`.
-fn expansion_seconds(item: &TokenStream, repeats: usize) -> f64 {
+pub(crate) fn expansion_seconds(item: &TokenStream, repeats: usize) -> f64 {
     (0..repeats)
         .map(|_| {
             let start = Instant::now();
