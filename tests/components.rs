@@ -5,6 +5,14 @@
 use daegen::prelude::*;
 
 include!("models/drives.rs");
+
+/// `v_c(t)` and `i(t)` of `rlc_series`, exactly.
+fn rlc_exact(t: f64) -> [f64; 2] {
+    let (alpha, wd) = (0.5f64, 3.75f64.sqrt());
+    let vc = 1.0 - (-alpha * t).exp() * ((wd * t).cos() + alpha / wd * (wd * t).sin());
+    let i = (-alpha * t).exp() * (wd * t).sin() / wd;
+    [vc, i]
+}
 include!("models/ladders_of_parts.rs");
 
 /// RC charging: a 10 V source through R = 100 Ω into C = 1 mF.
@@ -61,6 +69,7 @@ fn rlc_series_rings_as_the_exact_solution() {
 }
 
 rc_ladder_of_parts!(rc_ladder_of_parts_20, 20);
+rc_ladder_of_tunable_parts!(rc_ladder_of_tunable_parts_20, 20);
 rc_ladder_flat!(rc_ladder_flat_20, 20);
 
 #[test]
@@ -73,11 +82,20 @@ fn a_ladder_of_forty_parts_is_the_flat_ladder() {
     let opts = Options::new().method(Method::Radau5).rtol(1e-10).atol(1e-10);
     let a = RcLadderOfParts20::default().simulate(0.0, 50.0, &opts).unwrap();
     let b = RcLadderFlat20::default().simulate(0.0, 50.0, &opts).unwrap();
+    let tunable = RcLadderOfTunableParts20 { resistors_3_r: 2.0, ..Default::default() };
+    let c = tunable.simulate(0.0, 50.0, &opts).unwrap();
     assert_eq!(a.stats().steps, b.stats().steps);
     for k in 0..20 {
-        let (x, y) = (a.last(&format!("c[{k}].v")).unwrap(), b.last(&format!("v[{k}]")).unwrap());
+        let name = format!("capacitors[{k}].v");
+        let (x, y) = (a.last(&name).unwrap(), b.last(&format!("v[{k}]")).unwrap());
         assert!((x - y).abs() < 1e-12, "node {k}: {x} vs {y}");
+        // The fourth resistor's own value slows the charge behind it.
+        if k >= 3 {
+            assert!(c.at(5.0, &name).unwrap() < a.at(5.0, &name).unwrap());
+        }
     }
+    // Each resistor its r, each capacitor its c and v0, and the source.
+    assert_eq!(<RcLadderOfTunableParts20 as Model>::INFO.parameters.len(), 61);
 }
 
 #[test]
