@@ -29,4 +29,24 @@ fn misspelt_part() {
     connect(r1.p, gnd.p);
 }
 
+/// A part with a mistake in its body: reported where it is defined.
+#[component]
+fn leaky_part() {
+    let p = pin();
+    let n = pin();
+    p.i + n.i == 0.0;
+    p.v - n.v == leakage * p.i;
+}
+
+/// Two outputs joined: a signal has one source.
+#[dae_model]
+fn two_sources_for_one_signal() {
+    let a = constant(1.0);
+    let b = constant(2.0);
+    let g = gain(2.0);
+    let x = integrator();
+    connect(a.y, b.y, g.u);
+    connect(g.y, x.u);
+}
+
 fn main() {}
