@@ -179,12 +179,20 @@
 //!
 //! ## Mechanics and components together
 //!
-//! A named joint of a planar scene has a flange: `pivot.flange` of a
-//! `revolute` is a rotational flange on the relative angle `θ_b − θ_a`,
-//! whose torque acts on the second body and its reaction on the first;
-//! `slide.flange` of a `prismatic` is a translational flange along its
-//! axis. A motor, a gear or a spring-damper drives the mechanism through
-//! it, in the global and the recursive formulation alike:
+//! A named `revolute` or `prismatic` joint has a flange: `pivot.flange`
+//! of a revolute is a rotational flange on the second body's angle
+//! relative to the first about the joint's axis, whose torque acts on the
+//! second body and its reaction on the first; `slide.flange` of a
+//! prismatic is a translational flange on the displacement along its
+//! axis, its force at the second body's joint point. A motor, a gear or a
+//! spring-damper drives the mechanism through it, planar or in space, in
+//! the global and the recursive formulation alike. In a planar scene the
+//! angle is `θ_b − θ_a`; a spatial scene in body coordinates has no
+//! coordinate for it, so the flange's angle is the state `pivot.angle`,
+//! the relative rotation since the start integrated from the rates (in
+//! joint coordinates it is tied to `pivot.q` and goes). A motor turning a
+//! crank in joint coordinates keeps the hand-written model's states: the
+//! joint's angle and rate and the winding's current.
 //!
 //! ```text
 //! let pivot = revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5 * r, 0.0, 0.0));

@@ -226,6 +226,15 @@ fn find_tie(
                     return Ok(Some(Tie::State { equation: e, state, value }));
                 }
             }
+            &[(d, c)] if is_constant(g, c) && integrable(ir, &linear, d, orders) => {
+                // c s' + Σ a_k y_k' = 0, the y_k carried: c s + Σ a_k y_k
+                // keeps its initial value.
+                if let Some(tie) = integrated(ir, &linear)? {
+                    if let Some((state, value)) = solve_for_component_state(ir, &tie)? {
+                        return Ok(Some(Tie::State { equation: e, state, value }));
+                    }
+                }
+            }
             &[(d, c)] if is_constant(g, c) => match by_highest.get(&d) {
                 Some((c_first, first)) => {
                     let tie = first.difference(*c_first, &linear, c, &mut ir.graph)?;
@@ -248,32 +257,79 @@ fn find_tie(
     Ok(None)
 }
 
+/// Whether `c d + Σ a_k y_k' = 0` (`d = s'`, each other term the first
+/// derivative of a state, no constant) is the derivative of a tie, each
+/// `y_k` and `s` a state with its declared initial value.
+fn integrable(
+    ir: &ModelIr,
+    linear: &Linear,
+    d: SymbolId,
+    orders: &FxHashMap<SymbolId, u32>,
+) -> bool {
+    let g = &ir.graph;
+    let first_of_state = |y: SymbolId| match g.symbol(y).kind {
+        SymbolKind::Derivative { of, order: 1 } => ir.states.iter().any(|s| s.symbol == of).then_some(of),
+        _ => None,
+    };
+    let constant_zero = g.as_number(linear.constant).is_some_and(|n| n.is_zero());
+    let Some(s) = first_of_state(d) else { return false };
+    constant_zero
+        && orders.get(&s) == Some(&1)
+        && linear.terms.len() > 1
+        && linear.terms.iter().all(|&(y, _)| y == d || first_of_state(y).is_some())
+}
+
+/// The tie `c s + Σ a_k y_k − (c s0 + Σ a_k y_k0) = 0` that
+/// `c s' + Σ a_k y_k' = 0` integrates to.
+fn integrated(ir: &mut ModelIr, linear: &Linear) -> crate::Result<Option<Linear>> {
+    let mut terms = Vec::with_capacity(linear.terms.len());
+    let mut start = Vec::with_capacity(linear.terms.len());
+    for &(y, c) in &linear.terms {
+        let SymbolKind::Derivative { of, .. } = ir.graph.symbol(y).kind else { return Ok(None) };
+        let Some(init) = ir.states.iter().find(|s| s.symbol == of).map(|s| s.init) else {
+            return Ok(None);
+        };
+        terms.push((of, c));
+        start.push(ir.graph.mul(c, init)?);
+    }
+    let g = &mut ir.graph;
+    let total = g.sum(&start)?;
+    let constant = g.neg(total)?;
+    Ok(Some(Linear { terms, constant }))
+}
+
 fn is_constant(g: &Graph, c: Id) -> bool {
     g.free_symbols(c).iter().all(|&s| g.symbol(s).kind == SymbolKind::Parameter)
 }
 
 /// The tie `Σ c_k y_k + b = 0` solved for a state of a component (an
-/// `.avoid()` one first, then the latest declared) with a numeric
-/// coefficient: `y = −(Σ_{k≠y} c_k y_k + b) / c_y`.
+/// `.avoid()` one first, then one with a numeric coefficient, then the
+/// latest declared): `y = −(Σ_{k≠y} c_k y_k + b) / c_y`.
 fn solve_for_component_state(
     ir: &mut ModelIr,
     tie: &Linear,
 ) -> crate::Result<Option<(SymbolId, Id)>> {
+    // A joint's flange is a pseudo-instance: the scene's coordinates under
+    // its name stay, its integrated angle (`.avoid()`) may go.
     let in_component = |name: &str| {
         ir.instances.iter().any(|i| {
             name.len() > i.path.len() + 1
                 && name.starts_with(&i.path)
                 && name.as_bytes()[i.path.len()] == b'.'
+                && !matches!(i.part.as_str(), "revolute" | "prismatic")
         })
     };
-    let mut best: Option<((bool, usize), SymbolId, Id)> = None;
+    // A numeric coefficient is best; a parameter's (a gear's ratio) is
+    // divided by, as the physics does.
+    let mut best: Option<((bool, bool, usize), SymbolId, Id)> = None;
     for &(y, c) in &tie.terms {
         let Some(k) = ir.states.iter().position(|s| s.symbol == y) else { continue };
         let decl = &ir.states[k];
-        if !in_component(&decl.name) || !ir.graph.as_number(c).is_some_and(|n| !n.is_zero()) {
+        let numeric = ir.graph.as_number(c).map(|n| !n.is_zero());
+        if !(in_component(&decl.name) || decl.avoid) || numeric == Some(false) {
             continue;
         }
-        let key = (decl.avoid && !decl.fixed, k);
+        let key = (decl.avoid && !decl.fixed, numeric.is_some(), k);
         if best.as_ref().is_none_or(|(b, _, _)| key > *b) {
             best = Some((key, y, c));
         }

@@ -524,6 +524,9 @@ impl Lower<'_, Scene> {
 
     /// The kind of the named planar joint `name` a flange drives.
     pub(crate) fn joint_axis(&self, name: &str) -> Option<&'static str> {
+        if self.scene.is_spatial() {
+            return self.spatial_joint_axis(name);
+        }
         let record = self.scene.records.iter().find(|r| r.name == name)?;
         matches!(record.kind, "revolute" | "prismatic").then_some(record.kind)
     }
@@ -534,8 +537,7 @@ impl Lower<'_, Scene> {
     /// on a, or a force along the axis at b's joint point and its reaction.
     pub(crate) fn joint_flange(&mut self, name: &str, flow: Id, at: &Expr) -> Option<Id> {
         if self.scene.is_spatial() {
-            self.cx.error_at(at, "a flange drives a joint of a planar scene; a spatial joint has none yet: apply `torque(body, axis * tau)` with `tau` a variable of the drive");
-            return None;
+            return self.spatial_joint_flange(name, flow, at);
         }
         let record = self.scene.records.iter().find(|r| r.name == name)?.clone();
         let angle = |this: &mut Self, f: Frame| match f {

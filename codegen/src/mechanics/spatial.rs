@@ -600,6 +600,123 @@ impl Lower<'_, Scene> {
         }
     }
 
+    /// The kind of the named spatial joint `name` a flange drives.
+    pub(crate) fn spatial_joint_axis(&self, name: &str) -> Option<&'static str> {
+        let record = self.scene.spatial_records.iter().find(|r| r.name == name)?;
+        matches!(record.kind, "revolute" | "prismatic").then_some(record.kind)
+    }
+
+    /// `joint.flange` of a spatial joint, and `flow` across it: a torque
+    /// about a revolute's axis (on b, its reaction on a), or a force along
+    /// a prismatic's axis at b's joint point. A revolute's angle has no
+    /// coordinate in body coordinates: it is the state `joint.angle`,
+    /// integrating the relative angular velocity about the axis from 0
+    /// (in joint coordinates, tied to the joint's own).
+    pub(crate) fn spatial_joint_flange(&mut self, name: &str, flow: Id, at: &Expr) -> Option<Id> {
+        use crate::mechanics::Frame;
+        let record = self.scene.spatial_records.iter().find(|r| r.name == name)?.clone();
+        let axis = record.axis?;
+        // The axis about which a revolute lets b turn keeps its direction
+        // in either body's axes: u_a as written, u_b = R_b0ᵀ R_a0 u_a from
+        // the initial poses. The relative rate about it, u_b·ω_b − u_a·ω_a
+        // (ω in body axes), is then linear in the rates with constant
+        // coefficients, so a rotor tied to the joint keeps no state of its
+        // own.
+        let rate_along = |this: &mut Self, frame: Frame, axis: Vec3| -> crate::Result<Id> {
+            match frame {
+                Frame::Ground => Ok(this.g.zero()),
+                Frame::Body(b) => {
+                    let rates = this.scene.spatial[b].rates.map(|s| this.g.symbol_node(s));
+                    dot3(&mut this.g, axis, rates)
+                }
+            }
+        };
+        let built = (|| -> crate::Result<(Vec3, Pose, Id, Pose, Id)> {
+            let pa = self.pose(record.a)?;
+            let pb = self.pose(record.b)?;
+            let g = &mut self.g;
+            let norm2 = dot3(g, axis, axis)?;
+            let norm = g.sqrt(norm2)?;
+            let one = g.one();
+            let inverse = g.div(one, norm)?;
+            let unit_a = scale3(g, inverse, axis)?;
+            let u = mat_vec(g, &pa.rot, unit_a)?;
+            let u0 = mat_vec(g, &pa.rot0, unit_a)?;
+            let unit_b = mat_t_vec(g, &pb.rot0, u0)?;
+            let wa = rate_along(self, record.a, unit_a)?;
+            let wb = rate_along(self, record.b, unit_b)?;
+            Ok((u, pa, wa, pb, wb))
+        })();
+        let (u, pa, wa, pb, wb) = match built {
+            Ok(v) => v,
+            Err(e) => {
+                self.cx.error_at(at, e);
+                return None;
+            }
+        };
+        let zero = self.g.zero();
+        let on = |this: &mut Self, frame: Frame, pose: &Pose, force: Vec3, torque: Vec3| {
+            let Frame::Body(b) = frame else { return Ok(()) };
+            let local = mat_t_vec(&mut this.g, &pose.rot, torque)?;
+            this.scene.spatial_loads.push((b, force, local));
+            Ok::<(), crate::Error>(())
+        };
+        let result = (|| -> crate::Result<Id> {
+            if record.kind == "revolute" {
+                let torque = scale3(&mut self.g, flow, u)?;
+                let minus = self.g.int(-1);
+                let reaction = scale3(&mut self.g, minus, torque)?;
+                on(self, record.b, &pb, [zero; 3], torque)?;
+                on(self, record.a, &pa, [zero; 3], reaction)?;
+                return self.g.sub(wb, wa);
+            }
+            // Prismatic: the joint points in the world, their offset along
+            // the axis, the force at b's point.
+            let point = |this: &mut Self, pose: &Pose, p: Vec3| -> crate::Result<Vec3> {
+                let turned = mat_vec(&mut this.g, &pose.rot, p)?;
+                add3(&mut this.g, pose.r, turned)
+            };
+            let (xa, xb) = (point(self, &pa, record.local_a)?, point(self, &pb, record.local_b)?);
+            let offset = sub3(&mut self.g, xb, xa)?;
+            let force = scale3(&mut self.g, flow, u)?;
+            let minus = self.g.int(-1);
+            let reaction = scale3(&mut self.g, minus, force)?;
+            // Moments about the centres of mass, in world axes: (x − r) × f.
+            let arm = sub3(&mut self.g, xb, pb.r)?;
+            let mb = cross3(&mut self.g, arm, force)?;
+            on(self, record.b, &pb, force, mb)?;
+            if let Frame::Body(_) = record.a {
+                // The reaction acts at the same world point, xb.
+                let arm = sub3(&mut self.g, xb, pa.r)?;
+                let ma = cross3(&mut self.g, arm, reaction)?;
+                on(self, record.a, &pa, reaction, ma)?;
+            }
+            dot3(&mut self.g, u, offset)
+        })();
+        let value = match result {
+            Ok(v) => v,
+            Err(e) => {
+                self.cx.error_at(at, e);
+                return None;
+            }
+        };
+        if record.kind == "prismatic" {
+            return Some(value);
+        }
+        // The revolute's angle, integrated from zero.
+        let origin = at.to_token_stream();
+        let state_name = format!("{name}.angle");
+        let ident = syn::Ident::new("angle", proc_macro2::Span::call_site());
+        let doc = "angle of the joint's flange, the relative rotation about its axis from the start (rad)";
+        let symbol = self.declare_state(state_name, zero, &ident, &origin, doc)?;
+        if let Some(state) = self.states.iter_mut().find(|s| s.symbol == symbol) {
+            state.avoid = true;
+        }
+        let d = self.g.derivative(symbol, 1).ok()?;
+        self.equations.push(crate::front::ir::Equation { lhs: d, rhs: value, origin, is_constraint: false });
+        Some(self.g.symbol_node(symbol))
+    }
+
     /// `spring(a, pa, b, pb, k, l0, c)` between two points of a spatial scene.
     fn spatial_spring(&mut self, c: &syn::ExprCall, e: &Expr) {
         use crate::mechanics::Frame;
