@@ -33,15 +33,15 @@
 #![warn(missing_docs)]
 
 pub use daegen_codegen as codegen;
-pub use daegen_macros::{component, dae_model};
 #[doc(hidden)]
 pub use daegen_macros::{__component_parts, __dae_model_parts};
+pub use daegen_macros::{component, dae_model};
 pub use daegen_runtime as runtime;
 pub use daegen_runtime::{
-    Availability, Batch, BlockInfo, BlockSolution, ComponentInfo, ConstraintInfo, Ensemble, Error, EvalError,
-    EventDirection, EventInfo, FinalState, FinalStates, Flow, Formulation, InitialCorrection,
-    Jacobian, LinearSolver, MassMatrix, Method, Model, ModelInfo, Options, ProjectionLevel, Shard,
-    Simulate, Solution, Stats, Step, StructureInfo, Table,
+    Availability, Batch, BlockInfo, BlockSolution, ComponentInfo, ConstraintInfo, Ensemble, Error,
+    EvalError, EventDirection, EventInfo, FinalState, FinalStates, Flow, Formulation,
+    InitialCorrection, Jacobian, LinearSolver, MassMatrix, Method, Model, ModelInfo, Options,
+    ProjectionLevel, Shard, Simulate, Solution, Stats, Step, StructureInfo, Table,
 };
 
 pub mod guide;
@@ -51,8 +51,8 @@ pub mod plot;
 /// Everything a model file needs: `use daegen::prelude::*;`.
 pub mod prelude {
     pub use crate::{
-        component, dae_model, Error, Flow, Formulation, LinearSolver, Method, Model, Options, Simulate,
-        Solution, Step,
+        component, dae_model, Error, Flow, Formulation, LinearSolver, Method, Model, Options,
+        Simulate, Solution, Step,
     };
 }
 

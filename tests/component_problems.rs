@@ -59,7 +59,10 @@ fn every_method_runs_every_connected_model() {
             t1: 20.0,
             error: |s| {
                 // ω = ω_ref and i = (b ω_ref + τ_L) / k at rest.
-                let y = [s.last("sensor.w").unwrap_or(f64::NAN), s.last("motor.winding.i").unwrap_or(f64::NAN)];
+                let y = [
+                    s.last("sensor.w").unwrap_or(f64::NAN),
+                    s.last("motor.winding.i").unwrap_or(f64::NAN),
+                ];
                 support::mixed_error(&y, &[100.0, (1e-5 * 100.0 + 0.02) / 0.05], 1.0)
             },
             tolerances: &[1e-6, 1e-8, 1e-10],

@@ -40,7 +40,8 @@ fn rc_charging_follows_the_exponential() {
         let i: f64 = sol.at(t, "r1.i").unwrap();
         assert!((i - (10.0 - exact) / 100.0).abs() < 1e-9, "t = {t}: i = {i}");
         // Kirchhoff at the source: the current leaves `p` and returns at `n`.
-        let (p, n): (f64, f64) = (sol.at(t, "source.p.i").unwrap(), sol.at(t, "source.n.i").unwrap());
+        let (p, n): (f64, f64) =
+            (sol.at(t, "source.p.i").unwrap(), sol.at(t, "source.n.i").unwrap());
         assert!((p + n).abs() < 1e-12 && (p + i).abs() < 1e-9);
     }
     // One state, as by hand; every connector variable still reads.
@@ -65,7 +66,10 @@ fn rlc_series_rings_as_the_exact_solution() {
             assert!((vr - il).abs() < 1e-9);
         }
     }
-    assert_eq!(<RlcSeries as Model>::INFO.states.len(), <RlcSeriesFlat as Model>::INFO.states.len());
+    assert_eq!(
+        <RlcSeries as Model>::INFO.states.len(),
+        <RlcSeriesFlat as Model>::INFO.states.len()
+    );
 }
 
 rc_ladder_of_parts!(rc_ladder_of_parts_20, 20);
@@ -110,9 +114,17 @@ fn a_speed_drive_of_components_is_the_flat_drive() {
         let a = SpeedDrive::default().simulate(0.0, 1.0, &opts).unwrap();
         let b = SpeedDriveFlat::default().simulate(0.0, 1.0, &opts).unwrap();
         for &t in &[0.1, 0.29, 0.35, 0.6, 1.0] {
-            for (x, y) in [("motor.winding.i", "i"), ("motor.rotor.w", "w"), ("controller.x", "x"), ("motor.rotor.phi", "phi")] {
+            for (x, y) in [
+                ("motor.winding.i", "i"),
+                ("motor.rotor.w", "w"),
+                ("controller.x", "x"),
+                ("motor.rotor.phi", "phi"),
+            ] {
                 let (u, v): (f64, f64) = (a.at(t, x).unwrap(), b.at(t, y).unwrap());
-                assert!((u - v).abs() < 1e-6 * (1.0 + v.abs()), "{method:?} t = {t}: {x} = {u}, {y} = {v}");
+                assert!(
+                    (u - v).abs() < 1e-6 * (1.0 + v.abs()),
+                    "{method:?} t = {t}: {x} = {u}, {y} = {v}"
+                );
             }
         }
     }
@@ -204,8 +216,11 @@ fn a_resistor_heats_up_as_the_exact_solution() {
             let got: f64 = sol.at(t, "body.t").unwrap();
             assert!((got - exact(t)).abs() < 1e-6, "{method:?} t = {t}: {got} vs {}", exact(t));
             // The heater's losses are v i at its temperature.
-            let (v, r): (f64, f64) = (sol.at(t, "heater.v").unwrap(), sol.at(t, "heater.r_actual").unwrap());
-            assert!((v - 2.0 * r).abs() < 1e-9 && (r - r0 * (1.0 + alpha * (got - t_ref))).abs() < 1e-9);
+            let (v, r): (f64, f64) =
+                (sol.at(t, "heater.v").unwrap(), sol.at(t, "heater.r_actual").unwrap());
+            assert!(
+                (v - 2.0 * r).abs() < 1e-9 && (r - r0 * (1.0 + alpha * (got - t_ref))).abs() < 1e-9
+            );
         }
     }
 }
@@ -283,7 +298,9 @@ fn a_motor_turns_a_slider_crank_through_a_gear_in_both_formulations() {
     let recursive = GearedSliderCrankRecursive::default().simulate(0.0, 1.0, &opts).unwrap();
     for t in [0.1, 0.3, 0.6, 1.0] {
         let (phi, i) = (flat.at(t, "phi").unwrap(), flat.at(t, "i").unwrap());
-        for (name, sol, angle) in [("global", &global, "crank.theta"), ("recursive", &recursive, "pivot.q")] {
+        for (name, sol, angle) in
+            [("global", &global, "crank.theta"), ("recursive", &recursive, "pivot.q")]
+        {
             let (a, b) = (sol.at(t, angle).unwrap(), sol.at(t, "motor.winding.i").unwrap());
             assert!((a - phi).abs() < 1e-6, "{name} t = {t}: θ {a} vs {phi}");
             assert!((b - i).abs() < 1e-6, "{name} t = {t}: i {b} vs {i}");
@@ -298,9 +315,15 @@ fn a_motor_turns_a_slider_crank_through_a_gear_in_both_formulations() {
 fn describe_shows_the_hierarchy_and_every_path_reads() {
     let text = SpeedDrive::default().describe();
     println!("{text}");
-    let section: Vec<&str> =
-        text.lines().skip_while(|l| *l != "components:").skip(1).take_while(|l| l.starts_with("  ")).collect();
-    assert!(section.iter().any(|l| l.trim_start().starts_with("motor") && l.trim_end().ends_with("dc_motor")));
+    let section: Vec<&str> = text
+        .lines()
+        .skip_while(|l| *l != "components:")
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+        .collect();
+    assert!(section
+        .iter()
+        .any(|l| l.trim_start().starts_with("motor") && l.trim_end().ends_with("dc_motor")));
     // The motor's parts sit one level deeper than the motor.
     let indent = |l: &&str| l.len() - l.trim_start().len();
     let motor = section.iter().find(|l| l.trim_start().starts_with("motor ")).unwrap();
@@ -312,12 +335,23 @@ fn describe_shows_the_hierarchy_and_every_path_reads() {
     // also those that alias elimination or tied states removed.
     let opts = Options::new().method(Method::Radau5).rtol(1e-8).atol(1e-8);
     let sol = SpeedDrive::default().simulate(0.0, 0.1, &opts).unwrap();
-    for name in ["motor.emf.i", "motor.emf.w", "motor.emf.phi", "motor.shaft.tau", "friction.flange_b.phi", "sensor.w", "motor.p.v", "supply.i"] {
+    for name in [
+        "motor.emf.i",
+        "motor.emf.w",
+        "motor.emf.phi",
+        "motor.shaft.tau",
+        "friction.flange_b.phi",
+        "sensor.w",
+        "motor.p.v",
+        "supply.i",
+    ] {
         assert!(sol.last(name).unwrap().is_finite(), "{name}");
     }
-    let (w, emf_w): (f64, f64) = (sol.last("motor.rotor.w").unwrap(), sol.last("motor.emf.w").unwrap());
+    let (w, emf_w): (f64, f64) =
+        (sol.last("motor.rotor.w").unwrap(), sol.last("motor.emf.w").unwrap());
     assert!((w - emf_w).abs() < 1e-12);
-    let (i, emf_i): (f64, f64) = (sol.last("motor.winding.i").unwrap(), sol.last("motor.emf.i").unwrap());
+    let (i, emf_i): (f64, f64) =
+        (sol.last("motor.winding.i").unwrap(), sol.last("motor.emf.i").unwrap());
     assert!((i - emf_i).abs() < 1e-12);
 }
 
@@ -421,7 +455,10 @@ fn a_motor_turns_a_crank_in_space() {
     // In joint coordinates the machine keeps the flat model's states: the
     // hinge's angle and rate and the winding's current; the rotor's angle,
     // rate and the EMF's are tied to the hinge's through the gear.
-    assert_eq!(<GearedSpatialCrankRecursive as Model>::INFO.states, ["motor.winding.i", "hinge.q", "der(hinge.q)"]);
+    assert_eq!(
+        <GearedSpatialCrankRecursive as Model>::INFO.states,
+        ["motor.winding.i", "hinge.q", "der(hinge.q)"]
+    );
     for t in [0.05, 0.2, 0.5] {
         let (phi, i) = (flat.at(t, "phi").unwrap(), flat.at(t, "i").unwrap());
         for (name, sol) in [("global", &global), ("recursive", &recursive)] {

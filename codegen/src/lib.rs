@@ -105,8 +105,11 @@ pub(crate) fn expand_model_with(
         Ok(item) => item,
         Err(e) => {
             return parts::Expansion::Done(
-                syn::Error::new(e.span(), "`#[dae_model]` goes on a function: `fn pendulum() { ... }`")
-                    .to_compile_error(),
+                syn::Error::new(
+                    e.span(),
+                    "`#[dae_model]` goes on a function: `fn pendulum() { ... }`",
+                )
+                .to_compile_error(),
             )
         }
     };

@@ -163,9 +163,23 @@ pub(crate) enum Expansion {
 }
 
 /// A fetch started by a model (`#[dae_model]`) for `missing`.
-pub(crate) fn fetch_for_model(attr: TokenStream, item: &syn::ItemFn, parts: &Definitions, missing: Vec<syn::Path>) -> TokenStream {
-    let resolved = parts.paths().filter_map(|p| parts.get(p).map(|d| (p.to_string(), d.bundle()))).collect();
-    Request { kind: Kind::Model, attr, item: item.clone(), resolved, pending: missing, definition: None }.fetch()
+pub(crate) fn fetch_for_model(
+    attr: TokenStream,
+    item: &syn::ItemFn,
+    parts: &Definitions,
+    missing: Vec<syn::Path>,
+) -> TokenStream {
+    let resolved =
+        parts.paths().filter_map(|p| parts.get(p).map(|d| (p.to_string(), d.bundle()))).collect();
+    Request {
+        kind: Kind::Model,
+        attr,
+        item: item.clone(),
+        resolved,
+        pending: missing,
+        definition: None,
+    }
+    .fetch()
 }
 
 /// `#[component] fn resistor() { .. }`.
@@ -190,11 +204,26 @@ fn expand_component_with(attr: TokenStream, item: TokenStream, parts: Definition
     if !item.sig.inputs.is_empty() {
         cx.error_at(&item.sig.inputs, "a component takes no arguments: declare its parameters with `let r = param(1.0);`, which a call sets in order or by name");
     }
-    let definition = Rc::new(Definition { item: item.clone(), parts: Rc::new(parts), library: false });
-    let missing = crate::front::lower::check_component::<crate::mechanics::Scene>(&mut cx, definition.clone());
+    let definition =
+        Rc::new(Definition { item: item.clone(), parts: Rc::new(parts), library: false });
+    let missing = crate::front::lower::check_component::<crate::mechanics::Scene>(
+        &mut cx,
+        definition.clone(),
+    );
     if !missing.is_empty() {
-        let resolved = definition.parts.paths().filter_map(|p| definition.parts.get(p).map(|d| (p.to_string(), d.bundle()))).collect();
-        let request = Request { kind: Kind::Component, attr, item, resolved, pending: missing, definition: None };
+        let resolved = definition
+            .parts
+            .paths()
+            .filter_map(|p| definition.parts.get(p).map(|d| (p.to_string(), d.bundle())))
+            .collect();
+        let request = Request {
+            kind: Kind::Component,
+            attr,
+            item,
+            resolved,
+            pending: missing,
+            definition: None,
+        };
         return request.fetch();
     }
     if !cx.is_ok() {

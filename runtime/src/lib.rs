@@ -45,9 +45,8 @@ pub use step::control as step_control;
 pub use ensemble::{Batch, Ensemble, FinalState, FinalStates, Shard};
 pub use error::Error;
 pub use info::{
-    ComponentInfo,
-    BlockInfo, BlockSolution, ConstraintInfo, EvalError, EventDirection, EventInfo, ModelInfo,
-    ProjectionLevel, StructureInfo,
+    BlockInfo, BlockSolution, ComponentInfo, ConstraintInfo, EvalError, EventDirection, EventInfo,
+    ModelInfo, ProjectionLevel, StructureInfo,
 };
 pub use model::{Availability, Jacobian, MassMatrix, Model, StateVector};
 /// The linear-algebra crate of [`kinematics`], re-exported so users get the

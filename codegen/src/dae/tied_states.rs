@@ -268,7 +268,9 @@ fn integrable(
 ) -> bool {
     let g = &ir.graph;
     let first_of_state = |y: SymbolId| match g.symbol(y).kind {
-        SymbolKind::Derivative { of, order: 1 } => ir.states.iter().any(|s| s.symbol == of).then_some(of),
+        SymbolKind::Derivative { of, order: 1 } => {
+            ir.states.iter().any(|s| s.symbol == of).then_some(of)
+        }
         _ => None,
     };
     let constant_zero = g.as_number(linear.constant).is_some_and(|n| n.is_zero());

@@ -572,7 +572,8 @@ impl Lower<'_, Scene> {
                 }
             }
         };
-        let (pa, pb) = (world(self, record.a, record.local_a)?, world(self, record.b, record.local_b)?);
+        let (pa, pb) =
+            (world(self, record.a, record.local_a)?, world(self, record.b, record.local_b)?);
         let ta = angle(self, record.a);
         let u = rotate(&mut self.g, ta, axis);
         let u = self.graph_result_pair(u, at)?;

@@ -713,7 +713,12 @@ impl Lower<'_, Scene> {
             state.avoid = true;
         }
         let d = self.g.derivative(symbol, 1).ok()?;
-        self.equations.push(crate::front::ir::Equation { lhs: d, rhs: value, origin, is_constraint: false });
+        self.equations.push(crate::front::ir::Equation {
+            lhs: d,
+            rhs: value,
+            origin,
+            is_constraint: false,
+        });
         Some(self.g.symbol_node(symbol))
     }
 

@@ -95,7 +95,8 @@ pub fn floating_potentials(
             }
         }
         let listed = parts.iter().take(4).map(|p| format!("`{p}`")).collect::<Vec<_>>().join(", ");
-        let more = if parts.len() > 4 { format!(" and {} more", parts.len() - 4) } else { String::new() };
+        let more =
+            if parts.len() > 4 { format!(" and {} more", parts.len() - 4) } else { String::new() };
         let message = match connector.kind {
             ConnectorKind::Pin => format!("the node voltages of the circuit of {listed}{more} are fixed only up to a constant: connect a ground, `let gnd = ground(); connect(gnd.p, ..);`"),
             ConnectorKind::Flange => format!("the angles of the flanges of {listed}{more} are fixed only up to a constant: nothing holds them; connect an inertia or a `fixed()`"),
@@ -114,7 +115,8 @@ pub fn sources_in_parallel(
     connections: &[Connection],
     instances: &[Instance],
 ) -> Vec<Diagnostic> {
-    const SOURCES: [&str; 4] = ["constant_voltage", "step_voltage", "sine_voltage", "signal_voltage"];
+    const SOURCES: [&str; 4] =
+        ["constant_voltage", "step_voltage", "sine_voltage", "signal_voltage"];
     let mut parent: Vec<usize> = (0..connectors.len()).collect();
     for connection in connections {
         for &c in &connection.members[1..] {

@@ -416,7 +416,8 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     return self.bind(ident, Binding::Time(id));
                 }
                 if in_component {
-                    let names = std::iter::once("t".to_string()).chain((0..).map(|k| format!("__time{k}")));
+                    let names =
+                        std::iter::once("t".to_string()).chain((0..).map(|k| format!("__time{k}")));
                     let created = names.into_iter().find_map(|n| self.g.time(&n).ok());
                     if let Some(id) = created {
                         self.time = self.g.as_symbol(id);

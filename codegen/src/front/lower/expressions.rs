@@ -5,36 +5,12 @@ use super::declarations::Declaration;
 use super::instances::Member;
 use super::scene::SceneLanguage;
 use super::scopes::{Binding, Lower};
-use super::syntax::call_name;
+use super::syntax::{call_name, FUNCTIONS};
 use crate::front::names::did_you_mean;
 
 use crate::{Func, Graph, Id, Node, SymbolKind};
 use quote::ToTokens;
 use syn::{BinOp, Expr, Lit, Stmt, UnOp};
-
-pub(super) const FUNCTIONS: [&str; 21] = [
-    "sin",
-    "cos",
-    "tan",
-    "asin",
-    "acos",
-    "atan",
-    "atan2",
-    "sinh",
-    "cosh",
-    "tanh",
-    "exp",
-    "ln",
-    "sqrt",
-    "abs",
-    "heaviside",
-    "der",
-    "init",
-    "constraint",
-    "invariant",
-    "powi",
-    "powf",
-];
 
 impl<S: SceneLanguage> Lower<'_, S> {
     pub(crate) fn unknown_name(&mut self, at: impl ToTokens, name: &str) {
@@ -124,11 +100,14 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     Some(Binding::Value { id, .. }) => Some(id),
                     Some(Binding::State(s)) => Some(self.g.symbol_node(s)),
                     Some(Binding::BrokenBody | Binding::Broken) => None,
-                    Some(b @ (Binding::Connector(_) | Binding::Instance(_) | Binding::InstanceArray(_))) => {
-                        self.member_value(b, e)
-                    }
+                    Some(
+                        b @ (Binding::Connector(_)
+                        | Binding::Instance(_)
+                        | Binding::InstanceArray(_)),
+                    ) => self.member_value(b, e),
                     Some(Binding::Function(_)) => {
-                        self.cx.error_at(e, format!("`{name}` is a function: call it, `{name}(..)`"));
+                        self.cx
+                            .error_at(e, format!("`{name}` is a function: call it, `{name}(..)`"));
                         None
                     }
                     Some(b @ (Binding::Body(_) | Binding::Ground)) => {
@@ -160,12 +139,10 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 }
             }
             Expr::Index(ix) if self.mentions_tensor(&ix.expr) => self.scalar_of(e),
-            Expr::Index(_) | Expr::Field(_) if self.is_member_path(e) => {
-                match self.member(e) {
-                    Member::Found(b) => self.member_value(b, e),
-                    _ => None,
-                }
-            }
+            Expr::Index(_) | Expr::Field(_) if self.is_member_path(e) => match self.member(e) {
+                Member::Found(b) => self.member_value(b, e),
+                _ => None,
+            },
             Expr::Index(ix) => {
                 let Expr::Path(p) = &*ix.expr else {
                     self.cx.error_at(&ix.expr, "only arrays declared in the model can be indexed");

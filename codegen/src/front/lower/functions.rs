@@ -5,17 +5,11 @@
 //! the names it saw there, as a Rust closure captures them).
 
 use super::scene::SceneLanguage;
-use super::scopes::{Binding, Lower};
+use super::scopes::{Binding, Function, Lower};
 use crate::Id;
 use std::collections::HashMap;
 use std::rc::Rc;
 use syn::{Expr, Pat, Stmt};
-
-/// A function of the model: its closure and the scopes it captured.
-pub(crate) struct Function {
-    closure: syn::ExprClosure,
-    captured: Vec<HashMap<String, Binding>>,
-}
 
 /// Calls of functions nested deeper than this are refused: a function
 /// that calls itself.
@@ -62,7 +56,12 @@ impl<S: SceneLanguage> Lower<'_, S> {
             return None;
         }
         if self.function_depth >= MAX_DEPTH {
-            self.cx.error_at(c, format!("`{name}` calls itself: a function of the model is inlined, and cannot recurse"));
+            self.cx.error_at(
+                c,
+                format!(
+                    "`{name}` calls itself: a function of the model is inlined, and cannot recurse"
+                ),
+            );
             return None;
         }
         let args: Vec<Option<Id>> = c.args.iter().map(|a| self.value(a)).collect();

@@ -19,7 +19,7 @@ use syn::Expr;
 pub(in crate::front) enum Member {
     /// It does not start at an instance or a connector: the caller reads
     /// it its own way (a body's coordinate, a plain name).
-    NotMember,
+    Elsewhere,
     /// What it names.
     Found(Binding),
     /// A mistake, reported.
@@ -73,7 +73,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         // A misspelt function or part is a mistake here, not a component
         // to fetch from elsewhere.
         if let Some(name) = single.as_deref() {
-            if did_you_mean(name, super::expressions::FUNCTIONS.into_iter()).is_some() {
+            if did_you_mean(name, super::syntax::FUNCTIONS.into_iter()).is_some() {
                 return None;
             }
             if let Some(part) = did_you_mean(name, self.library.paths()) {
@@ -152,7 +152,8 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 while let Expr::Paren(p) = receiver {
                     receiver = &p.expr;
                 }
-                let how = "write an array of instances as `(0..N).map(|k| part(..))` or `[part(..); N]`";
+                let how =
+                    "write an array of instances as `(0..N).map(|k| part(..))` or `[part(..); N]`";
                 let (Expr::Range(range), [syn::Pat::Ident(var)]) =
                     (receiver, closure.inputs.iter().collect::<Vec<_>>().as_slice())
                 else {
@@ -163,7 +164,8 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     self.cx.error_at(e, how);
                     return Some(None);
                 };
-                let (Some(start), Some(end)) = (self.index_constant(start), self.index_constant(end))
+                let (Some(start), Some(end)) =
+                    (self.index_constant(start), self.index_constant(end))
                 else {
                     return Some(None);
                 };
@@ -204,14 +206,17 @@ impl<S: SceneLanguage> Lower<'_, S> {
 
     /// Functions and declarations of the language, which no part shadows.
     fn is_known_function(&self, name: &str) -> bool {
-        super::expressions::FUNCTIONS.contains(&name)
+        super::syntax::FUNCTIONS.contains(&name)
             || crate::Func::ALL.iter().any(|f| f.name() == name)
             || super::declarations::Declaration::from_name(name).is_some()
             || ConnectorKind::from_name(name).is_some()
             || S::is_joint(name)
             || S::is_load(name)
             || crate::front::tensor::TENSOR_FUNCTIONS.contains(&name)
-            || matches!(name, "connect" | "heaviside" | "position" | "orientation" | "natural_frame")
+            || matches!(
+                name,
+                "connect" | "heaviside" | "position" | "orientation" | "natural_frame"
+            )
     }
 
     /// Lowers one instance of `definition` called by `call` under the
@@ -240,7 +245,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
             scopes: std::mem::replace(&mut self.scopes, vec![HashMap::new()]),
             prefix: std::mem::replace(&mut self.prefix, prefix),
             field_prefix: std::mem::replace(&mut self.field_prefix, field_prefix),
-            instance: std::mem::replace(&mut self.instance, Some(k)),
+            instance: self.instance.replace(k),
             overrides: std::mem::replace(&mut self.overrides, overrides),
             parts: std::mem::replace(&mut self.parts, definition.parts.clone()),
             integer_names: std::mem::take(&mut self.integer_names),
@@ -297,7 +302,10 @@ impl<S: SceneLanguage> Lower<'_, S> {
                             Some(s) => format!("did you mean `{s}`?"),
                             None => listed(),
                         };
-                        self.cx.error_at(&a.left, format!("`{part}` has no parameter `{name}`; {hint}"));
+                        self.cx.error_at(
+                            &a.left,
+                            format!("`{part}` has no parameter `{name}`; {hint}"),
+                        );
                         ok = false;
                         continue;
                     }
@@ -311,7 +319,14 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     }
                     let Some(name) = params.get(k) else {
                         let n = c.args.len();
-                        self.cx.error_at(positional, format!("`{part}` takes at most {} arguments, not {n}: {}", params.len(), listed()));
+                        self.cx.error_at(
+                            positional,
+                            format!(
+                                "`{part}` takes at most {} arguments, not {n}: {}",
+                                params.len(),
+                                listed()
+                            ),
+                        );
                         ok = false;
                         break;
                     };
@@ -380,7 +395,9 @@ impl<S: SceneLanguage> Lower<'_, S> {
     /// `connect(a, b, ...)`.
     pub(in crate::front) fn connect(&mut self, call: &syn::ExprCall, e: &Expr) {
         if call.args.len() < 2 {
-            return self.cx.error_at(e, "`connect` joins two or more connectors: `connect(r1.n, c1.p)`");
+            return self
+                .cx
+                .error_at(e, "`connect` joins two or more connectors: `connect(r1.n, c1.p)`");
         }
         let mut members = Vec::with_capacity(call.args.len());
         for arg in &call.args {
@@ -393,7 +410,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     let text = crate::front::names::source_text(&arg.to_token_stream());
                     return self.cx.error_at(arg, format!("`connect` joins connectors, and `{text}` is {what}: connect a pin, a flange, a heat port or a signal (`r1.p`)"));
                 }
-                Member::NotMember => {
+                Member::Elsewhere => {
                     let text = crate::front::names::source_text(&arg.to_token_stream());
                     match self.lookup(&text).cloned() {
                         None if !text.contains('.') => self.unknown_name(arg, &text),
@@ -427,7 +444,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         match e {
             Expr::Paren(p) => self.member(&p.expr),
             Expr::Path(p) => {
-                let Some(ident) = p.path.get_ident() else { return Member::NotMember };
+                let Some(ident) = p.path.get_ident() else { return Member::Elsewhere };
                 match self.lookup(&ident.to_string()) {
                     Some(
                         b @ (Binding::Instance(_)
@@ -435,7 +452,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                         | Binding::Connector(_)
                         | Binding::Broken),
                     ) => Member::Found(b.clone()),
-                    _ => Member::NotMember,
+                    _ => Member::Elsewhere,
                 }
             }
             Expr::Index(ix) => match self.member(&ix.expr) {
@@ -445,7 +462,10 @@ impl<S: SceneLanguage> Lower<'_, S> {
                         Some(&k) => Member::Found(Binding::Instance(k)),
                         None => {
                             let n = elements.len();
-                            self.cx.error_at(&ix.index, format!("index {i} is out of bounds: the array has {n} instances"));
+                            self.cx.error_at(
+                                &ix.index,
+                                format!("index {i} is out of bounds: the array has {n} instances"),
+                            );
                             Member::Reported
                         }
                     }
@@ -458,7 +478,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     syn::Member::Unnamed(i) => i.index.to_string(),
                 };
                 let base = match (&*f.base, self.member(&f.base)) {
-                    (Expr::Path(p), Member::NotMember) => {
+                    (Expr::Path(p), Member::Elsewhere) => {
                         // A ground's pin: the electrical ground of the
                         // standard library, created when first used.
                         let ground = p.path.get_ident().map(|i| i.to_string());
@@ -471,7 +491,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                             {
                                 return self.joint_flange_connector(j, e);
                             }
-                            _ => return Member::NotMember,
+                            _ => return Member::Elsewhere,
                         }
                     }
                     (_, found) => found,
@@ -488,7 +508,10 @@ impl<S: SceneLanguage> Lower<'_, S> {
                                     Some(s) => format!("; did you mean `{s}`?"),
                                     None => String::new(),
                                 };
-                                let message = format!("`{}`, an instance of `{}`, has no `{name}`{hint}", instance.path, instance.part);
+                                let message = format!(
+                                    "`{}`, an instance of `{}`, has no `{name}`{hint}",
+                                    instance.path, instance.part
+                                );
                                 self.cx.error_at(&f.member, message);
                                 Member::Reported
                             }
@@ -506,23 +529,36 @@ impl<S: SceneLanguage> Lower<'_, S> {
                             }
                         }
                         let message = match (kind.potential(), kind.flow()) {
-                            (Some(p), Some(f)) => format!("`{}` is {} with `{p}` and `{f}`, not `{name}`", connector.path, kind.describe()),
-                            _ => format!("`{}` is {}: use it as a value, without `.{name}`", connector.path, kind.describe()),
+                            (Some(p), Some(f)) => format!(
+                                "`{}` is {} with `{p}` and `{f}`, not `{name}`",
+                                connector.path,
+                                kind.describe()
+                            ),
+                            _ => format!(
+                                "`{}` is {}: use it as a value, without `.{name}`",
+                                connector.path,
+                                kind.describe()
+                            ),
                         };
                         self.cx.error_at(&f.member, message);
                         Member::Reported
                     }
                     Member::Found(Binding::InstanceArray(_)) => {
                         let text = crate::front::names::source_text(&f.base.to_token_stream());
-                        self.cx.error_at(e, format!("`{text}` is an array of instances: index it, `{text}[0].{name}`"));
+                        self.cx.error_at(
+                            e,
+                            format!(
+                                "`{text}` is an array of instances: index it, `{text}[0].{name}`"
+                            ),
+                        );
                         Member::Reported
                     }
                     Member::Found(Binding::Broken) => Member::Found(Binding::Broken),
-                    Member::Found(_) | Member::NotMember => Member::NotMember,
+                    Member::Found(_) | Member::Elsewhere => Member::Elsewhere,
                     Member::Reported => Member::Reported,
                 }
             }
-            _ => Member::NotMember,
+            _ => Member::Elsewhere,
         }
     }
 
@@ -621,7 +657,11 @@ impl<S: SceneLanguage> Lower<'_, S> {
             return Member::Found(Binding::Connector(c));
         }
         let Some(definition) = self.library.get("ground") else { return Member::Reported };
-        let span = at.to_token_stream().into_iter().next().map_or_else(proc_macro2::Span::call_site, |t| t.span());
+        let span = at
+            .to_token_stream()
+            .into_iter()
+            .next()
+            .map_or_else(proc_macro2::Span::call_site, |t| t.span());
         let call: Expr = syn::parse_quote_spanned!(span=> ground());
         let Some(k) = self.instance(name, &definition, &call) else {
             return Member::Reported;
@@ -654,8 +694,17 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 match connector.kind.is_signal() {
                     true => Some(connector.potential),
                     false => {
-                        let (kind, p, f) = (connector.kind, connector.kind.potential(), connector.kind.flow());
-                        let message = format!("`{}` is {}: use `{}.{}` or `{}.{}`", text(), kind.describe(), text(), p.unwrap_or(""), text(), f.unwrap_or(""));
+                        let (kind, p, f) =
+                            (connector.kind, connector.kind.potential(), connector.kind.flow());
+                        let message = format!(
+                            "`{}` is {}: use `{}.{}` or `{}.{}`",
+                            text(),
+                            kind.describe(),
+                            text(),
+                            p.unwrap_or(""),
+                            text(),
+                            f.unwrap_or("")
+                        );
                         self.cx.error_at(e, message);
                         None
                     }
@@ -663,7 +712,13 @@ impl<S: SceneLanguage> Lower<'_, S> {
             }
             Binding::Instance(k) => {
                 let instance = &self.instances[k];
-                let message = format!("`{}` is an instance of `{}`: use one of its variables, `{}.{}`", text(), instance.part, text(), instance.members.first().map_or("v", |(n, _)| n.as_str()));
+                let message = format!(
+                    "`{}` is an instance of `{}`: use one of its variables, `{}.{}`",
+                    text(),
+                    instance.part,
+                    text(),
+                    instance.members.first().map_or("v", |(n, _)| n.as_str())
+                );
                 self.cx.error_at(e, message);
                 None
             }

@@ -89,7 +89,11 @@ pub(crate) fn lower_with<S: SceneLanguage>(
         inits: l.inits,
         invariants: l.invariants,
         non_smooth_calls: l.non_smooth_calls,
-        instances: l.instances.iter().map(|i| InstanceSummary { path: i.path.clone(), part: i.part.clone() }).collect(),
+        instances: l
+            .instances
+            .iter()
+            .map(|i| InstanceSummary { path: i.path.clone(), part: i.part.clone() })
+            .collect(),
         missing_parts: l.missing_parts,
     }
 }

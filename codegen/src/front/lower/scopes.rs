@@ -50,7 +50,14 @@ pub(crate) enum Binding {
     /// `let p = pin();`: a connector.
     Connector(usize),
     /// `let f = |x| ...;`: a function of the model.
-    Function(std::rc::Rc<super::functions::Function>),
+    Function(std::rc::Rc<Function>),
+}
+
+/// A function of the model: its closure and the scopes it captured
+/// (`lower::functions` calls it).
+pub(crate) struct Function {
+    pub(in crate::front) closure: syn::ExprClosure,
+    pub(in crate::front) captured: Vec<HashMap<String, Binding>>,
 }
 
 impl Binding {

@@ -3,6 +3,31 @@
 
 use syn::{BinOp, Expr, Lit};
 
+/// The functions of the language, for suggestions.
+pub(super) const FUNCTIONS: [&str; 21] = [
+    "sin",
+    "cos",
+    "tan",
+    "asin",
+    "acos",
+    "atan",
+    "atan2",
+    "sinh",
+    "cosh",
+    "tanh",
+    "exp",
+    "ln",
+    "sqrt",
+    "abs",
+    "heaviside",
+    "der",
+    "init",
+    "constraint",
+    "invariant",
+    "powi",
+    "powf",
+];
+
 /// `event(g)` and the settings chained after it (`.falling().terminal()`),
 /// innermost first.
 pub(super) fn event_call(e: &Expr) -> Option<(&syn::ExprCall, Vec<&syn::ExprMethodCall>)> {
