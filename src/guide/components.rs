@@ -271,13 +271,13 @@
 //! | `spring_damper(c = 1, d = 1, phi_rel0 = 0)` | `tau = c (phi_rel − phi_rel0) + d dphi_rel/dt` |
 //! | `ideal_gear(ratio = 1)` | `flange_a.phi = ratio flange_b.phi`, `flange_b.tau = −ratio flange_a.tau` |
 //! | `fixed(phi0 = 0)` | `flange.phi = phi0` |
-//! | `constant_torque(tau = 1)`, `torque_source()` (input `u`) | `flange.tau = −tau`, `−u` |
+//! | `torque_source(tau = 1)`, `signal_torque()` (input `u`) | `flange.tau = −tau`, `−u` |
 //! | `speed_sensor()`, `angle_sensor()`, `torque_sensor()` | output `w = dφ/dt`, `phi`, `tau` |
 //!
 //! **Translational**: `mass(m = 1, s0 = 0, v0 = 0)`,
 //! `translational_spring(c = 1, s_rel0 = 0)`, `translational_damper(d = 1)`,
-//! `translational_fixed(s0 = 0)`, `constant_force(force = 1)`,
-//! `force_source()` (input `u`), `position_sensor()` (output `s`), as the
+//! `translational_fixed(s0 = 0)`, `force_source(force = 1)`,
+//! `signal_force()` (input `u`), `position_sensor()` (output `s`), as the
 //! rotational ones with `s`, `v`, `f`.
 //!
 //! **Thermal** (ports `port`, or `port_a`/`port_b`):
@@ -288,7 +288,7 @@
 //! | `thermal_conductor(g = 1)` | `q = g (port_a.t − port_b.t)` |
 //! | `convection(h_a = 1)` | `q = h_a (solid.t − fluid.t)` |
 //! | `fixed_temperature(t = 293.15)` | `port.t = t` |
-//! | `fixed_heat_flow(q = 0)`, `heat_flow_source()` (input `u`) | `port.q = −q`, `−u` |
+//! | `heat_flow_source(q = 0)`, `signal_heat_flow()` (input `u`) | `port.q = −q`, `−u` |
 //! | `temperature_sensor()` | output `t = port.t` |
 //! | `heating_resistor(r = 1, t_ref = 293.15, alpha = 0)` | pins and `heat_port`: `v = r (1 + alpha (T − t_ref)) i`, `heat_port.q = −v i` |
 //!

@@ -39,7 +39,7 @@ fn speed_drive() {
     let motor = dc_motor(k = 0.05);
     let friction = damper(1e-5);
     let housing = fixed();
-    let load = torque_source();
+    let load = signal_torque();
     let load_torque = step(height = -0.02, start_time = 0.3);
     let gnd = ground();
     connect(reference.y, controller.u_s);

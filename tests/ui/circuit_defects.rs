@@ -32,8 +32,8 @@ fn floating_flange() {
     let brake = damper(0.1);
     let housing = fixed();
     let s = spring(10.0);
-    let left = constant_torque(1.0);
-    let right = constant_torque(-1.0);
+    let left = torque_source(1.0);
+    let right = torque_source(-1.0);
     connect(j.flange_b, brake.flange_a);
     connect(brake.flange_b, housing.flange);
     connect(left.flange, s.flange_a);
