@@ -190,3 +190,55 @@ fn aliases_and_tearing_leave_newton_one_variable() {
     });
     insta::assert_snapshot!("tearing", ir.graph.with(&sys).to_string());
 }
+
+/// A voltage source charging a capacitor through a resistor, from the
+/// standard library: the flattened equations under the instances' paths,
+/// then Kirchhoff's equations of the connections.
+#[test]
+fn lower_flattens_components_and_writes_the_connections() {
+    let mut cx = Ctxt::default();
+    let ir = lowered(
+        &mut cx,
+        TokenStream::new(),
+        quote! {
+            fn rc() {
+                let source = constant_voltage(10.0);
+                let r1 = resistor(100.0);
+                let c1 = capacitor(1e-3);
+                let gnd = ground();
+                connect(source.p, r1.p);
+                connect(r1.n, c1.p);
+                connect(c1.n, source.n, gnd.p);
+            }
+        },
+    );
+    insta::assert_snapshot!("components", ir.to_string());
+}
+
+/// A motor's EMF on a rotor joined rigidly to a load: the EMF's shaft
+/// angle, the rotor's and the load's angles and rates tied by the
+/// connections, one angle and one rate left.
+#[test]
+fn tied_states_leave_one_angle_and_one_rate() {
+    let mut cx = Ctxt::default();
+    let mut ir = lowered(
+        &mut cx,
+        TokenStream::new(),
+        quote! {
+            fn shaft() {
+                let supply = constant_voltage(1.0);
+                let emf = emf(0.1);
+                let rotor = inertia(0.01);
+                let load = inertia(0.02);
+                let gnd = ground();
+                connect(supply.p, emf.p);
+                connect(supply.n, emf.n, gnd.p);
+                connect(emf.flange, rotor.flange_a);
+                connect(rotor.flange_b, load.flange_a);
+            }
+        },
+    );
+    daegen_codegen::dae::tied_states::eliminate_tied_states(&mut cx, &mut ir);
+    assert!(cx.is_ok(), "{:?}", cx.messages());
+    insta::assert_snapshot!("tied_states", ir.to_string());
+}
