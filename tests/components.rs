@@ -472,3 +472,28 @@ fn a_motor_turns_a_crank_in_space() {
         }
     }
 }
+
+/// RC charging with the sensitivity of the capacitor's voltage to the
+/// resistance, a parameter of an instance.
+#[dae_model(sensitivities = [r1_r])]
+fn rc_sensitivity() {
+    let source = constant_voltage(10.0);
+    let r1 = resistor(100.0);
+    let c1 = capacitor(1e-3);
+    let gnd = ground();
+    connect(source.p, r1.p);
+    connect(r1.n, c1.p);
+    connect(c1.n, source.n, gnd.p);
+}
+
+#[test]
+fn an_instance_s_parameter_has_its_sensitivity() {
+    // v = V (1 − e^{−t/RC}): ∂v/∂R = −V t / (R² C) e^{−t/RC}.
+    let opts = Options::new().method(Method::Radau5).rtol(1e-10).atol(1e-12);
+    let sol = RcSensitivity::default().with_sensitivities().simulate(0.0, 0.3, &opts).unwrap();
+    for &t in &[0.05f64, 0.1, 0.3] {
+        let exact = -10.0 * t / (100.0 * 100.0 * 1e-3) * (-t / 0.1).exp();
+        let got = sol.sensitivity(t, "c1.v", "r1_r").unwrap();
+        assert!((got - exact).abs() < 1e-7, "t = {t}: {got} vs {exact}");
+    }
+}
