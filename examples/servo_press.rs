@@ -54,7 +54,8 @@ fn servo_press() {
     let l = param(0.4);
     let ground = ground();
     let crank = body(1.0, r * r / 12.0, [0.5 * r * cos(1.0), 0.5 * r * sin(1.0), 1.0]);
-    let slider = body(0.5, 1.0, [r * cos(1.0) + sqrt(l * l - r * r * sin(1.0) * sin(1.0)), 0.0, 0.0]);
+    let slider =
+        body(0.5, 1.0, [r * cos(1.0) + sqrt(l * l - r * r * sin(1.0) * sin(1.0)), 0.0, 0.0]);
     let pivot = revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5 * r, 0.0, 0.0));
     let rod = distance(crank, vec3(0.5 * r, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), l);
     prismatic(ground, vec3(0.0, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0));

@@ -6,13 +6,7 @@ use daegen::prelude::*;
 
 include!("models/drives.rs");
 
-/// `v_c(t)` and `i(t)` of `rlc_series`, exactly.
-fn rlc_exact(t: f64) -> [f64; 2] {
-    let (alpha, wd) = (0.5f64, 3.75f64.sqrt());
-    let vc = 1.0 - (-alpha * t).exp() * ((wd * t).cos() + alpha / wd * (wd * t).sin());
-    let i = (-alpha * t).exp() * (wd * t).sin() / wd;
-    [vc, i]
-}
+include!("models/rlc_exact.rs");
 include!("models/ladders_of_parts.rs");
 
 /// RC charging: a 10 V source through R = 100 Ω into C = 1 mF.
@@ -72,8 +66,17 @@ fn rlc_series_rings_as_the_exact_solution() {
     );
 }
 
-rc_ladder_of_parts!(rc_ladder_of_parts_20, 20);
-rc_ladder_of_tunable_parts!(rc_ladder_of_tunable_parts_20, 20);
+rc_ladder_of_parts!(
+    rc_ladder_of_parts_20,
+    20,
+    {
+        let r = param(1.0);
+        let c = param(1.0);
+    },
+    r,
+    c
+);
+rc_ladder_of_parts!(rc_ladder_of_tunable_parts_20, 20, {}, 1.0, 1.0);
 rc_ladder_flat!(rc_ladder_flat_20, 20);
 
 #[test]

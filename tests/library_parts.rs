@@ -28,7 +28,8 @@ fn a_pushed_mass_on_a_spring_damper_settles_as_the_exact_solution() {
     let (m, c, d, f) = (2.0f64, 8.0, 1.6, 4.0);
     let (a, w0) = (d / (2.0 * m), (c / m).sqrt());
     let wd = (w0 * w0 - a * a).sqrt();
-    let exact = |t: f64| f / c * (1.0 - (-a * t).exp() * ((wd * t).cos() + a / wd * (wd * t).sin()));
+    let exact =
+        |t: f64| f / c * (1.0 - (-a * t).exp() * ((wd * t).cos() + a / wd * (wd * t).sin()));
     let sol = SlidingMass::default().simulate(0.0, 10.0, &tight()).unwrap();
     for &t in &[0.5, 2.0, 10.0] {
         let s = sol.at(t, "sensor.s").unwrap();
@@ -205,7 +206,8 @@ fn a_geared_oscillator_rings_as_the_exact_solution() {
     let (j, c, d, tau) = (0.5f64, 4.0, 0.4, 0.6);
     let (a, w0) = (d / (2.0 * j), (c / j).sqrt());
     let wd = (w0 * w0 - a * a).sqrt();
-    let exact = |t: f64| tau / c * (1.0 - (-a * t).exp() * ((wd * t).cos() + a / wd * (wd * t).sin()));
+    let exact =
+        |t: f64| tau / c * (1.0 - (-a * t).exp() * ((wd * t).cos() + a / wd * (wd * t).sin()));
     let sol = GearedOscillator::default().simulate(0.0, 8.0, &tight()).unwrap();
     for &t in &[0.5, 3.0, 8.0] {
         let phi = sol.at(t, "angle.phi").unwrap();
