@@ -160,7 +160,11 @@
 //! A state a part declares only to differentiate a connector's potential
 //! (an EMF's shaft angle, a damper's relative angle, a speed sensor's
 //! angle) is marked `state(0.0).avoid()`: when the connections tie it to
-//! other states, it is the one eliminated.
+//! other states, it is the one eliminated. Of two tied states the one
+//! kept carries the start: set the start value on the part whose state is
+//! kept (a scene's coordinate, the first inertia of a rigid shaft), or
+//! mark the state whose start you set `state(x0).fixed()`, which a tie
+//! never eliminates while another state will do.
 //!
 //! ## What simplification does with a connected model
 //!

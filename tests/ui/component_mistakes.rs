@@ -21,9 +21,12 @@ fn kinds_that_do_not_match() {
     connect(r1.p, r1.q);
 }
 
-/// A misspelt part.
+/// A misspelt part, and parts declared in a loop.
 #[dae_model]
 fn misspelt_part() {
+    for k in 0..3 {
+        let r = resistor(1.0);
+    }
     let r1 = resistr(1.0);
     let gnd = ground();
     connect(r1.p, gnd.p);

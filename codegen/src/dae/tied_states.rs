@@ -305,8 +305,9 @@ fn is_constant(g: &Graph, c: Id) -> bool {
 }
 
 /// The tie `Σ c_k y_k + b = 0` solved for a state of a component (an
-/// `.avoid()` one first, then one with a numeric coefficient, then the
-/// latest declared): `y = −(Σ_{k≠y} c_k y_k + b) / c_y`.
+/// `.avoid()` one first, never a `.fixed()` one while another will do,
+/// then one with a numeric coefficient, then the latest declared):
+/// `y = −(Σ_{k≠y} c_k y_k + b) / c_y`.
 fn solve_for_component_state(
     ir: &mut ModelIr,
     tie: &Linear,
@@ -323,7 +324,7 @@ fn solve_for_component_state(
     };
     // A numeric coefficient is best; a parameter's (a gear's ratio) is
     // divided by, as the physics does.
-    let mut best: Option<((bool, bool, usize), SymbolId, Id)> = None;
+    let mut best: Option<((bool, bool, bool, usize), SymbolId, Id)> = None;
     for &(y, c) in &tie.terms {
         let Some(k) = ir.states.iter().position(|s| s.symbol == y) else { continue };
         let decl = &ir.states[k];
@@ -331,7 +332,8 @@ fn solve_for_component_state(
         if !(in_component(&decl.name) || decl.avoid) || numeric == Some(false) {
             continue;
         }
-        let key = (decl.avoid && !decl.fixed, numeric.is_some(), k);
+        // A `.fixed()` state keeps its start value: it stays.
+        let key = (decl.avoid && !decl.fixed, !decl.fixed, numeric.is_some(), k);
         if best.as_ref().is_none_or(|(b, _, _)| key > *b) {
             best = Some((key, y, c));
         }

@@ -156,3 +156,46 @@ fn respan(tokens: TokenStream, span: Span) -> TokenStream {
 pub fn path_text(path: &syn::Path) -> String {
     path.to_token_stream().to_string().chars().filter(|c| !c.is_whitespace()).collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_library_parses_and_every_part_checks() {
+        let library = Definitions::standard_library();
+        let written = LIBRARY_SOURCE.lines().filter(|l| l.starts_with("fn ")).count();
+        assert_eq!(library.paths().count(), written);
+        for path in library.paths() {
+            let mut cx = crate::front::ctxt::Ctxt::default();
+            let part = library.get(path).expect("listed");
+            let missing =
+                crate::front::lower::check_component::<crate::mechanics::Scene>(&mut cx, part);
+            assert!(
+                cx.is_ok() && missing.is_empty(),
+                "{path}: {:?}, {} parts missing",
+                cx.messages(),
+                missing.len()
+            );
+        }
+    }
+
+    #[test]
+    fn a_bundle_reads_back_as_written() {
+        let item: syn::ItemFn = syn::parse_quote! {
+            fn motor() { let r = param(1.0); let k = param(0.1); let p = pin(); }
+        };
+        let inner: syn::ItemFn = syn::parse_quote! { fn rotor() { let j = param(2.0); } };
+        let mut parts = Definitions::default();
+        parts.insert(
+            "parts :: rotor".into(),
+            Definition { item: inner, parts: Rc::default(), library: false },
+        );
+        let definition = Definition { item, parts: Rc::new(parts), library: false };
+        let tokens = definition.bundle();
+        let read = syn::parse::Parser::parse2(Definition::parse_bundle, tokens.clone()).unwrap();
+        assert_eq!(read.bundle().to_string(), tokens.to_string());
+        assert_eq!(read.params(), ["r", "k"]);
+        assert!(read.parts.get("parts::rotor").is_some());
+    }
+}

@@ -92,6 +92,10 @@ impl<S: SceneLanguage> Lower<'_, S> {
     /// these (handled, or reported).
     pub(in crate::front) fn instance_statement(&mut self, ident: &syn::Ident, e: &Expr) -> bool {
         if let Some(definition) = self.part(e) {
+            if self.in_loop() {
+                self.cx.error_at(e, format!("declare parts outside loops: each iteration would declare `{ident}` again; an array of parts is `let {ident} = [part(..); N];` or `(0..N).map(|k| part(..))`"));
+                return true;
+            }
             if self.already_declared(ident) {
                 return true;
             }
