@@ -300,6 +300,11 @@ fn integrated(ir: &mut ModelIr, linear: &Linear) -> crate::Result<Option<Linear>
     Ok(Some(Linear { terms, constant }))
 }
 
+/// Which state of a tie goes: `.avoid()` and not `.fixed()`, not
+/// `.fixed()`, a numeric coefficient, the declaration's position; the
+/// largest goes.
+type Preference = (bool, bool, bool, usize);
+
 fn is_constant(g: &Graph, c: Id) -> bool {
     g.free_symbols(c).iter().all(|&s| g.symbol(s).kind == SymbolKind::Parameter)
 }
@@ -324,7 +329,7 @@ fn solve_for_component_state(
     };
     // A numeric coefficient is best; a parameter's (a gear's ratio) is
     // divided by, as the physics does.
-    let mut best: Option<((bool, bool, bool, usize), SymbolId, Id)> = None;
+    let mut best: Option<(Preference, SymbolId, Id)> = None;
     for &(y, c) in &tie.terms {
         let Some(k) = ir.states.iter().position(|s| s.symbol == y) else { continue };
         let decl = &ir.states[k];
