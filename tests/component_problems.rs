@@ -14,8 +14,10 @@ mod support;
 
 use support::harness::{run_every_method, Problem};
 
-/// The RLC circuit's state against the exact ringing at t = 10, and the
-/// drive's against its exact steady state at t = 20.
+/// The RLC circuit's state against the exact ringing at t = 10, the
+/// drive's and the wall's against their exact steady states, the heating
+/// resistor's against its exact exponential, and the geared slider-crank
+/// against the same machine written flat.
 #[test]
 fn every_method_runs_every_connected_model() {
     let mut tables = Vec::new();
@@ -72,6 +74,97 @@ fn every_method_runs_every_connected_model() {
             gmres: false,
         }),
         "speed_drive",
+    );
+    add(
+        run_every_method(&Problem {
+            name: "heating_up",
+            model: HeatingUp::default(),
+            t1: 200.0,
+            error: |s| {
+                // C T' = I² R0 (1 + α (T − T_ref)) − G (T − T_amb): linear.
+                let (lambda, b) = (
+                    (4.0 * 10.0 * 0.004 - 1.5) / 50.0,
+                    (4.0 * 10.0 * (1.0 - 0.004 * 293.15) + 1.5 * 293.15) / 50.0,
+                );
+                let t_star = -b / lambda;
+                let exact = t_star + (293.15 - t_star) * (lambda * 200.0f64).exp();
+                support::mixed_error(&[s.last("body.t").unwrap_or(f64::NAN)], &[exact], 1.0)
+            },
+            tolerances: &[1e-6, 1e-8, 1e-10],
+            atol_scale: 1.0,
+            // A single decaying mode: errors shrink as e^(λ t).
+            bound: 10.0,
+            // 1/|λ| = 37 s.
+            time_scale: 37.0,
+            settled_time_scale: None,
+            stiffness: 0.027,
+            gmres: false,
+        }),
+        "heating_up",
+    );
+    add(
+        run_every_method(&Problem {
+            name: "thermal_wall",
+            model: ThermalWall::default(),
+            t1: 1e5,
+            error: |s| {
+                // The series-conduction profile at rest.
+                let g = [2.0, 5.0, 1.0, 4.0, 3.0];
+                let q = 40.0 / g.iter().map(|g| 1.0 / g).sum::<f64>();
+                let mut t = 313.15;
+                let mut exact = Vec::new();
+                let mut got = Vec::new();
+                for k in 0..4 {
+                    t -= q / g[k];
+                    exact.push(t);
+                    got.push(s.last(&format!("layers[{k}].t")).unwrap_or(f64::NAN));
+                }
+                support::mixed_error(&got, &exact, 1.0)
+            },
+            tolerances: &[1e-6, 1e-8, 1e-10],
+            atol_scale: 1.0,
+            // Decaying modes only.
+            bound: 10.0,
+            // The fastest layer: c / (g_left + g_right) = 500 / 7 ≈ 70 s.
+            time_scale: 70.0,
+            // Settled after a few slowest time constants (about 2000 s):
+            // ρ(J) = 0.014 against 1e5 s of rest is stiff.
+            settled_time_scale: Some(1e5),
+            stiffness: 0.014,
+            gmres: false,
+        }),
+        "thermal_wall",
+    );
+    add(
+        run_every_method(&Problem {
+            name: "geared_slider_crank",
+            model: GearedSliderCrankGlobal::default(),
+            t1: 0.5,
+            error: |s| {
+                // The same machine written flat, in its crank angle.
+                let opts = Options::new().method(Method::Radau5).rtol(1e-12).atol(1e-12);
+                let flat = GearedSliderCrankFlat::default().simulate(0.0, 0.5, &opts);
+                let Ok(flat) = flat else { return f64::NAN };
+                let reference =
+                    [flat.last("phi").unwrap_or(f64::NAN), flat.last("i").unwrap_or(f64::NAN)];
+                let got = [
+                    s.last("crank.theta").unwrap_or(f64::NAN),
+                    s.last("motor.winding.i").unwrap_or(f64::NAN),
+                ];
+                support::mixed_error(&got, &reference, 1.0)
+            },
+            tolerances: &[1e-6, 1e-8, 1e-10],
+            atol_scale: 1.0,
+            // A driven mechanism: errors grow slowly with the crank's turns.
+            bound: 1e3,
+            // The winding: L/R = 10 ms.
+            time_scale: 0.01,
+            settled_time_scale: None,
+            // R/L = 100 s⁻¹.
+            stiffness: 100.0,
+            gmres: false,
+        }),
+        "geared_slider_crank",
     );
     assert!(beyond.is_empty(), "{beyond:#?}");
     for (name, table) in tables {

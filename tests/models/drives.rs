@@ -1,5 +1,6 @@
 // Models built from components, with the same physics written flat by
-// hand: shared by the component tests and the benchmark.
+// hand where there is one: shared by the component tests and the
+// benchmark.
 
 /// A permanent-magnet DC motor: armature resistance and inductance, the
 /// EMF, and the rotor's inertia, between two pins and a shaft.
@@ -105,4 +106,103 @@ fn rlc_series_flat() {
     let vc = state(0.0);
     l * der(i) == v - r * i - vc;
     c * der(vc) == i;
+}
+
+/// A wall of four layers between 40 °C inside and 0 °C outside: each
+/// layer a heat capacity, conductances between them and to either side.
+#[dae_model]
+fn thermal_wall() {
+    const LAYERS: usize = 4;
+    let g = [2.0, 5.0, 1.0, 4.0, 3.0];
+    let inside = fixed_temperature(313.15);
+    let outside = fixed_temperature(273.15);
+    let layers = (0..LAYERS).map(|k| heat_capacitor(c = 500.0 * (1.0 + k as f64), t0 = 293.15));
+    let conductors = (0..LAYERS + 1).map(|k| thermal_conductor(g[k]));
+    connect(inside.port, conductors[0].port_a);
+    for k in 0..LAYERS {
+        connect(conductors[k].port_b, layers[k].port);
+        connect(layers[k].port, conductors[k + 1].port_a);
+    }
+    connect(conductors[LAYERS].port_b, outside.port);
+}
+
+/// A resistor heating up: 2 A through R(T) = 10 Ω (1 + 0.004/K (T − 20 °C)),
+/// its losses into a heat capacity of 50 J/K that convects 1.5 W/K to
+/// 20 °C air.
+#[dae_model]
+fn heating_up() {
+    let source = constant_current(2.0);
+    let heater = heating_resistor(r = 10.0, t_ref = 293.15, alpha = 0.004);
+    let body = heat_capacitor(c = 50.0, t0 = 293.15);
+    let air = convection(1.5);
+    let ambient = fixed_temperature(293.15);
+    let gnd = ground();
+    connect(source.n, heater.p);
+    connect(heater.n, source.p, gnd.p);
+    connect(heater.heat_port, body.port, air.solid);
+    connect(air.fluid, ambient.port);
+}
+
+/// `geared_slider_crank!(name, (attributes))`: the DC motor above, on
+/// 12 V, turning the slider-crank of the scene tests (crank r = 0.15 of
+/// mass 1 about the origin, rod l = 0.4, slider 0.5 on the x axis, from
+/// θ = 1 at rest) through a 10:1 gear on its pivot's flange.
+macro_rules! geared_slider_crank {
+    ($name:ident, ($($attr:tt)*)) => {
+        #[dae_model($($attr)*)]
+        fn $name() {
+            let r = param(0.15);
+            let l = param(0.4);
+            let m1 = param(1.0);
+            let m2 = param(0.5);
+            let ground = ground();
+            // The poses at θ = 1 with every joint closed.
+            let crank = body(m1, m1 * r * r / 12.0, [0.5 * r * cos(1.0), 0.5 * r * sin(1.0), 1.0]);
+            let slider = body(m2, 1.0, [r * cos(1.0) + sqrt(l * l - r * r * sin(1.0) * sin(1.0)), 0.0, 0.0]);
+            let pivot = revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5 * r, 0.0, 0.0));
+            let rod = distance(crank, vec3(0.5 * r, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), l);
+            prismatic(ground, vec3(0.0, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0));
+            gravity(vec3(0.0, -9.81, 0.0));
+            let supply = constant_voltage(12.0);
+            let motor = dc_motor(r = 1.0, l = 0.01, k = 0.05, j = 1e-5);
+            let gear = ideal_gear(10.0);
+            connect(supply.p, motor.p);
+            connect(supply.n, motor.n, ground.p);
+            connect(motor.shaft, gear.flange_a);
+            connect(gear.flange_b, pivot.flange);
+        }
+    };
+}
+
+geared_slider_crank!(geared_slider_crank_global, ());
+geared_slider_crank!(geared_slider_crank_recursive, (scene = recursive));
+
+/// The same machine written flat: the slider-crank in its crank angle φ
+/// (Lagrange, as `slider_crank_angle` in the scene tests) with the rotor's
+/// inertia reflected through the gear, `J_m n²`, and the motor's torque
+/// `n k i`; the winding `L di/dt = V − R i − k n φ'`.
+#[dae_model]
+fn geared_slider_crank_flat() {
+    let r = param(0.15);
+    let l = param(0.4);
+    let m1 = param(1.0);
+    let m2 = param(0.5);
+    let g = param(9.81);
+    let n = 10.0;
+    let k = 0.05;
+    let jm = 1e-5;
+    let ra = 1.0;
+    let la = 0.01;
+    let v = 12.0;
+    let phi = state(1.0);
+    init(der(phi), 0.0);
+    let i = state(0.0);
+    let s = sin(phi);
+    let c = cos(phi);
+    let w = sqrt(l * l - r * r * s * s);
+    let f = -r * s - r * r * s * c / w;
+    let fp = -r * c - r * r * (c * c - s * s) / w - r * r * r * r * s * s * c * c / (w * w * w);
+    (m1 * r * r / 3.0 + m2 * f * f + jm * n * n) * der(der(phi))
+        == -m2 * f * fp * der(phi) * der(phi) - m1 * g * 0.5 * r * c + n * k * i;
+    la * der(i) == v - ra * i - k * n * der(phi);
 }
