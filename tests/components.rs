@@ -401,3 +401,43 @@ fn an_instance_s_parameter_has_its_sensitivity() {
         assert!((got - exact).abs() < 1e-7, "t = {t}: {got} vs {exact}");
     }
 }
+
+/// A heater of the user's own that reports its power and stops the run
+/// when its body reaches a temperature: outputs and events in a part.
+#[component]
+fn guarded_heater() {
+    /// Power (W).
+    let power = param(10.0);
+    /// Temperature that ends the run (K).
+    let limit = param(320.0);
+    let port = heat_port();
+    let body = heat_capacitor(c = 100.0, t0 = 300.0);
+    let source = heat_flow_source(power);
+    connect(source.port, body.port, port);
+    /// Heat stored above the start (J).
+    let stored = output(100.0 * (body.t - 300.0));
+    let too_hot = event(body.t - limit).rising().terminal();
+}
+
+#[dae_model]
+fn guarded_heating() {
+    let heater = guarded_heater(power = 20.0);
+    let loss = thermal_conductor(0.5);
+    let air = fixed_temperature(300.0);
+    connect(heater.port, loss.port_a);
+    connect(loss.port_b, air.port);
+}
+
+#[test]
+fn a_part_s_outputs_and_events_read_by_their_paths() {
+    // 100 T' = 20 − 0.5 (T − 300): T = 300 + 40 (1 − e^{−t/200}), which
+    // reaches 320 at t = 200 ln 2.
+    let opts = Options::new().method(Method::Dop853).rtol(1e-12).atol(1e-12);
+    let sol = GuardedHeating::default().simulate(0.0, 1000.0, &opts).unwrap();
+    let t_end = 200.0 * 2f64.ln();
+    let end = *sol.times().last().unwrap();
+    assert!((end - t_end).abs() < 1e-8, "stopped at {end}");
+    assert_eq!(sol.events()[0].name, "heater.too_hot");
+    assert!((sol.last("heater.stored").unwrap() - 2000.0).abs() < 1e-6);
+    assert_eq!(<GuardedHeating as Model>::INFO.events[0].name, "heater.too_hot");
+}

@@ -204,6 +204,12 @@ fn expand_component_with(attr: TokenStream, item: TokenStream, parts: Definition
     if !item.sig.inputs.is_empty() {
         cx.error_at(&item.sig.inputs, "a component takes no arguments: declare its parameters with `let r = param(1.0);`, which a call sets in order or by name");
     }
+    if let syn::ReturnType::Type(_, ty) = &item.sig.output {
+        cx.error_at(
+            ty,
+            "a component returns nothing: its connectors and variables are what it offers",
+        );
+    }
     let definition =
         Rc::new(Definition { item: item.clone(), parts: Rc::new(parts), library: false });
     let missing = crate::front::lower::check_component::<crate::mechanics::Scene>(

@@ -41,6 +41,15 @@ fn leaky_part() {
     p.v - n.v == leakage * p.i;
 }
 
+/// Arguments and a return type, as a Rust function would have.
+#[component]
+fn resistor_with_arguments(r: f64) -> f64 {
+    let p = pin();
+    let n = pin();
+    p.v - n.v == r * p.i;
+    p.i + n.i == 0.0;
+}
+
 /// Two outputs joined: a signal has one source.
 #[dae_model]
 fn two_sources_for_one_signal() {
