@@ -254,6 +254,15 @@ impl<S: SceneLanguage> Lower<'_, S> {
             parts: std::mem::replace(&mut self.parts, definition.parts.clone()),
             integer_names: std::mem::take(&mut self.integer_names),
         };
+        // A part written with Rust arguments is refused where it is
+        // defined; its body's uses of them stay quiet.
+        for input in &item.sig.inputs {
+            if let syn::FnArg::Typed(t) = input {
+                if let syn::Pat::Ident(p) = &*t.pat {
+                    self.rebind(&p.ident, Binding::Broken);
+                }
+            }
+        }
         for stmt in &item.block.stmts {
             self.stmt(stmt);
         }
