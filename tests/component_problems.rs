@@ -149,7 +149,7 @@ fn every_method_runs_every_connected_model() {
                     [flat.last("phi").unwrap_or(f64::NAN), flat.last("i").unwrap_or(f64::NAN)];
                 let got = [
                     s.last("crank.theta").unwrap_or(f64::NAN),
-                    s.last("motor.winding.i").unwrap_or(f64::NAN),
+                    s.last("drive.motor.winding.i").unwrap_or(f64::NAN),
                 ];
                 support::mixed_error(&got, &reference, 1.0)
             },

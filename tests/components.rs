@@ -9,17 +9,24 @@ include!("models/drives.rs");
 include!("models/rlc_exact.rs");
 include!("models/ladders_of_parts.rs");
 
-/// RC charging: a 10 V source through R = 100 Ω into C = 1 mF.
-#[dae_model]
-fn rc_charging() {
-    let source = constant_voltage(10.0);
-    let r1 = resistor(100.0);
-    let c1 = capacitor(1e-3);
-    let gnd = ground();
-    connect(source.p, r1.p);
-    connect(r1.n, c1.p);
-    connect(c1.n, source.n, gnd.p);
+/// `rc_charging!(name, (attributes))`: RC charging, a 10 V source
+/// through R = 100 Ω into C = 1 mF.
+macro_rules! rc_charging {
+    ($name:ident, ($($attr:tt)*)) => {
+        #[dae_model($($attr)*)]
+        fn $name() {
+            let source = constant_voltage(10.0);
+            let r1 = resistor(100.0);
+            let c1 = capacitor(1e-3);
+            let gnd = ground();
+            connect(source.p, r1.p);
+            connect(r1.n, c1.p);
+            connect(c1.n, source.n, gnd.p);
+        }
+    };
 }
+
+rc_charging!(rc_charging, ());
 
 #[test]
 fn rc_charging_follows_the_exponential() {
@@ -205,11 +212,11 @@ fn a_motor_turns_a_slider_crank_through_a_gear_in_both_formulations() {
         for (name, sol, angle) in
             [("global", &global, "crank.theta"), ("recursive", &recursive, "pivot.q")]
         {
-            let (a, b) = (sol.at(t, angle).unwrap(), sol.at(t, "motor.winding.i").unwrap());
+            let (a, b) = (sol.at(t, angle).unwrap(), sol.at(t, "drive.motor.winding.i").unwrap());
             assert!((a - phi).abs() < 1e-6, "{name} t = {t}: θ {a} vs {phi}");
             assert!((b - i).abs() < 1e-6, "{name} t = {t}: i {b} vs {i}");
             // The rotor turns n times the crank.
-            let rotor = sol.at(t, "motor.rotor.phi").unwrap();
+            let rotor = sol.at(t, "drive.motor.rotor.phi").unwrap();
             assert!((rotor - 10.0 * a).abs() < 1e-9, "{name}: rotor {rotor}");
         }
     }
@@ -321,13 +328,8 @@ macro_rules! geared_spatial_crank {
             );
             let hinge = revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5 * r, 0.0, 0.0), vec3(0.0, 0.0, 1.0));
             gravity(vec3(0.0, -9.81, 0.0));
-            let supply = constant_voltage(12.0);
-            let motor = dc_motor(r = 1.0, l = 0.01, k = 0.05, j = 1e-5);
-            let gear = ideal_gear(10.0);
-            connect(supply.p, motor.p);
-            connect(supply.n, motor.n, ground.p);
-            connect(motor.shaft, gear.flange_a);
-            connect(gear.flange_b, hinge.flange);
+            let drive = geared_drive();
+            connect(drive.shaft, hinge.flange);
         }
     };
 }
@@ -361,34 +363,25 @@ fn a_motor_turns_a_crank_in_space() {
     // rate and the EMF's are tied to the hinge's through the gear.
     assert_eq!(
         <GearedSpatialCrankRecursive as Model>::INFO.states,
-        ["motor.winding.i", "hinge.q", "der(hinge.q)"]
+        ["drive.motor.winding.i", "hinge.q", "der(hinge.q)"]
     );
     for t in [0.05, 0.2, 0.5] {
         let (phi, i) = (flat.at(t, "phi").unwrap(), flat.at(t, "i").unwrap());
         for (name, sol) in [("global", &global), ("recursive", &recursive)] {
             // The hinge's flange turns from where the crank started.
             let a = sol.at(t, "hinge.angle").unwrap() + 1.0;
-            let b = sol.at(t, "motor.winding.i").unwrap();
+            let b = sol.at(t, "drive.motor.winding.i").unwrap();
             assert!((a - phi).abs() < 1e-6, "{name} t = {t}: θ {a} vs {phi}");
             assert!((b - i).abs() < 1e-6, "{name} t = {t}: i {b} vs {i}");
-            let rotor = sol.at(t, "motor.rotor.phi").unwrap();
+            let rotor = sol.at(t, "drive.motor.rotor.phi").unwrap();
             assert!((rotor - 10.0 * (a - 1.0)).abs() < 1e-9, "{name}: rotor {rotor}");
         }
     }
 }
 
-/// RC charging with the sensitivity of the capacitor's voltage to the
-/// resistance, a parameter of an instance.
-#[dae_model(sensitivities = [r1_r])]
-fn rc_sensitivity() {
-    let source = constant_voltage(10.0);
-    let r1 = resistor(100.0);
-    let c1 = capacitor(1e-3);
-    let gnd = ground();
-    connect(source.p, r1.p);
-    connect(r1.n, c1.p);
-    connect(c1.n, source.n, gnd.p);
-}
+// RC charging with the sensitivity of the capacitor's voltage to the
+// resistance, a parameter of an instance.
+rc_charging!(rc_sensitivity, (sensitivities = [r1_r]));
 
 #[test]
 fn an_instance_s_parameter_has_its_sensitivity() {

@@ -143,6 +143,21 @@ fn heating_up() {
     connect(air.fluid, ambient.port);
 }
 
+/// The DC motor on 12 V behind a 10:1 gear, its output the flange
+/// `shaft`.
+#[component]
+fn geared_drive() {
+    let supply = constant_voltage(12.0);
+    let motor = dc_motor(r = 1.0, l = 0.01, k = 0.05, j = 1e-5);
+    let gear = ideal_gear(10.0);
+    let gnd = ground();
+    let shaft = flange();
+    connect(supply.p, motor.p);
+    connect(supply.n, motor.n, gnd.p);
+    connect(motor.shaft, gear.flange_a);
+    connect(gear.flange_b, shaft);
+}
+
 /// `geared_slider_crank!(name, (attributes))`: the DC motor above, on
 /// 12 V, turning the slider-crank of the scene tests (crank r = 0.15 of
 /// mass 1 about the origin, rod l = 0.4, slider 0.5 on the x axis, from
@@ -163,13 +178,8 @@ macro_rules! geared_slider_crank {
             let rod = distance(crank, vec3(0.5 * r, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), l);
             prismatic(ground, vec3(0.0, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0));
             gravity(vec3(0.0, -9.81, 0.0));
-            let supply = constant_voltage(12.0);
-            let motor = dc_motor(r = 1.0, l = 0.01, k = 0.05, j = 1e-5);
-            let gear = ideal_gear(10.0);
-            connect(supply.p, motor.p);
-            connect(supply.n, motor.n, ground.p);
-            connect(motor.shaft, gear.flange_a);
-            connect(gear.flange_b, pivot.flange);
+            let drive = geared_drive();
+            connect(drive.shaft, pivot.flange);
         }
     };
 }
