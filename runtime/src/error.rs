@@ -16,6 +16,8 @@
 //! | [`Error::MaxSteps`] | more steps than `Options::max_steps` | raise the limit; a stiff method if the problem is stiff | `tests/nonstiff.rs` `a_stiff_problem_hits_the_step_limit_with_a_clear_error` |
 //! | [`Error::Constraint`] | inconsistent initial values projection cannot repair, redundant constraints, a singular constraint Jacobian (a mechanism at a dead point) | consistent initial values, remove the redundant joint, avoid the singular configuration | `tests/dae.rs` `unrepairable_or_redundant_constraints_are_errors_that_name_the_constraint` |
 //! | [`Error::EventChatter`] | a terminal event fires again within ~1e-13 (relative) of the start: restarts at its crossings make no progress (Zeno) | stop the restarts there, e.g. below a rebound speed | `tests/events.rs` `restarting_at_accumulating_bounces_ends_in_a_chatter_error_at_the_zeno_time` |
+//! | [`Error::ZenoEvents`] | an event fires again within `Options::min_event_interval` of its last firing: its firings accumulate (a bouncing ball coming to rest) | a terminal event or a mode that holds the rest state; the message says where they accumulate | `tests/hybrid.rs` `bounces_accumulate_at_the_zeno_time` |
+//! | [`Error::EventLoop`] | the actions at one instant fire further events round after round, more than `MAX_EVENT_ITERATIONS` times | conditions that hold after their own actions | `tests/hybrid.rs` `actions_that_fire_each_other_forever_are_an_error` |
 //! | [`Error::NonFiniteParameter`] | a parameter field is NaN or ±∞ | a finite value | `tests/models.rs` `bad_requests_are_errors_not_panics` |
 //! | [`Error::DegenerateParameters`] | a parameter value zeroes a coefficient the macro divided by to combine the equations (a capacitance of 0) | a nonzero value | `tests/implicit_daes.rs` `a_capacitance_of_zero_changes_the_rank_and_is_refused` |
 //! | [`Error::NonFiniteInitialValue`] | an initial value is NaN or ±∞ | a finite value | `tests/models.rs` `bad_requests_are_errors_not_panics` |
@@ -137,6 +139,33 @@ pub enum Error {
         /// The run up to it.
         partial: Box<Solution>,
     },
+    /// An event fired again sooner than
+    /// [`crate::Options::min_event_interval`] after its last firing: its
+    /// firings accumulate (Zeno behaviour: a ball whose bounces shorten
+    /// geometrically comes to rest after infinitely many in finite time).
+    ZenoEvents {
+        /// The time of the last firing.
+        t: f64,
+        /// The event, by name.
+        event: &'static str,
+        /// Where the firings accumulate, extrapolated from the last three
+        /// (Aitken's Δ²: a geometric series of intervals sums exactly).
+        accumulation: f64,
+        /// How often it fired.
+        count: usize,
+        /// The run up to the last firing, its actions applied.
+        partial: Box<Solution>,
+    },
+    /// Actions at one instant kept firing further events: after
+    /// [`crate::MAX_EVENT_ITERATIONS`] rounds the state still changes.
+    EventLoop {
+        /// The instant.
+        t: f64,
+        /// The events and clocks that fired in the last round.
+        events: Vec<&'static str>,
+        /// The run up to the instant, before its actions.
+        partial: Box<Solution>,
+    },
     /// A parameter of the model is NaN or infinite.
     NonFiniteParameter {
         /// The parameter, by name.
@@ -219,6 +248,8 @@ macro_rules! with_partial {
             | Error::NewtonFailure { $partial, .. }
             | Error::SingularMatrix { $partial, .. }
             | Error::EventChatter { $partial, .. }
+            | Error::ZenoEvents { $partial, .. }
+            | Error::EventLoop { $partial, .. }
             | Error::Constraint { $partial, .. } => Some($found),
             _ => None,
         }
@@ -318,6 +349,16 @@ impl fmt::Display for Error {
             Error::EventChatter { t, event, after, .. } => write!(
                 f,
                 "event `{event}` fired again {after:e} after the start, at t = {t}: its crossings accumulate there (Zeno behaviour); stop restarting at this point, e.g. once the rebound speed or the time between events falls below a threshold"
+            ),
+            Error::ZenoEvents { t, event, accumulation, count, .. } => write!(
+                f,
+                "event `{event}` fired {count} times, the last at t = {t}, and its firings accumulate at t = {accumulation} (Zeno behaviour): stop the run there with a terminal event, or model what happens at rest (a `discrete` mode that holds the body still); Options::min_event_interval sets how close firings may be"
+            ),
+            Error::EventLoop { t, events, .. } => write!(
+                f,
+                "at t = {t} the actions keep firing events after {} rounds (last: `{}`): the actions undo each other; make one of the conditions hold after its own action",
+                crate::MAX_EVENT_ITERATIONS,
+                events.join("`, `")
             ),
             Error::NonFiniteParameter { parameter, value } => write!(
                 f,

@@ -84,7 +84,8 @@ pub enum EventDirection {
 }
 
 /// An event declared with `let name = event(g)`: the run notes the times
-/// where `g(t, y)` crosses zero (and stops at the first if it is terminal).
+/// where `g(t, y)` crosses zero, applies the event's actions there
+/// (`.reinit(..)`), and stops at the first if it is terminal.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct EventInfo {
     /// The `let` name.
@@ -93,7 +94,23 @@ pub struct EventInfo {
     pub direction: EventDirection,
     /// The run stops at the first crossing.
     pub terminal: bool,
+    /// The states and discrete values its actions set, in order (empty:
+    /// the event only marks the time).
+    pub resets: &'static [&'static str],
     /// The event's doc comment.
+    pub doc: &'static str,
+}
+
+/// A clock declared with `let name = every(h).offset(t0).reinit(..)`: its
+/// actions at the instants `t0 + k·h`, which every method steps to
+/// exactly ([`crate::Model::clock`] gives `h` and `t0`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ClockInfo {
+    /// The `let` name.
+    pub name: &'static str,
+    /// The states and discrete values its actions set, in order.
+    pub resets: &'static [&'static str],
+    /// The clock's doc comment.
     pub doc: &'static str,
 }
 
@@ -177,6 +194,11 @@ pub struct ModelInfo {
     pub equations: usize,
     /// Events (`let e = event(g)`), in declaration order.
     pub events: &'static [EventInfo],
+    /// Clocks (`let tick = every(h)`), in declaration order.
+    pub clocks: &'static [ClockInfo],
+    /// The states that are discrete values (`discrete(v0)`): constant
+    /// between events, set only by actions.
+    pub discrete: &'static [&'static str],
     /// Algebraic variables (`let z = algebraic(guess)`), computed from the
     /// states at each point; read them by name like outputs.
     pub algebraics: &'static [&'static str],
@@ -218,6 +240,8 @@ impl ModelInfo {
             output_docs: &[],
             equations,
             events: &[],
+            clocks: &[],
+            discrete: &[],
             algebraics: &[],
             algebraic_docs: &[],
             structure: StructureInfo::NONE,
@@ -245,4 +269,12 @@ pub struct ProjectionLevel {
     pub rows: &'static [usize],
     /// Indices of the corrected states, ascending.
     pub slots: &'static [usize],
+}
+
+impl ModelInfo {
+    /// Whether a run of the model has instants where something acts: an
+    /// event with actions, or a clock.
+    pub fn is_hybrid(&self) -> bool {
+        !self.clocks.is_empty() || self.events.iter().any(|e| !e.resets.is_empty())
+    }
 }

@@ -45,14 +45,14 @@ pub use step::control as step_control;
 pub use ensemble::{Batch, Ensemble, FinalState, FinalStates, Shard};
 pub use error::Error;
 pub use info::{
-    BlockInfo, BlockSolution, ComponentInfo, ConstraintInfo, EvalError, EventDirection, EventInfo,
-    ModelInfo, ProjectionLevel, StructureInfo,
+    BlockInfo, BlockSolution, ClockInfo, ComponentInfo, ConstraintInfo, EvalError, EventDirection,
+    EventInfo, ModelInfo, ProjectionLevel, StructureInfo,
 };
 pub use model::{Availability, Jacobian, MassMatrix, Model, StateVector};
 /// The linear-algebra crate of [`kinematics`], re-exported so users get the
 /// same version.
 pub use nalgebra;
 pub use options::{Flow, Formulation, LinearSolver, Method, Options, Step};
-pub use run::{simulate, simulate_from, Simulate};
+pub use run::{simulate, simulate_from, Simulate, MAX_EVENT_ITERATIONS};
 pub use solution::table::Table;
-pub use solution::{EventHit, InitialCorrection, Solution, Stats};
+pub use solution::{EventHit, InitialCorrection, Jump, Solution, Stats};

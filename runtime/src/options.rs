@@ -172,6 +172,9 @@ pub struct Options {
     pub(crate) output_times: Option<Arc<[f64]>>,
     pub(crate) on_step: Option<StepCallback>,
     pub(crate) progress: bool,
+    /// The least time between two firings of one event before the run
+    /// counts them as accumulating (`None`: 1e-10 of the run's length).
+    pub(crate) min_event_interval: Option<f64>,
 }
 
 impl std::fmt::Debug for Options {
@@ -229,6 +232,7 @@ impl PartialEq for Options {
             && self.output_times == other.output_times
             && same_callback
             && self.progress == other.progress
+            && self.min_event_interval == other.min_event_interval
     }
 }
 
@@ -300,6 +304,7 @@ impl Default for Options {
             output_times: None,
             on_step: None,
             progress: false,
+            min_event_interval: None,
         }
     }
 }
@@ -351,6 +356,16 @@ impl Options {
     /// [`crate::Error::StepSizeUnderflow`] (default 0: only the precision of t limits it).
     pub fn min_step(&self, h: f64) -> Options {
         Options { min_step: h, ..self.clone() }
+    }
+
+    /// The bound on events per unit time: an event that fires again within
+    /// `dt` of its last firing ends the run with
+    /// [`crate::Error::ZenoEvents`], which says where its firings
+    /// accumulate (a ball bouncing ever lower on a floor). By default 1e-10
+    /// of the run's length. Clocks are not counted: their instants are
+    /// their own.
+    pub fn min_event_interval(&self, dt: f64) -> Options {
+        Options { min_event_interval: Some(dt), ..self.clone() }
     }
 
     /// Most steps a run may take before it stops with [`crate::Error::MaxSteps`].

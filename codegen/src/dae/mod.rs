@@ -10,6 +10,7 @@
 //! mass-matrix form (`mass_form`) and the constraints' projection levels
 //! (`constraints`), as values that `emit` writes out.
 
+pub mod actions;
 pub mod alias;
 pub mod constraints;
 pub mod derivative_free;

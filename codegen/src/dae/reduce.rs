@@ -130,6 +130,16 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
     let (outputs, events, observed) =
         observables(cx, g, (&ir.outputs, &ir.events), &known, &z_index, newton.as_ref())?;
     ok &= observed;
+    let solved_at_run_time =
+        |s: SymbolId| z_index.contains_key(&s) || newton.as_ref().is_some_and(|b| b.determines(&s));
+    let actions = crate::dae::actions::slot_actions(
+        cx,
+        g,
+        (&ir.events, &ir.clocks),
+        &slots,
+        &known,
+        &solved_at_run_time,
+    )?;
     let algebraics = algebraic_values(
         g,
         &ir.algebraics,
@@ -170,6 +180,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
         blocks: solved.blocks,
         outputs,
         events,
+        actions,
         algebraics,
         invariants,
         projection: None,

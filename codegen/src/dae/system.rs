@@ -22,6 +22,17 @@ pub struct Slot {
     pub velocity_like: bool,
 }
 
+/// `.reinit(x, value)` on the reduced system: slot `slot` takes `value`
+/// (an expression of the slots, the time, the parameters and the `pre(..)`
+/// symbols).
+#[derive(Clone, Copy)]
+pub struct SlotAction {
+    /// The slot written.
+    pub slot: usize,
+    /// Its new value.
+    pub value: Id,
+}
+
 /// How a slot's derivative is computed.
 #[derive(Clone)]
 pub enum SlotDerivative {
@@ -89,6 +100,8 @@ pub struct FirstOrder {
     pub outputs: Vec<Id>,
     /// Event functions, likewise.
     pub events: Vec<Id>,
+    /// What each event, then each clock, does where it fires, in order.
+    pub actions: Vec<Vec<SlotAction>>,
     /// How the equations are solved for their unknowns, in causal order.
     pub structure: StructureReport,
 }

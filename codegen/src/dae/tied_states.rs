@@ -330,7 +330,21 @@ fn solve_for_component_state(
     // A numeric coefficient is best; a parameter's (a gear's ratio) is
     // divided by, as the physics does.
     let mut best: Option<(Preference, SymbolId, Id)> = None;
+    // What actions set, and discrete values, stay states: an action needs
+    // a slot to write.
+    let sets = |target: SymbolId, y: SymbolId| {
+        target == y
+            || matches!(ir.graph.symbol(target).kind, crate::SymbolKind::Derivative { of, .. } if of == y)
+    };
+    let acted_on = |y: SymbolId| {
+        ir.discretes.contains(&y)
+            || ir.events.iter().flat_map(|e| &e.actions).any(|a| sets(a.target, y))
+            || ir.clocks.iter().flat_map(|c| &c.actions).any(|a| sets(a.target, y))
+    };
     for &(y, c) in &tie.terms {
+        if acted_on(y) {
+            continue;
+        }
         let Some(k) = ir.states.iter().position(|s| s.symbol == y) else { continue };
         let decl = &ir.states[k];
         let numeric = ir.graph.as_number(c).map(|n| !n.is_zero());
@@ -379,6 +393,14 @@ fn replace_state(ir: &mut ModelIr, state: SymbolId, value: Id, top: u32) -> crat
     }
     for e in &mut ir.events {
         e.value = g.substitute(e.value, &replace)?;
+        for a in &mut e.actions {
+            a.value = g.substitute(a.value, &replace)?;
+        }
+    }
+    for c in &mut ir.clocks {
+        for a in &mut c.actions {
+            a.value = g.substitute(a.value, &replace)?;
+        }
     }
     for i in &mut ir.invariants {
         i.value = g.substitute(i.value, &replace)?;

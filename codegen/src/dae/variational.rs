@@ -91,12 +91,16 @@ pub fn sensitivity_name(state: &str, wrt: &str) -> String {
     format!("d({state})/d({wrt})")
 }
 
+const ACROSS_JUMPS: &str = "sensitivities across the jumps of events and clocks are not generated (they need the jump of the sensitivities at each event time, the saltation matrix): difference two runs, or compute sensitivities of a model without actions";
 const UNSUPPORTED: &str = "sensitivities are generated for models whose derivatives solve symbolically; this one solves a linear or nonlinear system at run time (a mechanism's KKT system, an algebraic loop), whose sensitivities are not generated: write the model in independent coordinates (a pendulum in its angle), or difference two runs";
 
 /// Why `sys` cannot have sensitivities generated, or `None`: its
 /// derivatives must be explicit in the states (no system solved at run
 /// time).
 pub fn unsupported(sys: &FirstOrder) -> Option<&'static str> {
+    if sys.actions.iter().any(|a| !a.is_empty()) {
+        return Some(ACROSS_JUMPS);
+    }
     let explicit = sys.derivatives.iter().all(|d| matches!(d, SlotDerivative::Explicit(_)));
     let solved = explicit && sys.blocks.is_empty() && sys.newton.is_none() && !sys.mass_only;
     (!solved).then_some(UNSUPPORTED)
@@ -128,7 +132,7 @@ pub fn variational_system(
         .collect();
     let f = match explicit {
         Some(f) if unsupported(sys).is_none() => f,
-        _ => return Err(UNSUPPORTED.into()),
+        _ => return Err(unsupported(sys).unwrap_or(UNSUPPORTED).into()),
     };
     let n = sys.slots.len();
     let slots: Vec<SymbolId> = sys.slots.iter().map(|s| s.symbol).collect();
@@ -160,6 +164,7 @@ pub fn variational_system(
         blocks: Vec::new(),
         outputs: sys.outputs.clone(),
         events: sys.events.clone(),
+        actions: sys.actions.clone(),
         structure: sys.structure.clone(),
     };
     let mut projection = levels.clone();

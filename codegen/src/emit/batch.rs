@@ -25,7 +25,7 @@ pub(crate) fn batch_items(
         Some("is a DAE")
     } else if !sys.blocks.is_empty() || sys.newton.is_some() {
         Some("has equations solved for their derivatives at run time")
-    } else if !ir.events.is_empty() {
+    } else if !ir.events.is_empty() || !ir.clocks.is_empty() {
         Some("has events")
     } else if !sys.invariants.is_empty() || !ir.invariants.is_empty() {
         Some("has invariants to project onto")
@@ -123,6 +123,8 @@ pub(crate) fn batch_items(
                 output_docs: &[],
                 equations: #nl_lit,
                 events: &[],
+                clocks: &[],
+                discrete: &[],
                 algebraics: &[],
                 algebraic_docs: &[],
                 structure: <#name as ::daegen::Model>::INFO.structure,

@@ -188,10 +188,19 @@ pub(crate) fn info_with(
         let (path, part) = (&i.path, &i.part);
         quote!(::daegen::ComponentInfo { path: #path, part: #part })
     });
+    let resets = |actions: &[crate::front::ir::Action]| -> Vec<String> {
+        actions.iter().map(|a| ir.graph.symbol(a.target).name.clone()).collect()
+    };
+    let clocks = ir.clocks.iter().map(|c| {
+        let (name, doc, resets) = (&c.name, &c.doc, resets(&c.actions));
+        quote!(::daegen::ClockInfo { name: #name, resets: &[#(#resets),*], doc: #doc })
+    });
+    let discrete = ir.discretes.iter().map(|&d| ir.graph.symbol(d).name.clone());
     let events = ir.events.iter().map(|e| {
         let name = &e.name;
         let doc = &e.doc;
         let terminal = e.terminal;
+        let resets = resets(&e.actions);
         let direction = match e.direction {
             EventDirection::Any => quote!(Any),
             EventDirection::Rising => quote!(Rising),
@@ -202,6 +211,7 @@ pub(crate) fn info_with(
                 name: #name,
                 direction: ::daegen::EventDirection::#direction,
                 terminal: #terminal,
+                resets: &[#(#resets),*],
                 doc: #doc,
             }
         }
@@ -218,6 +228,8 @@ pub(crate) fn info_with(
             output_docs: &[#(#output_docs),*],
             equations: #equations,
             events: &[#(#events),*],
+            clocks: &[#(#clocks),*],
+            discrete: &[#(#discrete),*],
             algebraics: &[#(#algebraics),*],
             algebraic_docs: &[#(#algebraic_docs),*],
             structure: #structure,

@@ -5,6 +5,7 @@
 //! `taylor_items`, `newton`, `constraints`, `mass_form`, `docs`), `batch` steps several members
 //! at once, and `benchmark` registers it.
 
+pub mod actions;
 pub mod batch;
 pub mod benchmark;
 pub mod constraints;

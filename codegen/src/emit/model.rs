@@ -67,6 +67,7 @@ fn expand_system(
         &analysis.projection,
     )?;
     let events_method = events_method(g, &layout, sys);
+    let act_method = crate::emit::actions::act_method(g, &layout, sys, &ir.pre);
     let rhs_method_body = fixed_size_body(
         &index(n),
         "dy",
@@ -88,6 +89,7 @@ fn expand_system(
     // A model with sensitivities has none: they would need the variational
     // equations of the mass-matrix form too.
     let (mass_form_type, mass_form_method) = mass_form_items(ir, analysis, &name)?;
+    let clock_method = crate::emit::actions::clock_method(&mut ir.graph, &layout, &ir.clocks);
     let info = info(ir, sys);
     let parameter = parameter_method(ir);
     let degenerate = degenerate_parameters_method(&mut ir.graph, &layout, sys);
@@ -160,6 +162,10 @@ fn expand_system(
             #events_method
 
             #event_rates_method
+
+            #act_method
+
+            #clock_method
 
             #constraint_methods
 
@@ -326,7 +332,7 @@ pub fn stub(ir: &ModelIr) -> TokenStream {
             const INDEX: usize = 0;
             const INFO: ::daegen::ModelInfo = ::daegen::ModelInfo {
                 name: #name_str, doc: "", states: &[], state_docs: &[], parameters: &[], parameter_docs: &[],
-                outputs: &[], output_docs: &[], equations: 0, events: &[], algebraics: &[], algebraic_docs: &[],
+                outputs: &[], output_docs: &[], equations: 0, events: &[], clocks: &[], discrete: &[], algebraics: &[], algebraic_docs: &[],
                 structure: ::daegen::StructureInfo::NONE,
                 components: &[],
             };

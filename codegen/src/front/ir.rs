@@ -84,6 +84,38 @@ pub struct Event {
     pub direction: EventDirection,
     /// Whether the run stops at the first one.
     pub terminal: bool,
+    /// What it does where it fires, in order (`.reinit(..)`).
+    pub actions: Vec<Action>,
+    /// Its doc comment.
+    pub doc: String,
+    /// The declaration, for errors.
+    pub origin: TokenStream,
+}
+
+/// `.reinit(target, value)` on an event or a clock: where it fires, the
+/// state or discrete value `target` takes `value`, computed from the values
+/// at that instant as the actions before it left them (`pre(x)` reads the
+/// value just before the instant).
+pub struct Action {
+    /// A state, a derivative kept as a state (`der(h)`), or a discrete value.
+    pub target: SymbolId,
+    /// Its new value.
+    pub value: Id,
+    /// The `.reinit(..)`, for errors.
+    pub origin: TokenStream,
+}
+
+/// `let tick = every(h).offset(t0).reinit(u, ..);`: actions at the
+/// instants `offset + k·period`.
+pub struct Clock {
+    /// Its name.
+    pub name: String,
+    /// The time between two instants (constants and parameters).
+    pub period: Id,
+    /// The first instant of the grid (constants and parameters).
+    pub offset: Id,
+    /// What it does at each instant, in order.
+    pub actions: Vec<Action>,
     /// Its doc comment.
     pub doc: String,
     /// The declaration, for errors.
@@ -144,6 +176,13 @@ pub struct ModelIr {
     pub outputs: Vec<Output>,
     /// Events.
     pub events: Vec<Event>,
+    /// Clocks (`every(h)`).
+    pub clocks: Vec<Clock>,
+    /// States that are discrete values (`discrete(v0)`): constant between
+    /// events, changed only by actions.
+    pub discretes: Vec<SymbolId>,
+    /// `pre(x)` as read by actions: its symbol, and x's.
+    pub pre: Vec<(SymbolId, SymbolId)>,
     /// Equations and constraints in order.
     pub equations: Vec<Equation>,
     /// Initial values of derivatives.
@@ -209,7 +248,27 @@ impl std::fmt::Display for ModelIr {
             };
             let terminal = if e.terminal { " terminal" } else { "" };
             writeln!(f, "event {} = {}{direction}{terminal}", e.name, g.show(e.value))?;
+            show_actions(f, g, &e.actions)?;
+        }
+        for c in &self.clocks {
+            writeln!(f, "clock {} every {} from {}", c.name, g.show(c.period), g.show(c.offset))?;
+            show_actions(f, g, &c.actions)?;
+        }
+        for &d in &self.discretes {
+            writeln!(f, "discrete {}", name(d))?;
         }
         Ok(())
     }
+}
+
+/// An event's or a clock's actions, one a line under it.
+fn show_actions(
+    f: &mut std::fmt::Formatter<'_>,
+    g: &Graph,
+    actions: &[Action],
+) -> std::fmt::Result {
+    for a in actions {
+        writeln!(f, "  reinit {} = {}", g.symbol(a.target).name, g.show(a.value))?;
+    }
+    Ok(())
 }

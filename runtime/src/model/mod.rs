@@ -220,6 +220,23 @@ pub trait Model {
         let _ = (t, y, dg);
     }
 
+    /// Clock `index` of [`ModelInfo::clocks`]: its period and its first
+    /// instant, `(h, t0)` of `every(h).offset(t0)`, with this instance's
+    /// parameters.
+    fn clock(&self, index: usize) -> (f64, f64) {
+        let _ = index;
+        (f64::INFINITY, 0.0)
+    }
+
+    /// Applies the actions of `trigger` at time `t`: event `trigger` of
+    /// [`ModelInfo::events`], or clock `trigger − events` of
+    /// [`ModelInfo::clocks`]. `pre` holds the state just before the
+    /// instant (what `pre(x)` reads); `y` the state as the actions before
+    /// left it, which each action updates in place, in the order written.
+    fn act(&self, trigger: usize, t: f64, pre: &[f64], y: &mut [f64]) {
+        let _ = (trigger, t, pre, y);
+    }
+
     // ----- Taylor series -----
 
     /// Highest order of [`Model::taylor_derivatives`] (0: none generated).

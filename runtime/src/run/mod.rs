@@ -1,6 +1,9 @@
 //! Checks a run's request and hands it to the method.
 
 mod checks;
+mod hybrid;
+
+pub use hybrid::MAX_EVENT_ITERATIONS;
 mod observables;
 
 use crate::error::Error;
@@ -235,5 +238,9 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     }
     solution.push_initial(t0, &y0);
     let problem = Problem { model, t0, t1, y0: &y0, options };
-    crate::methods::integrator::<M>(options.method)(problem, solution)
+    let integrate = crate::methods::integrator::<M>(options.method);
+    if M::INFO.is_hybrid() {
+        return hybrid::integrate_hybrid(integrate, problem, solution);
+    }
+    integrate(problem, solution)
 }

@@ -91,6 +91,22 @@ pub struct EventHit {
     pub state: Vec<f64>,
 }
 
+/// An instant where actions changed the state: the solution holds its
+/// value on either side ([`Solution::at`] reads the value after,
+/// [`Solution::at_left`] the value before).
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub struct Jump {
+    /// The time.
+    pub t: f64,
+    /// The state just before (the left limit).
+    pub before: Vec<f64>,
+    /// The state just after, where the run went on from.
+    pub after: Vec<f64>,
+    /// What acted, by name: events and clocks, in the order they fired.
+    pub triggers: Vec<&'static str>,
+}
+
 /// What a solution needs of its model after the run (outputs by name, and
 /// the derivative that fixed-step methods interpolate with), so that
 /// `Solution` has no type parameter.
@@ -157,9 +173,19 @@ pub struct Solution {
     end_y: Vec<f64>,
     /// Steps accepted (the initial point not counted).
     steps: usize,
-    /// The end the last step was computed for, when a terminal event cut it
+    /// The end the last step was computed for, when an event cut it
     /// short (its interpolant is scaled to that end).
     cut_from: Option<f64>,
+    /// Stored steps an event cut short before the run went on, with the
+    /// end each was computed for and the state there.
+    cuts: Vec<(usize, f64, Vec<f64>)>,
+    /// The instants where actions changed the state, with its value on
+    /// either side.
+    jumps: Vec<Jump>,
+    /// The position in `events` of the terminal event that ended the run.
+    stopped: Option<usize>,
+    /// The run was interrupted at its last event for the event's actions.
+    pending_action: bool,
     /// Where the step callback stopped the run.
     cancelled_at: Option<f64>,
     /// The step callback and progress bar, during the run.
@@ -223,6 +249,10 @@ impl Solution {
             end_y: Vec::new(),
             steps: 0,
             cut_from: None,
+            cuts: Vec::new(),
+            jumps: Vec::new(),
+            stopped: None,
+            pending_action: false,
             cancelled_at: None,
             stream: None,
             interpolation_evals: 0,
@@ -274,7 +304,14 @@ impl Solution {
 
     /// The terminal event the run stopped at, if it did.
     pub fn stopped_by(&self) -> Option<&EventHit> {
-        self.cut_from.and(self.events.last())
+        self.stopped.and_then(|k| self.events.get(k))
+    }
+
+    /// The instants where an event's or a clock's actions changed the
+    /// state, in time order, each with the state just before and just
+    /// after: a solution is never interpolated across them.
+    pub fn jumps(&self) -> &[Jump] {
+        &self.jumps
     }
 
     /// Where [`crate::Options::on_step`]'s callback stopped the run, if it did.

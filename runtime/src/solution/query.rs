@@ -90,11 +90,26 @@ impl Solution {
     /// A solution thinned by [`crate::Options::keep_every`] or stored at
     /// [`crate::Options::output_times`] answers only at its stored times
     /// ([`Error::Thinned`], [`Error::NotStored`] elsewhere).
+    ///
+    /// At the time of a jump (an event's or a clock's actions,
+    /// [`Solution::jumps`]) it is the value just after; the value just
+    /// before is [`Solution::at_left`]'s. Nothing is interpolated across a
+    /// jump.
     pub fn at(&self, t: f64, name: &str) -> Result<f64, Error> {
         let value = self.reader(name)?;
         let mut y = vec![0.0; self.n];
         self.state_at(t, &mut y)?;
         Ok(value.read(self, t, &y))
+    }
+
+    /// Like [`Solution::at`], but at the time of a jump the value just
+    /// before it (the left limit); elsewhere the same as `at`.
+    pub fn at_left(&self, t: f64, name: &str) -> Result<f64, Error> {
+        let value = self.reader(name)?;
+        match self.jumps.iter().find(|j| j.t == t) {
+            Some(jump) => Ok(value.read(self, t, &jump.before)),
+            None => self.at(t, name),
+        }
     }
 
     /// The forward sensitivity ∂`name`/∂`wrt` at time `t`, where `wrt` is a
@@ -133,6 +148,12 @@ impl Solution {
         }
         if t == end {
             y.copy_from_slice(&self.end_y);
+            return Ok(());
+        }
+        // At a jump, the value after; the last jump at that time if
+        // several acted at one instant.
+        if let Some(jump) = self.jumps.iter().rev().find(|j| j.t == t) {
+            y.copy_from_slice(&jump.after);
             return Ok(());
         }
         match self.storage {
@@ -175,9 +196,11 @@ impl Solution {
         let n = self.n;
         let t0 = self.times[k - 1];
         let is_last = k == self.times.len() - 1;
-        // The step as computed: a cut last step keeps its computed end.
-        let (t1, y1) = match self.cut_from {
-            Some(end) if is_last => (end, &self.last.y_new[..]),
+        // The step as computed: a step an event cut keeps its computed end.
+        let cut = self.cuts.iter().find(|(j, _, _)| *j == k);
+        let (t1, y1) = match (self.cut_from, cut) {
+            (Some(end), _) if is_last => (end, &self.last.y_new[..]),
+            (_, Some((_, end, y_end))) => (*end, &y_end[..]),
             _ => (self.times[k], self.stored_state(k)),
         };
         let y0 = self.stored_state(k - 1);

@@ -309,6 +309,68 @@ impl Solution {
         self.events.push(hit);
     }
 
+    /// The run stopped at its last event: a terminal one, or one whose
+    /// actions the driver applies before going on.
+    pub(crate) fn stop_at_last_event(&mut self, terminal: bool, acts: bool) {
+        if terminal {
+            self.stopped = Some(self.events.len().saturating_sub(1));
+        }
+        self.pending_action = acts;
+    }
+
+    /// The event whose actions interrupted the run, if one did (once).
+    pub(crate) fn take_pending_action(&mut self) -> Option<&crate::solution::EventHit> {
+        if !std::mem::take(&mut self.pending_action) {
+            return None;
+        }
+        self.events.last()
+    }
+
+    /// Whether the run ended for good: a terminal event, or the step callback.
+    pub(crate) fn ended(&self) -> bool {
+        self.stopped.is_some() || self.cancelled_at.is_some()
+    }
+
+    /// Actions changed the state at the end of the run to `y`: the run
+    /// goes on from there. The value before stays stored (with every step
+    /// stored, the time appears twice), and the next step starts afresh.
+    pub(crate) fn push_jump(&mut self, y: &[f64], triggers: Vec<&'static str>) {
+        let t = self.end_t;
+        if let Some(end) = self.cut_from.take() {
+            let computed = self.last.y_new.clone();
+            self.cuts.push((self.times.len().saturating_sub(1), end, computed));
+        }
+        let before = std::mem::replace(&mut self.end_y, y.to_vec());
+        match &mut self.storage {
+            Storage::All => {
+                self.times.push(t);
+                self.states.extend_from_slice(y);
+            }
+            Storage::KeepEvery { tail, .. } => {
+                self.times.push(t);
+                self.states.extend_from_slice(y);
+                *tail = false;
+            }
+            Storage::OutputTimes { .. } => {
+                // An output time at the instant reads the value after.
+                if self.times.last() == Some(&t) {
+                    let k = self.times.len() - 1;
+                    self.states[k * self.n..(k + 1) * self.n].copy_from_slice(y);
+                }
+            }
+        }
+        let last = &mut self.last;
+        last.t_old = t;
+        last.t_new = t;
+        last.y_old.copy_from_slice(y);
+        last.y_new.copy_from_slice(y);
+        last.coefficients.clear();
+        last.interpolant = None;
+        last.has_f_old = false;
+        last.has_f_new = false;
+        self.jumps.push(super::Jump { t, before, after: y.to_vec(), triggers });
+    }
+
     /// After an accepted step (and its events): shows it to the step
     /// callback and the progress bar; `true` when the callback ended the run.
     pub(crate) fn after_accepted_step(&mut self) -> bool {

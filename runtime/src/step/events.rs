@@ -40,6 +40,13 @@ pub(crate) struct EventWatch<'m, M: Model> {
     t_start: f64,
 }
 
+/// Whether event `i` interrupts the run: it is terminal, or it acts (the
+/// run driver applies its actions and starts again from there).
+fn stops<M: Model>(i: usize) -> bool {
+    let event = &M::INFO.events[i];
+    event.terminal || !event.resets.is_empty()
+}
+
 /// Checks the step just pushed to `solution` for events, if the model has
 /// any: `true` when a terminal one ended the run there.
 pub(crate) fn stop_after_step<M: Model>(
@@ -149,7 +156,7 @@ impl<'m, M: Model> EventWatch<'m, M> {
             std::mem::swap(&mut self.g_old, &mut self.g_new);
             std::mem::swap(&mut self.rate_old, &mut self.rate_new);
             a = b;
-            if hits.iter().any(|h| M::INFO.events[h.index].terminal) {
+            if hits.iter().any(|h| stops::<M>(h.index)) {
                 break;
             }
         }
@@ -163,7 +170,7 @@ impl<'m, M: Model> EventWatch<'m, M> {
                 order.reverse()
             }
         });
-        let stop = hits.iter().position(|h| M::INFO.events[h.index].terminal);
+        let stop = hits.iter().position(|h| stops::<M>(h.index));
         if let Some(k) = stop {
             // Fired again right after a restart: the crossings accumulate
             // and one more restart would not move.
@@ -182,8 +189,12 @@ impl<'m, M: Model> EventWatch<'m, M> {
             let last = &hits[k];
             solution.end_last_step_at(last.t, &last.state);
         }
+        let stopping = stop.map(|k| &M::INFO.events[hits[k].index]);
         for hit in hits {
             solution.push_event(hit);
+        }
+        if let Some(event) = stopping {
+            solution.stop_at_last_event(event.terminal, !event.resets.is_empty());
         }
         Ok((solution, stop.is_some()))
     }

@@ -43,11 +43,13 @@ pub(crate) enum Declaration {
     Output,
     /// `output_array([..])`.
     OutputArray,
+    /// `discrete(v0)`.
+    Discrete,
 }
 
 impl Declaration {
     /// Every declaration, in the order the language reference lists them.
-    pub(crate) const ALL: [Declaration; 13] = [
+    pub(crate) const ALL: [Declaration; 14] = [
         Declaration::Event,
         Declaration::Body,
         Declaration::SpatialBody,
@@ -61,6 +63,7 @@ impl Declaration {
         Declaration::Time,
         Declaration::Output,
         Declaration::OutputArray,
+        Declaration::Discrete,
     ];
 
     /// The function the user calls.
@@ -79,6 +82,7 @@ impl Declaration {
             Declaration::Time => "time",
             Declaration::Output => "output",
             Declaration::OutputArray => "output_array",
+            Declaration::Discrete => "discrete",
         }
     }
 
@@ -205,8 +209,13 @@ impl<S: SceneLanguage> Lower<'_, S> {
             return;
         }
         let (mut direction, mut terminal) = (EventDirection::Any, false);
+        let mut actions = Vec::new();
         for m in settings {
             let setting = m.method.to_string();
+            if setting == "reinit" {
+                actions.extend(self.action(m));
+                continue;
+            }
             if !m.args.is_empty() {
                 self.cx.error_at(&m.args, format!("`.{setting}()` takes no argument"));
                 continue;
@@ -221,7 +230,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 _ => {
                     self.cx.error_at(
                         &m.method,
-                        format!("unknown event setting `.{setting}()`: use `.rising()`, `.falling()` or `.terminal()`"),
+                        format!("unknown event setting `.{setting}()`: use `.rising()`, `.falling()`, `.terminal()` or `.reinit(x, value)`"),
                     );
                     continue;
                 }
@@ -242,6 +251,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
             value,
             direction,
             terminal,
+            actions,
             doc,
             origin: local.to_token_stream(),
         });
@@ -441,6 +451,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
             }
             // Met first, with its settings, by the statement; here without.
             Declaration::Event => self.event(ident, call, &[], doc, local),
+            Declaration::Discrete => self.discrete(ident, call, doc, local),
             Declaration::Output => {
                 if !self.arity(call, "output", 1) {
                     return;

@@ -110,6 +110,10 @@ impl<S: SceneLanguage> Lower<'_, S> {
                             .error_at(e, format!("`{name}` is a function: call it, `{name}(..)`"));
                         None
                     }
+                    Some(Binding::Clock) => {
+                        self.cx.error_at(e, format!("`{name}` is a clock, which has no value: read the discrete values its actions set"));
+                        None
+                    }
                     Some(b @ (Binding::Body(_) | Binding::Ground)) => {
                         let what = b.describe();
                         self.cx.error_at(e, format!("`{name}` is {what}: use `position({name}, p)` for a point of it, or its coordinates `{name}.x`… in the solution"));
@@ -273,6 +277,9 @@ impl<S: SceneLanguage> Lower<'_, S> {
         if name == "der" {
             return self.der(c, e);
         }
+        if name == "pre" {
+            return self.pre(c, e);
+        }
         if let Some(Binding::Function(function)) = self.lookup(&name).cloned() {
             return self.call_function(&name, &function, c);
         }
@@ -336,6 +343,13 @@ impl<S: SceneLanguage> Lower<'_, S> {
             matches!(self.g.symbol(s).kind, SymbolKind::State | SymbolKind::Derivative { .. })
         });
         match symbol {
+            Some(s) if self.is_discrete(s) => {
+                self.cx.error_at(
+                    e,
+                    format!("`{}` is a discrete value, which changes only at events: set it with `.reinit(..)` on an event or a clock", arg.to_token_stream()),
+                );
+                None
+            }
             Some(s) => {
                 let r = self.g.derivative(s, 1);
                 self.graph_result(r, e)

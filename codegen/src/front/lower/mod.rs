@@ -12,6 +12,7 @@ mod constants;
 mod declarations;
 mod expressions;
 mod functions;
+mod hybrid;
 mod instances;
 pub(crate) mod integers;
 mod scene;
@@ -85,6 +86,9 @@ pub(crate) fn lower_with<S: SceneLanguage>(
         algebraics: l.algebraics,
         outputs: l.outputs,
         events: l.events,
+        clocks: l.clocks,
+        discretes: l.discretes,
+        pre: l.pre,
         equations: l.equations,
         inits: l.inits,
         invariants: l.invariants,
@@ -110,6 +114,10 @@ fn new_lower<S: SceneLanguage>(cx: &mut Ctxt, recursive: bool, parts: Definition
         algebraics: Vec::new(),
         outputs: Vec::new(),
         events: Vec::new(),
+        clocks: Vec::new(),
+        discretes: Vec::new(),
+        pre: Vec::new(),
+        in_action: false,
         equations: Vec::new(),
         inits: Vec::new(),
         invariants: Vec::new(),

@@ -51,6 +51,8 @@ pub(crate) enum Binding {
     Connector(usize),
     /// `let f = |x| ...;`: a function of the model.
     Function(std::rc::Rc<Function>),
+    /// `every(h)`: a clock, which acts but has no value.
+    Clock,
 }
 
 /// A function of the model: its closure and the scopes it captured
@@ -81,6 +83,7 @@ impl Binding {
             Binding::InstanceArray(_) => "an array of instances",
             Binding::Connector(_) => "a connector",
             Binding::Function(_) => "a function",
+            Binding::Clock => "a clock",
         }
     }
 }
@@ -95,6 +98,14 @@ pub(crate) struct Lower<'c, S> {
     pub(crate) algebraics: Vec<AlgebraicDecl>,
     pub(crate) outputs: Vec<Output>,
     pub(crate) events: Vec<Event>,
+    pub(crate) clocks: Vec<crate::front::ir::Clock>,
+    /// States declared `discrete(v0)`.
+    pub(crate) discretes: Vec<SymbolId>,
+    /// `pre(x)` symbols made so far, with x's.
+    pub(crate) pre: Vec<(SymbolId, SymbolId)>,
+    /// Lowering an action's value, where `pre(x)` reads the value before
+    /// the instant.
+    pub(in crate::front) in_action: bool,
     pub(crate) equations: Vec<Equation>,
     pub(crate) inits: Vec<Init>,
     pub(crate) invariants: Vec<UserInvariant>,

@@ -4,7 +4,7 @@
 use super::declarations::Declaration;
 use super::scene::SceneLanguage;
 use super::scopes::{Binding, Lower};
-use super::syntax::{call_name, doc_comment, event_call, is_compound_assignment};
+use super::syntax::{call_name, doc_comment, is_compound_assignment, trigger_call};
 use crate::front::components::connectors::ConnectorKind;
 use crate::front::ir::{Equation, Init, UserInvariant};
 
@@ -57,12 +57,16 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
         let e = &*init.expr;
         let doc = doc_comment(&local.attrs);
-        if let Some((call, settings)) = event_call(e) {
+        if let Some((call, settings, clock)) = trigger_call(e) {
+            let what = if clock { "every" } else { "event" };
             if self.in_loop() {
                 return self.cx.error_at(
                     e,
-                    format!("declare `event(...)` outside loops: each iteration would declare `{ident}` again"),
+                    format!("declare `{what}(...)` outside loops: each iteration would declare `{ident}` again"),
                 );
+            }
+            if clock {
+                return self.clock(&ident, call, &settings, doc, local);
             }
             return self.event(&ident, call, &settings, doc, local);
         }
@@ -214,7 +218,11 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 }
                 self.scopes.pop();
             }
-                        _ if event_call(e).is_some() => self.cx.error_at(
+                        _ if trigger_call(e).is_some_and(|(_, _, clock)| clock) => self.cx.error_at(
+                e,
+                "a clock needs a name to be listed by: write `let tick = every(...)...;`",
+            ),
+                        _ if trigger_call(e).is_some() => self.cx.error_at(
                 e,
                 "an event needs a name to be looked up by: write `let hit = event(...);`",
             ),

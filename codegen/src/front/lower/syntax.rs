@@ -4,7 +4,7 @@
 use syn::{BinOp, Expr, Lit};
 
 /// The functions of the language, for suggestions.
-pub(super) const FUNCTIONS: [&str; 21] = [
+pub(super) const FUNCTIONS: [&str; 22] = [
     "sin",
     "cos",
     "tan",
@@ -21,6 +21,7 @@ pub(super) const FUNCTIONS: [&str; 21] = [
     "abs",
     "heaviside",
     "der",
+    "pre",
     "init",
     "constraint",
     "invariant",
@@ -28,9 +29,10 @@ pub(super) const FUNCTIONS: [&str; 21] = [
     "powf",
 ];
 
-/// `event(g)` and the settings chained after it (`.falling().terminal()`),
-/// innermost first.
-pub(super) fn event_call(e: &Expr) -> Option<(&syn::ExprCall, Vec<&syn::ExprMethodCall>)> {
+/// `event(g)` or `every(h)` and the settings chained after it
+/// (`.falling().terminal()`, `.reinit(..)`), innermost first; `true` for a
+/// clock.
+pub(super) fn trigger_call(e: &Expr) -> Option<(&syn::ExprCall, Vec<&syn::ExprMethodCall>, bool)> {
     let mut settings = Vec::new();
     let mut e = e;
     while let Expr::MethodCall(m) = e {
@@ -39,7 +41,8 @@ pub(super) fn event_call(e: &Expr) -> Option<(&syn::ExprCall, Vec<&syn::ExprMeth
     }
     settings.reverse();
     match call_name(e) {
-        Some((name, call)) if name == "event" => Some((call, settings)),
+        Some((name, call)) if name == "event" => Some((call, settings, false)),
+        Some((name, call)) if name == "every" => Some((call, settings, true)),
         _ => None,
     }
 }

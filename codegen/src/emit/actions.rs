@@ -1,0 +1,93 @@
+//! `Model::act` and `Model::clock`: the actions of events and clocks, each
+//! `.reinit(x, value)` in the order written on the state the ones before
+//! it left (`pre(x)` read from the state before the instant), and each
+//! clock's period and first instant. Nothing for a model without them.
+
+use crate::dae::system::FirstOrder;
+use crate::emit::layout::{index, Layout};
+use crate::front::ir::Clock;
+use crate::{emit_program, FxHashMap, Graph, SymbolId};
+use proc_macro2::TokenStream;
+use quote::quote;
+
+/// `act`, one arm per event or clock with actions.
+pub(crate) fn act_method(
+    g: &mut Graph,
+    layout: &Layout,
+    sys: &FirstOrder,
+    pre: &[(SymbolId, SymbolId)],
+) -> TokenStream {
+    if sys.actions.iter().all(Vec::is_empty) {
+        return TokenStream::new();
+    }
+    // `pre(x)` reads x's slot of the state before the instant.
+    let pre_slot: FxHashMap<SymbolId, usize> =
+        pre.iter().filter_map(|&(p, of)| layout.slot_of.get(&of).map(|&i| (p, i))).collect();
+    let n = index(sys.slots.len());
+    let mut arms = Vec::new();
+    for (trigger, actions) in sys.actions.iter().enumerate() {
+        if actions.is_empty() {
+            continue;
+        }
+        let mut body = TokenStream::new();
+        for action in actions {
+            let program = g.schedule(&[action.value]);
+            let slot = index(action.slot);
+            let g = &*g;
+            let tokens = |s: SymbolId| match pre_slot.get(&s) {
+                Some(&i) => {
+                    let i = index(i);
+                    quote!(pre[#i])
+                }
+                None => layout.tokens(g, s),
+            };
+            let code = emit_program(g, &program, &tokens, &|_, v| quote!(y[#slot] = #v;));
+            body.extend(quote!({ #code }));
+        }
+        let trigger = index(trigger);
+        arms.push(quote!(#trigger => { #body }));
+    }
+    quote! {
+        fn act(&self, trigger: usize, t: f64, pre: &[f64], y: &mut [f64]) {
+            let (::core::result::Result::Ok(pre), ::core::result::Result::Ok(y)) =
+                (<&[f64; #n]>::try_from(pre), <&mut [f64; #n]>::try_from(y)) else { return };
+            match trigger {
+                #(#arms)*
+                _ => {}
+            }
+        }
+    }
+}
+
+/// `clock`, each clock's period and first instant from the parameters.
+pub(crate) fn clock_method(g: &mut Graph, layout: &Layout, clocks: &[Clock]) -> TokenStream {
+    if clocks.is_empty() {
+        return TokenStream::new();
+    }
+    let mut arms = Vec::new();
+    for (k, clock) in clocks.iter().enumerate() {
+        let program = g.schedule(&[clock.period, clock.offset]);
+        let code = {
+            let g = &*g;
+            emit_program(g, &program, &|s| layout.tokens(g, s), &|i, v| {
+                if i == 0 {
+                    quote!(period = #v;)
+                } else {
+                    quote!(offset = #v;)
+                }
+            })
+        };
+        let k = index(k);
+        arms.push(quote!(#k => { #code }));
+    }
+    quote! {
+        fn clock(&self, index: usize) -> (f64, f64) {
+            let (mut period, mut offset) = (f64::INFINITY, 0.0);
+            match index {
+                #(#arms)*
+                _ => {}
+            }
+            (period, offset)
+        }
+    }
+}

@@ -1,0 +1,184 @@
+//! What acts at events: `.reinit(target, value)` on an event or a clock,
+//! clocks (`every(h)`), discrete values (`discrete(v0)`) and `pre(x)`.
+
+use super::scene::SceneLanguage;
+use super::scopes::{Binding, Lower};
+use crate::front::ir::{Action, Clock, Equation};
+use crate::{Id, SymbolId, SymbolKind};
+use quote::ToTokens;
+use syn::{Expr, Lit};
+
+impl<S: SceneLanguage> Lower<'_, S> {
+    /// `.reinit(target, value)` on an event or a clock.
+    pub(in crate::front) fn action(&mut self, m: &syn::ExprMethodCall) -> Option<Action> {
+        if m.args.len() != 2 {
+            self.cx.error_at(
+                m,
+                "`.reinit` takes what it sets and its new value: `.reinit(der(h), -e * pre(der(h)))`",
+            );
+            return None;
+        }
+        let target_expr = &m.args[0];
+        let target = self.value(target_expr)?;
+        let Some(symbol) = self.state_symbol(target) else {
+            self.cx.error_at(
+                target_expr,
+                format!(
+                    "`.reinit` sets a state, a derivative kept as a state (`der(h)` of a second-order `h`) or a discrete value, and `{}` is none of them",
+                    target_expr.to_token_stream()
+                ),
+            );
+            return None;
+        };
+        self.in_action = true;
+        let value = self.value(&m.args[1]);
+        self.in_action = false;
+        Some(Action { target: symbol, value: value?, origin: m.to_token_stream() })
+    }
+
+    /// The state or derivative `id` stands for, if it is one.
+    fn state_symbol(&self, id: Id) -> Option<SymbolId> {
+        self.g.as_symbol(id).filter(|&s| {
+            matches!(self.g.symbol(s).kind, SymbolKind::State | SymbolKind::Derivative { .. })
+        })
+    }
+
+    /// Whether `s` was declared `discrete(..)`.
+    pub(in crate::front) fn is_discrete(&self, s: SymbolId) -> bool {
+        self.discretes.contains(&s)
+    }
+
+    /// `pre(x)`: in an action, the value of `x` just before the instant;
+    /// elsewhere, for a discrete value, the value itself (it changes only
+    /// at events).
+    pub(in crate::front) fn pre(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<Id> {
+        if !self.arity(c, "pre", 1) {
+            return None;
+        }
+        let arg = &c.args[0];
+        let inner = self.value(arg)?;
+        let Some(symbol) = self.state_symbol(inner) else {
+            self.cx.error_at(
+                arg,
+                format!(
+                    "`pre` takes a state or a discrete value, and `{}` is neither",
+                    arg.to_token_stream()
+                ),
+            );
+            return None;
+        };
+        if !self.in_action {
+            if self.is_discrete(symbol) {
+                return Some(inner);
+            }
+            self.cx.error_at(
+                e,
+                format!(
+                    "`{}` is the value just before an event: read it in an action, `.reinit(..)`",
+                    e.to_token_stream()
+                ),
+            );
+            return None;
+        }
+        if let Some(&(p, _)) = self.pre.iter().find(|(_, of)| *of == symbol) {
+            return Some(self.g.symbol_node(p));
+        }
+        let name = format!("pre({})", self.g.symbol(symbol).name);
+        let id = match self.g.algebraic(&name) {
+            Ok(id) => id,
+            Err(err) => {
+                self.cx.error_at(e, err);
+                return None;
+            }
+        };
+        let p = self.g.as_symbol(id)?;
+        self.pre.push((p, symbol));
+        Some(id)
+    }
+
+    /// `let u = discrete(v0);`: a state whose derivative is zero, changed
+    /// only by actions. `v0` is a number, `true`/`false` (1 and 0), or an
+    /// expression of the parameters.
+    pub(in crate::front) fn discrete(
+        &mut self,
+        ident: &syn::Ident,
+        call: &syn::ExprCall,
+        doc: String,
+        local: &syn::Local,
+    ) {
+        if !self.arity(call, "discrete", 1) {
+            return;
+        }
+        let name = format!("{}{ident}", self.prefix);
+        let init = match &call.args[0] {
+            Expr::Lit(syn::ExprLit { lit: Lit::Bool(b), .. }) => self.g.int(i64::from(b.value)),
+            other => self.initial_value(other).unwrap_or_else(|| self.g.zero()),
+        };
+        let origin = local.to_token_stream();
+        let Some(symbol) = self.declare_state(name, init, ident, &origin, &doc) else {
+            return;
+        };
+        self.discretes.push(symbol);
+        self.bind(ident, Binding::State(symbol));
+        match self.g.derivative(symbol, 1) {
+            Ok(rate) => {
+                let zero = self.g.zero();
+                self.equations.push(Equation {
+                    lhs: rate,
+                    rhs: zero,
+                    origin,
+                    is_constraint: false,
+                });
+            }
+            Err(err) => self.cx.error_at(ident, err),
+        }
+    }
+
+    /// `let tick = every(h).offset(t0).reinit(u, ..);`
+    pub(in crate::front) fn clock(
+        &mut self,
+        ident: &syn::Ident,
+        call: &syn::ExprCall,
+        settings: &[&syn::ExprMethodCall],
+        doc: String,
+        local: &syn::Local,
+    ) {
+        let name = format!("{}{ident}", self.prefix);
+        if self.already_declared(ident) || !self.arity(call, "every", 1) {
+            return;
+        }
+        let period = self.initial_value(&call.args[0]);
+        if let Some(p) = period.and_then(|p| self.g.as_number(p)) {
+            if p.to_f64() <= 0.0 || !p.to_f64().is_finite() {
+                self.cx.error_at(&call.args[0], "a clock's period is positive: `every(0.01)`");
+            }
+        }
+        let mut offset = self.g.zero();
+        let mut actions = Vec::new();
+        for m in settings {
+            match m.method.to_string().as_str() {
+                "offset" if m.args.len() == 1 => {
+                    if let Some(o) = self.initial_value(&m.args[0]) {
+                        offset = o;
+                    }
+                }
+                "offset" => self.cx.error_at(m, "`.offset` takes the first instant: `.offset(0.5)`"),
+                "reinit" => actions.extend(self.action(m)),
+                other => self.cx.error_at(
+                    &m.method,
+                    format!("unknown clock setting `.{other}()`: use `.offset(t0)` and `.reinit(u, value)`"),
+                ),
+            }
+        }
+        if actions.is_empty() && settings.iter().all(|m| m.method != "reinit") {
+            self.cx.error_at(
+                local,
+                format!("the clock `{ident}` does nothing: give it actions, `every(h).reinit(u, value)`"),
+            );
+        }
+        let Some(period) = period else { return };
+        let origin = local.to_token_stream();
+        self.clocks.push(Clock { name, period, offset, actions, doc, origin });
+        self.bind(ident, Binding::Clock);
+    }
+}

@@ -1,0 +1,280 @@
+//! Runs of models with instants where something acts (an event with
+//! `.reinit(..)` actions, a clock): the method integrates from one instant
+//! to the next, the instant's actions change the state, and the method
+//! starts afresh from the new state.
+//!
+//! Restarting is what makes every method correct across a jump: a fresh
+//! start forgets the step size and error history (the first step is chosen
+//! again, as at the start of a run), RADAU5's and RODAS5P's Jacobian and
+//! factorised Newton matrices, Taylor's jet, the stiffness detector and
+//! `Method::Auto`'s choice, and the dense output (each stretch has its own
+//! interpolants; the solution keeps the value on either side of the jump
+//! and interpolates on neither across it). Clock instants are the ends of
+//! the stretches, so they are stepped to exactly, never over.
+//!
+//! At one instant the actions run in rounds (Modelica's event iteration):
+//! the events and clocks due act, each action in the order written and on
+//! the state the ones before it left; then every event function is
+//! evaluated again, and an event whose function crossed zero in its
+//! direction because of the actions fires in the next round, until a round
+//! fires nothing, or [`MAX_EVENT_ITERATIONS`] rounds end in
+//! [`Error::EventLoop`]. An event firing again within
+//! [`Options::min_event_interval`] of its last firing ends the run with
+//! [`Error::ZenoEvents`], which extrapolates where its firings accumulate.
+
+use crate::error::Error;
+use crate::info::EventDirection;
+use crate::methods::{Integrate, Problem};
+use crate::model::Model;
+use crate::solution::{EventHit, Solution};
+
+/// Most rounds of actions at one instant before [`Error::EventLoop`].
+pub const MAX_EVENT_ITERATIONS: usize = 64;
+
+/// Integrates `problem` with `integrate` between the instants where the
+/// model's events and clocks act, applying their actions there.
+pub(crate) fn integrate_hybrid<M: Model>(
+    integrate: Integrate<M>,
+    problem: Problem<'_, M>,
+    mut solution: Solution,
+) -> Result<Solution, Error> {
+    let Problem { model, t0, t1, y0, options } = problem;
+    let clocks = Clocks::of(model, t0, t1)?;
+    let mut zeno = Zeno::new(M::INFO.events.len(), options.min_event_interval, t1 - t0);
+    let mut projector = crate::step::projection::Projector::new(model);
+    let (mut t, mut y) = (t0, y0.to_vec());
+    // Clocks whose grid holds the start act before the first step.
+    let mut due: Vec<usize> = clocks.due(t);
+    loop {
+        if !due.is_empty() {
+            let fired = match act(model, t, &mut y, &due, &mut solution) {
+                Ok(fired) => fired,
+                Err(events) => {
+                    return Err(Error::EventLoop { t, events, partial: Box::new(solution) })
+                }
+            };
+            if let Some(i) = y.iter().position(|v| !v.is_finite()) {
+                return Err(Error::NonFinite {
+                    t,
+                    variable: M::INFO.states[i],
+                    partial: Box::new(solution),
+                });
+            }
+            if let Some(p) = projector.as_mut() {
+                if let Ok(r) = p.project(t, &mut y, 0, None) {
+                    solution.note_constraint_residuals(r);
+                }
+            }
+            let names = fired.iter().map(|&k| trigger_name::<M>(k)).collect();
+            solution.push_jump(&y, names);
+            if let Some((event, accumulation, count)) = zeno.fired(t, &fired) {
+                return Err(Error::ZenoEvents {
+                    t,
+                    event: M::INFO.events[event].name,
+                    accumulation,
+                    count,
+                    partial: Box::new(solution),
+                });
+            }
+            let terminal =
+                fired.iter().any(|&k| k < M::INFO.events.len() && M::INFO.events[k].terminal);
+            if terminal || solution.ended() {
+                return Ok(solution);
+            }
+        }
+        if t == t1 {
+            return Ok(solution);
+        }
+        let t_stop = clocks.next_after(t).map_or(t1, |c| c.min(t1));
+        let stretch = Problem { model, t0: t, t1: t_stop, y0: &y, options };
+        solution = integrate(stretch, solution)?;
+        t = solution.final_time();
+        y.copy_from_slice(solution.final_state());
+        due = solution.take_pending_action().map(|hit| vec![hit.index]).unwrap_or_default();
+        if due.is_empty() && solution.ended() {
+            return Ok(solution);
+        }
+        for c in clocks.due(t) {
+            if !due.contains(&c) {
+                due.push(c);
+            }
+        }
+        if due.is_empty() && t != t_stop {
+            // The method ended short of the stretch without saying why:
+            // nothing more to do.
+            return Ok(solution);
+        }
+    }
+}
+
+/// The name of trigger `k`: event `k`, or clock `k − events`.
+fn trigger_name<M: Model>(k: usize) -> &'static str {
+    match M::INFO.events.get(k) {
+        Some(e) => e.name,
+        None => M::INFO.clocks[k - M::INFO.events.len()].name,
+    }
+}
+
+/// The rounds of actions at `t`, starting with `first` (triggers: events,
+/// then clocks): `y` is changed in place, the events fired by a round are
+/// recorded in `solution`. Every trigger that acted, in order; the last
+/// round's names if the rounds do not end.
+fn act<M: Model>(
+    model: &M,
+    t: f64,
+    y: &mut [f64],
+    first: &[usize],
+    solution: &mut Solution,
+) -> Result<Vec<usize>, Vec<&'static str>> {
+    let m = M::INFO.events.len();
+    let (mut g_before, mut g_after) = (vec![0.0; m], vec![0.0; m]);
+    model.events(t, y, &mut g_before);
+    let mut round: Vec<usize> = first.to_vec();
+    let mut fired = Vec::new();
+    let mut pre = y.to_vec();
+    for _ in 0..MAX_EVENT_ITERATIONS {
+        pre.copy_from_slice(y);
+        for &k in &round {
+            model.act(k, t, &pre, y);
+        }
+        fired.extend_from_slice(&round);
+        if m == 0 {
+            return Ok(fired);
+        }
+        model.events(t, y, &mut g_after);
+        round.clear();
+        for (i, info) in M::INFO.events.iter().enumerate() {
+            let (a, b) = (g_before[i], g_after[i]);
+            let rising = a < 0.0 && b >= 0.0;
+            let falling = a > 0.0 && b <= 0.0;
+            let fires = match info.direction {
+                EventDirection::Any => rising || falling,
+                EventDirection::Rising => rising,
+                EventDirection::Falling => falling,
+            };
+            if fires {
+                round.push(i);
+                solution.push_event(EventHit {
+                    name: info.name,
+                    index: i,
+                    t,
+                    rising,
+                    state: y.to_vec(),
+                });
+            }
+        }
+        if round.is_empty() {
+            return Ok(fired);
+        }
+        std::mem::swap(&mut g_before, &mut g_after);
+    }
+    Err(round.iter().map(|&k| trigger_name::<M>(k)).collect())
+}
+
+/// The instants of a model's clocks.
+struct Clocks {
+    /// `(period, offset)` of each.
+    grids: Vec<(f64, f64)>,
+    /// Where trigger numbers of clocks start (after the events).
+    first: usize,
+}
+
+impl Clocks {
+    /// The clocks of `model` for a run from `t0` to `t1`; a clock with a
+    /// period that is not positive and finite, or a backward run with
+    /// clocks, is refused.
+    fn of<M: Model>(model: &M, t0: f64, t1: f64) -> Result<Clocks, Error> {
+        let grids: Vec<(f64, f64)> = (0..M::INFO.clocks.len()).map(|k| model.clock(k)).collect();
+        for (k, &(h, offset)) in grids.iter().enumerate() {
+            let name = M::INFO.clocks[k].name;
+            if !(h > 0.0 && h.is_finite() && offset.is_finite()) {
+                return Err(Error::InvalidOptions {
+                    message: format!("the clock `{name}` has period {h} and offset {offset}: its period must be positive and finite, its offset finite"),
+                });
+            }
+        }
+        if !grids.is_empty() && t1 < t0 {
+            return Err(Error::InvalidOptions {
+                message: format!("{} has clocks, which run forward in time: integrate from the earlier time to the later", M::INFO.name),
+            });
+        }
+        Ok(Clocks { grids, first: M::INFO.events.len() })
+    }
+
+    /// Instant `k` of clock `c`: computed from the grid, never accumulated,
+    /// so a long run's instants do not drift.
+    fn instant(&self, c: usize, k: f64) -> f64 {
+        let (h, offset) = self.grids[c];
+        offset + k * h
+    }
+
+    /// The first instant of any clock after `t`.
+    fn next_after(&self, t: f64) -> Option<f64> {
+        (0..self.grids.len())
+            .map(|c| {
+                let (h, offset) = self.grids[c];
+                let mut k = ((t - offset) / h).floor().max(0.0);
+                while self.instant(c, k) <= t {
+                    k += 1.0;
+                }
+                self.instant(c, k)
+            })
+            .min_by(f64::total_cmp)
+    }
+
+    /// The triggers of the clocks with an instant at exactly `t`.
+    fn due(&self, t: f64) -> Vec<usize> {
+        (0..self.grids.len())
+            .filter(|&c| {
+                let (h, offset) = self.grids[c];
+                let k = ((t - offset) / h).round();
+                k >= 0.0 && self.instant(c, k) == t
+            })
+            .map(|c| self.first + c)
+            .collect()
+    }
+}
+
+/// Watches the intervals between firings of each event for accumulation.
+struct Zeno {
+    /// Per event: its last firing, the interval before it, how many.
+    last: Vec<(f64, f64, usize)>,
+    min_interval: f64,
+}
+
+impl Zeno {
+    fn new(events: usize, min_interval: Option<f64>, length: f64) -> Zeno {
+        Zeno {
+            last: vec![(f64::NAN, f64::NAN, 0); events],
+            min_interval: min_interval.unwrap_or(1e-10 * length.abs()),
+        }
+    }
+
+    /// Notes the firings of `fired` (triggers) at `t`; for an event that
+    /// fired again too soon, `(event, where its firings accumulate, how
+    /// often it fired)`.
+    fn fired(&mut self, t: f64, fired: &[usize]) -> Option<(usize, f64, usize)> {
+        for &k in fired {
+            let Some((last, previous, count)) = self.last.get_mut(k) else { continue };
+            let interval = (t - *last).abs();
+            *count += 1;
+            // A second firing at the same instant (a later round) is not
+            // a new one.
+            if interval == 0.0 {
+                continue;
+            }
+            if interval < self.min_interval {
+                // Aitken's Δ²: intervals shrinking by r sum to r·Δ/(1 − r).
+                let r = interval / *previous;
+                let rest = if r < 1.0 { interval * r / (1.0 - r) } else { 0.0 };
+                let direction = if t >= *last { 1.0 } else { -1.0 };
+                return Some((k, t + direction * rest, *count));
+            }
+            if last.is_finite() {
+                *previous = interval;
+            }
+            *last = t;
+        }
+        None
+    }
+}
