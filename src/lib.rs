@@ -38,10 +38,11 @@ pub use daegen_macros::{__component_parts, __dae_model_parts};
 pub use daegen_macros::{component, dae_model};
 pub use daegen_runtime as runtime;
 pub use daegen_runtime::{
-    Availability, Batch, BlockInfo, BlockSolution, ComponentInfo, ConstraintInfo, Ensemble, Error,
-    EvalError, EventDirection, EventInfo, FinalState, FinalStates, Flow, Formulation,
-    InitialCorrection, Jacobian, LinearSolver, MassMatrix, Method, Model, ModelInfo, Options,
-    ProjectionLevel, Shard, Simulate, Solution, Stats, Step, StructureInfo, Table,
+    Availability, Batch, BlockInfo, BlockSolution, ClockInfo, ComponentInfo, ConstraintInfo,
+    Ensemble, Error, EvalError, EventDirection, EventHit, EventInfo, FinalState, FinalStates, Flow,
+    Formulation, InitialCorrection, Jacobian, Jump, LinearSolver, MassMatrix, Method, Model,
+    ModelInfo, Options, ProjectionLevel, Shard, Simulate, Solution, Stats, Step, StructureInfo,
+    Table, MAX_EVENT_ITERATIONS,
 };
 
 pub mod guide;

@@ -34,6 +34,16 @@ fn impact_times(h: f64, g: f64, e: f64, bounces: usize) -> Vec<f64> {
     times
 }
 
+/// The error a method's run at tolerance `tol` is held to: `tol`, but for
+/// RADAU5, which works to 0.1·tol^(2/3) (Hairer's `radau5.f`, kept by the
+/// runtime).
+fn reach(method: Method, tol: f64) -> f64 {
+    match method {
+        Method::Radau5 => 0.1 * tol.powf(2.0 / 3.0),
+        _ => tol,
+    }
+}
+
 #[test]
 fn bounces_fall_on_the_geometric_series_for_every_adaptive_method() {
     let ball = BouncingBall::default();
@@ -130,5 +140,169 @@ fn fixed_step_methods_bounce_at_their_order() {
                 assert!((1.8..2.2).contains(&ratio), "{method:?}: bounce {k}, error ratio {ratio}");
             }
         }
+    }
+}
+
+/// A first-order plant x' = −a x + b u under a PI controller sampled
+/// every `h`, its output held between samples (a zero-order hold).
+#[dae_model(taylor = 1)]
+fn sampled_pi() {
+    let a = param(2.0);
+    let b = param(3.0);
+    let kp = param(0.8);
+    let ki = param(1.5);
+    let r = param(1.0);
+    let h = param(0.1);
+    let x = state(0.0);
+    /// The controller's output, held between samples.
+    let u = discrete(0.0);
+    /// The integral of the error, summed at the samples.
+    let integral = discrete(0.0);
+    der(x) == -a * x + b * u;
+    /// The controller reads x and sets u.
+    let sample =
+        every(h).reinit(integral, integral + ki * h * (r - x)).reinit(u, kp * (r - x) + integral);
+}
+
+/// The exact discrete-time recursion of the sampled loop: with the input
+/// held, x_{k+1} = φ x_k + (b/a)(1 − φ) u_k, φ = e^{−a h}; the controller
+/// I_k = I_{k−1} + k_i h (r − x_k), u_k = k_p (r − x_k) + I_k. The values
+/// (x_k, u_k) at the sample instants k·h.
+fn zero_order_hold(m: &SampledPi, samples: usize) -> Vec<(f64, f64)> {
+    let phi = (-m.a * m.h).exp();
+    let (mut x, mut integral) = (0.0, 0.0);
+    let mut out = Vec::new();
+    for _ in 0..samples {
+        integral += m.ki * m.h * (m.r - x);
+        let u = m.kp * (m.r - x) + integral;
+        out.push((x, u));
+        x = phi * x + m.b / m.a * (1.0 - phi) * u;
+    }
+    out
+}
+
+#[test]
+fn a_sampled_pi_loop_follows_the_zero_order_hold_recursion() {
+    let model = SampledPi::default();
+    let samples = 40;
+    let exact = zero_order_hold(&model, samples + 1);
+    let t_end = samples as f64 * model.h;
+    for method in adaptive_methods_for::<SampledPi>() {
+        let opts = Options::new().method(method).tolerance(1e-12);
+        let sol = model.simulate(0.0, t_end, &opts).unwrap_or_else(|e| panic!("{method:?}: {e}"));
+        // One jump per instant, at k·h exactly: never stepped over.
+        let jumps = sol.jumps();
+        assert_eq!(jumps.len(), samples + 1, "{method:?}");
+        for (k, jump) in jumps.iter().enumerate() {
+            assert_eq!(jump.t, k as f64 * model.h, "{method:?}: instant {k}");
+            assert_eq!(jump.triggers, ["sample"]);
+        }
+        for (k, &(x, u)) in exact.iter().enumerate() {
+            let t = k as f64 * model.h;
+            let x_got = sol.at(t, "x").unwrap();
+            let bound = 10.0 * reach(method, 1e-12);
+            assert!((x_got - x).abs() <= bound, "{method:?}: x({t}) = {x_got}, recursion {x}");
+            let u_got = sol.at(t, "u").unwrap();
+            assert!((u_got - u).abs() <= bound, "{method:?}: u({t}) = {u_got}, recursion {u}");
+            if k > 0 {
+                // Held: just before the instant, the output of the one before.
+                assert!((sol.at_left(t, "u").unwrap() - exact[k - 1].1).abs() <= bound);
+                let held = sol.at(t - 0.5 * model.h, "u").unwrap();
+                assert_eq!(held, sol.at_left(t, "u").unwrap(), "{method:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn fixed_step_methods_sample_at_their_order() {
+    // Fixed steps fit each sample interval (the instants end the stretches),
+    // so the error is the method's: halving the step divides it by 2^p.
+    let model = SampledPi::default();
+    let samples = 20;
+    let exact = zero_order_hold(&model, samples + 1);
+    let t_end = samples as f64 * model.h;
+    let error = |method: Method, step: f64| {
+        let sol = model
+            .simulate(0.0, t_end, &Options::new().method(method).step(step))
+            .unwrap_or_else(|e| panic!("{method:?}: {e}"));
+        (0..=samples)
+            .map(|k| (sol.at(k as f64 * model.h, "x").unwrap() - exact[k].0).abs())
+            .fold(0.0, f64::max)
+    };
+    for method in methods_for::<SampledPi>(|m| !support::harness::is_adaptive(m)) {
+        let support::harness::Kind::FixedStep { order, .. } = support::harness::kind(method) else {
+            unreachable!()
+        };
+        let (coarse, fine) = (error(method, 0.05), error(method, 0.025));
+        let ratio = coarse / fine;
+        let want = 2f64.powi(order);
+        assert!(
+            (0.7 * want..1.4 * want).contains(&ratio),
+            "{method:?}: {coarse:e} / {fine:e} = {ratio}"
+        );
+    }
+}
+
+/// A room heated by a thermostat with hysteresis: the heater switches off
+/// above `t_high` and on below `t_low`.
+#[dae_model(taylor = 1)]
+fn thermostat() {
+    /// Heat capacity.
+    let c = param(1.0);
+    /// Loss to the ambient.
+    let k = param(0.5);
+    /// Heater power.
+    let p = param(10.0);
+    let t_ambient = param(10.0);
+    let t_low = param(19.0);
+    let t_high = param(21.0);
+    let temp = state(15.0);
+    /// 1 while the heater is on.
+    let on = discrete(true);
+    c * der(temp) == on * p - k * (temp - t_ambient);
+    let too_warm = event(temp - t_high).rising().reinit(on, 0.0);
+    let too_cold = event(temp - t_low).falling().reinit(on, 1.0);
+}
+
+#[test]
+fn a_thermostat_switches_when_the_exponentials_say() {
+    // T relaxes to T∞ with time constant τ = c/k: from T0 to T1 it takes
+    // τ ln((T0 − T∞)/(T1 − T∞)); T∞ = Ta + p/k heating, Ta cooling.
+    let m = Thermostat::default();
+    let tau = m.c / m.k;
+    let (hot, cold) = (m.t_ambient + m.p / m.k, m.t_ambient);
+    let heat = |from: f64, to: f64| tau * ((from - hot) / (to - hot)).ln();
+    let cool = |from: f64, to: f64| tau * ((from - cold) / (to - cold)).ln();
+    let mut switches = vec![heat(15.0, m.t_high)];
+    for k in 1..10 {
+        let last = switches[k - 1];
+        switches.push(
+            last + if k % 2 == 1 { cool(m.t_high, m.t_low) } else { heat(m.t_low, m.t_high) },
+        );
+    }
+    let t_end = switches[9] + 0.2;
+    for method in adaptive_methods_for::<Thermostat>() {
+        let opts = Options::new().method(method).tolerance(1e-12);
+        let sol = m.simulate(0.0, t_end, &opts).unwrap_or_else(|e| panic!("{method:?}: {e}"));
+        let jumps = sol.jumps();
+        assert_eq!(jumps.len(), 10, "{method:?}");
+        for (k, (jump, want)) in jumps.iter().zip(&switches).enumerate() {
+            assert!(
+                (jump.t - want).abs() <= 10.0 * reach(method, 1e-12) * want,
+                "{method:?}: switch {k} at {}, exact {want}",
+                jump.t
+            );
+            let (name, on) = if k % 2 == 0 { ("too_warm", 0.0) } else { ("too_cold", 1.0) };
+            assert_eq!(jump.triggers, [name], "{method:?}");
+            assert_eq!(sol.at(jump.t, "on").unwrap(), on);
+            assert_eq!(sol.at_left(jump.t, "on").unwrap(), 1.0 - on);
+        }
+        // In the band the temperature stays.
+        let temps = sol.column("temp").unwrap();
+        let after_first = sol.times().iter().position(|&t| t >= switches[0]).unwrap();
+        assert!(temps[after_first..]
+            .iter()
+            .all(|&t| (m.t_low - 1e-9..=m.t_high + 1e-9).contains(&t)));
     }
 }

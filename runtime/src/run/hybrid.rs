@@ -43,6 +43,7 @@ pub(crate) fn integrate_hybrid<M: Model>(
     let mut zeno = Zeno::new(M::INFO.events.len(), options.min_event_interval, t1 - t0);
     let mut projector = crate::step::projection::Projector::new(model);
     let (mut t, mut y) = (t0, y0.to_vec());
+    let fixed_step = options.step.unwrap_or((t1 - t0).abs() / 1000.0);
     // Clocks whose grid holds the start act before the first step.
     let mut due: Vec<usize> = clocks.due(t);
     loop {
@@ -86,7 +87,15 @@ pub(crate) fn integrate_hybrid<M: Model>(
             return Ok(solution);
         }
         let t_stop = clocks.next_after(t).map_or(t1, |c| c.min(t1));
-        let stretch = Problem { model, t0: t, t1: t_stop, y0: &y, options };
+        // The run's limits, not each stretch's: fixed steps of the whole
+        // interval over 1000 by default, and max_steps over all stretches.
+        let taken = solution.stats().steps;
+        if taken >= options.max_steps {
+            let max_steps = options.max_steps;
+            return Err(Error::MaxSteps { t, max_steps, partial: Box::new(solution) });
+        }
+        let stretch_options = options.step(fixed_step).max_steps(options.max_steps - taken);
+        let stretch = Problem { model, t0: t, t1: t_stop, y0: &y, options: &stretch_options };
         solution = integrate(stretch, solution)?;
         t = solution.final_time();
         y.copy_from_slice(solution.final_state());

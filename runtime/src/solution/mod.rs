@@ -125,6 +125,7 @@ pub(crate) struct Names {
     outputs: &'static [&'static str],
     algebraics: &'static [&'static str],
     events: &'static [EventInfo],
+    discrete: &'static [&'static str],
 }
 
 impl Names {
@@ -136,6 +137,7 @@ impl Names {
             outputs: info.outputs,
             algebraics: info.algebraics,
             events: info.events,
+            discrete: info.discrete,
         }
     }
 }

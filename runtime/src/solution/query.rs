@@ -193,6 +193,17 @@ impl Solution {
     /// The state at `t` within stored step `k` (from `times[k - 1]` to
     /// `times[k]`), by the step's interpolant.
     fn interpolate_stored(&self, k: usize, t: f64, y: &mut [f64]) {
+        self.interpolate_continuous(k, t, y);
+        // Discrete values hold between events: read, not interpolated.
+        for name in self.names.discrete {
+            if let Some(i) = self.names.states.iter().position(|s| s == name) {
+                y[i] = self.stored_state(k - 1)[i];
+            }
+        }
+    }
+
+    /// [`Solution::interpolate_stored`] by the step's interpolant alone.
+    fn interpolate_continuous(&self, k: usize, t: f64, y: &mut [f64]) {
         let n = self.n;
         let t0 = self.times[k - 1];
         let is_last = k == self.times.len() - 1;
