@@ -40,7 +40,7 @@ pub use daegen_runtime as runtime;
 pub use daegen_runtime::{
     Availability, Batch, BlockInfo, BlockSolution, ClockInfo, ComponentInfo, ConstraintInfo,
     Ensemble, Error, EvalError, EventDirection, EventHit, EventInfo, FinalState, FinalStates, Flow,
-    Formulation, InitialCorrection, Jacobian, Jump, LinearSolver, MassMatrix, Method, Model,
+    Formulation, InitialCorrection, Input, Jacobian, Jump, LinearSolver, MassMatrix, Method, Model,
     ModelInfo, Options, ProjectionLevel, Shard, Simulate, Solution, Stats, Step, StructureInfo,
     Table, MAX_EVENT_ITERATIONS,
 };

@@ -306,3 +306,141 @@ fn a_thermostat_switches_when_the_exponentials_say() {
             .all(|&t| (m.t_low - 1e-9..=m.t_high + 1e-9).contains(&t)));
     }
 }
+
+/// A first-order low-pass filter driven by an input: τ x' = u(t) − x.
+#[dae_model]
+fn low_pass() {
+    let tau = param(0.5);
+    /// The voltage applied.
+    let u = input(0.0);
+    let x = state(0.0);
+    tau * der(x) == u - x;
+}
+
+/// An integrator of its input: x' = u(t).
+#[dae_model]
+fn accumulator() {
+    /// The flow in.
+    let u = input(0.0);
+    let x = state(0.0);
+    der(x) == u;
+}
+
+#[test]
+fn a_function_input_drives_the_filter_as_the_exact_solution_says() {
+    // u = sin ωt from x(0) = 0: x = (sin ωt − ωτ cos ωt + ωτ e^{−t/τ}) / (1 + ω²τ²).
+    let omega = 3.0;
+    let model =
+        LowPass { u: daegen::Input::function(move |t| (omega * t).sin()), ..LowPass::default() };
+    let tau = model.tau;
+    let exact = |t: f64| {
+        let wt = omega * tau;
+        ((omega * t).sin() - wt * (omega * t).cos() + wt * (-t / tau).exp()) / (1.0 + wt * wt)
+    };
+    for method in adaptive_methods_for::<LowPass>() {
+        let opts = Options::new().method(method).tolerance(1e-10);
+        let sol = model.simulate(0.0, 4.0, &opts).unwrap_or_else(|e| panic!("{method:?}: {e}"));
+        for k in 0..=40 {
+            let t = 0.1 * k as f64;
+            let err = (sol.at(t, "x").unwrap() - exact(t)).abs();
+            assert!(err <= 100.0 * reach(method, 1e-10), "{method:?}: error {err:e} at {t}");
+            // The input reads like an output.
+            assert!((sol.at(t, "u").unwrap() - (omega * t).sin()).abs() <= 1e-15);
+        }
+    }
+    // The Taylor method needs every derivative of the input: refused.
+    let refusal = Method::Taylor.refusal::<LowPass>().expect("refused");
+    assert!(refusal.contains("input `u`"), "{refusal}");
+    let described = model.describe();
+    assert!(described.contains("inputs:\n  u "), "{described}");
+    assert_eq!(<LowPass as Model>::INFO.inputs, ["u"]);
+}
+
+#[test]
+fn a_table_input_has_its_breakpoints_stepped_to() {
+    // x' = u(t) with u piecewise linear: x is piecewise quadratic, which
+    // every method of order 2 or more integrates exactly, provided no step
+    // straddles a kink: a step over one would be off by O(h²) there.
+    let (times, values) = ([0.0, 0.3, 1.1, 1.7, 2.45], [0.0, 2.0, 2.0, -1.0, 0.5]);
+    let table = daegen::Input::linear(&times, &values).unwrap();
+    let model = Accumulator { u: table.clone() };
+    let exact = |t: f64| {
+        // ∫₀ᵗ u by pieces: trapezoids, the last one partial.
+        let mut x = 0.0;
+        for k in 0..times.len() - 1 {
+            let (a, b) = (times[k], times[k + 1].min(t));
+            if b <= a {
+                break;
+            }
+            x += (b - a) * (table.at(a) + table.at(b)) / 2.0;
+        }
+        if t > times[times.len() - 1] {
+            x += (t - times[times.len() - 1]) * values[values.len() - 1];
+        }
+        x
+    };
+    for method in methods_for::<Accumulator>(|m| {
+        !matches!(support::harness::kind(m), support::harness::Kind::FixedStep { order: 1, .. })
+    }) {
+        let opts = Options::new().method(method).tolerance(1e-10).step(0.07);
+        let sol = model.simulate(0.0, 3.0, &opts).unwrap_or_else(|e| panic!("{method:?}: {e}"));
+        for b in &times[1..] {
+            assert!(sol.times().contains(b), "{method:?}: no step ends at the breakpoint {b}");
+        }
+        for k in 0..=60 {
+            let t = 0.05 * k as f64;
+            let err = (sol.at(t, "x").unwrap() - exact(t)).abs();
+            assert!(err <= 1e-12, "{method:?}: error {err:e} at {t}");
+        }
+    }
+}
+
+#[test]
+fn a_monotone_cubic_table_is_integrated_to_its_knots() {
+    // The cubic pieces integrate by Simpson's rule exactly: between the
+    // knots (stepped to), RK4 and the adaptive methods reproduce ∫u.
+    let (times, values) = ([0.0, 0.5, 1.0, 2.0], [0.0, 1.0, 1.2, 0.0]);
+    let table = daegen::Input::monotone_cubic(&times, &values).unwrap();
+    let model = Accumulator { u: table.clone() };
+    let mut exact = vec![0.0];
+    for k in 0..times.len() - 1 {
+        let (a, b) = (times[k], times[k + 1]);
+        let m = 0.5 * (a + b);
+        exact.push(exact[k] + (b - a) / 6.0 * (table.at(a) + 4.0 * table.at(m) + table.at(b)));
+    }
+    for method in methods_for::<Accumulator>(|m| {
+        support::harness::is_adaptive(m) || m == Method::Rk4 || m == Method::Rk38
+    }) {
+        let opts = Options::new().method(method).tolerance(1e-11).step(0.3);
+        let sol = model.simulate(0.0, 2.0, &opts).unwrap_or_else(|e| panic!("{method:?}: {e}"));
+        for (t, want) in times.iter().zip(&exact) {
+            let got = sol.at(*t, "x").unwrap();
+            assert!(
+                (got - want).abs() <= 100.0 * reach(method, 1e-11),
+                "{method:?}: x({t}) = {got}, exact {want}"
+            );
+        }
+    }
+}
+
+#[test]
+fn co_simulation_sets_the_input_between_communication_steps() {
+    // A master steps the filter by H, reading x and setting u = k (r − x)
+    // for the next step: with the input held, x_{k+1} = φ x_k + (1 − φ) u_k,
+    // φ = e^{−H/τ}, exactly.
+    let (big_h, gain, r) = (0.2, 1.5, 1.0);
+    let mut model = LowPass::default();
+    let phi = (-big_h / model.tau).exp();
+    let (mut t, mut y) = (0.0, vec![0.0]);
+    let mut x_exact = 0.0;
+    let opts = Options::new().method(Method::Dopri5).tolerance(1e-12);
+    for _ in 0..25 {
+        let u = gain * (r - y[0]);
+        model.u = daegen::Input::constant(u);
+        let sol = model.simulate_from(t, &y, t + big_h, &opts).expect("a communication step");
+        t += big_h;
+        y = sol.final_state().to_vec();
+        x_exact = phi * x_exact + (1.0 - phi) * gain * (r - x_exact);
+        assert!((y[0] - x_exact).abs() <= 1e-11, "at {t}: {} vs {x_exact}", y[0]);
+    }
+}

@@ -89,6 +89,9 @@ pub fn analyse_with_parts(
         false => None,
     };
     let Some(system) = system.filter(|_| cx.is_ok()) else { return Err(Box::new(ir)) };
+    if !crate::dae::inputs::inputs_not_differentiated(cx, &ir, &system) {
+        return Err(Box::new(ir));
+    }
     let sensitivities = variational(cx, &mut ir, &attributes, &system);
     if !cx.is_ok() {
         return Err(Box::new(ir));

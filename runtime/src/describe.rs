@@ -28,6 +28,13 @@ pub(crate) fn describe(info: &ModelInfo, parameter: Option<&dyn Fn(usize) -> f64
             None => name.to_string(),
         })
         .collect();
+    let sets = |resets: &[&str]| {
+        if resets.is_empty() {
+            String::new()
+        } else {
+            format!(", sets {}", resets.join(", "))
+        }
+    };
     let events: Vec<String> = info
         .events
         .iter()
@@ -38,16 +45,41 @@ pub(crate) fn describe(info: &ModelInfo, parameter: Option<&dyn Fn(usize) -> f64
                 EventDirection::Falling => ", falling",
             };
             let terminal = if e.terminal { ", terminal" } else { "" };
-            format!("{}{direction}{terminal}", e.name)
+            format!("{}{direction}{terminal}{}", e.name, sets(e.resets))
         })
         .collect();
     let event_docs: Vec<&str> = info.events.iter().map(|e| e.doc).collect();
-    let sections: [(&str, Vec<String>, &[&str]); 5] = [
-        ("states", owned(info.states), info.state_docs),
+    let clocks: Vec<String> =
+        info.clocks.iter().map(|c| format!("{}{}", c.name, sets(c.resets))).collect();
+    let clock_docs: Vec<&str> = info.clocks.iter().map(|c| c.doc).collect();
+    // Discrete values are states, and inputs outputs, listed apart.
+    let split = |names: &'static [&'static str], docs: &'static [&'static str], apart: &[&str]| {
+        let (mut kept, mut kept_docs, mut other, mut other_docs) = (vec![], vec![], vec![], vec![]);
+        for (k, name) in names.iter().enumerate() {
+            let doc = docs.get(k).copied().unwrap_or("");
+            if apart.contains(name) {
+                other.push(name.to_string());
+                other_docs.push(doc);
+            } else {
+                kept.push(name.to_string());
+                kept_docs.push(doc);
+            }
+        }
+        (kept, kept_docs, other, other_docs)
+    };
+    let (states, state_docs, discrete, discrete_docs) =
+        split(info.states, info.state_docs, info.discrete);
+    let (outputs, output_docs, inputs, input_docs) =
+        split(info.outputs, info.output_docs, info.inputs);
+    let sections: [(&str, Vec<String>, &[&str]); 8] = [
+        ("states", states, &state_docs),
+        ("discrete values", discrete, &discrete_docs),
         ("parameters", parameters, info.parameter_docs),
+        ("inputs", inputs, &input_docs),
         ("algebraic variables", owned(info.algebraics), info.algebraic_docs),
-        ("outputs", owned(info.outputs), info.output_docs),
+        ("outputs", outputs, &output_docs),
         ("events", events, &event_docs),
+        ("clocks", clocks, &clock_docs),
     ];
     let width = sections
         .iter()
@@ -177,6 +209,7 @@ mod tests {
         }],
         clocks: &[],
         discrete: &[],
+        inputs: &[],
         algebraics: &[],
         algebraic_docs: &[],
         structure: crate::info::StructureInfo::NONE,

@@ -199,6 +199,9 @@ pub struct ModelInfo {
     /// The states that are discrete values (`discrete(v0)`): constant
     /// between events, set only by actions.
     pub discrete: &'static [&'static str],
+    /// Inputs (`let u = input(u0)`): signals the caller supplies, each a
+    /// field of type [`crate::Input`], read by name like outputs.
+    pub inputs: &'static [&'static str],
     /// Algebraic variables (`let z = algebraic(guess)`), computed from the
     /// states at each point; read them by name like outputs.
     pub algebraics: &'static [&'static str],
@@ -242,6 +245,7 @@ impl ModelInfo {
             events: &[],
             clocks: &[],
             discrete: &[],
+            inputs: &[],
             algebraics: &[],
             algebraic_docs: &[],
             structure: StructureInfo::NONE,
@@ -272,9 +276,12 @@ pub struct ProjectionLevel {
 }
 
 impl ModelInfo {
-    /// Whether a run of the model has instants where something acts: an
-    /// event with actions, or a clock.
+    /// Whether a run of the model has instants where something acts or
+    /// changes: an event with actions, a clock, an input (a table's
+    /// breakpoints).
     pub fn is_hybrid(&self) -> bool {
-        !self.clocks.is_empty() || self.events.iter().any(|e| !e.resets.is_empty())
+        !self.clocks.is_empty()
+            || !self.inputs.is_empty()
+            || self.events.iter().any(|e| !e.resets.is_empty())
     }
 }

@@ -25,6 +25,7 @@ mod describe;
 pub mod ensemble;
 pub mod error;
 pub mod info;
+mod input;
 pub mod kinematics;
 pub mod lanes;
 pub mod linalg;
@@ -48,6 +49,7 @@ pub use info::{
     BlockInfo, BlockSolution, ClockInfo, ComponentInfo, ConstraintInfo, EvalError, EventDirection,
     EventInfo, ModelInfo, ProjectionLevel, StructureInfo,
 };
+pub use input::Input;
 pub use model::{Availability, Jacobian, MassMatrix, Model, StateVector};
 /// The linear-algebra crate of [`kinematics`], re-exported so users get the
 /// same version.

@@ -15,6 +15,7 @@ pub mod alias;
 pub mod constraints;
 pub mod derivative_free;
 pub mod index_reduction;
+pub mod inputs;
 pub mod linear_pencil;
 pub mod mass_form;
 pub mod matching;

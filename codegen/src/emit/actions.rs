@@ -1,7 +1,9 @@
-//! `Model::act` and `Model::clock`: the actions of events and clocks, each
-//! `.reinit(x, value)` in the order written on the state the ones before
-//! it left (`pre(x)` read from the state before the instant), and each
-//! clock's period and first instant. Nothing for a model without them.
+//! `Model::act`, `Model::clock` and `Model::input_breakpoints`: the
+//! actions of events and clocks, each `.reinit(x, value)` in the order
+//! written on the state the ones before it left (`pre(x)` read from the
+//! state before the instant), each clock's period and first instant, and
+//! the instants where inputs are not smooth. Nothing for a model without
+//! them.
 
 use crate::dae::system::FirstOrder;
 use crate::emit::layout::{index, Layout};
@@ -88,6 +90,21 @@ pub(crate) fn clock_method(g: &mut Graph, layout: &Layout, clocks: &[Clock]) -> 
                 _ => {}
             }
             (period, offset)
+        }
+    }
+}
+
+/// `input_breakpoints`, every input's breakpoints.
+pub(crate) fn input_breakpoints_method(inputs: &[crate::front::ir::InputDecl]) -> TokenStream {
+    if inputs.is_empty() {
+        return TokenStream::new();
+    }
+    let fields = inputs.iter().map(|i| &i.ident);
+    quote! {
+        fn input_breakpoints(&self) -> ::std::vec::Vec<f64> {
+            let mut breakpoints = ::std::vec::Vec::new();
+            #(breakpoints.extend_from_slice(self.#fields.breakpoints());)*
+            breakpoints
         }
     }
 }

@@ -27,6 +27,8 @@ pub(crate) fn batch_items(
         Some("has equations solved for their derivatives at run time")
     } else if !ir.events.is_empty() || !ir.clocks.is_empty() {
         Some("has events")
+    } else if !ir.inputs.is_empty() {
+        Some("reads inputs")
     } else if !sys.invariants.is_empty() || !ir.invariants.is_empty() {
         Some("has invariants to project onto")
     } else {
@@ -125,6 +127,7 @@ pub(crate) fn batch_items(
                 events: &[],
                 clocks: &[],
                 discrete: &[],
+                inputs: &[],
                 algebraics: &[],
                 algebraic_docs: &[],
                 structure: <#name as ::daegen::Model>::INFO.structure,

@@ -38,9 +38,31 @@ pub(crate) fn struct_and_default(ir: &ModelIr, analysis: &str) -> TokenStream {
         let v = Literal::f64_unsuffixed(if p.default.is_finite() { p.default } else { 0.0 });
         quote!(#ident: #v)
     });
+    let input_fields = ir.inputs.iter().map(|i| {
+        let (ident, doc) = (&i.ident, &i.doc);
+        let doc = doc_attr(&if doc.is_empty() {
+            format!("Input `{ident}`, supplied at run time.")
+        } else {
+            doc.clone()
+        });
+        quote!(#[doc = #doc] pub #ident: ::daegen::Input)
+    });
+    let input_defaults = ir.inputs.iter().map(|i| {
+        let ident = &i.ident;
+        let v = Literal::f64_unsuffixed(i.default);
+        quote!(#ident: ::daegen::Input::constant(#v))
+    });
+    let fields = fields.chain(input_fields);
+    let defaults = defaults.chain(input_defaults);
+    // An input holds a function or a table: the model is then cloned, not copied.
+    let derives = if ir.inputs.is_empty() {
+        quote!(#[derive(Clone, Copy, Debug, PartialEq)])
+    } else {
+        quote!(#[derive(Clone, Debug, PartialEq)])
+    };
     quote! {
         #[doc = #doc]
-        #[derive(Clone, Copy, Debug, PartialEq)]
+        #derives
         #vis struct #name { #(#fields,)* }
 
         impl ::core::default::Default for #name {
@@ -196,6 +218,7 @@ pub(crate) fn info_with(
         quote!(::daegen::ClockInfo { name: #name, resets: &[#(#resets),*], doc: #doc })
     });
     let discrete = ir.discretes.iter().map(|&d| ir.graph.symbol(d).name.clone());
+    let inputs = ir.inputs.iter().map(|i| i.ident.to_string());
     let events = ir.events.iter().map(|e| {
         let name = &e.name;
         let doc = &e.doc;
@@ -230,6 +253,7 @@ pub(crate) fn info_with(
             events: &[#(#events),*],
             clocks: &[#(#clocks),*],
             discrete: &[#(#discrete),*],
+            inputs: &[#(#inputs),*],
             algebraics: &[#(#algebraics),*],
             algebraic_docs: &[#(#algebraic_docs),*],
             structure: #structure,

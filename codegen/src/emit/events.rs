@@ -38,7 +38,7 @@ pub(crate) fn event_rates_method(
     g: &mut Graph,
     layout: &Layout,
     sys: &FirstOrder,
-    time: SymbolId,
+    (time, inputs): (SymbolId, &[(SymbolId, SymbolId)]),
     explicit: Option<&Vec<Id>>,
 ) -> crate::Result<TokenStream> {
     let n = sys.slots.len();
@@ -47,6 +47,11 @@ pub(crate) fn event_rates_method(
             let mut field = crate::VectorField::new();
             let one = g.one();
             field.set(time, one);
+            // An input moves with the time at its rate.
+            for &(u, rate) in inputs {
+                let rate = g.symbol_node(rate);
+                field.set(u, rate);
+            }
             for (slot, &fi) in sys.slots.iter().zip(f) {
                 field.set(slot.symbol, fi);
             }

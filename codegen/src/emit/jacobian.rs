@@ -13,7 +13,7 @@ pub(crate) fn jacobian_items(
     g: &mut Graph,
     layout: &Layout,
     slots: &[SymbolId],
-    time: SymbolId,
+    (time, inputs): (SymbolId, &[(SymbolId, SymbolId)]),
     explicit: Option<Vec<Id>>,
 ) -> crate::Result<TokenStream> {
     let n = slots.len();
@@ -34,8 +34,17 @@ pub(crate) fn jacobian_items(
             let expressions = j.expressions();
             let entries: Vec<usize> = (0..expressions.len()).collect();
             let values = rolled_program(g, layout, &expressions, ("values", &entries));
-            let dfdt: Vec<Id> =
+            let mut dfdt: Vec<Id> =
                 f.iter().map(|&e| g.partial(e, time)).collect::<crate::Result<_>>()?;
+            // An input is a function of the time: ∂f/∂t + Σ ∂f/∂u · u'.
+            for &(u, rate) in inputs {
+                let rate = g.symbol_node(rate);
+                for d in dfdt.iter_mut().zip(&f) {
+                    let through = g.partial(*d.1, u)?;
+                    let through = g.mul(through, rate)?;
+                    *d.0 = g.add(*d.0, through)?;
+                }
+            }
             let components: Vec<usize> = (0..dfdt.len()).collect();
             let time = rolled_program(g, layout, &dfdt, ("dfdt", &components));
             let values = fixed_size_body(&nn, "values", &nnz, values);

@@ -64,6 +64,14 @@ impl Layout {
                 quote!(self.#field)
             }
             SymbolKind::Time => quote!(t),
+            SymbolKind::Input { rate_of: None } => {
+                let field = format_ident!("{}", g.symbol(s).name);
+                quote!(self.#field.at(t))
+            }
+            SymbolKind::Input { rate_of: Some(of) } => {
+                let field = format_ident!("{}", g.symbol(of).name);
+                quote!(self.#field.rate(t))
+            }
             // Reduction replaced every other symbol; NaN would surface at run time.
             _ => quote!(f64::NAN),
         }

@@ -55,9 +55,11 @@ fn expand_system(
     });
     let (block_setup, rhs_body, block_solve) = rhs_items(g, &layout, sys);
     let explicit = explicit_derivatives(sys);
-    let event_rates_method = event_rates_method(g, &layout, sys, ir.time, explicit.as_ref())?;
+    let inputs: Vec<(SymbolId, SymbolId)> = ir.inputs.iter().map(|i| (i.symbol, i.rate)).collect();
+    let event_rates_method =
+        event_rates_method(g, &layout, sys, (ir.time, &inputs), explicit.as_ref())?;
     let slot_symbols: Vec<SymbolId> = sys.slots.iter().map(|s| s.symbol).collect();
-    let jacobian = jacobian_items(g, &layout, &slot_symbols, ir.time, explicit)?;
+    let jacobian = jacobian_items(g, &layout, &slot_symbols, (ir.time, &inputs), explicit)?;
     let output_arms = output_arms(g, &mut layout, sys, &newton_solve_for_outputs)?;
     let constraint_methods = crate::emit::constraints::constraint_methods(
         g,
@@ -90,6 +92,7 @@ fn expand_system(
     // equations of the mass-matrix form too.
     let (mass_form_type, mass_form_method) = mass_form_items(ir, analysis, &name)?;
     let clock_method = crate::emit::actions::clock_method(&mut ir.graph, &layout, &ir.clocks);
+    let input_breakpoints = crate::emit::actions::input_breakpoints_method(&ir.inputs);
     let info = info(ir, sys);
     let parameter = parameter_method(ir);
     let degenerate = degenerate_parameters_method(&mut ir.graph, &layout, sys);
@@ -166,6 +169,8 @@ fn expand_system(
             #act_method
 
             #clock_method
+
+            #input_breakpoints
 
             #constraint_methods
 
@@ -332,7 +337,7 @@ pub fn stub(ir: &ModelIr) -> TokenStream {
             const INDEX: usize = 0;
             const INFO: ::daegen::ModelInfo = ::daegen::ModelInfo {
                 name: #name_str, doc: "", states: &[], state_docs: &[], parameters: &[], parameter_docs: &[],
-                outputs: &[], output_docs: &[], equations: 0, events: &[], clocks: &[], discrete: &[], algebraics: &[], algebraic_docs: &[],
+                outputs: &[], output_docs: &[], equations: 0, events: &[], clocks: &[], discrete: &[], inputs: &[], algebraics: &[], algebraic_docs: &[],
                 structure: ::daegen::StructureInfo::NONE,
                 components: &[],
             };

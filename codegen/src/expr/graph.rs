@@ -255,6 +255,17 @@ impl Graph {
         self.add_symbol(name, SymbolKind::Time)
     }
 
+    /// A signal supplied at run time.
+    pub fn input(&mut self, name: &str) -> Result<Id> {
+        self.add_symbol(name, SymbolKind::Input { rate_of: None })
+    }
+
+    /// The rate of the input `of`, named `rate(u)`.
+    pub fn input_rate(&mut self, of: SymbolId) -> Result<Id> {
+        let name = format!("rate({})", self.symbol(of).name);
+        self.add_symbol(&name, SymbolKind::Input { rate_of: Some(of) })
+    }
+
     /// A named intermediate standing for `definition`.
     pub fn intermediate(&mut self, name: &str, definition: Id) -> Result<Id> {
         self.add_symbol(name, SymbolKind::Intermediate { definition })

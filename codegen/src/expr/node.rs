@@ -43,6 +43,13 @@ pub enum SymbolKind {
     Parameter,
     /// The independent variable.
     Time,
+    /// A signal the caller supplies at run time (`input(u0)`), a function
+    /// of the time that the analyses treat as known, like the time; with
+    /// `rate_of`, the rate of that input.
+    Input {
+        /// For the rate of an input, the input.
+        rate_of: Option<SymbolId>,
+    },
     /// The `order`-th time derivative of another symbol (`der(x)`, `der(der(x))`),
     /// used by implicit forms and the economic Taylor scheme.
     Derivative {

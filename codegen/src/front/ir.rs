@@ -4,6 +4,21 @@
 use crate::{Graph, Id, SymbolId};
 use proc_macro2::TokenStream;
 
+/// `let u = input(u0);`: a signal the caller supplies at run time, the
+/// field `u: daegen::Input` (`u0` by default).
+pub struct InputDecl {
+    /// The field name.
+    pub ident: syn::Ident,
+    /// Its value by default.
+    pub default: f64,
+    /// Its doc comment.
+    pub doc: String,
+    /// Its symbol, and its rate's.
+    pub symbol: SymbolId,
+    /// The rate's symbol (`rate(u)`).
+    pub rate: SymbolId,
+}
+
 /// `let name = param(default);`
 pub struct Param {
     /// The field name.
@@ -178,6 +193,8 @@ pub struct ModelIr {
     pub events: Vec<Event>,
     /// Clocks (`every(h)`).
     pub clocks: Vec<Clock>,
+    /// Inputs (`input(u0)`), in declaration order.
+    pub inputs: Vec<InputDecl>,
     /// States that are discrete values (`discrete(v0)`): constant between
     /// events, changed only by actions.
     pub discretes: Vec<SymbolId>,
@@ -217,6 +234,9 @@ impl std::fmt::Display for ModelIr {
         writeln!(f, "time {}", name(self.time))?;
         for p in &self.params {
             writeln!(f, "param {} = {}", p.ident, p.default)?;
+        }
+        for i in &self.inputs {
+            writeln!(f, "input {} = {}", i.ident, i.default)?;
         }
         for s in &self.states {
             let fixed = if s.fixed { " fixed" } else { "" };

@@ -58,6 +58,15 @@ pub fn taylor_analysis(
     time: SymbolId,
     attributes: &Attributes,
 ) -> crate::Result<TaylorAnalysis> {
+    if let Some(input) = input_read(g, sys) {
+        let reason = format!("it reads the input `{input}`, a signal known only by its values at run time, whose Taylor coefficients are not");
+        if attributes.taylor.is_some() || !attributes.unroll.is_empty() {
+            return Err(crate::Error::Unsupported {
+                message: format!("`taylor = p` needs the model's derivatives of every order, and {reason}: remove `taylor = p`"),
+            });
+        }
+        return Ok(TaylorAnalysis::Refused(reason));
+    }
     // `unroll` alone implies the Taylor tape (and the first-order scheme).
     let taylor = match (attributes.taylor, attributes.unroll.is_empty()) {
         (None, false) => Some(1),
@@ -89,6 +98,23 @@ pub fn taylor_analysis(
             Ok(tape) => TaylorAnalysis::Tape(tape),
             Err(e) => TaylorAnalysis::Refused(taylor_refusal(&e)),
         },
+    })
+}
+
+/// The first input the right-hand side reads, by name.
+fn input_read(g: &Graph, sys: &FirstOrder) -> Option<String> {
+    let mut roots: Vec<Id> = sys
+        .derivatives
+        .iter()
+        .filter_map(|d| match d {
+            SlotDerivative::Explicit(e) | SlotDerivative::AfterSolve(e) => Some(*e),
+            SlotDerivative::Block { .. } => None,
+        })
+        .collect();
+    roots.extend(sys.blocks.iter().flat_map(|b| b.rhs.iter().chain(&b.matrix).copied()));
+    roots.into_iter().flat_map(|r| g.free_symbols(r)).find_map(|s| {
+        matches!(g.symbol(s).kind, crate::SymbolKind::Input { .. })
+            .then(|| g.symbol(s).name.clone())
     })
 }
 

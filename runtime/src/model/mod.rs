@@ -237,6 +237,13 @@ pub trait Model {
         let _ = (trigger, t, pre, y);
     }
 
+    /// The breakpoints of this instance's inputs ([`ModelInfo::inputs`]):
+    /// the times where a table's interpolation has a kink or a jump in a
+    /// derivative, which a run steps to.
+    fn input_breakpoints(&self) -> Vec<f64> {
+        Vec::new()
+    }
+
     // ----- Taylor series -----
 
     /// Highest order of [`Model::taylor_derivatives`] (0: none generated).

@@ -40,6 +40,7 @@ pub(crate) fn integrate_hybrid<M: Model>(
 ) -> Result<Solution, Error> {
     let Problem { model, t0, t1, y0, options } = problem;
     let clocks = Clocks::of(model, t0, t1)?;
+    let breakpoints = Breakpoints::of(model, t0, t1);
     let mut zeno = Zeno::new(M::INFO.events.len(), options.min_event_interval, t1 - t0);
     let mut projector = crate::step::projection::Projector::new(model);
     let (mut t, mut y) = (t0, y0.to_vec());
@@ -86,7 +87,8 @@ pub(crate) fn integrate_hybrid<M: Model>(
         if t == t1 {
             return Ok(solution);
         }
-        let t_stop = clocks.next_after(t).map_or(t1, |c| c.min(t1));
+        let next_clock = clocks.next_after(t).map_or(t1, |c| c.min(t1));
+        let t_stop = breakpoints.next_after(t, t1).map_or(next_clock, |b| b.min(next_clock));
         // The run's limits, not each stretch's: fixed steps of the whole
         // interval over 1000 by default, and max_steps over all stretches.
         let taken = solution.stats().steps;
@@ -112,6 +114,11 @@ pub(crate) fn integrate_hybrid<M: Model>(
             // The method ended short of the stretch without saying why:
             // nothing more to do.
             return Ok(solution);
+        }
+        if due.is_empty() && t != t1 {
+            // A breakpoint of an input: the run starts afresh from it, the
+            // state continuous (no jump is recorded).
+            continue;
         }
     }
 }
@@ -241,6 +248,31 @@ impl Clocks {
             })
             .map(|c| self.first + c)
             .collect()
+    }
+}
+
+/// The breakpoints of the model's inputs inside a run, in its direction.
+struct Breakpoints {
+    times: Vec<f64>,
+}
+
+impl Breakpoints {
+    fn of<M: Model>(model: &M, t0: f64, t1: f64) -> Breakpoints {
+        let (lo, hi) = (t0.min(t1), t0.max(t1));
+        let mut times: Vec<f64> =
+            model.input_breakpoints().into_iter().filter(|&b| b > lo && b < hi).collect();
+        times.sort_by(f64::total_cmp);
+        times.dedup();
+        if t1 < t0 {
+            times.reverse();
+        }
+        Breakpoints { times }
+    }
+
+    /// The first breakpoint strictly after `t` towards `t1`.
+    fn next_after(&self, t: f64, t1: f64) -> Option<f64> {
+        let forward = t1 >= t;
+        self.times.iter().copied().find(|&b| if forward { b > t } else { b < t })
     }
 }
 

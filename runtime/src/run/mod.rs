@@ -190,6 +190,14 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     }
     solution.set_initial_corrections(corrections);
     if options.formulation == crate::options::Formulation::MassMatrix && !has_mass_matrix::<M>() {
+        if M::INFO.is_hybrid() && !(M::INDEX == 0 && M::INFO.algebraics.is_empty()) {
+            return Err(Error::InvalidOptions {
+                message: format!(
+                    "{} has events that act, clocks or inputs, which its mass-matrix form does not carry: use Formulation::IndexOneProjected",
+                    M::INFO.name
+                ),
+            });
+        }
         if M::INDEX == 0 && M::INFO.algebraics.is_empty() {
             // An ODE has no other form: the option does not apply (and
             // stats().formulation says "ODE").

@@ -45,11 +45,13 @@ pub(crate) enum Declaration {
     OutputArray,
     /// `discrete(v0)`.
     Discrete,
+    /// `input(u0)`.
+    Input,
 }
 
 impl Declaration {
     /// Every declaration, in the order the language reference lists them.
-    pub(crate) const ALL: [Declaration; 14] = [
+    pub(crate) const ALL: [Declaration; 15] = [
         Declaration::Event,
         Declaration::Body,
         Declaration::SpatialBody,
@@ -64,6 +66,7 @@ impl Declaration {
         Declaration::Output,
         Declaration::OutputArray,
         Declaration::Discrete,
+        Declaration::Input,
     ];
 
     /// The function the user calls.
@@ -83,6 +86,7 @@ impl Declaration {
             Declaration::Output => "output",
             Declaration::OutputArray => "output_array",
             Declaration::Discrete => "discrete",
+            Declaration::Input => "input",
         }
     }
 
@@ -452,6 +456,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
             // Met first, with its settings, by the statement; here without.
             Declaration::Event => self.event(ident, call, &[], doc, local),
             Declaration::Discrete => self.discrete(ident, call, doc, local),
+            Declaration::Input => self.input(ident, call, doc, local),
             Declaration::Output => {
                 if !self.arity(call, "output", 1) {
                     return;

@@ -1,9 +1,10 @@
-//! What acts at events: `.reinit(target, value)` on an event or a clock,
-//! clocks (`every(h)`), discrete values (`discrete(v0)`) and `pre(x)`.
+//! What makes a model hybrid: `.reinit(target, value)` on an event or a
+//! clock, clocks (`every(h)`), discrete values (`discrete(v0)`), `pre(x)`,
+//! and inputs from outside (`input(u0)`).
 
 use super::scene::SceneLanguage;
 use super::scopes::{Binding, Lower};
-use crate::front::ir::{Action, Clock, Equation};
+use crate::front::ir::{Action, Clock, Equation, InputDecl, Output};
 use crate::{Id, SymbolId, SymbolKind};
 use quote::ToTokens;
 use syn::{Expr, Lit};
@@ -180,5 +181,46 @@ impl<S: SceneLanguage> Lower<'_, S> {
         let origin = local.to_token_stream();
         self.clocks.push(Clock { name, period, offset, actions, doc, origin });
         self.bind(ident, Binding::Clock);
+    }
+
+    /// `let u = input(u0);`: a signal the caller supplies at run time, a
+    /// field `u: daegen::Input` of the model (the constant `u0` by
+    /// default), read like an output.
+    pub(in crate::front) fn input(
+        &mut self,
+        ident: &syn::Ident,
+        call: &syn::ExprCall,
+        doc: String,
+        local: &syn::Local,
+    ) {
+        if !self.arity(call, "input", 1) {
+            return;
+        }
+        if self.instance.is_some() {
+            return self.cx.error_at(local, "a component declares no `input`: give it a `real_input()` connector, and the model an input connected to it");
+        }
+        let value = self.constant(&call.args[0]);
+        let default = value.and_then(|v| self.g.as_number(v)).map(|n| n.to_f64());
+        let Some(default) = default else {
+            return self
+                .cx
+                .error_at(&call.args[0], "an input's value by default is a number: `input(0.0)`");
+        };
+        let name = ident.to_string();
+        let (id, rate) = match self.g.input(&name).and_then(|id| {
+            let s = self.g.as_symbol(id).unwrap_or(SymbolId(0));
+            Ok((id, self.g.input_rate(s)?))
+        }) {
+            Ok(pair) => pair,
+            Err(err) => return self.cx.error_at(ident, err),
+        };
+        let (Some(symbol), Some(rate)) = (self.g.as_symbol(id), self.g.as_symbol(rate)) else {
+            return;
+        };
+        let field = syn::Ident::new(&name, ident.span());
+        self.inputs.push(InputDecl { ident: field, default, doc: doc.clone(), symbol, rate });
+        let origin = local.to_token_stream();
+        self.outputs.push(Output { name, value: id, doc, origin });
+        self.bind(ident, Binding::Value { id, mutable: false });
     }
 }

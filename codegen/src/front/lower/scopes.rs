@@ -99,6 +99,7 @@ pub(crate) struct Lower<'c, S> {
     pub(crate) outputs: Vec<Output>,
     pub(crate) events: Vec<Event>,
     pub(crate) clocks: Vec<crate::front::ir::Clock>,
+    pub(crate) inputs: Vec<crate::front::ir::InputDecl>,
     /// States declared `discrete(v0)`.
     pub(crate) discretes: Vec<SymbolId>,
     /// `pre(x)` symbols made so far, with x's.
