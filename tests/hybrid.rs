@@ -444,3 +444,210 @@ fn co_simulation_sets_the_input_between_communication_steps() {
         assert!((y[0] - x_exact).abs() <= 1e-11, "at {t}: {} vs {x_exact}", y[0]);
     }
 }
+
+/// A half-wave rectifier: a sine source behind a resistor feeds an RC load
+/// through an ideal diode, a short while it conducts and open while it
+/// blocks.
+#[dae_model]
+fn rectifier() {
+    let v_peak = param(10.0);
+    let omega = param(6.283185307179586);
+    let r_s = param(1.0);
+    let r = param(100.0);
+    let c = param(0.01);
+    let t = time();
+    /// The load's voltage.
+    let v_c = state(1.0);
+    /// The diode's voltage and current.
+    let v_d = algebraic(0.0);
+    let i = algebraic(0.0);
+    /// Whether the diode conducts.
+    let on = discrete(false);
+    let v_s = v_peak * sin(omega * t);
+    v_s == r_s * i + v_d + v_c;
+    c * der(v_c) == i - v_c / r;
+    if on {
+        v_d == 0.0;
+    } else {
+        i == 0.0;
+    }
+    let opens = event(v_d).rising().reinit(on, true);
+    let closes = event(i).falling().reinit(on, false);
+}
+
+/// The first `t` in `(a, b]` where `f` changes sign, by scanning and
+/// bisecting to the neighbouring floats.
+fn first_root(f: impl Fn(f64) -> f64, a: f64, b: f64) -> f64 {
+    let n = 20_000;
+    let (mut lo, mut f_lo) = (a, f(a));
+    for k in 1..=n {
+        let hi = a + (b - a) * k as f64 / n as f64;
+        let f_hi = f(hi);
+        if f_lo * f_hi < 0.0 || f_hi == 0.0 {
+            let (mut lo, mut hi) = (lo, hi);
+            while hi - lo > 4.0 * f64::EPSILON * hi.abs() {
+                let mid = 0.5 * (lo + hi);
+                if f(mid) * f_lo > 0.0 {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            return hi;
+        }
+        (lo, f_lo) = (hi, f_hi);
+    }
+    panic!("no root in ({a}, {b}]")
+}
+
+#[test]
+fn an_ideal_diode_rectifies_as_the_closed_form_pieces_say() {
+    // Blocking, the load decays: v = v₀ e^{−(t−t₀)/RC}. Conducting,
+    // v' = −a v + b sin ωt with a = (1/R_s + 1/R)/C, b = V/(R_s C), whose
+    // solution is P sin ωt + Q cos ωt + (v₀ − P sin ωt₀ − Q cos ωt₀) e^{−a(t−t₀)},
+    // P = ab/(a² + ω²), Q = −ωb/(a² + ω²). The diode opens where the
+    // source reaches the load's voltage and closes where its current,
+    // (V sin ωt − v)/R_s, falls to zero: each switch is the root of a
+    // closed form, found here by bisection.
+    let m = Rectifier::default();
+    let (a, b) = ((1.0 / m.r_s + 1.0 / m.r) / m.c, m.v_peak / (m.r_s * m.c));
+    let (p, q) = (a * b / (a * a + m.omega * m.omega), -m.omega * b / (a * a + m.omega * m.omega));
+    let source = |t: f64| m.v_peak * (m.omega * t).sin();
+    let blocking = |t0: f64, v0: f64| move |t: f64| v0 * (-(t - t0) / (m.r * m.c)).exp();
+    let conducting = |t0: f64, v0: f64| {
+        let particular = move |t: f64| p * (m.omega * t).sin() + q * (m.omega * t).cos();
+        move |t: f64| particular(t) + (v0 - particular(t0)) * (-a * (t - t0)).exp()
+    };
+    let t_end = 2.6;
+    let (mut t0, mut v0, mut on) = (0.0, 1.0, false);
+    let mut switches = Vec::new();
+    loop {
+        let next = if on {
+            let v = conducting(t0, v0);
+            first_root(|t| source(t) - v(t), t0 + 1e-9, t_end + 1.0)
+        } else {
+            let v = blocking(t0, v0);
+            first_root(|t| source(t) - v(t), t0 + 1e-9, t_end + 1.0)
+        };
+        if next > t_end {
+            break;
+        }
+        v0 = if on { conducting(t0, v0)(next) } else { blocking(t0, v0)(next) };
+        (t0, on) = (next, !on);
+        switches.push((next, v0));
+    }
+    assert!(switches.len() >= 5, "{switches:?}");
+    for method in adaptive_methods_for::<Rectifier>() {
+        let tol = 1e-10;
+        let opts = Options::new().method(method).tolerance(tol);
+        let sol = m.simulate(0.0, t_end, &opts).unwrap_or_else(|e| panic!("{method:?}: {e}"));
+        let jumps = sol.jumps();
+        assert_eq!(
+            jumps.len(),
+            switches.len(),
+            "{method:?}: {:?}",
+            jumps.iter().map(|j| j.t).collect::<Vec<_>>()
+        );
+        for (k, (jump, &(t, v))) in jumps.iter().zip(&switches).enumerate() {
+            let name = if k % 2 == 0 { "opens" } else { "closes" };
+            assert_eq!(jump.triggers, [name], "{method:?}");
+            let bound = 10.0 * reach(method, tol);
+            assert!(
+                (jump.t - t).abs() <= bound,
+                "{method:?}: switch {k} at {}, closed form {t}",
+                jump.t
+            );
+            let got = sol.at(jump.t, "v_c").unwrap();
+            assert!(
+                (got - v).abs() <= 10.0 * reach(method, tol) * v.abs().max(1.0),
+                "{method:?}: v_c {got} vs {v}"
+            );
+        }
+        // While it blocks the current is zero; while it conducts, the
+        // diode's voltage.
+        for w in jumps.windows(2) {
+            let mid = 0.5 * (w[0].t + w[1].t);
+            let conducting = sol.at(mid, "on").unwrap() == 1.0;
+            let quantity = if conducting { "v_d" } else { "i" };
+            assert_eq!(sol.at(mid, quantity).unwrap(), 0.0, "{method:?} at {mid}");
+        }
+    }
+}
+
+/// A block on a belt moving at `v_belt`, held by a spring to a wall, with
+/// Coulomb friction: static `mu_s`, kinetic `mu_k`. It sticks to the belt
+/// until the spring outpulls static friction, slips back and forth around
+/// the kinetic equilibrium, and sticks again when it moves with the belt.
+#[dae_model]
+fn stick_slip() {
+    let m = param(1.0);
+    let k = param(10.0);
+    let normal = param(9.81);
+    let mu_s = param(0.6);
+    let mu_k = param(0.4);
+    let v_belt = param(0.5);
+    let x = state(0.0);
+    let v = state(v_belt);
+    /// Whether the block moves with the belt.
+    let stuck = discrete(true);
+    der(x) == v;
+    if stuck {
+        der(v) == 0.0;
+    } else {
+        m * der(v) == -k * x + mu_k * normal;
+    }
+    /// The spring outpulls static friction.
+    let slips = event(k * x - mu_s * normal).rising().reinit(stuck, false);
+    /// The block moves with the belt again.
+    let sticks = event(v - v_belt).rising().reinit(stuck, true).reinit(v, v_belt);
+}
+
+#[test]
+fn a_block_on_a_belt_sticks_and_slips_as_the_piecewise_closed_form_says() {
+    // Stuck, x grows at the belt's speed until k x = μ_s N. Slipping,
+    // x − x_k = D cos ws + (v_b/w) sin ws about x_k = μ_k N/k, w² = k/m,
+    // D = (μ_s − μ_k) N/k, until v = v_b again: tan(ws/2) = −D w/v_b, so
+    // ws = 2π − 2 atan(D w/v_b), at x = x_k − D (the same speed, the
+    // mirror position). Then stuck for 2D/v_b, and again.
+    let b = StickSlip::default();
+    let w = (b.k / b.m).sqrt();
+    let (x_slip, x_k) = (b.mu_s * b.normal / b.k, b.mu_k * b.normal / b.k);
+    let d = x_slip - x_k;
+    let slipping = (2.0 * std::f64::consts::PI - 2.0 * (d * w / b.v_belt).atan()) / w;
+    let stuck_after = 2.0 * d / b.v_belt;
+    let mut times = vec![x_slip / b.v_belt];
+    for cycle in 0..6 {
+        let last = times[times.len() - 1];
+        times.push(last + if cycle % 2 == 0 { slipping } else { stuck_after });
+    }
+    let t_end = times[6] + 0.1;
+    for method in adaptive_methods_for::<StickSlip>() {
+        let tol = 1e-10;
+        let opts = Options::new().method(method).tolerance(tol);
+        let sol = b.simulate(0.0, t_end, &opts).unwrap_or_else(|e| panic!("{method:?}: {e}"));
+        let jumps = sol.jumps();
+        assert_eq!(
+            jumps.len(),
+            times.len(),
+            "{method:?}: {:?}",
+            jumps.iter().map(|j| j.t).collect::<Vec<_>>()
+        );
+        for (k, (jump, want)) in jumps.iter().zip(&times).enumerate() {
+            let name = if k % 2 == 0 { "slips" } else { "sticks" };
+            assert_eq!(jump.triggers, [name], "{method:?}");
+            // Errors add up over the cycles: 10·tol each.
+            let bound = 10.0 * (k + 1) as f64 * reach(method, tol);
+            assert!(
+                (jump.t - want).abs() <= bound,
+                "{method:?}: {name} at {}, closed form {want}",
+                jump.t
+            );
+            let x_want = if k % 2 == 0 { x_slip } else { x_k - d };
+            assert!((sol.at(jump.t, "x").unwrap() - x_want).abs() <= bound);
+        }
+        // Stuck, the block moves with the belt exactly.
+        let mid = 0.5 * (times[1] + times[2]);
+        assert_eq!(sol.at(mid, "v").unwrap(), b.v_belt, "{method:?}");
+        assert_eq!(sol.at(mid, "stuck").unwrap(), 1.0);
+    }
+}

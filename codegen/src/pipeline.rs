@@ -84,8 +84,7 @@ pub fn analyse_with_parts(
         crate::dae::tied_states::eliminate_tied_states(cx, &mut ir);
     }
     let system = match cx.is_ok() {
-        true => crate::dae::structure::structure(cx, &mut ir)
-            .and_then(|structure| crate::dae::reduce::reduce(cx, &mut ir, structure)),
+        true => crate::dae::modes::reduce_modes(cx, &mut ir),
         false => None,
     };
     let Some(system) = system.filter(|_| cx.is_ok()) else { return Err(Box::new(ir)) };

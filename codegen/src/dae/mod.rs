@@ -19,6 +19,7 @@ pub mod inputs;
 pub mod linear_pencil;
 pub mod mass_form;
 pub mod matching;
+pub mod modes;
 pub mod newton_block;
 pub mod reduce;
 pub mod solve_unknowns;

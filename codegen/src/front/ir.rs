@@ -138,6 +138,7 @@ pub struct Clock {
 }
 
 /// `lhs == rhs;` or `constraint(phi);` (as `phi == 0`).
+#[derive(Clone)]
 pub struct Equation {
     /// Left side.
     pub lhs: Id,
@@ -147,6 +148,9 @@ pub struct Equation {
     pub origin: TokenStream,
     /// Written as `constraint(..)`.
     pub is_constraint: bool,
+    /// Written inside `if on { .. } else { .. }`: the discrete booleans and
+    /// the values they must have for the equation to hold (empty: always).
+    pub mode: Vec<(SymbolId, bool)>,
 }
 
 /// `invariant(e);` (or the unit norm of a `quaternion_state`): a function of
@@ -246,9 +250,14 @@ impl std::fmt::Display for ModelIr {
             writeln!(f, "algebraic {} = {}", a.name, g.show(a.init))?;
         }
         for e in &self.equations {
+            let mode: String = e
+                .mode
+                .iter()
+                .map(|&(b, value)| format!(" if {}{}", if value { "" } else { "!" }, name(b)))
+                .collect();
             match e.is_constraint {
-                true => writeln!(f, "constraint {} == {}", g.show(e.lhs), g.show(e.rhs))?,
-                false => writeln!(f, "equation {} == {}", g.show(e.lhs), g.show(e.rhs))?,
+                true => writeln!(f, "constraint {} == {}{mode}", g.show(e.lhs), g.show(e.rhs))?,
+                false => writeln!(f, "equation {} == {}{mode}", g.show(e.lhs), g.show(e.rhs))?,
             }
         }
         for i in &self.inits {

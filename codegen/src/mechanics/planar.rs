@@ -415,6 +415,7 @@ impl Lower<'_, Scene> {
                 rhs: zero,
                 origin: e.to_token_stream(),
                 is_constraint: true,
+                mode: Vec::new(),
             });
             self.scene.rows.push((row, lambda));
             multipliers.push(lambda);

@@ -718,6 +718,7 @@ impl Lower<'_, Scene> {
             rhs: value,
             origin,
             is_constraint: false,
+            mode: Vec::new(),
         });
         Some(self.g.symbol_node(symbol))
     }

@@ -115,7 +115,7 @@ pub fn connection_equations(
 }
 
 fn equation(lhs: Id, rhs: Id, origin: &TokenStream) -> Equation {
-    Equation { lhs, rhs, origin: origin.clone(), is_constraint: false }
+    Equation { lhs, rhs, origin: origin.clone(), is_constraint: false, mode: Vec::new() }
 }
 
 fn find(parent: &mut [usize], mut n: usize) -> usize {

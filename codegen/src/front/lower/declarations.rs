@@ -175,7 +175,13 @@ impl<S: SceneLanguage> Lower<'_, S> {
             Ok(equations) => {
                 for (lhs, rhs) in equations {
                     let origin = origin.clone();
-                    let eq = crate::front::ir::Equation { lhs, rhs, origin, is_constraint: false };
+                    let eq = crate::front::ir::Equation {
+                        lhs,
+                        rhs,
+                        origin,
+                        is_constraint: false,
+                        mode: Vec::new(),
+                    };
                     self.equations.push(eq);
                 }
             }

@@ -193,6 +193,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 self.cx.error_at(e, "a closure is a function of the model: bind it, `let f = |x| ...;`, and call it, `f(x)`");
                 None
             }
+            Expr::If(i) if self.mode_condition(&i.cond).is_some() => self.mode_value(i),
             Expr::If(i) => self.const_if_value(i),
             Expr::Match(_) => self.unsupported(e, "`match`"),
             // `{ expr }`, as rustfmt writes a long closure's body.
@@ -230,6 +231,8 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 self.cx.error_at(lit, format!("a string is not a number: {fix}"));
                 return None;
             }
+            // A mode's new value in an action: true is 1, false 0.
+            Lit::Bool(b) if self.in_action => return Some(self.g.int(i64::from(b.value))),
             Lit::Bool(b) => {
                 let v = if b.value { "1.0" } else { "0.0" };
                 self.cx.error_at(

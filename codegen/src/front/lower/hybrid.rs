@@ -129,6 +129,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     rhs: zero,
                     origin,
                     is_constraint: false,
+                    mode: Vec::new(),
                 });
             }
             Err(err) => self.cx.error_at(ident, err),

@@ -647,6 +647,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
             rhs: coordinate,
             origin: origin.clone(),
             is_constraint: false,
+            mode: Vec::new(),
         });
         self.connectors.push(Connector {
             path: key.clone(),

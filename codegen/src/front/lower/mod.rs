@@ -15,6 +15,7 @@ mod functions;
 mod hybrid;
 mod instances;
 pub(crate) mod integers;
+mod modes;
 mod scene;
 mod scopes;
 mod statements;

@@ -176,16 +176,17 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     return self.cx.error_at(e, format!("the two sides differ in shape: a {} and a {}", lhs.shape(), rhs.shape()));
                 }
                 for (&l, &r) in lhs.data.iter().zip(&rhs.data) {
-                    self.equations.push(Equation { lhs: l, rhs: r, origin: e.to_token_stream(), is_constraint: false });
+                    self.equations.push(Equation { lhs: l, rhs: r, origin: e.to_token_stream(), is_constraint: false, mode: Vec::new() });
                 }
             }
             Expr::Binary(b) if matches!(b.op, BinOp::Eq(_)) => {
                 let (lhs, rhs) = (self.value(&b.left), self.value(&b.right));
                 if let (Some(lhs), Some(rhs)) = (lhs, rhs) {
-                    self.equations.push(Equation { lhs, rhs, origin: e.to_token_stream(), is_constraint: false });
+                    self.equations.push(Equation { lhs, rhs, origin: e.to_token_stream(), is_constraint: false, mode: Vec::new() });
                 }
             }
             Expr::ForLoop(f) => self.for_loop(f),
+            Expr::If(i) if self.mode_condition(&i.cond).is_some() => self.mode_if(i),
             Expr::If(i) => self.const_if(i),
             Expr::Assign(a) if !matches!(&*a.left, Expr::Path(_)) => {
                 // `der(x) = f;`: an equation written with Rust's assignment.
@@ -233,7 +234,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                         if let Some(phi) = self.tensor(&call.args[0]) {
                             let zero = self.g.zero();
                             for &c in &phi.data {
-                                self.equations.push(Equation { lhs: c, rhs: zero, origin: e.to_token_stream(), is_constraint: true });
+                                self.equations.push(Equation { lhs: c, rhs: zero, origin: e.to_token_stream(), is_constraint: true, mode: Vec::new() });
                             }
                         }
                     }
