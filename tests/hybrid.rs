@@ -651,3 +651,109 @@ fn a_block_on_a_belt_sticks_and_slips_as_the_piecewise_closed_form_says() {
         assert_eq!(sol.at(mid, "stuck").unwrap(), 1.0);
     }
 }
+
+/// Two switches that undo each other at once: the first action sets what
+/// fires the second, whose action fires the first again.
+#[dae_model]
+fn flip_flop() {
+    let x = state(0.0);
+    let a = discrete(0.0);
+    der(x) == 1.0;
+    let up = event(x - 1.0 - a).rising().reinit(a, 1.0);
+    let down = event(a - 0.5).rising().reinit(a, 0.0);
+}
+
+#[test]
+fn actions_that_fire_each_other_forever_are_an_error() {
+    // At x = 1, `up` sets a = 1, which lifts `down`'s function through
+    // zero; `down` sets a = 0, which lifts `up`'s back to zero from below:
+    // no fixed point.
+    let err = FlipFlop::default().simulate(0.0, 2.0, &Options::new()).expect_err("no fixed point");
+    match &err {
+        daegen::Error::EventLoop { t, events, partial } => {
+            assert!((t - 1.0).abs() <= 1e-12, "{t}");
+            assert!(!events.is_empty());
+            assert!((partial.final_time() - 1.0).abs() <= 1e-12);
+        }
+        other => panic!("expected EventLoop, got {other}"),
+    }
+    assert!(
+        err.to_string().contains(&format!("after {} rounds", daegen::MAX_EVENT_ITERATIONS)),
+        "{err}"
+    );
+}
+
+#[test]
+fn ensemble_members_bounce_each_at_their_own_times() {
+    // Members differ in restitution: their events differ in number and
+    // time, and the first comes to rest (t∞ = t₁(1 + e)/(1 − e) = 2.65)
+    // before the end while the others bounce on.
+    let restitutions = [0.3, 0.5, 0.7, 0.9];
+    let results = daegen::Ensemble::new(restitutions.len(), |i| BouncingBall {
+        e: restitutions[i],
+        ..BouncingBall::default()
+    })
+    .threads(2)
+    .run(0.0, 4.0, &Options::new().tolerance(1e-11));
+    for (i, result) in results.into_iter().enumerate() {
+        let ball = BouncingBall { e: restitutions[i], ..BouncingBall::default() };
+        let t1 = (2.0 * ball.h0 / ball.g).sqrt();
+        if i == 0 {
+            match result {
+                Err(daegen::Error::ZenoEvents { accumulation, .. }) => {
+                    let zeno = t1 * (1.0 + ball.e) / (1.0 - ball.e);
+                    assert!((accumulation - zeno).abs() <= 1e-9, "{accumulation} vs {zeno}");
+                }
+                other => panic!("member 0: expected ZenoEvents, got {other:?}"),
+            }
+            continue;
+        }
+        let sol = result.expect("bounces");
+        let times = sol.event_times("bounce").unwrap();
+        let exact: Vec<f64> =
+            impact_times(ball.h0, ball.g, ball.e, 40).into_iter().filter(|&t| t <= 4.0).collect();
+        assert_eq!(times.len(), exact.len(), "member {i}");
+        for (t, want) in times.iter().zip(&exact) {
+            assert!((t - want).abs() <= 1e-10, "member {i}: {t} vs {want}");
+        }
+    }
+}
+
+#[test]
+fn the_bound_on_events_per_unit_time_is_an_option() {
+    // With e = 0.8 the flights shrink below 0.01 s after about 20 bounces
+    // (2·0.8ᵏ·v₁/g < 0.01): a minimum interval of 0.01 s stops it there.
+    let ball = BouncingBall::default();
+    let v1 = (2.0 * ball.g * ball.h0).sqrt();
+    let first_short = (0..).find(|&k| 2.0 * ball.e.powi(k) * v1 / ball.g < 0.01).unwrap() as usize;
+    let opts = Options::new().tolerance(1e-12).min_event_interval(0.01);
+    match ball.simulate(0.0, 30.0, &opts) {
+        Err(daegen::Error::ZenoEvents { count, .. }) => assert_eq!(count, first_short + 1),
+        other => panic!("expected ZenoEvents, got {other:?}"),
+    }
+}
+
+/// A ball that stops at its third bounce: a terminal event may act too.
+#[dae_model]
+fn counted_ball() {
+    let h = state(1.0);
+    let bounces = discrete(0.0);
+    der(der(h)) == -9.81;
+    let bounce =
+        event(h).falling().reinit(der(h), -0.5 * pre(der(h))).reinit(bounces, bounces + 1.0);
+    let third = event(bounces - 2.5).rising().terminal();
+}
+
+#[test]
+fn an_action_can_fire_a_terminal_event_at_the_same_instant() {
+    let sol = CountedBall::default()
+        .simulate(0.0, 100.0, &Options::new().tolerance(1e-12))
+        .expect("stops");
+    let stop = sol.stopped_by().expect("stopped");
+    assert_eq!(stop.name, "third");
+    let bounces = sol.event_times("bounce").unwrap();
+    assert_eq!(bounces.len(), 3);
+    assert_eq!(stop.t, bounces[2]);
+    assert_eq!(sol.final_time(), bounces[2]);
+    assert_eq!(sol.last("bounces").unwrap(), 3.0);
+}

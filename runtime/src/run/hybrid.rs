@@ -80,6 +80,9 @@ pub(crate) fn integrate_hybrid<M: Model>(
             }
             let terminal =
                 fired.iter().any(|&k| k < M::INFO.events.len() && M::INFO.events[k].terminal);
+            if terminal {
+                solution.stop_at_terminal_hit();
+            }
             if terminal || solution.ended() {
                 return Ok(solution);
             }

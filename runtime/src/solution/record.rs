@@ -318,6 +318,13 @@ impl Solution {
         self.pending_action = acts;
     }
 
+    /// A terminal event fired by the actions at the end of the run ends it.
+    pub(crate) fn stop_at_terminal_hit(&mut self) {
+        let events = self.names.events;
+        self.stopped =
+            self.events.iter().rposition(|h| events.get(h.index).is_some_and(|e| e.terminal));
+    }
+
     /// The event whose actions interrupted the run, if one did (once).
     pub(crate) fn take_pending_action(&mut self) -> Option<&crate::solution::EventHit> {
         if !std::mem::take(&mut self.pending_action) {
