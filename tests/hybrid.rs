@@ -500,16 +500,16 @@ fn first_root(f: impl Fn(f64) -> f64, a: f64, b: f64) -> f64 {
     panic!("no root in ({a}, {b}]")
 }
 
-#[test]
-fn an_ideal_diode_rectifies_as_the_closed_form_pieces_say() {
-    // Blocking, the load decays: v = v₀ e^{−(t−t₀)/RC}. Conducting,
-    // v' = −a v + b sin ωt with a = (1/R_s + 1/R)/C, b = V/(R_s C), whose
-    // solution is P sin ωt + Q cos ωt + (v₀ − P sin ωt₀ − Q cos ωt₀) e^{−a(t−t₀)},
-    // P = ab/(a² + ω²), Q = −ωb/(a² + ω²). The diode opens where the
-    // source reaches the load's voltage and closes where its current,
-    // (V sin ωt − v)/R_s, falls to zero: each switch is the root of a
-    // closed form, found here by bisection.
-    let m = Rectifier::default();
+/// The switching instants of the rectifier up to `t_end`, with the load's
+/// voltage there, from its closed-form pieces: blocking, the load decays,
+/// v = v₀ e^{−(t−t₀)/RC}; conducting, v' = −a v + b sin ωt with
+/// a = (1/R_s + 1/R)/C, b = V/(R_s C), whose solution is
+/// P sin ωt + Q cos ωt + (v₀ − P sin ωt₀ − Q cos ωt₀) e^{−a(t−t₀)},
+/// P = ab/(a² + ω²), Q = −ωb/(a² + ω²). The diode opens where the source
+/// reaches the load's voltage and closes where its current,
+/// (V sin ωt − v)/R_s, falls to zero: each switch is the root of a closed
+/// form, found by bisection.
+fn rectifier_switches(m: &Rectifier, t_end: f64) -> Vec<(f64, f64)> {
     let (a, b) = ((1.0 / m.r_s + 1.0 / m.r) / m.c, m.v_peak / (m.r_s * m.c));
     let (p, q) = (a * b / (a * a + m.omega * m.omega), -m.omega * b / (a * a + m.omega * m.omega));
     let source = |t: f64| m.v_peak * (m.omega * t).sin();
@@ -518,7 +518,6 @@ fn an_ideal_diode_rectifies_as_the_closed_form_pieces_say() {
         let particular = move |t: f64| p * (m.omega * t).sin() + q * (m.omega * t).cos();
         move |t: f64| particular(t) + (v0 - particular(t0)) * (-a * (t - t0)).exp()
     };
-    let t_end = 2.6;
     let (mut t0, mut v0, mut on) = (0.0, 1.0, false);
     let mut switches = Vec::new();
     loop {
@@ -536,6 +535,14 @@ fn an_ideal_diode_rectifies_as_the_closed_form_pieces_say() {
         (t0, on) = (next, !on);
         switches.push((next, v0));
     }
+    switches
+}
+
+#[test]
+fn an_ideal_diode_rectifies_as_the_closed_form_pieces_say() {
+    let m = Rectifier::default();
+    let t_end = 2.6;
+    let switches = rectifier_switches(&m, t_end);
     assert!(switches.len() >= 5, "{switches:?}");
     for method in adaptive_methods_for::<Rectifier>() {
         let tol = 1e-10;
@@ -756,4 +763,86 @@ fn an_action_can_fire_a_terminal_event_at_the_same_instant() {
     assert_eq!(stop.t, bounces[2]);
     assert_eq!(sol.final_time(), bounces[2]);
     assert_eq!(sol.last("bounces").unwrap(), 3.0);
+}
+
+/// The rectifier built from the library's parts: the same circuit.
+#[dae_model]
+fn rectifier_of_parts() {
+    let source = sine_voltage(amplitude = 10.0, f = 1.0);
+    let r_s = resistor(1.0);
+    let d = ideal_diode();
+    let load_c = capacitor(c = 0.01, v0 = 1.0);
+    let load_r = resistor(100.0);
+    let gnd = ground();
+    connect(source.p, r_s.p);
+    connect(r_s.n, d.p);
+    connect(d.n, load_c.p, load_r.p);
+    connect(load_c.n, load_r.n, source.n, gnd.p);
+}
+
+#[test]
+fn the_library_ideal_diode_rectifies_like_the_flat_model() {
+    let t_end = 2.6;
+    let switches = rectifier_switches(&Rectifier::default(), t_end);
+    for method in adaptive_methods_for::<RectifierOfParts>() {
+        let tol = 1e-10;
+        let opts = Options::new().method(method).tolerance(tol);
+        let sol = RectifierOfParts::default()
+            .simulate(0.0, t_end, &opts)
+            .unwrap_or_else(|e| panic!("{method:?}: {e}"));
+        let jumps = sol.jumps();
+        assert_eq!(
+            jumps.len(),
+            switches.len(),
+            "{method:?}: {:?}",
+            jumps.iter().map(|j| j.t).collect::<Vec<_>>()
+        );
+        for (k, (jump, &(t, v))) in jumps.iter().zip(&switches).enumerate() {
+            let name = if k % 2 == 0 { "d.opens" } else { "d.closes" };
+            assert_eq!(jump.triggers, [name], "{method:?}");
+            assert!(
+                (jump.t - t).abs() <= 10.0 * reach(method, tol),
+                "{method:?}: {} vs {t}",
+                jump.t
+            );
+            let got = sol.at(jump.t, "load_c.v").unwrap();
+            assert!((got - v).abs() <= 10.0 * reach(method, tol) * v.abs().max(1.0), "{method:?}");
+        }
+    }
+}
+
+/// The sampled PI loop from the library's blocks: `sampled_pi` on the
+/// plant `first_order(k, t)`, t y' + y = k u, the same loop as `sampled_pi`
+/// above with a = 1/t, b = k/t.
+#[dae_model]
+fn sampled_loop_of_parts() {
+    let setpoint = constant(1.0);
+    let controller = sampled_pi(kp = 0.8, ki = 1.5, period = 0.1);
+    let plant = first_order(k = 1.5, t = 0.5);
+    connect(setpoint.y, controller.u_s);
+    connect(controller.y, plant.u);
+    connect(plant.y, controller.u_m);
+}
+
+#[test]
+fn the_library_sampled_pi_follows_the_zero_order_hold_recursion() {
+    let exact = zero_order_hold(&SampledPi::default(), 31);
+    for method in adaptive_methods_for::<SampledLoopOfParts>() {
+        let tol = 1e-12;
+        let opts = Options::new().method(method).tolerance(tol);
+        let sol = SampledLoopOfParts::default()
+            .simulate(0.0, 3.0, &opts)
+            .unwrap_or_else(|e| panic!("{method:?}: {e}"));
+        for (k, &(x, u)) in exact.iter().enumerate() {
+            let t = k as f64 * 0.1;
+            assert!(
+                (sol.at(t, "plant.y").unwrap() - x).abs() <= 10.0 * reach(method, tol),
+                "{method:?} at {t}"
+            );
+            assert!(
+                (sol.at(t, "controller.y").unwrap() - u).abs() <= 10.0 * reach(method, tol),
+                "{method:?} at {t}"
+            );
+        }
+    }
 }

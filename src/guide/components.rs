@@ -261,6 +261,7 @@
 //! | `signal_voltage()` | input `u` | `v = u` |
 //! | `constant_current(current = 1)`, `step_current(..)`, `sine_current(..)`, `signal_current()` | as the voltages | `i = ..` |
 //! | `diode(ids = 1e-6, vt = 0.04)` | | `i = ids (exp(v / vt) − 1)` |
+//! | `ideal_diode()` | discrete `on` | `v = 0` while `on`, `i = 0` while not; `on` set where `v` rises through 0, cleared where `i` falls through 0 |
 //! | `emf(k = 1)` | flange `flange` | `v = k w`, `w = dφ/dt`, `flange.tau = −k i` |
 //! | `ideal_opamp()` | pins `in_p`, `in_n`, `out` | `in_p.v = in_n.v`, `in_p.i = in_n.i = 0` |
 //! | `voltage_sensor()`, `current_sensor()` | output `v`, `i` | no current, no voltage drop |
@@ -309,6 +310,9 @@
 //! | `pi_controller(kp = 1, ki = 1)` | `y = kp e + x`, `dx/dt = ki e`, `e = u_s − u_m` |
 //! | `pid_controller(kp = 1, ki = 1, kd = 0, td = 1e-3)` | plus `kd (e − d)/td`, `td dd/dt = e − d` |
 //! | `limited_pi(kp, ki, y_max = 1, y_min = −1, k_aw = 1, eps = 1e-3)`, `limited_pid(kp, ki, kd, td, y_max, y_min, k_aw, eps)` | `y = sat(v)`, `dx/dt = ki e + k_aw (y − v)` (back-calculation anti-windup) |
+//! | `zero_order_hold(period = 0.01)` | `y` = `u` at the instants `k·period`, held between |
+//! | `sampled_pi(kp = 1, ki = 1, period = 0.01)` | at each instant `x ← x + ki·period·e`, then `y ← kp e + x`; held between |
+//! | `sampled_pid(kp = 1, ki = 1, kd = 0, period = 0.01)` | plus `kd (e − e_prev)/period`, `e_prev ← e` |
 //!
 //! Sources switching in time (`step_voltage`, `step`, `ramp`) use the
 //! step function `heaviside(x)` (0 below zero, 1 above), which the

@@ -13,14 +13,19 @@ pub(crate) fn jacobian_items(
     g: &mut Graph,
     layout: &Layout,
     slots: &[SymbolId],
-    (time, inputs): (SymbolId, &[(SymbolId, SymbolId)]),
+    (time, inputs, discrete): (SymbolId, &[(SymbolId, SymbolId)], &[SymbolId]),
     explicit: Option<Vec<Id>>,
 ) -> crate::Result<TokenStream> {
     let n = slots.len();
     Ok(match explicit {
         Some(f) => {
             let wrt: Vec<SymbolId> = slots.to_vec();
-            let j = g.jacobian(&f, &wrt)?;
+            let mut j = g.jacobian(&f, &wrt)?;
+            // A discrete value is constant between the instants where it
+            // jumps, and each stretch starts afresh: its column is left out,
+            // so no row of a Newton matrix mixes into its own, which then
+            // keeps it exactly.
+            j.entries.retain(|&(_, c, _)| !discrete.contains(&wrt[c]));
             let nnz = index(j.entries.len());
             let nn = index(n);
             let pattern: Vec<TokenStream> = j

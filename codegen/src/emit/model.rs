@@ -59,7 +59,8 @@ fn expand_system(
     let event_rates_method =
         event_rates_method(g, &layout, sys, (ir.time, &inputs), explicit.as_ref())?;
     let slot_symbols: Vec<SymbolId> = sys.slots.iter().map(|s| s.symbol).collect();
-    let jacobian = jacobian_items(g, &layout, &slot_symbols, (ir.time, &inputs), explicit)?;
+    let jacobian =
+        jacobian_items(g, &layout, &slot_symbols, (ir.time, &inputs, &ir.discretes), explicit)?;
     let output_arms = output_arms(g, &mut layout, sys, &newton_solve_for_outputs)?;
     let constraint_methods = crate::emit::constraints::constraint_methods(
         g,

@@ -284,6 +284,15 @@ impl Solution {
         if self.steps == 0 {
             return;
         }
+        // Discrete values hold through the step: the interpolant's
+        // rounding must not move them.
+        let mut y = y.to_vec();
+        for name in self.names.discrete {
+            if let Some(i) = self.names.states.iter().position(|s| s == name) {
+                y[i] = self.last.y_old[i];
+            }
+        }
+        let y = &y[..];
         self.cut_from = Some(self.last.t_new);
         self.end_t = t;
         self.end_y.copy_from_slice(y);

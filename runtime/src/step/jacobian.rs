@@ -67,6 +67,11 @@ impl DenseJacobian {
             return Err(EvalError::JacobianUnavailable);
         }
         for j in 0..n {
+            // A discrete value is constant over the stretch: its column is
+            // left zero (see the generated Jacobian).
+            if M::INFO.discrete.contains(&M::INFO.states[j]) {
+                continue;
+            }
             let saved = y[j];
             let delta = (f64::EPSILON * saved.abs().max(1e-5)).sqrt();
             y[j] = saved + delta;
