@@ -52,8 +52,8 @@ pub mod plot;
 /// Everything a model file needs: `use daegen::prelude::*;`.
 pub mod prelude {
     pub use crate::{
-        component, dae_model, Error, Flow, Formulation, LinearSolver, Method, Model, Options,
-        Simulate, Solution, Step,
+        component, dae_model, Error, Flow, Formulation, Input, LinearSolver, Method, Model,
+        Options, Simulate, Solution, Step,
     };
 }
 

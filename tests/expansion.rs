@@ -387,3 +387,20 @@ expansion_test! {
         gravity(vec3(0.0, 0.0, -g));
     }
 }
+
+expansion_test! {
+    /// A bouncing ball counting its bounces, sampled by a clock, driven by
+    /// an input: the actions, the clock, the breakpoints.
+    hybrid_ball_with_a_clock_and_an_input, (), ["Ball::act", "Ball::clock", "Ball::input_breakpoints", "Ball::rhs"],
+    fn ball() {
+        let e = param(0.8);
+        let period = param(0.5);
+        let wind = input(0.0);
+        let h = state(1.0);
+        let bounces = discrete(0.0);
+        let seen = discrete(0.0);
+        der(der(h)) == -9.81 + wind;
+        let bounce = event(h).falling().reinit(der(h), -e * pre(der(h))).reinit(bounces, bounces + 1.0);
+        let look = every(period).offset(0.1).reinit(seen, h);
+    }
+}

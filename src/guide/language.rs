@@ -18,6 +18,10 @@
 //! | `let e = output(expr);` | a value computed from the solution, only when asked for |
 //! | `let p = output_array((0..N).map(\|k\| expr));` | an array of outputs, read as `"p[k]"` |
 //! | `let hit = event(g).falling().terminal();` | a zero crossing of `g`, located to machine precision |
+//! | `event(h).falling().reinit(der(h), -e * pre(der(h)))` | an action at an event: a state set from the values there (`pre(x)`: just before): see [`super::hybrid`] |
+//! | `let on = discrete(true);`, `if on { .. } else { .. }` | a value that changes only at events; a mode selecting equations |
+//! | `let tick = every(0.01).reinit(u, expr);` | a clock: actions at each sample instant |
+//! | `let u = input(0.0);` | a signal the caller supplies at run time (a function, a table) |
 //! | `let t = time();` | the independent variable |
 //! | `const N: usize = 3; for i in 0..N { ... }` | loops over constants, unrolled into equations; where the cells' equations differ only in the states they read, the generated right-hand side and Jacobian loop over a table of indices again (a 2048-state grid compiles in seconds); `if` on indices, `u[(i + 1) % N]` for a periodic neighbour, and `k / 2` truncating as in Rust (indices are integers; `1 / 3` of two literals is refused: write `1.0 / 3.0`) |
 //! | `let r = rot_z(theta); let p = r * vec3(1.0, 0.0, 0.0);` | vectors and 3 × 3 matrices: see [`super::mechanisms`] |
@@ -55,8 +59,8 @@
 //! # Ok::<(), daegen::Error>(())
 //! ```
 //!
-//! An event stops a run (`terminal`) or is only recorded; the solution
-//! lists the crossings:
+//! An event stops a run (`terminal`), acts (see [`super::hybrid`]) or is
+//! only recorded; the solution lists the crossings:
 //!
 //! ```
 //! use daegen::prelude::*;

@@ -16,18 +16,22 @@
 //!    (electrical, mechanical, thermal, control) joined by `connect`; the
 //!    standard library; parts of your own, shared across crates; functions
 //!    of the model.
-//! 7. [`mechanisms`]: multibody scenes, planar and spatial, global and
+//! 7. [`hybrid`]: events that act (`.reinit`, `pre`), discrete values
+//!    and modes, clocks for sampled controllers, inputs from outside
+//!    (functions, tables, co-simulation), and how every method restarts.
+//! 8. [`mechanisms`]: multibody scenes, planar and spatial, global and
 //!    recursive, and the names they answer to.
-//! 8. [`kinematics`]: rotations, angle sequences, quaternions, angular
+//! 9. [`kinematics`]: rotations, angle sequences, quaternions, angular
 //!    velocities and frames, in the model language and numerically.
-//! 9. [`ensembles`]: one model run many times, on every core, and shards
+//! 10. [`ensembles`]: one model run many times, on every core, and shards
 //!    of it spread over machines.
-//! 10. [`work_precision`]: registering a model in the benchmarks and
+//! 11. [`work_precision`]: registering a model in the benchmarks and
 //!     reading a work-precision diagram.
 
 pub mod components;
 pub mod daes;
 pub mod ensembles;
+pub mod hybrid;
 pub mod kinematics;
 pub mod language;
 pub mod mechanisms;

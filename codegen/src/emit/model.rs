@@ -235,6 +235,11 @@ fn mass_form_items(
     analysis: &SystemAnalysis,
     name: &syn::Ident,
 ) -> crate::Result<(TokenStream, TokenStream)> {
+    // The mass-matrix form carries no actions, clocks or inputs: a run
+    // refuses the formulation for such a model.
+    if is_hybrid(ir, &analysis.system) {
+        return Ok((TokenStream::new(), TokenStream::new()));
+    }
     Ok(match analysis.mass_form.as_ref().map_err(Clone::clone)? {
         Some(form) => {
             let form_layout = Layout::of_components(&form.components);
@@ -252,11 +257,21 @@ fn mass_form_items(
     })
 }
 
+/// Whether the model has actions, clocks or inputs.
+fn is_hybrid(ir: &ModelIr, sys: &FirstOrder) -> bool {
+    !ir.inputs.is_empty() || !ir.clocks.is_empty() || sys.actions.iter().any(|a| !a.is_empty())
+}
+
 /// A model whose algebraic equations are nonlinear in the algebraic
 /// variables: its own `Model` implementation is the mass-matrix form,
 /// integrated by RADAU5 (the algebraic variables are states).
 fn expand_mass_only(ir: &mut ModelIr, analysis: &SystemAnalysis) -> crate::Result<TokenStream> {
     let sys = &analysis.system;
+    if is_hybrid(ir, sys) {
+        return Err(crate::Error::Unsupported {
+            message: "an algebraic equation is nonlinear in the algebraic variables and closes into no Newton block, so the model runs in its mass-matrix form, which has no actions, clocks or inputs yet: give the nonlinear equations' variables a guess each can be solved from, or leave the actions out".into(),
+        });
+    }
     let name = type_name(ir);
     let g = &mut ir.graph;
     let form = analysis.mass_form.as_ref().map_err(Clone::clone)?;

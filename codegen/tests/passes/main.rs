@@ -242,3 +242,37 @@ fn tied_states_leave_one_angle_and_one_rate() {
     assert!(cx.is_ok(), "{:?}", cx.messages());
     insta::assert_snapshot!("tied_states", ir.to_string());
 }
+
+/// A block on a belt that sticks and slips: its equations guarded by the
+/// mode, the events' actions; each mode reduced alone, and the joined
+/// system reading the boolean.
+#[test]
+fn modes_are_reduced_alone_and_joined() {
+    let mut cx = Ctxt::default();
+    let mut ir = lowered(
+        &mut cx,
+        TokenStream::new(),
+        quote! {
+            fn belt() {
+                let k = param(10.0);
+                let x = state(0.0);
+                let v = state(0.5);
+                let stuck = discrete(true);
+                der(x) == v;
+                if stuck {
+                    der(v) == 0.0;
+                } else {
+                    der(v) == -k * x + 4.0;
+                }
+                let slips = event(k * x - 6.0).rising().reinit(stuck, false);
+                let sticks = event(v - 0.5).rising().reinit(stuck, true).reinit(v, 0.5);
+                let count = discrete(0.0);
+                let tick = every(0.1).offset(0.05).reinit(count, pre(count) + 1.0);
+            }
+        },
+    );
+    let lowered = ir.to_string();
+    let sys = daegen_codegen::dae::modes::reduce_modes(&mut cx, &mut ir).expect("reduced");
+    assert!(cx.is_ok(), "{:?}", cx.messages());
+    insta::assert_snapshot!("modes", format!("{lowered}\n{}", ir.graph.with(&sys)));
+}

@@ -121,6 +121,7 @@ fn new_lower<S: SceneLanguage>(cx: &mut Ctxt, recursive: bool, parts: Definition
         discretes: Vec::new(),
         pre: Vec::new(),
         in_action: false,
+        mode_depth: 0,
         equations: Vec::new(),
         inits: Vec::new(),
         invariants: Vec::new(),

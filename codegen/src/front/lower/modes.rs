@@ -57,9 +57,11 @@ impl<S: SceneLanguage> Lower<'_, S> {
             self.events.len() + self.clocks.len() + self.outputs.len() + self.inputs.len(),
         );
         self.scopes.push(HashMap::new());
+        self.mode_depth += 1;
         for s in stmts {
             self.stmt(s);
         }
+        self.mode_depth -= 1;
         self.scopes.pop();
         let after = (
             self.states.len(),

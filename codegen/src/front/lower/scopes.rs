@@ -107,6 +107,8 @@ pub(crate) struct Lower<'c, S> {
     /// Lowering an action's value, where `pre(x)` reads the value before
     /// the instant.
     pub(in crate::front) in_action: bool,
+    /// How deep `if on { .. }` of modes are nested here.
+    pub(in crate::front) mode_depth: usize,
     pub(crate) equations: Vec<Equation>,
     pub(crate) inits: Vec<Init>,
     pub(crate) invariants: Vec<UserInvariant>,

@@ -13,6 +13,9 @@ use quote::ToTokens;
 use std::collections::HashMap;
 use syn::{BinOp, Expr, Pat, Stmt};
 
+/// A declaration inside a mode's branch.
+const IN_MODE: &str = "a mode selects equations: declare states, variables, parameters, outputs and events before `if`, and write only equations inside";
+
 impl<S: SceneLanguage> Lower<'_, S> {
     pub(in crate::front) fn stmt(&mut self, stmt: &Stmt) {
         match stmt {
@@ -59,6 +62,10 @@ impl<S: SceneLanguage> Lower<'_, S> {
         let doc = doc_comment(&local.attrs);
         if let Some((call, settings, clock)) = trigger_call(e) {
             let what = if clock { "every" } else { "event" };
+            if self.mode_depth > 0 {
+                self.bind(&ident, Binding::Broken);
+                return self.cx.error_at(e, IN_MODE);
+            }
             if self.in_loop() {
                 return self.cx.error_at(
                     e,
@@ -113,6 +120,10 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 return S::joint(self, &name, Some(&ident), call, e);
             }
             if let Some(declaration) = Declaration::from_name(&name) {
+                if self.mode_depth > 0 {
+                    self.bind(&ident, Binding::Broken);
+                    return self.cx.error_at(e, IN_MODE);
+                }
                 if self.in_loop() {
                     return self.cx.error_at(e, format!("declare `{name}(...)` outside loops: each iteration would declare `{ident}` again"));
                 }
