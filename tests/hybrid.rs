@@ -846,3 +846,37 @@ fn the_library_sampled_pi_follows_the_zero_order_hold_recursion() {
         }
     }
 }
+
+#[test]
+fn fixed_step_methods_switch_the_thermostat_at_their_order() {
+    // Each switch is located on the step's Hermite interpolant between
+    // fixed steps; the switching times converge at the method's order
+    // (the interpolant's own error, fourth order, is below it): halving
+    // the step divides the error of the fourth switch by about 2^p.
+    let m = Thermostat::default();
+    let tau = m.c / m.k;
+    let (hot, cold) = (m.t_ambient + m.p / m.k, m.t_ambient);
+    let heat = |from: f64, to: f64| tau * ((from - hot) / (to - hot)).ln();
+    let cool = |from: f64, to: f64| tau * ((from - cold) / (to - cold)).ln();
+    let fourth = heat(15.0, m.t_high) + 2.0 * cool(m.t_high, m.t_low) + heat(m.t_low, m.t_high);
+    let error = |method: Method, step: f64| {
+        let sol = m
+            .simulate(0.0, fourth + 0.1, &Options::new().method(method).step(step))
+            .unwrap_or_else(|e| panic!("{method:?}: {e}"));
+        let jumps = sol.jumps();
+        assert_eq!(jumps.len(), 4, "{method:?}");
+        (jumps[3].t - fourth).abs()
+    };
+    for method in methods_for::<Thermostat>(|m| !support::harness::is_adaptive(m)) {
+        let support::harness::Kind::FixedStep { order, .. } = support::harness::kind(method) else {
+            unreachable!()
+        };
+        let (coarse, fine) = (error(method, 0.02), error(method, 0.01));
+        let want = 2f64.powi(order);
+        let ratio = coarse / fine;
+        assert!(
+            (0.6 * want..1.6 * want).contains(&ratio),
+            "{method:?}: {coarse:e} / {fine:e} = {ratio}"
+        );
+    }
+}
