@@ -138,7 +138,9 @@ fn check(times: &[f64], values: &[f64]) -> Result<(), crate::Error> {
             values.len()
         ));
     }
-    if let Some(k) = times.windows(2).position(|w| !(w[1] > w[0])) {
+    if let Some(k) =
+        times.windows(2).position(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+    {
         return bad(format!(
             "an input table's times must increase: t[{}] = {} is followed by {}",
             k,

@@ -24,7 +24,7 @@
 //! 9. [`kinematics`]: rotations, angle sequences, quaternions, angular
 //!    velocities and frames, in the model language and numerically.
 //! 10. [`ensembles`]: one model run many times, on every core, and shards
-//!    of it spread over machines.
+//!     of it spread over machines.
 //! 11. [`work_precision`]: registering a model in the benchmarks and
 //!     reading a work-precision diagram.
 
