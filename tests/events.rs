@@ -5,6 +5,7 @@ use daegen::prelude::*;
 
 mod support;
 use support::harness::{adaptive_methods_for, is_high_order_at_tight_tolerances, methods_for};
+use support::impact_times;
 
 /// A ball dropped from `h` that bounces with restitution `e`.
 #[dae_model(taylor = 1)]
@@ -26,20 +27,6 @@ kepler_model!(fn kepler_sections(taylor = 1) {
     let y_axis = event(q1);
     let apsis = event(q1 * p1 + q2 * p2);
 });
-
-/// The impact times of the bouncing ball: a drop of sqrt(2h/g), then flights
-/// of 2·eᵏ·v₁/g with v₁ = sqrt(2gh).
-fn impact_times(h: f64, g: f64, e: f64, bounces: usize) -> Vec<f64> {
-    let mut t = (2.0 * h / g).sqrt();
-    let mut v = (2.0 * g * h).sqrt();
-    let mut times = vec![t];
-    for _ in 1..bounces {
-        v *= e;
-        t += 2.0 * v / g;
-        times.push(t);
-    }
-    times
-}
 
 /// Bounces the ball `bounces` times, restarting after each terminal impact
 /// with the velocity reversed and scaled by `restitution`.

@@ -6,6 +6,7 @@ use daegen::prelude::*;
 
 mod support;
 use support::harness::{adaptive_methods_for, methods_for};
+use support::impact_times;
 
 /// A ball dropped from `h0` onto a floor, rebounding with restitution `e`.
 #[dae_model(taylor = 1)]
@@ -20,20 +21,6 @@ fn bouncing_ball() {
     let bounce = event(h).falling().reinit(der(h), -e * pre(der(h)));
 }
 
-/// The impact times: a drop of sqrt(2h/g), then flights of 2·eᵏ·v₁/g with
-/// v₁ = sqrt(2gh).
-fn impact_times(h: f64, g: f64, e: f64, bounces: usize) -> Vec<f64> {
-    let mut t = (2.0 * h / g).sqrt();
-    let mut v = (2.0 * g * h).sqrt();
-    let mut times = vec![t];
-    for _ in 1..bounces {
-        v *= e;
-        t += 2.0 * v / g;
-        times.push(t);
-    }
-    times
-}
-
 /// The error a method's run at tolerance `tol` is held to: `tol`, but for
 /// RADAU5, which works to 0.1·tol^(2/3) (Hairer's `radau5.f`, kept by the
 /// runtime).
@@ -42,6 +29,31 @@ fn reach(method: Method, tol: f64) -> f64 {
         Method::Radau5 => 0.1 * tol.powf(2.0 / 3.0),
         _ => tol,
     }
+}
+
+/// Runs `model` to `t_end` with every adaptive method at `tol` and checks
+/// that it jumps `count` times, by `names[0]` and `names[1]` in turn: each
+/// method with its solution.
+fn alternating_runs<M: Simulate>(
+    model: &M,
+    t_end: f64,
+    tol: f64,
+    names: [&str; 2],
+    count: usize,
+) -> Vec<(Method, Solution)> {
+    let mut runs = Vec::new();
+    for method in adaptive_methods_for::<M>() {
+        let opts = Options::new().method(method).tolerance(tol);
+        let sol = model.simulate(0.0, t_end, &opts).unwrap_or_else(|e| panic!("{method:?}: {e}"));
+        let jumps = sol.jumps();
+        let times: Vec<f64> = jumps.iter().map(|j| j.t).collect();
+        assert_eq!(jumps.len(), count, "{method:?}: {times:?}");
+        for (k, jump) in jumps.iter().enumerate() {
+            assert_eq!(jump.triggers, [names[k % 2]], "{method:?}: jump {k}");
+        }
+        runs.push((method, sol));
+    }
+    runs
 }
 
 #[test]
@@ -265,36 +277,36 @@ fn thermostat() {
     let too_cold = event(temp - t_low).falling().reinit(on, 1.0);
 }
 
-#[test]
-fn a_thermostat_switches_when_the_exponentials_say() {
-    // T relaxes to T∞ with time constant τ = c/k: from T0 to T1 it takes
-    // τ ln((T0 − T∞)/(T1 − T∞)); T∞ = Ta + p/k heating, Ta cooling.
-    let m = Thermostat::default();
+/// The thermostat's first `count` switching times from 15 °C: T relaxes
+/// to T∞ with time constant τ = c/k, so from T0 to T1 it takes
+/// τ ln((T0 − T∞)/(T1 − T∞)); T∞ = Ta + p/k heating, Ta cooling.
+fn thermostat_switches(m: &Thermostat, count: usize) -> Vec<f64> {
     let tau = m.c / m.k;
     let (hot, cold) = (m.t_ambient + m.p / m.k, m.t_ambient);
     let heat = |from: f64, to: f64| tau * ((from - hot) / (to - hot)).ln();
     let cool = |from: f64, to: f64| tau * ((from - cold) / (to - cold)).ln();
     let mut switches = vec![heat(15.0, m.t_high)];
-    for k in 1..10 {
+    for k in 1..count {
         let last = switches[k - 1];
-        switches.push(
-            last + if k % 2 == 1 { cool(m.t_high, m.t_low) } else { heat(m.t_low, m.t_high) },
-        );
+        let next = if k % 2 == 1 { cool(m.t_high, m.t_low) } else { heat(m.t_low, m.t_high) };
+        switches.push(last + next);
     }
+    switches
+}
+
+#[test]
+fn a_thermostat_switches_when_the_exponentials_say() {
+    let m = Thermostat::default();
+    let switches = thermostat_switches(&m, 10);
     let t_end = switches[9] + 0.2;
-    for method in adaptive_methods_for::<Thermostat>() {
-        let opts = Options::new().method(method).tolerance(1e-12);
-        let sol = m.simulate(0.0, t_end, &opts).unwrap_or_else(|e| panic!("{method:?}: {e}"));
-        let jumps = sol.jumps();
-        assert_eq!(jumps.len(), 10, "{method:?}");
-        for (k, (jump, want)) in jumps.iter().zip(&switches).enumerate() {
+    for (method, sol) in alternating_runs(&m, t_end, 1e-12, ["too_warm", "too_cold"], 10) {
+        for (k, (jump, want)) in sol.jumps().iter().zip(&switches).enumerate() {
             assert!(
                 (jump.t - want).abs() <= 10.0 * reach(method, 1e-12) * want,
                 "{method:?}: switch {k} at {}, exact {want}",
                 jump.t
             );
-            let (name, on) = if k % 2 == 0 { ("too_warm", 0.0) } else { ("too_cold", 1.0) };
-            assert_eq!(jump.triggers, [name], "{method:?}");
+            let on = if k % 2 == 0 { 0.0 } else { 1.0 };
             assert_eq!(sol.at(jump.t, "on").unwrap(), on);
             assert_eq!(sol.at_left(jump.t, "on").unwrap(), 1.0 - on);
         }
@@ -544,20 +556,10 @@ fn an_ideal_diode_rectifies_as_the_closed_form_pieces_say() {
     let t_end = 2.6;
     let switches = rectifier_switches(&m, t_end);
     assert!(switches.len() >= 5, "{switches:?}");
-    for method in adaptive_methods_for::<Rectifier>() {
-        let tol = 1e-10;
-        let opts = Options::new().method(method).tolerance(tol);
-        let sol = m.simulate(0.0, t_end, &opts).unwrap_or_else(|e| panic!("{method:?}: {e}"));
+    let tol = 1e-10;
+    for (method, sol) in alternating_runs(&m, t_end, tol, ["opens", "closes"], switches.len()) {
         let jumps = sol.jumps();
-        assert_eq!(
-            jumps.len(),
-            switches.len(),
-            "{method:?}: {:?}",
-            jumps.iter().map(|j| j.t).collect::<Vec<_>>()
-        );
         for (k, (jump, &(t, v))) in jumps.iter().zip(&switches).enumerate() {
-            let name = if k % 2 == 0 { "opens" } else { "closes" };
-            assert_eq!(jump.triggers, [name], "{method:?}");
             let bound = 10.0 * reach(method, tol);
             assert!(
                 (jump.t - t).abs() <= bound,
@@ -628,25 +630,14 @@ fn a_block_on_a_belt_sticks_and_slips_as_the_piecewise_closed_form_says() {
         times.push(last + if cycle % 2 == 0 { slipping } else { stuck_after });
     }
     let t_end = times[6] + 0.1;
-    for method in adaptive_methods_for::<StickSlip>() {
-        let tol = 1e-10;
-        let opts = Options::new().method(method).tolerance(tol);
-        let sol = b.simulate(0.0, t_end, &opts).unwrap_or_else(|e| panic!("{method:?}: {e}"));
-        let jumps = sol.jumps();
-        assert_eq!(
-            jumps.len(),
-            times.len(),
-            "{method:?}: {:?}",
-            jumps.iter().map(|j| j.t).collect::<Vec<_>>()
-        );
-        for (k, (jump, want)) in jumps.iter().zip(&times).enumerate() {
-            let name = if k % 2 == 0 { "slips" } else { "sticks" };
-            assert_eq!(jump.triggers, [name], "{method:?}");
+    let tol = 1e-10;
+    for (method, sol) in alternating_runs(&b, t_end, tol, ["slips", "sticks"], times.len()) {
+        for (k, (jump, want)) in sol.jumps().iter().zip(&times).enumerate() {
             // Errors add up over the cycles: 10·tol each.
             let bound = 10.0 * (k + 1) as f64 * reach(method, tol);
             assert!(
                 (jump.t - want).abs() <= bound,
-                "{method:?}: {name} at {}, closed form {want}",
+                "{method:?}: jump {k} at {}, closed form {want}",
                 jump.t
             );
             let x_want = if k % 2 == 0 { x_slip } else { x_k - d };
@@ -786,22 +777,11 @@ fn the_library_ideal_diode_rectifies_like_the_flat_model() {
     // The library's source is sin 2πft, f = 1.
     let flat = Rectifier { omega: 2.0 * std::f64::consts::PI, ..Rectifier::default() };
     let switches = rectifier_switches(&flat, t_end);
-    for method in adaptive_methods_for::<RectifierOfParts>() {
-        let tol = 1e-10;
-        let opts = Options::new().method(method).tolerance(tol);
-        let sol = RectifierOfParts::default()
-            .simulate(0.0, t_end, &opts)
-            .unwrap_or_else(|e| panic!("{method:?}: {e}"));
-        let jumps = sol.jumps();
-        assert_eq!(
-            jumps.len(),
-            switches.len(),
-            "{method:?}: {:?}",
-            jumps.iter().map(|j| j.t).collect::<Vec<_>>()
-        );
-        for (k, (jump, &(t, v))) in jumps.iter().zip(&switches).enumerate() {
-            let name = if k % 2 == 0 { "d.opens" } else { "d.closes" };
-            assert_eq!(jump.triggers, [name], "{method:?}");
+    let (model, tol) = (RectifierOfParts::default(), 1e-10);
+    for (method, sol) in
+        alternating_runs(&model, t_end, tol, ["d.opens", "d.closes"], switches.len())
+    {
+        for (jump, &(t, v)) in sol.jumps().iter().zip(&switches) {
             assert!(
                 (jump.t - t).abs() <= 10.0 * reach(method, tol),
                 "{method:?}: {} vs {t}",
@@ -856,11 +836,7 @@ fn fixed_step_methods_switch_the_thermostat_at_their_order() {
     // (the interpolant's own error, fourth order, is below it): halving
     // the step divides the error of the fourth switch by about 2^p.
     let m = Thermostat::default();
-    let tau = m.c / m.k;
-    let (hot, cold) = (m.t_ambient + m.p / m.k, m.t_ambient);
-    let heat = |from: f64, to: f64| tau * ((from - hot) / (to - hot)).ln();
-    let cool = |from: f64, to: f64| tau * ((from - cold) / (to - cold)).ln();
-    let fourth = heat(15.0, m.t_high) + 2.0 * cool(m.t_high, m.t_low) + heat(m.t_low, m.t_high);
+    let fourth = thermostat_switches(&m, 4)[3];
     let error = |method: Method, step: f64| {
         let sol = m
             .simulate(0.0, fourth + 0.1, &Options::new().method(method).step(step))
