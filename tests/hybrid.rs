@@ -858,3 +858,33 @@ fn fixed_step_methods_switch_the_thermostat_at_their_order() {
         );
     }
 }
+
+/// A stiff relaxation towards a square wave the clock toggles:
+/// y' = −1000 (y − u), u flipping between 0 and 1 every second.
+#[dae_model]
+fn stiff_square_wave() {
+    let y = state(0.0);
+    let u = discrete(1.0);
+    der(y) == -1000.0 * (y - u);
+    let flip = every(1.0).offset(1.0).reinit(u, 1.0 - u);
+}
+
+#[test]
+fn auto_counts_the_switches_of_every_stretch() {
+    // Each stretch restarts with the explicit pair, which hands over to
+    // the stiff method where its steps are held by stability: the
+    // switches of all stretches count (one stretch alone makes one).
+    let sol = StiffSquareWave::default()
+        .simulate(0.0, 4.0, &Options::new().tolerance(1e-8))
+        .expect("runs");
+    let stats = sol.stats();
+    // Instants at 1, 2, 3 and at the end, 4, which acts too.
+    assert_eq!(sol.jumps().len(), 4);
+    assert!(stats.switches >= 2, "{stats:?}");
+    assert!(stats.method.contains('⇄'), "{stats:?}");
+    // Relaxed to the held value at the end of each second: 1, 0, 1, 0.
+    for (k, want) in [1.0, 0.0, 1.0, 0.0].iter().enumerate() {
+        let t = (k + 1) as f64;
+        assert!((sol.at_left(t, "y").unwrap() - want).abs() <= 1e-7, "at {t}");
+    }
+}

@@ -50,7 +50,8 @@
 //!
 //! A clock's first instant is its offset (0 by default); instants before
 //! the start of the run are skipped, one at the start acts before the
-//! first step. Its period and offset are constants or parameters; a run
+//! first step, one at the end acts last (the run's final state is the
+//! one after it). Its period and offset are constants or parameters; a run
 //! with clocks goes forward in time.
 //!
 //! At one instant the actions run in rounds (Modelica's event
@@ -85,6 +86,10 @@
 //! | Taylor | the jet, the order and step chosen from it |
 //! | Auto | its choice of method: each stretch starts with the explicit pair |
 //! | fixed-step methods | equal steps of the run's step, fitted to the stretch |
+//!
+//! A restart allocates the method's work arrays again: once per instant,
+//! never per step. `stats()` adds up every stretch; `Auto`'s `switches`
+//! counts the hand-overs in all of them.
 //!
 //! A discrete value's column is left out of the Jacobian: it is constant
 //! in a stretch, and its row of every Newton matrix stays its own, so it
@@ -139,7 +144,10 @@
 //! == 0.0`); at most six booleans select equations (64 modes). A mode
 //! that does not determine its unknowns is a compile error naming the
 //! mode. Modes are booleans: a mode with more cases is written with
-//! several.
+//! several. Every mode's expressions are evaluated at each evaluation and
+//! summed, so each must stay finite in the states the others visit (a
+//! mode dividing by a quantity that is zero while another mode holds
+//! needs a guard in its expression).
 //!
 //! ```
 //! use daegen::prelude::*;

@@ -176,12 +176,20 @@ fn switching<M: Model, P: EmbeddedPair>(
     let mut threshold = (0.1 * ratio).clamp(0.1, 0.9);
     let (mut t, mut y, mut h) = (t0, y0.to_vec(), options.initial_step);
     let mut segments = 0usize;
+    // A hybrid run restarts the method at each instant: the switches of
+    // the stretches before count too, a stretch that did not switch keeps
+    // the chain they made, and switches in several stretches read `⇄`.
+    let before = solution.stats().switches;
     // Labels the solution (or the partial one of an error) with the
     // methods so far.
     let label = |solution: &mut Solution, segments: usize| {
         let stats = solution.stats_mut();
-        stats.method = chain(pair, stiff, segments);
-        stats.switches = segments.saturating_sub(1);
+        match (before, segments) {
+            (0, _) => stats.method = chain(pair, stiff, segments),
+            (_, 2..) => stats.method = chain(pair, stiff, 5),
+            _ => {}
+        }
+        stats.switches = before + segments.saturating_sub(1);
     };
     let labelled = |result: Result<(Solution, Finish), Error>, segments: usize| match result {
         Ok((mut s, finish)) => {
