@@ -888,3 +888,61 @@ fn auto_counts_the_switches_of_every_stretch() {
         assert!((sol.at_left(t, "y").unwrap() - want).abs() <= 1e-7, "at {t}");
     }
 }
+
+/// A car accelerating through three gears against linear drag, the drive
+/// force smaller in each; the gearbox shifts up at 10 and 20 m/s.
+#[dae_model]
+fn gearbox() {
+    let m = param(1000.0);
+    let c = param(50.0);
+    let f1 = param(3000.0);
+    let v = state(0.0);
+    let force = algebraic(0.0);
+    /// The gear engaged.
+    let gear = discrete(1);
+    m * der(v) == force - c * v;
+    if gear == 1 {
+        force == f1;
+    } else if gear == 2 {
+        force == 0.6 * f1;
+    } else {
+        force == 0.4 * f1;
+    }
+    let second = event(v - 10.0).rising().reinit(gear, 2);
+    let third = event(v - 20.0).rising().reinit(gear, 3);
+}
+
+#[test]
+fn an_integer_mode_shifts_gears_as_the_exponentials_say() {
+    // In gear k, v relaxes to F_k/c with τ = m/c: from v₀ to v₁ it takes
+    // τ ln((v∞ − v₀)/(v∞ − v₁)).
+    let car = Gearbox::default();
+    let tau = car.m / car.c;
+    let limit = |share: f64| share * car.f1 / car.c;
+    let to = |share: f64, from: f64, target: f64| {
+        tau * ((limit(share) - from) / (limit(share) - target)).ln()
+    };
+    let t2 = to(1.0, 0.0, 10.0);
+    let t3 = t2 + to(0.6, 10.0, 20.0);
+    let t_end = 30.0;
+    let v_end = limit(0.4) + (20.0 - limit(0.4)) * (-(t_end - t3) / tau).exp();
+    let tol = 1e-10;
+    for (method, sol) in alternating_runs(&car, t_end, tol, ["second", "third"], 2) {
+        let jumps = sol.jumps();
+        for (jump, want) in jumps.iter().zip([t2, t3]) {
+            assert!(
+                (jump.t - want).abs() <= 10.0 * reach(method, tol) * want,
+                "{method:?}: {} vs {want}",
+                jump.t
+            );
+        }
+        assert_eq!(sol.at_left(jumps[1].t, "gear").unwrap(), 2.0);
+        assert_eq!(sol.last("gear").unwrap(), 3.0);
+        let v = sol.last("v").unwrap();
+        assert!(
+            (v - v_end).abs() <= 10.0 * reach(method, tol) * v_end,
+            "{method:?}: {v} vs {v_end}"
+        );
+        assert!((sol.last("force").unwrap() - 0.4 * car.f1).abs() <= 1e-9);
+    }
+}

@@ -9,7 +9,7 @@
 //! | `let bounce = event(h).falling().reinit(der(h), -e * pre(der(h)));` | at the crossing, set a state (or `der(h)` of a second-order `h`, or a discrete value) from the values there |
 //! | `pre(x)` | in an action, the value of `x` just before the instant |
 //! | `let on = discrete(true);` | a discrete value: constant between instants, set only by actions; `true`/`false` are 1 and 0 |
-//! | `if on { v == 0.0; } else { i == 0.0; }` | a mode: the equations of the branch that holds |
+//! | `if on { v == 0.0; } else { i == 0.0; }`, `if gear == 2 { .. }` | a mode: the equations of the branch that holds |
 //! | `if on { p } else { 0.0 }` | a value chosen by a mode |
 //! | `let tick = every(0.01).offset(0.0).reinit(u, ..);` | a clock: actions at `offset + k·h` |
 //! | `let u = input(0.0);` | a signal supplied at run time: the field `u: Input` |
@@ -136,18 +136,24 @@
 //! ## Modes
 //!
 //! `if on { .. } else { .. }` on a discrete boolean (or `!on`, nested for
-//! several) selects equations. The macro analyses each mode alone at
-//! compile time (sorting, solving, aliases) and joins them into one
-//! right-hand side, `on·f_on + (1 − on)·f_off`, exact for a boolean's 1
-//! and 0. Each mode must reduce to an explicit ODE in the same states (a
-//! sticking contact is written with its constraint differentiated, `der(v)
-//! == 0.0`); at most six booleans select equations (64 modes). A mode
-//! that does not determine its unknowns is a compile error naming the
-//! mode. Modes are booleans: a mode with more cases is written with
-//! several. Every mode's expressions are evaluated at each evaluation and
-//! summed, so each must stay finite in the states the others visit (a
-//! mode dividing by a quantity that is zero while another mode holds
-//! needs a guard in its expression).
+//! several), or `if gear == 1 { .. } else if gear == 2 { .. } else { .. }`
+//! on a discrete integer, selects equations. The macro analyses each mode
+//! alone at compile time (sorting, solving, aliases) and joins them into
+//! one right-hand side, `Σ [the mode holds]·f_mode`: for a boolean
+//! `on·f_on + (1 − on)·f_off`, exact for its 1 and 0; for an integer, the
+//! polynomial in it that is 1 at the mode's value and 0 at its others,
+//! exact to rounding. An integer mode takes the values it starts at, is
+//! compared with, and is set to by actions, which must be whole numbers
+//! (`.reinit(gear, 2)`); a boolean is 0 or 1 and may be set by any
+//! expression that keeps it so (`.reinit(on, 1.0 - on)`). Each mode must
+//! reduce to an explicit ODE in the same states (a sticking contact is
+//! written with its constraint differentiated, `der(v) == 0.0`); at most
+//! 64 modes. A mode that does not determine its unknowns is a compile
+//! error naming the mode. Every mode's expressions are evaluated at each
+//! evaluation and summed, so each must stay finite in the states the others
+//! visit (a mode dividing by a quantity that is zero while another mode
+//! holds needs a guard in its expression). `if on { p } else { 0.0 }` as a
+//! value takes a boolean; by an integer, write an equation in each branch.
 //!
 //! ```
 //! use daegen::prelude::*;

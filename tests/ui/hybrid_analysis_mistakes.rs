@@ -39,4 +39,19 @@ fn prescribed() {
     constraint(x - s);
 }
 
+/// An integer mode set to a value not known at compile time.
+#[dae_model]
+fn shifting() {
+    let v = state(0.0);
+    let force = algebraic(0.0);
+    let gear = discrete(1);
+    der(v) == force;
+    if gear == 1 {
+        force == 2.0;
+    } else {
+        force == 1.0;
+    }
+    let up = event(v - 1.0).rising().reinit(gear, gear + 1.0);
+}
+
 fn main() {}

@@ -15,6 +15,8 @@ fn switched() {
     let backwards = every(-0.1).reinit(on, false);
     every(0.2).reinit(on, true);
     let ticks = output(silent);
+    let gear = discrete(1);
+    let pull = output(if gear == 2 { 1.0 } else { 0.0 });
     if on {
         let extra = state(0.0);
         der(extra) == 1.0;

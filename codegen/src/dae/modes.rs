@@ -1,55 +1,66 @@
-//! Models with modes (`if on { .. } else { .. }` on discrete booleans):
-//! each mode's equations are sorted, reduced and solved alone, at compile
-//! time, and the reduced systems joined into one that reads the booleans,
-//! `Σ_modes [the booleans have the mode's values] · f_mode`, where each
-//! bracket is a product of `b` and `1 − b`: exact, since a boolean is 0 or
-//! 1 between events. Every mode must reduce to an explicit ODE in the same
-//! states (a diode conducting or blocking, a contact sticking or
-//! slipping); at most [`MAX_MODE_BOOLEANS`] booleans select equations.
+//! Models with modes (`if on { .. } else { .. }` on discrete booleans,
+//! `if gear == 2 { .. }` on discrete integers): each mode's equations are
+//! sorted, reduced and solved alone, at compile time, and the reduced
+//! systems joined into one that reads the discrete values,
+//! `Σ_modes [the values are the mode's] · f_mode`. Each bracket is a
+//! product, over the mode variables, of the Lagrange polynomial that is 1
+//! at the mode's value and 0 at the variable's other values: `b` and
+//! `1 − b` for a boolean, exact; for an integer `(v − c₁)(v − c₂)…/D`,
+//! exact where D is a power of two and else to rounding. Every mode must
+//! reduce to an explicit ODE in the same states (a diode conducting or
+//! blocking, a contact sticking or slipping, a gearbox in each gear); at
+//! most [`MAX_MODES`] modes.
 
 use crate::dae::system::{FirstOrder, SlotAction, SlotDerivative};
 use crate::front::ctxt::Ctxt;
 use crate::front::ir::ModelIr;
 use crate::{Graph, Id, SymbolId};
 
-/// The most discrete booleans that may select equations (2⁶ modes).
-pub const MAX_MODE_BOOLEANS: usize = 6;
+/// The most modes, each analysed at compile time.
+pub const MAX_MODES: usize = 64;
+
+/// A discrete value that selects equations and the values it can take.
+struct ModeVariable {
+    symbol: SymbolId,
+    values: Vec<i64>,
+}
 
 /// The structure and reduction of `ir`: at once for a model without
 /// modes, mode by mode and joined for one with.
 pub fn reduce_modes(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
-    let mut booleans: Vec<SymbolId> = Vec::new();
-    for e in &ir.equations {
-        for &(b, _) in &e.mode {
-            if !booleans.contains(&b) {
-                booleans.push(b);
-            }
-        }
-    }
     let reduce_all = |cx: &mut Ctxt, ir: &mut ModelIr| {
         crate::dae::structure::structure(cx, ir)
             .and_then(|structure| crate::dae::reduce::reduce(cx, ir, structure))
     };
-    if booleans.is_empty() {
+    let Some(first_guarded) = ir.equations.iter().find(|e| !e.mode.is_empty()) else {
         return reduce_all(cx, ir);
-    }
-    let first_guarded = ir.equations.iter().find(|e| !e.mode.is_empty())?.origin.clone();
-    if booleans.len() > MAX_MODE_BOOLEANS {
-        cx.error_at(&first_guarded, format!("{} discrete booleans select equations, more than the {MAX_MODE_BOOLEANS} (64 modes) each analysed at compile time: combine modes into fewer booleans", booleans.len()));
+    };
+    let first_guarded = first_guarded.origin.clone();
+    let variables = match mode_variables(ir) {
+        Ok(v) => v,
+        Err((message, origin)) => {
+            cx.error_at(origin.as_ref().unwrap_or(&first_guarded), message);
+            return None;
+        }
+    };
+    let count: usize = variables.iter().map(|v| v.values.len()).product();
+    if count > MAX_MODES {
+        cx.error_at(&first_guarded, format!("the discrete values selecting equations make {count} modes, more than the {MAX_MODES} analysed at compile time: combine modes"));
         return None;
     }
     let all = std::mem::take(&mut ir.equations);
-    let mut systems = Vec::with_capacity(1 << booleans.len());
-    for bits in 0..(1usize << booleans.len()) {
-        let holds =
-            |b: SymbolId| booleans.iter().position(|&x| x == b).is_some_and(|j| bits >> j & 1 == 1);
+    let mut systems = Vec::with_capacity(count);
+    for mode in 0..count {
+        let values = values_of(&variables, mode);
+        let value_of =
+            |s: SymbolId| variables.iter().position(|v| v.symbol == s).map(|k| values[k]);
         ir.equations = all
             .iter()
-            .filter(|e| e.mode.iter().all(|&(b, value)| holds(b) == value))
+            .filter(|e| e.mode.iter().all(|g| value_of(g.mode).is_some_and(|v| g.holds_at(v))))
             .cloned()
             .collect();
         let system = reduce_all(cx, ir).filter(|_| cx.is_ok());
-        let mode_name = mode_name(&ir.graph, &booleans, bits);
+        let mode_name = mode_name(&ir.graph, &variables, &values);
         let system = match system.map(|s| explicit(s, &mode_name)) {
             Some(Ok(s)) => s,
             Some(Err(message)) => {
@@ -66,7 +77,7 @@ pub fn reduce_modes(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
         systems.push(system);
     }
     ir.equations = all;
-    match join(&mut ir.graph, &booleans, systems) {
+    match join(&mut ir.graph, &variables, systems) {
         Ok(joined) => Some(joined),
         Err(e) => {
             cx.error_at(&first_guarded, e);
@@ -75,14 +86,106 @@ pub fn reduce_modes(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
     }
 }
 
-/// `on` and `!stuck`, for messages.
-fn mode_name(g: &Graph, booleans: &[SymbolId], bits: usize) -> String {
-    let parts: Vec<String> = booleans
+/// The discrete values that select equations, in order of first use, each
+/// with the values it takes: 0 and 1 for a boolean; for an integer, its
+/// start, the values its conditions name and the constants its actions
+/// set (an action setting it to anything but a constant is an error, with
+/// the action's tokens).
+fn mode_variables(
+    ir: &ModelIr,
+) -> Result<Vec<ModeVariable>, (String, Option<proc_macro2::TokenStream>)> {
+    let g = &ir.graph;
+    let mut variables: Vec<ModeVariable> = Vec::new();
+    for guard in ir.equations.iter().flat_map(|e| &e.mode) {
+        let k = match variables.iter().position(|v| v.symbol == guard.mode) {
+            Some(k) => k,
+            None => {
+                variables.push(ModeVariable { symbol: guard.mode, values: Vec::new() });
+                variables.len() - 1
+            }
+        };
+        let tested = if guard.boolean { vec![0, 1] } else { guard.values.clone() };
+        variables[k].values.extend(tested);
+    }
+    let actions =
+        ir.events.iter().flat_map(|e| &e.actions).chain(ir.clocks.iter().flat_map(|c| &c.actions));
+    for v in &mut variables {
+        let name = &g.symbol(v.symbol).name;
+        let boolean =
+            ir.equations.iter().flat_map(|e| &e.mode).all(|m| m.mode != v.symbol || m.boolean);
+        let start = ir.states.iter().find(|s| s.symbol == v.symbol).map(|s| s.init);
+        let whole = |id: crate::Id| g.as_number(id).and_then(|n| n.as_integer());
+        if !boolean {
+            match start.and_then(whole) {
+                Some(value) => v.values.push(value),
+                None => {
+                    return Err((
+                        format!(
+                            "the integer mode `{name}` starts at a whole number: `discrete(1)`"
+                        ),
+                        None,
+                    ))
+                }
+            }
+        }
+        for action in actions.clone().filter(|a| a.target == v.symbol) {
+            match whole(action.value) {
+                Some(value) => v.values.push(value),
+                None if boolean => {}
+                None => return Err((format!("the integer mode `{name}` is set to whole numbers, each a mode analysed at compile time: `.reinit({name}, 2)`"), Some(action.origin.clone()))),
+            }
+        }
+        v.values.sort_unstable();
+        v.values.dedup();
+    }
+    Ok(variables)
+}
+
+/// The values of the mode variables in mode number `mode` (mixed radix).
+fn values_of(variables: &[ModeVariable], mut mode: usize) -> Vec<i64> {
+    variables
         .iter()
-        .enumerate()
-        .map(|(j, &b)| format!("`{}` is {}", g.symbol(b).name, bits >> j & 1 == 1))
+        .map(|v| {
+            let value = v.values[mode % v.values.len()];
+            mode /= v.values.len();
+            value
+        })
+        .collect()
+}
+
+/// `on` is true and `gear` is 2, for messages.
+fn mode_name(g: &Graph, variables: &[ModeVariable], values: &[i64]) -> String {
+    let boolean = |v: &ModeVariable| v.values == [0, 1];
+    let parts: Vec<String> = variables
+        .iter()
+        .zip(values)
+        .map(|(v, &value)| match boolean(v) {
+            true => format!("`{}` is {}", g.symbol(v.symbol).name, value == 1),
+            false => format!("`{}` is {value}", g.symbol(v.symbol).name),
+        })
         .collect();
     format!("where {}", parts.join(" and "))
+}
+
+/// The polynomial in `v` that is 1 at `value` and 0 at its other values:
+/// Π (v − c)/(value − c).
+fn lagrange(g: &mut Graph, v: &ModeVariable, value: i64) -> crate::Result<Id> {
+    let x = g.symbol_node(v.symbol);
+    if v.values == [0, 1] {
+        // A boolean: b and 1 − b.
+        let one = g.one();
+        return if value == 1 { Ok(x) } else { g.sub(one, x) };
+    }
+    let mut factors = Vec::with_capacity(v.values.len());
+    let mut denominator = 1i64;
+    for &c in v.values.iter().filter(|&&c| c != value) {
+        let c_id = g.int(c);
+        factors.push(g.sub(x, c_id)?);
+        denominator *= value - c;
+    }
+    let numerator = g.product(&factors)?;
+    let denominator = g.int(denominator);
+    g.div(numerator, denominator)
 }
 
 /// `sys` if it is an explicit ODE, or why a mode must be one.
@@ -98,26 +201,19 @@ fn explicit(sys: FirstOrder, mode: &str) -> Result<FirstOrder, String> {
     Ok(sys)
 }
 
-/// The systems of every mode (mode `bits` at index `bits`) as one.
+/// The systems of every mode (in the order of [`values_of`]) as one.
 fn join(
     g: &mut Graph,
-    booleans: &[SymbolId],
+    variables: &[ModeVariable],
     systems: Vec<FirstOrder>,
 ) -> crate::Result<FirstOrder> {
     let indicators: Vec<Id> = (0..systems.len())
-        .map(|bits| {
-            let factors = booleans
+        .map(|mode| {
+            let values = values_of(variables, mode);
+            let factors = variables
                 .iter()
-                .enumerate()
-                .map(|(j, &b)| {
-                    let on = g.symbol_node(b);
-                    if bits >> j & 1 == 1 {
-                        Ok(on)
-                    } else {
-                        let one = g.one();
-                        g.sub(one, on)
-                    }
-                })
+                .zip(&values)
+                .map(|(v, &value)| lagrange(g, v, value))
                 .collect::<crate::Result<Vec<Id>>>()?;
             g.product(&factors)
         })

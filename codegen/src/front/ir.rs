@@ -148,9 +148,31 @@ pub struct Equation {
     pub origin: TokenStream,
     /// Written as `constraint(..)`.
     pub is_constraint: bool,
-    /// Written inside `if on { .. } else { .. }`: the discrete booleans and
-    /// the values they must have for the equation to hold (empty: always).
-    pub mode: Vec<(SymbolId, bool)>,
+    /// Written inside `if on { .. } else { .. }` or `if gear == 2 { .. }`:
+    /// what the discrete values must be for the equation to hold, all of
+    /// it (empty: always).
+    pub mode: Vec<ModeGuard>,
+}
+
+/// A condition on a discrete value selecting equations: its value is one
+/// of `values` (`holds`), or none of them (`!holds`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ModeGuard {
+    /// The discrete value.
+    pub mode: SymbolId,
+    /// The values tested.
+    pub values: Vec<i64>,
+    /// Whether the value is among them.
+    pub holds: bool,
+    /// Written as a boolean (`if on`, `if !on`): the value is 0 or 1.
+    pub boolean: bool,
+}
+
+impl ModeGuard {
+    /// Whether the guard holds where its discrete value is `value`.
+    pub fn holds_at(&self, value: i64) -> bool {
+        self.values.contains(&value) == self.holds
+    }
 }
 
 /// `invariant(e);` (or the unit norm of a `quaternion_state`): a function of
@@ -253,7 +275,17 @@ impl std::fmt::Display for ModelIr {
             let mode: String = e
                 .mode
                 .iter()
-                .map(|&(b, value)| format!(" if {}{}", if value { "" } else { "!" }, name(b)))
+                .map(|m| match (m.boolean, m.holds, m.values.as_slice()) {
+                    (true, holds, _) => {
+                        format!(" if {}{}", if holds { "" } else { "!" }, name(m.mode))
+                    }
+                    (false, true, [v]) => format!(" if {} == {v}", name(m.mode)),
+                    (false, false, [v]) => format!(" if {} != {v}", name(m.mode)),
+                    (false, holds, values) => {
+                        let not = if holds { "" } else { "not " };
+                        format!(" if {} {not}in {values:?}", name(m.mode))
+                    }
+                })
                 .collect();
             match e.is_constraint {
                 true => writeln!(f, "constraint {} == {}{mode}", g.show(e.lhs), g.show(e.rhs))?,

@@ -34,7 +34,10 @@ impl<S: SceneLanguage> Lower<'_, S> {
         self.in_action = true;
         let value = self.value(&m.args[1]);
         self.in_action = false;
-        Some(Action { target: symbol, value: value?, origin: m.to_token_stream() })
+        // The `reinit(..)` alone, not the event before it.
+        let mut origin = m.method.to_token_stream();
+        origin.extend(m.args.to_token_stream());
+        Some(Action { target: symbol, value: value?, origin })
     }
 
     /// The state or derivative `id` stands for, if it is one.

@@ -1,31 +1,49 @@
-//! Modes: `if on { .. } else { .. }` on a discrete boolean. As a
-//! statement it selects equations (each mode's equations are analysed
-//! alone at compile time); as a value it picks one of two values.
+//! Modes: `if on { .. } else { .. }` on a discrete boolean, or `if gear
+//! == 2 { .. } else if .. { .. }` on a discrete integer. As a statement it
+//! selects equations (each mode's equations are analysed alone at compile
+//! time); on a boolean, as a value, it picks one of two values.
 
 use super::scene::SceneLanguage;
 use super::scopes::{Binding, Lower};
+use crate::front::ir::ModeGuard;
 use crate::{Id, SymbolId};
 use quote::ToTokens;
 use std::collections::HashMap;
-use syn::{Expr, UnOp};
+use syn::{BinOp, Expr, Lit, UnOp};
 
 impl<S: SceneLanguage> Lower<'_, S> {
-    /// The discrete value a condition tests and the value that makes it
-    /// hold: `on` (true) or `!on` (false); `None` for any other condition
-    /// (one on constants, unrolled as written).
-    pub(in crate::front) fn mode_condition(&self, cond: &Expr) -> Option<(SymbolId, bool)> {
+    /// The condition on a discrete value a condition is: `on`, `!on`,
+    /// `gear == 2`, `gear != 2`; `None` for any other (one on constants,
+    /// unrolled as written).
+    pub(in crate::front) fn mode_condition(&self, cond: &Expr) -> Option<ModeGuard> {
         match cond {
             Expr::Paren(p) => self.mode_condition(&p.expr),
             Expr::Unary(u) if matches!(u.op, UnOp::Not(_)) => {
-                self.mode_condition(&u.expr).map(|(s, value)| (s, !value))
+                self.mode_condition(&u.expr).map(|g| ModeGuard { holds: !g.holds, ..g })
             }
-            Expr::Path(p) => {
-                let name = p.path.get_ident()?.to_string();
-                match self.lookup(&name) {
-                    Some(Binding::State(s)) if self.is_discrete(*s) => Some((*s, true)),
-                    _ => None,
-                }
+            Expr::Path(_) => {
+                let mode = self.discrete_named(cond)?;
+                Some(ModeGuard { mode, values: vec![1], holds: true, boolean: true })
             }
+            Expr::Binary(b) if matches!(b.op, BinOp::Eq(_) | BinOp::Ne(_)) => {
+                let holds = matches!(b.op, BinOp::Eq(_));
+                let (mode, value) =
+                    match (self.discrete_named(&b.left), self.discrete_named(&b.right)) {
+                        (Some(m), None) => (m, whole_number(&b.right)?),
+                        (None, Some(m)) => (m, whole_number(&b.left)?),
+                        _ => return None,
+                    };
+                Some(ModeGuard { mode, values: vec![value], holds, boolean: false })
+            }
+            _ => None,
+        }
+    }
+
+    /// The discrete value `e` names, if it names one.
+    fn discrete_named(&self, e: &Expr) -> Option<SymbolId> {
+        let Expr::Path(p) = e else { return None };
+        match self.lookup(&p.path.get_ident()?.to_string()) {
+            Some(Binding::State(s)) if self.is_discrete(*s) => Some(*s),
             _ => None,
         }
     }
@@ -34,13 +52,14 @@ impl<S: SceneLanguage> Lower<'_, S> {
     /// hold in its mode only. Branches hold equations and named values,
     /// no declarations.
     pub(in crate::front) fn mode_if(&mut self, i: &syn::ExprIf) {
-        let Some((mode, value)) = self.mode_condition(&i.cond) else { return };
-        self.mode_branch(&i.then_branch.stmts, (mode, value), i);
+        let Some(guard) = self.mode_condition(&i.cond) else { return };
+        let otherwise = ModeGuard { holds: !guard.holds, ..guard.clone() };
+        self.mode_branch(&i.then_branch.stmts, guard, i);
         match i.else_branch.as_ref().map(|(_, e)| &**e) {
-            Some(Expr::Block(b)) => self.mode_branch(&b.block.stmts, (mode, !value), i),
+            Some(Expr::Block(b)) => self.mode_branch(&b.block.stmts, otherwise, i),
             Some(Expr::If(inner)) => {
                 let stmt = syn::Stmt::Expr(Expr::If(inner.clone()), None);
-                self.mode_branch(std::slice::from_ref(&stmt), (mode, !value), i);
+                self.mode_branch(std::slice::from_ref(&stmt), otherwise, i);
             }
             Some(other) => self.cx.error_at(other, "expected a block after `else`"),
             None => {}
@@ -48,7 +67,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
     }
 
     /// The statements of one branch, their equations marked with `guard`.
-    fn mode_branch(&mut self, stmts: &[syn::Stmt], guard: (SymbolId, bool), at: &syn::ExprIf) {
+    fn mode_branch(&mut self, stmts: &[syn::Stmt], guard: ModeGuard, at: &syn::ExprIf) {
         let before = (
             self.equations.len(),
             self.states.len(),
@@ -76,17 +95,23 @@ impl<S: SceneLanguage> Lower<'_, S> {
             );
         }
         for equation in &mut self.equations[before.0..] {
-            // Inner modes first: the outer guard joins theirs.
-            if !equation.mode.iter().any(|&(s, _)| s == guard.0) {
-                equation.mode.insert(0, guard);
-            }
+            // Inner modes first: the outer guard joins theirs, all to hold.
+            equation.mode.insert(0, guard.clone());
         }
     }
 
     /// `if on { a } else { b }` as a value: `on·a + (1 − on)·b`, exact for
     /// a boolean's 1 and 0 (between events it is one or the other).
     pub(in crate::front) fn mode_value(&mut self, i: &syn::ExprIf) -> Option<Id> {
-        let (mode, value) = self.mode_condition(&i.cond)?;
+        let guard = self.mode_condition(&i.cond)?;
+        if !guard.boolean {
+            self.cx.error_at(
+                &i.cond,
+                "a value is chosen by a boolean mode (`if on { a } else { b }`); by an integer one, write an equation in each branch: `if gear == 1 { ratio == 3.0; } else { ratio == 1.0; }`",
+            );
+            return None;
+        }
+        let (mode, value) = (guard.mode, guard.holds);
         let then = self.branch_value(&i.then_branch);
         let other = match i.else_branch.as_ref().map(|(_, e)| &**e) {
             Some(Expr::Block(b)) => self.branch_value(&b.block),
@@ -111,5 +136,15 @@ impl<S: SceneLanguage> Lower<'_, S> {
             self.g.add(off_value, switched)
         })();
         self.graph_result(r, &Expr::If(i.clone()))
+    }
+}
+
+/// A whole number written as a literal (`2`, `-1`).
+fn whole_number(e: &Expr) -> Option<i64> {
+    match e {
+        Expr::Lit(syn::ExprLit { lit: Lit::Int(i), .. }) => i.base10_parse().ok(),
+        Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => whole_number(&u.expr).map(|v| -v),
+        Expr::Paren(p) => whole_number(&p.expr),
+        _ => None,
     }
 }
