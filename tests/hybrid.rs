@@ -946,3 +946,98 @@ fn an_integer_mode_shifts_gears_as_the_exponentials_say() {
         assert!((sol.last("force").unwrap() - 0.4 * car.f1).abs() <= 1e-9);
     }
 }
+
+/// A pendulum as an index-3 DAE in Cartesian coordinates, released at
+/// θ₀ = 1 rad to the left of a wall through its pivot (x > 0), against
+/// which it bounces with restitution `e`.
+#[dae_model]
+fn pendulum_against_a_wall() {
+    let l = param(1.0);
+    let g = param(9.81);
+    let e = param(0.7);
+    let x = state(-0.8414709848078965);
+    let y = state(-0.5403023058681398);
+    let lambda = algebraic(0.0);
+    der(der(x)) == -lambda * x;
+    der(der(y)) == -lambda * y - g;
+    constraint(x * x + y * y - l * l);
+    let wall = event(x).rising().reinit(der(x), -e * pre(der(x)));
+}
+
+/// The period of a pendulum of length `l` swinging to `theta`:
+/// 4 sqrt(l/g) K(sin(θ/2)), K by the arithmetic-geometric mean.
+fn pendulum_period(l: f64, g: f64, theta: f64) -> f64 {
+    let k = (theta / 2.0).sin();
+    let (mut a, mut b) = (1.0f64, (1.0 - k * k).sqrt());
+    for _ in 0..40 {
+        (a, b) = ((a + b) / 2.0, (a * b).sqrt());
+    }
+    4.0 * (l / g).sqrt() * std::f64::consts::PI / (2.0 * a)
+}
+
+#[test]
+fn a_constrained_pendulum_bounces_off_a_wall_losing_the_energy_restitution_takes() {
+    // It reaches the wall at the bottom, a quarter period after release;
+    // the rebound keeps e² of the kinetic energy, so it rises to θ₁ with
+    // 1 − cos θ₁ = e² (1 − cos θ₀) and is back half a period of that
+    // amplitude later. After each jump the run projects the state onto
+    // the constraint and its hidden levels again.
+    let p = PendulumAgainstAWall::default();
+    let mut theta = 1.0f64;
+    let mut impacts = vec![pendulum_period(p.l, p.g, theta) / 4.0];
+    for _ in 0..3 {
+        theta = (1.0 - p.e * p.e * (1.0 - theta.cos())).acos();
+        let last = impacts[impacts.len() - 1];
+        impacts.push(last + pendulum_period(p.l, p.g, theta) / 2.0);
+    }
+    let tol = 1e-10;
+    for method in adaptive_methods_for::<PendulumAgainstAWall>() {
+        let opts = Options::new().method(method).tolerance(tol);
+        let sol =
+            p.simulate(0.0, impacts[3] + 0.05, &opts).unwrap_or_else(|e| panic!("{method:?}: {e}"));
+        let times = sol.event_times("wall").unwrap();
+        assert_eq!(times.len(), 4, "{method:?}: {times:?}");
+        for (t, want) in times.iter().zip(&impacts) {
+            assert!((t - want).abs() <= 100.0 * reach(method, tol), "{method:?}: {t} vs {want}");
+        }
+        let residuals = (sol.max_constraint_residual(), sol.max_velocity_constraint_residual());
+        assert!(
+            residuals.0.max(residuals.1) <= 10.0 * reach(method, tol),
+            "{method:?}: {residuals:?}"
+        );
+    }
+}
+
+/// The pendulum caught at x = x_c: its horizontal speed is set to zero,
+/// and the constraint's velocity level then wants the vertical one zero
+/// too.
+#[dae_model]
+fn caught_pendulum() {
+    let g = param(9.81);
+    let x_c = param(0.5);
+    let x = state(-0.8414709848078965);
+    let y = state(-0.5403023058681398);
+    let lambda = algebraic(0.0);
+    der(der(x)) == -lambda * x;
+    der(der(y)) == -lambda * y - g;
+    constraint(x * x + y * y - 1.0);
+    let catch = event(x - x_c).rising().terminal().reinit(der(x), 0.0);
+}
+
+#[test]
+fn after_an_action_a_dae_is_projected_keeping_what_the_action_set() {
+    // x·ẋ + y·ẏ = 0 with ẋ = 0 and y ≠ 0 leaves ẏ = 0: the pendulum is
+    // caught at rest, ẋ as the action set it.
+    let p = CaughtPendulum::default();
+    for method in adaptive_methods_for::<CaughtPendulum>() {
+        let sol = p
+            .simulate(0.0, 2.0, &Options::new().method(method).tolerance(1e-10))
+            .unwrap_or_else(|e| panic!("{method:?}: {e}"));
+        let jump = &sol.jumps()[0];
+        assert!(jump.before[3].abs() > 0.5, "{method:?}: it was moving: {:?}", jump.before);
+        let after = &jump.after;
+        assert_eq!(after[1], 0.0, "{method:?}: der(x) as set");
+        assert!(after[3].abs() <= 1e-12, "{method:?}: der(y) = {}", after[3]);
+        assert!((after[0] - p.x_c).abs() <= 1e-9);
+    }
+}

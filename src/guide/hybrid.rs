@@ -91,6 +91,12 @@
 //! never per step. `stats()` adds up every stretch; `Auto`'s `switches`
 //! counts the hand-overs in all of them.
 //!
+//! A DAE's state after the actions is made consistent again, as at the
+//! start of a run: the values the actions set are kept, the other states
+//! are projected onto the constraints and their hidden levels (a pendulum
+//! whose horizontal speed an action zeroes loses its vertical speed too);
+//! where that cannot be done the run ends in [`crate::Error::Constraint`].
+//!
 //! A discrete value's column is left out of the Jacobian: it is constant
 //! in a stretch, and its row of every Newton matrix stays its own, so it
 //! keeps its value exactly. Members of an [`crate::Ensemble`] run apart,

@@ -27,6 +27,7 @@ use crate::info::EventDirection;
 use crate::methods::{Integrate, Problem};
 use crate::model::Model;
 use crate::solution::{EventHit, Solution};
+use crate::step::projection::INITIAL_ITERATIONS;
 
 /// Most rounds of actions at one instant before [`Error::EventLoop`].
 pub const MAX_EVENT_ITERATIONS: usize = 64;
@@ -63,8 +64,27 @@ pub(crate) fn integrate_hybrid<M: Model>(
                 });
             }
             if let Some(p) = projector.as_mut() {
-                if let Ok(r) = p.project(t, &mut y, 0, None) {
-                    solution.note_constraint_residuals(r);
+                // A DAE's state after the actions is consistent again: the
+                // values the actions set are kept, the others corrected
+                // onto the constraints and their hidden levels, as at the
+                // start of a run.
+                let hold = set_by::<M>(&fired);
+                let projected = p
+                    .project(t, &mut y, INITIAL_ITERATIONS, Some(&hold))
+                    .or_else(|_| p.project(t, &mut y, INITIAL_ITERATIONS, None));
+                match projected {
+                    Ok(r) => solution.note_constraint_residuals(r),
+                    Err(f) => {
+                        let names: Vec<&str> =
+                            fired.iter().map(|&k| trigger_name::<M>(k)).collect();
+                        return Err(Error::Constraint {
+                            t,
+                            constraint: M::CONSTRAINTS[f.row].equation,
+                            level: M::CONSTRAINTS[f.row].level,
+                            message: format!("after the actions of `{}`, the state cannot be made consistent: {}", names.join("`, `"), f.message),
+                            partial: Box::new(solution),
+                        });
+                    }
                 }
             }
             let names = fired.iter().map(|&k| trigger_name::<M>(k)).collect();
@@ -124,6 +144,24 @@ pub(crate) fn integrate_hybrid<M: Model>(
             continue;
         }
     }
+}
+
+/// Which states the actions of `fired` set (held by the projection after
+/// them).
+fn set_by<M: Model>(fired: &[usize]) -> Vec<bool> {
+    let mut hold = vec![false; M::STATES];
+    for &k in fired {
+        let resets = match M::INFO.events.get(k) {
+            Some(e) => e.resets,
+            None => M::INFO.clocks[k - M::INFO.events.len()].resets,
+        };
+        for name in resets {
+            if let Some(i) = M::INFO.states.iter().position(|s| s == name) {
+                hold[i] = true;
+            }
+        }
+    }
+    hold
 }
 
 /// The name of trigger `k`: event `k`, or clock `k − events`.
