@@ -16,4 +16,20 @@ fn decay() {
     der(x) == -x;
 }
 
+/// A bouncing ball: its members' events differ, which lanes do not follow.
+#[dae_model(batch = 4)]
+fn balls() {
+    let h = state(1.0);
+    der(der(h)) == -9.81;
+    let bounce = event(h).falling().reinit(der(h), -0.8 * pre(der(h)));
+}
+
+/// Driven by an input.
+#[dae_model(batch = 4)]
+fn driven() {
+    let u = input(0.0);
+    let x = state(1.0);
+    der(x) == u - x;
+}
+
 fn main() {}

@@ -20,13 +20,13 @@ pub(crate) fn batch_items(
     sys: &FirstOrder,
     lanes: usize,
 ) -> Result<TokenStream, String> {
-    let fix = "batch lanes run explicit ODEs: drop `batch`, and run the members one by one with `daegen::Ensemble`";
+    let fix = "batch lanes run explicit ODEs without events, clocks or inputs: drop `batch`, and run the members one by one with `daegen::Ensemble`";
     let what = if sys.index > 0 || !ir.algebraics.is_empty() || sys.mass_only {
         Some("is a DAE")
     } else if !sys.blocks.is_empty() || sys.newton.is_some() {
         Some("has equations solved for their derivatives at run time")
     } else if !ir.events.is_empty() || !ir.clocks.is_empty() {
-        Some("has events")
+        Some("has events or clocks")
     } else if !ir.inputs.is_empty() {
         Some("reads inputs")
     } else if !sys.invariants.is_empty() || !ir.invariants.is_empty() {
