@@ -11,9 +11,10 @@ use std::sync::Arc;
 /// ```
 /// # use daegen_runtime::Input;
 /// let step = Input::function(|t| if t < 1.0 { 0.0 } else { 12.0 });
-/// let measured = Input::linear(&[0.0, 1.0, 2.0], &[0.0, 5.0, 4.0]).unwrap();
+/// let measured = Input::linear(&[0.0, 1.0, 2.0], &[0.0, 5.0, 4.0])?;
 /// assert_eq!(measured.at(0.5), 2.5);
 /// assert_eq!(measured.breakpoints(), &[0.0, 1.0, 2.0]);
+/// # Ok::<(), daegen_runtime::Error>(())
 /// ```
 ///
 /// For co-simulation, set a constant between the communication steps and
@@ -231,7 +232,7 @@ mod tests {
 
     #[test]
     fn tables_interpolate_and_hold_outside() {
-        let u = Input::linear(&[0.0, 1.0, 3.0], &[1.0, 3.0, 2.0]).unwrap();
+        let u = Input::linear(&[0.0, 1.0, 3.0], &[1.0, 3.0, 2.0]).expect("a table");
         assert_eq!(u.at(-1.0), 1.0);
         assert_eq!(u.at(0.5), 2.0);
         assert_eq!(u.at(2.0), 2.5);
@@ -245,7 +246,7 @@ mod tests {
     #[test]
     fn monotone_cubics_pass_the_samples_without_overshoot() {
         let (t, y) = ([0.0, 1.0, 2.0, 3.0, 4.0], [0.0, 0.1, 5.0, 5.1, 5.1]);
-        let u = Input::monotone_cubic(&t, &y).unwrap();
+        let u = Input::monotone_cubic(&t, &y).expect("a table");
         for (ti, yi) in t.iter().zip(&y) {
             assert!((u.at(*ti) - yi).abs() <= 1e-15);
         }

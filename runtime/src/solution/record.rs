@@ -286,13 +286,19 @@ impl Solution {
         }
         // Discrete values hold through the step: the interpolant's
         // rounding must not move them.
-        let mut y = y.to_vec();
-        for name in self.names.discrete {
-            if let Some(i) = self.names.states.iter().position(|s| s == name) {
-                y[i] = self.last.y_old[i];
+        let restored: Vec<f64>;
+        let y = if self.names.discrete.is_empty() {
+            y
+        } else {
+            let mut held = y.to_vec();
+            for name in self.names.discrete {
+                if let Some(i) = self.names.states.iter().position(|s| s == name) {
+                    held[i] = self.last.y_old[i];
+                }
             }
-        }
-        let y = &y[..];
+            restored = held;
+            &restored[..]
+        };
         self.cut_from = Some(self.last.t_new);
         self.end_t = t;
         self.end_y.copy_from_slice(y);
