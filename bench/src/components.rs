@@ -12,7 +12,16 @@ use proc_macro2::TokenStream;
 include!("../../tests/models/drives.rs");
 include!("../../tests/models/ladders_of_parts.rs");
 
-rc_ladder_of_parts!(ladder_of_parts, 50, { let r = param(1.0); let c = param(1.0); }, r, c);
+rc_ladder_of_parts!(
+    ladder_of_parts,
+    50,
+    {
+        let r = param(1.0);
+        let c = param(1.0);
+    },
+    r,
+    c
+);
 rc_ladder_of_parts!(ladder_of_tunable_parts, 50, {}, 1.0, 1.0);
 rc_ladder_flat!(ladder_flat, 50);
 

@@ -19,6 +19,8 @@
 //! `--components` compares models built from components with the same
 //! physics written flat, and times the expansion of ladders of parts
 //! (`results/components.md`);
+//! `--hybrid` times a bouncing ball and a PI loop sampled at 1 kHz against
+//! heyoka (`results/hybrid.md`);
 //! `--auto` times `Method::Auto` against the best single method on every
 //! reference problem and an explicit pair on a stiff problem
 //! (`results/auto.md`);
@@ -46,6 +48,7 @@ mod auto;
 mod components;
 mod dae;
 mod ensemble;
+mod hybrid;
 #[cfg(feature = "sundials")]
 mod large;
 mod peers;
@@ -539,6 +542,13 @@ fn main() {
     if has("--components") {
         let text = components::components_section();
         let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join("components.md");
+        let _ = std::fs::write(&out, &text);
+        println!("{text}");
+        return;
+    }
+    if has("--hybrid") {
+        let text = hybrid::hybrid_section();
+        let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join("hybrid.md");
         let _ = std::fs::write(&out, &text);
         println!("{text}");
         return;

@@ -127,8 +127,10 @@ fn akzo_point(method: Method, tol: f64) -> dae::Point {
         best = best.min(t.elapsed());
         error = match sol {
             Ok(sol) => {
-                let got: Vec<f64> =
-                    ["y1", "y2", "y3", "y4", "y5", "y6"].iter().map(|n| sol.last(n).unwrap_or(f64::NAN)).collect();
+                let got: Vec<f64> = ["y1", "y2", "y3", "y4", "y5", "y6"]
+                    .iter()
+                    .map(|n| sol.last(n).unwrap_or(f64::NAN))
+                    .collect();
                 relative(&got, &AKZO_NOBEL_AT_180)
             }
             Err(_) => f64::INFINITY,
@@ -215,7 +217,9 @@ pub fn structure_section() -> String {
     out.push_str(&format!("Machine: {}.\n\n", machine()));
     // The right-hand side, sorted against substituted by hand.
     out.push_str("## Right-hand side, sorted against substituted by hand\n\n");
-    out.push_str("Nanoseconds per `rhs` at the initial state (median of 21 alternated rounds).\n\n");
+    out.push_str(
+        "Nanoseconds per `rhs` at the initial state (median of 21 alternated rounds).\n\n",
+    );
     out.push_str("| model | sorted (ns) | by hand (ns) | ratio |\n|---|---|---|---|\n");
     let (a, b) = rhs_ns(&AkzoNobel::default(), &AkzoNobelByHand::default());
     out.push_str(&format!("| Akzo Nobel (y6 algebraic) | {a:.1} | {b:.1} | {:.3}× |\n", a / b));
@@ -247,8 +251,18 @@ pub fn structure_section() -> String {
     );
     out.push_str("| network | cells or nodes | equations | expansion (s) | µs per equation |\n|---|---|---|---|---|\n");
     for (name, sizes, per, tokens) in [
-        ("RC ladder, algebraic currents", &[250usize, 500, 1000, 2000, 3000][..], 2, ladder_tokens as fn(usize) -> TokenStream),
-        ("advection–reaction grid, algebraic rates and fluxes", &[100, 220, 400, 800, 1200][..], 5, grid_tokens),
+        (
+            "RC ladder, algebraic currents",
+            &[250usize, 500, 1000, 2000, 3000][..],
+            2,
+            ladder_tokens as fn(usize) -> TokenStream,
+        ),
+        (
+            "advection–reaction grid, algebraic rates and fluxes",
+            &[100, 220, 400, 800, 1200][..],
+            5,
+            grid_tokens,
+        ),
     ] {
         for &n in sizes {
             eprint!("\r\x1b[2Kexpanding {name} of {n}");
@@ -272,13 +286,21 @@ pub fn structure_section() -> String {
     for (name, method) in [("daegen RADAU5", Method::Radau5), ("daegen RODAS5P", Method::Rodas5P)] {
         for &tol in &tols {
             let p = akzo_point(method, tol);
-            out.push_str(&format!("| {name} | {tol:.0e} | {:.2e} | {:.3} |\n", p.error, p.seconds * 1e3));
+            out.push_str(&format!(
+                "| {name} | {tol:.0e} | {:.2e} | {:.3} |\n",
+                p.error,
+                p.seconds * 1e3
+            ));
         }
     }
     #[cfg(feature = "sundials")]
     for &tol in &tols {
         let p = ida_akzo(tol);
-        out.push_str(&format!("| IDA (dense) | {tol:.0e} | {:.2e} | {:.3} |\n", p.error, p.seconds * 1e3));
+        out.push_str(&format!(
+            "| IDA (dense) | {tol:.0e} | {:.2e} | {:.3} |\n",
+            p.error,
+            p.seconds * 1e3
+        ));
     }
     #[cfg(not(feature = "sundials"))]
     out.push_str("\nIDA: not built (the `sundials` feature is off).\n");
