@@ -35,10 +35,14 @@ pub fn eliminate_tied_states(cx: &mut Ctxt, ir: &mut ModelIr) {
 
 fn eliminate(ir: &mut ModelIr) -> crate::Result<()> {
     let mut gone = vec![false; ir.equations.len()];
+    // An equation of one mode ties nothing for good: the search passes it
+    // by, as if gone, and it stays.
+    let in_a_mode: Vec<bool> = ir.equations.iter().map(|e| !e.mode.is_empty()).collect();
     loop {
         let orders = highest_orders(ir);
-        let residuals = residuals_after_aliases(ir, &gone)?;
-        match find_tie(ir, &residuals, &gone, &orders)? {
+        let passed: Vec<bool> = gone.iter().zip(&in_a_mode).map(|(g, m)| *g || *m).collect();
+        let residuals = residuals_after_aliases(ir, &passed)?;
+        match find_tie(ir, &residuals, &passed, &orders)? {
             None => break,
             Some(Tie::Redundant { equation }) => gone[equation] = true,
             Some(Tie::State { equation, state, value }) => {

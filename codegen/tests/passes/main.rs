@@ -276,3 +276,30 @@ fn modes_are_reduced_alone_and_joined() {
     assert!(cx.is_ok(), "{:?}", cx.messages());
     insta::assert_snapshot!("modes", format!("{lowered}\n{}", ir.graph.with(&sys)));
 }
+
+/// An equation that holds in one mode ties no states for good: two rotors
+/// whose rates a mode would tie keep both their rates.
+#[test]
+fn a_mode_ties_no_states_for_good() {
+    let mut cx = Ctxt::default();
+    let mut ir = lowered(
+        &mut cx,
+        TokenStream::new(),
+        quote! {
+            fn clutch() {
+                let a = inertia(1.0);
+                let b = inertia(1.0);
+                let locked = discrete(true);
+                if locked {
+                    a.w == b.w;
+                }
+            }
+        },
+    );
+    let before: Vec<String> = ir.states.iter().map(|s| s.name.clone()).collect();
+    daegen_codegen::dae::tied_states::eliminate_tied_states(&mut cx, &mut ir);
+    assert!(cx.is_ok(), "{:?}", cx.messages());
+    let after: Vec<String> = ir.states.iter().map(|s| s.name.clone()).collect();
+    assert_eq!(after, before);
+    assert!(ir.equations.iter().any(|e| !e.mode.is_empty()), "the mode's equation stays");
+}
