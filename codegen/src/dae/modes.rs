@@ -78,7 +78,14 @@ pub fn reduce_modes(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
     }
     ir.equations = all;
     match join(&mut ir.graph, &variables, systems) {
-        Ok(joined) => Some(joined),
+        Ok(mut joined) => {
+            // Its per-equation records are mode 0's, numbered in that
+            // mode's equations: none is differentiated (no mode has
+            // constraints), and none is told of as combined.
+            joined.differentiations = vec![0; ir.equations.len()];
+            joined.combined.clear();
+            Some(joined)
+        }
         Err(e) => {
             cx.error_at(&first_guarded, e);
             None
