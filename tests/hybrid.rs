@@ -1041,3 +1041,30 @@ fn after_an_action_a_dae_is_projected_keeping_what_the_action_set() {
         assert!((after[0] - p.x_c).abs() <= 1e-9);
     }
 }
+
+/// The proposals' forms, written as statements: an event and a clock
+/// without a name act as well, named by their text.
+#[dae_model]
+fn unnamed_triggers() {
+    let e = param(0.8);
+    let h = state(10.0);
+    let looks = discrete(0.0);
+    der(der(h)) == -9.81;
+    event(h).falling().reinit(der(h), -e * pre(der(h)));
+    every(0.5).reinit(looks, looks + 1.0);
+}
+
+#[test]
+fn events_and_clocks_written_as_statements_act_under_their_text() {
+    let m = UnnamedTriggers::default();
+    let exact = impact_times(10.0, 9.81, m.e, 3);
+    let sol = m.simulate(0.0, exact[2] + 0.01, &Options::new().tolerance(1e-12)).expect("runs");
+    let bounces = sol.event_times("event(h)").expect("named by its text");
+    assert_eq!(bounces.len(), 3);
+    for (t, want) in bounces.iter().zip(&exact) {
+        assert!((t - want).abs() <= 1e-12 * want);
+    }
+    let instants = (exact[2] + 0.01) / 0.5;
+    assert_eq!(sol.last("looks").unwrap(), instants.floor() + 1.0);
+    assert_eq!(<UnnamedTriggers as Model>::INFO.clocks[0].name, "every(0.5)");
+}

@@ -17,7 +17,11 @@
 //! ## Actions
 //!
 //! `.reinit(target, value)` may be chained, on an event (with `.rising()`,
-//! `.falling()`, `.terminal()`) or on a clock. The actions of one instant
+//! `.falling()`, `.terminal()`) or on a clock. An event that acts and a
+//! clock may be written as statements without a name, as Modelica's
+//! `when` is: `event(h).falling().reinit(..);`, `every(0.1).reinit(..);`;
+//! they are then named by their text (`"event(h)"`, `"every(0.1)"`) in the
+//! solution and in `describe()`. The actions of one instant
 //! run in the order written, each on the state the ones before it left;
 //! `pre(x)` reads the value before the instant. So a sampled PI reads:
 //!

@@ -13,7 +13,7 @@ fn switched() {
     let one_argument = event(h).falling().reinit(der(h));
     let silent = every(0.1);
     let backwards = every(-0.1).reinit(on, false);
-    every(0.2).reinit(on, true);
+    event(h).rising();
     let ticks = output(silent);
     let gear = discrete(1);
     let pull = output(if gear == 2 { 1.0 } else { 0.0 });

@@ -203,16 +203,18 @@ impl<S: SceneLanguage> Lower<'_, S> {
     }
 
     /// `let e = event(g).rising().terminal();`
+    /// Unnamed (`event(h).falling().reinit(..);` as a statement), it is
+    /// named by its source text.
     pub(in crate::front) fn event(
         &mut self,
-        ident: &syn::Ident,
+        ident: Option<&syn::Ident>,
         call: &syn::ExprCall,
         settings: &[&syn::ExprMethodCall],
         doc: String,
-        local: &syn::Local,
+        origin: &dyn ToTokens,
     ) {
-        let name = format!("{}{ident}", self.prefix);
-        if self.already_declared(ident) {
+        let name = self.trigger_name(ident, call);
+        if ident.is_some_and(|i| self.already_declared(i)) {
             return;
         }
         if !self.arity(call, "event", 1) {
@@ -263,9 +265,11 @@ impl<S: SceneLanguage> Lower<'_, S> {
             terminal,
             actions,
             doc,
-            origin: local.to_token_stream(),
+            origin: origin.to_token_stream(),
         });
-        self.bind(ident, Binding::Value { id: value, mutable: false });
+        if let Some(ident) = ident {
+            self.bind(ident, Binding::Value { id: value, mutable: false });
+        }
     }
 
     pub(crate) fn arity(&mut self, call: &syn::ExprCall, name: &str, n: usize) -> bool {
@@ -460,7 +464,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 }
             }
             // Met first, with its settings, by the statement; here without.
-            Declaration::Event => self.event(ident, call, &[], doc, local),
+            Declaration::Event => self.event(Some(ident), call, &[], doc, local),
             Declaration::Discrete => self.discrete(ident, call, doc, local),
             Declaration::Input => self.input(ident, call, doc, local),
             Declaration::Output => {

@@ -139,17 +139,58 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
     }
 
-    /// `let tick = every(h).offset(t0).reinit(u, ..);`
+    /// The name of an event or a clock: its `let` name, or for one written
+    /// as a statement its source text (`every(0.1)`, then `every(0.1)#2`).
+    pub(in crate::front) fn trigger_name(
+        &self,
+        ident: Option<&syn::Ident>,
+        call: &syn::ExprCall,
+    ) -> String {
+        if let Some(ident) = ident {
+            return format!("{}{ident}", self.prefix);
+        }
+        let text =
+            format!("{}{}", self.prefix, crate::front::names::source_text(&call.to_token_stream()));
+        let taken = |n: &str| {
+            self.events.iter().any(|e| e.name == n) || self.clocks.iter().any(|c| c.name == n)
+        };
+        (1..)
+            .map(|k| if k == 1 { text.clone() } else { format!("{text}#{k}") })
+            .find(|n| !taken(n))
+            .unwrap_or(text)
+    }
+
+    /// `every(h)` or `event(g)` with settings, written as a statement: a
+    /// clock, or an event that acts, named by its text; an event that
+    /// does not act needs a name to be read by.
+    pub(in crate::front) fn unnamed_trigger(
+        &mut self,
+        e: &Expr,
+        call: &syn::ExprCall,
+        settings: &[&syn::ExprMethodCall],
+        clock: bool,
+    ) {
+        if clock {
+            return self.clock(None, call, settings, String::new(), e);
+        }
+        if settings.iter().any(|m| m.method == "reinit") {
+            return self.event(None, call, settings, String::new(), e);
+        }
+        self.cx
+            .error_at(e, "an event needs a name to be looked up by: write `let hit = event(...);`")
+    }
+
+    /// `let tick = every(h).offset(t0).reinit(u, ..);`, or as a statement.
     pub(in crate::front) fn clock(
         &mut self,
-        ident: &syn::Ident,
+        ident: Option<&syn::Ident>,
         call: &syn::ExprCall,
         settings: &[&syn::ExprMethodCall],
         doc: String,
-        local: &syn::Local,
+        origin: &dyn ToTokens,
     ) {
-        let name = format!("{}{ident}", self.prefix);
-        if self.already_declared(ident) || !self.arity(call, "every", 1) {
+        let name = self.trigger_name(ident, call);
+        if ident.is_some_and(|i| self.already_declared(i)) || !self.arity(call, "every", 1) {
             return;
         }
         let period = self.initial_value(&call.args[0]);
@@ -177,14 +218,18 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
         if actions.is_empty() && settings.iter().all(|m| m.method != "reinit") {
             self.cx.error_at(
-                local,
-                format!("the clock `{ident}` does nothing: give it actions, `every(h).reinit(u, value)`"),
+                origin,
+                format!(
+                    "the clock `{name}` does nothing: give it actions, `every(h).reinit(u, value)`"
+                ),
             );
         }
         let Some(period) = period else { return };
-        let origin = local.to_token_stream();
+        let origin = origin.to_token_stream();
         self.clocks.push(Clock { name, period, offset, actions, doc, origin });
-        self.bind(ident, Binding::Clock);
+        if let Some(ident) = ident {
+            self.bind(ident, Binding::Clock);
+        }
     }
 
     /// `let u = input(u0);`: a signal the caller supplies at run time, a

@@ -73,9 +73,9 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 );
             }
             if clock {
-                return self.clock(&ident, call, &settings, doc, local);
+                return self.clock(Some(&ident), call, &settings, doc, local);
             }
-            return self.event(&ident, call, &settings, doc, local);
+            return self.event(Some(&ident), call, &settings, doc, local);
         }
         // `state(x0).fixed()`: a value consistent initialization keeps;
         // `state(x0).avoid()`: the state eliminated when tied to others.
@@ -178,6 +178,21 @@ impl<S: SceneLanguage> Lower<'_, S> {
     }
 
     pub(in crate::front) fn expr_stmt(&mut self, e: &Expr) {
+        if let Some((call, settings, clock)) = trigger_call(e) {
+            if self.mode_depth > 0 {
+                return self.cx.error_at(e, IN_MODE);
+            }
+            if self.in_loop() {
+                let what = if clock { "every" } else { "event" };
+                return self.cx.error_at(
+                    e,
+                    format!(
+                        "write `{what}(...)` outside loops: each iteration would make it again"
+                    ),
+                );
+            }
+            return self.unnamed_trigger(e, call, &settings, clock);
+        }
         match e {
             Expr::Binary(b) if matches!(b.op, BinOp::Eq(_)) && (self.mentions_tensor(&b.left) || self.mentions_tensor(&b.right)) => {
                 // One equation per component.
@@ -230,14 +245,6 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 }
                 self.scopes.pop();
             }
-                        _ if trigger_call(e).is_some_and(|(_, _, clock)| clock) => self.cx.error_at(
-                e,
-                "a clock needs a name to be listed by: write `let tick = every(...)...;`",
-            ),
-                        _ if trigger_call(e).is_some() => self.cx.error_at(
-                e,
-                "an event needs a name to be looked up by: write `let hit = event(...);`",
-            ),
             _ => match call_name(e) {
                 Some((name, call)) if name == "constraint" => {
                     if self.arity(call, "constraint", 1) {
