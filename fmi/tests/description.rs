@@ -1,0 +1,66 @@
+//! The model descriptions of generated models, FMI 2.0 and 3.0: the
+//! variables by value reference, the derivatives and their dependencies
+//! from the Jacobian's pattern.
+
+use daegen::prelude::*;
+use daegen_fmi::description::Capabilities;
+use daegen_fmi::{model_description, FmiVersion};
+
+/// Van der Pol's oscillator.
+#[dae_model]
+fn van_der_pol() {
+    /// Damping.
+    let mu = param(1.0);
+    /// Position.
+    let x = state(2.0);
+    init(der(x), 0.0);
+    der(der(x)) == mu * (1.0 - x * x) * der(x) - x;
+    /// Energy-like.
+    let energy = output(x * x + der(x) * der(x));
+}
+
+#[test]
+fn fmi2_numbers_variables_by_position_and_the_structure_follows_the_jacobian() {
+    let xml = model_description(
+        &VanDerPol::default(),
+        FmiVersion::V2,
+        "van_der_pol",
+        Capabilities::default(),
+    );
+    assert!(xml.contains("fmiVersion=\"2.0\" modelName=\"VanDerPol\" guid=\"{"), "{xml}");
+    assert!(xml.contains("numberOfEventIndicators=\"0\""));
+    // time, x, der(x), der(der(x)), mu, energy.
+    for (k, name) in ["time", "x", "der(x)", "der(der(x))", "mu", "energy"].iter().enumerate() {
+        assert!(xml.contains(&format!("name=\"{name}\" valueReference=\"{k}\"")), "{name}: {xml}");
+    }
+    assert!(xml.contains("name=\"x\" valueReference=\"1\" causality=\"local\" variability=\"continuous\" initial=\"exact\" description=\"Position.\"><Real start=\"2.0\"/>"), "{xml}");
+    // der(x) is x's derivative (position 2) and a state; der(der(x)) is its.
+    assert!(xml.contains("<Real start=\"0.0\" derivative=\"2\"/>"), "{xml}");
+    assert!(xml.contains("<Real derivative=\"3\"/>"), "{xml}");
+    assert!(xml.contains("name=\"mu\" valueReference=\"4\" causality=\"parameter\" variability=\"tunable\" description=\"Damping.\"><Real start=\"1.0\"/>"), "{xml}");
+    // x' = der(x) reads der(x); der(x)' reads x and der(x).
+    assert!(xml.contains("<Derivatives>\n      <Unknown index=\"3\" dependencies=\"3\"/>\n      <Unknown index=\"4\" dependencies=\"2 3\"/>\n    </Derivatives>"), "{xml}");
+    assert!(xml.contains("<Outputs>\n      <Unknown index=\"6\"/>\n    </Outputs>"), "{xml}");
+    assert!(xml.contains("<InitialUnknowns>\n      <Unknown index=\"4\"/>\n      <Unknown index=\"6\"/>\n    </InitialUnknowns>"), "{xml}");
+}
+
+#[test]
+fn fmi3_refers_by_value_reference_and_the_token_changes_with_the_model() {
+    let xml = model_description(
+        &VanDerPol::default(),
+        FmiVersion::V3,
+        "van_der_pol",
+        Capabilities::default(),
+    );
+    assert!(xml.contains("fmiVersion=\"3.0\" modelName=\"VanDerPol\" instantiationToken=\"{"));
+    assert!(xml.contains("<Float64 name=\"der(der(x))\" valueReference=\"3\" causality=\"local\" variability=\"continuous\" initial=\"calculated\" description=\"the rate of `der(x)`\" derivative=\"2\"/>"), "{xml}");
+    assert!(
+        xml.contains("<ContinuousStateDerivative valueReference=\"3\" dependencies=\"1 2\"/>"),
+        "{xml}"
+    );
+    assert!(xml.contains("<Output valueReference=\"5\"/>"));
+    let other = VanDerPol { mu: 2.0 };
+    let changed = model_description(&other, FmiVersion::V3, "van_der_pol", Capabilities::default());
+    let token = |x: &str| x.split("instantiationToken=\"").nth(1).map(|t| t[..38].to_string());
+    assert_ne!(token(&xml), token(&changed));
+}
