@@ -1068,3 +1068,18 @@ fn events_and_clocks_written_as_statements_act_under_their_text() {
     assert_eq!(sol.last("looks").unwrap(), instants.floor() + 1.0);
     assert_eq!(<UnnamedTriggers as Model>::INFO.clocks[0].name, "every(0.5)");
 }
+
+#[test]
+fn parameters_and_inputs_are_set_by_their_index() {
+    // What a tool that knows the model by its names alone sets it by.
+    let mut m = LowPass::default();
+    let tau = <LowPass as Model>::INFO.parameters.iter().position(|p| *p == "tau").unwrap();
+    m.set_parameter(tau, 2.0);
+    assert_eq!(m.tau, 2.0);
+    m.set_parameter(99, 1.0);
+    m.set_input(0, daegen::Input::constant(3.0));
+    assert_eq!(m.u, daegen::Input::constant(3.0));
+    // τ x' = 3 − x from 0: x = 3 (1 − e^{−t/τ}).
+    let x = m.simulate(0.0, 1.0, &Options::new().tolerance(1e-10)).unwrap().last("x").unwrap();
+    assert!((x - 3.0 * (1.0 - (-0.5f64).exp())).abs() <= 1e-9);
+}

@@ -94,17 +94,28 @@ pub(crate) fn clock_method(g: &mut Graph, layout: &Layout, clocks: &[Clock]) -> 
     }
 }
 
-/// `input_breakpoints`, every input's breakpoints.
+/// `input_breakpoints`, every input's breakpoints, and `set_input`.
 pub(crate) fn input_breakpoints_method(inputs: &[crate::front::ir::InputDecl]) -> TokenStream {
     if inputs.is_empty() {
         return TokenStream::new();
     }
     let fields = inputs.iter().map(|i| &i.ident);
+    let set_arms = inputs.iter().enumerate().map(|(k, i)| {
+        let (k, ident) = (index(k), &i.ident);
+        quote!(#k => self.#ident = input,)
+    });
     quote! {
         fn input_breakpoints(&self) -> ::std::vec::Vec<f64> {
             let mut breakpoints = ::std::vec::Vec::new();
             #(breakpoints.extend_from_slice(self.#fields.breakpoints());)*
             breakpoints
+        }
+
+        fn set_input(&mut self, index: usize, input: ::daegen::Input) {
+            match index {
+                #(#set_arms)*
+                _ => {}
+            }
         }
     }
 }

@@ -144,11 +144,22 @@ pub(crate) fn parameter_method(ir: &ModelIr) -> TokenStream {
         let (k, ident) = (index(k), &p.ident);
         quote!(#k => self.#ident,)
     });
+    let set_arms = ir.params.iter().enumerate().map(|(k, p)| {
+        let (k, ident) = (index(k), &p.ident);
+        quote!(#k => self.#ident = value,)
+    });
     quote! {
         fn parameter(&self, index: usize) -> f64 {
             match index {
                 #(#arms)*
                 _ => f64::NAN,
+            }
+        }
+
+        fn set_parameter(&mut self, index: usize, value: f64) {
+            match index {
+                #(#set_arms)*
+                _ => {}
             }
         }
     }

@@ -104,6 +104,18 @@ pub trait Model {
         0.0
     }
 
+    /// Sets parameter `index` of [`ModelInfo::parameters`] to `value`
+    /// (nothing past the last): what a tool that knows the model only by
+    /// its names (an FMI importer) sets it by.
+    fn set_parameter(&mut self, index: usize, value: f64) {
+        let _ = (index, value);
+    }
+
+    /// Sets input `index` of [`ModelInfo::inputs`] (nothing past the last).
+    fn set_input(&mut self, index: usize, input: crate::Input) {
+        let _ = (index, input);
+    }
+
     /// A description of the model for people: its doc comment, then its
     /// states, parameters (with this instance's values), algebraic
     /// variables, outputs and events, each with its doc comment; every
