@@ -1083,3 +1083,26 @@ fn parameters_and_inputs_are_set_by_their_index() {
     let x = m.simulate(0.0, 1.0, &Options::new().tolerance(1e-10)).unwrap().last("x").unwrap();
     assert!((x - 3.0 * (1.0 - (-0.5f64).exp())).abs() <= 1e-9);
 }
+
+/// A clock far faster than the time can resolve.
+#[dae_model]
+fn too_fast_a_clock() {
+    let period = param(0.1);
+    let x = state(0.0);
+    let n = discrete(0.0);
+    der(x) == 1.0;
+    let tick = every(period).reinit(n, n + 1.0);
+}
+
+#[test]
+fn a_clock_below_the_time_resolution_is_refused() {
+    let m = TooFastAClock { period: 1e-20 };
+    let err = m.simulate(0.0, 1.0, &Options::new()).expect_err("refused");
+    assert!(err.to_string().contains("below what the time resolves"), "{err}");
+    let m = TooFastAClock { period: -1.0 };
+    let err = m.simulate(0.0, 1.0, &Options::new()).expect_err("refused");
+    assert!(err.to_string().contains("must be positive"), "{err}");
+    // And a fine one ticks 11 times over [0, 1].
+    let sol = TooFastAClock::default().simulate(0.0, 1.0, &Options::new()).expect("runs");
+    assert_eq!(sol.last("n").unwrap(), 11.0);
+}

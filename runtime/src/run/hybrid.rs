@@ -250,6 +250,17 @@ impl Clocks {
                 });
             }
         }
+        // A period below the time's resolution over the run would make
+        // instants that do not advance.
+        let resolution = 64.0 * f64::EPSILON * t0.abs().max(t1.abs()).max(1.0);
+        for (k, &(h, _)) in grids.iter().enumerate() {
+            if h < resolution {
+                let name = M::INFO.clocks[k].name;
+                return Err(Error::InvalidOptions {
+                    message: format!("the clock `{name}` has period {h}, below what the time resolves over this run ({resolution:e}): a longer period, or a shorter run"),
+                });
+            }
+        }
         if !grids.is_empty() && t1 < t0 {
             return Err(Error::InvalidOptions {
                 message: format!("{} has clocks, which run forward in time: integrate from the earlier time to the later", M::INFO.name),
@@ -271,7 +282,12 @@ impl Clocks {
             .map(|c| {
                 let (h, offset) = self.grids[c];
                 let mut k = ((t - offset) / h).floor().max(0.0);
-                while self.instant(c, k) <= t {
+                // The period is above the time's resolution: a few
+                // increments pass t.
+                for _ in 0..8 {
+                    if self.instant(c, k) > t {
+                        break;
+                    }
                     k += 1.0;
                 }
                 self.instant(c, k)
