@@ -148,26 +148,46 @@ fn common(v: &Variable) -> String {
     s
 }
 
-fn fmi2_body<M: Model>(vars: &[Variable], identifier: &str, caps: Capabilities) -> String {
+/// The two interface elements with the version's spelling of the
+/// capability flags, and the opening of the variables.
+fn interfaces(version: FmiVersion, identifier: &str, caps: Capabilities) -> String {
+    let (memory, state, derivatives) = match version {
+        FmiVersion::V2 => (
+            " canNotUseMemoryManagementFunctions=\"true\"",
+            "canGetAndSetFMUstate",
+            "providesDirectionalDerivative",
+        ),
+        FmiVersion::V3 => ("", "canGetAndSetFMUState", "providesDirectionalDerivatives"),
+    };
     let flags = format!(
-        "modelIdentifier=\"{}\" canNotUseMemoryManagementFunctions=\"true\" canGetAndSetFMUstate=\"{}\" providesDirectionalDerivative=\"{}\"",
+        "modelIdentifier=\"{}\"{memory} {state}=\"{}\" {derivatives}=\"{}\"",
         escape(identifier),
         caps.fmu_state,
         caps.directional_derivatives
     );
-    let mut s = format!(
+    format!(
         "  <ModelExchange {flags}/>\n  <CoSimulation {flags} canHandleVariableCommunicationStepSize=\"true\"/>\n  <ModelVariables>\n"
-    );
+    )
+}
+
+/// ` start=".." derivative=".."` of a variable, the derivative's state
+/// written as `refer` says (a position or a value reference).
+fn value_attributes(v: &Variable, refer: impl Fn(usize) -> String) -> String {
+    let mut out = String::new();
+    if let Some(start) = v.start {
+        let _ = write!(out, " start=\"{}\"", number(start));
+    }
+    if let Some(of) = v.derivative_of {
+        let _ = write!(out, " derivative=\"{}\"", refer(of));
+    }
+    out
+}
+
+fn fmi2_body<M: Model>(vars: &[Variable], identifier: &str, caps: Capabilities) -> String {
+    let mut s = interfaces(FmiVersion::V2, identifier, caps);
     for v in vars {
-        let mut real = String::from("<Real");
-        if let Some(start) = v.start {
-            let _ = write!(real, " start=\"{}\"", number(start));
-        }
-        if let Some(of) = v.derivative_of {
-            let _ = write!(real, " derivative=\"{}\"", of + 1);
-        }
-        real.push_str("/>");
-        let _ = writeln!(s, "    <ScalarVariable {}>{real}</ScalarVariable>", common(v));
+        let real = value_attributes(v, |of| (of + 1).to_string());
+        let _ = writeln!(s, "    <ScalarVariable {}><Real{real}/></ScalarVariable>", common(v));
     }
     s.push_str("  </ModelVariables>\n  <ModelStructure>\n");
     let positions = |list: &[usize]| list.iter().map(|k| (k + 1).to_string()).collect::<Vec<_>>();
@@ -201,23 +221,9 @@ fn fmi2_body<M: Model>(vars: &[Variable], identifier: &str, caps: Capabilities) 
 }
 
 fn fmi3_body<M: Model>(vars: &[Variable], identifier: &str, caps: Capabilities) -> String {
-    let flags = format!(
-        "modelIdentifier=\"{}\" canGetAndSetFMUState=\"{}\" providesDirectionalDerivatives=\"{}\"",
-        escape(identifier),
-        caps.fmu_state,
-        caps.directional_derivatives
-    );
-    let mut s = format!(
-        "  <ModelExchange {flags}/>\n  <CoSimulation {flags} canHandleVariableCommunicationStepSize=\"true\"/>\n  <ModelVariables>\n"
-    );
+    let mut s = interfaces(FmiVersion::V3, identifier, caps);
     for v in vars {
-        let mut extra = String::new();
-        if let Some(start) = v.start {
-            let _ = write!(extra, " start=\"{}\"", number(start));
-        }
-        if let Some(of) = v.derivative_of {
-            let _ = write!(extra, " derivative=\"{}\"", vars[of].value_reference);
-        }
+        let extra = value_attributes(v, |of| vars[of].value_reference.to_string());
         let _ = writeln!(s, "    <Float64 {}{extra}/>", common(v));
     }
     s.push_str("  </ModelVariables>\n  <ModelStructure>\n");
