@@ -28,8 +28,13 @@ pub enum FmiVersion {
 pub struct Capabilities {
     /// Directional derivatives from the symbolic Jacobian.
     pub directional_derivatives: bool,
-    /// Getting and setting the FMU's state.
+    /// Getting, setting and serializing the FMU's state.
     pub fmu_state: bool,
+}
+
+impl Capabilities {
+    /// What `export_fmu!` provides: every capability.
+    pub const EXPORTED: Capabilities = Capabilities { directional_derivatives: true, fmu_state: true };
 }
 
 /// `modelDescription.xml` of `model` (with this instance's parameters as
@@ -61,6 +66,18 @@ pub fn model_description<M: Model>(
         escape(info.name),
         escape(summary),
     )
+}
+
+/// The token (`guid` of FMI 2.0, `instantiationToken` of 3.0) that
+/// [`model_description`] writes for `model`: what an instance checks the
+/// importer's against.
+pub fn instantiation_token<M: Model>(model: &M, version: FmiVersion, identifier: &str) -> String {
+    let xml = model_description(model, version, identifier, Capabilities::EXPORTED);
+    let key = match version {
+        FmiVersion::V2 => "guid=\"",
+        FmiVersion::V3 => "instantiationToken=\"",
+    };
+    xml.split(key).nth(1).and_then(|rest| rest.split('"').next()).unwrap_or("").to_string()
 }
 
 /// The value references of each continuous state's derivative's
@@ -119,6 +136,7 @@ fn variability(v: Variability) -> &'static str {
         Variability::Continuous => "continuous",
         Variability::Discrete => "discrete",
         Variability::Tunable => "tunable",
+        Variability::Fixed => "fixed",
     }
 }
 
@@ -134,7 +152,7 @@ fn initial(i: Initial) -> &'static str {
 fn common(v: &Variable) -> String {
     let mut s = format!(
         "name=\"{}\" valueReference=\"{}\" causality=\"{}\" variability=\"{}\"",
-        escape(&v.name),
+        escape(&crate::variables::structured_name(&v.name)),
         v.value_reference,
         causality(v.causality),
         variability(v.variability)
@@ -151,22 +169,31 @@ fn common(v: &Variable) -> String {
 /// The two interface elements with the version's spelling of the
 /// capability flags, and the opening of the variables.
 fn interfaces(version: FmiVersion, identifier: &str, caps: Capabilities) -> String {
-    let (memory, state, derivatives) = match version {
+    let (memory, state, serialize, derivatives, completed) = match version {
         FmiVersion::V2 => (
             " canNotUseMemoryManagementFunctions=\"true\"",
             "canGetAndSetFMUstate",
+            "canSerializeFMUstate",
             "providesDirectionalDerivative",
+            "",
         ),
-        FmiVersion::V3 => ("", "canGetAndSetFMUState", "providesDirectionalDerivatives"),
+        FmiVersion::V3 => (
+            "",
+            "canGetAndSetFMUState",
+            "canSerializeFMUState",
+            "providesDirectionalDerivatives",
+            " needsCompletedIntegratorStep=\"true\"",
+        ),
     };
     let flags = format!(
-        "modelIdentifier=\"{}\"{memory} {state}=\"{}\" {derivatives}=\"{}\"",
+        "modelIdentifier=\"{}\"{memory} {state}=\"{}\" {serialize}=\"{}\" {derivatives}=\"{}\"",
         escape(identifier),
+        caps.fmu_state,
         caps.fmu_state,
         caps.directional_derivatives
     );
     format!(
-        "  <ModelExchange {flags}/>\n  <CoSimulation {flags} canHandleVariableCommunicationStepSize=\"true\"/>\n  <ModelVariables>\n"
+        "  <ModelExchange {flags}{completed}/>\n  <CoSimulation {flags} canHandleVariableCommunicationStepSize=\"true\"/>\n  <ModelVariables>\n"
     )
 }
 
@@ -186,8 +213,11 @@ fn value_attributes(v: &Variable, refer: impl Fn(usize) -> String) -> String {
 fn fmi2_body<M: Model>(vars: &[Variable], identifier: &str, caps: Capabilities) -> String {
     let mut s = interfaces(FmiVersion::V2, identifier, caps);
     for v in vars {
-        let real = value_attributes(v, |of| (of + 1).to_string());
-        let _ = writeln!(s, "    <ScalarVariable {}><Real{real}/></ScalarVariable>", common(v));
+        let value = match v.text {
+            Some(text) => format!("<String start=\"{}\"/>", escape(text)),
+            None => format!("<Real{}/>", value_attributes(v, |of| (of + 1).to_string())),
+        };
+        let _ = writeln!(s, "    <ScalarVariable {}>{value}</ScalarVariable>", common(v));
     }
     s.push_str("  </ModelVariables>\n  <ModelStructure>\n");
     let positions = |list: &[usize]| list.iter().map(|k| (k + 1).to_string()).collect::<Vec<_>>();
@@ -223,8 +253,16 @@ fn fmi2_body<M: Model>(vars: &[Variable], identifier: &str, caps: Capabilities) 
 fn fmi3_body<M: Model>(vars: &[Variable], identifier: &str, caps: Capabilities) -> String {
     let mut s = interfaces(FmiVersion::V3, identifier, caps);
     for v in vars {
-        let extra = value_attributes(v, |of| vars[of].value_reference.to_string());
-        let _ = writeln!(s, "    <Float64 {}{extra}/>", common(v));
+        match v.text {
+            Some(text) => {
+                let start = escape(text);
+                let _ = writeln!(s, "    <String {}><Start value=\"{start}\"/></String>", common(v));
+            }
+            None => {
+                let extra = value_attributes(v, |of| vars[of].value_reference.to_string());
+                let _ = writeln!(s, "    <Float64 {}{extra}/>", common(v));
+            }
+        }
     }
     s.push_str("  </ModelVariables>\n  <ModelStructure>\n");
     let vr = |k: usize| vars[k].value_reference.to_string();

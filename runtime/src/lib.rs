@@ -26,6 +26,7 @@ pub mod ensemble;
 pub mod error;
 pub mod info;
 mod input;
+pub mod instants;
 pub mod kinematics;
 pub mod lanes;
 pub mod linalg;

@@ -175,6 +175,9 @@ pub struct Options {
     /// The least time between two firings of one event before the run
     /// counts them as accumulating (`None`: 1e-10 of the run's length).
     pub(crate) min_event_interval: Option<f64>,
+    /// The run continues one that ended at its start, whose instant there
+    /// has acted.
+    pub(crate) continues: bool,
 }
 
 impl std::fmt::Debug for Options {
@@ -200,6 +203,8 @@ impl std::fmt::Debug for Options {
             .field("output_times", &self.output_times.as_ref().map(|t| t.len()))
             .field("on_step", &self.on_step.is_some())
             .field("progress", &self.progress)
+            .field("min_event_interval", &self.min_event_interval)
+            .field("continues", &self.continues)
             .finish()
     }
 }
@@ -233,6 +238,7 @@ impl PartialEq for Options {
             && same_callback
             && self.progress == other.progress
             && self.min_event_interval == other.min_event_interval
+            && self.continues == other.continues
     }
 }
 
@@ -305,6 +311,7 @@ impl Default for Options {
             on_step: None,
             progress: false,
             min_event_interval: None,
+            continues: false,
         }
     }
 }
@@ -366,6 +373,15 @@ impl Options {
     /// their own.
     pub fn min_event_interval(&self, dt: f64) -> Options {
         Options { min_event_interval: Some(dt), ..self.clone() }
+    }
+
+    /// Whether the run continues one that ended at its start `t0` (a
+    /// co-simulation step after the one before it): the clocks with an
+    /// instant at `t0` acted at the end of that run and do not act again
+    /// before the first step. Off by default: an instant at the start acts
+    /// before the first step.
+    pub fn continues(&self, continues: bool) -> Options {
+        Options { continues, ..self.clone() }
     }
 
     /// Most steps a run may take before it stops with [`crate::Error::MaxSteps`].

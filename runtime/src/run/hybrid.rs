@@ -46,47 +46,13 @@ pub(crate) fn integrate_hybrid<M: Model>(
     let mut projector = crate::step::projection::Projector::new(model);
     let (mut t, mut y) = (t0, y0.to_vec());
     let fixed_step = options.step.unwrap_or((t1 - t0).abs() / 1000.0);
-    // Clocks whose grid holds the start act before the first step.
-    let mut due: Vec<usize> = clocks.due(t);
+    // Clocks whose grid holds the start act before the first step, unless
+    // the run that ended here acted them.
+    let mut due: Vec<usize> = if options.continues { Vec::new() } else { clocks.due(t) };
     loop {
         if !due.is_empty() {
-            let fired = match act(model, t, &mut y, &due, &mut solution) {
-                Ok(fired) => fired,
-                Err(events) => {
-                    return Err(Error::EventLoop { t, events, partial: Box::new(solution) })
-                }
-            };
-            if let Some(i) = y.iter().position(|v| !v.is_finite()) {
-                return Err(Error::NonFinite {
-                    t,
-                    variable: M::INFO.states[i],
-                    partial: Box::new(solution),
-                });
-            }
-            if let Some(p) = projector.as_mut() {
-                // A DAE's state after the actions is consistent again: the
-                // values the actions set are kept, the others corrected
-                // onto the constraints and their hidden levels, as at the
-                // start of a run.
-                let hold = set_by::<M>(&fired);
-                let projected = p
-                    .project(t, &mut y, INITIAL_ITERATIONS, Some(&hold))
-                    .or_else(|_| p.project(t, &mut y, INITIAL_ITERATIONS, None));
-                match projected {
-                    Ok(r) => solution.note_constraint_residuals(r),
-                    Err(f) => {
-                        let names: Vec<&str> =
-                            fired.iter().map(|&k| trigger_name::<M>(k)).collect();
-                        return Err(Error::Constraint {
-                            t,
-                            constraint: M::CONSTRAINTS[f.row].equation,
-                            level: M::CONSTRAINTS[f.row].level,
-                            message: format!("after the actions of `{}`, the state cannot be made consistent: {}", names.join("`, `"), f.message),
-                            partial: Box::new(solution),
-                        });
-                    }
-                }
-            }
+            let (fired, next) = apply_instant(model, projector.as_mut(), t, &mut y, &due, solution)?;
+            solution = next;
             let names = fired.iter().map(|&k| trigger_name::<M>(k)).collect();
             solution.push_jump(&y, names);
             if let Some((event, accumulation, count)) = zeno.fired(t, &fired) {
@@ -146,6 +112,54 @@ pub(crate) fn integrate_hybrid<M: Model>(
     }
 }
 
+/// The instant at `t`: the rounds of actions starting with `due`, then a
+/// DAE's projection onto its constraints holding the values the actions
+/// set. Every trigger that acted, in order, and the solution with the
+/// events the rounds fired.
+pub(crate) fn apply_instant<M: Model>(
+    model: &M,
+    projector: Option<&mut crate::step::projection::Projector<'_, M>>,
+    t: f64,
+    y: &mut [f64],
+    due: &[usize],
+    mut solution: Solution,
+) -> Result<(Vec<usize>, Solution), Error> {
+    let fired = match act(model, t, y, due, &mut solution) {
+        Ok(fired) => fired,
+        Err(events) => return Err(Error::EventLoop { t, events, partial: Box::new(solution) }),
+    };
+    if let Some(i) = y.iter().position(|v| !v.is_finite()) {
+        return Err(Error::NonFinite {
+            t,
+            variable: M::INFO.states[i],
+            partial: Box::new(solution),
+        });
+    }
+    if let Some(p) = projector {
+        // A DAE's state after the actions is consistent again: the values
+        // the actions set are kept, the others corrected onto the
+        // constraints and their hidden levels, as at the start of a run.
+        let hold = set_by::<M>(&fired);
+        let projected = p
+            .project(t, y, INITIAL_ITERATIONS, Some(&hold))
+            .or_else(|_| p.project(t, y, INITIAL_ITERATIONS, None));
+        match projected {
+            Ok(r) => solution.note_constraint_residuals(r),
+            Err(f) => {
+                let names: Vec<&str> = fired.iter().map(|&k| trigger_name::<M>(k)).collect();
+                return Err(Error::Constraint {
+                    t,
+                    constraint: M::CONSTRAINTS[f.row].equation,
+                    level: M::CONSTRAINTS[f.row].level,
+                    message: format!("after the actions of `{}`, the state cannot be made consistent: {}", names.join("`, `"), f.message),
+                    partial: Box::new(solution),
+                });
+            }
+        }
+    }
+    Ok((fired, solution))
+}
+
 /// Which states the actions of `fired` set (held by the projection after
 /// them).
 fn set_by<M: Model>(fired: &[usize]) -> Vec<bool> {
@@ -165,7 +179,7 @@ fn set_by<M: Model>(fired: &[usize]) -> Vec<bool> {
 }
 
 /// The name of trigger `k`: event `k`, or clock `k − events`.
-fn trigger_name<M: Model>(k: usize) -> &'static str {
+pub(crate) fn trigger_name<M: Model>(k: usize) -> &'static str {
     match M::INFO.events.get(k) {
         Some(e) => e.name,
         None => M::INFO.clocks[k - M::INFO.events.len()].name,
@@ -229,7 +243,7 @@ fn act<M: Model>(
 }
 
 /// The instants of a model's clocks.
-struct Clocks {
+pub(crate) struct Clocks {
     /// `(period, offset)` of each.
     grids: Vec<(f64, f64)>,
     /// Where trigger numbers of clocks start (after the events).
@@ -240,7 +254,7 @@ impl Clocks {
     /// The clocks of `model` for a run from `t0` to `t1`; a clock with a
     /// period that is not positive and finite, or a backward run with
     /// clocks, is refused.
-    fn of<M: Model>(model: &M, t0: f64, t1: f64) -> Result<Clocks, Error> {
+    pub(crate) fn of<M: Model>(model: &M, t0: f64, t1: f64) -> Result<Clocks, Error> {
         let grids: Vec<(f64, f64)> = (0..M::INFO.clocks.len()).map(|k| model.clock(k)).collect();
         for (k, &(h, offset)) in grids.iter().enumerate() {
             let name = M::INFO.clocks[k].name;
@@ -277,7 +291,7 @@ impl Clocks {
     }
 
     /// The first instant of any clock after `t`.
-    fn next_after(&self, t: f64) -> Option<f64> {
+    pub(crate) fn next_after(&self, t: f64) -> Option<f64> {
         (0..self.grids.len())
             .map(|c| {
                 let (h, offset) = self.grids[c];
@@ -296,7 +310,7 @@ impl Clocks {
     }
 
     /// The triggers of the clocks with an instant at exactly `t`.
-    fn due(&self, t: f64) -> Vec<usize> {
+    pub(crate) fn due(&self, t: f64) -> Vec<usize> {
         (0..self.grids.len())
             .filter(|&c| {
                 let (h, offset) = self.grids[c];

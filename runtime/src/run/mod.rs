@@ -1,10 +1,10 @@
 //! Checks a run's request and hands it to the method.
 
 mod checks;
-mod hybrid;
+pub(crate) mod hybrid;
 
 pub use hybrid::MAX_EVENT_ITERATIONS;
-mod observables;
+pub(crate) mod observables;
 
 use crate::error::Error;
 use crate::methods::Problem;
