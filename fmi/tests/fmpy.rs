@@ -1,0 +1,137 @@
+//! FMPy, the importer engineers script with, validates each exported FMU
+//! (FMI 2.0 and 3.0) and simulates it in both interfaces: Model Exchange
+//! through FMPy's own CVODE, Co-Simulation through the FMU's own method.
+//! Both must equal the native run (DOP853 or RADAU5 at 1e-12) within the
+//! tolerances they ran at.
+//!
+//! Needs `python3 -m pip install fmpy` (`.ci/run` installs it).
+
+mod support;
+
+use daegen::prelude::*;
+use daegen::Solution;
+use serde_json::json;
+
+#[path = "../examples/models/bouncing_ball.rs"]
+mod bouncing_ball;
+#[path = "../examples/models/pendulum.rs"]
+mod pendulum;
+#[path = "../examples/models/slider_crank.rs"]
+mod slider_crank;
+#[path = "../examples/models/speed_drive.rs"]
+mod speed_drive;
+#[path = "../examples/models/van_der_pol.rs"]
+mod van_der_pol;
+
+/// Model Exchange runs CVODE at this relative tolerance (its absolute
+/// tolerance is the same, each state's nominal being 1).
+const ME_RTOL: f64 = 1e-9;
+/// Co-Simulation runs the FMU's `Auto` at this tolerance.
+const CS_TOL: f64 = 1e-10;
+
+/// The largest error of `interface`'s results against `native`, relative
+/// to 1 + |value|, over every output and time.
+fn worst(results: &serde_json::Value, interface: &str, native: &Solution, outputs: &[&str]) -> f64 {
+    let run = &results[interface];
+    let times: Vec<f64> = serde_json::from_value(run["time"].clone()).expect("times");
+    assert!(times.len() > 5, "{interface}: {} rows", times.len());
+    let mut worst = 0.0f64;
+    for name in outputs {
+        let values: Vec<f64> = serde_json::from_value(run[*name].clone()).expect("values");
+        for (t, v) in times.iter().zip(values) {
+            let exact: f64 = native.at(*t, name).expect("a native value");
+            let e = (v - exact).abs() / (1.0 + exact.abs());
+            assert!(e.is_finite(), "{interface} {name} at {t}: {v} vs {exact}");
+            worst = worst.max(e);
+        }
+    }
+    worst
+}
+
+/// CVODE's global error over a run at `ME_RTOL` (local error control)
+/// reaches a few hundred times it on these problems; the FMU's own
+/// methods hold theirs within a hundred times `CS_TOL`.
+const BOUNDS: (f64, f64) = (2e3 * ME_RTOL, 1e2 * CS_TOL);
+
+/// Validates and runs example `name` through FMPy in both versions and
+/// both interfaces; each result within [`BOUNDS`] of `native`. The FMI
+/// 3.0 results.
+fn check(name: &str, native: &Solution, stop: f64, outputs: &[&str]) -> serde_json::Value {
+    let bounds = BOUNDS;
+    let mut kept = serde_json::Value::Null;
+    for (version, tag) in [("3.0", "fmi3"), ("2.0", "fmi2")] {
+        let archives = support::fmus(name, &format!("fmpy-{name}"));
+        let fmu = if tag == "fmi3" { &archives.fmi3 } else { &archives.fmi2 };
+        let results = support::fmpy(json!({
+            "fmu": fmu,
+            "stop": stop,
+            "interval": stop / 40.0,
+            "rtol": ME_RTOL,
+            "outputs": outputs,
+            "cs_start": {"solver.tolerance": CS_TOL},
+        }));
+        let problems = results["problems"].as_array().expect("a list");
+        assert!(problems.is_empty(), "FMI {version} {name}: FMPy's validation: {problems:?}");
+        let me = worst(&results, "ModelExchange", native, outputs);
+        let cs = worst(&results, "CoSimulation", native, outputs);
+        println!("FMI {version} {name}: Model Exchange {me:.1e}, Co-Simulation {cs:.1e}");
+        assert!(me < bounds.0, "FMI {version} {name}: Model Exchange off by {me:e}");
+        assert!(cs < bounds.1, "FMI {version} {name}: Co-Simulation off by {cs:e}");
+        if tag == "fmi3" {
+            kept = results;
+        }
+    }
+    kept
+}
+
+fn native<M: Model + Clone + Send + Sync + 'static>(model: M, stop: f64, method: Method) -> Solution {
+    let options = Options::new().method(method).rtol(1e-12).atol(1e-12);
+    model.simulate(0.0, stop, &options).expect("the native run")
+}
+
+#[test]
+fn van_der_pol_through_fmpy() {
+    let sol = native(van_der_pol::VanDerPol::default(), 10.0, Method::Dop853);
+    check("van_der_pol_fmu", &sol, 10.0, &["x", "der(x)", "energy"]);
+}
+
+#[test]
+fn the_pendulum_dae_through_fmpy() {
+    let sol = native(pendulum::Pendulum::default(), 3.0, Method::Dop853);
+    let results = check("pendulum_fmu", &sol, 3.0, &["x", "y", "u", "v", "energy"]);
+    // The importer's CVODE integrates the index-reduced ODE; the FMU
+    // projects it back onto x² + y² = l² whenever it drifts past the
+    // tolerance relative to the state's size: FMPy gives no tolerance in
+    // Model Exchange, so the FMU's default, 1e-6.
+    let me = &results["ModelExchange"];
+    let (x, y): (Vec<f64>, Vec<f64>) = (
+        serde_json::from_value(me["x"].clone()).unwrap(),
+        serde_json::from_value(me["y"].clone()).unwrap(),
+    );
+    let drift = x.iter().zip(&y).map(|(x, y)| (x * x + y * y - 1.0).abs()).fold(0.0, f64::max);
+    assert!(drift <= 1e-6, "|x² + y² − 1| reached {drift:e}");
+    println!("pendulum through Model Exchange: |x² + y² − 1| ≤ {drift:.1e}");
+}
+
+#[test]
+fn a_slider_crank_scene_through_fmpy() {
+    let sol = native(slider_crank::SliderCrank::default(), 1.0, Method::Dop853);
+    check("slider_crank_fmu", &sol, 1.0, &["pin_x", "crank.theta"]);
+}
+
+#[test]
+fn a_pi_speed_drive_of_parts_through_fmpy() {
+    let sol = native(speed_drive::SpeedDrive::default(), 1.0, Method::Radau5);
+    check(
+        "speed_drive_fmu",
+        &sol,
+        1.0,
+        &["motor.rotor.w", "motor.winding.i", "controller.x"],
+    );
+}
+
+#[test]
+fn a_bouncing_ball_through_fmpy() {
+    let sol = native(bouncing_ball::BouncingBall::default(), 3.0, Method::Dop853);
+    check("bouncing_ball_fmu", &sol, 3.0, &["h", "der(h)"]);
+}
