@@ -327,7 +327,7 @@ macro_rules! export_fmu {
                 f3::not_offered::<M>(c, "fmi3GetIntervalDecimal", "clock variables (its clocks are time events)")
             }
             #[no_mangle]
-            pub extern "C" fn fmi3GetIntervalFraction(c: *mut c_void, _vr: *const u32, _n: usize, _c: *mut u64, _r: *mut u64, _q: *mut c_int) -> c_int {
+            pub extern "C" fn fmi3GetIntervalFraction(c: *mut c_void, _vr: *const u32, _n: usize, _counters: *mut u64, _r: *mut u64, _q: *mut c_int) -> c_int {
                 f3::not_offered::<M>(c, "fmi3GetIntervalFraction", "clock variables (its clocks are time events)")
             }
             #[no_mangle]
@@ -335,7 +335,7 @@ macro_rules! export_fmu {
                 f3::not_offered::<M>(c, "fmi3GetShiftDecimal", "clock variables (its clocks are time events)")
             }
             #[no_mangle]
-            pub extern "C" fn fmi3GetShiftFraction(c: *mut c_void, _vr: *const u32, _n: usize, _c: *mut u64, _r: *mut u64) -> c_int {
+            pub extern "C" fn fmi3GetShiftFraction(c: *mut c_void, _vr: *const u32, _n: usize, _counters: *mut u64, _r: *mut u64) -> c_int {
                 f3::not_offered::<M>(c, "fmi3GetShiftFraction", "clock variables (its clocks are time events)")
             }
             #[no_mangle]
@@ -343,7 +343,7 @@ macro_rules! export_fmu {
                 f3::not_offered::<M>(c, "fmi3SetIntervalDecimal", "clock variables (its clocks are time events)")
             }
             #[no_mangle]
-            pub extern "C" fn fmi3SetIntervalFraction(c: *mut c_void, _vr: *const u32, _n: usize, _c: *const u64, _r: *const u64) -> c_int {
+            pub extern "C" fn fmi3SetIntervalFraction(c: *mut c_void, _vr: *const u32, _n: usize, _counters: *const u64, _r: *const u64) -> c_int {
                 f3::not_offered::<M>(c, "fmi3SetIntervalFraction", "clock variables (its clocks are time events)")
             }
             #[no_mangle]
@@ -351,7 +351,7 @@ macro_rules! export_fmu {
                 f3::not_offered::<M>(c, "fmi3SetShiftDecimal", "clock variables (its clocks are time events)")
             }
             #[no_mangle]
-            pub extern "C" fn fmi3SetShiftFraction(c: *mut c_void, _vr: *const u32, _n: usize, _c: *const u64, _r: *const u64) -> c_int {
+            pub extern "C" fn fmi3SetShiftFraction(c: *mut c_void, _vr: *const u32, _n: usize, _counters: *const u64, _r: *const u64) -> c_int {
                 f3::not_offered::<M>(c, "fmi3SetShiftFraction", "clock variables (its clocks are time events)")
             }
             #[no_mangle]

@@ -101,6 +101,7 @@ pub fn get_version() -> *const c_char {
 ///
 /// # Safety
 /// Pointer arguments must be null or valid, as FMI requires.
+#[allow(clippy::too_many_arguments)] // fmi2Instantiate's own
 pub unsafe fn instantiate<M: Model + Clone + Default + Send + Sync + 'static>(
     identifier: &str,
     instance_name: *const c_char,
@@ -203,10 +204,10 @@ pub fn setup_experiment<M: Model + Clone + Default + Send + Sync + 'static>(
         if !start.is_finite() {
             return Err(refuse(format!("the start time {start} is not finite")));
         }
-        if let Some(tol) = tolerance.filter(|&t| !(t > 0.0 && t.is_finite())) {
+        if let Some(tol) = tolerance.filter(|&t| t <= 0.0 || !t.is_finite()) {
             return Err(refuse(format!("the tolerance {tol} is not positive and finite")));
         }
-        if let Some(stop) = stop.filter(|&s| !(s >= start)) {
+        if let Some(stop) = stop.filter(|&s| s < start || s.is_nan()) {
             return Err(refuse(format!("the stop time {stop} is before the start time {start}")));
         }
         e.instance.setup(tolerance, start, stop);

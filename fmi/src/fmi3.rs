@@ -73,6 +73,7 @@ fn logger(log_message: Option<Fmi3LogMessage>, env: *mut c_void) -> Logger {
 ///
 /// # Safety
 /// `name` and `token` must be null or C strings.
+#[allow(clippy::too_many_arguments)]
 unsafe fn instantiate<M: Model + Clone + Default + Send + Sync + 'static>(
     identifier: &str,
     call: &str,

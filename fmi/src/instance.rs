@@ -323,10 +323,10 @@ impl<M: Model + Clone + Default + Send + Sync + 'static> Instance<M> {
         if !start.is_finite() {
             return Err(refuse(format!("the start time {start} is not finite")));
         }
-        if let Some(stop) = stop.filter(|&s| !(s >= start)) {
+        if let Some(stop) = stop.filter(|&s| s < start || s.is_nan()) {
             return Err(refuse(format!("the stop time {stop} is before the start time {start}")));
         }
-        if let Some(tol) = tolerance.filter(|&t| !(t > 0.0 && t.is_finite())) {
+        if let Some(tol) = tolerance.filter(|&t| t <= 0.0 || !t.is_finite()) {
             return Err(refuse(format!("the tolerance {tol} is not positive and finite")));
         }
         self.setup(tolerance, start, stop);
@@ -383,9 +383,9 @@ impl<M: Model + Clone + Default + Send + Sync + 'static> Instance<M> {
     fn start_state(&mut self) {
         let mut y0 = vec![0.0; M::STATES];
         self.model.initial_state(&mut y0);
-        for i in 0..M::STATES {
-            if !self.set_states[i] {
-                self.y[i] = y0[i];
+        for ((y, start), set) in self.y.iter_mut().zip(y0).zip(&self.set_states) {
+            if !set {
+                *y = start;
             }
         }
     }
@@ -462,7 +462,7 @@ impl<M: Model + Clone + Default + Send + Sync + 'static> Instance<M> {
                 self.model.set_input(k, Input::constant(value));
             }
             Role::SolverTolerance if starting => {
-                if !(value >= 0.0 && value.is_finite()) {
+                if value < 0.0 {
                     return Err(refuse(format!(
                         "`{name}` = {value}: give a positive tolerance (or 0 for the experiment's)"
                     )));
@@ -621,7 +621,7 @@ impl<M: Model + Clone + Default + Send + Sync + 'static> Instance<M> {
         }
         if !M::CONSTRAINTS.is_empty() {
             let drift = instants::constraint_residual(&self.model, self.t, &self.y);
-            if !(drift <= self.drift_limit()) {
+            if drift > self.drift_limit() || drift.is_nan() {
                 self.drifted = true;
             }
         }
@@ -682,13 +682,13 @@ impl<M: Model + Clone + Default + Send + Sync + 'static> Instance<M> {
     /// instance's method and tolerance.
     pub fn do_step(&mut self, t: f64, h: f64) -> Outcome<StepDone> {
         let resolution = 1e-12 * self.t.abs().max(1.0);
-        if !((t - self.t).abs() <= resolution) {
+        if (t - self.t).abs() > resolution || t.is_nan() {
             return Err(refuse(format!(
                 "the communication point {t} is not the instance's time {}: step from where the last step ended",
                 self.t
             )));
         }
-        if !(h > 0.0 && h.is_finite()) {
+        if h <= 0.0 || !h.is_finite() {
             return Err(refuse(format!("the communication step {h} is not positive and finite")));
         }
         if self.ended {

@@ -37,9 +37,26 @@ pub fn fmus(name: &str, tag: &str) -> Archives {
     package(&library(name), &dir).unwrap_or_else(|e| panic!("packaging {name}: {e}"))
 }
 
+/// Installs FMPy from PyPI if python3 cannot import it (once per run).
+fn ensure_fmpy() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let present = Command::new("python3").args(["-c", "import fmpy"]).status();
+        if present.is_ok_and(|s| s.success()) {
+            return;
+        }
+        let installed = Command::new("python3")
+            .args(["-m", "pip", "install", "--quiet", "--disable-pip-version-check", "fmpy"])
+            .status()
+            .expect("python3 runs");
+        assert!(installed.success(), "python3 -m pip install fmpy failed");
+    });
+}
+
 /// FMPy's validation and both interfaces' results for `config` (see
 /// `fmpy_run.py`).
 pub fn fmpy(config: serde_json::Value) -> serde_json::Value {
+    ensure_fmpy();
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fmpy_run.py");
     let out = Command::new("python3")
         .arg(script)
