@@ -42,7 +42,8 @@ pub fn identifier_of(library: &Path) -> Result<String, String> {
         .file_stem()
         .and_then(|s| s.to_str())
         .ok_or_else(|| format!("{} has no file name", library.display()))?;
-    let id = if cfg!(target_os = "windows") { stem } else { stem.strip_prefix("lib").unwrap_or(stem) };
+    let id =
+        if cfg!(target_os = "windows") { stem } else { stem.strip_prefix("lib").unwrap_or(stem) };
     Ok(id.to_string())
 }
 

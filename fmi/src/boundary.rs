@@ -92,7 +92,9 @@ where
 {
     let Some(shared) = shared::<M>(handle) else {
         // No callback to log through: the pointer is not an instance.
-        eprintln!("{call}: {handle:p} is not a live instance of this FMU (null, freed, or another FMU's)");
+        eprintln!(
+            "{call}: {handle:p} is not a live instance of this FMU (null, freed, or another FMU's)"
+        );
         return Status::Error;
     };
     let mut entry = match shared.entry.try_lock() {
@@ -239,9 +241,7 @@ pub unsafe fn text<'a>(ptr: *const c_char, what: &str) -> Outcome<&'a str> {
         return Err(refuse(format!("`{what}` is a null pointer")));
     }
     // SAFETY: non-null, NUL-terminated as FMI requires.
-    unsafe { CStr::from_ptr(ptr) }
-        .to_str()
-        .map_err(|_| refuse(format!("`{what}` is not UTF-8")))
+    unsafe { CStr::from_ptr(ptr) }.to_str().map_err(|_| refuse(format!("`{what}` is not UTF-8")))
 }
 
 /// The numbers of a serialized FMU state (little-endian `f64`s).

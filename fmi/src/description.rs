@@ -34,7 +34,8 @@ pub struct Capabilities {
 
 impl Capabilities {
     /// What `export_fmu!` provides: every capability.
-    pub const EXPORTED: Capabilities = Capabilities { directional_derivatives: true, fmu_state: true };
+    pub const EXPORTED: Capabilities =
+        Capabilities { directional_derivatives: true, fmu_state: true };
 }
 
 /// `modelDescription.xml` of `model` (with this instance's parameters as
@@ -256,7 +257,8 @@ fn fmi3_body<M: Model>(vars: &[Variable], identifier: &str, caps: Capabilities) 
         match v.text {
             Some(text) => {
                 let start = escape(text);
-                let _ = writeln!(s, "    <String {}><Start value=\"{start}\"/></String>", common(v));
+                let _ =
+                    writeln!(s, "    <String {}><Start value=\"{start}\"/></String>", common(v));
             }
             None => {
                 let extra = value_attributes(v, |of| vars[of].value_reference.to_string());

@@ -290,7 +290,8 @@ pub unsafe fn set_real<M: Model + Clone + Default + Send + Sync + 'static>(
     value: *const f64,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2SetReal", |e| {
-        e.instance.expect("fmi2SetReal", &[Instantiated, Initialization, Event, Continuous, Step])?;
+        e.instance
+            .expect("fmi2SetReal", &[Instantiated, Initialization, Event, Continuous, Step])?;
         // SAFETY: nvr values each, as FMI requires.
         let (vr, value) = unsafe { (slice(vr, nvr, "vr")?, slice(value, nvr, "value")?) };
         for (k, &r) in vr.iter().enumerate() {
@@ -440,7 +441,10 @@ pub unsafe fn completed_integrator_step<M: Model + Clone + Default + Send + Sync
         e.instance.expect("fmi2CompletedIntegratorStep", &[Continuous])?;
         // SAFETY: the importer's flags, checked for null.
         let (event, stop) = unsafe {
-            (target(enter_event_mode, "enterEventMode")?, target(terminate_simulation, "terminateSimulation")?)
+            (
+                target(enter_event_mode, "enterEventMode")?,
+                target(terminate_simulation, "terminateSimulation")?,
+            )
         };
         let (enter, terminate) = e.instance.completed_integrator_step();
         *event = flag(enter);
@@ -545,7 +549,8 @@ pub unsafe fn get_nominals<M: Model + Clone + Default + Send + Sync + 'static>(
     nx: usize,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2GetNominalsOfContinuousStates", |e| {
-        e.instance.expect_interface("fmi2GetNominalsOfContinuousStates", Interface::ModelExchange)?;
+        e.instance
+            .expect_interface("fmi2GetNominalsOfContinuousStates", Interface::ModelExchange)?;
         e.instance.expect(
             "fmi2GetNominalsOfContinuousStates",
             &[Instantiated, Event, Continuous, Terminated],
@@ -598,7 +603,9 @@ pub fn no_derivatives<M: Model + Clone + Default + Send + Sync + 'static>(
     call: &str,
 ) -> Fmi2Status {
     run::<M, _>(c, call, |_| {
-        Err(refuse("this FMU holds its inputs constant over a step and gives no output derivatives"))
+        Err(refuse(
+            "this FMU holds its inputs constant over a step and gives no output derivatives",
+        ))
     })
 }
 
@@ -757,10 +764,12 @@ pub unsafe fn deserialize<M: Model + Clone + Default + Send + Sync + 'static>(
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2DeSerializeFMUstate", |e| {
         // SAFETY: size bytes and the importer's pointer, as FMI requires.
-        let (bytes, state) = unsafe { (slice(bytes, size, "serializedState")?, target(state, "FMUstate")?) };
+        let (bytes, state) =
+            unsafe { (slice(bytes, size, "serializedState")?, target(state, "FMUstate")?) };
         let snapshot = boundary::numbers(bytes)?;
         // Check it is this model's before keeping it.
-        let mut probe = crate::instance::Instance::<M>::new(e.instance.interface).map_err(refuse)?;
+        let mut probe =
+            crate::instance::Instance::<M>::new(e.instance.interface).map_err(refuse)?;
         probe.restore(&snapshot)?;
         *state = boundary::keep_state(snapshot);
         Ok(())

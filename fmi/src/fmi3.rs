@@ -165,7 +165,10 @@ pub unsafe fn instantiate_co_simulation<M: Model + Clone + Default + Send + Sync
     let refusal = if event_mode_used {
         Some("this FMU has no co-simulation event mode (hasEventMode is unset): its events act inside fmi3DoStep; instantiate with eventModeUsed = false".to_string())
     } else if n_required_intermediate > 0 {
-        Some("this FMU provides no intermediate updates: require no intermediate variables".to_string())
+        Some(
+            "this FMU provides no intermediate updates: require no intermediate variables"
+                .to_string(),
+        )
     } else {
         None
     };
@@ -279,7 +282,8 @@ pub unsafe fn get_float64<M: Model + Clone + Default + Send + Sync + 'static>(
     run::<M, _>(c, "fmi3GetFloat64", |e| {
         scalars(nvr, n_values)?;
         // SAFETY: the counts given, as FMI requires.
-        let (vr, values) = unsafe { (slice(vr, nvr, "valueReferences")?, slice_mut(values, n_values, "values")?) };
+        let (vr, values) =
+            unsafe { (slice(vr, nvr, "valueReferences")?, slice_mut(values, n_values, "values")?) };
         for (k, &r) in vr.iter().enumerate() {
             values[k] = e.instance.get_real(r)?;
         }
@@ -299,10 +303,12 @@ pub unsafe fn set_float64<M: Model + Clone + Default + Send + Sync + 'static>(
     n_values: usize,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3SetFloat64", |e| {
-        e.instance.expect("fmi3SetFloat64", &[Instantiated, Initialization, Event, Continuous, Step])?;
+        e.instance
+            .expect("fmi3SetFloat64", &[Instantiated, Initialization, Event, Continuous, Step])?;
         scalars(nvr, n_values)?;
         // SAFETY: the counts given, as FMI requires.
-        let (vr, values) = unsafe { (slice(vr, nvr, "valueReferences")?, slice(values, n_values, "values")?) };
+        let (vr, values) =
+            unsafe { (slice(vr, nvr, "valueReferences")?, slice(values, n_values, "values")?) };
         for (k, &r) in vr.iter().enumerate() {
             e.instance.set_real(r, values[k])?;
         }
@@ -315,7 +321,9 @@ fn scalars(nvr: usize, n_values: usize) -> Outcome {
     if nvr == n_values {
         return Ok(());
     }
-    Err(refuse(format!("{nvr} value references but {n_values} values: every variable of this FMU is a scalar")))
+    Err(refuse(format!(
+        "{nvr} value references but {n_values} values: every variable of this FMU is a scalar"
+    )))
 }
 
 /// `fmi3GetString`: `solver.method`, valid until the next call.
@@ -332,7 +340,8 @@ pub unsafe fn get_string<M: Model + Clone + Default + Send + Sync + 'static>(
     run::<M, _>(c, "fmi3GetString", |e| {
         scalars(nvr, n_values)?;
         // SAFETY: the counts given, as FMI requires.
-        let (vr, values) = unsafe { (slice(vr, nvr, "valueReferences")?, slice_mut(values, n_values, "values")?) };
+        let (vr, values) =
+            unsafe { (slice(vr, nvr, "valueReferences")?, slice_mut(values, n_values, "values")?) };
         e.strings.clear();
         for (k, &r) in vr.iter().enumerate() {
             let s = CString::new(e.instance.get_string(r)?).unwrap_or_default();
@@ -358,7 +367,8 @@ pub unsafe fn set_string<M: Model + Clone + Default + Send + Sync + 'static>(
         e.instance.expect("fmi3SetString", &[Instantiated, Initialization, Event, Step])?;
         scalars(nvr, n_values)?;
         // SAFETY: the counts given, as FMI requires.
-        let (vr, values) = unsafe { (slice(vr, nvr, "valueReferences")?, slice(values, n_values, "values")?) };
+        let (vr, values) =
+            unsafe { (slice(vr, nvr, "valueReferences")?, slice(values, n_values, "values")?) };
         for (k, &r) in vr.iter().enumerate() {
             // SAFETY: a C string, as FMI requires.
             let v = unsafe { text(values[k], "values") }?;
@@ -474,7 +484,10 @@ pub unsafe fn completed_integrator_step<M: Model + Clone + Default + Send + Sync
         e.instance.expect("fmi3CompletedIntegratorStep", &[Continuous])?;
         // SAFETY: the importer's flags, checked for null.
         let (event, stop) = unsafe {
-            (target(enter_event_mode, "enterEventMode")?, target(terminate_simulation, "terminateSimulation")?)
+            (
+                target(enter_event_mode, "enterEventMode")?,
+                target(terminate_simulation, "terminateSimulation")?,
+            )
         };
         (*event, *stop) = e.instance.completed_integrator_step();
         Ok(())
@@ -521,7 +534,8 @@ pub unsafe fn get_derivatives<M: Model + Clone + Default + Send + Sync + 'static
     nx: usize,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3GetContinuousStateDerivatives", |e| {
-        e.instance.expect_interface("fmi3GetContinuousStateDerivatives", Interface::ModelExchange)?;
+        e.instance
+            .expect_interface("fmi3GetContinuousStateDerivatives", Interface::ModelExchange)?;
         e.instance.expect(
             "fmi3GetContinuousStateDerivatives",
             &[Initialization, Event, Continuous, Terminated],
@@ -580,7 +594,8 @@ pub unsafe fn get_nominals<M: Model + Clone + Default + Send + Sync + 'static>(
     nx: usize,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3GetNominalsOfContinuousStates", |e| {
-        e.instance.expect_interface("fmi3GetNominalsOfContinuousStates", Interface::ModelExchange)?;
+        e.instance
+            .expect_interface("fmi3GetNominalsOfContinuousStates", Interface::ModelExchange)?;
         e.instance.expect(
             "fmi3GetNominalsOfContinuousStates",
             &[Instantiated, Initialization, Event, Continuous, Terminated],
@@ -604,11 +619,8 @@ pub unsafe fn get_number_of<M: Model + Clone + Default + Send + Sync + 'static>(
     run::<M, _>(c, call, |e| {
         // SAFETY: the importer's pointer, checked for null.
         let n = unsafe { target(n, "n") }?;
-        *n = if indicators {
-            e.instance.event_indicators()
-        } else {
-            e.instance.continuous_states()
-        };
+        *n =
+            if indicators { e.instance.event_indicators() } else { e.instance.continuous_states() };
         Ok(())
     })
 }
@@ -780,7 +792,8 @@ pub unsafe fn deserialize<M: Model + Clone + Default + Send + Sync + 'static>(
         let (bytes, state) =
             unsafe { (slice(bytes, size, "serializedState")?, target(state, "FMUState")?) };
         let snapshot = boundary::numbers(bytes)?;
-        let mut probe = crate::instance::Instance::<M>::new(e.instance.interface).map_err(refuse)?;
+        let mut probe =
+            crate::instance::Instance::<M>::new(e.instance.interface).map_err(refuse)?;
         probe.restore(&snapshot)?;
         *state = boundary::keep_state(snapshot);
         Ok(())

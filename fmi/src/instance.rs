@@ -219,7 +219,8 @@ impl<M: Model + Clone + Default + Send + Sync + 'static> Instance<M> {
         }
         let model = M::default();
         let vars = fmi_variables(&model);
-        let continuous = (0..M::STATES).filter(|&i| !M::INFO.discrete.contains(&M::INFO.states[i])).collect();
+        let continuous =
+            (0..M::STATES).filter(|&i| !M::INFO.discrete.contains(&M::INFO.states[i])).collect();
         let mut y = vec![0.0; M::STATES];
         model.initial_state(&mut y);
         let inputs = vars
@@ -435,9 +436,8 @@ impl<M: Model + Clone + Default + Send + Sync + 'static> Instance<M> {
             return Err(refuse(format!("`{name}` was set to {value}, which is not finite")));
         }
         let starting = matches!(self.phase, Phase::Instantiated | Phase::Initialization);
-        let calculated = || {
-            refuse(format!("`{name}` is calculated by the model; it cannot be set"))
-        };
+        let calculated =
+            || refuse(format!("`{name}` is calculated by the model; it cannot be set"));
         match role {
             Role::State(i) if starting => {
                 self.y[i] = value;
@@ -613,9 +613,8 @@ impl<M: Model + Clone + Default + Send + Sync + 'static> Instance<M> {
         self.model.events(self.t, &self.y, &mut g);
         // Past a crossing the importer is about to report, the point
         // before it is what the event update compares with.
-        let crossing = (0..m).any(|k| {
-            instants::fires(M::INFO.events[k].direction, self.known_indicators[k], g[k])
-        });
+        let crossing = (0..m)
+            .any(|k| instants::fires(M::INFO.events[k].direction, self.known_indicators[k], g[k]));
         if !crossing {
             self.known_indicators = g;
         }
@@ -656,9 +655,8 @@ impl<M: Model + Clone + Default + Send + Sync + 'static> Instance<M> {
         let before = self.y.clone();
         let mut terminate = false;
         if !due.is_empty() {
-            let fired = instants::act(&self.model, t, &mut self.y, &due).map_err(|e| {
-                refuse(format!("the event update at t = {t} failed: {e}"))
-            })?;
+            let fired = instants::act(&self.model, t, &mut self.y, &due)
+                .map_err(|e| refuse(format!("the event update at t = {t} failed: {e}")))?;
             terminate = fired.iter().any(|&k| k < m && M::INFO.events[k].terminal);
         }
         if self.clocks.is_some() {
@@ -692,10 +690,7 @@ impl<M: Model + Clone + Default + Send + Sync + 'static> Instance<M> {
             return Err(refuse(format!("the communication step {h} is not positive and finite")));
         }
         if self.ended {
-            return Err(refuse(format!(
-                "a terminal event ended the simulation at t = {}",
-                self.t
-            )));
+            return Err(refuse(format!("a terminal event ended the simulation at t = {}", self.t)));
         }
         let t1 = self.t + h;
         let tolerance = if self.solver_tolerance > 0.0 {
@@ -722,8 +717,7 @@ impl<M: Model + Clone + Default + Send + Sync + 'static> Instance<M> {
                 self.phase = Phase::StepFailed;
                 Err(refuse(format!(
                     "the step from t = {} to {t1} with {} failed: {e}",
-                    self.t,
-                    METHODS[self.method].0
+                    self.t, METHODS[self.method].0
                 )))
             }
         }
@@ -816,10 +810,7 @@ impl<M: Model + Clone + Default + Send + Sync + 'static> Instance<M> {
         if by_difference.is_empty() {
             return Ok(());
         }
-        let size = known_roles
-            .iter()
-            .map(|&r| self.known_value(r).abs())
-            .fold(1.0f64, f64::max);
+        let size = known_roles.iter().map(|&r| self.known_value(r).abs()).fold(1.0f64, f64::max);
         let reach = seed.iter().fold(0.0f64, |m, s| m.max(s.abs()));
         if reach == 0.0 {
             return Ok(());

@@ -32,11 +32,7 @@ pub fn packaged_description<M: daegen_runtime::Model + Default>(
     version: FmiVersion,
     identifier: &str,
 ) -> std::ffi::CString {
-    let xml = model_description(
-        &M::default(),
-        version,
-        identifier,
-        description::Capabilities::EXPORTED,
-    );
+    let xml =
+        model_description(&M::default(), version, identifier, description::Capabilities::EXPORTED);
     std::ffi::CString::new(xml.replace('\0', " ")).unwrap_or_default()
 }

@@ -258,7 +258,8 @@ pub fn structured_name(name: &str) -> String {
     fn identifier(part: &str) -> bool {
         let base = part.split('[').next().unwrap_or("");
         let indexed = part[base.len()..].split('[').skip(1).all(|i| {
-            i.strip_suffix(']').is_some_and(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
+            i.strip_suffix(']')
+                .is_some_and(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
         });
         let mut chars = base.chars();
         chars.next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
@@ -266,12 +267,12 @@ pub fn structured_name(name: &str) -> String {
             && indexed
     }
     let path = |s: &str| s.split('.').all(identifier);
-    let derivative = name.strip_prefix("der(").and_then(|r| r.strip_suffix(')')).is_some_and(|inner| {
-        match inner.rsplit_once(',') {
+    let derivative = name.strip_prefix("der(").and_then(|r| r.strip_suffix(')')).is_some_and(
+        |inner| match inner.rsplit_once(',') {
             Some((base, k)) => path(base) && k.bytes().all(|b| b.is_ascii_digit()) && !k.is_empty(),
             None => path(inner),
-        }
-    });
+        },
+    );
     if derivative || path(name) {
         return name.to_string();
     }

@@ -22,7 +22,12 @@ type Log = unsafe extern "C" fn(*mut c_void, c_int, *const c_char, *const c_char
 /// What an instance logged: (status, message).
 type Messages = Mutex<Vec<(c_int, String)>>;
 
-unsafe extern "C" fn log(env: *mut c_void, status: c_int, _category: *const c_char, message: *const c_char) {
+unsafe extern "C" fn log(
+    env: *mut c_void,
+    status: c_int,
+    _category: *const c_char,
+    message: *const c_char,
+) {
     // SAFETY: env is the test's `Messages`, the message a C string.
     let messages = unsafe { &*(env as *const Messages) };
     let text = unsafe { CStr::from_ptr(message) }.to_string_lossy().into_owned();
@@ -80,7 +85,12 @@ impl Fmu {
         let s = call!(self, "fmi3EnterInitializationMode": fn(Instance, bool, f64, f64, bool, f64) -> c_int,
             c, tolerance.is_some(), tolerance.unwrap_or(0.0), 0.0, false, 0.0);
         assert_eq!(s, OK, "{:?}", self.messages.lock().unwrap());
-        assert_eq!(call!(self, "fmi3ExitInitializationMode": fn(Instance) -> c_int, c), OK, "{:?}", self.messages.lock().unwrap());
+        assert_eq!(
+            call!(self, "fmi3ExitInitializationMode": fn(Instance) -> c_int, c),
+            OK,
+            "{:?}",
+            self.messages.lock().unwrap()
+        );
     }
 
     fn get(&self, c: Instance, vr: u32) -> (c_int, f64) {
@@ -133,8 +143,11 @@ fn misuse_is_refused_with_a_message_and_never_crashes() {
     let gone = fmu.me();
     fmu.free(gone);
     assert_eq!(fmu.get(gone, X).0, ERROR);
-    assert_eq!(call!(fmu, "fmi3DoStep": fn(Instance, f64, f64, bool, *mut bool, *mut bool, *mut bool, *mut f64) -> c_int,
-        gone, 0.0, 0.1, false, null_mut(), null_mut(), null_mut(), null_mut()), ERROR);
+    assert_eq!(
+        call!(fmu, "fmi3DoStep": fn(Instance, f64, f64, bool, *mut bool, *mut bool, *mut bool, *mut f64) -> c_int,
+        gone, 0.0, 0.1, false, null_mut(), null_mut(), null_mut(), null_mut()),
+        ERROR
+    );
     fmu.free(gone); // twice: nothing happens
 
     // A wrong instantiation token: no instance, and the reason.
@@ -265,7 +278,10 @@ fn directional_derivatives_are_the_exact_jacobian() {
     assert_eq!(call!(fmu, "fmi3EnterContinuousTimeMode": fn(Instance) -> c_int, c), OK);
     let (x, v) = (0.7, -1.3);
     let state = [x, v];
-    assert_eq!(call!(fmu, "fmi3SetContinuousStates": fn(Instance, *const f64, usize) -> c_int, c, state.as_ptr(), 2), OK);
+    assert_eq!(
+        call!(fmu, "fmi3SetContinuousStates": fn(Instance, *const f64, usize) -> c_int, c, state.as_ptr(), 2),
+        OK
+    );
     // a = μ(1 − x²)v − x: ∂a/∂x = −2μxv − 1, ∂a/∂v = μ(1 − x²).
     let derivative = |unknown: u32, known: u32| {
         let mut out = f64::NAN;
@@ -299,7 +315,10 @@ fn fmu_states_restore_a_co_simulation_bit_for_bit() {
     fmu.init(c, Some(1e-10));
     assert_eq!(fmu.do_step(c, 0.0, 1.0).0, OK);
     let mut saved: *mut c_void = null_mut();
-    assert_eq!(call!(fmu, "fmi3GetFMUState": fn(Instance, *mut *mut c_void) -> c_int, c, &mut saved), OK);
+    assert_eq!(
+        call!(fmu, "fmi3GetFMUState": fn(Instance, *mut *mut c_void) -> c_int, c, &mut saved),
+        OK
+    );
     assert_eq!(fmu.do_step(c, 1.0, 1.0).0, OK);
     let first = fmu.get(c, X).1;
     // Back to t = 1 and again: the same step.
@@ -309,27 +328,51 @@ fn fmu_states_restore_a_co_simulation_bit_for_bit() {
     assert_eq!(fmu.get(c, X).1.to_bits(), first.to_bits());
     // Serialized and read back, into another instance.
     let mut size = 0usize;
-    assert_eq!(call!(fmu, "fmi3SerializedFMUStateSize": fn(Instance, *mut c_void, *mut usize) -> c_int, c, saved, &mut size), OK);
+    assert_eq!(
+        call!(fmu, "fmi3SerializedFMUStateSize": fn(Instance, *mut c_void, *mut usize) -> c_int, c, saved, &mut size),
+        OK
+    );
     let mut bytes = vec![0u8; size];
-    assert_eq!(call!(fmu, "fmi3SerializeFMUState": fn(Instance, *mut c_void, *mut u8, usize) -> c_int, c, saved, bytes.as_mut_ptr(), size), OK);
+    assert_eq!(
+        call!(fmu, "fmi3SerializeFMUState": fn(Instance, *mut c_void, *mut u8, usize) -> c_int, c, saved, bytes.as_mut_ptr(), size),
+        OK
+    );
     let other = fmu.cs();
     let mut copy: *mut c_void = null_mut();
-    assert_eq!(call!(fmu, "fmi3DeserializeFMUState": fn(Instance, *const u8, usize, *mut *mut c_void) -> c_int, other, bytes.as_ptr(), size, &mut copy), OK);
+    assert_eq!(
+        call!(fmu, "fmi3DeserializeFMUState": fn(Instance, *const u8, usize, *mut *mut c_void) -> c_int, other, bytes.as_ptr(), size, &mut copy),
+        OK
+    );
     assert_eq!(call!(fmu, "fmi3SetFMUState": fn(Instance, *mut c_void) -> c_int, other, copy), OK);
     assert_eq!(fmu.do_step(other, 1.0, 1.0).0, OK);
     assert_eq!(fmu.get(other, X).1.to_bits(), first.to_bits());
     // Garbage, a short buffer, and a freed state: refused.
     let garbage = [7u8; 24];
     let mut junk: *mut c_void = null_mut();
-    assert_eq!(call!(fmu, "fmi3DeserializeFMUState": fn(Instance, *const u8, usize, *mut *mut c_void) -> c_int, other, garbage.as_ptr(), 24, &mut junk), ERROR);
+    assert_eq!(
+        call!(fmu, "fmi3DeserializeFMUState": fn(Instance, *const u8, usize, *mut *mut c_void) -> c_int, other, garbage.as_ptr(), 24, &mut junk),
+        ERROR
+    );
     fmu.said("is not one of VanDerPol");
-    assert_eq!(call!(fmu, "fmi3SerializeFMUState": fn(Instance, *mut c_void, *mut u8, usize) -> c_int, c, saved, bytes.as_mut_ptr(), size - 8), ERROR);
+    assert_eq!(
+        call!(fmu, "fmi3SerializeFMUState": fn(Instance, *mut c_void, *mut u8, usize) -> c_int, c, saved, bytes.as_mut_ptr(), size - 8),
+        ERROR
+    );
     fmu.said("the buffer has");
-    assert_eq!(call!(fmu, "fmi3FreeFMUState": fn(Instance, *mut *mut c_void) -> c_int, c, &mut saved), OK);
+    assert_eq!(
+        call!(fmu, "fmi3FreeFMUState": fn(Instance, *mut *mut c_void) -> c_int, c, &mut saved),
+        OK
+    );
     assert!(saved.is_null());
     assert_eq!(call!(fmu, "fmi3SetFMUState": fn(Instance, *mut c_void) -> c_int, c, copy), OK);
-    assert_eq!(call!(fmu, "fmi3FreeFMUState": fn(Instance, *mut *mut c_void) -> c_int, c, &mut copy), OK);
-    assert_eq!(call!(fmu, "fmi3SetFMUState": fn(Instance, *mut c_void) -> c_int, c, 12345 as *mut c_void), ERROR);
+    assert_eq!(
+        call!(fmu, "fmi3FreeFMUState": fn(Instance, *mut *mut c_void) -> c_int, c, &mut copy),
+        OK
+    );
+    assert_eq!(
+        call!(fmu, "fmi3SetFMUState": fn(Instance, *mut c_void) -> c_int, c, 12345 as *mut c_void),
+        ERROR
+    );
     fmu.said("is not a live FMU state");
     fmu.free(c);
     fmu.free(other);
@@ -351,7 +394,8 @@ fn instances_run_on_several_threads_at_once() {
     };
     let alone: Vec<f64> = [0.5, 1.0, 2.0, 3.0].iter().map(|&mu| run(mu)).collect();
     let together: Vec<f64> = std::thread::scope(|s| {
-        let handles: Vec<_> = [0.5, 1.0, 2.0, 3.0].iter().map(|&mu| s.spawn(move || run(mu))).collect();
+        let handles: Vec<_> =
+            [0.5, 1.0, 2.0, 3.0].iter().map(|&mu| s.spawn(move || run(mu))).collect();
         handles.into_iter().map(|h| h.join().unwrap()).collect()
     });
     assert_eq!(alone, together);
@@ -376,7 +420,14 @@ fn instances_run_on_several_threads_at_once() {
 
 /// Model Exchange driven as an importer drives it: RK4 steps, the event
 /// indicators checked after each, event mode where one changes sign.
-fn drive(fmu: &Fmu, c: Instance, n: usize, t1: f64, steps: usize, mut on_event: impl FnMut(f64, &[f64])) -> Vec<f64> {
+fn drive(
+    fmu: &Fmu,
+    c: Instance,
+    n: usize,
+    t1: f64,
+    steps: usize,
+    mut on_event: impl FnMut(f64, &[f64]),
+) -> Vec<f64> {
     let mut x = vec![0.0; n];
     let mut g = vec![0.0; 1];
     let ni = {
@@ -386,7 +437,8 @@ fn drive(fmu: &Fmu, c: Instance, n: usize, t1: f64, steps: usize, mut on_event: 
     };
     g.resize(ni, 0.0);
     let update = |fmu: &Fmu| {
-        let (mut need, mut stop, mut nominals, mut changed, mut defined, mut next) = (false, false, false, false, false, 0.0);
+        let (mut need, mut stop, mut nominals, mut changed, mut defined, mut next) =
+            (false, false, false, false, false, 0.0);
         let s = call!(fmu, "fmi3UpdateDiscreteStates": fn(Instance, *mut bool, *mut bool, *mut bool, *mut bool, *mut bool, *mut f64) -> c_int,
             c, &mut need, &mut stop, &mut nominals, &mut changed, &mut defined, &mut next);
         assert_eq!(s, OK, "{:?}", fmu.messages.lock().unwrap());
@@ -408,8 +460,14 @@ fn drive(fmu: &Fmu, c: Instance, n: usize, t1: f64, steps: usize, mut on_event: 
     for k in 0..steps {
         let t = k as f64 * h;
         let k1 = rates(t, &x);
-        let k2 = rates(t + h / 2.0, &x.iter().zip(&k1).map(|(x, d)| x + h / 2.0 * d).collect::<Vec<_>>());
-        let k3 = rates(t + h / 2.0, &x.iter().zip(&k2).map(|(x, d)| x + h / 2.0 * d).collect::<Vec<_>>());
+        let k2 = rates(
+            t + h / 2.0,
+            &x.iter().zip(&k1).map(|(x, d)| x + h / 2.0 * d).collect::<Vec<_>>(),
+        );
+        let k3 = rates(
+            t + h / 2.0,
+            &x.iter().zip(&k2).map(|(x, d)| x + h / 2.0 * d).collect::<Vec<_>>(),
+        );
         let k4 = rates(t + h, &x.iter().zip(&k3).map(|(x, d)| x + h * d).collect::<Vec<_>>());
         for i in 0..n {
             x[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
@@ -498,7 +556,8 @@ fn fmi2_answers_misuse_with_the_error_status() {
             unsafe { fmu.lib.get(b"daegen_fmi_model_description\0") }.unwrap();
         unsafe { CStr::from_ptr(describe(2)) }.to_string_lossy().into_owned()
     };
-    let guid = CString::new(xml.split("guid=\"").nth(1).unwrap().split('"').next().unwrap()).unwrap();
+    let guid =
+        CString::new(xml.split("guid=\"").nth(1).unwrap().split('"').next().unwrap()).unwrap();
     #[repr(C)]
     struct Callbacks {
         logger: *const c_void,
@@ -507,7 +566,13 @@ fn fmi2_answers_misuse_with_the_error_status() {
         step_finished: *const c_void,
         env: *mut c_void,
     }
-    let callbacks = Callbacks { logger: null(), allocate: null(), free: null(), step_finished: null(), env: null_mut() };
+    let callbacks = Callbacks {
+        logger: null(),
+        allocate: null(),
+        free: null(),
+        step_finished: null(),
+        env: null_mut(),
+    };
     let instantiate = |kind: c_int, guid: *const c_char, functions: *const Callbacks| {
         call!(fmu, "fmi2Instantiate": fn(*const c_char, c_int, *const c_char, *const c_char, *const Callbacks, c_int, c_int) -> Instance,
             c"ball".as_ptr(), kind, guid, null(), functions, 0, 0)
@@ -517,15 +582,30 @@ fn fmi2_answers_misuse_with_the_error_status() {
     // No callbacks at all: allowed, silent.
     let c = instantiate(1, guid.as_ptr(), null());
     assert!(!c.is_null());
-    assert_eq!(call!(fmu, "fmi2DoStep": fn(Instance, f64, f64, c_int) -> c_int, c, 0.0, 0.1, 0), ERROR);
-    assert_eq!(call!(fmu, "fmi2SetupExperiment": fn(Instance, c_int, f64, f64, c_int, f64) -> c_int, c, 1, 1e-10, 0.0, 1, -1.0), ERROR);
-    assert_eq!(call!(fmu, "fmi2SetupExperiment": fn(Instance, c_int, f64, f64, c_int, f64) -> c_int, c, 1, 1e-10, 0.0, 0, 0.0), OK);
+    assert_eq!(
+        call!(fmu, "fmi2DoStep": fn(Instance, f64, f64, c_int) -> c_int, c, 0.0, 0.1, 0),
+        ERROR
+    );
+    assert_eq!(
+        call!(fmu, "fmi2SetupExperiment": fn(Instance, c_int, f64, f64, c_int, f64) -> c_int, c, 1, 1e-10, 0.0, 1, -1.0),
+        ERROR
+    );
+    assert_eq!(
+        call!(fmu, "fmi2SetupExperiment": fn(Instance, c_int, f64, f64, c_int, f64) -> c_int, c, 1, 1e-10, 0.0, 0, 0.0),
+        OK
+    );
     assert_eq!(call!(fmu, "fmi2EnterInitializationMode": fn(Instance) -> c_int, c), OK);
     assert_eq!(call!(fmu, "fmi2ExitInitializationMode": fn(Instance) -> c_int, c), OK);
     let mut x = [0.0; 2];
-    assert_eq!(call!(fmu, "fmi2GetDerivatives": fn(Instance, *mut f64, usize) -> c_int, c, x.as_mut_ptr(), 2), ERROR);
+    assert_eq!(
+        call!(fmu, "fmi2GetDerivatives": fn(Instance, *mut f64, usize) -> c_int, c, x.as_mut_ptr(), 2),
+        ERROR
+    );
     let mut v = 0;
-    assert_eq!(call!(fmu, "fmi2GetInteger": fn(Instance, *const u32, usize, *mut c_int) -> c_int, c, &1, 1, &mut v), ERROR);
+    assert_eq!(
+        call!(fmu, "fmi2GetInteger": fn(Instance, *const u32, usize, *mut c_int) -> c_int, c, &1, 1, &mut v),
+        ERROR
+    );
     // The ball stops bouncing at the Zeno point t ≈ 4.06 s: the step that
     // reaches it fails, with the time before it kept.
     let mut t = 0.0;
@@ -538,7 +618,10 @@ fn fmi2_answers_misuse_with_the_error_status() {
     }
     assert!(status == ERROR || status == DISCARD, "{status}");
     let mut reached = f64::NAN;
-    assert_eq!(call!(fmu, "fmi2GetRealStatus": fn(Instance, c_int, *mut f64) -> c_int, c, 2, &mut reached), OK);
+    assert_eq!(
+        call!(fmu, "fmi2GetRealStatus": fn(Instance, c_int, *mut f64) -> c_int, c, 2, &mut reached),
+        OK
+    );
     assert_eq!(reached, t);
     assert_eq!(call!(fmu, "fmi2Terminate": fn(Instance) -> c_int, c), OK);
     call!(fmu, "fmi2FreeInstance": fn(Instance) -> (), c);

@@ -24,7 +24,8 @@ fn native<M: Model + Clone + Send + Sync + 'static>(model: M, stop: f64) -> daeg
 
 /// Classical RK4 through `rates`.
 fn rk4(x: &mut [f64], t: f64, h: f64, mut rates: impl FnMut(f64, &[f64]) -> Vec<f64>) {
-    let shift = |x: &[f64], d: &[f64], s: f64| x.iter().zip(d).map(|(x, d)| x + s * d).collect::<Vec<_>>();
+    let shift =
+        |x: &[f64], d: &[f64], s: f64| x.iter().zip(d).map(|(x, d)| x + s * d).collect::<Vec<_>>();
     let k1 = rates(t, x);
     let k2 = rates(t + h / 2.0, &shift(x, &k1, h / 2.0));
     let k3 = rates(t + h / 2.0, &shift(x, &k2, h / 2.0));
@@ -94,7 +95,15 @@ fn fmi2_co_simulation_of_the_speed_drive() {
     let xml = daegen_fmi::archive::descriptions(&support::library("speed_drive_fmu")).unwrap().0;
     let reference = |name: &str| -> u32 {
         let at = xml.find(&format!("name=\"{name}\" valueReference=\"")).expect(name);
-        xml[at..].split("valueReference=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap()
+        xml[at..]
+            .split("valueReference=\"")
+            .nth(1)
+            .unwrap()
+            .split('"')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap()
     };
     let vrs: Vec<u32> = names.iter().map(|n| reference(n)).collect();
     for k in 0..10 {
@@ -104,7 +113,11 @@ fn fmi2_co_simulation_of_the_speed_drive() {
         cs.get_real(&vrs, &mut values).unwrap();
         for (name, v) in names.iter().zip(&values) {
             let exact: f64 = sol.at(t + 0.1, name).unwrap();
-            assert!((v - exact).abs() < 1e-7 * (1.0 + exact.abs()), "{name} at {}: {v} vs {exact}", t + 0.1);
+            assert!(
+                (v - exact).abs() < 1e-7 * (1.0 + exact.abs()),
+                "{name} at {}: {v} vs {exact}",
+                t + 0.1
+            );
         }
     }
     cs.terminate().unwrap();

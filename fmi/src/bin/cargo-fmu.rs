@@ -52,6 +52,26 @@ fn main() -> ExitCode {
     }
 }
 
+/// The target directory of the crate `args` name (`--manifest-path`),
+/// from `cargo metadata`.
+fn target_directory(args: &[String]) -> Result<PathBuf, String> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
+    let mut command = Command::new(cargo);
+    command.args(["metadata", "--format-version", "1", "--no-deps"]);
+    if let Some(k) = args.iter().position(|a| a == "--manifest-path") {
+        if let Some(path) = args.get(k + 1) {
+            command.args(["--manifest-path", path]);
+        }
+    }
+    let output = command.output().map_err(|e| format!("cannot run cargo metadata: {e}"))?;
+    let metadata: serde_json::Value =
+        serde_json::from_slice(&output.stdout).map_err(|e| format!("cargo metadata: {e}"))?;
+    metadata["target_directory"]
+        .as_str()
+        .map(PathBuf::from)
+        .ok_or_else(|| "cargo metadata gave no target directory".to_string())
+}
+
 /// Runs `cargo build` with `args`, packages every cdylib it reports; a
 /// line per FMU written.
 fn build(args: &[String], out: Option<PathBuf>) -> Result<Vec<String>, String> {
@@ -66,8 +86,11 @@ fn build(args: &[String], out: Option<PathBuf>) -> Result<Vec<String>, String> {
     if !output.status.success() {
         return Err("cargo build failed".to_string());
     }
+    let dir = match out {
+        Some(dir) => dir,
+        None => target_directory(args)?.join("fmu"),
+    };
     let mut made = Vec::new();
-    let mut target_dir: Option<PathBuf> = None;
     for line in String::from_utf8_lossy(&output.stdout).lines() {
         let Ok(message) = serde_json::from_str::<serde_json::Value>(line) else { continue };
         if message["reason"] != "compiler-artifact" {
@@ -83,18 +106,6 @@ fn build(args: &[String], out: Option<PathBuf>) -> Result<Vec<String>, String> {
         let files = message["filenames"].as_array().cloned().unwrap_or_default();
         for file in files.iter().filter_map(|f| f.as_str()).filter(|f| f.ends_with(ext)) {
             let library = PathBuf::from(file);
-            let dir = match (&out, &target_dir) {
-                (Some(dir), _) => dir.clone(),
-                (None, Some(dir)) => dir.clone(),
-                (None, None) => {
-                    // target/<profile>/[examples/]lib<name>.so → target/fmu
-                    let mut dir = library.parent().map(PathBuf::from).unwrap_or_default();
-                    while dir.file_name().is_some_and(|n| n != "target") && dir.pop() {}
-                    let dir = if dir.as_os_str().is_empty() { PathBuf::from("target") } else { dir };
-                    target_dir = Some(dir.join("fmu"));
-                    dir.join("fmu")
-                }
-            };
             let archives = daegen_fmi::archive::package(&library, &dir)?;
             made.push(format!("{} (FMI 3.0)", archives.fmi3.display()));
             made.push(format!("{} (FMI 2.0)", archives.fmi2.display()));

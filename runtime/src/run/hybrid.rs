@@ -51,7 +51,8 @@ pub(crate) fn integrate_hybrid<M: Model>(
     let mut due: Vec<usize> = if options.continues { Vec::new() } else { clocks.due(t) };
     loop {
         if !due.is_empty() {
-            let (fired, next) = apply_instant(model, projector.as_mut(), t, &mut y, &due, solution)?;
+            let (fired, next) =
+                apply_instant(model, projector.as_mut(), t, &mut y, &due, solution)?;
             solution = next;
             let names = fired.iter().map(|&k| trigger_name::<M>(k)).collect();
             solution.push_jump(&y, names);
@@ -151,7 +152,11 @@ pub(crate) fn apply_instant<M: Model>(
                     t,
                     constraint: M::CONSTRAINTS[f.row].equation,
                     level: M::CONSTRAINTS[f.row].level,
-                    message: format!("after the actions of `{}`, the state cannot be made consistent: {}", names.join("`, `"), f.message),
+                    message: format!(
+                        "after the actions of `{}`, the state cannot be made consistent: {}",
+                        names.join("`, `"),
+                        f.message
+                    ),
                     partial: Box::new(solution),
                 });
             }
