@@ -57,7 +57,7 @@ pub fn model_description<M: Model>(
         FmiVersion::V3 => ("3.0", "instantiationToken"),
     };
     let info = &M::INFO;
-    let summary = info.doc.lines().map(str::trim).find(|l| !l.is_empty()).unwrap_or("");
+    let summary = first_paragraph(info.doc);
     let events = match version {
         FmiVersion::V2 => format!(" numberOfEventIndicators=\"{}\"", info.events.len()),
         FmiVersion::V3 => String::new(),
@@ -65,7 +65,7 @@ pub fn model_description<M: Model>(
     format!(
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<fmiModelDescription fmiVersion=\"{version_text}\" modelName=\"{}\" {key}=\"{token}\" description=\"{}\" generationTool=\"daegen\" variableNamingConvention=\"structured\"{events}>\n{body}</fmiModelDescription>\n",
         escape(info.name),
-        escape(summary),
+        escape(&summary),
     )
 }
 
@@ -162,7 +162,7 @@ fn common(v: &Variable) -> String {
         let _ = write!(s, " initial=\"{}\"", initial(i));
     }
     if !v.description.is_empty() {
-        let _ = write!(s, " description=\"{}\"", escape(first_line(&v.description)));
+        let _ = write!(s, " description=\"{}\"", escape(&first_paragraph(&v.description)));
     }
     s
 }
@@ -304,9 +304,10 @@ fn number(x: f64) -> String {
     }
 }
 
-/// The first line of a doc comment.
-fn first_line(doc: &str) -> &str {
-    doc.lines().map(str::trim).find(|l| !l.is_empty()).unwrap_or("")
+/// The first paragraph of a doc comment, its lines joined.
+fn first_paragraph(doc: &str) -> String {
+    let lines = doc.lines().map(str::trim).skip_while(|l| l.is_empty());
+    lines.take_while(|l| !l.is_empty()).collect::<Vec<_>>().join(" ")
 }
 
 /// `text` with XML's five special characters escaped.

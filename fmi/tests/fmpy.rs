@@ -16,6 +16,8 @@ use serde_json::json;
 mod bouncing_ball;
 #[path = "../examples/models/pendulum.rs"]
 mod pendulum;
+#[path = "../examples/models/sampled_pi.rs"]
+mod sampled_pi;
 #[path = "../examples/models/slider_crank.rs"]
 mod slider_crank;
 #[path = "../examples/models/speed_drive.rs"]
@@ -182,6 +184,57 @@ fn an_input_set_by_the_importer_through_fmpy() {
         let me = worst_of(&results, "ModelExchange", &exact, &["h", "outflow", "q"]);
         let cs = worst_of(&results, "CoSimulation", &exact, &["h", "outflow", "q"]);
         println!("{tag} tank with an input: Model Exchange {me:.1e}, Co-Simulation {cs:.1e}");
+        assert!(me < BOUNDS.0, "{tag}: Model Exchange off by {me:e}");
+        assert!(cs < BOUNDS.1, "{tag}: Co-Simulation off by {cs:e}");
+    }
+}
+
+#[test]
+fn a_sampled_controller_through_fmpy() {
+    // The exact discrete-time recursion of the loop: with u held,
+    // x(kh + s) = φ(s) x_k + (b/a)(1 − φ(s)) u_k, φ(s) = e^{−a s}; the
+    // controller I_k = I_{k−1} + k_i h (r − x_k), u_k = k_p (r − x_k) + I_k.
+    let m = sampled_pi::SampledPi::default();
+    let samples = 30;
+    let mut held = Vec::new();
+    let (mut x, mut integral) = (0.0f64, 0.0f64);
+    for _ in 0..=samples {
+        integral += m.ki * m.h * (m.r - x);
+        let u = m.kp * (m.r - x) + integral;
+        held.push((x, u));
+        x = (-m.a * m.h).exp() * x + m.b / m.a * (1.0 - (-m.a * m.h).exp()) * u;
+    }
+    let exact = |t: f64, name: &str| -> f64 {
+        let k = (t / m.h).round();
+        let at_instant = (t / m.h - k).abs() < 1e-9;
+        if at_instant && name == "u" {
+            return f64::NAN; // the instant: u before the sample, or after it
+        }
+        let k = if at_instant { k } else { (t / m.h).floor() } as usize;
+        let (xk, uk) = held[k];
+        let s = t - k as f64 * m.h;
+        let phi = (-m.a * s).exp();
+        match name {
+            "x" => phi * xk + m.b / m.a * (1.0 - phi) * uk,
+            _ => uk,
+        }
+    };
+    for tag in ["fmi3", "fmi2"] {
+        let archives = support::fmus("sampled_pi_fmu", "fmpy-sampled");
+        let fmu = if tag == "fmi3" { &archives.fmi3 } else { &archives.fmi2 };
+        let stop = samples as f64 * m.h;
+        let results = support::fmpy(json!({
+            "fmu": fmu,
+            "stop": stop,
+            "interval": m.h / 4.0,
+            "rtol": ME_RTOL,
+            "outputs": ["x", "u"],
+            "cs_start": {"solver.tolerance": CS_TOL},
+        }));
+        assert!(results["problems"].as_array().unwrap().is_empty(), "{}", results["problems"]);
+        let me = worst_of(&results, "ModelExchange", &exact, &["x", "u"]);
+        let cs = worst_of(&results, "CoSimulation", &exact, &["x", "u"]);
+        println!("{tag} sampled PI: Model Exchange {me:.1e}, Co-Simulation {cs:.1e}");
         assert!(me < BOUNDS.0, "{tag}: Model Exchange off by {me:e}");
         assert!(cs < BOUNDS.1, "{tag}: Co-Simulation off by {cs:e}");
     }
