@@ -198,7 +198,7 @@ pub fn setup_experiment<M: Model + Clone + Default + Send + Sync + 'static>(
     stop: f64,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2SetupExperiment", |e| {
-        e.instance.expect("fmi2SetupExperiment", &[Instantiated])?;
+        e.instance.expect(&[Instantiated])?;
         let tolerance = Some(tolerance).filter(|_| tolerance_defined != 0);
         let stop = Some(stop).filter(|_| stop_defined != 0);
         if !start.is_finite() {
@@ -220,7 +220,7 @@ pub fn enter_initialization_mode<M: Model + Clone + Default + Send + Sync + 'sta
     c: Fmi2Component,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2EnterInitializationMode", |e| {
-        e.instance.expect("fmi2EnterInitializationMode", &[Instantiated])?;
+        e.instance.expect(&[Instantiated])?;
         e.instance.phase = Initialization;
         Ok(())
     })
@@ -231,7 +231,7 @@ pub fn exit_initialization_mode<M: Model + Clone + Default + Send + Sync + 'stat
     c: Fmi2Component,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2ExitInitializationMode", |e| {
-        e.instance.expect("fmi2ExitInitializationMode", &[Initialization])?;
+        e.instance.expect(&[Initialization])?;
         e.instance.exit_initialization()
     })
 }
@@ -241,7 +241,7 @@ pub fn terminate<M: Model + Clone + Default + Send + Sync + 'static>(
     c: Fmi2Component,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2Terminate", |e| {
-        e.instance.expect("fmi2Terminate", &[Event, Continuous, Step, StepFailed])?;
+        e.instance.expect(&[Event, Continuous, Step, StepFailed])?;
         e.instance.phase = Terminated;
         Ok(())
     })
@@ -266,10 +266,7 @@ pub unsafe fn get_real<M: Model + Clone + Default + Send + Sync + 'static>(
     value: *mut f64,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2GetReal", |e| {
-        e.instance.expect(
-            "fmi2GetReal",
-            &[Initialization, Event, Continuous, Step, StepFailed, Terminated],
-        )?;
+        e.instance.expect(&[Initialization, Event, Continuous, Step, StepFailed, Terminated])?;
         // SAFETY: nvr values each, as FMI requires.
         let (vr, value) = unsafe { (slice(vr, nvr, "vr")?, slice_mut(value, nvr, "value")?) };
         for (k, &r) in vr.iter().enumerate() {
@@ -290,8 +287,7 @@ pub unsafe fn set_real<M: Model + Clone + Default + Send + Sync + 'static>(
     value: *const f64,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2SetReal", |e| {
-        e.instance
-            .expect("fmi2SetReal", &[Instantiated, Initialization, Event, Continuous, Step])?;
+        e.instance.expect(&[Instantiated, Initialization, Event, Continuous, Step])?;
         // SAFETY: nvr values each, as FMI requires.
         let (vr, value) = unsafe { (slice(vr, nvr, "vr")?, slice(value, nvr, "value")?) };
         for (k, &r) in vr.iter().enumerate() {
@@ -313,10 +309,15 @@ pub unsafe fn get_string<M: Model + Clone + Default + Send + Sync + 'static>(
     value: *mut *const c_char,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2GetString", |e| {
-        e.instance.expect(
-            "fmi2GetString",
-            &[Instantiated, Initialization, Event, Continuous, Step, StepFailed, Terminated],
-        )?;
+        e.instance.expect(&[
+            Instantiated,
+            Initialization,
+            Event,
+            Continuous,
+            Step,
+            StepFailed,
+            Terminated,
+        ])?;
         // SAFETY: nvr values each, as FMI requires.
         let (vr, value) = unsafe { (slice(vr, nvr, "vr")?, slice_mut(value, nvr, "value")?) };
         e.strings.clear();
@@ -340,7 +341,7 @@ pub unsafe fn set_string<M: Model + Clone + Default + Send + Sync + 'static>(
     value: *const *const c_char,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2SetString", |e| {
-        e.instance.expect("fmi2SetString", &[Instantiated, Initialization, Event, Step])?;
+        e.instance.expect(&[Instantiated, Initialization, Event, Step])?;
         // SAFETY: nvr values each, as FMI requires.
         let (vr, value) = unsafe { (slice(vr, nvr, "vr")?, slice(value, nvr, "value")?) };
         for (k, &r) in vr.iter().enumerate() {
@@ -383,8 +384,8 @@ pub fn enter_event_mode<M: Model + Clone + Default + Send + Sync + 'static>(
     c: Fmi2Component,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2EnterEventMode", |e| {
-        e.instance.expect_interface("fmi2EnterEventMode", Interface::ModelExchange)?;
-        e.instance.expect("fmi2EnterEventMode", &[Event, Continuous])?;
+        e.instance.expect_interface(Interface::ModelExchange)?;
+        e.instance.expect(&[Event, Continuous])?;
         e.instance.phase = Event;
         Ok(())
     })
@@ -399,8 +400,8 @@ pub unsafe fn new_discrete_states<M: Model + Clone + Default + Send + Sync + 'st
     info: *mut Fmi2EventInfo,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2NewDiscreteStates", |e| {
-        e.instance.expect_interface("fmi2NewDiscreteStates", Interface::ModelExchange)?;
-        e.instance.expect("fmi2NewDiscreteStates", &[Event])?;
+        e.instance.expect_interface(Interface::ModelExchange)?;
+        e.instance.expect(&[Event])?;
         // SAFETY: the importer's struct, checked for null.
         let info = unsafe { target(info, "eventInfo") }?;
         let update = e.instance.update_discrete_states()?;
@@ -419,8 +420,8 @@ pub fn enter_continuous_time_mode<M: Model + Clone + Default + Send + Sync + 'st
     c: Fmi2Component,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2EnterContinuousTimeMode", |e| {
-        e.instance.expect_interface("fmi2EnterContinuousTimeMode", Interface::ModelExchange)?;
-        e.instance.expect("fmi2EnterContinuousTimeMode", &[Event])?;
+        e.instance.expect_interface(Interface::ModelExchange)?;
+        e.instance.expect(&[Event])?;
         e.instance.phase = Continuous;
         Ok(())
     })
@@ -437,8 +438,8 @@ pub unsafe fn completed_integrator_step<M: Model + Clone + Default + Send + Sync
     terminate_simulation: *mut Fmi2Boolean,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2CompletedIntegratorStep", |e| {
-        e.instance.expect_interface("fmi2CompletedIntegratorStep", Interface::ModelExchange)?;
-        e.instance.expect("fmi2CompletedIntegratorStep", &[Continuous])?;
+        e.instance.expect_interface(Interface::ModelExchange)?;
+        e.instance.expect(&[Continuous])?;
         // SAFETY: the importer's flags, checked for null.
         let (event, stop) = unsafe {
             (
@@ -459,8 +460,8 @@ pub fn set_time<M: Model + Clone + Default + Send + Sync + 'static>(
     time: f64,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2SetTime", |e| {
-        e.instance.expect_interface("fmi2SetTime", Interface::ModelExchange)?;
-        e.instance.expect("fmi2SetTime", &[Event, Continuous])?;
+        e.instance.expect_interface(Interface::ModelExchange)?;
+        e.instance.expect(&[Event, Continuous])?;
         e.instance.set_time(time)
     })
 }
@@ -475,8 +476,8 @@ pub unsafe fn set_continuous_states<M: Model + Clone + Default + Send + Sync + '
     nx: usize,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2SetContinuousStates", |e| {
-        e.instance.expect_interface("fmi2SetContinuousStates", Interface::ModelExchange)?;
-        e.instance.expect("fmi2SetContinuousStates", &[Continuous])?;
+        e.instance.expect_interface(Interface::ModelExchange)?;
+        e.instance.expect(&[Continuous])?;
         // SAFETY: nx values, as FMI requires.
         let x = unsafe { slice(x, nx, "x") }?;
         e.instance.set_continuous_states(x)
@@ -493,8 +494,8 @@ pub unsafe fn get_derivatives<M: Model + Clone + Default + Send + Sync + 'static
     nx: usize,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2GetDerivatives", |e| {
-        e.instance.expect_interface("fmi2GetDerivatives", Interface::ModelExchange)?;
-        e.instance.expect("fmi2GetDerivatives", &[Event, Continuous, Terminated])?;
+        e.instance.expect_interface(Interface::ModelExchange)?;
+        e.instance.expect(&[Event, Continuous, Terminated])?;
         // SAFETY: nx values, as FMI requires.
         let dx = unsafe { slice_mut(dx, nx, "derivatives") }?;
         e.instance.derivatives(dx)
@@ -511,9 +512,8 @@ pub unsafe fn get_event_indicators<M: Model + Clone + Default + Send + Sync + 's
     ni: usize,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2GetEventIndicators", |e| {
-        e.instance.expect_interface("fmi2GetEventIndicators", Interface::ModelExchange)?;
-        e.instance
-            .expect("fmi2GetEventIndicators", &[Initialization, Event, Continuous, Terminated])?;
+        e.instance.expect_interface(Interface::ModelExchange)?;
+        e.instance.expect(&[Initialization, Event, Continuous, Terminated])?;
         // SAFETY: ni values, as FMI requires.
         let g = unsafe { slice_mut(g, ni, "eventIndicators") }?;
         e.instance.indicators(g)
@@ -530,9 +530,8 @@ pub unsafe fn get_continuous_states<M: Model + Clone + Default + Send + Sync + '
     nx: usize,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2GetContinuousStates", |e| {
-        e.instance.expect_interface("fmi2GetContinuousStates", Interface::ModelExchange)?;
-        e.instance
-            .expect("fmi2GetContinuousStates", &[Initialization, Event, Continuous, Terminated])?;
+        e.instance.expect_interface(Interface::ModelExchange)?;
+        e.instance.expect(&[Initialization, Event, Continuous, Terminated])?;
         // SAFETY: nx values, as FMI requires.
         let x = unsafe { slice_mut(x, nx, "x") }?;
         e.instance.get_continuous_states(x)
@@ -549,12 +548,8 @@ pub unsafe fn get_nominals<M: Model + Clone + Default + Send + Sync + 'static>(
     nx: usize,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2GetNominalsOfContinuousStates", |e| {
-        e.instance
-            .expect_interface("fmi2GetNominalsOfContinuousStates", Interface::ModelExchange)?;
-        e.instance.expect(
-            "fmi2GetNominalsOfContinuousStates",
-            &[Instantiated, Event, Continuous, Terminated],
-        )?;
+        e.instance.expect_interface(Interface::ModelExchange)?;
+        e.instance.expect(&[Instantiated, Event, Continuous, Terminated])?;
         // SAFETY: nx values, as FMI requires.
         let x = unsafe { slice_mut(x, nx, "x_nominal") }?;
         e.instance.nominals(x)
@@ -573,8 +568,8 @@ pub fn do_step<M: Model + Clone + Default + Send + Sync + 'static>(
     _no_set_prior: Fmi2Boolean,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2DoStep", |e| {
-        e.instance.expect_interface("fmi2DoStep", Interface::CoSimulation)?;
-        e.instance.expect("fmi2DoStep", &[Step])?;
+        e.instance.expect_interface(Interface::CoSimulation)?;
+        e.instance.expect(&[Step])?;
         let done = e.instance.do_step(t, h)?;
         if done.terminate {
             return Err(crate::instance::Refusal {
@@ -636,8 +631,8 @@ pub unsafe fn get_status<M: Model + Clone + Default + Send + Sync + 'static>(
     value: StatusValue<'_>,
 ) -> Fmi2Status {
     run::<M, _>(c, call, |e| {
-        e.instance.expect_interface(call, Interface::CoSimulation)?;
-        e.instance.expect(call, &[Step, StepFailed, Terminated])?;
+        e.instance.expect_interface(Interface::CoSimulation)?;
+        e.instance.expect(&[Step, StepFailed, Terminated])?;
         let unknown = || refuse(format!("{call} has no status of kind {kind}"));
         // SAFETY: the importer's pointers, checked for null.
         unsafe {
@@ -790,10 +785,7 @@ pub unsafe fn get_directional_derivative<M: Model + Clone + Default + Send + Syn
     sensitivity: *mut f64,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2GetDirectionalDerivative", |e| {
-        e.instance.expect(
-            "fmi2GetDirectionalDerivative",
-            &[Initialization, Event, Continuous, Step, StepFailed, Terminated],
-        )?;
+        e.instance.expect(&[Initialization, Event, Continuous, Step, StepFailed, Terminated])?;
         // SAFETY: the counts given, as FMI requires.
         let (u, k, s, out) = unsafe {
             (

@@ -285,27 +285,26 @@ impl<M: Model + Clone + Default + Send + Sync + 'static> Instance<M> {
         })
     }
 
-    /// Refuses a call named `call` unless the instance is in one of
-    /// `allowed`.
-    pub fn expect(&self, call: &str, allowed: &[Phase]) -> Outcome {
+    /// Refuses a call unless the instance is in one of `allowed`.
+    pub fn expect(&self, allowed: &[Phase]) -> Outcome {
         if allowed.contains(&self.phase) {
             return Ok(());
         }
         let names: Vec<&str> = allowed.iter().map(|p| p.name()).collect();
         Err(refuse(format!(
-            "{call} is not allowed in {}; it is allowed in {}",
+            "not allowed in {}; allowed in {}",
             self.phase.name(),
             names.join(", ")
         )))
     }
 
     /// Refuses a call that Model Exchange alone makes.
-    pub fn expect_interface(&self, call: &str, interface: Interface) -> Outcome {
+    pub fn expect_interface(&self, interface: Interface) -> Outcome {
         if self.interface == interface {
             return Ok(());
         }
         Err(refuse(format!(
-            "{call} belongs to {}; this instance was made for {}",
+            "belongs to {}; this instance was made for {}",
             interface_name(interface),
             interface_name(self.interface)
         )))

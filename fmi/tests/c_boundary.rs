@@ -172,9 +172,9 @@ fn misuse_is_refused_with_a_message_and_never_crashes() {
     let mut dx = [0.0; 2];
     let s = call!(fmu, "fmi3GetContinuousStateDerivatives": fn(Instance, *mut f64, usize) -> c_int, c, dx.as_mut_ptr(), 2);
     assert_eq!(s, ERROR);
-    fmu.said("is not allowed in Instantiated");
+    fmu.said("not allowed in Instantiated");
     assert_eq!(call!(fmu, "fmi3ExitInitializationMode": fn(Instance) -> c_int, c), ERROR);
-    fmu.said("is not allowed in Instantiated");
+    fmu.said("not allowed in Instantiated");
     let (s, _, _) = fmu.do_step(c, 0.0, 0.1);
     assert_eq!(s, ERROR);
     fmu.said("belongs to Co-Simulation");
@@ -211,7 +211,7 @@ fn misuse_is_refused_with_a_message_and_never_crashes() {
     let x = [1.0, 0.0];
     let s = call!(fmu, "fmi3SetContinuousStates": fn(Instance, *const f64, usize) -> c_int, c, x.as_ptr(), 2);
     assert_eq!(s, ERROR);
-    fmu.said("is not allowed in Event Mode");
+    fmu.said("not allowed in Event Mode");
     assert_eq!(call!(fmu, "fmi3EnterContinuousTimeMode": fn(Instance) -> c_int, c), OK);
     let s = call!(fmu, "fmi3SetContinuousStates": fn(Instance, *const f64, usize) -> c_int, c, x.as_ptr(), 3);
     assert_eq!(s, ERROR);
@@ -234,7 +234,7 @@ fn misuse_is_refused_with_a_message_and_never_crashes() {
     assert!(!event && !stop);
     assert_eq!(call!(fmu, "fmi3Terminate": fn(Instance) -> c_int, c), OK);
     assert_eq!(call!(fmu, "fmi3Terminate": fn(Instance) -> c_int, c), ERROR);
-    fmu.said("is not allowed in Terminated");
+    fmu.said("not allowed in Terminated");
     // Reset: back to the start, usable again.
     assert_eq!(call!(fmu, "fmi3Reset": fn(Instance) -> c_int, c), OK);
     fmu.init(c, None);
@@ -264,7 +264,7 @@ fn a_failing_step_is_an_error_with_the_reason_and_the_state_before_it() {
     // The state before the step is still readable; no further step.
     assert_eq!(fmu.get(c, X), (OK, 2.0));
     assert_eq!(fmu.do_step(c, 0.0, 0.1).0, ERROR);
-    fmu.said("is not allowed in Step Failed");
+    fmu.said("not allowed in Step Failed");
     assert_eq!(call!(fmu, "fmi3Terminate": fn(Instance) -> c_int, c), OK);
     fmu.free(c);
 }

@@ -25,12 +25,15 @@
 //!    velocities and frames, in the model language and numerically.
 //! 10. [`ensembles`]: one model run many times, on every core, and shards
 //!     of it spread over machines.
-//! 11. [`work_precision`]: registering a model in the benchmarks and
+//! 11. [`fmi`]: a model as a Functional Mock-up Unit (FMI 3.0 and 2.0,
+//!     Model Exchange and Co-Simulation) for FMPy, Simulink and the rigs.
+//! 12. [`work_precision`]: registering a model in the benchmarks and
 //!     reading a work-precision diagram.
 
 pub mod components;
 pub mod daes;
 pub mod ensembles;
+pub mod fmi;
 pub mod hybrid;
 pub mod kinematics;
 pub mod language;
