@@ -93,23 +93,32 @@ pub fn package(library: &Path, out_dir: &Path) -> Result<Archives, String> {
         fmi3: out_dir.join(format!("{id}.fmu")),
         fmi2: out_dir.join(format!("{id}_fmi2.fmu")),
     };
+    // One library in both archives: its checksum once.
+    let binary_crc = crc32(&binary);
     for (path, xml, dir) in [(&archives.fmi3, &fmi3_xml, dir3), (&archives.fmi2, &fmi2_xml, dir2)] {
         let entries = [
             ("modelDescription.xml".to_string(), xml.as_bytes()),
             (format!("binaries/{dir}/{id}.{ext}"), &binary[..]),
         ];
-        std::fs::write(path, zip(&entries)).map_err(|e| format!("{}: {e}", path.display()))?;
+        let crcs = [crc32(xml.as_bytes()), binary_crc];
+        std::fs::write(path, zip_with_crcs(&entries, &crcs))
+            .map_err(|e| format!("{}: {e}", path.display()))?;
     }
     Ok(archives)
 }
 
 /// A zip archive of `entries` (name, bytes), stored, dated 1980-01-01.
 pub fn zip(entries: &[(String, &[u8])]) -> Vec<u8> {
+    let crcs: Vec<u32> = entries.iter().map(|(_, data)| crc32(data)).collect();
+    zip_with_crcs(entries, &crcs)
+}
+
+/// [`zip`] with each entry's CRC-32 known.
+fn zip_with_crcs(entries: &[(String, &[u8])], crcs: &[u32]) -> Vec<u8> {
     let mut out = Vec::new();
     let mut central = Vec::new();
-    for (name, data) in entries {
+    for ((name, data), &crc) in entries.iter().zip(crcs) {
         let offset = out.len() as u32;
-        let crc = crc32(data);
         let size = data.len() as u32;
         let local = header(0x0403_4b50, name, crc, size, None);
         out.extend_from_slice(&local);
@@ -158,15 +167,20 @@ fn header(signature: u32, name: &str, crc: u32, size: u32, offset: Option<u32>) 
     h
 }
 
-/// CRC-32 (IEEE 802.3, reflected), as zip wants it.
+/// CRC-32 (IEEE 802.3, reflected), as zip wants it, a byte at a time
+/// from a table of the 256 bytes' remainders.
 fn crc32(data: &[u8]) -> u32 {
-    let mut crc = 0xffff_ffffu32;
-    for &b in data {
-        crc ^= u32::from(b);
+    let mut table = [0u32; 256];
+    for (b, entry) in table.iter_mut().enumerate() {
+        let mut crc = b as u32;
         for _ in 0..8 {
             crc = if crc & 1 == 1 { (crc >> 1) ^ 0xedb8_8320 } else { crc >> 1 };
         }
+        *entry = crc;
     }
+    let crc = data
+        .iter()
+        .fold(0xffff_ffffu32, |crc, &b| table[((crc ^ u32::from(b)) & 0xff) as usize] ^ (crc >> 8));
     !crc
 }
 

@@ -198,7 +198,7 @@ pub fn setup_experiment<M: Model + Clone + Default + Send + Sync + 'static>(
     stop: f64,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2SetupExperiment", |e| {
-        e.instance.expect(&[Instantiated])?;
+        e.instance.allow_in(&[Instantiated])?;
         let tolerance = Some(tolerance).filter(|_| tolerance_defined != 0);
         let stop = Some(stop).filter(|_| stop_defined != 0);
         if !start.is_finite() {
@@ -220,7 +220,7 @@ pub fn enter_initialization_mode<M: Model + Clone + Default + Send + Sync + 'sta
     c: Fmi2Component,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2EnterInitializationMode", |e| {
-        e.instance.expect(&[Instantiated])?;
+        e.instance.allow_in(&[Instantiated])?;
         e.instance.phase = Initialization;
         Ok(())
     })
@@ -231,7 +231,7 @@ pub fn exit_initialization_mode<M: Model + Clone + Default + Send + Sync + 'stat
     c: Fmi2Component,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2ExitInitializationMode", |e| {
-        e.instance.expect(&[Initialization])?;
+        e.instance.allow_in(&[Initialization])?;
         e.instance.exit_initialization()
     })
 }
@@ -241,7 +241,7 @@ pub fn terminate<M: Model + Clone + Default + Send + Sync + 'static>(
     c: Fmi2Component,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2Terminate", |e| {
-        e.instance.expect(&[Event, Continuous, Step, StepFailed])?;
+        e.instance.allow_in(&[Event, Continuous, Step, StepFailed])?;
         e.instance.phase = Terminated;
         Ok(())
     })
@@ -266,7 +266,7 @@ pub unsafe fn get_real<M: Model + Clone + Default + Send + Sync + 'static>(
     value: *mut f64,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2GetReal", |e| {
-        e.instance.expect(&[Initialization, Event, Continuous, Step, StepFailed, Terminated])?;
+        e.instance.allow_in(&[Initialization, Event, Continuous, Step, StepFailed, Terminated])?;
         // SAFETY: nvr values each, as FMI requires.
         let (vr, value) = unsafe { (slice(vr, nvr, "vr")?, slice_mut(value, nvr, "value")?) };
         for (k, &r) in vr.iter().enumerate() {
@@ -287,7 +287,7 @@ pub unsafe fn set_real<M: Model + Clone + Default + Send + Sync + 'static>(
     value: *const f64,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2SetReal", |e| {
-        e.instance.expect(&[Instantiated, Initialization, Event, Continuous, Step])?;
+        e.instance.allow_in(&[Instantiated, Initialization, Event, Continuous, Step])?;
         // SAFETY: nvr values each, as FMI requires.
         let (vr, value) = unsafe { (slice(vr, nvr, "vr")?, slice(value, nvr, "value")?) };
         for (k, &r) in vr.iter().enumerate() {
@@ -309,7 +309,7 @@ pub unsafe fn get_string<M: Model + Clone + Default + Send + Sync + 'static>(
     value: *mut *const c_char,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2GetString", |e| {
-        e.instance.expect(&[
+        e.instance.allow_in(&[
             Instantiated,
             Initialization,
             Event,
@@ -341,7 +341,7 @@ pub unsafe fn set_string<M: Model + Clone + Default + Send + Sync + 'static>(
     value: *const *const c_char,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2SetString", |e| {
-        e.instance.expect(&[Instantiated, Initialization, Event, Step])?;
+        e.instance.allow_in(&[Instantiated, Initialization, Event, Step])?;
         // SAFETY: nvr values each, as FMI requires.
         let (vr, value) = unsafe { (slice(vr, nvr, "vr")?, slice(value, nvr, "value")?) };
         for (k, &r) in vr.iter().enumerate() {
@@ -384,8 +384,8 @@ pub fn enter_event_mode<M: Model + Clone + Default + Send + Sync + 'static>(
     c: Fmi2Component,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2EnterEventMode", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Event, Continuous])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Event, Continuous])?;
         e.instance.phase = Event;
         Ok(())
     })
@@ -400,8 +400,8 @@ pub unsafe fn new_discrete_states<M: Model + Clone + Default + Send + Sync + 'st
     info: *mut Fmi2EventInfo,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2NewDiscreteStates", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Event])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Event])?;
         // SAFETY: the importer's struct, checked for null.
         let info = unsafe { target(info, "eventInfo") }?;
         let update = e.instance.update_discrete_states()?;
@@ -420,8 +420,8 @@ pub fn enter_continuous_time_mode<M: Model + Clone + Default + Send + Sync + 'st
     c: Fmi2Component,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2EnterContinuousTimeMode", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Event])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Event])?;
         e.instance.phase = Continuous;
         Ok(())
     })
@@ -438,8 +438,8 @@ pub unsafe fn completed_integrator_step<M: Model + Clone + Default + Send + Sync
     terminate_simulation: *mut Fmi2Boolean,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2CompletedIntegratorStep", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Continuous])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Continuous])?;
         // SAFETY: the importer's flags, checked for null.
         let (event, stop) = unsafe {
             (
@@ -460,8 +460,8 @@ pub fn set_time<M: Model + Clone + Default + Send + Sync + 'static>(
     time: f64,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2SetTime", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Event, Continuous])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Event, Continuous])?;
         e.instance.set_time(time)
     })
 }
@@ -476,8 +476,8 @@ pub unsafe fn set_continuous_states<M: Model + Clone + Default + Send + Sync + '
     nx: usize,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2SetContinuousStates", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Continuous])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Continuous])?;
         // SAFETY: nx values, as FMI requires.
         let x = unsafe { slice(x, nx, "x") }?;
         e.instance.set_continuous_states(x)
@@ -494,8 +494,8 @@ pub unsafe fn get_derivatives<M: Model + Clone + Default + Send + Sync + 'static
     nx: usize,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2GetDerivatives", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Event, Continuous, Terminated])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Event, Continuous, Terminated])?;
         // SAFETY: nx values, as FMI requires.
         let dx = unsafe { slice_mut(dx, nx, "derivatives") }?;
         e.instance.derivatives(dx)
@@ -512,8 +512,8 @@ pub unsafe fn get_event_indicators<M: Model + Clone + Default + Send + Sync + 's
     ni: usize,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2GetEventIndicators", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Initialization, Event, Continuous, Terminated])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Initialization, Event, Continuous, Terminated])?;
         // SAFETY: ni values, as FMI requires.
         let g = unsafe { slice_mut(g, ni, "eventIndicators") }?;
         e.instance.indicators(g)
@@ -530,8 +530,8 @@ pub unsafe fn get_continuous_states<M: Model + Clone + Default + Send + Sync + '
     nx: usize,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2GetContinuousStates", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Initialization, Event, Continuous, Terminated])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Initialization, Event, Continuous, Terminated])?;
         // SAFETY: nx values, as FMI requires.
         let x = unsafe { slice_mut(x, nx, "x") }?;
         e.instance.get_continuous_states(x)
@@ -548,8 +548,8 @@ pub unsafe fn get_nominals<M: Model + Clone + Default + Send + Sync + 'static>(
     nx: usize,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2GetNominalsOfContinuousStates", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Instantiated, Event, Continuous, Terminated])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Instantiated, Event, Continuous, Terminated])?;
         // SAFETY: nx values, as FMI requires.
         let x = unsafe { slice_mut(x, nx, "x_nominal") }?;
         e.instance.nominals(x)
@@ -568,8 +568,8 @@ pub fn do_step<M: Model + Clone + Default + Send + Sync + 'static>(
     _no_set_prior: Fmi2Boolean,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2DoStep", |e| {
-        e.instance.expect_interface(Interface::CoSimulation)?;
-        e.instance.expect(&[Step])?;
+        e.instance.require_interface(Interface::CoSimulation)?;
+        e.instance.allow_in(&[Step])?;
         let done = e.instance.do_step(t, h)?;
         if done.terminate {
             return Err(crate::instance::Refusal {
@@ -631,8 +631,8 @@ pub unsafe fn get_status<M: Model + Clone + Default + Send + Sync + 'static>(
     value: StatusValue<'_>,
 ) -> Fmi2Status {
     run::<M, _>(c, call, |e| {
-        e.instance.expect_interface(Interface::CoSimulation)?;
-        e.instance.expect(&[Step, StepFailed, Terminated])?;
+        e.instance.require_interface(Interface::CoSimulation)?;
+        e.instance.allow_in(&[Step, StepFailed, Terminated])?;
         let unknown = || refuse(format!("{call} has no status of kind {kind}"));
         // SAFETY: the importer's pointers, checked for null.
         unsafe {
@@ -785,7 +785,7 @@ pub unsafe fn get_directional_derivative<M: Model + Clone + Default + Send + Syn
     sensitivity: *mut f64,
 ) -> Fmi2Status {
     run::<M, _>(c, "fmi2GetDirectionalDerivative", |e| {
-        e.instance.expect(&[Initialization, Event, Continuous, Step, StepFailed, Terminated])?;
+        e.instance.allow_in(&[Initialization, Event, Continuous, Step, StepFailed, Terminated])?;
         // SAFETY: the counts given, as FMI requires.
         let (u, k, s, out) = unsafe {
             (

@@ -220,7 +220,7 @@ pub fn enter_initialization_mode<M: Model + Clone + Default + Send + Sync + 'sta
     stop: f64,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3EnterInitializationMode", |e| {
-        e.instance.expect(&[Instantiated])?;
+        e.instance.allow_in(&[Instantiated])?;
         let tolerance = Some(tolerance).filter(|_| tolerance_defined);
         let stop = Some(stop).filter(|_| stop_defined);
         e.instance.enter_initialization(tolerance, start, stop)
@@ -232,7 +232,7 @@ pub fn exit_initialization_mode<M: Model + Clone + Default + Send + Sync + 'stat
     c: Fmi3Instance,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3ExitInitializationMode", |e| {
-        e.instance.expect(&[Initialization])?;
+        e.instance.allow_in(&[Initialization])?;
         e.instance.exit_initialization()
     })
 }
@@ -242,8 +242,8 @@ pub fn enter_event_mode<M: Model + Clone + Default + Send + Sync + 'static>(
     c: Fmi3Instance,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3EnterEventMode", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Continuous])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Continuous])?;
         e.instance.phase = Event;
         Ok(())
     })
@@ -254,7 +254,7 @@ pub fn terminate<M: Model + Clone + Default + Send + Sync + 'static>(
     c: Fmi3Instance,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3Terminate", |e| {
-        e.instance.expect(&[Event, Continuous, Step, StepFailed])?;
+        e.instance.allow_in(&[Event, Continuous, Step, StepFailed])?;
         e.instance.phase = Terminated;
         Ok(())
     })
@@ -303,7 +303,7 @@ pub unsafe fn set_float64<M: Model + Clone + Default + Send + Sync + 'static>(
     n_values: usize,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3SetFloat64", |e| {
-        e.instance.expect(&[Instantiated, Initialization, Event, Continuous, Step])?;
+        e.instance.allow_in(&[Instantiated, Initialization, Event, Continuous, Step])?;
         scalars(nvr, n_values)?;
         // SAFETY: the counts given, as FMI requires.
         let (vr, values) =
@@ -363,7 +363,7 @@ pub unsafe fn set_string<M: Model + Clone + Default + Send + Sync + 'static>(
     n_values: usize,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3SetString", |e| {
-        e.instance.expect(&[Instantiated, Initialization, Event, Step])?;
+        e.instance.allow_in(&[Instantiated, Initialization, Event, Step])?;
         scalars(nvr, n_values)?;
         // SAFETY: the counts given, as FMI requires.
         let (vr, values) =
@@ -432,8 +432,8 @@ pub unsafe fn update_discrete_states<M: Model + Clone + Default + Send + Sync + 
     next_event_time: *mut f64,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3UpdateDiscreteStates", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Event])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Event])?;
         // SAFETY: the importer's flags, checked for null.
         let (need, stop, nominals, values, defined, next) = unsafe {
             (
@@ -461,8 +461,8 @@ pub fn enter_continuous_time_mode<M: Model + Clone + Default + Send + Sync + 'st
     c: Fmi3Instance,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3EnterContinuousTimeMode", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Event])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Event])?;
         e.instance.phase = Continuous;
         Ok(())
     })
@@ -479,8 +479,8 @@ pub unsafe fn completed_integrator_step<M: Model + Clone + Default + Send + Sync
     terminate_simulation: *mut bool,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3CompletedIntegratorStep", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Continuous])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Continuous])?;
         // SAFETY: the importer's flags, checked for null.
         let (event, stop) = unsafe {
             (
@@ -499,8 +499,8 @@ pub fn set_time<M: Model + Clone + Default + Send + Sync + 'static>(
     time: f64,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3SetTime", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Event, Continuous])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Event, Continuous])?;
         e.instance.set_time(time)
     })
 }
@@ -515,8 +515,8 @@ pub unsafe fn set_continuous_states<M: Model + Clone + Default + Send + Sync + '
     nx: usize,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3SetContinuousStates", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Continuous])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Continuous])?;
         // SAFETY: nx values, as FMI requires.
         let x = unsafe { slice(x, nx, "continuousStates") }?;
         e.instance.set_continuous_states(x)
@@ -533,8 +533,8 @@ pub unsafe fn get_derivatives<M: Model + Clone + Default + Send + Sync + 'static
     nx: usize,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3GetContinuousStateDerivatives", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Initialization, Event, Continuous, Terminated])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Initialization, Event, Continuous, Terminated])?;
         // SAFETY: nx values, as FMI requires.
         let dx = unsafe { slice_mut(dx, nx, "derivatives") }?;
         e.instance.derivatives(dx)
@@ -551,8 +551,8 @@ pub unsafe fn get_event_indicators<M: Model + Clone + Default + Send + Sync + 's
     ni: usize,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3GetEventIndicators", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Initialization, Event, Continuous, Terminated])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Initialization, Event, Continuous, Terminated])?;
         // SAFETY: ni values, as FMI requires.
         let g = unsafe { slice_mut(g, ni, "eventIndicators") }?;
         e.instance.indicators(g)
@@ -569,8 +569,8 @@ pub unsafe fn get_continuous_states<M: Model + Clone + Default + Send + Sync + '
     nx: usize,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3GetContinuousStates", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Initialization, Event, Continuous, Terminated])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Initialization, Event, Continuous, Terminated])?;
         // SAFETY: nx values, as FMI requires.
         let x = unsafe { slice_mut(x, nx, "continuousStates") }?;
         e.instance.get_continuous_states(x)
@@ -587,8 +587,8 @@ pub unsafe fn get_nominals<M: Model + Clone + Default + Send + Sync + 'static>(
     nx: usize,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3GetNominalsOfContinuousStates", |e| {
-        e.instance.expect_interface(Interface::ModelExchange)?;
-        e.instance.expect(&[Instantiated, Initialization, Event, Continuous, Terminated])?;
+        e.instance.require_interface(Interface::ModelExchange)?;
+        e.instance.allow_in(&[Instantiated, Initialization, Event, Continuous, Terminated])?;
         // SAFETY: nx values, as FMI requires.
         let x = unsafe { slice_mut(x, nx, "nominals") }?;
         e.instance.nominals(x)
@@ -621,7 +621,7 @@ pub fn enter_step_mode<M: Model + Clone + Default + Send + Sync + 'static>(
     c: Fmi3Instance,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3EnterStepMode", |e| {
-        e.instance.expect_interface(Interface::CoSimulation)?;
+        e.instance.require_interface(Interface::CoSimulation)?;
         Err(refuse(format!(
             "this FMU has no co-simulation event mode; it is in {} already",
             e.instance.phase.name()
@@ -646,8 +646,8 @@ pub unsafe fn do_step<M: Model + Clone + Default + Send + Sync + 'static>(
     last_successful_time: *mut f64,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3DoStep", |e| {
-        e.instance.expect_interface(Interface::CoSimulation)?;
-        e.instance.expect(&[Step])?;
+        e.instance.require_interface(Interface::CoSimulation)?;
+        e.instance.allow_in(&[Step])?;
         // SAFETY: the importer's flags, checked for null.
         let (event, stop, early, last) = unsafe {
             (
@@ -806,7 +806,7 @@ pub unsafe fn get_directional_derivative<M: Model + Clone + Default + Send + Syn
     n_sensitivity: usize,
 ) -> Fmi3Status {
     run::<M, _>(c, "fmi3GetDirectionalDerivative", |e| {
-        e.instance.expect(&[Initialization, Event, Continuous, Step, StepFailed, Terminated])?;
+        e.instance.allow_in(&[Initialization, Event, Continuous, Step, StepFailed, Terminated])?;
         // SAFETY: the counts given, as FMI requires.
         let (u, k, s, out) = unsafe {
             (

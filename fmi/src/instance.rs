@@ -286,7 +286,7 @@ impl<M: Model + Clone + Default + Send + Sync + 'static> Instance<M> {
     }
 
     /// Refuses a call unless the instance is in one of `allowed`.
-    pub fn expect(&self, allowed: &[Phase]) -> Outcome {
+    pub fn allow_in(&self, allowed: &[Phase]) -> Outcome {
         if allowed.contains(&self.phase) {
             return Ok(());
         }
@@ -299,7 +299,7 @@ impl<M: Model + Clone + Default + Send + Sync + 'static> Instance<M> {
     }
 
     /// Refuses a call that Model Exchange alone makes.
-    pub fn expect_interface(&self, interface: Interface) -> Outcome {
+    pub fn require_interface(&self, interface: Interface) -> Outcome {
         if self.interface == interface {
             return Ok(());
         }

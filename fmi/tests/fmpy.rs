@@ -76,8 +76,8 @@ const BOUNDS: (f64, f64) = (2e3 * ME_RTOL, 1e2 * CS_TOL);
 fn check(name: &str, native: &Solution, stop: f64, outputs: &[&str]) -> serde_json::Value {
     let bounds = BOUNDS;
     let mut kept = serde_json::Value::Null;
+    let archives = support::fmus(name, &format!("fmpy-{name}"));
     for (version, tag) in [("3.0", "fmi3"), ("2.0", "fmi2")] {
-        let archives = support::fmus(name, &format!("fmpy-{name}"));
         let fmu = if tag == "fmi3" { &archives.fmi3 } else { &archives.fmi2 };
         let results = support::fmpy(json!({
             "fmu": fmu,
@@ -158,8 +158,7 @@ fn an_input_set_by_the_importer_through_fmpy() {
     // two pieces, the second from where the first ended.
     let options = Options::new().method(Method::Dop853).rtol(1e-12).atol(1e-12);
     let first = tank::Tank::default().simulate(0.0, 5.0, &options).unwrap();
-    let mut filling = tank::Tank::default();
-    filling.q = Input::constant(0.6);
+    let filling = tank::Tank { q: Input::constant(0.6), ..Default::default() };
     let second = filling.simulate_from(5.0, first.final_state(), 10.0, &options).unwrap();
     let exact = |t: f64, name: &str| -> f64 {
         if t == 5.0 && name == "q" {
@@ -168,8 +167,8 @@ fn an_input_set_by_the_importer_through_fmpy() {
         let piece = if t <= 5.0 { &first } else { &second };
         piece.at(t, name).unwrap()
     };
+    let archives = support::fmus("tank_fmu", "fmpy-tank");
     for tag in ["fmi3", "fmi2"] {
-        let archives = support::fmus("tank_fmu", "fmpy-tank");
         let fmu = if tag == "fmi3" { &archives.fmi3 } else { &archives.fmi2 };
         let results = support::fmpy(json!({
             "fmu": fmu,
@@ -219,8 +218,8 @@ fn a_sampled_controller_through_fmpy() {
             _ => uk,
         }
     };
+    let archives = support::fmus("sampled_pi_fmu", "fmpy-sampled");
     for tag in ["fmi3", "fmi2"] {
-        let archives = support::fmus("sampled_pi_fmu", "fmpy-sampled");
         let fmu = if tag == "fmi3" { &archives.fmi3 } else { &archives.fmi2 };
         let stop = samples as f64 * m.h;
         let results = support::fmpy(json!({
