@@ -208,7 +208,7 @@ pub unsafe fn slice<'a, T>(ptr: *const T, n: usize, what: &str) -> Outcome<&'a [
     Ok(unsafe { std::slice::from_raw_parts(ptr, n) })
 }
 
-/// The `n` writable values at `ptr`, as [`slice`].
+/// The `n` writable values at `ptr`, as [`slice()`].
 ///
 /// # Safety
 /// A non-null `ptr` must point to `n` writable values, as FMI requires.
