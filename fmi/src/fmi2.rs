@@ -5,6 +5,7 @@
 
 use crate::boundary::{self, guarded, slice, slice_mut, target, text, Entry, Logger};
 use crate::description::{instantiation_token, FmiVersion};
+use crate::fmu_state;
 use crate::instance::{refuse, Interface, Outcome, Phase, Status};
 use daegen_runtime::Model;
 use std::ffi::{c_char, c_int, c_uint, c_void, CString};
@@ -658,15 +659,8 @@ pub unsafe fn get_fmu_state<M: Model + Clone + Default + Send + Sync + 'static>(
     c: Fmi2Component,
     state: *mut *mut c_void,
 ) -> Fmi2Status {
-    run::<M, _>(c, "fmi2GetFMUstate", |e| {
-        // SAFETY: the importer's pointer, checked for null.
-        let state = unsafe { target(state, "FMUstate") }?;
-        let snapshot = e.instance.snapshot();
-        if state.is_null() || !boundary::replace_state(*state, snapshot.clone()) {
-            *state = boundary::keep_state(snapshot);
-        }
-        Ok(())
-    })
+    // SAFETY: as this function's contract.
+    run::<M, _>(c, "fmi2GetFMUstate", |e| unsafe { fmu_state::get(e, state) })
 }
 
 /// `fmi2SetFMUstate`.
@@ -674,10 +668,7 @@ pub fn set_fmu_state<M: Model + Clone + Default + Send + Sync + 'static>(
     c: Fmi2Component,
     state: *mut c_void,
 ) -> Fmi2Status {
-    run::<M, _>(c, "fmi2SetFMUstate", |e| {
-        let snapshot = boundary::state(state)?;
-        e.instance.restore(&snapshot)
-    })
+    run::<M, _>(c, "fmi2SetFMUstate", |e| fmu_state::set(e, state))
 }
 
 /// `fmi2FreeFMUstate`.
@@ -688,18 +679,8 @@ pub unsafe fn free_fmu_state<M: Model + Clone + Default + Send + Sync + 'static>
     c: Fmi2Component,
     state: *mut *mut c_void,
 ) -> Fmi2Status {
-    run::<M, _>(c, "fmi2FreeFMUstate", |_| {
-        // SAFETY: the importer's pointer, checked for null.
-        let state = unsafe { target(state, "FMUstate") }?;
-        if state.is_null() {
-            return Ok(());
-        }
-        if !boundary::free_state(*state) {
-            return Err(refuse(format!("{:p} is not a live FMU state", *state)));
-        }
-        *state = std::ptr::null_mut();
-        Ok(())
-    })
+    // SAFETY: as this function's contract.
+    run::<M, _>(c, "fmi2FreeFMUstate", |_| unsafe { fmu_state::free(state) })
 }
 
 /// `fmi2SerializedFMUstateSize`.
@@ -711,12 +692,8 @@ pub unsafe fn serialized_size<M: Model + Clone + Default + Send + Sync + 'static
     state: *mut c_void,
     size: *mut usize,
 ) -> Fmi2Status {
-    run::<M, _>(c, "fmi2SerializedFMUstateSize", |_| {
-        // SAFETY: the importer's pointer, checked for null.
-        let size = unsafe { target(size, "size") }?;
-        *size = boundary::state(state)?.len() * 8;
-        Ok(())
-    })
+    // SAFETY: as this function's contract.
+    run::<M, _>(c, "fmi2SerializedFMUstateSize", |_| unsafe { fmu_state::size(state, size) })
 }
 
 /// `fmi2SerializeFMUstate`: the state's numbers, little-endian.
@@ -729,21 +706,8 @@ pub unsafe fn serialize<M: Model + Clone + Default + Send + Sync + 'static>(
     bytes: *mut u8,
     size: usize,
 ) -> Fmi2Status {
-    run::<M, _>(c, "fmi2SerializeFMUstate", |_| {
-        let snapshot = boundary::state(state)?;
-        if size != snapshot.len() * 8 {
-            return Err(refuse(format!(
-                "the buffer has {size} bytes; the state needs {} (fmi2SerializedFMUstateSize)",
-                snapshot.len() * 8
-            )));
-        }
-        // SAFETY: size bytes, as FMI requires.
-        let out = unsafe { slice_mut(bytes, size, "serializedState") }?;
-        for (chunk, v) in out.chunks_exact_mut(8).zip(&snapshot) {
-            chunk.copy_from_slice(&v.to_le_bytes());
-        }
-        Ok(())
-    })
+    // SAFETY: as this function's contract.
+    run::<M, _>(c, "fmi2SerializeFMUstate", |_| unsafe { fmu_state::serialize(state, bytes, size) })
 }
 
 /// `fmi2DeSerializeFMUstate`.
@@ -757,17 +721,9 @@ pub unsafe fn deserialize<M: Model + Clone + Default + Send + Sync + 'static>(
     size: usize,
     state: *mut *mut c_void,
 ) -> Fmi2Status {
-    run::<M, _>(c, "fmi2DeSerializeFMUstate", |e| {
-        // SAFETY: size bytes and the importer's pointer, as FMI requires.
-        let (bytes, state) =
-            unsafe { (slice(bytes, size, "serializedState")?, target(state, "FMUstate")?) };
-        let snapshot = boundary::numbers(bytes)?;
-        // Check it is this model's before keeping it.
-        let mut probe =
-            crate::instance::Instance::<M>::new(e.instance.interface).map_err(refuse)?;
-        probe.restore(&snapshot)?;
-        *state = boundary::keep_state(snapshot);
-        Ok(())
+    // SAFETY: as this function's contract.
+    run::<M, _>(c, "fmi2DeSerializeFMUstate", |e| unsafe {
+        fmu_state::deserialize(e, bytes, size, state)
     })
 }
 

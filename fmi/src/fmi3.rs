@@ -9,6 +9,7 @@
 
 use crate::boundary::{self, guarded, slice, slice_mut, target, text, Entry, Logger};
 use crate::description::{instantiation_token, FmiVersion};
+use crate::fmu_state;
 use crate::instance::{refuse, Interface, Outcome, Phase, Status};
 use daegen_runtime::Model;
 use std::ffi::{c_char, c_int, c_void, CString};
@@ -677,15 +678,8 @@ pub unsafe fn get_fmu_state<M: Model + Clone + Default + Send + Sync + 'static>(
     c: Fmi3Instance,
     state: *mut *mut c_void,
 ) -> Fmi3Status {
-    run::<M, _>(c, "fmi3GetFMUState", |e| {
-        // SAFETY: the importer's pointer, checked for null.
-        let state = unsafe { target(state, "FMUState") }?;
-        let snapshot = e.instance.snapshot();
-        if state.is_null() || !boundary::replace_state(*state, snapshot.clone()) {
-            *state = boundary::keep_state(snapshot);
-        }
-        Ok(())
-    })
+    // SAFETY: as this function's contract.
+    run::<M, _>(c, "fmi3GetFMUState", |e| unsafe { fmu_state::get(e, state) })
 }
 
 /// `fmi3SetFMUState`.
@@ -693,10 +687,7 @@ pub fn set_fmu_state<M: Model + Clone + Default + Send + Sync + 'static>(
     c: Fmi3Instance,
     state: *mut c_void,
 ) -> Fmi3Status {
-    run::<M, _>(c, "fmi3SetFMUState", |e| {
-        let snapshot = boundary::state(state)?;
-        e.instance.restore(&snapshot)
-    })
+    run::<M, _>(c, "fmi3SetFMUState", |e| fmu_state::set(e, state))
 }
 
 /// `fmi3FreeFMUState`.
@@ -707,18 +698,8 @@ pub unsafe fn free_fmu_state<M: Model + Clone + Default + Send + Sync + 'static>
     c: Fmi3Instance,
     state: *mut *mut c_void,
 ) -> Fmi3Status {
-    run::<M, _>(c, "fmi3FreeFMUState", |_| {
-        // SAFETY: the importer's pointer, checked for null.
-        let state = unsafe { target(state, "FMUState") }?;
-        if state.is_null() {
-            return Ok(());
-        }
-        if !boundary::free_state(*state) {
-            return Err(refuse(format!("{:p} is not a live FMU state", *state)));
-        }
-        *state = std::ptr::null_mut();
-        Ok(())
-    })
+    // SAFETY: as this function's contract.
+    run::<M, _>(c, "fmi3FreeFMUState", |_| unsafe { fmu_state::free(state) })
 }
 
 /// `fmi3SerializedFMUStateSize`.
@@ -730,12 +711,8 @@ pub unsafe fn serialized_size<M: Model + Clone + Default + Send + Sync + 'static
     state: *mut c_void,
     size: *mut usize,
 ) -> Fmi3Status {
-    run::<M, _>(c, "fmi3SerializedFMUStateSize", |_| {
-        // SAFETY: the importer's pointer, checked for null.
-        let size = unsafe { target(size, "size") }?;
-        *size = boundary::state(state)?.len() * 8;
-        Ok(())
-    })
+    // SAFETY: as this function's contract.
+    run::<M, _>(c, "fmi3SerializedFMUStateSize", |_| unsafe { fmu_state::size(state, size) })
 }
 
 /// `fmi3SerializeFMUState`: the state's numbers, little-endian.
@@ -748,21 +725,8 @@ pub unsafe fn serialize<M: Model + Clone + Default + Send + Sync + 'static>(
     bytes: *mut u8,
     size: usize,
 ) -> Fmi3Status {
-    run::<M, _>(c, "fmi3SerializeFMUState", |_| {
-        let snapshot = boundary::state(state)?;
-        if size != snapshot.len() * 8 {
-            return Err(refuse(format!(
-                "the buffer has {size} bytes; the state needs {} (fmi3SerializedFMUStateSize)",
-                snapshot.len() * 8
-            )));
-        }
-        // SAFETY: size bytes, as FMI requires.
-        let out = unsafe { slice_mut(bytes, size, "serializedState") }?;
-        for (chunk, v) in out.chunks_exact_mut(8).zip(&snapshot) {
-            chunk.copy_from_slice(&v.to_le_bytes());
-        }
-        Ok(())
-    })
+    // SAFETY: as this function's contract.
+    run::<M, _>(c, "fmi3SerializeFMUState", |_| unsafe { fmu_state::serialize(state, bytes, size) })
 }
 
 /// `fmi3DeserializeFMUState`.
@@ -776,16 +740,9 @@ pub unsafe fn deserialize<M: Model + Clone + Default + Send + Sync + 'static>(
     size: usize,
     state: *mut *mut c_void,
 ) -> Fmi3Status {
-    run::<M, _>(c, "fmi3DeserializeFMUState", |e| {
-        // SAFETY: size bytes and the importer's pointer, as FMI requires.
-        let (bytes, state) =
-            unsafe { (slice(bytes, size, "serializedState")?, target(state, "FMUState")?) };
-        let snapshot = boundary::numbers(bytes)?;
-        let mut probe =
-            crate::instance::Instance::<M>::new(e.instance.interface).map_err(refuse)?;
-        probe.restore(&snapshot)?;
-        *state = boundary::keep_state(snapshot);
-        Ok(())
+    // SAFETY: as this function's contract.
+    run::<M, _>(c, "fmi3DeserializeFMUState", |e| unsafe {
+        fmu_state::deserialize(e, bytes, size, state)
     })
 }
 

@@ -10,7 +10,7 @@
 //! `modelDescription.xml` from them, with the model structure its
 //! Jacobian's pattern gives; [`instance`] is one instance, what every call
 //! computes; [`fmi2`] and [`fmi3`] are the two standards' C functions over
-//! it, each checking its state machine; [`boundary`] keeps the C boundary
+//! it, each checking its state machine, with [`fmu_state`] what they share; [`boundary`] keeps the C boundary
 //! safe (handles, locks, no unwinding); [`export`] makes the symbols;
 //! [`archive`] writes the FMUs.
 
@@ -20,6 +20,7 @@ pub mod description;
 pub mod export;
 pub mod fmi2;
 pub mod fmi3;
+pub mod fmu_state;
 pub mod instance;
 pub mod variables;
 

@@ -1,43 +1,17 @@
 use daegen::prelude::*;
-
-/// A permanent-magnet DC motor: armature resistance and inductance, the
-/// EMF, and the rotor's inertia, between two pins and a shaft.
-#[component]
-fn dc_motor() {
-    /// Armature resistance (Ω).
-    let r = param(1.0);
-    /// Armature inductance (H).
-    let l = param(0.5e-3);
-    /// Motor constant (V s/rad).
-    let k = param(0.05);
-    /// Rotor inertia (kg m²).
-    let j = param(1e-4);
-    let p = pin();
-    let n = pin();
-    let shaft = flange();
-    let armature = resistor(r);
-    let winding = inductor(l);
-    let emf = emf(k);
-    let rotor = inertia(j);
-    connect(p, armature.p);
-    connect(armature.n, winding.p);
-    connect(winding.n, emf.p);
-    connect(emf.n, n);
-    connect(emf.flange, rotor.flange_a);
-    connect(rotor.flange_b, shaft);
-}
+use daegen_parts_example::dc_motor;
 
 /// A DC motor under a PI speed controller, built from the standard
 /// library's parts across the electrical, mechanical and control
-/// domains, with viscous friction and a load torque of 0.02 N m from
-/// t = 0.3 s.
+/// domains and a motor from a crate of components, with viscous friction
+/// and a load torque of 0.02 N m from t = 0.3 s.
 #[dae_model]
 pub fn speed_drive() {
     let reference = constant(100.0);
     let controller = pi_controller(kp = 0.02, ki = 0.5);
     let sensor = speed_sensor();
     let supply = signal_voltage();
-    let motor = dc_motor(k = 0.05);
+    let motor = dc_motor(l = 0.5e-3, k = 0.05, j = 1e-4);
     let friction = damper(1e-5);
     let housing = fixed();
     let load = signal_torque();
