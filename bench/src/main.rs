@@ -20,7 +20,8 @@
 //! physics written flat, and times the expansion of ladders of parts
 //! (`results/components.md`);
 //! `--hybrid` times a bouncing ball and a PI loop sampled at 1 kHz against
-//! heyoka (`results/hybrid.md`);
+//! heyoka (`results/hybrid.md`); `--fmi` times an FMU's calls against the
+//! model it wraps (`results/fmi.md`);
 //! `--auto` times `Method::Auto` against the best single method on every
 //! reference problem and an explicit pair on a stiff problem
 //! (`results/auto.md`);
@@ -48,6 +49,7 @@ mod auto;
 mod components;
 mod dae;
 mod ensemble;
+mod fmi;
 mod hybrid;
 #[cfg(feature = "sundials")]
 mod large;
@@ -542,6 +544,13 @@ fn main() {
     if has("--components") {
         let text = components::components_section();
         let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join("components.md");
+        let _ = std::fs::write(&out, &text);
+        println!("{text}");
+        return;
+    }
+    if has("--fmi") {
+        let text = fmi::fmi_section();
+        let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join("fmi.md");
         let _ = std::fs::write(&out, &text);
         println!("{text}");
         return;

@@ -1,7 +1,8 @@
 //! What keeps the C boundary safe whatever the importer does: instances
 //! and FMU states are handed out as handles (numbers, never reused) that
-//! every call looks up before it touches anything, so a null, stale,
-//! freed or foreign pointer is refused, not dereferenced; each instance
+//! every call looks up before it touches anything (in this thread's last
+//! instance, checked alive, then the registry), so a null, stale, freed
+//! or foreign pointer is refused, not dereferenced; each instance
 //! has its own lock, so instances run on different threads at once and
 //! two threads calling one instance at the same time get an error, not a
 //! race; every call runs under `catch_unwind`, so a panic becomes a
@@ -12,10 +13,11 @@
 use crate::instance::{refuse, Instance, Outcome, Status};
 use daegen_runtime::Model;
 use std::any::Any;
+use std::cell::RefCell;
 use std::collections::HashMap;
 use std::ffi::{c_char, c_void, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, TryLockError};
 
 /// Where an instance's messages go: the importer's callback, wrapped by
@@ -41,11 +43,25 @@ struct Shared<M: Model> {
 
 type Registry<T> = Mutex<HashMap<usize, T>>;
 
+/// A registered instance, of whatever model, and whether it is still
+/// registered.
+#[derive(Clone)]
+struct Slot {
+    alive: Arc<AtomicBool>,
+    instance: Arc<dyn Any + Send + Sync>,
+}
+
 static NEXT_HANDLE: AtomicUsize = AtomicUsize::new(1);
 
-fn instances() -> &'static Registry<Arc<dyn Any + Send + Sync>> {
-    static INSTANCES: std::sync::OnceLock<Registry<Arc<dyn Any + Send + Sync>>> =
-        std::sync::OnceLock::new();
+thread_local! {
+    /// The instance this thread called last, by handle: a run of calls on
+    /// one instance (an importer's integrator) finds it here without the
+    /// registry's lock, checking only that it is still alive.
+    static LAST: RefCell<Option<(usize, Slot)>> = const { RefCell::new(None) };
+}
+
+fn instances() -> &'static Registry<Slot> {
+    static INSTANCES: std::sync::OnceLock<Registry<Slot>> = std::sync::OnceLock::new();
     INSTANCES.get_or_init(Default::default)
 }
 
@@ -67,19 +83,40 @@ fn new_handle() -> usize {
 /// instance pointer.
 pub fn register<M: Model + Send + Sync + 'static>(entry: Entry<M>, log: Logger) -> *mut c_void {
     let handle = new_handle();
-    let shared: Arc<dyn Any + Send + Sync> = Arc::new(Shared { log, entry: Mutex::new(entry) });
-    lock(instances()).insert(handle, shared);
+    let instance: Arc<dyn Any + Send + Sync> = Arc::new(Shared { log, entry: Mutex::new(entry) });
+    let slot = Slot { alive: Arc::new(AtomicBool::new(true)), instance };
+    lock(instances()).insert(handle, slot);
     handle as *mut c_void
 }
 
 /// Frees the instance behind `handle`; false if there is none.
 pub fn release(handle: *mut c_void) -> bool {
-    lock(instances()).remove(&(handle as usize)).is_some()
+    let Some(slot) = lock(instances()).remove(&(handle as usize)) else {
+        return false;
+    };
+    slot.alive.store(false, Ordering::Release);
+    // This thread's reference goes now; another thread's when it calls
+    // another instance.
+    LAST.with(|last| {
+        if let Ok(mut last) = last.try_borrow_mut() {
+            if last.as_ref().is_some_and(|(h, _)| *h == handle as usize) {
+                *last = None;
+            }
+        }
+    });
+    true
 }
 
-fn shared<M: Model + Send + Sync + 'static>(handle: *mut c_void) -> Option<Arc<Shared<M>>> {
-    let any = lock(instances()).get(&(handle as usize))?.clone();
-    any.downcast::<Shared<M>>().ok()
+/// The registered instance behind `handle` from the registry, which
+/// this thread's cache then holds.
+fn registered(handle: *mut c_void) -> Option<Slot> {
+    let slot = lock(instances()).get(&(handle as usize))?.clone();
+    LAST.with(|last| {
+        if let Ok(mut last) = last.try_borrow_mut() {
+            *last = Some((handle as usize, slot.clone()));
+        }
+    });
+    Some(slot)
 }
 
 /// Runs `body` on the instance behind `handle` for the call named `call`:
@@ -90,13 +127,40 @@ where
     M: Model + Send + Sync + 'static,
     F: FnOnce(&mut Entry<M>) -> Outcome,
 {
-    let Some(shared) = shared::<M>(handle) else {
+    let mut body = Some(body);
+    // This thread's last instance, borrowed in place: no registry lock,
+    // no reference count touched.
+    let cached = LAST.with(|last| {
+        let last = last.try_borrow().ok()?;
+        let (h, slot) = last.as_ref()?;
+        if *h != handle as usize || !slot.alive.load(Ordering::Acquire) {
+            return None;
+        }
+        let shared = slot.instance.downcast_ref::<Shared<M>>()?;
+        Some(call_on(shared, call, body.take()?))
+    });
+    if let Some(status) = cached {
+        return status;
+    }
+    let slot = registered(handle);
+    let (Some(shared), Some(body)) =
+        (slot.as_ref().and_then(|s| s.instance.downcast_ref::<Shared<M>>()), body.take())
+    else {
         // No callback to log through: the pointer is not an instance.
         eprintln!(
             "{call}: {handle:p} is not a live instance of this FMU (null, freed, or another FMU's)"
         );
         return Status::Error;
     };
+    call_on(shared, call, body)
+}
+
+/// Runs `body` on `shared`'s entry under its lock and `catch_unwind`.
+fn call_on<M, F>(shared: &Shared<M>, call: &str, body: F) -> Status
+where
+    M: Model + Send + Sync + 'static,
+    F: FnOnce(&mut Entry<M>) -> Outcome,
+{
     let mut entry = match shared.entry.try_lock() {
         Ok(entry) => entry,
         Err(TryLockError::WouldBlock) => {
@@ -147,16 +211,6 @@ where
                 &format!("{call}: internal error in the FMU ({what}); free the instance"),
             );
             Status::Fatal
-        }
-    }
-}
-
-/// Logs a debug message of the instance in `entry` if debug logging is on.
-pub fn debug<M: Model + Send + Sync + 'static>(handle: *mut c_void, message: &str) {
-    if let Some(shared) = shared::<M>(handle) {
-        let on = shared.entry.try_lock().map(|e| e.debug).unwrap_or(false);
-        if on {
-            (shared.log)(Status::Ok, "logEvents", message);
         }
     }
 }

@@ -608,14 +608,14 @@ impl<M: Model + Clone + Default + Send + Sync + 'static> Instance<M> {
     /// tolerance), and whether to stop.
     pub fn completed_integrator_step(&mut self) -> (bool, bool) {
         let m = M::INFO.events.len();
-        let mut g = vec![0.0; m];
-        self.model.events(self.t, &self.y, &mut g);
+        let g = &mut self.scratch[..m];
+        self.model.events(self.t, &self.y, g);
         // Past a crossing the importer is about to report, the point
         // before it is what the event update compares with.
         let crossing = (0..m)
             .any(|k| instants::fires(M::INFO.events[k].direction, self.known_indicators[k], g[k]));
         if !crossing {
-            self.known_indicators = g;
+            self.known_indicators.copy_from_slice(g);
         }
         if !M::CONSTRAINTS.is_empty() {
             let drift = instants::constraint_residual(&self.model, self.t, &self.y);
