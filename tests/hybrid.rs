@@ -1106,3 +1106,30 @@ fn a_clock_below_the_time_resolution_is_refused() {
     let sol = TooFastAClock::default().simulate(0.0, 1.0, &Options::new()).expect("runs");
     assert_eq!(sol.last("n").unwrap(), 11.0);
 }
+
+#[test]
+fn a_run_that_continues_another_acts_its_start_instant_once() {
+    // One run to 1 s, and the same in two that meet at a sample instant:
+    // the first acts at 0.5 s at its end, the second starts there with
+    // `continues(true)` and does not act again. Every instant restarts the
+    // method, so the two ways compute the same steps, bit for bit.
+    let model = SampledPi::default();
+    for method in adaptive_methods_for::<SampledPi>() {
+        let opts = Options::new().method(method).tolerance(1e-10);
+        let whole = model.simulate(0.0, 1.0, &opts).unwrap();
+        let first = model.simulate(0.0, 0.5, &opts).unwrap();
+        assert_eq!(first.jumps().last().map(|j| j.t), Some(0.5), "{method:?}");
+        let second =
+            model.simulate_from(0.5, first.final_state(), 1.0, &opts.continues(true)).unwrap();
+        assert!(second.jumps().iter().all(|j| j.t > 0.5), "{method:?}");
+        for name in ["x", "u", "integral"] {
+            let (a, b) = (whole.last(name).unwrap(), second.last(name).unwrap());
+            assert_eq!(a.to_bits(), b.to_bits(), "{method:?} {name}: {a} vs {b}");
+        }
+        // Without it, the instant at 0.5 s acts twice: the integral sums
+        // its error twice.
+        let again = model.simulate_from(0.5, first.final_state(), 1.0, &opts).unwrap();
+        assert_eq!(again.jumps()[0].t, 0.5);
+        assert_ne!(again.last("integral").unwrap(), whole.last("integral").unwrap());
+    }
+}
