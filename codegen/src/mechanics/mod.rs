@@ -4,8 +4,8 @@
 //! spatial scenes in the global formulation (`spatial`) or the recursive
 //! one (`spatial_recursive`, with `spatial_joint_motion` and
 //! `joint_space_dynamics` over the tree of `spatial_tree`, and
-//! `spatial_vectors` and `algebra`), and the names a scene answers to
-//! (`names`). The lowering hands scene statements over through
+//! `spatial_vectors` and `algebra`), robots read from URDF files
+//! (`urdf`), and the names a scene answers to (`names`). The lowering hands scene statements over through
 //! `front::lower::SceneLanguage`, which `Scene` implements; a scene sees
 //! the model being built and the lowering's public operations, nothing of
 //! its scopes.
@@ -21,6 +21,7 @@ pub mod spatial_recursive;
 pub mod spatial_tree;
 pub mod spatial_vectors;
 pub mod topology;
+pub mod urdf;
 
 use crate::front::lower::Lower;
 use crate::{Id, SymbolId};

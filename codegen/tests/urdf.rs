@@ -1,0 +1,270 @@
+//! Robots read from URDF: the file as written (with the line of each
+//! mistake), and the kinematic tree made of it, links welded by fixed
+//! joints merged with their inertias combined. Expected values are worked
+//! by hand from the parallel-axis theorem and URDF's rpy convention.
+
+use daegen_codegen::mechanics::urdf::parse::{parse, JointKind};
+use daegen_codegen::mechanics::urdf::tree::{locate, tree};
+use daegen_codegen::mechanics::urdf::Pose;
+
+/// A base, an upper arm on a revolute joint, a hand welded to its end.
+const ARM: &str = r#"<?xml version="1.0"?>
+<robot name="arm">
+  <link name="base"/>
+  <link name="upper">
+    <inertial>
+      <origin xyz="0 0 0" rpy="0 0 0"/>
+      <mass value="1.0"/>
+      <inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/>
+    </inertial>
+    <visual><geometry><mesh filename="package://arm/upper.stl"/></geometry></visual>
+  </link>
+  <link name="hand">
+    <inertial>
+      <mass value="1.0"/>
+      <inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/>
+    </inertial>
+  </link>
+  <joint name="shoulder" type="revolute">
+    <parent link="base"/>
+    <child link="upper"/>
+    <origin xyz="0 0 0.1" rpy="0 0 0"/>
+    <axis xyz="0 0 2"/>
+    <limit lower="-1.5" upper="1.5" effort="10" velocity="2"/>
+    <dynamics damping="0.3" friction="0.1"/>
+  </joint>
+  <joint name="wrist" type="fixed">
+    <parent link="upper"/>
+    <child link="hand"/>
+    <origin xyz="0.5 0 0"/>
+  </joint>
+</robot>
+"#;
+
+#[test]
+fn a_file_reads_as_written() {
+    let robot = parse(ARM).unwrap();
+    assert_eq!(robot.name, "arm");
+    assert_eq!(robot.links.len(), 3);
+    assert_eq!(robot.links[1].line, 4);
+    let shoulder = &robot.joints[0];
+    assert_eq!((shoulder.kind, shoulder.line), (JointKind::Revolute, 18));
+    assert_eq!(shoulder.axis, [0.0, 0.0, 1.0], "the axis is made unit");
+    assert_eq!(shoulder.origin, Pose { xyz: [0.0, 0.0, 0.1], rpy: [0.0; 3] });
+    assert_eq!(shoulder.limits, Some((-1.5, 1.5)));
+    assert_eq!((shoulder.damping, shoulder.friction), (0.3, 0.1));
+    assert_eq!(robot.joints[1].axis, [1.0, 0.0, 0.0], "the default axis");
+}
+
+#[test]
+fn welded_links_merge_by_the_parallel_axis_theorem() {
+    let t = tree(&parse(ARM).unwrap()).unwrap();
+    // One moving joint: one body, the upper arm with the hand welded to it.
+    assert_eq!(t.bodies.len(), 1);
+    let body = &t.bodies[0];
+    assert_eq!(body.link, "upper");
+    assert_eq!(body.parent, None);
+    assert_eq!(body.joint.placement.translation, [0.0, 0.0, 0.1]);
+    // Two unit point masses at x = 0 and x = 0.5: the centre at 0.25, and
+    // about it 2·1·0.25² = 0.125 about y and z, nothing about x.
+    let m = body.mass;
+    assert_eq!(m.mass, 2.0);
+    assert_eq!(m.com, [0.25, 0.0, 0.0]);
+    assert_eq!(m.inertia, [[0.0, 0.0, 0.0], [0.0, 0.125, 0.0], [0.0, 0.0, 0.125]]);
+    let (b, hand) = locate(&t, "hand").unwrap();
+    assert_eq!((b, hand.translation), (Some(0), [0.5, 0.0, 0.0]));
+    assert_eq!(t.root_links.len(), 1);
+    assert_eq!(t.root_mass.mass, 0.0);
+}
+
+#[test]
+fn an_inertia_turns_with_its_rpy() {
+    // Yaw by π/2 about z: the principal moments about x and y swap; a roll
+    // by π/2 about x swaps y and z.
+    let file = |rpy: &str| {
+        format!(
+            r#"<robot name="r"><link name="a"/><link name="b"><inertial><origin xyz="0 0 0" rpy="{rpy}"/><mass value="2"/><inertia ixx="1" ixy="0" ixz="0" iyy="2" iyz="0" izz="3"/></inertial></link><joint name="j" type="continuous"><parent link="a"/><child link="b"/></joint></robot>"#
+        )
+    };
+    let diagonal = |rpy: &str| {
+        let t = tree(&parse(&file(rpy)).unwrap()).unwrap();
+        let i = t.bodies[0].mass.inertia;
+        for r in 0..3 {
+            for c in 0..3 {
+                if r != c {
+                    assert!(i[r][c].abs() < 1e-15, "{rpy}: {i:?}");
+                }
+            }
+        }
+        [i[0][0], i[1][1], i[2][2]]
+    };
+    let close = |a: [f64; 3], b: [f64; 3]| a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-15);
+    let half_pi = std::f64::consts::FRAC_PI_2;
+    assert!(close(diagonal(&format!("0 0 {half_pi}")), [2.0, 1.0, 3.0]));
+    assert!(close(diagonal(&format!("{half_pi} 0 0")), [1.0, 3.0, 2.0]));
+    assert!(close(diagonal(&format!("0 {half_pi} 0")), [3.0, 2.0, 1.0]));
+}
+
+/// The first error of `text`: (line, message).
+fn first_error(text: &str) -> (u32, String) {
+    let errors = match parse(text) {
+        Err(e) => e,
+        Ok(robot) => tree(&robot).expect_err("a mistake"),
+    };
+    (errors[0].line, errors[0].message.clone())
+}
+
+#[test]
+fn mistakes_name_their_line() {
+    let (line, message) = first_error(&ARM.replace("type=\"revolute\"", "type=\"ball\""));
+    assert_eq!(line, 18);
+    assert!(message.contains("\"ball\"") && message.contains("revolute, continuous"), "{message}");
+
+    let (line, message) = first_error(&ARM.replace("xyz=\"0 0 0.1\"", "xyz=\"0 0\""));
+    assert_eq!(line, 18);
+    assert!(message.contains("has 2 numbers; it takes 3"), "{message}");
+
+    let (line, message) =
+        first_error(&ARM.replace("<mass value=\"1.0\"/>\n      <inertia", "<inertia"));
+    assert_eq!(line, 4);
+    assert!(message.contains("has no <mass>"), "{message}");
+
+    let (line, message) =
+        first_error(&ARM.replace("<link name=\"hand\">", "<link name=\"upper\">"));
+    assert_eq!(line, 12);
+    assert!(message.contains("a second link named `upper`"), "{message}");
+
+    let (_, message) =
+        first_error(&ARM.replace("<child link=\"hand\"/>", "<child link=\"upper\"/>"));
+    assert!(
+        message.contains("is the child of joint `shoulder` (line 18) and of joint `wrist`"),
+        "{message}"
+    );
+
+    let (_, message) =
+        first_error(&ARM.replace("<parent link=\"upper\"/>", "<parent link=\"elbow\"/>"));
+    assert!(message.contains("names the parent link `elbow`"), "{message}");
+
+    // No mass anywhere past the shoulder: its coordinate has no inertia.
+    let massless = ARM.replace("<mass value=\"1.0\"/>", "<mass value=\"0\"/>");
+    let (line, message) = first_error(&massless);
+    assert_eq!(line, 18);
+    assert!(
+        message.contains("joint `shoulder` moves link `upper`, and nothing it carries has mass"),
+        "{message}"
+    );
+
+    // A second root.
+    let (_, message) = first_error(&ARM.replace("</robot>", "<link name=\"spare\"/></robot>"));
+    assert!(message.contains("`base` (line 3), `spare`"), "{message}");
+
+    let (line, message) = first_error("<robot name=\"r\"><link name=\"a\"></robot>");
+    assert_eq!(line, 1);
+    assert!(message.starts_with("not well-formed XML"), "{message}");
+}
+
+#[test]
+fn a_loop_is_refused() {
+    let text = r#"<robot name="r">
+<link name="a"/><link name="b"/>
+<joint name="ab" type="fixed"><parent link="a"/><child link="b"/></joint>
+<joint name="ba" type="fixed"><parent link="b"/><child link="a"/></joint>
+</robot>"#;
+    let (line, message) = first_error(text);
+    assert_eq!(line, 3);
+    assert!(message.contains("the joints form a loop"), "{message}");
+}
+
+#[test]
+fn a_loop_apart_from_the_root_is_refused() {
+    let text = r#"<robot name="r">
+<link name="a"/>
+<link name="b"/><link name="c"/>
+<joint name="bc" type="fixed"><parent link="b"/><child link="c"/></joint>
+<joint name="cb" type="fixed"><parent link="c"/><child link="b"/></joint>
+</robot>"#;
+    let (line, message) = first_error(text);
+    assert_eq!(line, 3);
+    assert!(message.contains("links `b`, `c` are not reached from the root link `a`"), "{message}");
+}
+
+/// `tests/robots/` at the workspace's root: example-robot-data's URDF files
+/// and what Pinocchio makes of them (`bench/peers/robots.py`).
+fn robots_dir() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/robots")
+}
+
+#[test]
+fn the_trees_of_real_robots_are_pinocchio_s() {
+    let reference: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(robots_dir().join("pinocchio.json")).unwrap(),
+    )
+    .unwrap();
+    fn numbers(v: &serde_json::Value) -> Vec<f64> {
+        match v {
+            serde_json::Value::Array(a) => a.iter().flat_map(numbers).collect(),
+            x => vec![x.as_f64().unwrap()],
+        }
+    }
+    let close = |what: &str, ours: &[f64], theirs: &[f64]| {
+        assert_eq!(ours.len(), theirs.len(), "{what}");
+        for (a, b) in ours.iter().zip(theirs) {
+            assert!(
+                (a - b).abs() <= 1e-14 * (1.0 + b.abs()),
+                "{what}: {ours:?} against {theirs:?}"
+            );
+        }
+    };
+    for robot in reference["robots"].as_array().unwrap() {
+        let name = robot["name"].as_str().unwrap();
+        let text =
+            std::fs::read_to_string(robots_dir().join(robot["urdf"].as_str().unwrap())).unwrap();
+        let t = tree(&parse(&text).unwrap()).unwrap();
+        let mut theirs = robot["bodies"].as_array().unwrap().clone();
+        if robot["floating_base"].as_bool().unwrap() {
+            // Pinocchio's free-flyer carries the root and what is welded to it.
+            let root = theirs.remove(0);
+            close(
+                &format!("{name} root mass"),
+                &[t.root_mass.mass],
+                &[root["mass"].as_f64().unwrap()],
+            );
+            close(&format!("{name} root com"), &t.root_mass.com, &numbers(&root["com"]));
+            close(
+                &format!("{name} root inertia"),
+                &t.root_mass.inertia.concat(),
+                &numbers(&root["inertia"]),
+            );
+        }
+        assert_eq!(t.bodies.len(), theirs.len(), "{name}: one body per moving joint");
+        for (body, other) in t.bodies.iter().zip(&theirs) {
+            let what = format!("{name} {}", body.joint.name);
+            assert_eq!(
+                body.joint.name,
+                other["joint"].as_str().unwrap(),
+                "{name}: the joints' order"
+            );
+            let parent = body.parent.map(|p| t.bodies[p].joint.name.as_str());
+            let their_parent = other["parent"].as_str().filter(|p| *p != "root_joint");
+            assert_eq!(parent, their_parent, "{what}: parent");
+            close(
+                &format!("{what} rotation"),
+                &body.joint.placement.rotation.concat(),
+                &numbers(&other["rotation"]),
+            );
+            close(
+                &format!("{what} translation"),
+                &body.joint.placement.translation,
+                &numbers(&other["translation"]),
+            );
+            close(&format!("{what} mass"), &[body.mass.mass], &[other["mass"].as_f64().unwrap()]);
+            close(&format!("{what} com"), &body.mass.com, &numbers(&other["com"]));
+            close(
+                &format!("{what} inertia"),
+                &body.mass.inertia.concat(),
+                &numbers(&other["inertia"]),
+            );
+        }
+        println!("{name}: {} bodies as Pinocchio's", t.bodies.len());
+    }
+}
