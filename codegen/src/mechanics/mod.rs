@@ -68,6 +68,8 @@ pub(crate) struct Scene {
     pub spatial_declared: bool,
     /// Every spatial joint, for the recursive formulation.
     pub spatial_records: Vec<SpatialJointRecord>,
+    /// The robot descriptions read (`urdf(..)`), which the build depends on.
+    pub robot_files: Vec<std::path::PathBuf>,
 }
 
 impl Scene {
@@ -88,6 +90,12 @@ impl crate::front::lower::SceneLanguage for Scene {
     }
     fn is_load(name: &str) -> bool {
         LOADS.contains(&name)
+    }
+    fn is_robot(name: &str) -> bool {
+        name == "urdf"
+    }
+    fn robot(l: &mut Lower<'_, Self>, call: &syn::ExprCall, e: &syn::Expr, floating: bool) {
+        l.urdf(call, e, floating)
     }
     fn is_spatial(&self) -> bool {
         self.spatial_declared

@@ -25,6 +25,11 @@ pub(crate) trait SceneLanguage: Sized {
     fn is_joint(name: &str) -> bool;
     /// Whether `name(..)` is a load statement.
     fn is_load(name: &str) -> bool;
+    /// Whether `name(..)` loads a robot from a file (`urdf`).
+    fn is_robot(name: &str) -> bool;
+    /// `urdf("path")`, or `urdf("path").floating()` (`floating`): a robot's
+    /// bodies and joints from its description.
+    fn robot(l: &mut Lower<'_, Self>, call: &syn::ExprCall, e: &Expr, floating: bool);
     /// Whether the scene is in space (a `spatial_body` was declared).
     fn is_spatial(&self) -> bool;
     /// Whether it has spatial bodies.

@@ -39,6 +39,14 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
     }
 
+    /// Lowers statements a scene wrote for the user (a robot's bodies and
+    /// joints), as if they stood where `at` does.
+    pub(crate) fn generated_statements(&mut self, statements: &[Stmt]) {
+        for s in statements {
+            self.stmt(s);
+        }
+    }
+
     pub(in crate::front) fn local(&mut self, local: &syn::Local) {
         let (ident, mutable) = match &local.pat {
             Pat::Ident(p) => (p.ident.clone(), p.mutability.is_some()),
@@ -178,6 +186,18 @@ impl<S: SceneLanguage> Lower<'_, S> {
     }
 
     pub(in crate::front) fn expr_stmt(&mut self, e: &Expr) {
+        // `urdf("arm.urdf").floating();`
+        if let Expr::MethodCall(m) = e {
+            if let Some((name, call)) = call_name(&m.receiver).filter(|(n, _)| S::is_robot(n)) {
+                if m.method != "floating" || !m.args.is_empty() {
+                    return self.cx.error_at(
+                        &m.method,
+                        format!("`{name}(..)` takes `.floating()` (a free base), nothing else"),
+                    );
+                }
+                return S::robot(self, call, e, true);
+            }
+        }
         if let Some((call, settings, clock)) = trigger_call(e) {
             if self.mode_depth > 0 {
                 return self.cx.error_at(e, IN_MODE);
@@ -261,6 +281,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     S::joint(self, &name, None, call, e)
                 }
                 Some((name, call)) if S::is_load(&name) => S::load(self, &name, call, e),
+                Some((name, call)) if S::is_robot(&name) => S::robot(self, call, e, false),
                 Some((name, call)) if name == "invariant" => {
                     if self.arity(call, "invariant", 1) {
                         if let Some(value) = self.tensor(&call.args[0]) {

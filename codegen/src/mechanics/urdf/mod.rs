@@ -1,14 +1,18 @@
 //! Robots from URDF files: `parse` reads a file into its links and joints
 //! as written, `tree` turns them into the bodies of a kinematic tree (links
 //! welded by fixed joints merged into one body, their inertias combined),
-//! the form a scene in joint coordinates is built from. Conventions are
+//! `statements` writes the tree as the model language's bodies and joints,
+//! and `lowering` is the `urdf("path")` statement that reads the file and
+//! lowers them. Conventions are
 //! URDF's (and Pinocchio's): `rpy` is roll about x, pitch about y, yaw
 //! about z, each about the fixed axes, R = Rz(yaw)·Ry(pitch)·Rx(roll); a
 //! joint's origin places the child link's frame in the parent link's, and
 //! its axis is in the child link's frame; an inertia tensor is about the
 //! centre of mass, in the inertial origin's axes.
 
+mod lowering;
 pub mod parse;
+pub mod statements;
 pub mod tree;
 
 /// A mistake in a URDF file, at its line.

@@ -1,0 +1,109 @@
+//! Robots from their URDF files (`tests/robots/`, example-robot-data's),
+//! against Pinocchio: the joint accelerations of the generated model at
+//! Pinocchio's random states equal M⁻¹(τ − nle) from `pin.crba` and
+//! `pin.nonLinearEffects` (`bench/peers/robots.py` wrote them), here with
+//! τ = 0 as the model has no joint torques.
+
+use daegen::prelude::*;
+
+#[dae_model(scene = recursive)]
+fn ur5() {
+    urdf("tests/robots/ur5.urdf");
+    gravity(vec3(0.0, 0.0, -9.81));
+}
+
+#[dae_model(scene = recursive)]
+fn panda() {
+    urdf("tests/robots/panda.urdf");
+    gravity(vec3(0.0, 0.0, -9.81));
+}
+
+/// x = A⁻¹ b by Gaussian elimination with partial pivoting.
+fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
+    let n = b.len();
+    for k in 0..n {
+        let p = (k..n).max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs())).unwrap();
+        a.swap(k, p);
+        b.swap(k, p);
+        for i in k + 1..n {
+            let f = a[i][k] / a[k][k];
+            for j in k..n {
+                a[i][j] -= f * a[k][j];
+            }
+            b[i] -= f * b[k];
+        }
+    }
+    let mut x = vec![0.0; n];
+    for k in (0..n).rev() {
+        let s: f64 = (k + 1..n).map(|j| a[k][j] * x[j]).sum();
+        x[k] = (b[k] - s) / a[k][k];
+    }
+    x
+}
+
+fn reference(name: &str) -> serde_json::Value {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/robots/pinocchio.json"
+    ))
+    .unwrap();
+    let all: serde_json::Value = serde_json::from_str(&text).unwrap();
+    all["robots"].as_array().unwrap().iter().find(|r| r["name"] == name).unwrap().clone()
+}
+
+fn floats(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+}
+
+/// The largest error of the model's joint accelerations against
+/// Pinocchio's, relative to the largest of them, over its five states.
+fn worst_against_pinocchio<M: Model>(model: &M, name: &str) -> f64 {
+    let robot = reference(name);
+    let joints: Vec<String> = robot["bodies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| b["joint"].as_str().unwrap().to_string())
+        .collect();
+    let info = &M::INFO;
+    let mut worst = 0.0f64;
+    for state in robot["states"].as_array().unwrap() {
+        let (q, v, nle) = (floats(&state["q"]), floats(&state["v"]), floats(&state["nle"]));
+        let m: Vec<Vec<f64>> = state["M"].as_array().unwrap().iter().map(floats).collect();
+        let expected = solve(m, nle.iter().map(|x| -x).collect());
+        let mut y = vec![0.0; M::STATES];
+        model.initial_state(&mut y);
+        for (k, joint) in joints.iter().enumerate() {
+            let at = |n: &str| {
+                info.states
+                    .iter()
+                    .position(|s| *s == n)
+                    .unwrap_or_else(|| panic!("{n} in {:?}", info.states))
+            };
+            y[at(&format!("{joint}.q"))] = q[k];
+            y[at(&format!("der({joint}.q)"))] = v[k];
+        }
+        let mut dy = vec![0.0; M::STATES];
+        model.rhs(0.0, &y, &mut dy).unwrap();
+        let scale = expected.iter().fold(1.0f64, |s, a| s.max(a.abs()));
+        for (k, joint) in joints.iter().enumerate() {
+            let at = info.states.iter().position(|s| *s == format!("der({joint}.q)")).unwrap();
+            worst = worst.max((dy[at] - expected[k]).abs() / scale);
+        }
+    }
+    worst
+}
+
+#[test]
+fn ur5_accelerations_are_pinocchio_s() {
+    let worst = worst_against_pinocchio(&Ur5::default(), "ur5");
+    println!("ur5: {worst:e}");
+    assert!(worst < 1e-12, "{worst:e}");
+}
+
+#[test]
+fn panda_accelerations_are_pinocchio_s() {
+    let worst = worst_against_pinocchio(&Panda::default(), "panda");
+    println!("panda: {worst:e}");
+    assert!(worst < 1e-12, "{worst:e}");
+}
