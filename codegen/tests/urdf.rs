@@ -268,3 +268,38 @@ fn the_trees_of_real_robots_are_pinocchio_s() {
         println!("{name}: {} bodies as Pinocchio's", t.bodies.len());
     }
 }
+
+/// The macro's expansion of `body` under `#[dae_model(attr)]`.
+fn expand(attr: &str, body: &str) -> String {
+    let item: proc_macro2::TokenStream = format!("fn robot() {{ {body} }}").parse().unwrap();
+    daegen_codegen::expand_dae_model(attr.parse().unwrap(), item).to_string()
+}
+
+#[test]
+fn a_mistake_in_the_file_is_a_compile_error_that_quotes_its_line() {
+    let out = expand("scene = recursive", r#"urdf("tests/data/broken.urdf");"#);
+    assert!(out.contains("compile_error"), "{out}");
+    assert!(out.contains(r#"tests/data/broken.urdf:5: joint `elbow` has type \"ball\""#), "{out}");
+    let out = expand("scene = recursive", r#"urdf("tests/data/missing.urdf");"#);
+    assert!(out.contains("cannot read") && out.contains("missing.urdf"), "{out}");
+    let out = expand("", r#"urdf("tests/data/broken.urdf");"#);
+    assert!(out.contains("write `#[dae_model(scene = recursive)]`"), "{out}");
+    let out = expand("scene = recursive", r#"urdf("../tests/robots/ur5.urdf").fixed();"#);
+    assert!(out.contains("takes `.floating()` (a free base), nothing else"), "{out}");
+}
+
+#[test]
+fn a_robot_s_names_are_its_file_s() {
+    // UR5: six joints, their coordinates states by the file's names.
+    let out = expand(
+        "scene = recursive",
+        r#"urdf("../tests/robots/ur5.urdf"); gravity(vec3(0.0, 0.0, -9.81));"#,
+    );
+    assert!(!out.contains("compile_error"), "{out}");
+    for joint in ["shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint", "wrist_3_joint"] {
+        assert!(out.contains(&format!("\"{joint}.q\"")), "{joint}");
+    }
+    assert!(out.contains("\"wrist_3_link.x\""));
+    // The build depends on the file.
+    assert!(out.contains("include_bytes"), "{out}");
+}

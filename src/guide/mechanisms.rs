@@ -152,6 +152,54 @@
 //! # Ok::<(), daegen::Error>(())
 //! ```
 //!
+//! A robot comes from its URDF, the description every arm, leg and
+//! humanoid ships with: `urdf("path")` (relative to the crate's
+//! `Cargo.toml`, read at compile time, and the model rebuilt when the file
+//! changes) writes one `spatial_body` per moving joint and the joint, in
+//! joint coordinates:
+//!
+//! ```
+//! use daegen::prelude::*;
+//!
+//! /// A UR5 arm falling from its zero configuration, its base fixed.
+//! #[dae_model(scene = recursive)]
+//! fn ur5() {
+//!     urdf("tests/robots/ur5.urdf");
+//!     gravity(vec3(0.0, 0.0, -9.81));
+//! }
+//!
+//! let sol = Ur5::default().simulate(0.0, 0.2, &Options::new().tolerance(1e-8))?;
+//! // The file's names: each joint's coordinate, each link's position.
+//! let elbow: f64 = sol.last("elbow_joint.q")?;
+//! let hand: f64 = sol.last("wrist_3_link.z")?;
+//! assert!(elbow.is_finite() && hand.is_finite());
+//! # Ok::<(), daegen::Error>(())
+//! ```
+//!
+//! - **Joints**: revolute and continuous become `revolute` (`j.q`, the
+//!   angle from the file's zero configuration), prismatic `prismatic`,
+//!   planar `planar`. A fixed joint welds its child into its parent's body,
+//!   their masses, centres and inertia tensors combined; a floating joint
+//!   holds only the root. The root link is welded to the ground (the mass
+//!   welded to it then has no effect), or, with
+//!   `urdf("path").floating()`, is a body on a free joint named after the
+//!   root link (`base_link.x` … `base_link.q3`, `base_link.wx` …).
+//! - **Inertia**: each link's `<inertial>` (origin, mass, the full tensor).
+//!   Visuals, collisions and meshes are ignored. `<dynamics>` damping and
+//!   friction are read but do not act, as in Pinocchio's forward dynamics.
+//! - **Start**: the zero configuration at rest. Another start is a state
+//!   vector given to `simulate_from`, by the names of `Model::INFO.states`.
+//! - **Mistakes** in the file are compile errors on the path that quote
+//!   the file and line: `arm.urdf:18: joint `elbow` has type "ball"; a
+//!   URDF joint is revolute, continuous, prismatic, fixed, floating or
+//!   planar`, a link with two parents, a loop, a joint that moves no mass.
+//!
+//! The bodies are Pinocchio's: on example-robot-data's UR5, Panda and
+//! Solo 12 the placements, masses, centres and inertias agree to 1e-14,
+//! and the joint accelerations of UR5 and Panda equal Pinocchio's to 4e-14
+//! (`tests/robots.rs`, `codegen/tests/urdf.rs`). The generated code grows
+//! with the tree: about 0.25 MB for UR5 (6 joints), 1 MB for Panda (9).
+//!
 //! The rotations of the course notes (`rot_x`, `euler_313`, `bryan_123`,
 //! `rot_seq("zyx", ..)`, `axis_angle`, `quat_to_rot`, `omega_seq`,
 //! `omega_quat`, `planar_frame`, `natural_frame`) exist in the model

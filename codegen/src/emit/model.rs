@@ -125,8 +125,18 @@ fn expand_system(
         Some(sensitivities) => sensitivity_items(ir, sensitivities, &name)?,
         None => TokenStream::new(),
     };
+    // A file the model was built from: `include_bytes!` makes the build
+    // depend on it, so editing it expands the model again.
+    let dependencies = ir.depends_on.iter().map(|path| {
+        let path = path.to_string_lossy();
+        quote!(
+            const _: &[u8] = ::core::include_bytes!(#path);
+        )
+    });
     Ok(quote! {
         #struct_and_default
+
+        #(#dependencies)*
 
         #batch
 

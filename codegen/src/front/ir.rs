@@ -240,6 +240,9 @@ pub struct ModelIr {
     /// Parts the model calls that no definition provided: the user's
     /// components, which the expansion fetches and lowers again with.
     pub missing_parts: Vec<syn::Path>,
+    /// Files the model was built from (a robot's URDF): the build depends on
+    /// them, so a change to one expands the model again.
+    pub depends_on: Vec<std::path::PathBuf>,
 }
 
 /// An instance of a component, for the hierarchy `describe()` shows.

@@ -91,6 +91,9 @@ impl crate::front::lower::SceneLanguage for Scene {
     fn is_load(name: &str) -> bool {
         LOADS.contains(&name)
     }
+    fn files(&self) -> Vec<std::path::PathBuf> {
+        self.robot_files.clone()
+    }
     fn is_robot(name: &str) -> bool {
         name == "urdf"
     }

@@ -101,6 +101,7 @@ pub(crate) fn lower_with<S: SceneLanguage>(
             .map(|i| InstanceSummary { path: i.path.clone(), part: i.part.clone() })
             .collect(),
         missing_parts: l.missing_parts,
+        depends_on: l.scene.files(),
     }
 }
 

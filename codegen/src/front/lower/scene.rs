@@ -30,6 +30,8 @@ pub(crate) trait SceneLanguage: Sized {
     /// `urdf("path")`, or `urdf("path").floating()` (`floating`): a robot's
     /// bodies and joints from its description.
     fn robot(l: &mut Lower<'_, Self>, call: &syn::ExprCall, e: &Expr, floating: bool);
+    /// The files the scene read (robot descriptions).
+    fn files(&self) -> Vec<std::path::PathBuf>;
     /// Whether the scene is in space (a `spatial_body` was declared).
     fn is_spatial(&self) -> bool;
     /// Whether it has spatial bodies.
