@@ -302,3 +302,55 @@ fn joints_the_tree_reaches_from_their_second_frame_match_the_global_formulation(
     let times = [0.0, 0.5, 1.0, 2.0];
     assert_eq!(same_values_by_name(&global, &recursive, &times, 1e-7), 2 * 13 + 2);
 }
+
+/// The rod hinged about world x, drawn hanging straight down, started at
+/// 0.5 rad and 1 rad/s by its joint coordinate.
+#[dae_model(scene = recursive)]
+fn hinged_from_its_joint() {
+    let g = param(9.81);
+    let ground = ground();
+    let rod = spatial_body(2.0, vec3(0.1, 0.2, 0.05), [0.0, 0.0, -0.5], [1.0, 0.0, 0.0, 0.0]);
+    let hinge =
+        revolute(ground, vec3(0.0, 0.0, 0.0), rod, vec3(0.0, 0.0, 0.5), vec3(1.0, 0.0, 0.0));
+    gravity(vec3(0.0, 0.0, -g));
+    init(hinge.q, 0.5);
+    init(der(hinge.q), 1.0);
+}
+
+/// The same rod drawn at 0.5 rad, moving at 1 rad/s.
+#[dae_model(scene = recursive)]
+fn hinged_from_its_pose() {
+    let g = param(9.81);
+    let ground = ground();
+    let rod = spatial_body(
+        2.0,
+        vec3(0.1, 0.2, 0.05),
+        [0.0, 0.5 * sin(0.5), -0.5 * cos(0.5)],
+        [cos(0.25), sin(0.25), 0.0, 0.0],
+        [0.0, 0.5 * cos(0.5), 0.5 * sin(0.5)],
+        [1.0, 0.0, 0.0],
+    );
+    let hinge =
+        revolute(ground, vec3(0.0, 0.0, 0.0), rod, vec3(0.0, 0.0, 0.5), vec3(1.0, 0.0, 0.0));
+    gravity(vec3(0.0, 0.0, -g));
+}
+
+#[test]
+fn a_joint_coordinate_starts_where_init_says() {
+    // The joint's zero is the pose drawn; `init` starts it elsewhere. The
+    // two rods swing alike: the same body coordinates, the angle offset by
+    // the 0.5 rad the second was drawn at.
+    let opts = Options::new().method(Method::Dop853).tolerance(1e-12);
+    let a = HingedFromItsJoint::default().simulate(0.0, 2.0, &opts).unwrap();
+    let b = HingedFromItsPose::default().simulate(0.0, 2.0, &opts).unwrap();
+    assert_eq!(a.at(0.0, "hinge.q").unwrap(), 0.5);
+    assert_eq!(a.at(0.0, "der(hinge.q)").unwrap(), 1.0);
+    for t in [0.3, 1.1, 2.0] {
+        let (qa, qb): (f64, f64) = (a.at(t, "hinge.q").unwrap(), b.at(t, "hinge.q").unwrap());
+        assert!((qa - (qb + 0.5)).abs() < 1e-10, "t = {t}: {qa} vs {qb} + 0.5");
+        for c in ["rod.y", "rod.z", "rod.q0", "rod.q1", "rod.wx"] {
+            let (u, v): (f64, f64) = (a.at(t, c).unwrap(), b.at(t, c).unwrap());
+            assert!((u - v).abs() < 1e-10, "t = {t}: {c} {u} vs {v}");
+        }
+    }
+}

@@ -123,7 +123,10 @@
 //! attitudes, in (−π, π]), and the bodies must start where their joints
 //! put them, moving as the joints move them: a start the joints contradict
 //! is a compile error that names the joint (the global formulation would
-//! project it and report `initial_corrections()`).
+//! project it and report `initial_corrections()`). The poses drawn are the
+//! joint coordinates' zero; `init(hinge.q, 0.5)` and
+//! `init(der(hinge.q), 1.0)` start a joint elsewhere, as a robot is
+//! started: by its joint positions and rates.
 //!
 //! ```
 //! use daegen::prelude::*;
@@ -187,8 +190,9 @@
 //! - **Inertia**: each link's `<inertial>` (origin, mass, the full tensor).
 //!   Visuals, collisions and meshes are ignored. `<dynamics>` damping and
 //!   friction are read but do not act, as in Pinocchio's forward dynamics.
-//! - **Start**: the zero configuration at rest. Another start is a state
-//!   vector given to `simulate_from`, by the names of `Model::INFO.states`.
+//! - **Start**: the zero configuration at rest, or the joint positions
+//!   and rates given by `init(elbow_joint.q, -1.2)` and
+//!   `init(der(elbow_joint.q), 0.5)`.
 //! - **Mistakes** in the file are compile errors on the path that quote
 //!   the file and line: `arm.urdf:18: joint `elbow` has type "ball"; a
 //!   URDF joint is revolute, continuous, prismatic, fixed, floating or

@@ -70,6 +70,19 @@ pub(crate) struct Scene {
     pub spatial_records: Vec<SpatialJointRecord>,
     /// The robot descriptions read (`urdf(..)`), which the build depends on.
     pub robot_files: Vec<std::path::PathBuf>,
+    /// `init(j.q, ..)`, `init(der(j.q), ..)`: joint coordinates' starts in
+    /// the recursive formulation.
+    pub joint_inits: Vec<JointInit>,
+}
+
+/// A joint coordinate's start given by `init`: the state's name, the
+/// order (0: the coordinate, 1: its rate), the value and the statement.
+#[derive(Clone)]
+pub(crate) struct JointInit {
+    pub name: String,
+    pub order: usize,
+    pub value: Id,
+    pub origin: TokenStream,
 }
 
 impl Scene {
@@ -90,6 +103,14 @@ impl crate::front::lower::SceneLanguage for Scene {
     }
     fn is_load(name: &str) -> bool {
         LOADS.contains(&name)
+    }
+    fn joint_init(
+        l: &mut Lower<'_, Self>,
+        target: &syn::Expr,
+        value: &syn::Expr,
+        whole: &syn::Expr,
+    ) -> bool {
+        l.joint_init(target, value, whole)
     }
     fn files(&self) -> Vec<std::path::PathBuf> {
         self.robot_files.clone()

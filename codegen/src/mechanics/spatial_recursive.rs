@@ -45,6 +45,7 @@ use crate::front::lower::Lower;
 use crate::{FxHashMap, Graph, Id, SymbolId, VectorField};
 use proc_macro2::TokenStream;
 use quote::ToTokens;
+use syn::Expr;
 
 /// Joints that can carry the tree; `distance` is always cut.
 const TREE_JOINTS: [&str; 7] =
@@ -139,6 +140,7 @@ impl Lower<'_, Scene> {
         let equations = self.crba_rnea(&tree, &placed, &subspace, &cut_rows, &mut field)?;
         self.push_equations_of_motion(Ok(equations), origin);
         self.quaternion_kinematics(&attitudes, &free, origin)?;
+        self.apply_joint_inits(&states);
         let coordinates = subspace.iter().map(Vec::len).sum::<usize>();
         self.scene.summary.push_str(&format!(
             " Recursive formulation: {coordinates} joint speeds on the spanning tree ({} free bodies), mass matrix by the composite-rigid-body algorithm, bias forces by recursive Newton–Euler, {} cut-joint constraint rows.",
@@ -146,6 +148,93 @@ impl Lower<'_, Scene> {
             cut_rows.len()
         ));
         Ok(())
+    }
+
+    /// `init(j.q, ..)` and `init(der(j.q), ..)`: the joint coordinates'
+    /// starts, taken after the bodies' poses were checked against the
+    /// joints at zero (the poses are the coordinates' zero).
+    fn apply_joint_inits(&mut self, states: &[NewState]) {
+        for init in std::mem::take(&mut self.scene.joint_inits) {
+            let Some(state) = states.iter().find(|s| s.name == init.name) else {
+                let joint = init.name.split('.').next().unwrap_or("");
+                let own: Vec<&str> = states
+                    .iter()
+                    .filter(|s| s.name.split('.').next() == Some(joint))
+                    .map(|s| s.name.as_str())
+                    .collect();
+                let message = if own.is_empty() {
+                    format!("joint `{joint}` has no coordinates of its own: it closes a loop (a constraint) or holds nothing")
+                } else {
+                    format!(
+                        "`{}` is not a coordinate of joint `{joint}`; it has {}",
+                        init.name,
+                        own.join(", ")
+                    )
+                };
+                self.cx.error_at(&init.origin, message);
+                continue;
+            };
+            if init.order == 0 {
+                if let Some(decl) = self.states.iter_mut().find(|d| d.symbol == state.symbol) {
+                    decl.init = init.value;
+                }
+                continue;
+            }
+            if state.rate.is_none() {
+                self.cx.error_at(
+                    &init.origin,
+                    format!(
+                        "`{}` is not a second-order coordinate: set its start with `init({}, ..)`",
+                        init.name, init.name
+                    ),
+                );
+                continue;
+            }
+            let rate = self.g.derivative(state.symbol, 1).ok().and_then(|d| self.g.as_symbol(d));
+            self.inits.retain(|i| Some(i.target) != rate);
+            if self.init_rate(state.symbol, init.value, &init.origin).is_none() {
+                self.cx.error_at(&init.origin, "its rate cannot be set");
+            }
+        }
+    }
+
+    /// `init(j.q, value)`, `init(der(j.q), value)` on a joint (see
+    /// [`crate::front::lower::SceneLanguage::joint_init`]).
+    pub(crate) fn joint_init(&mut self, target: &Expr, value: &Expr, whole: &Expr) -> bool {
+        let (field, order) = match target {
+            Expr::Field(f) => (f, 0),
+            Expr::Call(c)
+                if c.args.len() == 1
+                    && matches!(&*c.func, Expr::Path(p) if p.path.is_ident("der")) =>
+            {
+                match &c.args[0] {
+                    Expr::Field(f) => (f, 1),
+                    _ => return false,
+                }
+            }
+            _ => return false,
+        };
+        let (Expr::Path(base), syn::Member::Named(member)) = (&*field.base, &field.member) else {
+            return false;
+        };
+        let Some(joint) = base.path.get_ident().map(|i| i.to_string()) else { return false };
+        let spatial = self.scene.spatial_records.iter().any(|r| r.name == joint);
+        let planar = self.scene.records.iter().any(|r| r.name == joint);
+        if !spatial && !planar {
+            return false;
+        }
+        if !self.scene.recursive || planar {
+            self.cx.error_at(target, format!("`{joint}.{member}` is not a state here: a joint's coordinates are states in a spatial scene under `#[dae_model(scene = recursive)]`; here the bodies start where they are declared"));
+            return true;
+        }
+        let Some(value) = self.initial_value(value) else { return true };
+        self.scene.joint_inits.push(crate::mechanics::JointInit {
+            name: format!("{joint}.{member}"),
+            order,
+            value,
+            origin: whole.to_token_stream(),
+        });
+        true
     }
 
     /// q' = ½ q ⊗ ω for each spherical joint's quaternion (|q| = 1 kept

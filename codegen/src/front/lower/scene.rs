@@ -30,6 +30,10 @@ pub(crate) trait SceneLanguage: Sized {
     /// `urdf("path")`, or `urdf("path").floating()` (`floating`): a robot's
     /// bodies and joints from its description.
     fn robot(l: &mut Lower<'_, Self>, call: &syn::ExprCall, e: &Expr, floating: bool);
+    /// `init(j.q, value)` or `init(der(j.q), value)` on a joint's
+    /// coordinate: whether the scene took it (else it is lowered as any
+    /// `init`).
+    fn joint_init(l: &mut Lower<'_, Self>, target: &Expr, value: &Expr, whole: &Expr) -> bool;
     /// The files the scene read (robot descriptions).
     fn files(&self) -> Vec<std::path::PathBuf>;
     /// Whether the scene is in space (a `spatial_body` was declared).

@@ -337,6 +337,9 @@ impl<S: SceneLanguage> Lower<'_, S> {
         if !self.arity(call, "init", 2) {
             return;
         }
+        if S::joint_init(self, &call.args[0], &call.args[1], whole) {
+            return;
+        }
         let (target, value) = (self.value(&call.args[0]), self.initial_value(&call.args[1]));
         let (Some(target), Some(value)) = (target, value) else {
             return;
