@@ -49,20 +49,16 @@ impl Lower<'_, Scene> {
                 return self.cx.error_at(at, format!("{path}:{line}: {message}"))
             }
         };
-        let mut parsed = Vec::with_capacity(written.len());
-        for tokens in written {
-            match syn::parse2::<syn::Stmt>(tokens) {
-                Ok(stmt) => parsed.push(stmt),
-                Err(err) => {
-                    return self.cx.error_at(
-                        at,
-                        format!(
-                            "{path}: a statement made of it does not parse ({err}); report this"
-                        ),
-                    )
-                }
+        let block = match syn::parse2::<syn::Block>(quote::quote!({ #(#written)* })) {
+            Ok(block) => block,
+            Err(err) => {
+                return self.cx.error_at(
+                    at,
+                    format!("{path}: the statements made of it do not parse ({err}); report this"),
+                )
             }
-        }
+        };
+        let parsed = block.stmts;
         self.scene.robot_files.push(full);
         self.generated_statements(&parsed);
     }
