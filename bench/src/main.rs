@@ -21,7 +21,8 @@
 //! (`results/components.md`);
 //! `--hybrid` times a bouncing ball and a PI loop sampled at 1 kHz against
 //! heyoka (`results/hybrid.md`); `--fmi` times an FMU's calls against the
-//! model it wraps (`results/fmi.md`);
+//! model it wraps (`results/fmi.md`); `--robots` times robots from their
+//! URDF against Pinocchio (`results/robots.md`);
 //! `--auto` times `Method::Auto` against the best single method on every
 //! reference problem and an explicit pair on a stiff problem
 //! (`results/auto.md`);
@@ -55,6 +56,7 @@ mod hybrid;
 mod large;
 mod peers;
 mod readme;
+mod robots;
 mod sensitivities;
 mod structure;
 #[cfg(feature = "sundials")]
@@ -544,6 +546,13 @@ fn main() {
     if has("--components") {
         let text = components::components_section();
         let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join("components.md");
+        let _ = std::fs::write(&out, &text);
+        println!("{text}");
+        return;
+    }
+    if has("--robots") {
+        let text = robots::robots_section();
+        let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join("robots.md");
         let _ = std::fs::write(&out, &text);
         println!("{text}");
         return;
