@@ -73,6 +73,10 @@ pub(crate) struct Scene {
     /// `init(j.q, ..)`, `init(der(j.q), ..)`: joint coordinates' starts in
     /// the recursive formulation.
     pub joint_inits: Vec<JointInit>,
+    /// Prismatic joints' flanges in the recursive formulation: the joint,
+    /// the symbol standing for its displacement until the joint's
+    /// coordinate replaces it, and the displacement in body coordinates.
+    pub prismatic_flanges: Vec<(String, SymbolId, Id)>,
 }
 
 /// A joint coordinate's start given by `init`: the state's name, the

@@ -701,7 +701,21 @@ impl Lower<'_, Scene> {
             }
         };
         if record.kind == "prismatic" {
-            return Some(value);
+            if !self.scene.recursive {
+                return Some(value);
+            }
+            // In joint coordinates the displacement is the joint's own
+            // coordinate: a symbol stands for it until the formulation
+            // puts `name.q` in its place (the expression in the bodies'
+            // coordinates would not simplify to it, and a part's state tied
+            // to it would stay apart).
+            let placeholder = self.g.state(&format!("{name}.flange_s")).ok();
+            let Some(symbol) = placeholder.and_then(|n| self.g.as_symbol(n)) else {
+                self.cx.error_at(at, "the flange's displacement cannot be made");
+                return None;
+            };
+            self.scene.prismatic_flanges.push((name.to_string(), symbol, value));
+            return placeholder;
         }
         // The revolute's angle, integrated from zero.
         let origin = at.to_token_stream();

@@ -133,7 +133,8 @@ impl Lower<'_, Scene> {
             return Ok(());
         }
         // Everything written in body coordinates is rewritten in joint ones.
-        let replace = self.body_substitution(&placed, &velocity, &free, &mut field)?;
+        let mut replace = self.body_substitution(&placed, &velocity, &free, &mut field)?;
+        self.prismatic_flange_substitution(&states, &mut replace, &mut field)?;
         let cut_rows = self.rewrite_spatial(&replace, &records, &cut)?;
         self.spatial_body_outputs(&placed, &velocity, &free, origin)?;
         // Equations of motion.
@@ -147,6 +148,42 @@ impl Lower<'_, Scene> {
             free.iter().filter(|f| **f).count(),
             cut_rows.len()
         ));
+        Ok(())
+    }
+
+    /// A prismatic joint's flange displacement (see `spatial_joint_flange`):
+    /// the joint's coordinate `name.q` on the tree, the displacement
+    /// rewritten in joint coordinates for a joint that closes a loop; with
+    /// its rates.
+    fn prismatic_flange_substitution(
+        &mut self,
+        states: &[NewState],
+        replace: &mut FxHashMap<SymbolId, Id>,
+        field: &mut VectorField,
+    ) -> crate::Result<()> {
+        for (name, placeholder, value) in std::mem::take(&mut self.scene.prismatic_flanges) {
+            let g = &mut self.g;
+            let coordinate = format!("{name}.q");
+            let targets: [Id; 3] = match states.iter().find(|s| s.name == coordinate) {
+                Some(s) => [
+                    g.symbol_node(s.symbol),
+                    g.derivative(s.symbol, 1)?,
+                    g.derivative(s.symbol, 2)?,
+                ],
+                None => {
+                    let x = g.substitute(value, replace)?;
+                    let v = g.total_derivative(x, field)?;
+                    let a = g.total_derivative(v, field)?;
+                    [x, v, a]
+                }
+            };
+            replace.insert(placeholder, targets[0]);
+            for (order, target) in [(1, targets[1]), (2, targets[2])] {
+                let d = g.derivative(placeholder, order)?;
+                let symbol = g.as_symbol(d).ok_or_else(|| unsupported("a flange's rate"))?;
+                replace.insert(symbol, target);
+            }
+        }
         Ok(())
     }
 
