@@ -1,8 +1,9 @@
 //! Robots from their URDF files (`tests/robots/`, example-robot-data's),
 //! against Pinocchio: the joint accelerations of the generated model at
-//! Pinocchio's random states equal M⁻¹(τ − nle) from `pin.crba` and
+//! Pinocchio's random states equal M⁻¹(τ − nle − D q̇) from `pin.crba` and
 //! `pin.nonLinearEffects` (`bench/peers/robots.py` wrote them), here with
-//! τ = 0 as the model has no joint torques.
+//! τ = 0 as the model has no joint torques, and D the file's joint
+//! damping, which the model applies and Pinocchio's dynamics leave out.
 
 use daegen::prelude::*;
 
@@ -65,12 +66,19 @@ fn worst_against_pinocchio<M: Model>(model: &M, name: &str) -> f64 {
         .iter()
         .map(|b| b["joint"].as_str().unwrap().to_string())
         .collect();
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/robots/");
+    let text =
+        std::fs::read_to_string(format!("{file}{}", robot["urdf"].as_str().unwrap())).unwrap();
+    let urdf = daegen_codegen::mechanics::urdf::parse::parse(&text).unwrap();
+    let damping: Vec<f64> =
+        joints.iter().map(|j| urdf.joints.iter().find(|u| &u.name == j).unwrap().damping).collect();
     let info = &M::INFO;
     let mut worst = 0.0f64;
     for state in robot["states"].as_array().unwrap() {
         let (q, v, nle) = (floats(&state["q"]), floats(&state["v"]), floats(&state["nle"]));
         let m: Vec<Vec<f64>> = state["M"].as_array().unwrap().iter().map(floats).collect();
-        let expected = solve(m, nle.iter().map(|x| -x).collect());
+        let forces = nle.iter().zip(&v).zip(&damping).map(|((n, v), d)| -n - d * v).collect();
+        let expected = solve(m, forces);
         let mut y = vec![0.0; M::STATES];
         model.initial_state(&mut y);
         for (k, joint) in joints.iter().enumerate() {

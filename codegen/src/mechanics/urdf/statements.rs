@@ -6,7 +6,10 @@
 //! user had written them. The URDF's names are the bodies' and joints'
 //! (`shoulder_pan_joint.q`, `wrist_3_link.x`). The root link is welded to
 //! the ground, its welded mass dropped, or, with `.floating()`, a body of
-//! its own on a free joint.
+//! its own on a free joint. A joint's `<dynamics damping>` is a damper
+//! across it (`damper` or `translational_damper` of the standard library,
+//! on the joint's flange, against a `fixed` support), named
+//! `<joint>_damping`.
 
 use super::parse::JointKind;
 use super::tree::{MassProperties, Tree};
@@ -123,6 +126,8 @@ pub fn statements(tree: &Tree, floating: bool) -> Result<Vec<TokenStream>, (u32,
         let in_child = vec3(b.mass.com.map(|c| -c));
         let axis = vec3(mat_vec(&j.placement.rotation, &j.axis));
         let (name, child) = (identifier(&j.name), identifier(&b.link));
+        let damped = j.damping > 0.0
+            && matches!(j.kind, JointKind::Revolute | JointKind::Continuous | JointKind::Prismatic);
         out.push(match j.kind {
             JointKind::Revolute | JointKind::Continuous => {
                 quote!(let #name = revolute(#parent, #in_parent, #child, #in_child, #axis);)
@@ -141,6 +146,22 @@ pub fn statements(tree: &Tree, floating: bool) -> Result<Vec<TokenStream>, (u32,
                 return Err((j.line, format!("joint `{}` is {} below the root; only the root's joint may float (load the robot with `.floating()` instead)", j.name, j.kind.name())));
             }
         });
+        if damped {
+            let damper = syn::Ident::new(&format!("{name}_damping"), Span::call_site());
+            let support = syn::Ident::new(&format!("{name}_support"), Span::call_site());
+            let d = number(j.damping);
+            let (part, fixed) = if j.kind == JointKind::Prismatic {
+                (quote!(translational_damper), quote!(translational_fixed))
+            } else {
+                (quote!(damper), quote!(fixed))
+            };
+            out.push(quote! {
+                let #damper = #part(#d);
+                let #support = #fixed();
+                connect(#support.flange, #damper.flange_a);
+                connect(#damper.flange_b, #name.flange);
+            });
+        }
     }
     Ok(out)
 }
