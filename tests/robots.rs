@@ -115,3 +115,84 @@ fn panda_accelerations_are_pinocchio_s() {
     println!("panda: {worst:e}");
     assert!(worst < 1e-12, "{worst:e}");
 }
+
+/// UR5 with a torque from outside on every joint: an input driving the
+/// standard library's `signal_torque` on the joint's flange.
+#[dae_model(scene = recursive)]
+fn ur5_driven() {
+    urdf("tests/robots/ur5.urdf");
+    gravity(vec3(0.0, 0.0, -9.81));
+    let tau_1 = input(0.0);
+    let tau_2 = input(0.0);
+    let tau_3 = input(0.0);
+    let tau_4 = input(0.0);
+    let tau_5 = input(0.0);
+    let tau_6 = input(0.0);
+    let drive_1 = signal_torque();
+    let drive_2 = signal_torque();
+    let drive_3 = signal_torque();
+    let drive_4 = signal_torque();
+    let drive_5 = signal_torque();
+    let drive_6 = signal_torque();
+    connect(drive_1.flange, shoulder_pan_joint.flange);
+    connect(drive_2.flange, shoulder_lift_joint.flange);
+    connect(drive_3.flange, elbow_joint.flange);
+    connect(drive_4.flange, wrist_1_joint.flange);
+    connect(drive_5.flange, wrist_2_joint.flange);
+    connect(drive_6.flange, wrist_3_joint.flange);
+    drive_1.u == tau_1;
+    drive_2.u == tau_2;
+    drive_3.u == tau_3;
+    drive_4.u == tau_4;
+    drive_5.u == tau_5;
+    drive_6.u == tau_6;
+}
+
+#[test]
+fn ur5_driven_by_joint_torques_is_pinocchio_s_aba() {
+    // With the reference's random torques as inputs, the accelerations are
+    // pin.aba's themselves.
+    let robot = reference("ur5");
+    let info = &<Ur5Driven as Model>::INFO;
+    let at = |n: &str| info.states.iter().position(|s| *s == n).unwrap();
+    let joints = [
+        "shoulder_pan_joint",
+        "shoulder_lift_joint",
+        "elbow_joint",
+        "wrist_1_joint",
+        "wrist_2_joint",
+        "wrist_3_joint",
+    ];
+    let mut worst = 0.0f64;
+    for state in robot["states"].as_array().unwrap() {
+        let (q, v, tau, ddq) = (
+            floats(&state["q"]),
+            floats(&state["v"]),
+            floats(&state["tau"]),
+            floats(&state["ddq"]),
+        );
+        let model = Ur5Driven {
+            tau_1: Input::constant(tau[0]),
+            tau_2: Input::constant(tau[1]),
+            tau_3: Input::constant(tau[2]),
+            tau_4: Input::constant(tau[3]),
+            tau_5: Input::constant(tau[4]),
+            tau_6: Input::constant(tau[5]),
+            ..Ur5Driven::default()
+        };
+        let mut y = vec![0.0; <Ur5Driven as Model>::STATES];
+        model.initial_state(&mut y);
+        for (k, joint) in joints.iter().enumerate() {
+            y[at(&format!("{joint}.q"))] = q[k];
+            y[at(&format!("der({joint}.q)"))] = v[k];
+        }
+        let mut dy = vec![0.0; <Ur5Driven as Model>::STATES];
+        model.rhs(0.0, &y, &mut dy).unwrap();
+        let scale = ddq.iter().fold(1.0f64, |s, a| s.max(a.abs()));
+        for (k, joint) in joints.iter().enumerate() {
+            worst = worst.max((dy[at(&format!("der({joint}.q)"))] - ddq[k]).abs() / scale);
+        }
+    }
+    println!("ur5 with torques: {worst:e}");
+    assert!(worst < 1e-12, "{worst:e}");
+}

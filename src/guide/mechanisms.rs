@@ -193,7 +193,10 @@
 //!   it, `<joint>_damping` (the standard library's `damper` or
 //!   `translational_damper` on the joint's flange); its Coulomb `friction`
 //!   is read and left out. A motor or a controller drives a joint the same
-//!   way, through `elbow_joint.flange` (the example `robot_arm`).
+//!   way, through `elbow_joint.flange` (the example `robot_arm`), and a
+//!   torque from outside is an input through `signal_torque`:
+//!   `let tau = input(0.0); let drive = signal_torque();
+//!   connect(drive.flange, elbow_joint.flange); drive.u == tau;`.
 //! - **Start**: the zero configuration at rest, or the joint positions
 //!   and rates given by `init(elbow_joint.q, -1.2)` and
 //!   `init(der(elbow_joint.q), 0.5)`.
