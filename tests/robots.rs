@@ -178,7 +178,6 @@ fn ur5_driven_by_joint_torques_is_pinocchio_s_aba() {
             tau_4: Input::constant(tau[3]),
             tau_5: Input::constant(tau[4]),
             tau_6: Input::constant(tau[5]),
-            ..Ur5Driven::default()
         };
         let mut y = vec![0.0; <Ur5Driven as Model>::STATES];
         model.initial_state(&mut y);
