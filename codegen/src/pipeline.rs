@@ -152,8 +152,15 @@ fn system_analysis(
 ) -> SystemAnalysis {
     // A model with sensitivities has none: it would need the variational
     // equations of the mass-matrix form too.
+    // A form too large for a symbolic Jacobian (a robot's dynamics with
+    // its joints' dampers) is left out where the explicit form runs: its
+    // Jacobian has no differenced fallback.
     let mass_form = match system.mass_only || attributes.sensitivity_columns == 0 {
-        true => crate::dae::mass_form::mass_form(g, &system),
+        true => crate::dae::mass_form::mass_form(g, &system).map(|form| {
+            form.filter(|f| {
+                system.mass_only || crate::emit::jacobian::symbolic_jacobian_pays(g, &f.rows)
+            })
+        }),
         false => Ok(None),
     };
     // A model that runs in mass-matrix form only has no Taylor code.

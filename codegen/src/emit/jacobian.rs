@@ -7,8 +7,28 @@ use crate::{Graph, Id, SymbolId};
 use proc_macro2::TokenStream;
 use quote::quote;
 
-/// `JACOBIAN` with `jacobian` and `time_derivative` where f is explicit;
-/// nothing otherwise (`Jacobian::Differenced`, the default).
+/// Past this many operations in f, and with most of f's entries reading
+/// most of the state (a robot's dynamics: UR5's are 1,500 operations, every
+/// acceleration reading every joint), the Jacobian is differenced: its
+/// symbolic form would be several times f's code and compile time, where
+/// differences cost one evaluation of f per state at run time. A large
+/// sparse f (a grid) keeps its symbolic Jacobian.
+pub const SYMBOLIC_JACOBIAN_OPERATIONS: usize = 1000;
+
+/// Whether f's Jacobian is worth writing symbolically (see
+/// [`SYMBOLIC_JACOBIAN_OPERATIONS`]).
+pub fn symbolic_jacobian_pays(g: &Graph, f: &[Id]) -> bool {
+    if f.is_empty() || g.reachable(f).len() <= SYMBOLIC_JACOBIAN_OPERATIONS {
+        return true;
+    }
+    let read: usize = f.iter().map(|&e| g.free_symbols(e).len()).sum();
+    // Dense: on average each entry reads a quarter of the entries' number.
+    4 * read < f.len() * f.len()
+}
+
+/// `JACOBIAN` with `jacobian` and `time_derivative` where f is explicit
+/// and worth it (see [`SYMBOLIC_JACOBIAN_OPERATIONS`]); nothing
+/// otherwise (`Jacobian::Differenced`, the default).
 pub(crate) fn jacobian_items(
     g: &mut Graph,
     layout: &Layout,
@@ -17,6 +37,7 @@ pub(crate) fn jacobian_items(
     explicit: Option<Vec<Id>>,
 ) -> crate::Result<TokenStream> {
     let n = slots.len();
+    let explicit = explicit.filter(|f| symbolic_jacobian_pays(g, f));
     Ok(match explicit {
         Some(f) => {
             let wrt: Vec<SymbolId> = slots.to_vec();

@@ -174,3 +174,23 @@ pub(crate) fn rodrigues(g: &mut Graph, u: Vec3, angle: Id) -> crate::Result<Mat3
     }
     Ok(r)
 }
+
+/// Constant entries within 1e-14 of 0 or ±1 made exact: a rotation
+/// composed of quarter turns carries the rounding of cos(π/2) (6e-17),
+/// which would otherwise multiply through every product along the tree and
+/// hide its zeros. Entries that are not numbers are left alone.
+pub(crate) fn exact_where_rounded<const N: usize>(
+    g: &mut Graph,
+    xs: [Id; N],
+) -> crate::Result<[Id; N]> {
+    let mut out = xs;
+    for x in &mut out {
+        let Some(v) = g.as_number(*x).map(|n| n.to_f64()) else { continue };
+        if v.abs() < 1e-14 {
+            *x = g.zero();
+        } else if (v.abs() - 1.0).abs() < 1e-14 {
+            *x = g.int(if v > 0.0 { 1 } else { -1 });
+        }
+    }
+    Ok(out)
+}

@@ -14,6 +14,7 @@ use super::spatial_vectors::{
     add, add_inertia, apply, body_inertia, cross_force, cross_motion, dot, negate, scale, sub,
     Spatial,
 };
+use super::tree_factorization::solve_along_tree;
 use super::unsupported;
 use super::Scene;
 use super::{Frame, SpatialJointRecord};
@@ -188,10 +189,10 @@ impl Lower<'_, Scene> {
             if let Some(gv) = gravity {
                 external.push((scale3(g, body.mass, gv)?, [zero; 3]));
             }
-            for (on, fw, tau) in &loads {
-                if *on == b {
-                    external.push((*fw, mat_vec(g, &placed[b].rot, *tau)?));
-                }
+            for load in loads.iter().filter(|l| l.body == b) {
+                let turned = mat_vec(g, &placed[b].rot, load.body_force)?;
+                let force = add3(g, load.world_force, turned)?;
+                external.push((force, mat_vec(g, &placed[b].rot, load.torque)?));
             }
             for (fw, torque) in external {
                 let moment = cross3(g, c, fw)?;
@@ -218,19 +219,30 @@ impl Lower<'_, Scene> {
             }
         }
         let m = index.len();
+        // Each speed's predecessor on its path to the root: the body's
+        // previous column, else its parent's last.
+        let mut previous: Vec<Option<usize>> = Vec::with_capacity(m);
+        for &(b, c) in &index {
+            previous.push(match (c, parent[b]) {
+                (0, None) => None,
+                (0, Some(p)) => Some(first[p] + subspace[p].len() - 1),
+                _ => Some(first[b] + c - 1),
+            });
+        }
         let mut mass = vec![vec![zero; m]; m];
         for &i in &order {
-            let mut j = Some(i);
-            while let Some(jb) = j {
-                for (l, col) in subspace[jb].iter().enumerate() {
-                    let f = apply(g, &composite[i], col.s)?;
-                    for (k, row) in subspace[i].iter().enumerate() {
-                        let entry = dot(g, row.s, f)?;
+            // F = I^c_i S_k once; M_kl = S_lᵀ F for l on the path to the root.
+            for (k, row) in subspace[i].iter().enumerate() {
+                let f = apply(g, &composite[i], row.s)?;
+                let mut j = Some(i);
+                while let Some(jb) = j {
+                    for (l, col) in subspace[jb].iter().enumerate() {
+                        let entry = dot(g, col.s, f)?;
                         mass[first[i] + k][first[jb] + l] = entry;
                         mass[first[jb] + l][first[i] + k] = entry;
                     }
+                    j = parent[jb];
                 }
-                j = parent[jb];
             }
         }
         // Reactions of the cut joints through the speeds: ∂Φ̇/∂u.
@@ -238,16 +250,9 @@ impl Lower<'_, Scene> {
         for &(row, lambda) in cut_rows {
             rates.push((g.total_derivative(row, field)?, lambda));
         }
-        let mut equations = Vec::with_capacity(m);
-        for (k, &(b, c)) in index.iter().enumerate() {
+        let mut forces = Vec::with_capacity(m);
+        for &(b, c) in &index {
             let col = subspace[b][c];
-            let mut lhs = Vec::with_capacity(m);
-            for (l, &(bl, cl)) in index.iter().enumerate() {
-                if g.as_number(mass[k][l]).is_some_and(|v| v.is_zero()) {
-                    continue;
-                }
-                lhs.push(g.mul(mass[k][l], subspace[bl][cl].acceleration)?);
-            }
             let bias_force = dot(g, col.s, force[b])?;
             let mut rhs = vec![g.neg(bias_force)?];
             let speed = g.as_symbol(col.speed).ok_or_else(|| unsupported("a joint speed"))?;
@@ -259,7 +264,29 @@ impl Lower<'_, Scene> {
                 let t = g.mul(d, lambda)?;
                 rhs.push(g.neg(t)?);
             }
-            equations.push((g.sum(&lhs)?, g.sum(&rhs)?));
+            forces.push(g.sum(&rhs)?);
+        }
+        // A tree: the accelerations explicit, through the tree's
+        // factorisation. Cut joints add their multipliers, and the KKT
+        // system is left to the run-time solve.
+        if rates.is_empty() {
+            let accelerations = solve_along_tree(g, &mass, &previous, &forces)?;
+            return Ok(index
+                .iter()
+                .zip(accelerations)
+                .map(|(&(b, c), a)| (subspace[b][c].acceleration, a))
+                .collect());
+        }
+        let mut equations = Vec::with_capacity(m);
+        for (k, &force) in forces.iter().enumerate() {
+            let mut lhs = Vec::with_capacity(m);
+            for (l, &(bl, cl)) in index.iter().enumerate() {
+                if g.as_number(mass[k][l]).is_some_and(|v| v.is_zero()) {
+                    continue;
+                }
+                lhs.push(g.mul(mass[k][l], subspace[bl][cl].acceleration)?);
+            }
+            equations.push((g.sum(&lhs)?, force));
         }
         Ok(equations)
     }

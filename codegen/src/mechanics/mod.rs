@@ -11,6 +11,7 @@
 //! its scopes.
 
 pub mod algebra;
+pub mod body_frame_dynamics;
 pub mod joint_space_dynamics;
 pub mod names;
 pub mod planar;
@@ -21,6 +22,7 @@ pub mod spatial_recursive;
 pub mod spatial_tree;
 pub mod spatial_vectors;
 pub mod topology;
+pub mod tree_factorization;
 pub mod urdf;
 
 use crate::front::lower::Lower;
@@ -58,8 +60,8 @@ pub(crate) struct Scene {
     pub records: Vec<JointRecord>,
     /// The bodies of a spatial scene (then `bodies` is empty).
     pub spatial: Vec<SpatialBody>,
-    /// Applied loads in a spatial scene: body, world force, body-axes torque.
-    pub spatial_loads: Vec<(usize, [Id; 3], [Id; 3])>,
+    /// Applied loads in a spatial scene.
+    pub spatial_loads: Vec<SpatialLoad>,
     /// Gravity of a spatial scene.
     pub gravity_vector: Option<[Id; 3]>,
     /// Every joint's name, rows and statement, for reporting redundancy.
@@ -259,6 +261,35 @@ pub(crate) const LOADS: [&str; 4] = ["gravity", "force", "torque", "spring"];
 pub(crate) enum Frame {
     Ground,
     Body(usize),
+}
+
+/// A load on a spatial body: forces at its centre of mass, one in world
+/// axes and one in its own (a joint's force along an axis that keeps its
+/// direction in the body), and a torque in its own axes.
+#[derive(Clone, Copy)]
+pub(crate) struct SpatialLoad {
+    pub body: usize,
+    pub world_force: [Id; 3],
+    pub body_force: [Id; 3],
+    pub torque: [Id; 3],
+}
+
+impl SpatialLoad {
+    /// A world force at the centre with a torque in body axes.
+    pub fn world(g: &mut crate::Graph, body: usize, world_force: [Id; 3], torque: [Id; 3]) -> Self {
+        let zero = g.zero();
+        SpatialLoad { body, world_force, body_force: [zero; 3], torque }
+    }
+
+    /// Every entry, for rewriting.
+    pub fn entries_mut(&mut self) -> impl Iterator<Item = &mut Id> {
+        self.world_force.iter_mut().chain(self.body_force.iter_mut()).chain(self.torque.iter_mut())
+    }
+
+    /// Every entry.
+    pub fn entries(&self) -> impl Iterator<Item = Id> + '_ {
+        self.world_force.iter().chain(&self.body_force).chain(&self.torque).copied()
+    }
 }
 
 /// A spatial rigid body: its coordinates and inertia.

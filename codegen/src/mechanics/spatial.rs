@@ -38,7 +38,7 @@ use super::algebra::{
     add3, cross3, dot3, mat_t_vec, mat_vec, quaternion_rates, rotation, scale3, sub3, Mat3, Vec3,
 };
 use super::Scene;
-use super::SpatialBody;
+use super::{SpatialBody, SpatialLoad};
 use crate::front::lower::Binding;
 use crate::front::lower::Lower;
 use crate::{Graph, Id, SymbolId};
@@ -573,7 +573,10 @@ impl Lower<'_, Scene> {
                     cross3(g, s, local)
                 })();
                 match r {
-                    Ok(tau) => self.scene.spatial_loads.push((b, f, tau)),
+                    Ok(tau) => {
+                        let load = SpatialLoad::world(&mut self.g, b, f, tau);
+                        self.scene.spatial_loads.push(load);
+                    }
                     Err(err) => self.cx.error_at(e, err),
                 }
             }
@@ -592,7 +595,10 @@ impl Lower<'_, Scene> {
                 })();
                 let zero = self.g.zero();
                 match r {
-                    Ok(local) => self.scene.spatial_loads.push((b, [zero; 3], local)),
+                    Ok(local) => {
+                        let load = SpatialLoad::world(&mut self.g, b, [zero; 3], local);
+                        self.scene.spatial_loads.push(load);
+                    }
                     Err(err) => self.cx.error_at(e, err),
                 }
             }
@@ -631,7 +637,7 @@ impl Lower<'_, Scene> {
                 }
             }
         };
-        let built = (|| -> crate::Result<(Vec3, Pose, Id, Pose, Id)> {
+        let built = (|| -> crate::Result<(Vec3, Pose, Id, Pose, Id, [Vec3; 2])> {
             let pa = self.pose(record.a)?;
             let pb = self.pose(record.b)?;
             let g = &mut self.g;
@@ -645,9 +651,9 @@ impl Lower<'_, Scene> {
             let unit_b = mat_t_vec(g, &pb.rot0, u0)?;
             let wa = rate_along(self, record.a, unit_a)?;
             let wb = rate_along(self, record.b, unit_b)?;
-            Ok((u, pa, wa, pb, wb))
+            Ok((u, pa, wa, pb, wb, [unit_a, unit_b]))
         })();
-        let (u, pa, wa, pb, wb) = match built {
+        let (u, pa, wa, pb, wb, [unit_a, unit_b]) = match built {
             Ok(v) => v,
             Err(e) => {
                 self.cx.error_at(at, e);
@@ -655,41 +661,47 @@ impl Lower<'_, Scene> {
             }
         };
         let zero = self.g.zero();
-        let on = |this: &mut Self, frame: Frame, pose: &Pose, force: Vec3, torque: Vec3| {
-            let Frame::Body(b) = frame else { return Ok(()) };
-            let local = mat_t_vec(&mut this.g, &pose.rot, torque)?;
-            this.scene.spatial_loads.push((b, force, local));
-            Ok::<(), crate::Error>(())
-        };
         let result = (|| -> crate::Result<Id> {
             if record.kind == "revolute" {
-                let torque = scale3(&mut self.g, flow, u)?;
-                let minus = self.g.int(-1);
-                let reaction = scale3(&mut self.g, minus, torque)?;
-                on(self, record.b, &pb, [zero; 3], torque)?;
-                on(self, record.a, &pa, [zero; 3], reaction)?;
+                // The torque about the axis, in each body's own axes: the
+                // axis keeps its direction in both.
+                let on_b = scale3(&mut self.g, flow, unit_b)?;
+                let minus = self.g.neg(flow)?;
+                let on_a = scale3(&mut self.g, minus, unit_a)?;
+                for (frame, torque) in [(record.b, on_b), (record.a, on_a)] {
+                    if let Frame::Body(b) = frame {
+                        let load = SpatialLoad::world(&mut self.g, b, [zero; 3], torque);
+                        self.scene.spatial_loads.push(load);
+                    }
+                }
                 return self.g.sub(wb, wa);
             }
-            // Prismatic: the joint points in the world, their offset along
-            // the axis, the force at b's point.
+            // Prismatic: the force along the axis at b's joint point, in
+            // each body's own axes (the bodies keep their relative
+            // attitude): on b, f u_b with moment p_b × f u_b about its
+            // centre; on a, −f u_a at the same point, p_a + s u_a, whose
+            // moment is p_a × (−f u_a).
             let point = |this: &mut Self, pose: &Pose, p: Vec3| -> crate::Result<Vec3> {
                 let turned = mat_vec(&mut this.g, &pose.rot, p)?;
                 add3(&mut this.g, pose.r, turned)
             };
             let (xa, xb) = (point(self, &pa, record.local_a)?, point(self, &pb, record.local_b)?);
             let offset = sub3(&mut self.g, xb, xa)?;
-            let force = scale3(&mut self.g, flow, u)?;
-            let minus = self.g.int(-1);
-            let reaction = scale3(&mut self.g, minus, force)?;
-            // Moments about the centres of mass, in world axes: (x − r) × f.
-            let arm = sub3(&mut self.g, xb, pb.r)?;
-            let mb = cross3(&mut self.g, arm, force)?;
-            on(self, record.b, &pb, force, mb)?;
-            if let Frame::Body(_) = record.a {
-                // The reaction acts at the same world point, xb.
-                let arm = sub3(&mut self.g, xb, pa.r)?;
-                let ma = cross3(&mut self.g, arm, reaction)?;
-                on(self, record.a, &pa, reaction, ma)?;
+            let g = &mut self.g;
+            for (frame, arm, axis, sign) in
+                [(record.b, record.local_b, unit_b, 1), (record.a, record.local_a, unit_a, -1)]
+            {
+                let Frame::Body(body) = frame else { continue };
+                let k = g.int(sign);
+                let signed = g.mul(k, flow)?;
+                let body_force = scale3(g, signed, axis)?;
+                let torque = cross3(g, arm, body_force)?;
+                self.scene.spatial_loads.push(SpatialLoad {
+                    body,
+                    world_force: [zero; 3],
+                    body_force,
+                    torque,
+                });
             }
             dot3(&mut self.g, u, offset)
         })();
@@ -764,7 +776,8 @@ impl Lower<'_, Scene> {
             Err(err) => return self.cx.error_at(e, err),
         };
         if let Frame::Body(i) = a {
-            self.scene.spatial_loads.push((i, f, tau_a));
+            let load = SpatialLoad::world(&mut self.g, i, f, tau_a);
+            self.scene.spatial_loads.push(load);
         }
         if let Frame::Body(i) = b {
             let minus = (|| {
@@ -775,7 +788,10 @@ impl Lower<'_, Scene> {
                 ))
             })();
             match minus {
-                Ok((f, tau)) => self.scene.spatial_loads.push((i, f, tau)),
+                Ok((f, tau)) => {
+                    let load = SpatialLoad::world(&mut self.g, i, f, tau);
+                    self.scene.spatial_loads.push(load);
+                }
                 Err(err) => self.cx.error_at(e, err),
             }
         }
@@ -849,9 +865,19 @@ impl Lower<'_, Scene> {
                     if let Some(gv) = gravity {
                         terms.push(g.mul(body.mass, gv[k])?);
                     }
-                    for (on, f, _) in &loads {
-                        if *on == b {
-                            terms.push(f[k]);
+                    for load in loads.iter().filter(|l| l.body == b) {
+                        terms.push(load.world_force[k]);
+                    }
+                    for load in loads.iter().filter(|l| l.body == b) {
+                        if load
+                            .body_force
+                            .iter()
+                            .any(|&x| g.as_number(x).is_none_or(|v| !v.is_zero()))
+                        {
+                            let q = body.quaternion.map(|s| g.symbol_node(s));
+                            let rot = rotation(g, q)?;
+                            let world = mat_vec(g, &rot, load.body_force)?;
+                            terms.push(world[k]);
                         }
                     }
                     super::push_constraint_forces(g, &rows, body.position[k], &mut terms)?;
@@ -893,10 +919,8 @@ impl Lower<'_, Scene> {
                 };
                 for k in 0..3 {
                     let mut terms = vec![g.neg(gyroscopic[k])?];
-                    for (on, _, tau) in &loads {
-                        if *on == b {
-                            terms.push(tau[k]);
-                        }
+                    for load in loads.iter().filter(|l| l.body == b) {
+                        terms.push(load.torque[k]);
                     }
                     for &(row, lambda) in &rows {
                         let mut generalized = Vec::with_capacity(4);

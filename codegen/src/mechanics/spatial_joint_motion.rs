@@ -7,8 +7,8 @@
 //! start, C0 = R_a0ᵀ R_b0, is part of every joint's rotation.
 
 use super::algebra::{
-    add3, axis_angle, conjugate, cross3, dot3, mat_mul, mat_t_vec, mat_vec, quaternion_product,
-    rodrigues, rotation, scale3, sub3, unit3, Mat3, Vec3,
+    add3, axis_angle, conjugate, cross3, dot3, exact_where_rounded, mat_mul, mat_t_vec, mat_vec,
+    quaternion_product, rodrigues, rotation, scale3, sub3, unit3, Mat3, Vec3,
 };
 use super::unsupported;
 use super::Scene;
@@ -62,6 +62,8 @@ pub(super) struct Motion {
     pub quaternion: [Id; 4],
     pub rot: Mat3,
     pub offset: Vec3,
+    /// The relative rotation at the start, C0 = R_a0ᵀ R_b0.
+    pub start_rot: Mat3,
     pub columns: Vec<Column>,
     pub states: Vec<NewState>,
     /// A spherical joint's quaternion and rates (q' = ½ q ⊗ ω).
@@ -98,7 +100,9 @@ impl Lower<'_, Scene> {
         // The relative attitude at the start, C0 = R_a0ᵀ R_b0.
         let qa0 = conjugate(g, sa.quaternion)?;
         let qc0 = quaternion_product(g, qa0, sb.quaternion)?;
+        let qc0 = exact_where_rounded(g, qc0)?;
         let c0 = rotation(g, qc0)?;
+        let c0 = exact_where_rounded(g, c0)?;
         // The joint points at the start, the relative angular velocity
         // (world) and the relative velocity of b's point (world).
         let arm_a = mat_vec(g, &ra0, rec.local_a)?;
@@ -287,6 +291,6 @@ impl Lower<'_, Scene> {
             // Welded: no coordinate.
             _ => (qc0, c0, [zero; 3]),
         };
-        Ok(Motion { quaternion, rot, offset, columns, states, attitude })
+        Ok(Motion { quaternion, rot, offset, start_rot: c0, columns, states, attitude })
     }
 }

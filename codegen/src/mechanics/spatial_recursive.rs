@@ -34,6 +34,7 @@ use super::algebra::{
     add3, conjugate, cross3, mat_mul, mat_t_vec, mat_vec, quaternion_product, quaternion_rates,
     rotation, sub3, transpose, Vec3,
 };
+use super::body_frame_dynamics::{body_frames, Relative};
 use super::joint_space_dynamics::Dynamics;
 use super::spatial_joint_motion::{Axis, Column, Motion, NewState, Start};
 use super::spatial_tree::{Edge, Placed};
@@ -75,6 +76,7 @@ impl Lower<'_, Scene> {
         // Kinematics along the tree.
         let mut placed: Vec<Option<Placed>> = vec![None; n];
         let mut columns: Vec<Vec<(Column, Frame, Frame, bool)>> = vec![Vec::new(); n];
+        let mut relative: Vec<Option<Relative>> = vec![None; n];
         let mut states: Vec<NewState> = Vec::new();
         let mut attitudes = Vec::new();
         for edge in &tree {
@@ -102,6 +104,12 @@ impl Lower<'_, Scene> {
             let parent = frame_pose(edge.parent, &mut self.g)?;
             let child = place_child(&mut self.g, edge, rec, &motion, &parent)?;
             placed[edge.child] = Some(child);
+            relative[edge.child] = Some(Relative {
+                kind: rec.kind,
+                rot: motion.rot,
+                start_rot: motion.start_rot,
+                offset: motion.offset,
+            });
             for column in motion.columns {
                 columns[edge.child].push((column, rec.a, rec.b, edge.child_is_b));
             }
@@ -132,20 +140,47 @@ impl Lower<'_, Scene> {
             self.cx.error_at(&at, message);
             return Ok(());
         }
+        // In body frames where every joint allows it.
+        let frames = body_frames(
+            &mut self.g,
+            &tree,
+            &records,
+            &relative,
+            &placed,
+            &columns,
+            !cut.is_empty(),
+        )?;
+        let body_rates: Option<Vec<Vec3>> =
+            frames.as_ref().map(|f| f.velocity.iter().map(|v| v.top).collect());
         // Everything written in body coordinates is rewritten in joint ones.
-        let mut replace = self.body_substitution(&placed, &velocity, &free, &mut field)?;
+        let mut replace =
+            self.body_substitution(&placed, &velocity, body_rates.as_deref(), &free, &mut field)?;
         self.prismatic_flange_substitution(&states, &mut replace, &mut field)?;
         let cut_rows = self.rewrite_spatial(&replace, &records, &cut)?;
         self.spatial_body_outputs(&placed, &velocity, &free, origin)?;
         // Equations of motion.
-        let equations = self.crba_rnea(&tree, &placed, &subspace, &cut_rows, &mut field)?;
+        let equations = match &frames {
+            Some(frames) => frames.equations_of_motion(
+                &mut self.g,
+                &tree,
+                &self.scene.spatial.clone(),
+                &placed,
+                &self.scene.spatial_loads.clone(),
+                self.scene.gravity_vector,
+            )?,
+            None => self.crba_rnea(&tree, &placed, &subspace, &cut_rows, &mut field)?,
+        };
         self.push_equations_of_motion(Ok(equations), origin);
         self.quaternion_kinematics(&attitudes, &free, origin)?;
         self.apply_joint_inits(&states);
         let coordinates = subspace.iter().map(Vec::len).sum::<usize>();
         self.scene.summary.push_str(&format!(
-            " Recursive formulation: {coordinates} joint speeds on the spanning tree ({} free bodies), mass matrix by the composite-rigid-body algorithm, bias forces by recursive Newton–Euler, {} cut-joint constraint rows.",
+            " Recursive formulation: {coordinates} joint speeds on the spanning tree ({} free bodies), mass matrix by the composite-rigid-body algorithm, bias forces by recursive Newton–Euler, {}, {} cut-joint constraint rows.",
             free.iter().filter(|f| **f).count(),
+            match frames.is_some() {
+                true => "in body frames, accelerations through the tree's factorisation",
+                false => "in world axes",
+            },
             cut_rows.len()
         ));
         Ok(())
@@ -634,6 +669,7 @@ impl Lower<'_, Scene> {
         &mut self,
         placed: &[Placed],
         velocity: &[Spatial],
+        body_rates: Option<&[Vec3]>,
         free: &[bool],
         field: &mut VectorField,
     ) -> crate::Result<FxHashMap<SymbolId, Id>> {
@@ -645,7 +681,7 @@ impl Lower<'_, Scene> {
             roots.extend(self.events.iter().map(|e| e.value));
             roots.extend(self.invariants.iter().map(|i| i.value));
             roots.extend(
-                self.scene.spatial_loads.iter().flat_map(|(_, f, t)| f.iter().chain(t).copied()),
+                self.scene.spatial_loads.iter().flat_map(|l| l.entries().collect::<Vec<_>>()),
             );
             for r in roots {
                 read.extend(self.g.free_symbols(r));
@@ -661,6 +697,9 @@ impl Lower<'_, Scene> {
             let v = velocity[b];
             // v_c = v_O + ω × c; ω in body axes = Rᵀ ω.
             let (vc, w_body) = centre_and_body_rates(g, &p, v)?;
+            // The body frames' rates where they were computed: the same
+            // values, without turning the world's through the chain.
+            let w_body = body_rates.map_or(w_body, |r| r[b]);
             for k in 0..3 {
                 let s = body.position[k];
                 replace.insert(s, p.centre[k]);
@@ -714,8 +753,8 @@ impl Lower<'_, Scene> {
         for inv in &mut self.invariants {
             inv.value = g.substitute(inv.value, replace)?;
         }
-        for (_, f, t) in &mut self.scene.spatial_loads {
-            for x in f.iter_mut().chain(t.iter_mut()) {
+        for load in &mut self.scene.spatial_loads {
+            for x in load.entries_mut() {
                 *x = g.substitute(*x, replace)?;
             }
         }

@@ -400,6 +400,8 @@ impl Builder<'_> {
             Node::Symbol(s) => match g.symbol(*s).kind {
                 _ if *s == self.time => Operand::Time,
                 SymbolKind::Parameter => self.constant(id),
+                // A named intermediate is its definition's coefficients.
+                SymbolKind::Intermediate { definition } => self.operand(definition),
                 _ => match self.slot_of.get(s) {
                     Some(&i) => Operand::State(i),
                                         None => {

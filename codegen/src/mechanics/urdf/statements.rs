@@ -17,6 +17,19 @@ use super::{mat_vec, Frame};
 use proc_macro2::{Literal, Span, TokenStream};
 use quote::quote;
 
+/// `x` with the rounding of a quarter turn undone: within 1e-14 of 0 or ±1
+/// it is exact (cos(π/2) is 6e-17 in floating point), so the scene sees a
+/// quarter-turned axis or attitude as the zeros it has.
+fn exact_where_rounded(x: f64) -> f64 {
+    if x.abs() < 1e-14 {
+        0.0
+    } else if (x.abs() - 1.0).abs() < 1e-14 {
+        x.signum()
+    } else {
+        x
+    }
+}
+
 /// A number as a token, negative ones in parentheses.
 fn number(x: f64) -> TokenStream {
     let lit = Literal::f64_unsuffixed(x.abs());
@@ -83,7 +96,7 @@ fn body(name: &syn::Ident, mass: &MassProperties, world: &Frame) -> TokenStream 
     let m = number(mass.mass);
     let inertia = mass.inertia.concat().into_iter().map(number);
     let centre = world.apply(&mass.com).map(number);
-    let q = quaternion(&world.rotation).map(number);
+    let q = quaternion(&world.rotation).map(exact_where_rounded).map(number);
     quote! {
         let #name = spatial_body(#m, mat3(#(#inertia),*), [#(#centre),*], [#(#q),*]);
     }
@@ -124,7 +137,7 @@ pub fn statements(tree: &Tree, floating: bool) -> Result<Vec<TokenStream>, (u32,
         let t = j.placement.translation;
         let in_parent = vec3([t[0] - parent_com[0], t[1] - parent_com[1], t[2] - parent_com[2]]);
         let in_child = vec3(b.mass.com.map(|c| -c));
-        let axis = vec3(mat_vec(&j.placement.rotation, &j.axis));
+        let axis = vec3(mat_vec(&j.placement.rotation, &j.axis).map(exact_where_rounded));
         let (name, child) = (identifier(&j.name), identifier(&b.link));
         let damped = j.damping > 0.0
             && matches!(j.kind, JointKind::Revolute | JointKind::Continuous | JointKind::Prismatic);
