@@ -5,7 +5,7 @@
 use crate::dae::system::{FirstOrder, SlotDerivative};
 use crate::emit::layout::{index, program, Layout};
 use crate::emit::newton::block_solve_code;
-use crate::Graph;
+use crate::{Graph, Id};
 use proc_macro2::TokenStream;
 use quote::quote;
 
@@ -41,18 +41,66 @@ pub(crate) fn output_arms(
         quote!(#newton_solve #linear)
     };
     layout.block_of = sys.block_unknowns.iter().map(|&(s, b, r)| (s, (b, r))).collect();
-    let output_arms: Vec<TokenStream> = observables
-        .iter()
-        .enumerate()
-        .map(|(k, &o)| {
-            let reads_block = g.free_symbols(o).iter().any(|s| layout.block_of.contains_key(s));
-            let solve =
-                if reads_block { block_solve_for_outputs.clone() } else { TokenStream::new() };
-            let body = program(g, layout, &[o], &|_, v| v);
+    let mut output_arms = Vec::new();
+    for group in groups_sharing_work(g, &observables) {
+        let values: Vec<Id> = group.iter().map(|&k| observables[k]).collect();
+        let reads_block = values
+            .iter()
+            .any(|&o| g.free_symbols(o).iter().any(|s| layout.block_of.contains_key(s)));
+        let solve = if reads_block { block_solve_for_outputs.clone() } else { TokenStream::new() };
+        if let [k] = group[..] {
+            let body = program(g, layout, &values, &|_, v| v);
             let k = index(k);
-            quote!(#k => { #solve #body })
-        })
-        .collect();
+            output_arms.push(quote!(#k => { #solve #body }));
+            continue;
+        }
+        // The group computed together, the one asked for returned.
+        let names: Vec<syn::Ident> =
+            (0..group.len()).map(|j| quote::format_ident!("value{}", j)).collect();
+        let body = program(g, layout, &values, &|j, v| {
+            let name = &names[j];
+            quote!(let #name = #v;)
+        });
+        let ks: Vec<proc_macro2::Literal> = group.iter().map(|&k| index(k)).collect();
+        output_arms.push(quote! {
+            #(#ks)|* => {
+                #solve
+                #body
+                match index {
+                    #(#ks => #names,)*
+                    _ => f64::NAN,
+                }
+            }
+        });
+    }
     layout.block_of.clear();
     Ok(output_arms)
+}
+
+/// Outputs read one at a time, each computing what it needs, except
+/// where consecutive outputs share most of their work (a body's position,
+/// attitude and velocity at the end of a chain of joints): those form a
+/// group computed together, so the chain is written once per group rather
+/// than once per output. Small outputs stay alone.
+fn groups_sharing_work(g: &Graph, observables: &[Id]) -> Vec<Vec<usize>> {
+    const ALONE_BELOW: usize = 64;
+    const MOST: usize = 16;
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    let mut seen: crate::FxHashMap<Id, ()> = Default::default();
+    for (k, &o) in observables.iter().enumerate() {
+        let needs = g.reachable(&[o]);
+        let shared = needs.iter().filter(|id| seen.contains_key(id)).count();
+        let joins = needs.len() >= ALONE_BELOW
+            && 2 * shared >= needs.len()
+            && groups.last().is_some_and(|last| last.len() < MOST);
+        match (joins, groups.last_mut()) {
+            (true, Some(last)) => last.push(k),
+            _ => {
+                groups.push(vec![k]);
+                seen.clear();
+            }
+        }
+        seen.extend(needs.into_iter().map(|id| (id, ())));
+    }
+    groups
 }
