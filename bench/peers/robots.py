@@ -25,6 +25,7 @@ import argparse
 import json
 import os
 import statistics
+import sysconfig
 import timeit
 
 import numpy as np
@@ -34,12 +35,24 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROBOTS_DIR = os.path.join(HERE, "..", "..", "tests", "robots")
 N_STATES = 5
 SEED = 20240601
-# (name, file, floating base?)
-ROBOTS = [("ur5", "ur5.urdf", False), ("panda", "panda.urdf", False), ("solo12", "solo12.urdf", True)]
+# (name, file, floating base?). `erd:` files are example-robot-data's own,
+# read where pip installed it (TALOS's licence, CC BY-NC-ND, keeps them out
+# of the repository): `python3 -m pip install example-robot-data`.
+ROBOTS = [("ur5", "ur5.urdf", False), ("panda", "panda.urdf", False), ("solo12", "solo12.urdf", True),
+          ("talos_arm", "erd:talos_data/robots/talos_left_arm.urdf", False),
+          ("talos", "erd:talos_data/robots/talos_reduced.urdf", False)]
+
+
+def robot_path(file):
+    if file.startswith("erd:"):
+        share = os.path.join(sysconfig.get_paths()["purelib"], "cmeel.prefix", "share",
+                             "example-robot-data", "robots")
+        return os.path.join(share, file[4:])
+    return os.path.join(ROBOTS_DIR, file)
 
 
 def build(file, floating):
-    path = os.path.join(ROBOTS_DIR, file)
+    path = robot_path(file)
     if floating:
         return pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer())
     return pin.buildModelFromUrdf(path)

@@ -194,6 +194,28 @@ fn robots_dir() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/robots")
 }
 
+/// A robot's file: ours in tests/robots, or (`erd:`) example-robot-data's
+/// where pip installed it, as TALOS's licence (CC BY-NC-ND) keeps its
+/// files out of the repository: `python3 -m pip install
+/// example-robot-data` (`.ci/run` installs it).
+fn robot_file(urdf: &str) -> std::path::PathBuf {
+    let Some(rest) = urdf.strip_prefix("erd:") else { return robots_dir().join(urdf) };
+    let out = std::process::Command::new("python3")
+        .args(["-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"])
+        .output()
+        .expect("python3, to find example-robot-data");
+    let purelib = String::from_utf8(out.stdout).unwrap().trim().to_string();
+    let path = std::path::Path::new(&purelib)
+        .join("cmeel.prefix/share/example-robot-data/robots")
+        .join(rest);
+    assert!(
+        path.exists(),
+        "{} is missing: `python3 -m pip install example-robot-data`",
+        path.display()
+    );
+    path
+}
+
 #[test]
 fn the_trees_of_real_robots_are_pinocchio_s() {
     let reference: serde_json::Value = serde_json::from_str(
@@ -217,8 +239,7 @@ fn the_trees_of_real_robots_are_pinocchio_s() {
     };
     for robot in reference["robots"].as_array().unwrap() {
         let name = robot["name"].as_str().unwrap();
-        let text =
-            std::fs::read_to_string(robots_dir().join(robot["urdf"].as_str().unwrap())).unwrap();
+        let text = std::fs::read_to_string(robot_file(robot["urdf"].as_str().unwrap())).unwrap();
         let t = tree(&parse(&text).unwrap()).unwrap();
         let mut theirs = robot["bodies"].as_array().unwrap().clone();
         if robot["floating_base"].as_bool().unwrap() {
@@ -302,4 +323,106 @@ fn a_robot_s_names_are_its_file_s() {
     assert!(out.contains("\"wrist_3_link.x\""));
     // The build depends on the file.
     assert!(out.contains("include_bytes"), "{out}");
+}
+
+fn floats(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+}
+
+/// x = A⁻¹ b by Gaussian elimination with partial pivoting.
+fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
+    let n = b.len();
+    for k in 0..n {
+        let p = (k..n).max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs())).unwrap();
+        a.swap(k, p);
+        b.swap(k, p);
+        for i in k + 1..n {
+            let f = a[i][k] / a[k][k];
+            let (above, below) = a.split_at_mut(i);
+            for (x, p) in below[0][k..].iter_mut().zip(&above[k][k..]) {
+                *x -= f * p;
+            }
+            b[i] -= f * b[k];
+        }
+    }
+    let mut x = vec![0.0; n];
+    for k in (0..n).rev() {
+        let s: f64 = (k + 1..n).map(|j| a[k][j] * x[j]).sum();
+        x[k] = (b[k] - s) / a[k][k];
+    }
+    x
+}
+
+/// The TALOS arm (7 joints) and the TALOS humanoid on a fixed base (32
+/// joints), whose files stay out of the repository, through the symbolic
+/// engine: the model analysed as the macro would, its joint accelerations
+/// evaluated from the expressions emission writes, at Pinocchio's random
+/// states, against M⁻¹(−nle − D q̇) from `pin.crba` and
+/// `pin.nonLinearEffects`, D the file's joint damping.
+#[test]
+fn talos_accelerations_are_pinocchio_s() {
+    let reference: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(robots_dir().join("pinocchio.json")).unwrap(),
+    )
+    .unwrap();
+    for name in ["talos_arm", "talos"] {
+        let robot =
+            reference["robots"].as_array().unwrap().iter().find(|r| r["name"] == name).unwrap();
+        let path = robot_file(robot["urdf"].as_str().unwrap());
+        let urdf = parse(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let item: syn::ItemFn = syn::parse_str(&format!(
+            "fn robot() {{ urdf({:?}); gravity(vec3(0.0, 0.0, -9.81)); }}",
+            path.display().to_string()
+        ))
+        .unwrap();
+        let mut cx = daegen_codegen::front::ctxt::Ctxt::default();
+        let analysed =
+            daegen_codegen::pipeline::analyse(&mut cx, "scene = recursive".parse().unwrap(), &item)
+                .unwrap_or_else(|_| panic!("{name}: {:?}", cx.messages()));
+        let (g, sys) = (&analysed.ir.graph, &analysed.model.system);
+        let slot = |n: String| sys.slots.iter().position(|s| s.name == n).unwrap();
+        let joints: Vec<String> = robot["bodies"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|b| b["joint"].as_str().unwrap().to_string())
+            .collect();
+        let accelerations: Vec<daegen_codegen::Id> = joints
+            .iter()
+            .map(|j| match sys.derivatives[slot(format!("der({j}.q)"))] {
+                daegen_codegen::dae::system::SlotDerivative::Explicit(e) => e,
+                _ => panic!("{name}: {j}'s acceleration is not explicit"),
+            })
+            .collect();
+        let damping: Vec<f64> = joints
+            .iter()
+            .map(|j| urdf.joints.iter().find(|u| &u.name == j).unwrap().damping)
+            .collect();
+        let mut worst = 0.0f64;
+        for state in robot["states"].as_array().unwrap() {
+            let (q, v, nle) = (floats(&state["q"]), floats(&state["v"]), floats(&state["nle"]));
+            let m: Vec<Vec<f64>> = state["M"].as_array().unwrap().iter().map(floats).collect();
+            let forces = nle.iter().zip(&v).zip(&damping).map(|((n, v), d)| -n - d * v).collect();
+            let expected = solve(m, forces);
+            let mut values = vec![f64::NAN; sys.slots.len()];
+            for (k, j) in joints.iter().enumerate() {
+                values[slot(format!("{j}.q"))] = q[k];
+                values[slot(format!("der({j}.q)"))] = v[k];
+            }
+            let value = |s: daegen_codegen::SymbolId| {
+                if let Some(i) = sys.slots.iter().position(|slot| slot.symbol == s) {
+                    return values[i];
+                }
+                let name = &g.symbol(s).name;
+                analysed.ir.params.iter().find(|p| p.ident == name).map_or(f64::NAN, |p| p.default)
+            };
+            let ours = g.eval(&accelerations, &value);
+            let scale = expected.iter().fold(1.0f64, |s, a| s.max(a.abs()));
+            for (a, b) in ours.iter().zip(&expected) {
+                worst = worst.max((a - b).abs() / scale);
+            }
+        }
+        println!("{name}: {} joints, worst {worst:e}", joints.len());
+        assert!(worst < 1e-12, "{name}: {worst:e}");
+    }
 }

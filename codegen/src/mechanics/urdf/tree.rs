@@ -170,6 +170,11 @@ pub fn tree(robot: &Robot) -> Result<Tree, Vec<UrdfError>> {
         parent_joint[child] = Some(j);
         children[parent].push(j);
     }
+    // Each link's joints by name, as urdfdom keeps them (a map by name) and
+    // so Pinocchio numbers them: the coordinates come in Pinocchio's order.
+    for list in &mut children {
+        list.sort_by(|&a, &b| robot.joints[a].name.as_bytes().cmp(robot.joints[b].name.as_bytes()));
+    }
     let roots: Vec<usize> = (0..robot.links.len()).filter(|&k| parent_joint[k].is_none()).collect();
     match roots.as_slice() {
         [_] => {}
@@ -250,7 +255,7 @@ pub fn tree(robot: &Robot) -> Result<Tree, Vec<UrdfError>> {
 }
 
 /// The bodies made by a walk from the root, depth first, each link's
-/// joints in the file's order: the order of the coordinates.
+/// joints by name: the order of the coordinates.
 struct Walk<'r> {
     robot: &'r Robot,
     link_index: &'r HashMap<&'r str, usize>,
