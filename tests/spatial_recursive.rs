@@ -16,7 +16,8 @@ spatial_double_pendulum!(double_pendulum_recursive, scene = recursive);
 
 rssr_loop!(rssr_global,);
 rssr_loop!(rssr_recursive, scene = recursive);
-seven_joint_arm!(arm_global,);
+// Body coordinates written out: the 7 MB of code a default scene refuses.
+seven_joint_arm!(arm_global, scene = global);
 seven_joint_arm!(arm_recursive, scene = recursive);
 
 /// Asserts that every name both solutions answer to agrees within `bound`

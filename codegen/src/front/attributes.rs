@@ -22,6 +22,9 @@ pub struct Attributes {
     /// `scene = recursive`: a scene in relative joint coordinates (the
     /// default, `scene = global`, keeps each body's coordinates).
     pub recursive: bool,
+    /// `scene = global` written out: body coordinates however much code
+    /// they make (else a large scene in them is refused).
+    pub global_written: bool,
     /// `bench = Bench::until(t1)...`: the model's benchmark problem; the
     /// model then implements `daegen::runtime::bench::Benchmark`.
     pub bench: Option<syn::Expr>,
@@ -121,7 +124,10 @@ pub fn attributes(cx: &mut Ctxt, attr: TokenStream) -> Attributes {
         } else if arg.path.is_ident("scene") {
             match &arg.value {
                 syn::Expr::Path(p) if p.path.is_ident("recursive") => out.recursive = true,
-                syn::Expr::Path(p) if p.path.is_ident("global") => out.recursive = false,
+                syn::Expr::Path(p) if p.path.is_ident("global") => {
+                    out.recursive = false;
+                    out.global_written = true;
+                }
                 other => cx.error_at(other, "`scene` is `global` (each body free, joints as constraints; the default) or `recursive` (relative joint coordinates on a spanning tree)"),
             }
         } else {

@@ -102,7 +102,14 @@ pub(crate) fn lower_with<S: SceneLanguage>(
             .collect(),
         missing_parts: l.missing_parts,
         depends_on: l.scene.files(),
+        body_coordinates: recursive_or_not(recursive, l.scene.has_spatial_bodies()),
     }
+}
+
+/// Whether a scene in space keeps its bodies' coordinates (the global
+/// formulation).
+fn recursive_or_not(recursive: bool, spatial: bool) -> bool {
+    spatial && !recursive
 }
 
 /// An empty lowering, the user's `parts` callable.
