@@ -7,27 +7,26 @@ use crate::{Graph, Id, SymbolId};
 use proc_macro2::TokenStream;
 use quote::quote;
 
-/// Past this many operations in f, and with most of f's entries reading
-/// most of the state (a robot's dynamics: UR5's are 1,500 operations, every
-/// acceleration reading every joint), the Jacobian is differenced: its
-/// symbolic form would be several times f's code and compile time, where
-/// differences cost one evaluation of f per state at run time. A large
-/// sparse f (a grid) keeps its symbolic Jacobian.
-pub const SYMBOLIC_JACOBIAN_OPERATIONS: usize = 1000;
+/// Past this estimate of one row's symbolic derivatives (the operations
+/// reaching an entry of f times the variables it reads), the Jacobian is
+/// differenced: a robot's acceleration reads every joint through a
+/// thousand operations, and its symbolic row would be many times f's code
+/// and compile time, where differences cost one evaluation of f per state
+/// at run time. A grid's rows read a few neighbours through a few
+/// operations each, however many rows it has, and keep their symbolic
+/// Jacobian.
+pub const SYMBOLIC_JACOBIAN_ROW: usize = 5000;
 
 /// Whether f's Jacobian is worth writing symbolically (see
-/// [`SYMBOLIC_JACOBIAN_OPERATIONS`]).
+/// [`SYMBOLIC_JACOBIAN_ROW`]).
 pub fn symbolic_jacobian_pays(g: &Graph, f: &[Id]) -> bool {
-    if f.is_empty() || g.reachable(f).len() <= SYMBOLIC_JACOBIAN_OPERATIONS {
-        return true;
-    }
-    let read: usize = f.iter().map(|&e| g.free_symbols(e).len()).sum();
-    // Dense: on average each entry reads a quarter of the entries' number.
-    4 * read < f.len() * f.len()
+    let cost = |&e: &Id| g.reachable(&[e]).len() * g.free_symbols(e).len();
+    let worst = f.iter().map(cost).max().unwrap_or(0);
+    worst <= SYMBOLIC_JACOBIAN_ROW
 }
 
 /// `JACOBIAN` with `jacobian` and `time_derivative` where f is explicit
-/// and worth it (see [`SYMBOLIC_JACOBIAN_OPERATIONS`]); nothing
+/// and worth it (see [`SYMBOLIC_JACOBIAN_ROW`]); nothing
 /// otherwise (`Jacobian::Differenced`, the default).
 pub(crate) fn jacobian_items(
     g: &mut Graph,
