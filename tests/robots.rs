@@ -11,6 +11,10 @@ use daegen::prelude::*;
 fn ur5() {
     urdf("tests/robots/ur5.urdf");
     gravity(vec3(0.0, 0.0, -9.81));
+    /// The tool flange, welded to the last link.
+    let tool0_x = output(tool0[0]);
+    let tool0_y = output(tool0[1]);
+    let tool0_z = output(tool0[2]);
 }
 
 #[dae_model(scene = recursive)]
@@ -57,8 +61,9 @@ fn floats(v: &serde_json::Value) -> Vec<f64> {
 }
 
 /// The largest error of the model's joint accelerations against
-/// Pinocchio's, relative to the largest of them, over its five states.
-fn worst_against_pinocchio<M: Model>(model: &M, name: &str) -> f64 {
+/// Pinocchio's, relative to the largest of them, over its five states, and
+/// how many coordinates of welded links were compared (each within 1e-14 m).
+fn worst_against_pinocchio<M: Model>(model: &M, name: &str) -> (f64, usize) {
     let robot = reference(name);
     let joints: Vec<String> = robot["bodies"]
         .as_array()
@@ -73,7 +78,7 @@ fn worst_against_pinocchio<M: Model>(model: &M, name: &str) -> f64 {
     let damping: Vec<f64> =
         joints.iter().map(|j| urdf.joints.iter().find(|u| &u.name == j).unwrap().damping).collect();
     let info = &M::INFO;
-    let mut worst = 0.0f64;
+    let (mut worst, mut links) = (0.0f64, 0);
     for state in robot["states"].as_array().unwrap() {
         let (q, v, nle) = (floats(&state["q"]), floats(&state["v"]), floats(&state["nle"]));
         let m: Vec<Vec<f64>> = state["M"].as_array().unwrap().iter().map(floats).collect();
@@ -93,25 +98,30 @@ fn worst_against_pinocchio<M: Model>(model: &M, name: &str) -> f64 {
         }
         let mut dy = vec![0.0; M::STATES];
         model.rhs(0.0, &y, &mut dy).unwrap();
+        let (gap, checked) = welded_link_gap(model, &y, state);
+        assert!(gap < 1e-14, "{name}: a welded link {gap:e} m from Pinocchio's");
+        links += checked;
         let scale = expected.iter().fold(1.0f64, |s, a| s.max(a.abs()));
         for (k, joint) in joints.iter().enumerate() {
             let at = info.states.iter().position(|s| *s == format!("der({joint}.q)")).unwrap();
             worst = worst.max((dy[at] - expected[k]).abs() / scale);
         }
     }
-    worst
+    (worst, links)
 }
 
 #[test]
 fn ur5_accelerations_are_pinocchio_s() {
-    let worst = worst_against_pinocchio(&Ur5::default(), "ur5");
+    let (worst, links) = worst_against_pinocchio(&Ur5::default(), "ur5");
     println!("ur5: {worst:e}");
+    // The tool flange at each of the five states.
+    assert_eq!(links, 15);
     assert!(worst < 1e-12, "{worst:e}");
 }
 
 #[test]
 fn panda_accelerations_are_pinocchio_s() {
-    let worst = worst_against_pinocchio(&Panda::default(), "panda");
+    let (worst, _) = worst_against_pinocchio(&Panda::default(), "panda");
     println!("panda: {worst:e}");
     assert!(worst < 1e-12, "{worst:e}");
 }
@@ -201,6 +211,30 @@ fn ur5_driven_by_joint_torques_is_pinocchio_s_aba() {
 fn solo12() {
     urdf("tests/robots/solo12.urdf").floating();
     gravity(vec3(0.0, 0.0, -9.81));
+    /// The feet, welded to the lower legs.
+    let FL_FOOT_x = output(FL_FOOT[0]);
+    let FL_FOOT_y = output(FL_FOOT[1]);
+    let FL_FOOT_z = output(FL_FOOT[2]);
+    let HR_FOOT_x = output(HR_FOOT[0]);
+    let HR_FOOT_y = output(HR_FOOT[1]);
+    let HR_FOOT_z = output(HR_FOOT[2]);
+}
+
+/// The largest distance between the model's welded links (its outputs
+/// `<link>_x`, `_y`, `_z`) and Pinocchio's, at the state `y`, and how many
+/// coordinates were compared.
+fn welded_link_gap<M: Model>(model: &M, y: &[f64], state: &serde_json::Value) -> (f64, usize) {
+    let mut worst = 0.0f64;
+    let mut checked = 0;
+    for (k, name) in M::INFO.outputs.iter().enumerate() {
+        let Some((link, axis)) = name.rsplit_once('_') else { continue };
+        let Some(theirs) = state["welded_links"][link].as_array() else { continue };
+        let axis = ["x", "y", "z"].iter().position(|a| *a == axis).unwrap();
+        let ours = model.output(k, 0.0, y);
+        worst = worst.max((ours - theirs[axis].as_f64().unwrap()).abs());
+        checked += 1;
+    }
+    (worst, checked)
 }
 
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
@@ -267,6 +301,8 @@ fn solo12_on_its_floating_base_is_pinocchio_s() {
         }
         let mut dy = vec![0.0; <Solo12 as Model>::STATES];
         model.rhs(0.0, &y, &mut dy).unwrap();
+        let (gap, checked) = welded_link_gap(&model, &y, state);
+        assert!(gap < 1e-14 && checked == 6, "solo12: a foot {gap:e} m from Pinocchio's");
         let classical = add(add(a, cross(w, lin)), add(cross(dw, c), cross(w, cross(w, c))));
         let centre_acceleration = rotate(quaternion, classical);
         let mut pairs: Vec<(f64, f64)> = Vec::new();

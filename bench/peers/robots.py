@@ -16,7 +16,8 @@ mass, centre of mass and inertia about it in its own frame), and
 N_STATES random states (q within the URDF limits, v and tau N(0, 1), from
 numpy's default_rng(SEED + robot index), independent of Pinocchio's own
 generator) with ddq = pin.aba(q, v, tau), M = pin.crba(q) made symmetric
-and nle = pin.nonLinearEffects(q, v). Conventions: a free-flyer's q is
+and nle = pin.nonLinearEffects(q, v), and the world position of the origin
+of each link a fixed joint welds to another (`welded_links`). Conventions: a free-flyer's q is
 (x, y, z, qx, qy, qz, qw), its v (v_lin, omega) and tau (force, torque)
 in the base's own frame, and its ddq the spatial acceleration there.
 Numbers are written in Python's shortest exact form.
@@ -109,8 +110,13 @@ def reference():
             m = pin.crba(model, data, q).copy()
             m = np.triu(m) + np.triu(m, 1).T
             nle = pin.nonLinearEffects(model, data, q, v).copy()
+            # The origin of every link the file welds to a moving one.
+            pin.framesForwardKinematics(model, data, q)
+            frames = {f.name: data.oMf[i].translation.tolist() for i, f in enumerate(model.frames)
+                      if f.type == pin.FrameType.BODY and f.parentFrame != 0
+                      and model.frames[f.parentFrame].type == pin.FrameType.FIXED_JOINT}
             states.append(dict(q=q.tolist(), v=v.tolist(), tau=tau.tolist(), ddq=ddq.tolist(),
-                               M=m.tolist(), nle=nle.tolist()))
+                               M=m.tolist(), nle=nle.tolist(), welded_links=frames))
         out["robots"].append(dict(name=name, urdf=file, floating_base=floating, nq=model.nq,
                                   nv=model.nv, gravity=model.gravity.linear.tolist(),
                                   bodies=bodies(model), states=states))

@@ -9,7 +9,8 @@
 //! its own on a free joint. A joint's `<dynamics damping>` is a damper
 //! across it (`damper` or `translational_damper` of the standard library,
 //! on the joint's flange, against a `fixed` support), named
-//! `<joint>_damping`.
+//! `<joint>_damping`. A link welded to a moving body is bound to its
+//! origin's position (`position(body, point)`), for the model to read.
 
 use super::parse::JointKind;
 use super::tree::{MassProperties, Tree};
@@ -125,6 +126,30 @@ pub fn statements(tree: &Tree, floating: bool) -> Result<Vec<TokenStream>, (u32,
     for (b, w) in tree.bodies.iter().zip(&world) {
         out.push(body(&identifier(&b.link), &b.mass, w));
     }
+    // A link welded to a moving body (a tool flange, a sensor's frame) is
+    // its origin's position, a 3-vector the model reads as `tool0[0]`.
+    let mut welded: Vec<(syn::Ident, syn::Ident, [f64; 3])> = Vec::new();
+    for b in &tree.bodies {
+        for (link, frame) in &b.links[1..] {
+            let t = frame.translation;
+            let c = b.mass.com;
+            welded.push((
+                identifier(link),
+                identifier(&b.link),
+                [t[0] - c[0], t[1] - c[1], t[2] - c[2]],
+            ));
+        }
+    }
+    if floating {
+        for (link, frame) in &tree.root_links[1..] {
+            let (t, c) = (frame.translation, tree.root_mass.com);
+            welded.push((
+                identifier(link),
+                root_name.clone(),
+                [t[0] - c[0], t[1] - c[1], t[2] - c[2]],
+            ));
+        }
+    }
     for b in &tree.bodies {
         let j = &b.joint;
         let (parent, parent_com) = match b.parent {
@@ -175,6 +200,21 @@ pub fn statements(tree: &Tree, floating: bool) -> Result<Vec<TokenStream>, (u32,
                 connect(#damper.flange_b, #name.flange);
             });
         }
+    }
+    // After the joints, so that a name both a joint and a welded link
+    // have stays the joint's.
+    let taken: std::collections::HashSet<String> = tree
+        .bodies
+        .iter()
+        .flat_map(|b| [identifier(&b.link).to_string(), identifier(&b.joint.name).to_string()])
+        .chain([root_name.to_string()])
+        .collect();
+    for (link, on, point) in welded {
+        if taken.contains(&link.to_string()) {
+            continue;
+        }
+        let point = vec3(point);
+        out.push(quote!(let #link = position(#on, #point);));
     }
     Ok(out)
 }
