@@ -33,11 +33,21 @@ pub fn eliminate_tied_states(cx: &mut Ctxt, ir: &mut ModelIr) {
     }
 }
 
+/// An equation of more operations than this is no tie (a tie is linear in
+/// a few states with constant coefficients): a scene's equation of motion,
+/// thousands of operations for a robot, is passed by rather than searched
+/// again at every tie found.
+const TIE_OPERATIONS: usize = 1000;
+
 fn eliminate(ir: &mut ModelIr) -> crate::Result<()> {
     let mut gone = vec![false; ir.equations.len()];
-    // An equation of one mode ties nothing for good: the search passes it
-    // by, as if gone, and it stays.
-    let in_a_mode: Vec<bool> = ir.equations.iter().map(|e| !e.mode.is_empty()).collect();
+    // An equation of one mode ties nothing for good, nor does a large
+    // one: the search passes them by, as if gone, and they stay.
+    let in_a_mode: Vec<bool> = ir
+        .equations
+        .iter()
+        .map(|e| !e.mode.is_empty() || ir.graph.reachable(&[e.lhs, e.rhs]).len() > TIE_OPERATIONS)
+        .collect();
     loop {
         let orders = highest_orders(ir);
         let passed: Vec<bool> = gone.iter().zip(&in_a_mode).map(|(g, m)| *g || *m).collect();
@@ -388,26 +398,26 @@ fn replace_state(ir: &mut ModelIr, state: SymbolId, value: Id, top: u32) -> crat
             replace.insert(d, current);
         }
     }
+    // Every expression of the model at once, so that what they share is
+    // rewritten once.
+    let mut slots: Vec<&mut Id> = Vec::new();
     for eq in &mut ir.equations {
-        eq.lhs = g.substitute(eq.lhs, &replace)?;
-        eq.rhs = g.substitute(eq.rhs, &replace)?;
+        slots.push(&mut eq.lhs);
+        slots.push(&mut eq.rhs);
     }
-    for o in &mut ir.outputs {
-        o.value = g.substitute(o.value, &replace)?;
-    }
+    slots.extend(ir.outputs.iter_mut().map(|o| &mut o.value));
     for e in &mut ir.events {
-        e.value = g.substitute(e.value, &replace)?;
-        for a in &mut e.actions {
-            a.value = g.substitute(a.value, &replace)?;
-        }
+        slots.push(&mut e.value);
+        slots.extend(e.actions.iter_mut().map(|a| &mut a.value));
     }
     for c in &mut ir.clocks {
-        for a in &mut c.actions {
-            a.value = g.substitute(a.value, &replace)?;
-        }
+        slots.extend(c.actions.iter_mut().map(|a| &mut a.value));
     }
-    for i in &mut ir.invariants {
-        i.value = g.substitute(i.value, &replace)?;
+    slots.extend(ir.invariants.iter_mut().map(|i| &mut i.value));
+    let roots: Vec<Id> = slots.iter().map(|x| **x).collect();
+    let replaced = g.substitute_all(&roots, &replace)?;
+    for (slot, new) in slots.into_iter().zip(replaced) {
+        *slot = new;
     }
     ir.inits.retain(|i| !replace.contains_key(&i.target));
     let Some(k) = ir.states.iter().position(|s| s.symbol == state) else { return Ok(()) };
