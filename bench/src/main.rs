@@ -182,7 +182,7 @@ spatial_double_pendulum!(spatial_double_pendulum_global,);
 spatial_double_pendulum!(spatial_double_pendulum_recursive, scene = recursive);
 rssr_loop!(rssr_loop_global,);
 rssr_loop!(rssr_loop_recursive, scene = recursive);
-seven_joint_arm!(seven_joint_arm_global,);
+seven_joint_arm!(seven_joint_arm_global, scene = global);
 seven_joint_arm!(seven_joint_arm_recursive, scene = recursive);
 cash_pendulum_model!(taylor = 1, unroll = [10, 14, 18]);
 

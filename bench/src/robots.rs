@@ -21,6 +21,24 @@ fn panda_robot() {
     gravity(vec3(0.0, 0.0, -9.81));
 }
 
+#[dae_model(scene = recursive)]
+fn talos_arm_robot() {
+    urdf("target/robots/talos_left_arm.urdf");
+    gravity(vec3(0.0, 0.0, -9.81));
+}
+
+#[dae_model(scene = recursive)]
+fn talos_robot() {
+    urdf("target/robots/talos_reduced.urdf");
+    gravity(vec3(0.0, 0.0, -9.81));
+}
+
+#[dae_model(scene = recursive)]
+fn solo12_robot() {
+    urdf("../tests/robots/solo12.urdf").floating();
+    gravity(vec3(0.0, 0.0, -9.81));
+}
+
 /// Pinocchio's times (µs): per robot `(aba, crba)`, and `aba` on an empty
 /// model.
 fn pinocchio() -> Result<(Vec<(String, f64)>, f64), String> {
@@ -38,7 +56,7 @@ fn pinocchio() -> Result<(Vec<(String, f64)>, f64), String> {
         from[at..].split([',', '}']).next()?.trim().parse().ok()
     };
     let mut rows = Vec::new();
-    for robot in ["ur5", "panda"] {
+    for robot in ["ur5", "panda", "solo12", "talos_arm", "talos"] {
         let at = text.find(&format!("\"{robot}\": {{")).ok_or("no robot")?;
         rows.push((robot.to_string(), number("aba", &text[at..]).ok_or("no aba")?));
     }
@@ -77,9 +95,12 @@ pub fn robots_section() -> String {
     let ours = [
         ("ur5", evaluation::<Ur5Robot>(&settings)),
         ("panda", evaluation::<PandaRobot>(&settings)),
+        ("solo12", evaluation::<Solo12Robot>(&settings)),
+        ("talos_arm", evaluation::<TalosArmRobot>(&settings)),
+        ("talos", evaluation::<TalosRobot>(&settings)),
     ];
     let mut text = format!(
-        "# Robots from their URDF against Pinocchio\n\nMachine: {}. Written by `cd bench && cargo run --release -- --robots` (bench/src/robots.rs, peers/robots.py). One forward-dynamics evaluation: our generated right-hand side (joint accelerations by the composite-rigid-body algorithm and recursive Newton–Euler written symbolically, the mass matrix factored at run time) against `pin.aba` through Pinocchio's Python binding, the median of its timings; the binding's own cost is `aba` on an empty model. Ratio: ours over Pinocchio's time less that cost.\n\n",
+        "# Robots from their URDF against Pinocchio\n\nMachine: {}. Written by `cd bench && cargo run --release -- --robots` (bench/src/robots.rs, peers/robots.py). One forward-dynamics evaluation: our generated right-hand side (joint accelerations by the composite-rigid-body algorithm and recursive Newton–Euler in body frames, the mass matrix factored along the tree, all written symbolically; Solo 12 on its floating base, TALOS's 32 joints on a fixed one; TALOS's files from `pip install example-robot-data`, copied by `build.rs`) against `pin.aba` through Pinocchio's Python binding, the median of its timings; the binding's own cost is `aba` on an empty model. Ratio: ours over Pinocchio's time less that cost.\n\n",
         machine()
     );
     match pinocchio() {
