@@ -54,7 +54,8 @@ fn drive_fmu() {
 /// A Model Exchange instance of `M`, initialized and in continuous-time
 /// mode.
 fn model_exchange<M: Model + Clone + Default + Send + Sync + 'static>() -> *mut c_void {
-    let token = CString::new(instantiation_token(&M::default(), FmiVersion::V3, "bench")).unwrap_or_default();
+    let token = CString::new(instantiation_token(&M::default(), FmiVersion::V3, "bench"))
+        .unwrap_or_default();
     // SAFETY: valid strings, no logger.
     let c = unsafe {
         fmi3::instantiate_model_exchange::<M>(
@@ -119,7 +120,8 @@ fn evaluation<M: Model + Clone + Default + Send + Sync + 'static>(
 /// `h` at `tol`.
 fn co_simulation(h: f64, tol: f64, settings: &Settings) -> (f64, f64) {
     type M = VanDerPolFmu;
-    let token = CString::new(instantiation_token(&M::default(), FmiVersion::V3, "bench")).unwrap_or_default();
+    let token = CString::new(instantiation_token(&M::default(), FmiVersion::V3, "bench"))
+        .unwrap_or_default();
     let steps = (10.0 / h).round() as usize;
     let (seconds, x) = median_time(settings, || {
         // SAFETY: valid strings, no logger or intermediate variables.
