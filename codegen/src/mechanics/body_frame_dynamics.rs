@@ -15,7 +15,7 @@
 
 use super::algebra::{add3, cross3, mat_mul, mat_t_vec, mat_vec, scale3, transpose, Mat3, Vec3};
 use super::spatial_joint_motion::{Axis, Column};
-use super::spatial_tree::{Edge, Placed};
+use super::spatial_tree::{parents_and_order, speeds, Edge, Placed, Speeds};
 use super::spatial_vectors::{add, cross_force, cross_motion, dot, scale, sub, Spatial};
 use super::tree_factorization::solve_along_tree;
 use super::{Frame, SpatialJointRecord};
@@ -257,13 +257,7 @@ impl BodyFrames {
         let n = bodies.len();
         let zero = g.zero();
         let still = Spatial { top: [zero; 3], bottom: [zero; 3] };
-        let mut parent: Vec<Option<usize>> = vec![None; n];
-        for e in tree {
-            if let Frame::Body(p) = e.parent {
-                parent[e.child] = Some(p);
-            }
-        }
-        let order: Vec<usize> = tree.iter().map(|e| e.child).collect();
+        let (parent, order) = parents_and_order(tree, n);
         let ground_acceleration = match gravity {
             Some(gv) => {
                 let minus = g.int(-1);
@@ -346,25 +340,8 @@ impl BodyFrames {
                 };
             }
         }
-        // Speeds in tree order, each after its predecessor on the path to
-        // the root.
-        let mut index = Vec::new();
-        let mut first = vec![0; n];
-        for &b in &order {
-            first[b] = index.len();
-            for k in 0..self.columns[b].len() {
-                index.push((b, k));
-            }
-        }
+        let Speeds { index, first, previous } = speeds(&order, &parent, |b| self.columns[b].len());
         let m = index.len();
-        let mut previous: Vec<Option<usize>> = Vec::with_capacity(m);
-        for &(b, c) in &index {
-            previous.push(match (c, parent[b]) {
-                (0, None) => None,
-                (0, Some(p)) => Some(first[p] + self.columns[p].len() - 1),
-                _ => Some(first[b] + c - 1),
-            });
-        }
         // M_kl = S_lᵀ I^c_i S_k, the force I^c_i S_k carried up the tree.
         let mut mass = vec![vec![zero; m]; m];
         for &i in &order {

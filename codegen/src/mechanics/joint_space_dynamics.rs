@@ -9,7 +9,7 @@
 
 use super::algebra::{add3, cross3, mat_vec, scale3, Mat3};
 use super::spatial_joint_motion::{Axis, Column};
-use super::spatial_tree::{Edge, Placed};
+use super::spatial_tree::{parents_and_order, speeds, Edge, Placed, Speeds};
 use super::spatial_vectors::{
     add, add_inertia, apply, body_inertia, cross_force, cross_motion, dot, negate, scale, sub,
     Spatial,
@@ -141,13 +141,7 @@ impl Lower<'_, Scene> {
         let g = &mut self.g;
         let zero = g.zero();
         let still = Spatial { top: [zero; 3], bottom: [zero; 3] };
-        let mut parent: Vec<Option<usize>> = vec![None; n];
-        for e in tree {
-            if let Frame::Body(p) = e.parent {
-                parent[e.child] = Some(p);
-            }
-        }
-        let order: Vec<usize> = tree.iter().map(|e| e.child).collect();
+        let (parent, order) = parents_and_order(tree, n);
         // Each body's inertia about the origin, world axes.
         let mut inertia = Vec::with_capacity(n);
         for (b, body) in bodies.iter().enumerate() {
@@ -210,25 +204,8 @@ impl Lower<'_, Scene> {
             }
         }
         // Index every speed; M_kl = S_kᵀ I^c_i S_l for l on i's path to the root.
-        let mut index = Vec::new();
-        let mut first = vec![0; n];
-        for &b in &order {
-            first[b] = index.len();
-            for k in 0..subspace[b].len() {
-                index.push((b, k));
-            }
-        }
+        let Speeds { index, first, previous } = speeds(&order, &parent, |b| subspace[b].len());
         let m = index.len();
-        // Each speed's predecessor on its path to the root: the body's
-        // previous column, else its parent's last.
-        let mut previous: Vec<Option<usize>> = Vec::with_capacity(m);
-        for &(b, c) in &index {
-            previous.push(match (c, parent[b]) {
-                (0, None) => None,
-                (0, Some(p)) => Some(first[p] + subspace[p].len() - 1),
-                _ => Some(first[b] + c - 1),
-            });
-        }
         let mut mass = vec![vec![zero; m]; m];
         for &i in &order {
             // F = I^c_i S_k once; M_kl = S_lᵀ F for l on the path to the root.
