@@ -158,7 +158,7 @@ fn system_analysis(
     let mass_form = match system.mass_only || attributes.sensitivity_columns == 0 {
         true => crate::dae::mass_form::mass_form(g, &system).map(|form| {
             form.filter(|f| {
-                system.mass_only || crate::emit::jacobian::symbolic_jacobian_pays(g, &f.rows)
+                system.mass_only || crate::expr::jacobian::symbolic_jacobian_pays(g, &f.rows)
             })
         }),
         false => Ok(None),

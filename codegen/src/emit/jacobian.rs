@@ -7,26 +7,8 @@ use crate::{Graph, Id, SymbolId};
 use proc_macro2::TokenStream;
 use quote::quote;
 
-/// Past this estimate of one row's symbolic derivatives (the operations
-/// reaching an entry of f times the variables it reads), the Jacobian is
-/// differenced: a robot's acceleration reads every joint through a
-/// thousand operations, and its symbolic row would be many times f's code
-/// and compile time, where differences cost one evaluation of f per state
-/// at run time. A grid's rows read a few neighbours through a few
-/// operations each, however many rows it has, and keep their symbolic
-/// Jacobian.
-pub const SYMBOLIC_JACOBIAN_ROW: usize = 5000;
-
-/// Whether f's Jacobian is worth writing symbolically (see
-/// [`SYMBOLIC_JACOBIAN_ROW`]).
-pub fn symbolic_jacobian_pays(g: &Graph, f: &[Id]) -> bool {
-    let cost = |&e: &Id| g.reachable(&[e]).len() * g.free_symbols(e).len();
-    let worst = f.iter().map(cost).max().unwrap_or(0);
-    worst <= SYMBOLIC_JACOBIAN_ROW
-}
-
 /// `JACOBIAN` with `jacobian` and `time_derivative` where f is explicit
-/// and worth it (see [`SYMBOLIC_JACOBIAN_ROW`]); nothing
+/// and worth it (see [`crate::expr::jacobian::SYMBOLIC_JACOBIAN_ROW`]); nothing
 /// otherwise (`Jacobian::Differenced`, the default).
 pub(crate) fn jacobian_items(
     g: &mut Graph,
@@ -36,7 +18,7 @@ pub(crate) fn jacobian_items(
     explicit: Option<Vec<Id>>,
 ) -> crate::Result<TokenStream> {
     let n = slots.len();
-    let explicit = explicit.filter(|f| symbolic_jacobian_pays(g, f));
+    let explicit = explicit.filter(|f| crate::expr::jacobian::symbolic_jacobian_pays(g, f));
     Ok(match explicit {
         Some(f) => {
             let wrt: Vec<SymbolId> = slots.to_vec();
