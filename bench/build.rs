@@ -1,6 +1,6 @@
 //! Copies TALOS's URDF files, which their licence (CC BY-NC-ND) keeps out
 //! of the repository, from where `python3 -m pip install
-//! example-robot-data` put them to `target/robots/`, where the robot
+//! example-robot-data==5.0.0` put them to `target/robots/`, where the robot
 //! benchmark's models read them at compile time.
 
 use std::path::Path;
@@ -15,7 +15,7 @@ fn main() {
         return;
     }
     let purelib = Command::new("python3")
-        .args(["-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"])
+        .args(["-c", "import os, site, sysconfig; c = [sysconfig.get_paths()['purelib'], site.getusersitepackages()] + site.getsitepackages(); print(next((p for p in c if os.path.isdir(os.path.join(p, 'cmeel.prefix', 'share', 'example-robot-data'))), c[0]))"])
         .output()
         .ok()
         .and_then(|o| String::from_utf8(o.stdout).ok())
@@ -27,7 +27,7 @@ fn main() {
     for f in files {
         if let Err(e) = std::fs::copy(from.join(f), into.join(f)) {
             panic!(
-                "{}: {e}; the robot benchmark needs `python3 -m pip install example-robot-data`",
+                "{}: {e}; the robot benchmark needs `python3 -m pip install example-robot-data==5.0.0`",
                 from.join(f).display()
             );
         }

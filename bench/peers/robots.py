@@ -25,6 +25,7 @@ Numbers are written in Python's shortest exact form.
 import argparse
 import json
 import os
+import site
 import statistics
 import sysconfig
 import timeit
@@ -38,7 +39,7 @@ N_STATES = 5
 SEED = 20240601
 # (name, file, floating base?). `erd:` files are example-robot-data's own,
 # read where pip installed it (TALOS's licence, CC BY-NC-ND, keeps them out
-# of the repository): `python3 -m pip install example-robot-data`.
+# of the repository): `python3 -m pip install example-robot-data==5.0.0`.
 ROBOTS = [("ur5", "ur5.urdf", False), ("panda", "panda.urdf", False), ("solo12", "solo12.urdf", True),
           ("talos_arm", "erd:talos_data/robots/talos_left_arm.urdf", False),
           ("talos", "erd:talos_data/robots/talos_reduced.urdf", False)]
@@ -46,9 +47,13 @@ ROBOTS = [("ur5", "ur5.urdf", False), ("panda", "panda.urdf", False), ("solo12",
 
 def robot_path(file):
     if file.startswith("erd:"):
-        share = os.path.join(sysconfig.get_paths()["purelib"], "cmeel.prefix", "share",
-                             "example-robot-data", "robots")
-        return os.path.join(share, file[4:])
+        candidates = [sysconfig.get_paths()["purelib"], site.getusersitepackages()]
+        candidates += site.getsitepackages()
+        for base in candidates:
+            share = os.path.join(base, "cmeel.prefix", "share", "example-robot-data", "robots")
+            if os.path.isdir(share):
+                return os.path.join(share, file[4:])
+        raise FileNotFoundError("example-robot-data: python3 -m pip install example-robot-data==5.0.0")
     return os.path.join(ROBOTS_DIR, file)
 
 

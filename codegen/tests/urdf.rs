@@ -197,11 +197,13 @@ fn robots_dir() -> std::path::PathBuf {
 /// A robot's file: ours in tests/robots, or (`erd:`) example-robot-data's
 /// where pip installed it, as TALOS's licence (CC BY-NC-ND) keeps its
 /// files out of the repository: `python3 -m pip install
-/// example-robot-data` (`.ci/run` installs it).
+/// example-robot-data==5.0.0` (`.ci/run` installs it).
 fn robot_file(urdf: &str) -> std::path::PathBuf {
     let Some(rest) = urdf.strip_prefix("erd:") else { return robots_dir().join(urdf) };
     let out = std::process::Command::new("python3")
-        .args(["-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"])
+        // The site-packages directory that has it: the global one, or the
+        // user's when pip installed there.
+        .args(["-c", "import os, site, sysconfig; c = [sysconfig.get_paths()['purelib'], site.getusersitepackages()] + site.getsitepackages(); print(next((p for p in c if os.path.isdir(os.path.join(p, 'cmeel.prefix', 'share', 'example-robot-data'))), c[0]))"])
         .output()
         .expect("python3, to find example-robot-data");
     let purelib = String::from_utf8(out.stdout).unwrap().trim().to_string();
@@ -210,7 +212,7 @@ fn robot_file(urdf: &str) -> std::path::PathBuf {
         .join(rest);
     assert!(
         path.exists(),
-        "{} is missing: `python3 -m pip install example-robot-data`",
+        "{} is missing: `python3 -m pip install example-robot-data==5.0.0`",
         path.display()
     );
     path
