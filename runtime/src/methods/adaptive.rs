@@ -314,20 +314,20 @@ fn integrate_from<M: Model, P: EmbeddedPair>(
         }
         if err <= 1.0 {
             // h·ρ from the last two stages, both at t + h (before the dense
-            // stages reuse `stage`).
-            let h_rho = stage_quotient(
-                h,
-                k[P::STAGES - 1].as_ref(),
-                k[P::STAGES - 2].as_ref(),
-                y_new.as_ref(),
-                stage.as_ref(),
-            );
-            let turned_stiff = match test.as_mut() {
+            // stages reuse `stage`), where a stiffness test reads it.
+            let (turned_stiff, h_rho) = match test.as_mut() {
                 Some(test) => {
+                    let h_rho = stage_quotient(
+                        h,
+                        k[P::STAGES - 1].as_ref(),
+                        k[P::STAGES - 2].as_ref(),
+                        y_new.as_ref(),
+                        stage.as_ref(),
+                    );
                     let change = relative_change(y.as_ref(), y_new.as_ref(), sk.as_ref());
-                    test.step_is_stiff(t + h, h_rho, change)
+                    (test.step_is_stiff(t + h, h_rho, change), h_rho)
                 }
-                None => false,
+                None => (false, 0.0),
             };
             let (factor, state) = controller.factor(err, pi);
             pi = state;

@@ -77,6 +77,7 @@ impl EmbeddedPair for Dopri5 {
         }
     }
 
+    #[inline]
     fn error<S: StateVector>(h: f64, k: &[S], sk: &S, lanes: usize) -> f64 {
         // E[1] = 0: six terms.
         let sk = sk.as_ref();
@@ -131,6 +132,7 @@ impl EmbeddedPair for Dopri5 {
 
 /// The stages the error estimate and the dense output combine: every one
 /// but k₂, whose weight is zero in both.
+#[inline(always)]
 fn stages_but_the_second<S: StateVector>(k: &[S]) -> [&[f64]; 6] {
     [k[0].as_ref(), k[2].as_ref(), k[3].as_ref(), k[4].as_ref(), k[5].as_ref(), k[6].as_ref()]
 }
