@@ -22,7 +22,9 @@
 //! `--hybrid` times a bouncing ball and a PI loop sampled at 1 kHz against
 //! heyoka (`results/hybrid.md`); `--fmi` times an FMU's calls against the
 //! model it wraps (`results/fmi.md`); `--robots` times robots from their
-//! URDF against Pinocchio (`results/robots.md`);
+//! URDF against Pinocchio (`results/robots.md`); `--loop` measures the
+//! explicit pairs' step loop beyond the right-hand side
+//! (`results/step_loop.md`);
 //! `--auto` times `Method::Auto` against the best single method on every
 //! reference problem and an explicit pair on a stiff problem
 //! (`results/auto.md`);
@@ -58,6 +60,7 @@ mod peers;
 mod readme;
 mod robots;
 mod sensitivities;
+mod step_loop;
 mod structure;
 #[cfg(feature = "sundials")]
 mod sundials;
@@ -547,6 +550,13 @@ fn main() {
         let text = components::components_section();
         let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join("components.md");
         let _ = std::fs::write(&out, &text);
+        println!("{text}");
+        return;
+    }
+    if has("--loop") {
+        let text = step_loop::step_loop_section();
+        let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join("step_loop.md");
+        std::fs::write(&out, &text).expect("results/step_loop.md");
         println!("{text}");
         return;
     }
