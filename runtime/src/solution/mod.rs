@@ -233,6 +233,14 @@ impl std::fmt::Debug for Solution {
 }
 
 impl Solution {
+    /// The solution so far, for an error to carry, leaving an empty one in
+    /// its place: a step loop checks its steps through `&mut` and gives
+    /// the solution up only when it fails.
+    pub(crate) fn take(&mut self) -> Box<Solution> {
+        let empty = Solution::new(self.names, self.observables.clone(), self.n);
+        Box::new(std::mem::replace(self, empty))
+    }
+
     /// An empty solution of a model with these names and observables, for
     /// `n` states.
     pub(crate) fn new(names: Names, observables: Arc<dyn Observables>, n: usize) -> Solution {

@@ -51,24 +51,22 @@ fn stops<M: Model>(i: usize) -> bool {
 /// any: `true` when a terminal one ended the run there.
 pub(crate) fn stop_after_step<M: Model>(
     watch: &mut Option<EventWatch<'_, M>>,
-    solution: Solution,
-) -> Result<(Solution, bool), Error> {
+    solution: &mut Solution,
+) -> Result<bool, Error> {
     match watch {
         Some(watch) => watch.after_step(solution),
-        None => Ok((solution, false)),
+        None => Ok(false),
     }
 }
 
 /// In an integrator's step loop, after an accepted step was pushed: checks
-/// it for events if the model has any (only then: moving the solution in
-/// and out costs a copy), shows it to the step callback and the progress
+/// it for events if the model has any, shows it to the step callback and the progress
 /// bar, and breaks out of the loop at a terminal event or when the
 /// callback says stop.
 macro_rules! after_accepted_step {
     ($events:ident, $solution:ident) => {
         if $events.is_some() {
-            let stop;
-            ($solution, stop) = $crate::step::events::stop_after_step(&mut $events, $solution)?;
+            let stop = $crate::step::events::stop_after_step(&mut $events, &mut $solution)?;
             if stop {
                 break;
             }
@@ -115,9 +113,9 @@ impl<'m, M: Model> EventWatch<'m, M> {
 
     /// Checks the last step of `solution` for events, records them in it and,
     /// at a terminal one, cuts the solution there (and says so with `true`).
-    pub(crate) fn after_step(&mut self, mut solution: Solution) -> Result<(Solution, bool), Error> {
+    pub(crate) fn after_step(&mut self, solution: &mut Solution) -> Result<bool, Error> {
         let Some((t_old, t_new)) = solution.last_step() else {
-            return Ok((solution, false));
+            return Ok(false);
         };
         solution.prepare_last_step();
         let mut hits: Vec<EventHit> = Vec::new();
@@ -147,11 +145,11 @@ impl<'m, M: Model> EventWatch<'m, M> {
                 return Err(Error::NonFinite {
                     t: b,
                     variable: M::INFO.events[i % M::INFO.events.len()].name,
-                    partial: Box::new(solution),
+                    partial: solution.take(),
                 });
             }
             for i in 0..M::INFO.events.len() {
-                self.crossings(&solution, i, a, b, &mut hits);
+                self.crossings(solution, i, a, b, &mut hits);
             }
             std::mem::swap(&mut self.g_old, &mut self.g_new);
             std::mem::swap(&mut self.rate_old, &mut self.rate_new);
@@ -182,7 +180,7 @@ impl<'m, M: Model> EventWatch<'m, M> {
                     t: hit.t,
                     event: M::INFO.events[hit.index].name,
                     after,
-                    partial: Box::new(solution),
+                    partial: solution.take(),
                 });
             }
             hits.truncate(k + 1);
@@ -196,7 +194,7 @@ impl<'m, M: Model> EventWatch<'m, M> {
         if let Some(event) = stopping {
             solution.stop_at_last_event(event.terminal, !event.resets.is_empty());
         }
-        Ok((solution, stop.is_some()))
+        Ok(stop.is_some())
     }
 
     /// The crossings of event `i` between samples `a` and `b`: one where g
