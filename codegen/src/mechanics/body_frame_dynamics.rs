@@ -306,21 +306,18 @@ impl BodyFrames {
             }
             force[b] = f;
         }
+        // Backward: each body's force and composite inertia, its children's
+        // added, carried to its parent.
+        let mut composite: Vec<Rigid> = bodies
+            .iter()
+            .map(|body| Rigid { j: body.inertia, h: [zero; 3], mass: body.mass })
+            .collect();
         for &b in order.iter().rev() {
             force[b] = shared_spatial(g, force[b])?;
             if let Some(p) = parent[b] {
                 let (e, r) = (&self.rotation[b], self.translation[b]);
                 let f = force_to_parent(g, e, r, force[b])?;
                 force[p] = add(g, force[p], f)?;
-            }
-        }
-        let mut composite: Vec<Rigid> = bodies
-            .iter()
-            .map(|body| Rigid { j: body.inertia, h: [zero; 3], mass: body.mass })
-            .collect();
-        for &b in order.iter().rev() {
-            if let Some(p) = parent[b] {
-                let (e, r) = (&self.rotation[b], self.translation[b]);
                 let c = &composite[b];
                 let mut j = c.j;
                 for x in &mut j {
