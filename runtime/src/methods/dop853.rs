@@ -199,12 +199,12 @@ const BHH: [f64; 3] = [0.2440944881889764, 0.7338466882816118, 0.022058823529411
 /// and one more; the error estimates take one per nonzero weight (the
 /// 5th-order one) and per `bhh` coefficient (the 3rd-order one, from the
 /// solution's sum, as `dop853.f` forms it); the error norm four (two
-/// quotients by the scale, two squares added) and the scale
-/// atol + rtol·max(|y|, |y₁|) three.
+/// products by the weights, two squares added) and the weight
+/// 1 / (atol + rtol·max(|y|, |y₁|)) four.
 pub fn operations_per_state() -> usize {
     let nonzero = |row: &[f64]| row.iter().filter(|&&a| a != 0.0).count();
     let sums: usize = A[1..=12].iter().map(|row| nonzero(row) + 1).sum();
-    sums + nonzero(&E5) + BHH.len() + 4 + 3
+    sums + nonzero(&E5) + BHH.len() + 4 + 4
 }
 
 /// Dense output: rows give r5..r8 as combinations of the 16 stages.
@@ -311,12 +311,12 @@ impl EmbeddedPair for Dop853 {
 
     /// Hairer's combination of the 5th- and 3rd-order estimates: the 3rd
     /// guards against the 5th being accidentally small.
-    fn error<S: StateVector>(h: f64, k: &[S], sk: &S, lanes: usize) -> f64 {
-        let sk = sk.as_ref();
-        let n = sk.len();
+    fn error<S: StateVector>(h: f64, k: &[S], weights: &S, lanes: usize) -> f64 {
+        let w = weights.as_ref();
+        let n = w.len();
         // Stages 2–5 have zero weight in both sums (`dop853.f` leaves them
         // out too). The sums are accumulated stage by stage over whole
-        // vectors, then divided by the scale in one pass: each loop
+        // vectors, then weighted in one pass: each loop
         // vectorises (the outer solar system spent 16 % of its time here
         // component by component); per component the terms are added in
         // the same order as in `dop853.f`.
@@ -333,8 +333,8 @@ impl EmbeddedPair for Dop853 {
         let (k0, k8, k11) = (&k[0].as_ref()[..n], &k[8].as_ref()[..n], &k[11].as_ref()[..n]);
         for i in 0..n {
             let e3 = e3s[i] - BHH[0] * k0[i] - BHH[1] * k8[i] - BHH[2] * k11[i];
-            e5s[i] /= sk[i];
-            e3s[i] = e3 / sk[i];
+            e5s[i] *= w[i];
+            e3s[i] = e3 * w[i];
         }
         if lanes > 1 {
             return worst_lane(n, lanes, |i| [e5s[i], e3s[i]], |sums, n| combined(h, sums, n));

@@ -78,9 +78,9 @@ impl EmbeddedPair for Dopri5 {
     }
 
     #[inline]
-    fn error<S: StateVector>(h: f64, k: &[S], sk: &S, lanes: usize) -> f64 {
+    fn error<S: StateVector>(h: f64, k: &[S], weights: &S, lanes: usize) -> f64 {
         // E[1] = 0: six terms.
-        let sk = sk.as_ref();
+        let w = weights.as_ref();
         let [k0, k2, k3, k4, k5, k6] = stages_but_the_second(k);
         let term = |i: usize| {
             let e = E[0] * k0[i]
@@ -89,17 +89,19 @@ impl EmbeddedPair for Dopri5 {
                 + E[4] * k4[i]
                 + E[5] * k5[i]
                 + E[6] * k6[i];
-            h * e / sk[i]
+            e * w[i]
         };
+        // |h| once, after the root: between the last stage and the next
+        // step's size, no product per component waits.
+        let norm = |sum: f64, n: usize| h.abs() * (sum * (1.0 / n.max(1) as f64)).sqrt();
         if lanes > 1 {
-            let norm = |[sum]: [f64; 1], n: usize| (sum / n.max(1) as f64).sqrt();
-            return worst_lane(sk.len(), lanes, |i| [term(i)], norm);
+            return worst_lane(w.len(), lanes, |i| [term(i)], |[sum], n| norm(sum, n));
         }
         let mut sum = 0.0;
-        for i in 0..sk.len() {
+        for i in 0..w.len() {
             sum += term(i).powi(2);
         }
-        (sum / sk.len().max(1) as f64).sqrt()
+        norm(sum, w.len())
     }
 
     fn dense_coefficients<S: StateVector>(h: f64, y: &S, y_new: &S, k: &[S], out: &mut [f64]) {

@@ -168,6 +168,7 @@ impl Solution {
     }
 
     /// An accepted step to `(t, y)` with its dense-output coefficients.
+    #[inline]
     pub(crate) fn push_dense(&mut self, t: f64, y: &[f64], coefficients: &[f64]) {
         self.advance(t, y);
         if self.track_last {
@@ -181,13 +182,17 @@ impl Solution {
         self.store_step(t, y);
     }
 
-    /// An accepted step to `(t, y)` without dense output.
+    /// An accepted step to `(t, y)` without dense output. Inlined (with
+    /// what it calls) into the generic step loops, so that its copies run
+    /// over the model's fixed length instead of calling `memcpy`.
+    #[inline(always)]
     pub(crate) fn push(&mut self, t: f64, y: &[f64]) {
         self.advance(t, y);
         self.store_step(t, y);
     }
 
     /// Makes `(t, y)` the end of the latest step and of the run.
+    #[inline(always)]
     fn advance(&mut self, t: f64, y: &[f64]) {
         let last = &mut self.last;
         last.t_old = self.end_t;
@@ -208,43 +213,53 @@ impl Solution {
         self.steps += 1;
     }
 
-    /// Stores the step just advanced to, as the storage asks.
+    /// Stores the step just advanced to, as the storage asks: the common
+    /// case, every step, in the caller's loop; the others out of it.
+    #[inline(always)]
     fn store_step(&mut self, t: f64, y: &[f64]) {
         match &mut self.storage {
             Storage::All => {
                 self.times.push(t);
                 self.states.extend_from_slice(y);
             }
-            Storage::KeepEvery { k, tail } => {
-                if *tail && self.times.len() >= 2 {
-                    // Overwrite the provisional latest step: memory stays
-                    // at one entry per k steps plus one.
-                    let last = self.times.len() - 1;
-                    self.times[last] = t;
-                    self.states[last * self.n..(last + 1) * self.n].copy_from_slice(y);
-                } else {
-                    self.times.push(t);
-                    self.states.extend_from_slice(y);
-                }
-                *tail = self.steps % *k != 0;
-            }
-            Storage::OutputTimes { times, next } => {
-                let forward = t >= self.last.t_old;
-                let reached = |tau: f64| if forward { tau <= t } else { tau >= t };
-                let due = times[*next..].iter().take_while(|&&tau| reached(tau)).count();
-                if due == 0 {
-                    return;
-                }
-                let (first, times) = (*next, times.clone());
-                *next += due;
-                self.prepare_last_step();
-                for &tau in &times[first..first + due] {
-                    let start = self.states.len();
-                    self.states.resize(start + self.n, 0.0);
-                    self.last.interpolate(tau, &mut self.states[start..]);
-                    self.times.push(tau);
-                }
-            }
+            Storage::KeepEvery { .. } => self.store_every_kth(t, y),
+            Storage::OutputTimes { .. } => self.store_output_times(t),
+        }
+    }
+
+    /// Every k-th step, and the latest one provisionally.
+    fn store_every_kth(&mut self, t: f64, y: &[f64]) {
+        let Storage::KeepEvery { k, tail } = &mut self.storage else { return };
+        if *tail && self.times.len() >= 2 {
+            // Overwrite the provisional latest step: memory stays
+            // at one entry per k steps plus one.
+            let last = self.times.len() - 1;
+            self.times[last] = t;
+            self.states[last * self.n..(last + 1) * self.n].copy_from_slice(y);
+        } else {
+            self.times.push(t);
+            self.states.extend_from_slice(y);
+        }
+        *tail = self.steps % *k != 0;
+    }
+
+    /// The output times the step to `t` reached, interpolated in it.
+    fn store_output_times(&mut self, t: f64) {
+        let Storage::OutputTimes { times, next } = &mut self.storage else { return };
+        let forward = t >= self.last.t_old;
+        let reached = |tau: f64| if forward { tau <= t } else { tau >= t };
+        let due = times[*next..].iter().take_while(|&&tau| reached(tau)).count();
+        if due == 0 {
+            return;
+        }
+        let (first, times) = (*next, times.clone());
+        *next += due;
+        self.prepare_last_step();
+        for &tau in &times[first..first + due] {
+            let start = self.states.len();
+            self.states.resize(start + self.n, 0.0);
+            self.last.interpolate(tau, &mut self.states[start..]);
+            self.times.push(tau);
         }
     }
 

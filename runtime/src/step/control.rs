@@ -18,17 +18,18 @@ pub struct Controller {
     pub safety: f64,
 }
 
-/// State of the PI controller between steps: the last accepted error
-/// raised to β, kept so that a step raises only its own error.
+/// State of the PI controller between steps: β·ln of the last accepted
+/// error (at least 1e-4), kept so that a step takes one logarithm and one
+/// exponential: err^α / err_old^β = exp(α ln err − β ln err_old).
 #[derive(Clone, Copy, Debug)]
 pub struct PiState {
-    previous_error_to_beta: f64,
+    previous_beta_ln: f64,
 }
 
 impl Default for PiState {
     fn default() -> Self {
         // Hairer's facold = 1e-4 before the first step.
-        PiState { previous_error_to_beta: f64::NAN }
+        PiState { previous_beta_ln: f64::NAN }
     }
 }
 
@@ -45,29 +46,35 @@ fn power(x: f64, e: f64) -> f64 {
     }
 }
 
+/// ln 1e-4: Hairer's floor on the remembered error.
+const LN_FLOOR: f64 = -9.210340371976182;
+
 impl Controller {
     /// The factor `h_new / h` after a step with scaled error `err`, and the
-    /// controller state to keep if the step is accepted.
+    /// controller state to keep if the step is accepted: Hairer's
+    /// `1 / clamp(err^α / err_old^β / safety, 1/max, 1/min)`, written as
+    /// `clamp(safety · exp(β ln err_old − α ln err), min, max)` so that no
+    /// division waits between the error and the next step.
+    #[inline]
     pub fn factor(&self, err: f64, state: PiState) -> (f64, PiState) {
-        let (fac11, err_to_beta) = self.powers(err);
-        let previous = match state.previous_error_to_beta.is_nan() {
-            true => power(1e-4, self.beta),
-            false => state.previous_error_to_beta,
+        let previous = match state.previous_beta_ln.is_nan() {
+            true => self.beta * LN_FLOOR,
+            false => state.previous_beta_ln,
         };
-        let fac = fac11 / previous;
-        let fac = (fac / self.safety).clamp(1.0 / self.max_factor, 1.0 / self.min_factor);
-        (1.0 / fac, PiState { previous_error_to_beta: err_to_beta })
-    }
-
-    /// err^exponent, and max(err, 1e-4)^β for the next step: with β ≠ 0
-    /// from one logarithm (two `powf` calls were a fifth of DOPRI5's step
-    /// on a three-state problem).
-    fn powers(&self, err: f64) -> (f64, f64) {
-        if self.beta == 0.0 || err.is_nan() || err <= 0.0 || err.is_infinite() {
-            return (power(err, self.exponent), power(err.max(1e-4), self.beta));
-        }
-        let ln = err.ln();
-        ((self.exponent * ln).exp(), (self.beta * ln.max(1e-4f64.ln())).exp())
+        let (growth, beta_ln) = if self.beta == 0.0 {
+            // No memory (DOP853): the error's power alone, without libm.
+            (self.safety / power(err, self.exponent), 0.0)
+        } else if err > 0.0 && err.is_finite() {
+            // Two `powf` calls were a fifth of DOPRI5's step on a
+            // three-state problem; one logarithm and one exponential
+            // give the same factor to a few ulps.
+            let ln = err.ln();
+            (self.safety * (previous - self.exponent * ln).exp(), self.beta * ln.max(LN_FLOOR))
+        } else {
+            let floor = err.max(1e-4);
+            (self.safety * previous.exp() / power(err, self.exponent), self.beta * floor.ln())
+        };
+        (growth.clamp(self.min_factor, self.max_factor), PiState { previous_beta_ln: beta_ln })
     }
 
     /// The factor after a rejected step: no PI memory, only shrinking.
@@ -77,17 +84,16 @@ impl Controller {
     }
 }
 
-/// `sk_i = atol + rtol · max(|y_i|, |y_new_i|)`.
-pub fn scale(atol: f64, rtol: f64, y: &[f64], y_new: &[f64], sk: &mut [f64]) {
-    for ((s, a), b) in sk.iter_mut().zip(y).zip(y_new) {
-        *s = atol + rtol * a.abs().max(b.abs());
+/// `w_i = 1 / (atol + rtol · max(|y_i|, |y_new_i|))`: the error norm's
+/// weights, as reciprocals so that the error multiplies by them (the
+/// reciprocal is taken while the last stage evaluates; a division after
+/// it would wait in every step). Inlined, so that the loop runs over the
+/// model's fixed length.
+#[inline(always)]
+pub fn error_weights(atol: f64, rtol: f64, y: &[f64], y_new: &[f64], w: &mut [f64]) {
+    for ((w, a), b) in w.iter_mut().zip(y).zip(y_new) {
+        *w = 1.0 / (atol + rtol * a.abs().max(b.abs()));
     }
-}
-
-/// `sqrt(1/n Σ (e_i / sk_i)²)`.
-pub fn rms_norm(e: &[f64], sk: &[f64]) -> f64 {
-    let sum: f64 = e.iter().zip(sk).map(|(e, s)| (e / s) * (e / s)).sum();
-    (sum / e.len().max(1) as f64).sqrt()
 }
 
 /// Evaluates f(t, y) into the last argument; `false` if f failed.
