@@ -13,13 +13,19 @@
 //! repeatable to the instruction, from the difference of three runs and
 //! one. Per step, the loop's own share is the step's cost less
 //! (evaluations per step × one evaluation's cost). Heap allocations per
-//! step are counted by the subject's allocator. Writes
+//! step are counted by the subject's allocator. The same cases run
+//! `ode_solvers`' pairs on the same generated right-hand side (`ode_solvers`
+//! rows), and the floor of a step is its evaluations one after another,
+//! each at `y + h k` of the one before (`chained`): what no loop can beat
+//! where the right-hand side's latency sets the pace. A second table times
+//! ours against `ode_solvers` in alternation at three tolerances. Writes
 //! `results/step_loop.md`.
 
 use super::*;
 
 /// The cases, as `step_loop_cases.rs` names them.
-const CASES: [&str; 5] = ["least", "stiffness test", "every step kept", "dense output", "event"];
+const CASES: [&str; 6] =
+    ["least", "stiffness test", "every step kept", "dense output", "event", "ode_solvers"];
 
 /// The problems.
 const PROBLEMS: [&str; 2] = ["lorenz", "arenstorf"];
@@ -85,7 +91,7 @@ fn instructions_per(
 pub fn step_loop_section() -> String {
     let tol = "1e-6";
     let mut text = format!(
-        "# The explicit pairs' step loop\n\nMachine: {}. Written by `cd bench && cargo run --release -- --loop` (bench/src/step_loop.rs, measured by bench/loop-subject). At rtol = atol = {tol}, each feature added to the ones above it: `least` (no stiffness test, no dense output, only the last step kept), `stiffness test` (Hairer's), `every step kept`, `dense output` (with the two above, `Options::new()`'s own), `event` (one watched that never fires; Lorenz only). Per step: its time and instructions (callgrind), and the loop's own share, the step's less (evaluations per step × one evaluation); heap allocations per step from the difference of a run and one twice as long.\n\n",
+        "# The explicit pairs' step loop\n\nMachine: {}. Written by `cd bench && cargo run --release -- --loop` (bench/src/step_loop.rs, measured by bench/loop-subject). At rtol = atol = {tol}, each feature added to the ones above it: `least` (no stiffness test, no dense output, only the last step kept), `stiffness test` (Hairer's), `every step kept`, `dense output` (with the two above, `Options::new()`'s own), `event` (one watched that never fires; Lorenz only); `ode_solvers`: that crate's pair (0.6, Hairer's controllers, every step kept, its stiffness test every 1000 steps) on the same generated right-hand side. The `chained` row is one evaluation after another, each at `y + h k` of the one before: a stage's latency, and evaluations per step times it is the floor of a step. Per step: its time and instructions (callgrind), and the loop's own share, the step's less (evaluations per step × one evaluation); heap allocations per step from the difference of a run and one twice as long.\n\n",
         machine()
     );
     let Some(subject) = subject() else {
@@ -100,8 +106,11 @@ pub fn step_loop_section() -> String {
             .unwrap_or(f64::NAN);
         let rhs_instr =
             instructions_per(&subject, &[problem, "rhs", "-", "-"], (100_000, 300_000), 1.0);
+        let chained_ns = subject_numbers(&subject, &["time", problem, "chain"])
+            .and_then(|v| v.first().copied())
+            .unwrap_or(f64::NAN);
         text.push_str(&format!(
-            "| {problem} | one evaluation | | | | {rhs_ns:.1} | | {} | | |\n",
+            "| {problem} | one evaluation | | | | {rhs_ns:.1} | | {} | | |\n| {problem} | one evaluation, chained | | | | {chained_ns:.1} | | | | |\n",
             show(rhs_instr)
         ));
         for method in ["Dopri5", "Dop853"] {
@@ -122,6 +131,35 @@ pub fn step_loop_section() -> String {
                     "| {problem} | {method} | {case} | {steps} | {evals_per_step:.2} | {per_step:.1} | {loop_ns:.1} | {} | {} | {allocations:.3} |\n",
                     show(instr),
                     show(loop_instr),
+                ));
+            }
+        }
+    }
+    text.push_str(&versus_table(&subject));
+    text
+}
+
+/// Ours (every step kept, as the work-precision sweep runs) against
+/// `ode_solvers` in alternation, at three tolerances.
+fn versus_table(subject: &Path) -> String {
+    let mut text = String::from("\n## Against ode_solvers, in alternation\n\nEach row: 301 rounds of one run of ours (every step kept, the stiffness test on) and one of `ode_solvers`' (as above), medians per step; the floor is evaluations per step × the chained evaluation above; ratio = ours / ode_solvers' run time.\n\n| problem | method | tol | steps ours / ode_solvers | ns/step ours | ode_solvers | floor | ratio |\n|---|---|---|---|---|---|---|---|\n");
+    for problem in PROBLEMS {
+        let chained = subject_numbers(subject, &["time", problem, "chain"])
+            .and_then(|v| v.first().copied())
+            .unwrap_or(f64::NAN);
+        for method in ["Dopri5", "Dop853"] {
+            for tol in ["1e-3", "1e-6", "1e-9"] {
+                let Some(v) = subject_numbers(subject, &["versus", problem, method, tol]) else {
+                    continue;
+                };
+                let [ours_steps, peer_steps, ours, peer, ratio] = v[..] else { continue };
+                let evals =
+                    subject_numbers(subject, &["time", problem, method, "every step kept", tol])
+                        .and_then(|v| v.get(1).copied())
+                        .unwrap_or(f64::NAN);
+                text.push_str(&format!(
+                    "| {problem} | {method} | {tol} | {ours_steps} / {peer_steps} | {ours:.1} | {peer:.1} | {:.1} | {ratio:.2}× |\n",
+                    evals * chained
                 ));
             }
         }

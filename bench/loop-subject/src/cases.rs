@@ -48,6 +48,12 @@ pub fn run(
     spans: f64,
 ) -> (usize, usize, usize) {
     let t1 = spans * PROBLEMS.iter().find(|p| p.0 == problem).map_or(1.0, |p| p.1);
+    if case == "ode_solvers" {
+        return match problem {
+            "lorenz" => peer::<Lorenz, 3>(method, tol, t1),
+            _ => peer::<Arenstorf, 4>(method, tol, t1),
+        };
+    }
     let opts = options(case, method, tol);
     let before = allocations_so_far();
     let sol = match (problem, case) {
@@ -59,6 +65,84 @@ pub fn run(
     let sol = sol.expect("the run");
     let s = sol.stats();
     (s.steps + s.rejected, s.rhs_evals, allocations)
+}
+
+/// The model's generated right-hand side as an `ode_solvers` system.
+struct Peered<M>(M);
+
+impl<M: Model, const N: usize> ode_solvers::System<f64, ode_solvers::SVector<f64, N>>
+    for Peered<M>
+{
+    fn system(
+        &self,
+        t: f64,
+        y: &ode_solvers::SVector<f64, N>,
+        dy: &mut ode_solvers::SVector<f64, N>,
+    ) {
+        let _ = self.0.rhs(t, y.as_slice(), dy.as_mut_slice());
+    }
+}
+
+/// One run of `ode_solvers`' pair on the same right-hand side, set up as
+/// the sweep sets it up (every step kept, Hairer's controllers, the
+/// stiffness test every 1000 steps): (steps, evaluations, allocations).
+fn peer<M: Model + Default, const N: usize>(
+    method: Method,
+    tol: f64,
+    t1: f64,
+) -> (usize, usize, usize) {
+    let mut y = [0.0; N];
+    M::default().initial_state(&mut y);
+    let y0 = ode_solvers::SVector::<f64, N>::from_column_slice(&y);
+    let sparse = ode_solvers::OutputType::Sparse;
+    let before = allocations_so_far();
+    let stats = if method == Method::Dop853 {
+        let mut s = ode_solvers::Dop853::from_param(
+            Peered(M::default()),
+            0.0,
+            t1,
+            t1,
+            y0,
+            tol,
+            tol,
+            0.9,
+            0.0,
+            0.333,
+            6.0,
+            t1,
+            0.0,
+            10_000_000,
+            1000,
+            sparse,
+        );
+        s.integrate().expect("the run")
+    } else {
+        let mut s = ode_solvers::Dopri5::from_param(
+            Peered(M::default()),
+            0.0,
+            t1,
+            t1,
+            y0,
+            tol,
+            tol,
+            0.9,
+            0.04,
+            0.2,
+            10.0,
+            t1,
+            0.0,
+            10_000_000,
+            1000,
+            sparse,
+        );
+        s.integrate().expect("the run")
+    };
+    let allocations = allocations_so_far() - before;
+    (
+        stats.accepted_steps as usize + stats.rejected_steps as usize,
+        stats.num_eval as usize,
+        allocations,
+    )
 }
 
 /// `reps` evaluations of `problem`'s right-hand side at its start.
@@ -79,6 +163,32 @@ pub fn evaluations(problem: &str, reps: usize) -> f64 {
     match problem {
         "lorenz" => many::<Lorenz>(reps),
         _ => many::<Arenstorf>(reps),
+    }
+}
+
+/// `reps` evaluations of `problem`'s right-hand side one after another,
+/// each at `y + h k` from the one before: what a stage costs at the least
+/// (its evaluation's latency and one product and sum), the floor of an
+/// explicit pair's step.
+pub fn chained_evaluations(problem: &str, reps: usize) -> f64 {
+    fn chain<M: Model + Default>(reps: usize) -> f64 {
+        let m = M::default();
+        let mut y = vec![0.0; M::STATES];
+        m.initial_state(&mut y);
+        let y0 = y.clone();
+        let mut k = vec![0.0; M::STATES];
+        let h = std::hint::black_box(1e-9);
+        for _ in 0..reps {
+            let _ = m.rhs(0.0, &y, &mut k);
+            for ((s, y0), k) in y.iter_mut().zip(&y0).zip(&k) {
+                *s = y0 + h * k;
+            }
+        }
+        y[0]
+    }
+    match problem {
+        "lorenz" => chain::<Lorenz>(reps),
+        _ => chain::<Arenstorf>(reps),
     }
 }
 

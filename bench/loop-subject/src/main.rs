@@ -54,7 +54,7 @@ fn allocations_so_far() -> usize {
 }
 
 mod cases;
-use cases::{evaluations, loop_one, run};
+use cases::{chained_evaluations, evaluations, loop_one, run};
 
 /// The median of `repeats` timings of `f`, in seconds.
 fn median(repeats: usize, mut f: impl FnMut()) -> f64 {
@@ -73,12 +73,40 @@ fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match args.first().map(String::as_str) {
         Some("count") => loop_one(&args[1..]),
+        Some("time") if args.get(2).is_some_and(|a| a == "chain") => {
+            const CALLS: usize = 1_000_000;
+            let seconds = median(31, || {
+                std::hint::black_box(chained_evaluations(&args[1], CALLS));
+            });
+            println!("{}", seconds * 1e9 / CALLS as f64);
+        }
         Some("time") if args.get(2).is_some_and(|a| a == "rhs") => {
             const CALLS: usize = 1_000_000;
             let seconds = median(31, || {
                 std::hint::black_box(evaluations(&args[1], CALLS));
             });
             println!("{}", seconds * 1e9 / CALLS as f64);
+        }
+        Some("versus") => {
+            // Ours (every step kept, as the sweep runs) and ode_solvers'
+            // in alternation: medians per step and their ratio.
+            let method = if args[2] == "Dop853" { Method::Dop853 } else { Method::Dopri5 };
+            let tol: f64 = args[3].parse().unwrap_or(1e-6);
+            let (ours_steps, _, _) = run(&args[1], method, "every step kept", tol, 1.0);
+            let (peer_steps, _, _) = run(&args[1], method, "ode_solvers", tol, 1.0);
+            let (mut ours, mut peer) = (Vec::new(), Vec::new());
+            for _ in 0..301 {
+                ours.push(median(1, || {
+                    std::hint::black_box(run(&args[1], method, "every step kept", tol, 1.0));
+                }));
+                peer.push(median(1, || {
+                    std::hint::black_box(run(&args[1], method, "ode_solvers", tol, 1.0));
+                }));
+            }
+            ours.sort_by(f64::total_cmp);
+            peer.sort_by(f64::total_cmp);
+            let (o, p) = (ours[150] * 1e9 / ours_steps as f64, peer[150] * 1e9 / peer_steps as f64);
+            println!("{ours_steps} {peer_steps} {o} {p} {}", ours[150] / peer[150]);
         }
         Some("time") => {
             let method = if args[2] == "Dop853" { Method::Dop853 } else { Method::Dopri5 };
