@@ -96,46 +96,22 @@ fn peer<M: Model + Default, const N: usize>(
     let y0 = ode_solvers::SVector::<f64, N>::from_column_slice(&y);
     let sparse = ode_solvers::OutputType::Sparse;
     let before = allocations_so_far();
+    // Hairer's controller constants of each pair, as the sweep gives them.
+    macro_rules! integrate {
+        ($pair:ident, $beta:expr, $min:expr, $max:expr) => {{
+            let system = Peered(M::default());
+            let (maxn, nstiff) = (10_000_000, 1000);
+            let mut s = ode_solvers::$pair::from_param(
+                system, 0.0, t1, t1, y0, tol, tol, 0.9, $beta, $min, $max, t1, 0.0, maxn, nstiff,
+                sparse,
+            );
+            s.integrate().expect("the run")
+        }};
+    }
     let stats = if method == Method::Dop853 {
-        let mut s = ode_solvers::Dop853::from_param(
-            Peered(M::default()),
-            0.0,
-            t1,
-            t1,
-            y0,
-            tol,
-            tol,
-            0.9,
-            0.0,
-            0.333,
-            6.0,
-            t1,
-            0.0,
-            10_000_000,
-            1000,
-            sparse,
-        );
-        s.integrate().expect("the run")
+        integrate!(Dop853, 0.0, 0.333, 6.0)
     } else {
-        let mut s = ode_solvers::Dopri5::from_param(
-            Peered(M::default()),
-            0.0,
-            t1,
-            t1,
-            y0,
-            tol,
-            tol,
-            0.9,
-            0.04,
-            0.2,
-            10.0,
-            t1,
-            0.0,
-            10_000_000,
-            1000,
-            sparse,
-        );
-        s.integrate().expect("the run")
+        integrate!(Dopri5, 0.04, 0.2, 10.0)
     };
     let allocations = allocations_so_far() - before;
     (
