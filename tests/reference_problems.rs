@@ -390,7 +390,7 @@ Dopri5                1e-7   Error::Stiff at t = 3.180e-5
 Dopri5                1e-9   Error::Stiff at t = 2.712e-5
 Dop853                1e-5   Error::Stiff at t = 4.053e-5
 Dop853                1e-7   Error::Stiff at t = 4.053e-5
-Dop853                1e-9   Error::Stiff at t = 4.838e-5
+Dop853                1e-9   Error::Stiff at t = 4.624e-5
 Radau5                1e-5     339 steps    8 rejected   2962 f  222 J
 Radau5                1e-7     711 steps    8 rejected   5735 f  434 J
 Radau5                1e-9    1538 steps    4 rejected  11908 f  530 J
@@ -418,10 +418,10 @@ Heun                  h      Error::NonFinite at t = 2.000e8
 Ralston               h      Error::NonFinite at t = 2.000e8
 Dopri5                1e-6   Error::Stiff at t = 3.811e-2
 Dopri5                1e-8   Error::Stiff at t = 5.531e0
-Dopri5                1e-10  Error::Stiff at t = 4.110e1
+Dopri5                1e-10  Error::Stiff at t = 4.102e1
 Dop853                1e-6   Error::Stiff at t = 6.063e-2
 Dop853                1e-8   Error::Stiff at t = 6.147e-2
-Dop853                1e-10  Error::Stiff at t = 7.970e0
+Dop853                1e-10  Error::Stiff at t = 7.960e0
 Radau5                1e-6     299 steps    2 rejected   2222 f  279 J
 Radau5                1e-8     620 steps    2 rejected   4655 f  376 J
 Radau5                1e-10   1326 steps    2 rejected   9960 f  499 J
@@ -452,7 +452,7 @@ Dopri5                1e-8   Error::Stiff at t = 1.585e1
 Dopri5                1e-10  19199 steps    0 rejected 115196 f    0 J
 Dop853                1e-6   Error::Stiff at t = 3.549e0
 Dop853                1e-8   Error::Stiff at t = 5.656e0
-Dop853                1e-10  Error::Stiff at t = 9.714e0
+Dop853                1e-10  Error::Stiff at t = 9.946e0
 Radau5                1e-6     117 steps    2 rejected   1140 f   73 J
 Radau5                1e-8     235 steps    1 rejected   2050 f  134 J
 Radau5                1e-10    501 steps    1 rejected   4110 f  229 J
@@ -464,9 +464,9 @@ Rodas5P GMRES         1e-8     787 steps    4 rejected   6324 f  787 J 13679 GMR
 Rodas5P GMRES         1e-10   2854 steps    4 rejected  22860 f 2854 J 49637 GMRES it
     ");
     insta::assert_snapshot!(table("low_pass"), @r"
-Auto (Dopri5→Radau5)  1e-6      60 steps    9 rejected    348 f   10 J
-Auto (Dop853→Radau5)  1e-8     101 steps    7 rejected    712 f    8 J
-Auto (Dop853→Radau5)  1e-10    222 steps    5 rejected   1427 f    6 J
+Auto (Dopri5→Radau5)  1e-6      61 steps    9 rejected    352 f   10 J
+Auto (Dop853→Radau5)  1e-8     100 steps    7 rejected    709 f    8 J
+Auto (Dop853→Radau5)  1e-10    222 steps    4 rejected   1418 f    5 J
 Taylor                1e-6     497 steps    0 rejected    497 f    0 J
 Taylor                1e-8     385 steps    0 rejected    385 f    0 J
 Taylor                1e-10    347 steps    0 rejected    347 f    0 J
