@@ -281,8 +281,11 @@ struct Target {
     peer: &'static str,
     /// Our points with a tolerance at or below this.
     tol_at_most: f64,
-    /// Met when the median ratio is at most this.
+    /// Met when the median ratio is at most this (or every ratio, with
+    /// `every_point`).
     max_ratio: f64,
+    /// Whether every point must meet `max_ratio`, not only the median.
+    every_point: bool,
     what: &'static str,
 }
 
@@ -292,8 +295,9 @@ const TARGETS: [Target; 7] = [
         ours: "daegen Taylor",
         peer: "heyoka",
         tol_at_most: 1e-12,
-        max_ratio: 0.8,
-        what: "Taylor ≤ 0.8× heyoka (tol ≤ 1e-12)",
+        max_ratio: 0.7,
+        every_point: false,
+        what: "Taylor ≤ 0.7× heyoka (tol ≤ 1e-12)",
     },
     Target {
         problems: &["kepler", "arenstorf", "lorenz", "outer_solar_system"],
@@ -301,6 +305,7 @@ const TARGETS: [Target; 7] = [
         peer: "ode_solvers Dop853",
         tol_at_most: 1e-12,
         max_ratio: 0.2,
+        every_point: false,
         what: "Taylor ≥ 5× faster than ode_solvers DOP853 (tol ≤ 1e-12)",
     },
     Target {
@@ -308,16 +313,18 @@ const TARGETS: [Target; 7] = [
         ours: "daegen DOPRI5",
         peer: "ode_solvers Dopri5",
         tol_at_most: 1.0,
-        max_ratio: 1.0,
-        what: "DOPRI5 ≤ 1× ode_solvers Dopri5",
+        max_ratio: 0.8,
+        every_point: true,
+        what: "DOPRI5 ≤ 0.8× ode_solvers Dopri5 (every point)",
     },
     Target {
         problems: &["kepler", "arenstorf", "lorenz", "outer_solar_system"],
         ours: "daegen DOP853",
         peer: "ode_solvers Dop853",
         tol_at_most: 1.0,
-        max_ratio: 1.0,
-        what: "DOP853 ≤ 1× ode_solvers Dop853",
+        max_ratio: 0.8,
+        every_point: true,
+        what: "DOP853 ≤ 0.8× ode_solvers Dop853 (every point)",
     },
     Target {
         problems: &["van_der_pol", "robertson", "hires"],
@@ -325,6 +332,7 @@ const TARGETS: [Target; 7] = [
         peer: "diffsol BDF",
         tol_at_most: 1.0,
         max_ratio: 0.7,
+        every_point: false,
         what: "RADAU5 ≤ 0.7× diffsol BDF",
     },
     Target {
@@ -333,6 +341,7 @@ const TARGETS: [Target; 7] = [
         peer: "CVODE BDF (dense)",
         tol_at_most: 1.0,
         max_ratio: 0.7,
+        every_point: false,
         what: "RADAU5 ≤ 0.7× CVODE",
     },
     Target {
@@ -341,6 +350,7 @@ const TARGETS: [Target; 7] = [
         peer: "CVODE BDF (dense)",
         tol_at_most: 1.0,
         max_ratio: 0.7,
+        every_point: false,
         what: "RODAS5P ≤ 0.7× CVODE",
     },
 ];
@@ -368,6 +378,7 @@ fn targets_markdown(problems: &[Problem]) -> String {
                 ("no common error range".to_string(), "—")
             } else {
                 let median = ratios[ratios.len() / 2];
+                let judged = if target.every_point { ratios[ratios.len() - 1] } else { median };
                 (
                     format!(
                         "{median:.2}× ({:.2}–{:.2}, {})",
@@ -375,7 +386,7 @@ fn targets_markdown(problems: &[Problem]) -> String {
                         ratios[ratios.len() - 1],
                         ratios.len()
                     ),
-                    if median <= target.max_ratio { "yes" } else { "**no**" },
+                    if judged <= target.max_ratio { "yes" } else { "**no**" },
                 )
             };
             s.push_str(&format!("| {} | {name} | {cell} | {met} |\n", target.what));
@@ -554,7 +565,7 @@ fn main() {
         return;
     }
     if has("--loop") {
-        let text = step_loop::step_loop_section();
+        let text = step_loop::step_loop_section() + &step_loop::taylor_section();
         let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join("step_loop.md");
         std::fs::write(&out, &text).expect("results/step_loop.md");
         println!("{text}");

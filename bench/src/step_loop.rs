@@ -18,7 +18,9 @@
 //! rows), and the floor of a step is its evaluations one after another,
 //! each at `y + h k` of the one before (`chained`): what no loop can beat
 //! where the right-hand side's latency sets the pace. A second table times
-//! ours against `ode_solvers` in alternation at three tolerances. Writes
+//! ours against `ode_solvers` in alternation at three tolerances. A third
+//! sets the Taylor method's step, in cycles, against the arithmetic of
+//! its recurrences counted in the generated code. Writes
 //! `results/step_loop.md`.
 
 use super::*;
@@ -162,6 +164,79 @@ fn versus_table(subject: &Path) -> String {
                     evals * chained
                 ));
             }
+        }
+    }
+    text
+}
+
+/// This machine's clock, in cycles per nanosecond, from a chain of
+/// dependent floating-point multiplications (four cycles each on Intel's
+/// cores since Skylake; additions take two on the newest, so they would
+/// not do), timed as the median of 31.
+fn cycles_per_ns() -> f64 {
+    const PRODUCTS: usize = 20_000_000;
+    let mut times: Vec<f64> = (0..31)
+        .map(|_| {
+            // Slightly above 1: the chain grows by e^0.2 at most.
+            let factor = std::hint::black_box(1.0 + 1e-8);
+            let start = Instant::now();
+            let mut x = std::hint::black_box(1.0f64);
+            for _ in 0..PRODUCTS {
+                x *= factor;
+            }
+            std::hint::black_box(x);
+            start.elapsed().as_secs_f64()
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    4.0 * PRODUCTS as f64 / (times[15] * 1e9)
+}
+
+/// One Taylor row: at `tol`, the order the method picks, the operations
+/// of a step (the unrolled jet counted in the generated code, the state
+/// update per state), and a step's time and cycles.
+fn taylor_row<M: Benchmark>(tol: f64, cycles_per_ns: f64) -> Option<String> {
+    let model = M::default();
+    let order = daegen::runtime::taylor_order::order_to_unroll(&model, tol)?;
+    let code = daegen_workprecision::expansion_cost(M::SOURCE, M::ATTRIBUTES, 1).ok()?.code;
+    let jet = daegen_workprecision::taylor_jet_operations(&code, order)? as f64;
+    let update =
+        M::STATES as f64 * daegen::runtime::taylor::update_operations_per_state(order) as f64;
+    let options = Options::new().method(Method::Taylor).tolerance(tol).dense_output(false);
+    let t1 = M::bench().t_end;
+    let settings = Settings { min_repeats: 21, ..Settings::default() };
+    let (seconds, solution) =
+        daegen_workprecision::median_time(&settings, || model.simulate(0.0, t1, &options));
+    let stats = solution.ok()?.stats();
+    let ns = seconds * 1e9 / stats.steps as f64;
+    let cycles = ns * cycles_per_ns;
+    Some(format!(
+        "| {} | {tol:.0e} | {order}{} | {jet:.0} | {update:.0} | {:.0} | {ns:.0} | {cycles:.0} | {:.2} |\n",
+        M::NAME,
+        if stats.taylor_unrolled { "" } else { " (tape)" },
+        jet + update,
+        cycles / (jet + update),
+    ))
+}
+
+/// The Taylor method's cost per step against the arithmetic of its
+/// recurrences.
+pub fn taylor_section() -> String {
+    let clock = cycles_per_ns();
+    let mut text = format!(
+        "\n## The Taylor step against its arithmetic\n\nPer step at the order `Method::Taylor` picks: the jet's floating-point operations counted in the generated code (a multiply-add one, loops by their trips; `daegen_workprecision::taylor_jet_operations`), the state update's (Horner's sums, the compensated addition, the three norms), and the step's measured time (median of at least 21 solves, every step kept, no dense output) in cycles at this machine's clock, {clock:.2} GHz, measured by a chain of dependent multiplications (4 cycles each). A core of this kind retires two multiply-adds a cycle at most, so cycles / operations below 0.5 would be beyond it; above 1.5 the step does something besides its arithmetic.\n\n| problem | tol | order | jet operations | update operations | operations per step | ns per step | cycles per step | cycles / operations |\n|---|---|---|---|---|---|---|---|---|\n"
+    );
+    for tol in [1e-9, 1e-12, 1e-15] {
+        for row in [
+            taylor_row::<crate::Kepler>(tol, clock),
+            taylor_row::<crate::Arenstorf>(tol, clock),
+            taylor_row::<crate::Lorenz>(tol, clock),
+            taylor_row::<crate::OuterSolarSystem>(tol, clock),
+        ]
+        .into_iter()
+        .flatten()
+        {
+            text.push_str(&row);
         }
     }
     text

@@ -21,6 +21,15 @@ fn lorenz_watched() {
     let far = event(z - 1000.0);
 }
 
+/// The method a name on the command line stands for.
+pub fn method(name: &str) -> Method {
+    match name {
+        "Dop853" => Method::Dop853,
+        "Taylor" => Method::Taylor,
+        _ => Method::Dopri5,
+    }
+}
+
 /// The options of `case` for `method` at `tol` over `[0, t1]`.
 fn options(case: &str, method: Method, tol: f64) -> Options {
     let base = Options::new().method(method).tolerance(tol);
@@ -176,7 +185,7 @@ pub fn loop_one(args: &[String]) {
         std::hint::black_box(evaluations(&args[0], reps));
         return;
     }
-    let method = if args[1] == "Dop853" { Method::Dop853 } else { Method::Dopri5 };
+    let method = method(&args[1]);
     let tol: f64 = args[3].parse().unwrap_or(1e-6);
     for _ in 0..reps {
         std::hint::black_box(run(&args[0], method, &args[2], tol, 1.0));

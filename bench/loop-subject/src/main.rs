@@ -20,7 +20,7 @@ use std::time::Instant;
 
 include!("../../../tests/models/lorenz.rs");
 include!("../../../tests/models/arenstorf.rs");
-lorenz_model!([1.0, 0.0, 0.0],);
+lorenz_model!([1.0, 0.0, 0.0], taylor = 1, unroll = [16, 18, 20]);
 arenstorf_model!();
 
 /// Counts allocations, so that a step's can be counted.
@@ -90,7 +90,7 @@ fn main() {
         Some("versus") => {
             // Ours (every step kept, as the sweep runs) and ode_solvers'
             // in alternation: medians per step and their ratio.
-            let method = if args[2] == "Dop853" { Method::Dop853 } else { Method::Dopri5 };
+            let method = cases::method(&args[2]);
             let tol: f64 = args[3].parse().unwrap_or(1e-6);
             let (ours_steps, _, _) = run(&args[1], method, "every step kept", tol, 1.0);
             let (peer_steps, _, _) = run(&args[1], method, "ode_solvers", tol, 1.0);
@@ -109,7 +109,7 @@ fn main() {
             println!("{ours_steps} {peer_steps} {o} {p} {}", ours[150] / peer[150]);
         }
         Some("time") => {
-            let method = if args[2] == "Dop853" { Method::Dop853 } else { Method::Dopri5 };
+            let method = cases::method(&args[2]);
             let tol: f64 = args[4].parse().unwrap_or(1e-6);
             let (steps, evals, allocations) = run(&args[1], method, &args[3], tol, 1.0);
             let (steps_twice, _, twice) = run(&args[1], method, &args[3], tol, 2.0);
