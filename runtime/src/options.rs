@@ -51,10 +51,13 @@ pub enum Method {
     Ralston,
     /// Dormand–Prince 5(4), adaptive, with 4th-order dense output. Stops
     /// with [`crate::Error::Stiff`] where the problem turns stiff (see
-    /// [`Options::stiffness_detection`]).
+    /// [`Options::stiffness_detection`]). Each step's sum y + h·Σ b_j k_j
+    /// is compensated (its rounding error carried into the next step), so
+    /// long runs at tight tolerances do not lose digits to it.
     Dopri5,
     /// Hairer's DOP853, adaptive, with 7th-order dense output. Stops with
-    /// [`crate::Error::Stiff`] where the problem turns stiff.
+    /// [`crate::Error::Stiff`] where the problem turns stiff; its steps'
+    /// sums are compensated as DOPRI5's.
     Dop853,
     /// Radau IIA of order 5 for stiff problems (Hairer–Wanner's RADAU5),
     /// with the generated Jacobian.
