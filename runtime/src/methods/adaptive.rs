@@ -114,12 +114,7 @@ fn combine_row<V: StateVector, const S: usize>(y: &V, h: f64, a: &[f64], k: &[V]
     let out = out.as_mut();
     let y = &y.as_ref()[..out.len()];
     for (i, (o, yv)) in out.iter_mut().zip(y).enumerate() {
-        let mut sum = 0.0;
-        for j in 0..S - 1 {
-            if a[j] != 0.0 {
-                sum += a[j] * older[j].as_ref()[i];
-            }
-        }
+        let sum = older_terms(a, older, i);
         *o = if a[S - 1] == 0.0 {
             yv + h * sum
         } else {
@@ -128,12 +123,25 @@ fn combine_row<V: StateVector, const S: usize>(y: &V, h: f64, a: &[f64], k: &[V]
     }
 }
 
+/// Component `i` of `Σ_{j<S-1} a_j k_j`, the terms of every stage but the
+/// newest, in stage order; a zero coefficient adds nothing.
+#[inline(always)]
+fn older_terms<V: StateVector, const S: usize>(a: &[f64; S], older: &[V], i: usize) -> f64 {
+    let mut sum = 0.0;
+    for (aj, kj) in a.iter().zip(older) {
+        if *aj != 0.0 {
+            sum += aj * kj.as_ref()[i];
+        }
+    }
+    sum
+}
+
 /// The rounding error of the solution's sums, carried from one step into
 /// the next (compensated summation: Kahan; Hairer, Lubich & Wanner, GNI
 /// §VIII.5), as the Taylor method carries its own: with it the error at
 /// the tightest tolerances stops at the stages' rounding, not at the
 /// rounding of y + h·Σ b_j k_j added up over thousands of steps.
-pub(crate) struct Carry<V> {
+struct Carry<V> {
     /// The error left by the last accepted step.
     carried: V,
     /// The error the step being tried leaves, kept if it is accepted.
@@ -169,12 +177,7 @@ fn solution_row<V: StateVector, const S: usize>(
     for (i, ((o, yv), (c, e))) in
         out.iter_mut().zip(y).zip(carried.iter().zip(next.iter_mut())).enumerate()
     {
-        let mut sum = 0.0;
-        for j in 0..S - 1 {
-            if b[j] != 0.0 {
-                sum += b[j] * older[j].as_ref()[i];
-            }
-        }
+        let sum = older_terms(b, older, i);
         let increment =
             if b[S - 1] == 0.0 { h * sum } else { h * sum + h_newest * newest.as_ref()[i] };
         let t = increment + c;
