@@ -61,42 +61,6 @@ impl<M: Model> Rhs<'_, M> {
     }
 }
 
-/// `out = y + h Σ_j a_j k_j`, in one pass and in the order of Hairer's
-/// codes (the sum first, then one multiplication by h).
-///
-/// Stage by stage over whole vectors (skipping the tableau's zeros, as
-/// Hairer's codes do), so each pass is a vectorizable loop over slices of a
-/// known length; per component the terms are added in the same order.
-#[inline(always)]
-fn combine<S: StateVector>(y: &S, h: f64, a: &[f64], k: &[S], out: &mut S) {
-    let out = out.as_mut();
-    let n = out.len();
-    let y = &y.as_ref()[..n];
-    let mut first = true;
-    for (&aj, kj) in a.iter().zip(k) {
-        if aj == 0.0 {
-            continue;
-        }
-        let kj = &kj.as_ref()[..n];
-        if first {
-            for (o, kv) in out.iter_mut().zip(kj) {
-                *o = aj * kv;
-            }
-            first = false;
-        } else {
-            for (o, kv) in out.iter_mut().zip(kj) {
-                *o += aj * kv;
-            }
-        }
-    }
-    if first {
-        out.fill(0.0);
-    }
-    for (o, yv) in out.iter_mut().zip(y) {
-        *o = yv + h * *o;
-    }
-}
-
 /// `out = y + h Σ_{j<S} a_j k_j` component by component, the newest
 /// stage's term added last: `(y + h Σ_{j<S-1} a_j k_j) + (h a_{S-1}) k_{S-1}`.
 /// The sum over the older stages runs while the right-hand side computes
@@ -248,6 +212,49 @@ fn stages<M: Model, P: EmbeddedPair>(
     stage::<M, P, 12>(rhs, t, h, y, k, s, (y_new, carry))
 }
 
+/// Dense stage `S` (an index past the step's own stages, evaluated after
+/// the step is accepted): `k[S] = f(t + c_S h, y + h Σ_{j<S} a_Sj k_j)`.
+#[inline(always)]
+fn dense_stage<M: Model, P: EmbeddedPair, const S: usize>(
+    rhs: &mut Rhs<'_, M>,
+    t: f64,
+    h: f64,
+    y: &M::State,
+    k: &mut [M::State],
+    stage: &mut M::State,
+) -> Result<(), (f64, EvalError)> {
+    if S < P::STAGES || S >= P::STAGES + P::DENSE_STAGES {
+        return Ok(());
+    }
+    let (done, rest) = k.split_at_mut(S);
+    combine_row::<M::State, S>(y, h, P::coefficients()[S], done, stage);
+    let ts = t + P::nodes()[S] * h;
+    rhs.call(ts, stage.as_ref(), rest[0].as_mut()).map_err(|cause| (ts, cause))
+}
+
+/// The dense output's extra stages after an accepted step (DOP853's
+/// three; none for DOPRI5), each row a constant as the step's own.
+fn dense_stages<M: Model, P: EmbeddedPair>(
+    rhs: &mut Rhs<'_, M>,
+    t: f64,
+    h: f64,
+    y: &M::State,
+    k: &mut [M::State],
+    stage: &mut M::State,
+) -> Result<(), (f64, EvalError)> {
+    // The indices below cover every pair's dense stages.
+    const { assert!(P::DENSE_STAGES == 0 || (P::STAGES >= 7 && P::STAGES + P::DENSE_STAGES <= 16)) };
+    dense_stage::<M, P, 7>(rhs, t, h, y, k, stage)?;
+    dense_stage::<M, P, 8>(rhs, t, h, y, k, stage)?;
+    dense_stage::<M, P, 9>(rhs, t, h, y, k, stage)?;
+    dense_stage::<M, P, 10>(rhs, t, h, y, k, stage)?;
+    dense_stage::<M, P, 11>(rhs, t, h, y, k, stage)?;
+    dense_stage::<M, P, 12>(rhs, t, h, y, k, stage)?;
+    dense_stage::<M, P, 13>(rhs, t, h, y, k, stage)?;
+    dense_stage::<M, P, 14>(rhs, t, h, y, k, stage)?;
+    dense_stage::<M, P, 15>(rhs, t, h, y, k, stage)
+}
+
 /// What a run does about stiffness.
 pub(crate) enum Stiffness {
     /// Nothing (`Options::stiffness_detection(false)`).
@@ -304,7 +311,6 @@ fn integrate_from<M: Model, P: EmbeddedPair>(
     };
     let fail_when_stiff = matches!(stiffness, Stiffness::Fail);
     let direction = if t1 >= t0 { 1.0 } else { -1.0 };
-    let (a, c) = (P::coefficients(), P::nodes());
     let controller = P::controller();
     let mut k = vec![M::State::zeros(); P::STAGES + P::DENSE_STAGES];
     let (mut y, mut y_new, mut stage) = (M::State::zeros(), M::State::zeros(), M::State::zeros());
@@ -426,20 +432,13 @@ fn integrate_from<M: Model, P: EmbeddedPair>(
             };
             let (factor, state) = controller.factor(err, pi);
             pi = state;
-            let dense_stages = if keep_dense { P::DENSE_STAGES } else { 0 };
-            for s in P::STAGES..P::STAGES + dense_stages {
-                let (done, rest) = k.split_at_mut(s);
-                combine(&y, h, a[s], done, &mut stage);
-                if let Err(cause) = rhs.call(t + c[s] * h, stage.as_ref(), rest[0].as_mut()) {
-                    finish_stats(&mut solution, accepted, rejected, rhs.evals);
-                    return Err(Error::Evaluation {
-                        t: t + c[s] * h,
-                        cause,
-                        partial: Box::new(solution),
-                    });
-                }
-            }
             if keep_dense {
+                if let Err((ts, cause)) =
+                    dense_stages::<M, P>(&mut rhs, t, h, &y, &mut k, &mut stage)
+                {
+                    finish_stats(&mut solution, accepted, rejected, rhs.evals);
+                    return Err(Error::Evaluation { t: ts, cause, partial: Box::new(solution) });
+                }
                 P::dense_coefficients(h, &y, &y_new, &k, &mut dense);
             }
             // Compensated summation: long runs keep t exact to rounding.
@@ -641,12 +640,7 @@ mod tests {
         let mut carry = Carry::new();
         stages::<Kepler, P>(&mut rhs, t, h, &y, &mut k, &mut stage, &mut y_new, &mut carry)
             .unwrap();
-        let (a, c) = (P::coefficients(), P::nodes());
-        for s in P::STAGES..P::STAGES + P::DENSE_STAGES {
-            let (done, rest) = k.split_at_mut(s);
-            combine(&y, h, a[s], done, &mut stage);
-            rhs.call(t + c[s] * h, &stage, &mut rest[0]).unwrap();
-        }
+        dense_stages::<Kepler, P>(&mut rhs, t, h, &y, &mut k, &mut stage).unwrap();
         let mut dense = vec![0.0; P::DENSE_WIDTH * n];
         P::dense_coefficients(h, &y, &y_new, &k, &mut dense);
         let want = exact(t + 0.37 * h);

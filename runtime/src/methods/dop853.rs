@@ -350,6 +350,9 @@ impl EmbeddedPair for Dop853 {
     fn dense_coefficients<S: StateVector>(h: f64, y: &S, y_new: &S, k: &[S], out: &mut [f64]) {
         let (y, y_new) = (y.as_ref(), y_new.as_ref());
         let n = y.len();
+        // All sixteen stages at a fixed length, so that each row's sums
+        // unroll and its zero weights drop out at compile time.
+        let Some(k) = k.first_chunk::<16>() else { return };
         for i in 0..n {
             let dy = y_new[i] - y[i];
             let bspl = h * k[0].as_ref()[i] - dy;
@@ -357,20 +360,15 @@ impl EmbeddedPair for Dop853 {
             out[n + i] = dy;
             out[2 * n + i] = bspl;
             out[3 * n + i] = dy - h * k[12].as_ref()[i] - bspl;
-        }
-        // Σ_j d_mj k_j stage by stage over all components (contiguous, so
-        // it vectorises), skipping the stages whose weight is zero: each
-        // component's sum is still taken in stage order, as in dop853.f.
-        for (m, d) in D.iter().enumerate() {
-            let row = &mut out[(4 + m) * n..(5 + m) * n];
-            row.fill(0.0);
-            for (dj, kj) in d.iter().zip(k).filter(|(dj, _)| **dj != 0.0) {
-                for (o, kv) in row.iter_mut().zip(kj.as_ref()) {
-                    *o += dj * kv;
+            // Σ_j d_mj k_j in stage order, as in dop853.f, then times h.
+            for (m, d) in D.iter().enumerate() {
+                let mut sum = 0.0;
+                for (dj, kj) in d.iter().zip(k) {
+                    if *dj != 0.0 {
+                        sum += dj * kj.as_ref()[i];
+                    }
                 }
-            }
-            for o in row.iter_mut() {
-                *o *= h;
+                out[(4 + m) * n + i] = sum * h;
             }
         }
     }
