@@ -169,16 +169,29 @@ fn stage<M: Model, P: EmbeddedPair, const S: usize>(
     if S >= P::STAGES {
         return Ok(());
     }
-    let (a, c) = (P::coefficients(), P::nodes());
-    let (done, rest) = k.split_at_mut(S);
-    if S + 1 == P::STAGES {
-        solution_row::<M::State, S>(y, h, a[S], done, carry, y_new);
-        rhs.call(t + h, y_new.as_ref(), rest[0].as_mut()).map_err(|cause| (t + h, cause))
-    } else {
-        combine_row::<M::State, S>(y, h, a[S], done, stage);
-        let ts = t + c[S] * h;
-        rhs.call(ts, stage.as_ref(), rest[0].as_mut()).map_err(|cause| (ts, cause))
+    if S + 1 < P::STAGES {
+        return interior_stage::<M, P, S>(rhs, t, h, y, k, stage);
     }
+    let (done, rest) = k.split_at_mut(S);
+    solution_row::<M::State, S>(y, h, P::coefficients()[S], done, carry, y_new);
+    rhs.call(t + h, y_new.as_ref(), rest[0].as_mut()).map_err(|cause| (t + h, cause))
+}
+
+/// Stage `S` at an interior point, a step's own or the dense output's:
+/// `k[S] = f(t + c_S h, y + h Σ_{j<S} a_Sj k_j)`, the point in `stage`.
+#[inline(always)]
+fn interior_stage<M: Model, P: EmbeddedPair, const S: usize>(
+    rhs: &mut Rhs<'_, M>,
+    t: f64,
+    h: f64,
+    y: &M::State,
+    k: &mut [M::State],
+    stage: &mut M::State,
+) -> Result<(), (f64, EvalError)> {
+    let (done, rest) = k.split_at_mut(S);
+    combine_row::<M::State, S>(y, h, P::coefficients()[S], done, stage);
+    let ts = t + P::nodes()[S] * h;
+    rhs.call(ts, stage.as_ref(), rest[0].as_mut()).map_err(|cause| (ts, cause))
 }
 
 /// The most stages of a pair (DOP853's 12 and the new solution's).
@@ -206,38 +219,13 @@ fn stages<M: Model, P: EmbeddedPair>(
     carry: &mut Carry<M::State>,
 ) -> Result<(), (f64, EvalError)> {
     const { assert!(P::STAGES <= MAX_STAGES) };
-    stage::<M, P, 1>(rhs, t, h, y, k, s, (y_new, carry))?;
-    stage::<M, P, 2>(rhs, t, h, y, k, s, (y_new, carry))?;
-    stage::<M, P, 3>(rhs, t, h, y, k, s, (y_new, carry))?;
-    stage::<M, P, 4>(rhs, t, h, y, k, s, (y_new, carry))?;
-    stage::<M, P, 5>(rhs, t, h, y, k, s, (y_new, carry))?;
-    stage::<M, P, 6>(rhs, t, h, y, k, s, (y_new, carry))?;
-    stage::<M, P, 7>(rhs, t, h, y, k, s, (y_new, carry))?;
-    stage::<M, P, 8>(rhs, t, h, y, k, s, (y_new, carry))?;
-    stage::<M, P, 9>(rhs, t, h, y, k, s, (y_new, carry))?;
-    stage::<M, P, 10>(rhs, t, h, y, k, s, (y_new, carry))?;
-    stage::<M, P, 11>(rhs, t, h, y, k, s, (y_new, carry))?;
-    stage::<M, P, 12>(rhs, t, h, y, k, s, (y_new, carry))
-}
-
-/// Dense stage `S` (an index past the step's own stages, evaluated after
-/// the step is accepted): `k[S] = f(t + c_S h, y + h Σ_{j<S} a_Sj k_j)`.
-#[inline(always)]
-fn dense_stage<M: Model, P: EmbeddedPair, const S: usize>(
-    rhs: &mut Rhs<'_, M>,
-    t: f64,
-    h: f64,
-    y: &M::State,
-    k: &mut [M::State],
-    stage: &mut M::State,
-) -> Result<(), (f64, EvalError)> {
-    if S < P::STAGES || S >= P::STAGES + P::DENSE_STAGES {
-        return Ok(());
+    macro_rules! stages {
+        ($($s:literal),*) => {$(
+            stage::<M, P, $s>(rhs, t, h, y, k, s, (&mut *y_new, &mut *carry))?;
+        )*};
     }
-    let (done, rest) = k.split_at_mut(S);
-    combine_row::<M::State, S>(y, h, P::coefficients()[S], done, stage);
-    let ts = t + P::nodes()[S] * h;
-    rhs.call(ts, stage.as_ref(), rest[0].as_mut()).map_err(|cause| (ts, cause))
+    stages!(1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12);
+    Ok(())
 }
 
 /// The dense output's extra stages after an accepted step (DOP853's
@@ -252,15 +240,16 @@ fn dense_stages<M: Model, P: EmbeddedPair>(
 ) -> Result<(), (f64, EvalError)> {
     // The indices below cover every pair's dense stages.
     const { assert!(P::DENSE_STAGES == 0 || (P::STAGES >= 7 && P::STAGES + P::DENSE_STAGES <= 16)) };
-    dense_stage::<M, P, 7>(rhs, t, h, y, k, stage)?;
-    dense_stage::<M, P, 8>(rhs, t, h, y, k, stage)?;
-    dense_stage::<M, P, 9>(rhs, t, h, y, k, stage)?;
-    dense_stage::<M, P, 10>(rhs, t, h, y, k, stage)?;
-    dense_stage::<M, P, 11>(rhs, t, h, y, k, stage)?;
-    dense_stage::<M, P, 12>(rhs, t, h, y, k, stage)?;
-    dense_stage::<M, P, 13>(rhs, t, h, y, k, stage)?;
-    dense_stage::<M, P, 14>(rhs, t, h, y, k, stage)?;
-    dense_stage::<M, P, 15>(rhs, t, h, y, k, stage)
+    // Each index past the step's own stages, with its row a constant.
+    macro_rules! dense_stages {
+        ($($s:literal),*) => {$(
+            if (P::STAGES..P::STAGES + P::DENSE_STAGES).contains(&$s) {
+                interior_stage::<M, P, $s>(rhs, t, h, y, k, stage)?;
+            }
+        )*};
+    }
+    dense_stages!(7, 8, 9, 10, 11, 12, 13, 14, 15);
+    Ok(())
 }
 
 /// What a run does about stiffness.
