@@ -262,9 +262,9 @@ fn every_method_meets_every_reference_within_its_bound() {
 Auto (Dopri5)         1e-6      52 steps   17 rejected    416 f    0 J
 Auto (Dop853)         1e-8      42 steps   17 rejected    836 f    0 J
 Auto (Dop853)         1e-10     70 steps   30 rejected   1412 f    0 J
-Taylor                1e-6      50 steps    0 rejected     50 f    0 J
-Taylor                1e-8      49 steps    0 rejected     49 f    0 J
-Taylor                1e-10     51 steps    0 rejected     51 f    0 J
+Taylor                1e-6      58 steps    0 rejected     58 f    0 J
+Taylor                1e-8      54 steps    0 rejected     54 f    0 J
+Taylor                1e-10     47 steps    0 rejected     47 f    0 J
 TaylorFixed           refused: TaylorFixed of order 4 needs the model expanded with #[dae_model(taylor = 4)] or higher; it has 0
 Euler                 h       1000 steps    0 rejected   1000 f    0 J
 BackwardEuler         h      Error::StepSizeUnderflow at t = 5.165e0
@@ -290,9 +290,9 @@ Rodas5P               1e-10    442 steps    0 rejected   3536 f  442 J
 Auto (Dopri5)         1e-7     216 steps   24 rejected   1442 f    0 J
 Auto (Dop853)         1e-9     136 steps   50 rejected   2642 f    0 J
 Auto (Dop853)         1e-11    229 steps   69 rejected   4265 f    0 J
-Taylor                1e-7     138 steps    0 rejected    138 f    0 J
-Taylor                1e-9     145 steps    0 rejected    145 f    0 J
-Taylor                1e-11    125 steps    0 rejected    125 f    0 J
+Taylor                1e-7     124 steps    0 rejected    124 f    0 J
+Taylor                1e-9     130 steps    0 rejected    130 f    0 J
+Taylor                1e-11    136 steps    0 rejected    136 f    0 J
 TaylorFixed           refused: TaylorFixed of order 4 needs the model expanded with #[dae_model(taylor = 4)] or higher; it has 0
 Euler                 h       1001 steps    0 rejected   1001 f    0 J
 BackwardEuler         h      Error::StepSizeUnderflow at t = 1.341e1
@@ -318,9 +318,9 @@ Rodas5P               1e-11   2083 steps    0 rejected  16664 f 2083 J
 Auto (Dop853)         1e-8     401 steps  112 rejected   7361 f    0 J
 Auto (Dop853)         1e-10    693 steps   62 rejected  11141 f    0 J
 Auto (Dop853)         1e-12   1228 steps   46 rejected  18974 f    0 J
-Taylor                1e-8     352 steps    0 rejected    352 f    0 J
-Taylor                1e-10    364 steps    0 rejected    364 f    0 J
-Taylor                1e-12    374 steps    0 rejected    374 f    0 J
+Taylor                1e-8     392 steps    0 rejected    392 f    0 J
+Taylor                1e-10    330 steps    0 rejected    330 f    0 J
+Taylor                1e-12    341 steps    0 rejected    341 f    0 J
 TaylorFixed           refused: TaylorFixed of order 4 needs the model expanded with #[dae_model(taylor = 4)] or higher; it has 0
 Euler                 h       1000 steps    0 rejected   1000 f    0 J
 BackwardEuler         h       1787 steps  929 rejected  10040 f 6276 J
@@ -346,9 +346,9 @@ Rodas5P               1e-12  15432 steps    1 rejected 123463 f 15432 J
 Auto (Dopri5)         1e-6      60 steps    4 rejected    446 f    0 J
 Auto (Dop853)         1e-8      37 steps    6 rejected    666 f    0 J
 Auto (Dop853)         1e-10     63 steps   10 rejected   1130 f    0 J
-Taylor                1e-6      42 steps    0 rejected     42 f    0 J
-Taylor                1e-8      36 steps    0 rejected     36 f    0 J
-Taylor                1e-10     37 steps    0 rejected     37 f    0 J
+Taylor                1e-6      48 steps    0 rejected     48 f    0 J
+Taylor                1e-8      40 steps    0 rejected     40 f    0 J
+Taylor                1e-10     33 steps    0 rejected     33 f    0 J
 TaylorFixed           refused: TaylorFixed of order 4 needs the model expanded with #[dae_model(taylor = 4)] or higher; it has 0
 Euler                 h       1000 steps    0 rejected   1000 f    0 J
 BackwardEuler         h       1027 steps   31 rejected   3323 f 2112 J
@@ -374,9 +374,9 @@ Rodas5P               1e-10    530 steps    0 rejected   4240 f  530 J
 Auto (Dopri5⇄Radau5)  1e-5     264 steps   50 rejected   2552 f   62 J
 Auto (Dopri5⇄Radau5)  1e-7     623 steps   19 rejected   4758 f  114 J
 Auto (Dop853⇄Radau5)  1e-9     522 steps   86 rejected   7781 f  269 J
-Taylor                1e-5   Error::MaxSteps at t = 7.435e-2
-Taylor                1e-7   Error::MaxSteps at t = 1.017e-1
-Taylor                1e-9   Error::MaxSteps at t = 1.155e-1
+Taylor                1e-5   Error::MaxSteps at t = 8.794e-2
+Taylor                1e-7   Error::MaxSteps at t = 1.155e-1
+Taylor                1e-9   Error::MaxSteps at t = 1.296e-1
 TaylorFixed           refused: TaylorFixed of order 4 needs the model expanded with #[dae_model(taylor = 4)] or higher; it has 0
 Euler                 h      Error::NonFinite at t = 1.400e-2
 BackwardEuler         h       1869 steps  877 rejected  15896 f 6771 J
@@ -405,9 +405,9 @@ Rodas5P GMRES         1e-9    3666 steps   12 rejected  29433 f 3666 J 29429 GMR
 Auto (Dopri5→Radau5)  1e-6     299 steps    1 rejected   2189 f  253 J
 Auto (Dop853→Radau5)  1e-8     566 steps    4 rejected   4552 f  357 J
 Auto (Dop853→Radau5)  1e-10   1193 steps    3 rejected   9369 f  485 J
-Taylor                1e-6   Error::MaxSteps at t = 7.670e1
-Taylor                1e-8   Error::MaxSteps at t = 9.613e1
-Taylor                1e-10  Error::MaxSteps at t = 1.051e2
+Taylor                1e-6   Error::MaxSteps at t = 7.786e1
+Taylor                1e-8   Error::MaxSteps at t = 9.616e1
+Taylor                1e-10  Error::MaxSteps at t = 1.138e2
 TaylorFixed           refused: TaylorFixed of order 4 needs the model expanded with #[dae_model(taylor = 4)] or higher; it has 0
 Euler                 h      Error::NonFinite at t = 4.000e8
 BackwardEuler         h      Error::StepSizeUnderflow at t = 0.000e0
@@ -436,9 +436,9 @@ Rodas5P GMRES         1e-10   2406 steps   10 rejected  19318 f 2406 J 19328 GMR
 Auto (Dopri5→Radau5)  1e-6     328 steps    2 rejected   2299 f   24 J
 Auto (Dop853→Radau5)  1e-8     181 steps    4 rejected   2089 f   79 J
 Auto (Dop853→Radau5)  1e-10    473 steps    6 rejected   5692 f  124 J
-Taylor                1e-6    6792 steps    0 rejected   6792 f    0 J
-Taylor                1e-8    5240 steps    0 rejected   5240 f    0 J
-Taylor                1e-10   4705 steps    0 rejected   4705 f    0 J
+Taylor                1e-6    6793 steps    0 rejected   6793 f    0 J
+Taylor                1e-8    5241 steps    0 rejected   5241 f    0 J
+Taylor                1e-10   4270 steps    0 rejected   4270 f    0 J
 TaylorFixed           refused: TaylorFixed of order 4 needs the model expanded with #[dae_model(taylor = 4)] or higher; it has 0
 Euler                 h      Error::NonFinite at t = 3.858e0
 BackwardEuler         h       1909 steps  920 rejected  11068 f 7931 J
@@ -467,9 +467,9 @@ Rodas5P GMRES         1e-10   2854 steps    4 rejected  22860 f 2854 J 49637 GMR
 Auto (Dopri5→Radau5)  1e-6      61 steps    9 rejected    352 f   10 J
 Auto (Dop853→Radau5)  1e-8     100 steps    7 rejected    709 f    8 J
 Auto (Dop853→Radau5)  1e-10    222 steps    4 rejected   1418 f    5 J
-Taylor                1e-6     497 steps    0 rejected    497 f    0 J
-Taylor                1e-8     385 steps    0 rejected    385 f    0 J
-Taylor                1e-10    347 steps    0 rejected    347 f    0 J
+Taylor                1e-6     498 steps    0 rejected    498 f    0 J
+Taylor                1e-8     386 steps    0 rejected    386 f    0 J
+Taylor                1e-10    315 steps    0 rejected    315 f    0 J
 TaylorFixed           refused: TaylorFixed of order 4 needs the model expanded with #[dae_model(taylor = 4)] or higher; it has 0
 Euler                 h       1000 steps    0 rejected   1000 f    0 J
 BackwardEuler         h       1399 steps  401 rejected   5319 f 3518 J
@@ -498,9 +498,9 @@ Rodas5P GMRES         1e-10    830 steps    5 rejected   6675 f  830 J  6677 GMR
 Auto (Dopri5→Radau5)  1e-6      69 steps    0 rejected    505 f   34 J
 Auto (Dop853→Radau5)  1e-8      90 steps    5 rejected    924 f   57 J
 Auto (Dop853→Radau5)  1e-10    182 steps    5 rejected   1704 f   94 J
-Taylor                1e-6     146 steps    0 rejected    146 f    0 J
-Taylor                1e-8     116 steps    0 rejected    116 f    0 J
-Taylor                1e-10    107 steps    0 rejected    107 f    0 J
+Taylor                1e-6     147 steps    0 rejected    147 f    0 J
+Taylor                1e-8     117 steps    0 rejected    117 f    0 J
+Taylor                1e-10     98 steps    0 rejected     98 f    0 J
 TaylorFixed           refused: TaylorFixed of order 4 needs the model expanded with #[dae_model(taylor = 4)] or higher; it has 0
 Euler                 h      Error::NonFinite at t = 1.800e-1
 BackwardEuler         h       1067 steps   69 rejected   3758 f 2578 J

@@ -403,7 +403,10 @@ impl Options {
     /// Fixes `Method::Taylor`'s order (2 or more) instead of choosing it
     /// from the tolerance and the model's cost per order
     /// (`daegen::runtime::taylor_order`); the step still follows ρ and the
-    /// tolerance. To compare layouts or orders at equal footing.
+    /// tolerance, by Jorba & Zou's rule (at their order, heyoka's steps),
+    /// where an order the method picks takes a shorter step so that its
+    /// error is not above theirs. To compare layouts or orders at equal
+    /// footing.
     pub fn taylor_order(&self, order: usize) -> Options {
         Options { taylor_order: Some(order), ..self.clone() }
     }

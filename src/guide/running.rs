@@ -78,8 +78,10 @@
 //!
 //! `Taylor` chooses its order from the tolerance and the model's cost per
 //! order (higher than Jorba & Zou's for small models, theirs when the
-//! convolutions dominate), among the orders of `unroll = [..]` unless the
-//! interpreted tape's is much cheaper:
+//! convolutions dominate), and a step whose first dropped term is a fifth
+//! of theirs, so that its error at a tolerance is not above heyoka's,
+//! among the orders of `unroll = [..]` unless the interpreted tape's is
+//! much cheaper:
 //! `daegen::runtime::taylor_order::order_to_unroll(&model, tol)` says which
 //! order to unroll for a tolerance, and `Options::taylor_order(p)` fixes it
 //! (the only way an odd order runs: listing one in `unroll` warns).

@@ -5,7 +5,7 @@
 //! Biscani & Izzo 2021). Each lane's order, norms and ρ are the scalar
 //! method's (`mod.rs`); the step is the least of the lanes' steps.
 
-use super::order::{choose_order, step_factor, JetCost};
+use super::order::{choose_order, chosen_order_step_factor, step_factor, JetCost};
 use super::{horner_by_coefficient, interpolate};
 use crate::error::Error;
 use crate::lanes::Lanes;
@@ -102,7 +102,11 @@ impl Batch<'_> {
         }
         let direction = if self.t1 >= self.t0 { 1.0 } else { -1.0 };
         let hmax = options.max_step.unwrap_or(f64::INFINITY);
-        let safety = step_factor(tol, p);
+        // An order given keeps Jorba & Zou's step; one picked here drops less.
+        let safety = match options.taylor_order {
+            Some(_) => step_factor(tol, p),
+            None => chosen_order_step_factor(tol, p),
+        };
         let (inv_pm1, inv_p) = (1.0 / (p - 1) as f64, 1.0 / p as f64);
         let (mut t, mut compensation) = (self.t0, 0.0f64);
         let variable = |j: usize| names.get((j / W) * lanes + lane(j % W)).copied().unwrap_or("");
@@ -123,7 +127,9 @@ impl Batch<'_> {
             let rho = lanes_rho(rows, w, [p - 1, p], [inv_pm1, inv_p]);
             let remaining = (self.t1 - t).abs();
             let mut h = (rho * safety).min(hmax);
-            let last = h >= remaining || h.is_nan();
+            // Within 1 % of the end the step reaches it (as Hairer's codes do),
+            // rather than leave a remainder that may be below the time's ulp.
+            let last = 1.01 * h >= remaining || h.is_nan();
             if last {
                 h = remaining;
             }

@@ -5,8 +5,9 @@
 //! Jorba & Zou's p₀ = ⌈−ln(tol)/2 + 1⌉ when the convolutions dominate),
 //! step h = min(ρ_{p−1}, ρ_p)·[`step_factor`] with
 //! ρ_k = (N/‖x^\[k\]‖∞)^(1/k), N = max(1, ‖x‖∞) (absolute below 1, relative
-//! above); at p = p₀ the factor is their e⁻²·e^(−0.7/(p−1)). No step is
-//! rejected. Time is summed with compensation, and each step's polynomial
+//! above); at p = p₀ the factor is their e⁻²·e^(−0.7/(p−1)). An order the
+//! method picks takes a shorter step ([`chosen_order_step_factor`]), so
+//! that its error is not above theirs. No step is rejected. Time is summed with compensation, and each step's polynomial
 //! is the dense output.
 
 pub(crate) mod fixed;
@@ -19,7 +20,7 @@ pub use crate::taylor_tape as tape;
 pub use crate::taylor_tape::coefficient;
 
 use crate::error::Error;
-use crate::methods::taylor::order::{choose_order, step_factor, JetCost};
+use crate::methods::taylor::order::{choose_order, chosen_order_step_factor, step_factor, JetCost};
 use crate::methods::Problem;
 use crate::model::Model;
 use crate::solution::Solution;
@@ -297,7 +298,11 @@ pub(crate) fn integrate<M: Model>(
     }
     let direction = if t1 >= t0 { 1.0 } else { -1.0 };
     let hmax = options.max_step.unwrap_or(f64::INFINITY);
-    let safety = step_factor(tol, p);
+    // An order given keeps Jorba & Zou's step; one picked here drops less.
+    let safety = match options.taylor_order {
+        Some(_) => step_factor(tol, p),
+        None => chosen_order_step_factor(tol, p),
+    };
     let (inv_pm1, inv_p) = (1.0 / (p - 1) as f64, 1.0 / p as f64);
     let measured = crate::methods::error_states::<M>(options);
     let (mut t, mut compensation, mut steps) = (t0, 0.0f64, 0usize);
@@ -349,7 +354,9 @@ pub(crate) fn integrate<M: Model>(
         // limited by the interval and max_step only.
         let mut h = (rho * safety).min(hmax);
         // A NaN step ends the run here too, and is caught just below.
-        let last = h >= remaining || h.is_nan();
+        // Within 1 % of the end the step reaches it (as Hairer's codes do),
+        // rather than leave a remainder that may be below the time's ulp.
+        let last = 1.01 * h >= remaining || h.is_nan();
         if last {
             h = remaining;
         }
