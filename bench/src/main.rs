@@ -65,6 +65,7 @@ mod structure;
 #[cfg(feature = "sundials")]
 mod sundials;
 mod tape_cost;
+mod taylor_error;
 mod versus;
 
 use daegen::prelude::*;
@@ -561,6 +562,43 @@ fn main() {
         let text = components::components_section();
         let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join("components.md");
         let _ = std::fs::write(&out, &text);
+        println!("{text}");
+        return;
+    }
+    if has("--taylor-error") {
+        // Taylor's error against heyoka's at equal tolerance, 1e-6 … 1e-15
+        // (the outer solar system from 1e-9, as its sweep).
+        let (mut rows, mut spreads) = (Vec::new(), Vec::new());
+        type Run =
+            fn(usize, usize) -> Result<(Vec<taylor_error::Row>, taylor_error::Spread), String>;
+        let runs: [(&str, usize, Run); 4] = [
+            (<Kepler as Benchmark>::NAME, 24, taylor_error::taylor_error::<Kepler>),
+            (<Arenstorf as Benchmark>::NAME, 24, taylor_error::taylor_error::<Arenstorf>),
+            (<Lorenz as Benchmark>::NAME, 24, taylor_error::taylor_error::<Lorenz>),
+            (
+                <OuterSolarSystem as Benchmark>::NAME,
+                36,
+                taylor_error::taylor_error::<OuterSolarSystem>,
+            ),
+        ];
+        for (name, lo, run) in runs {
+            if only.as_deref().is_some_and(|o| o != name) {
+                continue;
+            }
+            match run(lo, 60) {
+                Ok((r, spread)) => {
+                    rows.extend(r);
+                    spreads.push(spread);
+                }
+                Err(e) => eprintln!("{name}: {e}"),
+            }
+        }
+        let text = taylor_error::markdown(&rows, &spreads);
+        if only.is_none() {
+            let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join("taylor_error.md");
+            std::fs::write(&out, &text).expect("results/taylor_error.md");
+        }
+        eprintln!("\r\x1b[2Kdone");
         println!("{text}");
         return;
     }
