@@ -452,7 +452,7 @@ Dopri5                1e-8   Error::Stiff at t = 1.585e1
 Dopri5                1e-10  19199 steps    0 rejected 115196 f    0 J
 Dop853                1e-6   Error::Stiff at t = 3.549e0
 Dop853                1e-8   Error::Stiff at t = 5.656e0
-Dop853                1e-10  Error::Stiff at t = 9.946e0
+Dop853                1e-10  Error::Stiff at t = 9.788e0
 Radau5                1e-6     117 steps    2 rejected   1140 f   73 J
 Radau5                1e-8     235 steps    1 rejected   2050 f  134 J
 Radau5                1e-10    501 steps    1 rejected   4110 f  229 J

@@ -24,15 +24,19 @@ fn a_ladder_with_algebraic_currents_runs_as_its_substituted_ode() {
         // The same ODE, its terms as substituted or grouped otherwise: the
         // same steps but where rounding tips one step's error test (one
         // step in 160 at most), the same states but for rounding, which
-        // each run's error control keeps within its tolerance.
+        // each run's error control keeps within its tolerance. Rounding
+        // may also tip Auto's stiffness test near its bound, and with it a
+        // hand-over (Dop853→Radau5 against Dop853→Radau5→Dop853): then
+        // only the states are compared.
         let a = sorted.final_state();
         for by_hand in [
             RcLadderSubstituted::default().simulate(0.0, t1, &opts).unwrap(),
             RcLadderFactored::default().simulate(0.0, t1, &opts).unwrap(),
         ] {
             let (steps, by_hand_steps) = (sorted.stats().steps, by_hand.stats().steps);
+            let same_methods = sorted.stats().method == by_hand.stats().method;
             assert!(
-                steps.abs_diff(by_hand_steps) <= 1,
+                steps.abs_diff(by_hand_steps) <= 1 || !same_methods,
                 "{method:?}: {steps} and {by_hand_steps} steps"
             );
             let b = by_hand.final_state();

@@ -512,6 +512,33 @@ fn relative_change(y: &[f64], y_new: &[f64], weights: &[f64]) -> f64 {
     }
 }
 
+/// The sums over components `0..n` of the squares of `terms(i)`, each in
+/// four partial sums (components i ≡ 0, 1, 2, 3 mod 4) joined pairwise at
+/// the end: one running sum is a chain of n dependent additions after the
+/// last stage (on the outer solar system's 36 states, DOP853's error took
+/// 11 % of a step), four are a quarter of it and vectorise.
+#[inline(always)]
+pub(crate) fn sums_of_squares<const K: usize>(
+    n: usize,
+    terms: impl Fn(usize) -> [f64; K],
+) -> [f64; K] {
+    let mut partial = [[0.0f64; 4]; K];
+    let whole = n / 4 * 4;
+    for base in (0..whole).step_by(4) {
+        for lane in 0..4 {
+            for (p, v) in partial.iter_mut().zip(terms(base + lane)) {
+                p[lane] += v * v;
+            }
+        }
+    }
+    for i in whole..n {
+        for (p, v) in partial.iter_mut().zip(terms(i)) {
+            p[i - whole] += v * v;
+        }
+    }
+    partial.map(|p| (p[0] + p[1]) + (p[2] + p[3]))
+}
+
 /// The worst over `lanes` lanes of `norm(sums)`, where `sums` holds each
 /// lane's sums of the squared scaled error terms `terms(i)` of components
 /// `i ≡ lane (mod lanes)`: the per-member error of a batch.
@@ -525,13 +552,8 @@ pub(crate) fn worst_lane<const K: usize>(
     let per_lane = n / lanes.max(1);
     let mut worst = 0.0f64;
     for lane in 0..lanes {
-        let mut sums = [0.0; K];
-        for c in 0..per_lane {
-            let t = terms(c * lanes + lane);
-            for (s, v) in sums.iter_mut().zip(t) {
-                *s += v * v;
-            }
-        }
+        // Summed as a member alone sums its own: equal members take its steps.
+        let sums = sums_of_squares(per_lane, |c| terms(c * lanes + lane));
         worst = worst.max(norm(sums, per_lane));
     }
     worst

@@ -7,7 +7,7 @@
 #![allow(clippy::excessive_precision)]
 
 use crate::error::Error;
-use crate::methods::adaptive::{self, worst_lane, EmbeddedPair};
+use crate::methods::adaptive::{self, sums_of_squares, worst_lane, EmbeddedPair};
 use crate::methods::Problem;
 use crate::model::Model;
 use crate::model::StateVector;
@@ -339,12 +339,7 @@ impl EmbeddedPair for Dop853 {
         if lanes > 1 {
             return worst_lane(n, lanes, |i| [e5s[i], e3s[i]], |sums, n| combined(h, sums, n));
         }
-        let (mut err5, mut err3) = (0.0, 0.0);
-        for (e5, e3) in e5s.iter().zip(e3s.iter()) {
-            err5 += e5 * e5;
-            err3 += e3 * e3;
-        }
-        combined(h, [err5, err3], n)
+        combined(h, sums_of_squares(n, |i| [e5s[i], e3s[i]]), n)
     }
 
     fn dense_coefficients<S: StateVector>(h: f64, y: &S, y_new: &S, k: &[S], out: &mut [f64]) {

@@ -4,7 +4,7 @@
 //! and reused as the first of the next step (FSAL).
 
 use crate::error::Error;
-use crate::methods::adaptive::{self, worst_lane, EmbeddedPair};
+use crate::methods::adaptive::{self, sums_of_squares, worst_lane, EmbeddedPair};
 use crate::methods::Problem;
 use crate::model::Model;
 use crate::model::StateVector;
@@ -97,10 +97,7 @@ impl EmbeddedPair for Dopri5 {
         if lanes > 1 {
             return worst_lane(w.len(), lanes, |i| [term(i)], |[sum], n| norm(sum, n));
         }
-        let mut sum = 0.0;
-        for i in 0..w.len() {
-            sum += term(i).powi(2);
-        }
+        let [sum] = sums_of_squares(w.len(), |i| [term(i)]);
         norm(sum, w.len())
     }
 
