@@ -97,7 +97,14 @@ impl EmbeddedPair for Dopri5 {
         if lanes > 1 {
             return worst_lane(w.len(), lanes, |i| [term(i)], |[sum], n| norm(sum, n));
         }
-        let [sum] = sums_of_squares(w.len(), |i| [term(i)]);
+        // The terms first, then their squares summed: with `term` inside
+        // the sum's closure it was called, not inlined, per component.
+        let mut terms = S::zeros();
+        let terms = &mut terms.as_mut()[..w.len()];
+        for (i, t) in terms.iter_mut().enumerate() {
+            *t = term(i);
+        }
+        let [sum] = sums_of_squares(w.len(), |i| [terms[i]]);
         norm(sum, w.len())
     }
 
