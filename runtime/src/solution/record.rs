@@ -168,7 +168,10 @@ impl Solution {
     }
 
     /// An accepted step to `(t, y)` with its dense-output coefficients.
-    #[inline]
+    /// Inlined as `push` is: called, its copies of the
+    /// coefficients went through `memcpy` at run-time lengths (Lorenz with
+    /// DOPRI5 and dense output, the defaults: 116 ns a step, 90 inlined).
+    #[inline(always)]
     pub(crate) fn push_dense(&mut self, t: f64, y: &[f64], coefficients: &[f64]) {
         self.advance(t, y);
         if self.track_last {
