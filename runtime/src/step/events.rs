@@ -5,7 +5,9 @@
 //! at the step's ends and, for methods with long steps (Taylor), at interior
 //! points of the continuous extension; a sign change between two samples
 //! brackets a crossing, which is then located by the Illinois variant of
-//! regula falsi with a bisection safeguard (Dowell & Jarratt 1971) on
+//! regula falsi, each secant step followed by a probe past its estimate so
+//! that the zero is bracketed from both sides, with a bisection safeguard
+//! (Dowell & Jarratt 1971; [`bracketed_root`]) on
 //! `φ(t) = g(t, y(t))`, `y(t)` the step's interpolant, until the bracket is
 //! two adjacent floating-point numbers. Where g keeps its sign between two
 //! samples but its generated rate dg/dt turns back towards zero, the
@@ -263,9 +265,21 @@ impl<'m, M: Model> EventWatch<'m, M> {
 }
 
 /// The zero of `f` in the bracket `[a, b]` (`f(a)`, `f(b)` of opposite signs,
-/// `f(b)` possibly 0): the Illinois variant of regula falsi, with a bisection
-/// whenever an iteration does not halve the bracket, until the bracket is two
-/// neighbouring floating-point numbers. Returns the end past the zero.
+/// `f(b)` possibly 0), until the bracket is two neighbouring floating-point
+/// numbers. Returns the end past the zero.
+///
+/// Each round starts with the Illinois variant of regula falsi (Dowell &
+/// Jarratt 1971). Regula falsi alone converges from one side: the far end
+/// stays put, and the bisection safeguard then spends a probe per halving
+/// of the remaining bracket, down to neighbouring floats (30 and more
+/// probes on a smooth extremum). So when the secant step leaves the
+/// bracket more than half as wide, the next probe goes as far past the
+/// secant's new estimate as that estimate is from the end just moved: on a
+/// smooth function it lands on the far side of the zero and brackets it
+/// from both sides, two to three times as many correct digits a round. A
+/// bisection follows only if the bracket still has not halved, which keeps
+/// bisection's bound. A secant point that rounds onto an end becomes that
+/// end's neighbour, which ends the search when the zero is there.
 pub(crate) fn bracketed_root(
     mut f: impl FnMut(f64) -> f64,
     a: f64,
@@ -273,56 +287,122 @@ pub(crate) fn bracketed_root(
     f_a: f64,
     f_b: f64,
 ) -> f64 {
-    let (mut lo, mut hi, mut f_lo, mut f_hi) = (a, b, f_a, f_b);
-    if f_hi == 0.0 || f_hi.signum() == f_lo.signum() {
+    if f_b == 0.0 || f_b.signum() == f_a.signum() {
         return b;
     }
-    let mut side = 0i8;
+    let mut bracket =
+        Bracket { lo: a, hi: b, f_lo: f_a, f_hi: f_b, weight_lo: f_a, weight_hi: f_b, side: 0 };
     for _ in 0..400 {
+        let (lo, hi) = (bracket.lo, bracket.hi);
         let width = (hi - lo).abs();
         let mid = lo + (hi - lo) / 2.0;
         if mid == lo || mid == hi {
             break;
         }
-        let mut t = hi - f_hi * (hi - lo) / (f_hi - f_lo);
-        if !(t.is_finite() && (t - lo) * (hi - t) > 0.0) {
-            t = mid;
+        let halved = |b: &Bracket| (b.hi - b.lo).abs() <= 0.5 * width;
+        // Regula falsi on the Illinois weights.
+        let secant = secant_point(lo, hi, bracket.weight_lo, bracket.weight_hi);
+        let probe = bracket.inside_or_next_to(secant).unwrap_or(mid);
+        if bracket.probe(&mut f, probe) {
+            return bracket.hi;
         }
-        for bisect in [false, true] {
-            let probe = if bisect {
-                if (hi - lo).abs() <= 0.5 * width {
-                    break;
-                }
-                lo + (hi - lo) / 2.0
-            } else {
-                t
-            };
-            let inside = (probe - lo) * (hi - probe);
-            if inside <= 0.0 || inside.is_nan() {
-                break;
+        if halved(&bracket) {
+            continue;
+        }
+        // As far past the secant's new estimate as it is from the end just moved.
+        let moved = if bracket.lo == probe { bracket.lo } else { bracket.hi };
+        let estimate = secant_point(bracket.lo, bracket.hi, bracket.f_lo, bracket.f_hi);
+        if let Some(past) = bracket.inside_or_next_to(estimate + (estimate - moved)) {
+            if bracket.probe(&mut f, past) {
+                return bracket.hi;
             }
-            let value = f(probe);
-            if value == 0.0 {
-                return probe;
+            if halved(&bracket) {
+                continue;
             }
-            if value.signum() == f_lo.signum() {
-                lo = probe;
-                f_lo = value;
-                if side == -1 {
-                    f_hi /= 2.0;
-                }
-                side = -1;
-            } else {
-                hi = probe;
-                f_hi = value;
-                if side == 1 {
-                    f_lo /= 2.0;
-                }
-                side = 1;
-            }
+        }
+        let mid = bracket.lo + (bracket.hi - bracket.lo) / 2.0;
+        if bracket.inside_or_next_to(mid) == Some(mid) && bracket.probe(&mut f, mid) {
+            return bracket.hi;
         }
     }
-    hi
+    bracket.hi
+}
+
+/// A bracket of a zero, `lo` on the side of the start and `hi` past it,
+/// with the Illinois weights of its ends.
+struct Bracket {
+    lo: f64,
+    hi: f64,
+    f_lo: f64,
+    f_hi: f64,
+    weight_lo: f64,
+    weight_hi: f64,
+    /// Which end the last probe moved: −1 `lo`, 1 `hi`, 0 neither yet.
+    side: i8,
+}
+
+impl Bracket {
+    /// Evaluates `f` at `t` (inside the bracket) and keeps the half with
+    /// the zero; `true` when `t` is the zero itself (then `hi = t`).
+    fn probe(&mut self, f: &mut impl FnMut(f64) -> f64, t: f64) -> bool {
+        let value = f(t);
+        if value == 0.0 {
+            self.hi = t;
+            self.f_hi = 0.0;
+            return true;
+        }
+        if value.signum() == self.f_lo.signum() {
+            self.lo = t;
+            self.f_lo = value;
+            self.weight_lo = value;
+            // The far end kept twice: its weight halves (Illinois).
+            if self.side == -1 {
+                self.weight_hi /= 2.0;
+            }
+            self.side = -1;
+        } else {
+            self.hi = t;
+            self.f_hi = value;
+            self.weight_hi = value;
+            if self.side == 1 {
+                self.weight_lo /= 2.0;
+            }
+            self.side = 1;
+        }
+        false
+    }
+
+    /// `t` if it lies strictly inside the bracket; on an end (where a step
+    /// shorter than its ulp rounds), that end's neighbour inside; `None`
+    /// outside the bracket or not finite.
+    fn inside_or_next_to(&self, t: f64) -> Option<f64> {
+        let (lo, hi) = (self.lo, self.hi);
+        let next = match t {
+            t if (t - lo) * (hi - t) > 0.0 => return Some(t),
+            t if t == hi => toward(hi, lo),
+            t if t == lo => toward(lo, hi),
+            _ => return None,
+        };
+        ((next - lo) * (hi - next) > 0.0).then_some(next)
+    }
+}
+
+/// The secant's zero through `(lo, f_lo)` and `(hi, f_hi)`.
+fn secant_point(lo: f64, hi: f64, f_lo: f64, f_hi: f64) -> f64 {
+    hi - f_hi * (hi - lo) / (f_hi - f_lo)
+}
+
+/// The floating-point neighbour of `from` (finite) in the direction of `to`.
+fn toward(from: f64, to: f64) -> f64 {
+    let up = to > from;
+    if from == 0.0 {
+        let least = f64::from_bits(1);
+        return if up { least } else { -least };
+    }
+    // Away from zero the magnitude's bits grow by one, towards it they shrink.
+    let away = up == (from > 0.0);
+    let bits = from.to_bits();
+    f64::from_bits(if away { bits + 1 } else { bits - 1 })
 }
 
 #[cfg(test)]
@@ -339,5 +419,60 @@ mod tests {
         // Backwards brackets work alike.
         let r = bracketed_root(|t| t.cos(), 3.0, 1.0, 3f64.cos(), 1f64.cos());
         assert!((r - std::f64::consts::FRAC_PI_2).abs() <= 4.0 * f64::EPSILON);
+    }
+
+    #[test]
+    fn neighbours_are_one_ulp_away() {
+        use super::toward;
+        assert_eq!(toward(1.0, 2.0), 1.0 + f64::EPSILON);
+        assert_eq!(toward(1.0, 0.0), 1.0 - f64::EPSILON / 2.0);
+        assert_eq!(toward(-1.0, 0.0), -1.0 + f64::EPSILON / 2.0);
+        assert_eq!(toward(-1.0, -2.0), -1.0 - f64::EPSILON);
+        assert_eq!(toward(0.0, -1.0), -f64::from_bits(1));
+    }
+
+    /// Evaluations `bracketed_root` takes on `f` over `[a, b]`, and its result.
+    fn probes(f: impl Fn(f64) -> f64, a: f64, b: f64) -> (usize, f64) {
+        let mut count = 0;
+        let root = bracketed_root(
+            |t| {
+                count += 1;
+                f(t)
+            },
+            a,
+            b,
+            f(a),
+            f(b),
+        );
+        (count, root)
+    }
+
+    #[test]
+    fn smooth_zeros_are_bracketed_from_both_sides() {
+        // Regula falsi alone approaches these from one side; with the
+        // bisection safeguard it took 13–40 evaluations to reach
+        // neighbouring floats. Bracketing the secant's estimate from the far
+        // side converges superlinearly: each round gains two to three times
+        // the digits, so 53 bits take a handful of rounds.
+        let cases: [(&str, fn(f64) -> f64, f64, f64); 5] = [
+            ("cos", f64::cos, 1.0, 3.0),
+            ("cos backwards", f64::cos, 3.0, 1.0),
+            ("a rate at an extremum", |t| (t - 0.4249).sin() * (2.0 + t), 0.42, 0.44),
+            ("exp", |t| t.exp() - 2.0, 0.0, 1.0),
+            ("a cubic", |t| t * t * t - 2.0 * t - 5.0, 2.0, 3.0),
+        ];
+        for (name, f, a, b) in cases {
+            let (count, root) = probes(f, a, b);
+            let other = if b > a { root.next_down() } else { root.next_up() };
+            assert!(
+                f(root) == 0.0 || f(root).signum() != f(other).signum(),
+                "{name}: not bracketed"
+            );
+            assert!(count <= 10, "{name}: {count} evaluations");
+        }
+        // A flat zero keeps bisection's bound: at most three evaluations a
+        // halving of the bracket.
+        let (count, root) = probes(|t| (t - 0.3).powi(9), 0.0, 1.0);
+        assert!((root - 0.3).abs() <= 1e-15 && count <= 3 * 64, "{count} evaluations, {root}");
     }
 }
