@@ -1,13 +1,26 @@
 //! Ratios at matched error: our time over the peer's time at our error,
 //! the peer's curve interpolated log–log between its two nearest points
-//! (none outside the range the peer covers).
+//! (none outside the range the peer covers). Points whose error is
+//! [`LOST`] or more are not compared.
 
 use crate::{Problem, Record};
 
+/// The error (max |y − ref| / max(1, |ref|)) from which a run has lost the
+/// solution: off by as much as the solution is large (an orbit's phase
+/// lost, as DOP853 and DOPRI5 lose Kepler's at e = 0.9 and rtol 1e-5).
+/// There the curves are not monotone (a tighter tolerance can end farther
+/// off) and no time is the time to reach an error, so such points are
+/// neither matched nor matched against.
+pub const LOST: f64 = 1.0;
+
+/// Whether a record's error can be matched: positive, finite, below [`LOST`].
+fn comparable(r: &Record) -> bool {
+    r.error > 0.0 && r.error < LOST
+}
+
 /// The time `curve` would take to reach `error`, by log–log interpolation.
 pub fn time_at_error(curve: &[&Record], error: f64) -> Option<f64> {
-    let mut points: Vec<&&Record> =
-        curve.iter().filter(|r| r.error > 0.0 && r.error.is_finite()).collect();
+    let mut points: Vec<&&Record> = curve.iter().filter(|r| comparable(r)).collect();
     points.sort_by(|a, b| b.error.total_cmp(&a.error));
     points.windows(2).find_map(|w| {
         let (a, b) = (w[0], w[1]);
@@ -26,7 +39,7 @@ pub fn time_at_error(curve: &[&Record], error: f64) -> Option<f64> {
 /// (our record, ratio).
 pub fn matched_ratio<'a>(ours: &[&'a Record], peer: &[&Record]) -> Vec<(&'a Record, f64)> {
     ours.iter()
-        .filter(|r| r.error > 0.0 && r.error.is_finite())
+        .filter(|r| comparable(r))
         .filter_map(|r| time_at_error(peer, r.error).map(|t| (*r, r.seconds / t)))
         .collect()
 }
@@ -114,4 +127,53 @@ pub fn summary_markdown(problems: &[Problem]) -> String {
         }
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn point(method: &str, tol: f64, error: f64, seconds: f64) -> Record {
+        Record {
+            problem: "kepler".into(),
+            method: method.into(),
+            tol,
+            error,
+            seconds,
+            steps: 0,
+            rejected: 0,
+            rhs_evals: 0,
+            jacobian_evals: 0,
+        }
+    }
+
+    #[test]
+    fn the_peer_is_interpolated_log_log_at_our_error() {
+        let peer = [point("peer", 1e-6, 1e-4, 1.0), point("peer", 1e-8, 1e-6, 4.0)];
+        let peer: Vec<&Record> = peer.iter().collect();
+        // Halfway in log error: halfway in log time, √(1·4) = 2.
+        let t = time_at_error(&peer, 1e-5).unwrap_or(f64::NAN);
+        assert!((t - 2.0).abs() < 1e-12, "{t}");
+        assert_eq!(time_at_error(&peer, 1e-7), None, "outside the peer's range");
+    }
+
+    #[test]
+    fn lost_solutions_are_not_matched() {
+        // Kepler e = 0.9 at loose tolerances: a tighter tolerance ended
+        // farther off, then the orbit was found again.
+        let peer = [
+            point("peer", 1e-3, 1.12, 5.95e-5),
+            point("peer", 1e-4, 2.01, 6.98e-5),
+            point("peer", 1e-5, 0.75, 8.58e-5),
+            point("peer", 1e-6, 0.29, 1.13e-4),
+        ];
+        let peer: Vec<&Record> = peer.iter().collect();
+        let ours = [point("ours", 1e-5, 1.26, 5.12e-5), point("ours", 1e-6, 0.29, 6.45e-5)];
+        let ours: Vec<&Record> = ours.iter().collect();
+        let matched = matched_ratio(&ours, &peer);
+        assert_eq!(matched.len(), 1, "only the point that kept the orbit");
+        assert!((matched[0].1 - 6.45e-5 / 1.13e-4).abs() < 1e-12);
+        // Nor is a peer's lost point used to bracket ours.
+        assert_eq!(time_at_error(&peer, 0.9), None);
+    }
 }
