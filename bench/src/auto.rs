@@ -57,6 +57,7 @@ fn compare<M: Model + Clone + Send + Sync + 'static>(
         max_repeats: 100,
         budget: Duration::from_millis(100),
         tightest: 0.0,
+        rounds: 1,
     };
     let mut rows = Vec::new();
     for tol in [1e-4, 1e-6, 1e-8, 1e-10] {

@@ -706,7 +706,7 @@ fn main() {
         std::process::exit(1);
     }
     let mut summary = format!(
-        "# Work-precision summary\n\nMachine: {}. Time is the median solve over repeats after a warm-up; ratios are our time over the peer's at our error (the peer's curve interpolated log–log). Peers integrate the same generated right-hand side and Jacobian.{}\n",
+        "# Work-precision summary\n\nMachine: {}. Time is the median solve over repeats after a warm-up, timed in three rounds (in each, a tolerance's runs, ours and the peers' in this process, one right after another; Python's peers once) and the rounds' median kept; ratios are our time over the peer's at our error (the peer's curve interpolated log–log; errors of 1 or more, the solution lost, not compared). Peers integrate the same generated right-hand side and Jacobian.{}\n",
         machine(),
         if has("--no-python") { " SciPy and heyoka: not run (--no-python)." } else { "" }
     );

@@ -281,6 +281,11 @@ impl Peer for Python {
                 _ => p.nonstiff,
             }
     }
+    /// peer.py starts Python and builds heyoka's integrator for every
+    /// run; it times its own repeats.
+    fn in_process(&self) -> bool {
+        false
+    }
     fn run(&self, p: &PeerProblem, tol: f64, settings: &Settings) -> Result<Record, String> {
         let problem = p.peer.unwrap_or_default();
         let atol = (p.atol_factor != 1.0).then_some(tol * p.atol_factor);

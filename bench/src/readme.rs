@@ -32,8 +32,10 @@ pub fn write_readme(bench: &Path) -> std::io::Result<()> {
          rewrites `results/` and this file; `cargo run --release -- --readme` rewrites this \
          file alone from the last results. The test command never builds this crate.\n\n\
          Last run: {machine}. Ratios are our time over the peer's at our error (below 1: \
-         daegen faster), the peer's curve interpolated log–log; peers integrate the same \
-         generated right-hand side and Jacobian.\n\n"
+         daegen faster), the peer's curve interpolated log–log (errors of 1 or more, the \
+         solution lost, not compared); each tolerance's runs, ours and the peers', are timed \
+         side by side in three rounds; peers integrate the same generated right-hand side \
+         and Jacobian.\n\n"
     ));
     out.push_str(&targets);
     out.push_str("\n## Work-precision diagrams\n\n");

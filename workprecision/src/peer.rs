@@ -47,6 +47,12 @@ pub trait Peer {
     /// missing (not installed, …), which the report shows; a run that fails
     /// is a record with an infinite error.
     fn run(&self, problem: &PeerProblem, tol: f64, settings: &Settings) -> Result<Record, String>;
+    /// Whether its runs are timed in this process, so that they alternate
+    /// with ours (see [`Settings::rounds`]); a peer in another process,
+    /// which starts up for every run, runs once per tolerance.
+    fn in_process(&self) -> bool {
+        true
+    }
     /// The peer's own set-up time for the problem (heyoka's JIT build), if
     /// it has one.
     fn setup_seconds(&self, _problem: &PeerProblem) -> Option<f64> {

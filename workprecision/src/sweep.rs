@@ -72,62 +72,86 @@ pub fn reference_values<M: Benchmark>(bench: &Bench) -> Result<Vec<f64>, String>
     }
 }
 
-/// Every method of `M` over its tolerances (or step counts for fixed-step
-/// methods); `progress` hears of each run before it starts.
-pub fn sweep<M: Benchmark>(
-    settings: &Settings,
-    reference: &[f64],
-    progress: &mut dyn FnMut(&str),
-) -> Vec<Record> {
+/// One run of ours in a sweep.
+pub struct PlannedRun {
+    /// The method as reports name it (`daegen DOP853`).
+    pub method: String,
+    /// The relative tolerance, or for a fixed-step method the step size.
+    pub tol: f64,
+    /// The run's options.
+    pub options: Options,
+}
+
+/// The runs of a sweep of `M`: every method over its tolerances (or step
+/// counts for fixed-step methods), method by method.
+pub fn plan<M: Benchmark>(settings: &Settings) -> Vec<PlannedRun> {
     let bench = M::bench();
-    let model = M::default();
     let mut out = Vec::new();
     for &method in &bench.methods {
         let name = format!("daegen {}", method_name(method));
-        let runs: Vec<(f64, Options)> = match with_step(method, 1.0) {
-            Some(_) => bench
-                .steps
-                .iter()
-                .map(|&n| {
-                    let h = bench.t_end / n as f64;
-                    let m = with_step(method, h).unwrap_or(method);
-                    (h, Options::new().method(m).step(h).dense_output(false))
-                })
-                .collect(),
-            None => bench
-                .tolerances
-                .iter()
-                .filter(|&&tol| tol >= settings.tightest)
-                .map(|&tol| {
+        match with_step(method, 1.0) {
+            Some(_) => out.extend(bench.steps.iter().map(|&n| {
+                let h = bench.t_end / n as f64;
+                let m = with_step(method, h).unwrap_or(method);
+                let options = Options::new().method(m).step(h).dense_output(false);
+                PlannedRun { method: name.clone(), tol: h, options }
+            })),
+            None => out.extend(
+                bench.tolerances.iter().filter(|&&tol| tol >= settings.tightest).map(|&tol| {
                     let options = Options::new()
                         .method(method)
                         .rtol(tol)
                         .atol(tol * bench.atol_factor)
                         .dense_output(false);
-                    (tol, options)
-                })
-                .collect(),
-        };
-        for (tol, options) in runs {
-            progress(&format!("{} {name} {tol:.0e}", M::NAME));
-            let (seconds, result) =
-                median_time(settings, || model.simulate(0.0, bench.t_end, &options));
-            let (error, stats) = match &result {
-                Ok(sol) => (mixed_error(sol.final_state(), reference), sol.stats()),
-                Err(_) => (f64::INFINITY, Default::default()),
-            };
-            out.push(Record {
-                problem: M::NAME.to_string(),
-                method: name.clone(),
-                tol,
-                error,
-                seconds,
-                steps: stats.steps,
-                rejected: stats.rejected,
-                rhs_evals: stats.rhs_evals,
-                jacobian_evals: stats.jacobian_evals,
-            });
+                    PlannedRun { method: name.clone(), tol, options }
+                }),
+            ),
         }
     }
     out
+}
+
+/// Times one planned run of `M` (median of repeats after a warm-up) and
+/// measures its error against `reference`.
+pub fn run_planned<M: Benchmark>(
+    model: &M,
+    run: &PlannedRun,
+    settings: &Settings,
+    reference: &[f64],
+) -> Record {
+    let t_end = M::bench().t_end;
+    let (seconds, result) = median_time(settings, || model.simulate(0.0, t_end, &run.options));
+    let (error, stats) = match &result {
+        Ok(sol) => (mixed_error(sol.final_state(), reference), sol.stats()),
+        Err(_) => (f64::INFINITY, Default::default()),
+    };
+    Record {
+        problem: M::NAME.to_string(),
+        method: run.method.clone(),
+        tol: run.tol,
+        error,
+        seconds,
+        steps: stats.steps,
+        rejected: stats.rejected,
+        rhs_evals: stats.rhs_evals,
+        jacobian_evals: stats.jacobian_evals,
+    }
+}
+
+/// Every method of `M` over its tolerances (or step counts for fixed-step
+/// methods), one run after another; `progress` hears of each run before
+/// it starts.
+pub fn sweep<M: Benchmark>(
+    settings: &Settings,
+    reference: &[f64],
+    progress: &mut dyn FnMut(&str),
+) -> Vec<Record> {
+    let model = M::default();
+    plan::<M>(settings)
+        .iter()
+        .map(|run| {
+            progress(&format!("{} {} {:.0e}", M::NAME, run.method, run.tol));
+            run_planned(&model, run, settings, reference)
+        })
+        .collect()
 }

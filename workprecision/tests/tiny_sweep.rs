@@ -20,8 +20,33 @@ fn oscillator() {
     der(v) == -x;
 }
 
-/// A stand-in peer: forward Euler with h = tol, through the generated f.
-struct EulerPeer;
+/// A stand-in peer: forward Euler with h = tol, through the generated f;
+/// it notes the tolerances it is asked for, in order.
+#[derive(Default)]
+struct EulerPeer {
+    asked: std::sync::Arc<std::sync::Mutex<Vec<f64>>>,
+}
+
+/// A stand-in peer in another process: it runs once per tolerance.
+struct OutOfProcess {
+    asked: std::sync::Arc<std::sync::Mutex<Vec<f64>>>,
+}
+
+impl Peer for OutOfProcess {
+    fn name(&self) -> String {
+        "out of process".into()
+    }
+    fn applies(&self, _: &PeerProblem) -> bool {
+        true
+    }
+    fn in_process(&self) -> bool {
+        false
+    }
+    fn run(&self, p: &PeerProblem, tol: f64, s: &Settings) -> Result<Record, String> {
+        self.asked.lock().map_err(|e| e.to_string())?.push(tol);
+        EulerPeer::default().run(p, tol, s).map(|r| Record { method: self.name(), ..r })
+    }
+}
 
 impl Peer for EulerPeer {
     fn name(&self) -> String {
@@ -31,6 +56,7 @@ impl Peer for EulerPeer {
         problem.nonstiff
     }
     fn run(&self, p: &PeerProblem, tol: f64, _: &Settings) -> Result<Record, String> {
+        self.asked.lock().map_err(|e| e.to_string())?.push(tol);
         let start = std::time::Instant::now();
         let n = (p.t_end / tol).ceil() as usize;
         let h = p.t_end / n as f64;
@@ -81,8 +107,13 @@ fn a_tiny_sweep_writes_well_formed_csv_svg_and_summary() {
         budget: std::time::Duration::ZERO,
         // Two tolerances: 1e-4 and 1e-5.
         tightest: 1e-5,
+        rounds: 2,
     };
-    let mut runner = Runner::new(settings).peer(EulerPeer).peer(AbsentPeer);
+    let euler = EulerPeer::default();
+    let asked = euler.asked.clone();
+    let once = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let out_of_process = OutOfProcess { asked: once.clone() };
+    let mut runner = Runner::new(settings).peer(euler).peer(AbsentPeer).peer(out_of_process);
     runner.progress = false;
     let problem = runner.run::<Oscillator>().clone();
     let ours: Vec<&Record> =
@@ -96,6 +127,13 @@ fn a_tiny_sweep_writes_well_formed_csv_svg_and_summary() {
     let drop = euler[0].error / euler[1].error;
     assert!((5.0..20.0).contains(&drop), "Euler error ratio {drop}");
     assert_eq!(problem.missing, vec![("absent".to_string(), "not installed".to_string())]);
+    // In each of the two rounds every tolerance in turn, alongside ours; one
+    // record per tolerance. A peer in another process runs once.
+    let asked = asked.lock().map(|a| a.clone()).unwrap_or_default();
+    assert_eq!(asked, [1e-4, 1e-5, 1e-4, 1e-5]);
+    let once = once.lock().map(|a| a.clone()).unwrap_or_default();
+    assert_eq!(once, [1e-4, 1e-5]);
+    assert_eq!(problem.records.iter().filter(|r| r.method == "out of process").count(), 2);
     let expansion = problem.expansion.as_ref().expect("the model expands");
     assert!(expansion.bytes > 100 && expansion.code.contains("fn rhs"));
 
