@@ -447,6 +447,9 @@ mod tests {
         (count, root)
     }
 
+    /// A function with a name and a bracket of its zero.
+    type Case = (&'static str, fn(f64) -> f64, f64, f64);
+
     #[test]
     fn smooth_zeros_are_bracketed_from_both_sides() {
         // Regula falsi alone approaches these from one side; with the
@@ -454,7 +457,7 @@ mod tests {
         // neighbouring floats. Bracketing the secant's estimate from the far
         // side converges superlinearly: each round gains two to three times
         // the digits, so 53 bits take a handful of rounds.
-        let cases: [(&str, fn(f64) -> f64, f64, f64); 5] = [
+        let cases: [Case; 5] = [
             ("cos", f64::cos, 1.0, 3.0),
             ("cos backwards", f64::cos, 3.0, 1.0),
             ("a rate at an extremum", |t| (t - 0.4249).sin() * (2.0 + t), 0.42, 0.44),
