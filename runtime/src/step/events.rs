@@ -160,6 +160,9 @@ impl<'m, M: Model> EventWatch<'m, M> {
                 break;
             }
         }
+        if hits.is_empty() {
+            return Ok(false);
+        }
         // Crossings in time order; a terminal one ends the run and the later ones never happen.
         let forward = t_new >= t_old;
         hits.sort_by(|p, q| {
@@ -212,13 +215,17 @@ impl<'m, M: Model> EventWatch<'m, M> {
     ) {
         let (g_a, g_b) = (self.g_old[i], self.g_new[i]);
         let (r_a, r_b) = (self.rate_old[i], self.rate_new[i]);
-        let mut pieces = [(a, g_a), (b, g_b), (b, g_b)];
-        let mut count = 2;
         let same_side = g_a * g_b > 0.0 || (g_a == 0.0 && g_b != 0.0);
         // Only an extremum turning back towards zero (a minimum of a positive
         // g, a maximum of a negative one) can hide two crossings.
-        let turns_to_zero = r_a * g_b < 0.0 && r_b * g_b > 0.0;
-        if self.has_rates && same_side && turns_to_zero {
+        let turns_to_zero = self.has_rates && r_a * g_b < 0.0 && r_b * g_b > 0.0;
+        if same_side && !turns_to_zero {
+            // Most steps: no sign change, and none hidden.
+            return;
+        }
+        let mut pieces = [(a, g_a), (b, g_b), (b, g_b)];
+        let mut count = 2;
+        if same_side && turns_to_zero {
             let t_m = bracketed_root(|t| self.along(solution, i, t, true), a, b, r_a, r_b);
             let g_m = self.along(solution, i, t_m, false);
             pieces = [(a, g_a), (t_m, g_m), (b, g_b)];
