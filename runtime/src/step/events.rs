@@ -316,10 +316,10 @@ pub(crate) fn bracketed_root(
         if halved(&bracket) {
             continue;
         }
-        // As far past the secant's new estimate as it is from the end just moved.
-        let moved = if bracket.lo == probe { bracket.lo } else { bracket.hi };
+        // As far past the secant's new estimate as it is from the end just
+        // moved, which is the probe.
         let estimate = secant_point(bracket.lo, bracket.hi, bracket.f_lo, bracket.f_hi);
-        if let Some(past) = bracket.inside_or_next_to(estimate + (estimate - moved)) {
+        if let Some(past) = bracket.inside_or_next_to(estimate + (estimate - probe)) {
             if bracket.probe(&mut f, past) {
                 return bracket.hi;
             }
