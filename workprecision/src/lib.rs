@@ -31,5 +31,5 @@ pub use plot::work_precision_svg;
 pub use record::{parse_csv, to_csv, Record};
 pub use runner::{Problem, Runner};
 pub use summary::{matched_ratio, summary_markdown, time_at_error};
-pub use sweep::{mixed_error, plan, reference_values, run_planned, sweep, PlannedRun};
+pub use sweep::{mixed_error, plan, reference_values, run_planned, PlannedRun};
 pub use timing::{median, median_time, Settings};

@@ -137,21 +137,3 @@ pub fn run_planned<M: Benchmark>(
         jacobian_evals: stats.jacobian_evals,
     }
 }
-
-/// Every method of `M` over its tolerances (or step counts for fixed-step
-/// methods), one run after another; `progress` hears of each run before
-/// it starts.
-pub fn sweep<M: Benchmark>(
-    settings: &Settings,
-    reference: &[f64],
-    progress: &mut dyn FnMut(&str),
-) -> Vec<Record> {
-    let model = M::default();
-    plan::<M>(settings)
-        .iter()
-        .map(|run| {
-            progress(&format!("{} {} {:.0e}", M::NAME, run.method, run.tol));
-            run_planned(&model, run, settings, reference)
-        })
-        .collect()
-}
