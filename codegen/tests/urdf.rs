@@ -188,33 +188,31 @@ fn a_loop_apart_from_the_root_is_refused() {
     assert!(message.contains("links `b`, `c` are not reached from the root link `a`"), "{message}");
 }
 
+#[path = "../../tests/support/python_peers.rs"]
+mod python_peers;
+
 /// `tests/robots/` at the workspace's root: example-robot-data's URDF files
 /// and what Pinocchio makes of them (`bench/peers/robots.py`).
 fn robots_dir() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/robots")
 }
 
-/// A robot's file: ours in tests/robots, or (`erd:`) example-robot-data's
-/// where pip installed it, as TALOS's licence (CC BY-NC-ND) keeps its
-/// files out of the repository: `python3 -m pip install
-/// example-robot-data==5.0.0` (`.ci/run` installs it).
+/// A robot's file: ours in tests/robots, or (`erd:`) example-robot-data's,
+/// as TALOS's licence (CC BY-NC-ND) keeps its files out of the
+/// repository: from the package's own environment under the target
+/// directory, made on first use.
 fn robot_file(urdf: &str) -> std::path::PathBuf {
     let Some(rest) = urdf.strip_prefix("erd:") else { return robots_dir().join(urdf) };
-    let out = std::process::Command::new("python3")
-        // The site-packages directory that has it: the global one, or the
-        // user's when pip installed there.
-        .args(["-c", "import os, site, sysconfig; c = [sysconfig.get_paths()['purelib'], site.getusersitepackages()] + site.getsitepackages(); print(next((p for p in c if os.path.isdir(os.path.join(p, 'cmeel.prefix', 'share', 'example-robot-data'))), c[0]))"])
+    let python = python_peers::python(&python_peers::EXAMPLE_ROBOT_DATA);
+    let out = std::process::Command::new(python)
+        .args(["-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"])
         .output()
-        .expect("python3, to find example-robot-data");
+        .expect("the environment's python runs");
     let purelib = String::from_utf8(out.stdout).unwrap().trim().to_string();
     let path = std::path::Path::new(&purelib)
         .join("cmeel.prefix/share/example-robot-data/robots")
         .join(rest);
-    assert!(
-        path.exists(),
-        "{} is missing: `python3 -m pip install example-robot-data==5.0.0`",
-        path.display()
-    );
+    assert!(path.exists(), "{} is missing from example-robot-data 5.0.0", path.display());
     path
 }
 

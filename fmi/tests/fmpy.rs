@@ -4,7 +4,10 @@
 //! Both must equal the native run (DOP853 or RADAU5 at 1e-12) within the
 //! tolerances they ran at.
 //!
-//! Needs `python3 -m pip install fmpy` (`.ci/run` installs it).
+//! FMPy comes from an environment of its own under the target directory,
+//! made with a pinned version by the first test that needs it
+//! (`tests/support/python_peers.rs` at the workspace's root); the machine
+//! needs only `python3`.
 
 mod support;
 
@@ -99,6 +102,51 @@ fn check(name: &str, native: &Solution, stop: f64, outputs: &[&str]) -> serde_js
         }
     }
     kept
+}
+
+#[test]
+fn the_fmpy_environment_is_made_from_an_empty_cache() {
+    use support::python_peers::{bootstrap, target_dir, BASE_PYTHON, FMPY};
+    let root = target_dir().join("python-peers-empty-cache-test");
+    let _ = std::fs::remove_dir_all(&root);
+    let python = bootstrap(&FMPY, BASE_PYTHON, &root).expect("the environment is made");
+    assert!(python.starts_with(root.join(FMPY.name)), "{}", python.display());
+    // The pinned FMPy runs from it: it validates an FMU of ours.
+    let archives = support::fmus("van_der_pol_fmu", "fmpy-bootstrap");
+    let out = std::process::Command::new(&python)
+        .args(["-c", "import sys, fmpy; from fmpy.validation import validate_fmu; print(fmpy.__version__, len(validate_fmu(sys.argv[1])))"])
+        .arg(&archives.fmi3)
+        .output()
+        .unwrap();
+    assert_eq!(
+        String::from_utf8_lossy(&out.stdout).trim(),
+        "0.3.32 0",
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // Made once: a second call finds it and makes nothing.
+    let made =
+        std::fs::metadata(root.join(FMPY.name).join("complete")).unwrap().modified().unwrap();
+    assert_eq!(bootstrap(&FMPY, BASE_PYTHON, &root).unwrap(), python);
+    let kept =
+        std::fs::metadata(root.join(FMPY.name).join("complete")).unwrap().modified().unwrap();
+    assert_eq!(made, kept);
+    let left: Vec<_> = std::fs::read_dir(&root).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(left, [FMPY.name], "nothing but the environment is left");
+    std::fs::remove_dir_all(&root).unwrap();
+}
+
+#[test]
+fn without_python_the_bootstrap_says_what_to_install() {
+    use support::python_peers::{bootstrap, target_dir, FMPY};
+    let root = target_dir().join("python-peers-no-python-test");
+    let message = bootstrap(&FMPY, "python3-not-on-this-machine", &root).unwrap_err();
+    assert_eq!(message.lines().count(), 1, "{message}");
+    assert!(
+        message.starts_with("`python3-not-on-this-machine` not found: install Python 3"),
+        "{message}"
+    );
+    assert!(!root.join(FMPY.name).exists());
 }
 
 fn native<M: Model + Clone + Send + Sync + 'static>(

@@ -8,6 +8,9 @@ use daegen_fmi::archive::{package, platform, Archives};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+#[path = "../../../tests/support/python_peers.rs"]
+pub mod python_peers;
+
 /// The directory cargo writes this test's profile into (`target/debug`).
 fn profile_dir() -> PathBuf {
     let exe = std::env::current_exe().expect("the test's path");
@@ -37,36 +40,13 @@ pub fn fmus(name: &str, tag: &str) -> Archives {
     package(&library(name), &dir).unwrap_or_else(|e| panic!("packaging {name}: {e}"))
 }
 
-/// Installs FMPy from PyPI if python3 cannot import it (once per run).
-fn ensure_fmpy() {
-    static ONCE: std::sync::Once = std::sync::Once::new();
-    ONCE.call_once(|| {
-        let present = Command::new("python3").args(["-c", "import fmpy"]).status();
-        if present.is_ok_and(|s| s.success()) {
-            return;
-        }
-        let installed = Command::new("python3")
-            .args(["-m", "pip", "install", "--quiet", "--disable-pip-version-check", "fmpy"])
-            .status()
-            .expect("python3 runs");
-        assert!(installed.success(), "python3 -m pip install fmpy failed");
-    });
-}
-
 /// FMPy's validation and both interfaces' results for `config` (see
-/// `fmpy_run.py`).
+/// `fmpy_run.py`), from FMPy in its own environment under the target
+/// directory.
 pub fn fmpy(config: serde_json::Value) -> serde_json::Value {
-    ensure_fmpy();
+    let python = python_peers::python(&python_peers::FMPY);
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fmpy_run.py");
-    let out = Command::new("python3")
-        .arg(script)
-        .arg(config.to_string())
-        .output()
-        .expect("python3 runs (FMPy: python3 -m pip install fmpy)");
-    assert!(
-        out.status.success(),
-        "FMPy failed (is it installed? python3 -m pip install fmpy):\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = Command::new(python).arg(script).arg(config.to_string()).output().expect("FMPy runs");
+    assert!(out.status.success(), "FMPy failed:\n{}", String::from_utf8_lossy(&out.stderr));
     serde_json::from_slice(&out.stdout).expect("FMPy's results as JSON")
 }

@@ -1,14 +1,16 @@
-//! The same FMUs through an independent importer, the Rust `fmi` crate
-//! (rust-fmi): it unpacks each archive, loads the library from the
-//! platform directory its version names, and runs it in both interfaces.
-//! Results equal the native run within the tolerances.
+//! The FMUs as an importer meets them: each archive unpacked, its
+//! library loaded from the platform directory its FMI version names, and
+//! run through the standard's C functions in both interfaces by an
+//! importer of the tests' own (`support/importer.rs`). Results equal the
+//! native run within the tolerances.
 
+#[path = "support/importer.rs"]
+#[allow(dead_code)]
+mod importer;
 mod support;
 
 use daegen::prelude::*;
-use fmi::fmi2::import::Fmi2Import;
-use fmi::fmi3::import::Fmi3Import;
-use fmi::EventFlags;
+use importer::{Instance2, Instance3, Kind, Unpacked};
 
 #[path = "../examples/models/bouncing_ball.rs"]
 mod bouncing_ball;
@@ -37,33 +39,30 @@ fn rk4(x: &mut [f64], t: f64, h: f64, mut rates: impl FnMut(f64, &[f64]) -> Vec<
 
 #[test]
 fn fmi3_co_simulation_and_model_exchange_of_van_der_pol() {
-    use fmi::fmi3::{CoSimulation, Common, Fmi3Model, GetSet, ModelExchange};
-    let archives = support::fmus("van_der_pol_fmu", "rust-importer-vdp");
-    let import: Fmi3Import = fmi::import::from_path(&archives.fmi3).expect("the FMU imports");
+    let archives = support::fmus("van_der_pol_fmu", "archive-importer-vdp");
+    let fmu = Unpacked::new(&archives.fmi3);
     let sol = native(van_der_pol::VanDerPol::default(), 10.0);
     let exact: f64 = sol.at(10.0, "x").unwrap();
+    let x_ref = fmu.reference("x");
 
     // Co-Simulation: the FMU's own Auto at the experiment's tolerance.
-    let mut cs = import.instantiate_cs("cs", false, true, false, false, &[]).expect("an instance");
-    cs.enter_initialization_mode(Some(1e-10), 0.0, None).unwrap();
-    cs.exit_initialization_mode().unwrap();
-    let (mut event, mut stop, mut early, mut last) = (false, false, false, 0.0);
+    let mut cs = Instance3::co_simulation(&fmu);
+    cs.initialize(Some(1e-10), 0.0).unwrap();
     for k in 0..20 {
         let t = k as f64 * 0.5;
-        cs.do_step(t, 0.5, true, &mut event, &mut stop, &mut early, &mut last).unwrap();
+        let reached = cs.do_step(t, 0.5).unwrap();
+        assert_eq!(reached, t + 0.5, "the step's end");
     }
     let mut x = [0.0];
-    cs.get_float64(&[1], &mut x).unwrap();
+    cs.get_float64(&[x_ref], &mut x).unwrap();
     assert!((x[0] - exact).abs() < 1e-8, "co-simulation: {} vs {exact}", x[0]);
     cs.terminate().unwrap();
 
     // Model Exchange: RK4 with h = 1e-3 from the FMU's rates (global
     // error of order h⁴ ≈ 1e-12 times the solution's derivatives).
-    let mut me = import.instantiate_me("me", false, true).expect("an instance");
-    me.enter_initialization_mode(None, 0.0, None).unwrap();
-    me.exit_initialization_mode().unwrap();
-    let mut flags = EventFlags::default();
-    me.update_discrete_states(&mut flags).unwrap();
+    let mut me = Instance3::model_exchange(&fmu);
+    me.initialize(None, 0.0).unwrap();
+    me.update_discrete_states().unwrap();
     me.enter_continuous_time_mode().unwrap();
     let mut state = vec![0.0; 2];
     me.get_continuous_states(&mut state).unwrap();
@@ -73,7 +72,7 @@ fn fmi3_co_simulation_and_model_exchange_of_van_der_pol() {
             me.set_time(t).unwrap();
             me.set_continuous_states(x).unwrap();
             let mut dx = vec![0.0; 2];
-            me.get_continuous_state_derivatives(&mut dx).unwrap();
+            me.get_derivatives(&mut dx).unwrap();
             dx
         });
     }
@@ -83,32 +82,17 @@ fn fmi3_co_simulation_and_model_exchange_of_van_der_pol() {
 
 #[test]
 fn fmi2_co_simulation_of_the_speed_drive() {
-    use fmi::fmi2::instance::{CoSimulation, Common};
-    let archives = support::fmus("speed_drive_fmu", "rust-importer-drive");
-    let import: Fmi2Import = fmi::import::from_path(&archives.fmi2).expect("the FMU imports");
+    let archives = support::fmus("speed_drive_fmu", "archive-importer-drive");
+    let fmu = Unpacked::new(&archives.fmi2);
     let sol = native(speed_drive::SpeedDrive::default(), 1.0);
-    let mut cs = import.instantiate_cs("drive", false, true).expect("an instance");
-    cs.setup_experiment(Some(1e-10), 0.0, None).unwrap();
-    cs.enter_initialization_mode().unwrap();
-    cs.exit_initialization_mode().unwrap();
+    let mut cs = Instance2::new(&fmu, Kind::CoSimulation);
+    cs.setup_experiment(Some(1e-10), 0.0).unwrap();
+    cs.initialize().unwrap();
     let names = ["motor.rotor.w", "motor.winding.i", "controller.x"];
-    let xml = daegen_fmi::archive::descriptions(&support::library("speed_drive_fmu")).unwrap().0;
-    let reference = |name: &str| -> u32 {
-        let at = xml.find(&format!("name=\"{name}\" valueReference=\"")).expect(name);
-        xml[at..]
-            .split("valueReference=\"")
-            .nth(1)
-            .unwrap()
-            .split('"')
-            .next()
-            .unwrap()
-            .parse()
-            .unwrap()
-    };
-    let vrs: Vec<u32> = names.iter().map(|n| reference(n)).collect();
+    let vrs: Vec<u32> = names.iter().map(|n| fmu.reference(n)).collect();
     for k in 0..10 {
         let t = k as f64 * 0.1;
-        cs.do_step(t, 0.1, true).unwrap();
+        cs.do_step(t, 0.1).unwrap();
         let mut values = vec![0.0; 3];
         cs.get_real(&vrs, &mut values).unwrap();
         for (name, v) in names.iter().zip(&values) {
@@ -125,15 +109,12 @@ fn fmi2_co_simulation_of_the_speed_drive() {
 
 #[test]
 fn fmi2_model_exchange_of_the_bouncing_ball() {
-    use fmi::fmi2::instance::{Common, ModelExchange};
-    let archives = support::fmus("bouncing_ball_fmu", "rust-importer-ball");
-    let import: Fmi2Import = fmi::import::from_path(&archives.fmi2).expect("the FMU imports");
-    let mut me = import.instantiate_me("ball", false, true).expect("an instance");
-    me.setup_experiment(None, 0.0, None).unwrap();
-    me.enter_initialization_mode().unwrap();
-    me.exit_initialization_mode().unwrap();
-    let mut flags = EventFlags::default();
-    me.new_discrete_states(&mut flags).unwrap();
+    let archives = support::fmus("bouncing_ball_fmu", "archive-importer-ball");
+    let fmu = Unpacked::new(&archives.fmi2);
+    let mut me = Instance2::new(&fmu, Kind::ModelExchange);
+    me.setup_experiment(None, 0.0).unwrap();
+    me.initialize().unwrap();
+    me.new_discrete_states().unwrap();
     me.enter_continuous_time_mode().unwrap();
     let mut x = vec![0.0; 2];
     me.get_continuous_states(&mut x).unwrap();
@@ -154,12 +135,11 @@ fn fmi2_model_exchange_of_the_bouncing_ball() {
         me.set_continuous_states(&x).unwrap();
         let mut g_new = [0.0];
         me.get_event_indicators(&mut g_new).unwrap();
-        let (mut step_event, mut stop) = (false, false);
-        me.completed_integrator_step(true, &mut step_event, &mut stop).unwrap();
+        let step_event = me.completed_integrator_step().unwrap();
         if (g[0] > 0.0) != (g_new[0] > 0.0) || step_event {
             me.enter_event_mode().unwrap();
-            me.new_discrete_states(&mut flags).unwrap();
-            if flags.values_of_continuous_states_changed {
+            let info = me.new_discrete_states().unwrap();
+            if info.values_changed != 0 {
                 me.get_continuous_states(&mut x).unwrap();
                 impacts.push((t + h, x[1]));
             }
