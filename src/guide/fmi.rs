@@ -179,4 +179,6 @@
 //! pendulum DAE, a slider-crank scene, a PI speed drive of library parts,
 //! a bouncing ball, a sampled controller and a tank with an input; FMPy
 //! validates each and runs it in both interfaces and both versions
-//! against the native run, and the Rust `fmi` crate imports them too.
+//! against the native run (FMPy from an environment the tests make under
+//! `target/python-peers/`), and an importer of the tests' own unpacks the
+//! archives and calls the C functions by the standards' names.
