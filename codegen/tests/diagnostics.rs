@@ -196,3 +196,70 @@ fn dependent_derivative_rows_with_a_regular_pencil_are_a_dae() {
     });
     assert!(m.is_empty(), "{m:#?}");
 }
+
+/// A speed drive of library parts whose set point `extra` completes.
+fn drive_with(extra: proc_macro2::TokenStream) -> proc_macro2::TokenStream {
+    quote! {
+        fn drive() {
+            let controller = pi_controller(kp = 0.02, ki = 0.5);
+            let sensor = speed_sensor();
+            let supply = signal_voltage();
+            let winding = resistor(0.5);
+            let motor = emf(k = 0.05);
+            let rotor = inertia(j = 1e-3);
+            let friction = damper(d = 1e-4);
+            let housing = fixed();
+            let gnd = ground();
+            connect(sensor.w, controller.u_m);
+            connect(controller.y, supply.u);
+            connect(supply.p, winding.p);
+            connect(winding.n, motor.p);
+            connect(supply.n, motor.n, gnd.p);
+            connect(motor.flange, rotor.flange_a);
+            connect(rotor.flange_b, friction.flange_a, sensor.flange);
+            connect(friction.flange_b, housing.flange);
+            #extra
+        }
+    }
+}
+
+#[test]
+fn an_input_is_connected_or_set() {
+    let open = messages(drive_with(quote!()));
+    assert_eq!(open.len(), 1, "{open:#?}");
+    assert!(open[0].starts_with("the input `u_s` of `controller` is not connected"), "{open:#?}");
+    // Set by an equation, or connected: nothing to say.
+    assert_eq!(messages(drive_with(quote!(controller.u_s == 100.0;))), Vec::<String>::new());
+    let connected = drive_with(
+        quote! { let set_point = constant(100.0); connect(set_point.y, controller.u_s); },
+    );
+    assert_eq!(messages(connected), Vec::<String>::new());
+}
+
+#[test]
+fn a_block_s_open_input_says_how_to_connect_or_set_it() {
+    let m = messages(quote! {
+        fn m() {
+            let g = gain(3.0);
+            let x = integrator();
+            connect(g.y, x.u);
+        }
+    });
+    assert_eq!(m, ["the input `u` of `g` is not connected: connect an output to it, `connect(source.y, g.u);`, or set it, `g.u == 1.0;`"]);
+}
+
+#[test]
+fn a_misspelt_parameter_is_one_message() {
+    let m = messages(quote! {
+        fn m() {
+            let rotor = inertia(jj = 1.0, w0 = 10.0);
+            let spring = spring(c = 100.0);
+            let housing = fixed();
+            connect(rotor.flange_a, spring.flange_a);
+            connect(spring.flange_b, housing.flange);
+            let e_kin = output(0.5 * rotor.w * rotor.w);
+            let e_total = output(e_kin + 1.0);
+        }
+    });
+    assert_eq!(m, ["`inertia` has no parameter `jj`; its parameters are `j`, `phi0`, `w0`"]);
+}

@@ -25,6 +25,15 @@ pub fn connection_equations(
     let mut parent: Vec<usize> = (0..2 * connectors.len()).collect();
     let mut origin_of_set: Vec<Option<&TokenStream>> = vec![None; 2 * connectors.len()];
     let mut reached_from_outside = vec![false; connectors.len()];
+    // A signal's source: an output seen from outside, or the connecting
+    // component's own input seen from inside. `joins_sources[root]`: the
+    // first connection that joined a second source to the set.
+    let is_source = |n: usize| {
+        let kind = connectors[n / 2].kind;
+        kind.is_signal() && ((kind == super::ConnectorKind::RealOutput) != (n % 2 == 1))
+    };
+    let mut has_source: Vec<bool> = (0..parent.len()).map(is_source).collect();
+    let mut joins_sources: Vec<Option<&TokenStream>> = vec![None; parent.len()];
     for connection in connections {
         let first = node(connection.members[0], connection.level);
         for &c in &connection.members {
@@ -33,6 +42,14 @@ pub fn connection_equations(
                 reached_from_outside[c] = true;
             }
             let (a, b) = (find(&mut parent, first), find(&mut parent, n));
+            if a == b {
+                continue;
+            }
+            if has_source[a] && has_source[b] && joins_sources[a].is_none() {
+                joins_sources[a] = joins_sources[b].or(Some(&connection.origin));
+            }
+            joins_sources[a] = joins_sources[a].or(joins_sources[b]);
+            has_source[a] |= has_source[b];
             parent[b] = a;
         }
         origin_of_set[first] = Some(&connection.origin);
@@ -54,19 +71,15 @@ pub fn connection_equations(
         let members: Vec<(usize, bool)> = set.iter().map(|&n| (n / 2, n % 2 == 1)).collect();
         let kind = connectors[members[0].0].kind;
         if kind.is_signal() {
-            // A set has one source: an output seen from outside, or the
-            // connecting component's own input seen from inside.
-            let sources: Vec<&str> = members
+            let sources: Vec<&str> = set
                 .iter()
-                .filter(|&&(c, own_body)| {
-                    let k = connectors[c].kind;
-                    (k == super::ConnectorKind::RealOutput) != own_body
-                })
-                .map(|&(c, _)| connectors[c].path.as_str())
+                .filter(|&&n| is_source(n))
+                .map(|&n| connectors[n / 2].path.as_str())
                 .collect();
             if sources.len() > 1 {
                 let list = sources.iter().map(|s| format!("`{s}`")).collect::<Vec<_>>().join(", ");
-                errors.push((origin.clone(), format!("a signal has one source, and these connections join {} of them: {list}; connect each input to one output", sources.len())));
+                let at = joins_sources[root].unwrap_or(origin);
+                errors.push((at.clone(), format!("a signal has one source, and these connections join {} of them: {list}; connect each input to one output", sources.len())));
                 continue;
             }
         }

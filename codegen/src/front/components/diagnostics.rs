@@ -109,6 +109,48 @@ pub fn floating_potentials(
     Ok(out)
 }
 
+/// Inputs of parts that nothing sets: no connection from outside the part
+/// reaches them, and no statement outside it reads them (where one would
+/// set them, `controller.u_s == 1.0`); `equations` are the statements',
+/// without the connections'. Modelica refuses them too
+/// (Modelica Language Specification §9.3: an input connector of a
+/// component is connected or bound).
+pub fn unconnected_inputs(
+    g: &Graph,
+    connectors: &[Connector],
+    connections: &[Connection],
+    instances: &[Instance],
+    equations: &[Equation],
+) -> Vec<Diagnostic> {
+    let mut out = Vec::new();
+    for (c, connector) in connectors.iter().enumerate() {
+        let (ConnectorKind::RealInput, Some(owner)) = (connector.kind, connector.owner) else {
+            continue;
+        };
+        let connected =
+            connections.iter().any(|k| k.level != Some(owner) && k.members.contains(&c));
+        if connected {
+            continue;
+        }
+        let Some(symbol) = g.as_symbol(connector.potential) else { continue };
+        let inside = &instances[owner].equations;
+        let set = equations.iter().enumerate().any(|(e, eq)| {
+            !inside.contains(&e)
+                && (g.free_symbols(eq.lhs).contains(&symbol)
+                    || g.free_symbols(eq.rhs).contains(&symbol))
+        });
+        if set {
+            continue;
+        }
+        let part = &instances[owner].path;
+        let input = &connector.path;
+        let name = input.strip_prefix(&format!("{part}.")).unwrap_or(input);
+        let at = &instances[top_level(instances, owner)].origin;
+        out.push((at.clone(), format!("the input `{name}` of `{part}` is not connected: connect an output to it, `connect(source.y, {input});`, or set it, `{input} == 1.0;`")));
+    }
+    out
+}
+
 /// Ideal voltage sources whose pins join the same two nodes.
 pub fn sources_in_parallel(
     connectors: &[Connector],

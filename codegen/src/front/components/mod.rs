@@ -31,6 +31,9 @@ pub struct Instance {
     pub(crate) members: Vec<(String, Binding)>,
     /// The declaration, for errors.
     pub origin: TokenStream,
+    /// The equations its body wrote, its sub-instances' among them
+    /// (indices into the model's equations).
+    pub equations: std::ops::Range<usize>,
 }
 
 /// A connector: a pin, a flange, a heat port or a signal.

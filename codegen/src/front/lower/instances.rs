@@ -242,6 +242,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
             parent: self.instance,
             members: Vec::new(),
             origin: call.to_token_stream(),
+            equations: self.equations.len()..self.equations.len(),
         });
         let (prefix, field_prefix) =
             (format!("{}{name}.", self.prefix), format!("{}{field}_", self.field_prefix));
@@ -275,6 +276,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         self.parts = saved.parts;
         self.integer_names = saved.integer_names;
         self.instances[k].members = members;
+        self.instances[k].equations.end = self.equations.len();
         Some(k)
     }
 
@@ -633,6 +635,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
             parent: self.instance,
             members: Vec::new(),
             origin: origin.clone(),
+            equations: self.equations.len()..self.equations.len(),
         });
         let doc = |what: &str| format!("{what} of the joint's flange");
         let potential =
@@ -764,14 +767,22 @@ impl<S: SceneLanguage> Lower<'_, S> {
 
     /// The mistakes of a connected model said in its terms (see
     /// `components::diagnostics`); a component alone is not checked so,
-    /// as its pins are meant to be connected.
-    pub(in crate::front) fn connection_diagnostics(&mut self) {
+    /// as its pins are meant to be connected. The first `written`
+    /// equations are the statements', the rest the connections'.
+    pub(in crate::front) fn connection_diagnostics(&mut self, written: usize) {
         if !self.cx.is_ok() || self.connectors.is_empty() {
             return;
         }
         use crate::front::components::diagnostics;
         let mut found =
             diagnostics::sources_in_parallel(&self.connectors, &self.connections, &self.instances);
+        found.extend(diagnostics::unconnected_inputs(
+            &self.g,
+            &self.connectors,
+            &self.connections,
+            &self.instances,
+            &self.equations[..written],
+        ));
         match diagnostics::floating_potentials(
             &mut self.g,
             &self.connectors,

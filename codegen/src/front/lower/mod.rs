@@ -62,8 +62,9 @@ pub(crate) fn lower_with<S: SceneLanguage>(
         names.into_iter().find_map(|n| l.g.time(&n).ok()).and_then(|id| l.g.as_symbol(id))
     });
     let time = time.unwrap_or(SymbolId(0));
+    let written = l.equations.len();
     l.connection_equations();
-    l.connection_diagnostics();
+    l.connection_diagnostics(written);
     S::equations(&mut l, item);
     if l.states.is_empty() && l.cx.is_ok() {
         l.cx.error_at(&item.sig.ident, "the model declares no state: add one with `let x = state(0.0);` and an equation `der(x) == ...;`");

@@ -13,13 +13,35 @@ use quote::ToTokens;
 use std::collections::HashMap;
 use syn::{BinOp, Expr, Pat, Stmt};
 
+/// The name `let` binds: `x` of `let x` or `let x: f64`.
+fn bound_name(pat: &Pat) -> Option<&syn::Ident> {
+    match pat {
+        Pat::Ident(p) => Some(&p.ident),
+        Pat::Type(t) => bound_name(&t.pat),
+        _ => None,
+    }
+}
+
 /// A declaration inside a mode's branch.
 const IN_MODE: &str = "a mode selects equations: declare states, variables, parameters, outputs and events before `if`, and write only equations inside";
 
 impl<S: SceneLanguage> Lower<'_, S> {
     pub(in crate::front) fn stmt(&mut self, stmt: &Stmt) {
         match stmt {
-            Stmt::Local(local) => self.local(local),
+            Stmt::Local(local) => {
+                self.local(local);
+                // A declaration whose value was refused (here, or where a
+                // name it reads was) still declares its name, so that its
+                // uses further down stay quiet: one mistake, one message.
+                // (Only once a mistake is reported: a model without one
+                // binds every name it declares.)
+                if let (Some(ident), false) = (bound_name(&local.pat), self.cx.is_ok()) {
+                    let name = ident.to_string();
+                    if !self.scopes.last().is_some_and(|s| s.contains_key(&name)) {
+                        self.bind(ident, Binding::Broken);
+                    }
+                }
+            }
             Stmt::Item(syn::Item::Const(c)) => {
                 if let Some(v) = self.constant(&c.expr) {
                     self.bind(&c.ident, Binding::Const(v));
