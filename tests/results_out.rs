@@ -11,7 +11,10 @@ use std::sync::{Arc, Mutex};
 mod support;
 use support::harness::{adaptive_methods_for, kind, methods_for, Kind};
 
-/// x'' = −x from (1, 0): x = cos t; with an algebraic variable and an output.
+/// x'' = −x from (1, 0): x = cos t; with an algebraic variable and an
+/// output.
+///
+/// Its description keeps every line of this comment.
 #[dae_model]
 fn oscillator() {
     let x = state(1.0);
@@ -306,6 +309,7 @@ fn a_sampled_table_prints_aligned() {
 fn describe_lists_every_name_and_progress_changes_no_result() {
     let text = Oscillator::default().describe();
     for line in [
+        "Oscillator: x'' = −x from (1, 0): x = cos t; with an algebraic variable and an\n  output.\n\n  Its description keeps every line of this comment.\nstates:",
         "states:",
         "\n  x\n",
         "  der(x)  ",

@@ -9,12 +9,25 @@ use std::fmt::Write;
 /// index), the parameters' values too.
 pub(crate) fn describe(info: &ModelInfo, parameter: Option<&dyn Fn(usize) -> f64>) -> String {
     let mut out = String::new();
-    let summary = info.doc.lines().map(str::trim).find(|l| !l.is_empty());
-    match summary {
-        Some(line) => {
-            let _ = writeln!(out, "{}: {line}", info.name);
+    // The whole doc comment: its first line beside the name, the rest
+    // under it, paragraphs kept.
+    let lines: Vec<&str> = info.doc.lines().map(str::trim_end).collect();
+    let first = lines.iter().position(|l| !l.is_empty());
+    let last = lines.iter().rposition(|l| !l.is_empty());
+    match (first, last) {
+        (Some(first), Some(last)) => {
+            let indent = lines[first..=last]
+                .iter()
+                .filter(|l| !l.is_empty())
+                .map(|l| l.len() - l.trim_start().len())
+                .min()
+                .unwrap_or(0);
+            let _ = writeln!(out, "{}: {}", info.name, &lines[first][indent..]);
+            for line in &lines[first + 1..=last] {
+                let _ = writeln!(out, "  {}", line.get(indent..).unwrap_or(""));
+            }
         }
-        None => {
+        _ => {
             let _ = writeln!(out, "{}", info.name);
         }
     }
@@ -92,7 +105,7 @@ pub(crate) fn describe(info: &ModelInfo, parameter: Option<&dyn Fn(usize) -> f64
         }
         let _ = writeln!(out, "{title}:");
         for (k, name) in names.iter().enumerate() {
-            let doc = docs.get(k).map_or("", |d| first_line(d));
+            let doc = docs.get(k).map_or(String::new(), |d| first_paragraph(d));
             let pad = width - name.chars().count();
             let _ = writeln!(out, "  {name}{:pad$}  {doc}", "");
         }
@@ -173,8 +186,11 @@ fn owned(names: &[&str]) -> Vec<String> {
     names.iter().map(|s| s.to_string()).collect()
 }
 
-fn first_line(doc: &str) -> &str {
-    doc.lines().map(str::trim).find(|l| !l.is_empty()).unwrap_or("")
+/// A name's doc comment in its table row: its first paragraph, on one
+/// line.
+fn first_paragraph(doc: &str) -> String {
+    let words = doc.lines().map(str::trim).skip_while(|l| l.is_empty());
+    words.take_while(|l| !l.is_empty()).collect::<Vec<_>>().join(" ")
 }
 
 /// The model's names and their doc comments (parameters without values:
@@ -192,13 +208,14 @@ mod tests {
 
     const INFO: ModelInfo = ModelInfo {
         name: "Pendulum",
-        doc: "\n A pendulum.\n More.",
+        doc: "\n A pendulum.\n More.\n\n Another paragraph:\n\n     indented.\n",
         states: &["theta", "der(theta)"],
-        state_docs: &["Angle (rad).", "rate of `theta`"],
+        state_docs: &["Angle from the vertical\n(rad).\n\nSecond paragraph.", "rate of `theta`"],
         parameters: &["l"],
         parameter_docs: &["Length (m)."],
         outputs: &["energy"],
         output_docs: &[""],
+        declared_outputs: &["energy"],
         equations: 1,
         events: &[EventInfo {
             name: "swing",
@@ -221,8 +238,8 @@ mod tests {
         let text = describe(&INFO, Some(&|_| 2.5));
         assert_eq!(
             text,
-            "Pendulum: A pendulum.\n\
-             states:\n  theta          Angle (rad).\n  der(theta)     rate of `theta`\n\
+            "Pendulum: A pendulum.\n  More.\n\n  Another paragraph:\n\n      indented.\n\
+             states:\n  theta          Angle from the vertical (rad).\n  der(theta)     rate of `theta`\n\
              parameters:\n  l = 2.5        Length (m).\n\
              outputs:\n  energy\n\
              events:\n  swing, rising  Passes under the pivot.\n"
