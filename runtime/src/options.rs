@@ -60,7 +60,11 @@ pub enum Method {
     /// sums are compensated as DOPRI5's.
     Dop853,
     /// Radau IIA of order 5 for stiff problems (Hairer–Wanner's RADAU5),
-    /// with the generated Jacobian.
+    /// with the generated Jacobian. As radau5.f, it works to the tolerance
+    /// `0.1·rtol^(2/3)` and scales atol alike (see [`Options::rtol`]): at
+    /// rtol = atol = 1e-10, to 2.2e-8: a pendulum swinging from 2.5 rad is
+    /// 4.9e-9 off at t = 10, where `Dop853` at the same tolerance is 1.0e-9
+    /// off.
     Radau5,
     /// Steinebach's RODAS5P, a stiffly accurate Rosenbrock method of
     /// order 5(4), with the generated Jacobian and ∂f/∂t: one real
@@ -330,7 +334,16 @@ impl Options {
         Options { method, ..self.clone() }
     }
 
-    /// Relative tolerance of adaptive methods.
+    /// Relative tolerance of adaptive methods, the local error per step
+    /// they aim at, relative to each component's size.
+    ///
+    /// `Radau5` works to `0.1·rtol^(2/3)`, as Hairer's radau5.f does, and
+    /// scales `atol` by the same factor: at rtol = atol = 1e-10 it works to
+    /// 2.2e-8, and a pendulum swinging from 2.5 rad is 4.9e-9 off in its
+    /// angle at t = 10 where `Dop853` is 1.0e-9 off. With the default atol
+    /// (1e-9) kept, tightening rtol can loosen atol: at rtol 1e-12 RADAU5
+    /// works to an absolute 1e-6 and that pendulum ends 1.4e-7 off, worse
+    /// than at rtol 1e-10 (2.5e-8); give both, with [`Options::tolerance`].
     pub fn rtol(&self, rtol: f64) -> Options {
         Options { rtol, ..self.clone() }
     }

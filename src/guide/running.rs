@@ -10,7 +10,7 @@
 //! |---|---|
 //! | `Auto` (default) | not sure: DOPRI5 or DOP853, switching to RODAS5P (rtol ≥ 5e-5, or a large grid) or RADAU5 when the problem turns stiff |
 //! | `Dopri5`, `Dop853` | non-stiff problems; DOP853 below rtol 1e-7 |
-//! | `Radau5` | stiff problems and DAEs with a singular mass matrix |
+//! | `Radau5` | stiff problems and DAEs with a singular mass matrix; it works to 0.1·rtol^(2/3) and scales atol alike, as Hairer's radau5.f (rtol = atol = 1e-10: to 2.2e-8) |
 //! | `Rodas5P` | stiff problems at loose tolerances (rtol 1e-3 to 1e-4), large grids at any tolerance; index-1 DAEs in mass-matrix form |
 //! | `Taylor` | smooth problems at tight tolerances (orbits); every smooth explicit model has its tape, `unroll = [..]` makes it faster |
 //! | `TaylorFixed { order, step }` | the economic Taylor scheme of the course notes |
