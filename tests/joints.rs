@@ -4,6 +4,8 @@
 //! universal joint's pendulum swings about either cross axis as a compound
 //! pendulum, a body on a cylindrical joint falls along its axis spinning
 //! freely, and a body on a planar joint slides and turns in its plane.
+//! Every joint, spatial and planar, answers to the names the guide
+//! documents in both formulations, with the same values.
 
 use daegen::prelude::*;
 
@@ -248,6 +250,257 @@ fn a_body_on_a_planar_joint_slides_and_turns_in_its_plane() {
         for (name, value) in want {
             let got = joint_coordinates.at(t, name).unwrap();
             assert!((got - value).abs() <= 1e3 * tol, "t = {t}: {name} {got} against {value}");
+        }
+    }
+}
+
+// Every kind of joint between a carrier that spins about the vertical
+// (Ω = 0.7 rad/s, on a revolute joint at the origin) and a body hanging
+// d = (0, 0, −0.4) below the joint point P = (0.3, 0, 0) of the carrier,
+// started with a relative motion in each of the joint's coordinates. The
+// body's velocity follows from the joints: v = Ω e_z × P + v_slide + ω_b × d,
+// ω_b = Ω e_z + ω_rel (every attitude is the identity at the start).
+macro_rules! on_a_spinning_carrier {
+    ($global:ident, $recursive:ident, [$vx:expr, $vy:expr, $vz:expr], [$wx:expr, $wy:expr, $wz:expr],
+     |$carrier:ident, $body:ident| $joint:ident($($arguments:tt)*)) => {
+        on_a_spinning_carrier!(@one $global, (taylor = 0), [$vx, $vy, $vz], [$wx, $wy, $wz], |$carrier, $body| $joint($($arguments)*));
+        on_a_spinning_carrier!(@one $recursive, (scene = recursive, taylor = 0), [$vx, $vy, $vz], [$wx, $wy, $wz], |$carrier, $body| $joint($($arguments)*));
+    };
+    (@one $name:ident, ($($attr:tt)*), [$vx:expr, $vy:expr, $vz:expr], [$wx:expr, $wy:expr, $wz:expr],
+     |$carrier:ident, $body:ident| $joint:ident($($arguments:tt)*)) => {
+        #[dae_model($($attr)*)]
+        fn $name() {
+            let ground = ground();
+            let $carrier = spatial_body(
+                1.0,
+                vec3(0.1, 0.12, 0.2),
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0, 0.0],
+                [0.0, 0.0, 0.0],
+                [0.0, 0.0, 0.7],
+            );
+            let spin = revolute(ground, vec3(0.0, 0.0, 0.0), $carrier, vec3(0.0, 0.0, 0.0), vec3(0.0, 0.0, 1.0));
+            let $body = spatial_body(
+                0.5,
+                vec3(0.02, 0.03, 0.01),
+                [0.3, 0.0, -0.4],
+                [1.0, 0.0, 0.0, 0.0],
+                [$vx, $vy, $vz],
+                [$wx, $wy, $wz],
+            );
+            let joint = $joint($($arguments)*);
+            gravity(vec3(0.0, 0.0, -9.81));
+        }
+    };
+}
+
+// ω_rel = (1.2, 0, 0): ω_b × d = (0, 0.48, 0).
+on_a_spinning_carrier!(
+    revolute_global,
+    revolute_recursive,
+    [0.0, 0.69, 0.0],
+    [1.2, 0.0, 0.7],
+    |carrier, body| revolute(
+        carrier,
+        vec3(0.3, 0.0, 0.0),
+        body,
+        vec3(0.0, 0.0, 0.4),
+        vec3(1.0, 0.0, 0.0)
+    )
+);
+// A slide of 0.5 m/s along x.
+on_a_spinning_carrier!(
+    prismatic_global,
+    prismatic_recursive,
+    [0.5, 0.21, 0.0],
+    [0.0, 0.0, 0.7],
+    |carrier, body| prismatic(
+        carrier,
+        vec3(0.3, 0.0, 0.0),
+        body,
+        vec3(0.0, 0.0, 0.4),
+        vec3(1.0, 0.0, 0.0)
+    )
+);
+// Both.
+on_a_spinning_carrier!(
+    cylindrical_global,
+    cylindrical_recursive,
+    [0.5, 0.69, 0.0],
+    [1.2, 0.0, 0.7],
+    |carrier, body| cylindrical(
+        carrier,
+        vec3(0.3, 0.0, 0.0),
+        body,
+        vec3(0.0, 0.0, 0.4),
+        vec3(1.0, 0.0, 0.0)
+    )
+);
+// ω_rel = (1.2, −0.4, 0): ω_b × d = (0.16, 0.48, 0).
+on_a_spinning_carrier!(
+    universal_global,
+    universal_recursive,
+    [0.16, 0.69, 0.0],
+    [1.2, -0.4, 0.7],
+    |carrier, body| universal(
+        carrier,
+        vec3(0.3, 0.0, 0.0),
+        body,
+        vec3(0.0, 0.0, 0.4),
+        vec3(1.0, 0.0, 0.0),
+        vec3(0.0, 1.0, 0.0)
+    )
+);
+// Slides of (0.5, −0.3) in the carrier's xy-plane, ω_rel = (0, 0, 1.5).
+on_a_spinning_carrier!(
+    planar_global,
+    planar_recursive,
+    [0.5, -0.09, 0.0],
+    [0.0, 0.0, 2.2],
+    |carrier, body| planar(
+        carrier,
+        vec3(0.3, 0.0, 0.0),
+        body,
+        vec3(0.0, 0.0, 0.4),
+        vec3(0.0, 0.0, 1.0)
+    )
+);
+// ω_rel = (1, −0.5, 0.3): ω_b × d = (0.2, 0.4, 0).
+on_a_spinning_carrier!(
+    spherical_global,
+    spherical_recursive,
+    [0.2, 0.61, 0.0],
+    [1.0, -0.5, 1.0],
+    |carrier, body| spherical(carrier, vec3(0.3, 0.0, 0.0), body, vec3(0.0, 0.0, 0.4))
+);
+
+// In the plane: an arm hinged at the origin, started at 1 rad/s, a block
+// sliding along it at 0.5 m/s from 0.8 m out (its velocity
+// (0.5, 0.8) = slide + ω × r).
+in_both_formulations!(arm_and_block_global, arm_and_block_recursive, {
+    let ground = ground();
+    let arm = body(1.0, 1.0 / 12.0, [0.5, 0.0, 0.0], [0.0, 0.5, 1.0]);
+    let block = body(0.5, 0.01, [0.8, 0.0, 0.0], [0.5, 0.8, 1.0]);
+    let pin = revolute(ground, vec3(0.0, 0.0, 0.0), arm, vec3(-0.5, 0.0, 0.0));
+    let joint =
+        prismatic(arm, vec3(0.3, 0.0, 0.0), block, vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0));
+    gravity(vec3(0.0, -9.81, 0.0));
+});
+
+#[test]
+fn every_planar_joint_answers_to_its_documented_names_in_both_formulations() {
+    let global = tight::<ArmAndBlockGlobal>(1.0, 1e-11);
+    let recursive = tight::<ArmAndBlockRecursive>(1.0, 1e-11);
+    let mut names = Vec::new();
+    for joint in ["pin", "joint"] {
+        names.extend([format!("{joint}.q"), format!("der({joint}.q)")]);
+    }
+    for body in ["arm", "block"] {
+        for c in ["x", "y", "theta"] {
+            names.extend([format!("{body}.{c}"), format!("der({body}.{c})")]);
+        }
+    }
+    for name in &names {
+        for t in [0.0, 0.5, 1.0] {
+            let (a, b) = match (global.at(t, name), recursive.at(t, name)) {
+                (Ok(a), Ok(b)) => (a, b),
+                (a, b) => {
+                    panic!("`{name}` at {t}: {a:?} in body coordinates, {b:?} in joint coordinates")
+                }
+            };
+            assert!((a - b).abs() < 1e-8 * (1.0 + b.abs()), "`{name}` at {t}: {a} against {b}");
+        }
+    }
+}
+
+/// The names the guide documents for a spatial joint of `kind` named
+/// `joint`, with the rates of those that are second-order.
+fn documented_joint_names(kind: &str, joint: &str) -> Vec<String> {
+    let (coordinates, rates): (&[&str], bool) = match kind {
+        "revolute" | "prismatic" => (&["q"], true),
+        "cylindrical" => (&["q", "angle"], true),
+        "universal" => (&["q1", "q2"], true),
+        "planar" => (&["u", "v", "angle"], true),
+        _ => (&["q0", "q1", "q2", "q3", "wx", "wy", "wz"], false),
+    };
+    let mut names: Vec<String> = coordinates.iter().map(|c| format!("{joint}.{c}")).collect();
+    if rates {
+        names.extend(coordinates.iter().map(|c| format!("der({joint}.{c})")));
+    }
+    names
+}
+
+/// A spatial body's documented names.
+fn documented_body_names(body: &str) -> Vec<String> {
+    let mut names = Vec::new();
+    for c in ["x", "y", "z"] {
+        names.push(format!("{body}.{c}"));
+        names.push(format!("der({body}.{c})"));
+    }
+    for c in ["q0", "q1", "q2", "q3", "wx", "wy", "wz"] {
+        names.push(format!("{body}.{c}"));
+    }
+    names
+}
+
+#[test]
+fn every_joint_answers_to_its_documented_names_in_both_formulations() {
+    let scenes: [(&str, Solution, Solution); 6] = [
+        ("revolute", tight::<RevoluteGlobal>(1.5, 1e-11), tight::<RevoluteRecursive>(1.5, 1e-11)),
+        (
+            "prismatic",
+            tight::<PrismaticGlobal>(1.5, 1e-11),
+            tight::<PrismaticRecursive>(1.5, 1e-11),
+        ),
+        (
+            "cylindrical",
+            tight::<CylindricalGlobal>(1.5, 1e-11),
+            tight::<CylindricalRecursive>(1.5, 1e-11),
+        ),
+        (
+            "universal",
+            tight::<UniversalGlobal>(1.5, 1e-11),
+            tight::<UniversalRecursive>(1.5, 1e-11),
+        ),
+        ("planar", tight::<PlanarGlobal>(1.5, 1e-11), tight::<PlanarRecursive>(1.5, 1e-11)),
+        (
+            "spherical",
+            tight::<SphericalGlobal>(1.5, 1e-11),
+            tight::<SphericalRecursive>(1.5, 1e-11),
+        ),
+    ];
+    for (kind, global, recursive) in &scenes {
+        let mut names = documented_joint_names(kind, "joint");
+        names.extend(documented_joint_names("revolute", "spin"));
+        names.extend(documented_body_names("carrier"));
+        names.extend(documented_body_names("body"));
+        for name in &names {
+            // The global formulation reads a joint's angles in (−π, π].
+            let wraps = !name.starts_with("der(")
+                && (name.ends_with(".angle")
+                    || name.ends_with(".q1") && *kind == "universal"
+                    || name.ends_with(".q2") && *kind == "universal"
+                    || name == "spin.q"
+                    || name == "joint.q" && matches!(*kind, "revolute"));
+            for t in [0.0, 0.5, 1.0, 1.5] {
+                let (a, b) = match (global.at(t, name), recursive.at(t, name)) {
+                    (Ok(a), Ok(b)) => (a, b),
+                    (a, b) => panic!("{kind}: `{name}` at {t}: {a:?} in body coordinates, {b:?} in joint coordinates"),
+                };
+                let mut gap = a - b;
+                if wraps {
+                    gap -= (gap / std::f64::consts::TAU).round() * std::f64::consts::TAU;
+                }
+                assert!(
+                    gap.abs() < 1e-8 * (1.0 + b.abs()),
+                    "{kind}: `{name}` at {t}: {a} in body coordinates, {b} in joint coordinates"
+                );
+            }
+            // Every coordinate moves, so the comparison is not of zeros.
+            let span = (global.at(1.5, name).unwrap() - global.at(0.0, name).unwrap()).abs();
+            if name.starts_with("joint.") && !name.starts_with("joint.q0") {
+                assert!(span > 1e-3, "{kind}: `{name}` barely moves ({span:e})");
+            }
         }
     }
 }

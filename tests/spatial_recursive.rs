@@ -93,8 +93,9 @@ fn the_spatial_double_pendulum_matches_the_global_formulation() {
     assert_eq!(recursive.degrees_of_freedom(), Some(6));
     assert_eq!(global.degrees_of_freedom(), Some(6));
     let times = [0.0, 0.5, 1.0, 1.5, 2.0];
-    // Both bodies' 10 coordinates and 3 velocities, and the tip.
-    assert_eq!(same_values_by_name(&global, &recursive, &times, 1e-7), 2 * 13 + 3);
+    // Both bodies' 10 coordinates and 3 velocities, both joints' relative
+    // quaternions and rates, and the tip.
+    assert_eq!(same_values_by_name(&global, &recursive, &times, 1e-7), 2 * 13 + 2 * 7 + 3);
 }
 
 #[test]
@@ -137,9 +138,11 @@ fn the_spatial_four_bar_loop_matches_the_global_formulation() {
     );
     let times = [0.0, 0.5, 1.0, 1.5, 2.0];
     // Three bodies' coordinates and velocities, the two revolute joints'
-    // angles, the cut joint's three multipliers and the two outputs.
+    // angles and their rates, the two spherical joints' relative
+    // quaternions and rates (the cut one's from the bodies' in both), the
+    // cut joint's three multipliers and the two outputs.
     let shared = same_values_by_name(&global, &recursive, &times, 1e-7);
-    assert_eq!(shared, 3 * 13 + 2 + 3 + 2, "{:?}", recursive.names());
+    assert_eq!(shared, 3 * 13 + 2 * 2 + 2 * 7 + 3 + 2, "{:?}", recursive.names());
 }
 
 #[test]
@@ -158,7 +161,9 @@ fn the_seven_joint_arm_matches_the_global_formulation() {
         .into_iter()
         .filter(|n| recursive.names().contains(n) && !joints.contains(n))
         .collect();
-    assert_eq!(shared.len(), 7 * 13 + 3);
+    // The bodies' coordinates and velocities, the joints' rates and the
+    // hand.
+    assert_eq!(shared.len(), 7 * 13 + 7 + 3);
     assert_agree(&global, &recursive, &shared, &times, 1e-7);
     // The joint angles: read from the attitudes in (−π, π] by the global
     // formulation, integrated (unwrapped) by the recursive one.
@@ -226,7 +231,9 @@ fn a_free_floating_pair_keeps_its_momenta_and_energy() {
     }
     let global = tight::<TumblingPair>(5.0, tol);
     let times = [0.0, 1.0, 2.5, 5.0];
-    assert_eq!(same_values_by_name(&global, &sol, &times, 1e-7), 2 * 13);
+    // Both bodies' coordinates and velocities, and the joint's relative
+    // quaternion and rates.
+    assert_eq!(same_values_by_name(&global, &sol, &times, 1e-7), 2 * 13 + 7);
 }
 
 #[test]
@@ -301,7 +308,9 @@ fn joints_the_tree_reaches_from_their_second_frame_match_the_global_formulation(
     let recursive = tight::<WrittenBackwardsInJointCoordinates>(2.0, tol);
     assert!(global.initial_corrections().is_empty(), "{:?}", global.initial_corrections());
     let times = [0.0, 0.5, 1.0, 2.0];
-    assert_eq!(same_values_by_name(&global, &recursive, &times, 1e-7), 2 * 13 + 2);
+    // Both bodies' coordinates and velocities, and the joints' coordinates
+    // and rates.
+    assert_eq!(same_values_by_name(&global, &recursive, &times, 1e-7), 2 * 13 + 2 * 2);
 }
 
 /// The rod hinged about world x, drawn hanging straight down, started at

@@ -204,8 +204,12 @@ pub fn fmi_variables<M: Model>(model: &M) -> Vec<Variable> {
         out.push(v);
     }
     for (k, name) in info.outputs.iter().enumerate().filter(|(_, o)| !info.inputs.contains(o)) {
+        // Only the model's own outputs are outputs; the rest stay
+        // readable as local variables.
         let mut v = Variable::new(*name, out.len(), output_doc(name), Role::Output(k));
-        v.causality = Causality::Output;
+        if info.declared_outputs.contains(name) {
+            v.causality = Causality::Output;
+        }
         out.push(v);
     }
     for (k, name) in info.algebraics.iter().enumerate() {
@@ -300,6 +304,7 @@ mod tests {
             parameter_docs: &["Gravity."],
             outputs: &[],
             output_docs: &[],
+            declared_outputs: &[],
             equations: 1,
             events: &[daegen_runtime::EventInfo {
                 name: "bounce",

@@ -94,3 +94,36 @@ fn the_descriptions_of_a_bouncing_ball() {
         model_description(&ball, FmiVersion::V2, "ball", Capabilities::EXPORTED)
     );
 }
+
+/// A flywheel on a torsion spring, of library parts: the structure
+/// eliminates the spring's angle and the flanges' variables, which stay
+/// readable by name.
+#[dae_model]
+fn torsion() {
+    let rotor = inertia(j = 2.0, phi0 = 1.0);
+    let spring = spring(c = 8.0);
+    let housing = fixed();
+    connect(rotor.flange_a, spring.flange_a);
+    connect(spring.flange_b, housing.flange);
+    /// The spring's energy (J).
+    let energy = output(4.0 * spring.phi_rel * spring.phi_rel);
+}
+
+#[test]
+fn only_the_model_s_own_outputs_are_outputs() {
+    let xml =
+        model_description(&Torsion::default(), FmiVersion::V3, "torsion", Capabilities::EXPORTED);
+    let causality = |name: &str| {
+        let at = xml.find(&format!("name=\"{name}\"")).unwrap_or_else(|| panic!("{name}: {xml}"));
+        xml[at..].split("causality=\"").nth(1).unwrap().split('"').next().unwrap().to_string()
+    };
+    assert_eq!(causality("energy"), "output");
+    for eliminated in ["spring.phi_rel", "spring.tau", "rotor.flange_a.tau", "housing.flange.tau"] {
+        assert_eq!(causality(eliminated), "local", "{eliminated}");
+    }
+    insta::assert_snapshot!("fmi3_torsion", xml);
+    insta::assert_snapshot!(
+        "fmi2_torsion",
+        model_description(&Torsion::default(), FmiVersion::V2, "torsion", Capabilities::EXPORTED)
+    );
+}

@@ -190,6 +190,11 @@ pub struct ModelInfo {
     pub outputs: &'static [&'static str],
     /// Each output's doc comment.
     pub output_docs: &'static [&'static str],
+    /// The outputs the model declares at its own level, the model's
+    /// outputs to the world (an FMU's); the rest of [`ModelInfo::outputs`]
+    /// are values read by name: its parts' outputs, variables the
+    /// structure eliminated, a scene's coordinates, inputs.
+    pub declared_outputs: &'static [&'static str],
     /// Number of equations the user wrote (after unrolling loops).
     pub equations: usize,
     /// Events (`let e = event(g)`), in declaration order.
@@ -241,6 +246,7 @@ impl ModelInfo {
             parameter_docs: &[],
             outputs: &[],
             output_docs: &[],
+            declared_outputs: &[],
             equations,
             events: &[],
             clocks: &[],

@@ -54,7 +54,10 @@
 //! It builds the crate's `cdylib` targets (every other argument goes to
 //! `cargo build`: `-p`, `--example`, `--target`, …) and writes, for each,
 //! `target/fmu/tank.fmu` (FMI 3.0) and `target/fmu/tank_fmi2.fmu`
-//! (FMI 2.0), or into `--out DIR`. An FMU archive holds one
+//! (FMI 2.0), or into `--out DIR`. `target/` is cargo's target
+//! directory: with `CARGO_TARGET_DIR` set (or `build.target-dir` in a
+//! cargo configuration), the archives go to `fmu/` under that folder
+//! instead; the command's last line says where they went. An FMU archive holds one
 //! `modelDescription.xml`, hence one version each; both hold the same
 //! library, which exports every function of both standards. The model
 //! identifier, and the library's name in `binaries/<platform>/`, is the
@@ -74,7 +77,7 @@
 //! | next | each rate not itself a state: `der(x)`, `der(x,2)` | local, calculated, `derivative` of its state |
 //! | next | the parameters, with this build's defaults as start values | parameter, tunable |
 //! | next | the inputs (`input(..)`) | input, continuous |
-//! | next | the outputs, then the algebraic variables (`lambda`, `motor.emf.i`) | output / local, calculated |
+//! | next | the values read by name: the model's own outputs (`let e = output(..)` at its level, causality output), then every other (a part's outputs, variables the structure eliminated, a scene's coordinates: local), then the algebraic variables (`lambda`, `motor.emf.i`: local) | output / local, calculated |
 //! | next | the event functions, by the event's name | local; FMI 3.0's `EventIndicator`s |
 //! | last two | `solver.method` (string), `solver.tolerance` | parameter, fixed |
 //!

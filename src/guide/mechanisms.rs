@@ -114,8 +114,10 @@
 //! | `planar` | `j.u`, `j.v` (slides in the plane), `j.angle` |
 //! | `spherical` | `j.q0` … `j.q3` (relative quaternion), `j.wx` … `j.wz` (relative rates, b's axes) |
 //!
-//! and the bodies' coordinates outputs, so both formulations answer to the
-//! same names. For chains and trees of more than a few bodies prefer it:
+//! and the bodies' coordinates outputs; in body coordinates the joints'
+//! coordinates are outputs of the bodies' positions and attitudes, with
+//! the rates `der(j.q)`, … of all but the spherical joint's, so both
+//! formulations answer to the same names. For chains and trees of more than a few bodies prefer it:
 //! a seven-joint arm has 14 states instead of 91 plus 35 multipliers, takes
 //! 14× less time a step and compiles (release) in about a second against
 //! six minutes (`bench/results/dae.md`). A scene in body coordinates whose

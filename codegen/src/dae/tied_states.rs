@@ -422,7 +422,8 @@ fn replace_state(ir: &mut ModelIr, state: SymbolId, value: Id, top: u32) -> crat
     ir.inits.retain(|i| !replace.contains_key(&i.target));
     let Some(k) = ir.states.iter().position(|s| s.symbol == state) else { return Ok(()) };
     let decl = ir.states.remove(k);
-    ir.outputs.push(Output { name: decl.name, value, doc: decl.doc, origin: decl.origin });
+    let (name, doc, origin) = (decl.name, decl.doc, decl.origin);
+    ir.outputs.push(Output { name, value, doc, origin, declared: false });
     Ok(())
 }
 

@@ -123,6 +123,7 @@ pub(crate) fn batch_items(
                 parameter_docs: &[],
                 outputs: &[],
                 output_docs: &[],
+                declared_outputs: &[],
                 equations: #nl_lit,
                 events: &[],
                 clocks: &[],

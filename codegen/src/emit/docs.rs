@@ -214,6 +214,7 @@ pub(crate) fn info_with(
     let param_docs: Vec<&str> = ir.params.iter().map(|p| p.doc.as_str()).collect();
     let outputs: Vec<&str> = ir.outputs.iter().map(|o| o.name.as_str()).collect();
     let output_docs: Vec<&str> = ir.outputs.iter().map(|o| o.doc.as_str()).collect();
+    let declared_outputs = ir.outputs.iter().filter(|o| o.declared).map(|o| o.name.as_str());
     let state_docs: Vec<String> = states.iter().map(|s| value_doc(ir, s)).collect();
     let algebraic_docs: Vec<String> = algebraics.iter().map(|s| value_doc(ir, s)).collect();
     let equations = index(ir.equations.len());
@@ -260,6 +261,7 @@ pub(crate) fn info_with(
             state_docs: &[#(#state_docs),*],
             outputs: &[#(#outputs),*],
             output_docs: &[#(#output_docs),*],
+            declared_outputs: &[#(#declared_outputs),*],
             equations: #equations,
             events: &[#(#events),*],
             clocks: &[#(#clocks),*],

@@ -159,6 +159,7 @@ pub fn emit_mass_form(
                 name: #name_str, doc: #doc, states: &[#(#names),*], state_docs: &[], parameters: &[], parameter_docs: &[],
                 outputs: <#name as ::daegen::Model>::INFO.outputs,
                 output_docs: <#name as ::daegen::Model>::INFO.output_docs,
+                declared_outputs: <#name as ::daegen::Model>::INFO.declared_outputs,
                 equations: #n, events: &[], clocks: &[], discrete: &[], inputs: &[], algebraics: &[], algebraic_docs: &[],
                 structure: <#name as ::daegen::Model>::INFO.structure,
                 components: <#name as ::daegen::Model>::INFO.components,

@@ -363,7 +363,7 @@ pub fn stub(ir: &ModelIr) -> TokenStream {
             const INDEX: usize = 0;
             const INFO: ::daegen::ModelInfo = ::daegen::ModelInfo {
                 name: #name_str, doc: "", states: &[], state_docs: &[], parameters: &[], parameter_docs: &[],
-                outputs: &[], output_docs: &[], equations: 0, events: &[], clocks: &[], discrete: &[], inputs: &[], algebraics: &[], algebraic_docs: &[],
+                outputs: &[], output_docs: &[], declared_outputs: &[], equations: 0, events: &[], clocks: &[], discrete: &[], inputs: &[], algebraics: &[], algebraic_docs: &[],
                 structure: ::daegen::StructureInfo::NONE,
                 components: &[],
             };

@@ -76,6 +76,11 @@ pub struct Output {
     pub doc: String,
     /// The declaration, for errors.
     pub origin: TokenStream,
+    /// Declared by `output(..)` at the model's own level: an output of
+    /// the model (of its FMU). The others (a part's outputs, variables
+    /// the structure eliminated, a scene's coordinates) are values read
+    /// by name.
+    pub declared: bool,
 }
 
 /// Which sign changes of an event function fire it.

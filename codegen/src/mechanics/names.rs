@@ -99,26 +99,55 @@ impl Lower<'_, Scene> {
         }
     }
 
-    /// `joint.q` of a spatial revolute or prismatic joint.
-    pub(crate) fn spatial_joint_coordinate(
+    /// A spatial joint's coordinates in body coordinates, named as joint
+    /// coordinates name them (`hinge.q`, `cross.q1`, `ball.q0`, …), each
+    /// with its rate `der(hinge.q)` by the chain rule through the bodies'
+    /// positions and attitudes, but a spherical joint's, whose relative
+    /// quaternion and rates are first-order.
+    pub(crate) fn spatial_joint_coordinates(
         &mut self,
-        name: String,
-        q: Id,
+        name: &str,
         kind: &str,
-        origin: &TokenStream,
+        frames: [Frame; 2],
+        coordinates: &[(&'static str, Id)],
+        origin: &impl quote::ToTokens,
     ) {
-        let doc = if kind == "revolute" {
-            "rotation of the second body relative to the first about the axis since the start (rad)"
-        } else {
-            "slide of the second body's point from the first's along the axis (m)"
-        };
-        self.push_output(format!("{name}.q"), q, doc, origin);
-    }
-
-    /// `name.angle`: a cylindrical joint's rotation about its axis.
-    pub(crate) fn spatial_joint_angle(&mut self, name: String, angle: Id, origin: &TokenStream) {
-        let doc = "rotation of the second body relative to the first about the axis since the start (rad)";
-        self.push_output(format!("{name}.angle"), angle, doc, origin);
+        let origin = origin.to_token_stream();
+        let mut symbols: Vec<SymbolId> = Vec::new();
+        for frame in frames {
+            if let Frame::Body(b) = frame {
+                let body = &self.scene.spatial[b];
+                symbols.extend(body.position);
+                symbols.extend(body.quaternion);
+            }
+        }
+        for &(suffix, value) in coordinates {
+            let doc = spatial_joint_doc(kind, suffix);
+            self.push_output(format!("{name}.{suffix}"), value, doc, &origin);
+            if kind == "spherical" {
+                continue;
+            }
+            let rate = (|| -> crate::Result<Id> {
+                let g = &mut self.g;
+                let mut terms = Vec::new();
+                for &s in &symbols {
+                    let d = g.partial(value, s)?;
+                    if g.as_number(d).is_some_and(|v| v.is_zero()) {
+                        continue;
+                    }
+                    let rate = g.derivative(s, 1)?;
+                    terms.push(g.mul(d, rate)?);
+                }
+                g.sum(&terms)
+            })();
+            match rate {
+                Ok(rate) => {
+                    let doc = format!("rate of `{name}.{suffix}`");
+                    self.push_output(format!("der({name}.{suffix})"), rate, &doc, &origin);
+                }
+                Err(e) => return self.cx.error_at(&origin, e),
+            }
+        }
     }
 
     /// `[x, y, θ]` of a frame: the body's coordinates, or zeros for the ground.
@@ -134,7 +163,8 @@ impl Lower<'_, Scene> {
     }
 
     fn push_output(&mut self, name: String, value: Id, doc: &str, origin: &TokenStream) {
-        self.outputs.push(Output { name, value, doc: doc.to_string(), origin: origin.clone() });
+        let (doc, origin) = (doc.to_string(), origin.clone());
+        self.outputs.push(Output { name, value, doc, origin, declared: false });
     }
 }
 
@@ -145,6 +175,34 @@ pub(crate) fn body_coordinate_doc(coordinate: &str) -> &'static str {
         "theta" => "angle of the body (rad)",
         "q0" | "q1" | "q2" | "q3" => "attitude quaternion, body to world (q0 = cos(θ/2))",
         _ => "angular velocity, body axes (rad/s)",
+    }
+}
+
+/// The coordinates of each kind of spatial joint, by name, as the
+/// recursive formulation's states and the global formulation's outputs
+/// both call them.
+pub(crate) const SPATIAL_JOINT_COORDINATES: [(&str, &[&str]); 6] = [
+    ("revolute", &["q"]),
+    ("prismatic", &["q"]),
+    ("cylindrical", &["q", "angle"]),
+    ("universal", &["q1", "q2"]),
+    ("planar", &["u", "v", "angle"]),
+    ("spherical", &["q0", "q1", "q2", "q3", "wx", "wy", "wz"]),
+];
+
+/// What coordinate `suffix` of a spatial joint of `kind` is.
+pub(crate) fn spatial_joint_doc(kind: &str, suffix: &str) -> &'static str {
+    match (kind, suffix) {
+        ("revolute", _) | (_, "angle") => {
+            "rotation of the second body relative to the first about the axis since the start (rad)"
+        }
+        ("universal", "q1") => "rotation about the axis in the first body since the start (rad)",
+        ("universal", "q2") => "rotation about the axis in the second body since the start (rad)",
+        ("planar", "u") => "slide of the second body's point from the first's along n × e_k, e_k the axis of the first body least aligned with the normal n, normalised (m)",
+        ("planar", "v") => "slide of the second body's point from the first's along n × u, normalised (m)",
+        ("spherical", "wx" | "wy" | "wz") => "angular velocity of the second body relative to the first, second body's axes (rad/s)",
+        ("spherical", _) => "relative attitude quaternion since the start, second body's axes (q0 = cos(θ/2))",
+        _ => "slide of the second body's point from the first's along the axis (m)",
     }
 }
 

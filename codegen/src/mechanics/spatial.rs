@@ -35,7 +35,8 @@
 //! two dot-2 constraints).
 
 use super::algebra::{
-    add3, cross3, dot3, mat_t_vec, mat_vec, quaternion_rates, rotation, scale3, sub3, Mat3, Vec3,
+    add3, conjugate, cross3, dot3, exact_where_rounded, mat_t_vec, mat_vec, quaternion_product,
+    quaternion_rates, rotation, scale3, sub3, Mat3, Vec3,
 };
 use super::Scene;
 use super::{SpatialBody, SpatialLoad};
@@ -258,6 +259,29 @@ impl Lower<'_, Scene> {
         }
     }
 
+    /// A frame's attitude quaternion now and at the start, and its
+    /// angular velocity in its own axes (the ground's: identity, zero).
+    fn attitude(&mut self, frame: crate::mechanics::Frame) -> ([Id; 4], [Id; 4], Vec3) {
+        let (zero, one) = (self.g.zero(), self.g.one());
+        match frame {
+            crate::mechanics::Frame::Ground => {
+                ([one, zero, zero, zero], [one, zero, zero, zero], [zero; 3])
+            }
+            crate::mechanics::Frame::Body(b) => {
+                let body = self.scene.spatial[b].clone();
+                let start = |s: SymbolId| {
+                    self.states.iter().find(|d| d.symbol == s).map_or(zero, |d| d.init)
+                };
+                let q0 = body.quaternion.map(start);
+                (
+                    body.quaternion.map(|s| self.g.symbol_node(s)),
+                    q0,
+                    body.rates.map(|s| self.g.symbol_node(s)),
+                )
+            }
+        }
+    }
+
     /// A 3-vector argument.
     fn vec3_arg(&mut self, e: &Expr, what: &str) -> Option<Vec3> {
         let t = self.tensor(e)?;
@@ -371,9 +395,10 @@ impl Lower<'_, Scene> {
             _ => None,
         };
         let axis_values = extra.map(|u| u.map(|x| self.numeric(x)));
-        // The rows, and the joint's coordinates (revolute, prismatic and
-        // cylindrical).
-        let rows = (|| -> crate::Result<(Vec<Id>, Option<Id>, Option<Id>)> {
+        let attitudes = [self.attitude(a), self.attitude(b)];
+        // The rows, and the joint's coordinates as expressions of the
+        // bodies' (named as joint coordinates name them).
+        let rows = (|| -> crate::Result<(Vec<Id>, Vec<(&'static str, Id)>)> {
             let (pa, pb, gap) = self.attachment_gap([a, b], [sa, sb])?;
             let g = &mut self.g;
             let mut rows = Vec::with_capacity(6);
@@ -449,8 +474,7 @@ impl Lower<'_, Scene> {
                 let twice_cos = g.sub(trace, one)?;
                 g.atan2(twice_sin, twice_cos)
             };
-            let mut coordinate = None;
-            let mut angle = None;
+            let mut coordinates = Vec::new();
             match kind {
                 "universal" => {
                     let (ua, ub) =
@@ -459,21 +483,66 @@ impl Lower<'_, Scene> {
                     let ua_world = mat_vec(g, &pa.rot, ua)?;
                     let ub_world = mat_vec(g, &pb.rot, ub)?;
                     rows.push(dot3(g, ua_world, ub_world)?);
+                    // D = R_u(q1) R_v(q2), v = C0 u_b the second axis at
+                    // the start in a's axes: in the frame (u, v, u × v),
+                    // R_x(q1) R_y(q2), whose entries give both angles.
+                    let u = unit(g, ua)?;
+                    let ub_world0 = mat_vec(g, &pb.rot0, ub)?;
+                    let v = mat_t_vec(g, &pa.rot0, ub_world0)?;
+                    let v = unit(g, v)?;
+                    let w = cross3(g, u, v)?;
+                    let d = relative(g)?;
+                    let (dv, du, dw) = (mat_vec(g, &d, v)?, mat_vec(g, &d, u)?, mat_vec(g, &d, w)?);
+                    let (s1, c1) = (dot3(g, w, dv)?, dot3(g, v, dv)?);
+                    let (s2, c2) = (dot3(g, u, dw)?, dot3(g, u, du)?);
+                    coordinates.push(("q1", g.atan2(s1, c1)?));
+                    coordinates.push(("q2", g.atan2(s2, c2)?));
                 }
                 "cylindrical" => {
                     let u = extra.unwrap_or([g.zero(); 3]);
                     on_line(g, u, &mut rows)?;
                     axis_kept(g, u, &mut rows)?;
-                    coordinate = Some(slide(g, u)?);
-                    angle = Some(turn(g, u)?);
+                    coordinates.push(("q", slide(g, u)?));
+                    coordinates.push(("angle", turn(g, u)?));
                 }
                 "planar" => {
                     let n = extra.unwrap_or([g.zero(); 3]);
                     let n_world = mat_vec(g, &pa.rot, n)?;
                     rows.push(dot3(g, n_world, gap)?);
                     axis_kept(g, n, &mut rows)?;
+                    // The slides along the plane's two unit directions,
+                    // in a's axes, as joint coordinates choose them.
+                    let [n1, n2] = normals(g, n, axis_values.unwrap_or([0.0, 0.0, 1.0]))?;
+                    let gap_in_a = mat_t_vec(g, &pa.rot, gap)?;
+                    let e1 = unit(g, n1)?;
+                    coordinates.push(("u", dot3(g, gap_in_a, e1)?));
+                    let e2 = unit(g, n2)?;
+                    coordinates.push(("v", dot3(g, gap_in_a, e2)?));
+                    coordinates.push(("angle", turn(g, n)?));
                 }
-                "spherical" => rows.extend(gap),
+                "spherical" => {
+                    rows.extend(gap);
+                    // R_aᵀ R_b = C0 R(q): q = c0* ⊗ q_a* ⊗ q_b, c0 = q_a0* ⊗
+                    // q_b0; the relative rates ω_b − R_bᵀ R_a ω_a in b's
+                    // axes.
+                    let [(qa, qa0, wa), (qb, qb0, wb)] = attitudes;
+                    let qa0_conjugate = conjugate(g, qa0)?;
+                    let c0 = quaternion_product(g, qa0_conjugate, qb0)?;
+                    let c0 = exact_where_rounded(g, c0)?;
+                    let c0_conjugate = conjugate(g, c0)?;
+                    let qa_conjugate = conjugate(g, qa)?;
+                    let q = quaternion_product(g, qa_conjugate, qb)?;
+                    let q = quaternion_product(g, c0_conjugate, q)?;
+                    for (k, c) in ["q0", "q1", "q2", "q3"].into_iter().enumerate() {
+                        coordinates.push((c, q[k]));
+                    }
+                    let wa_world = mat_vec(g, &pa.rot, wa)?;
+                    let wa_in_b = mat_t_vec(g, &pb.rot, wa_world)?;
+                    let w = sub3(g, wb, wa_in_b)?;
+                    for (k, c) in ["wx", "wy", "wz"].into_iter().enumerate() {
+                        coordinates.push((c, w[k]));
+                    }
+                }
                 "fixed" => {
                     rows.extend(gap);
                     rows.extend(attitude(g)?);
@@ -487,20 +556,20 @@ impl Lower<'_, Scene> {
                 "revolute" => {
                     let u = extra.unwrap_or([g.zero(); 3]);
                     rows.extend(gap);
-                    coordinate = Some(turn(g, u)?);
+                    coordinates.push(("q", turn(g, u)?));
                     axis_kept(g, u, &mut rows)?;
                 }
                 _ => {
                     let u = extra.unwrap_or([g.zero(); 3]);
                     on_line(g, u, &mut rows)?;
                     rows.extend(attitude(g)?);
-                    coordinate = Some(slide(g, u)?);
+                    coordinates.push(("q", slide(g, u)?));
                 }
             }
-            Ok((rows, coordinate, angle))
+            Ok((rows, coordinates))
         })();
         match rows {
-            Ok((rows, coordinate, angle)) => {
+            Ok((rows, coordinates)) => {
                 // A Cardan joint's cross axes are perpendicular: other axes
                 // are a mistake the dot-1 row would repair by turning a body.
                 if kind == "universal" {
@@ -528,14 +597,9 @@ impl Lower<'_, Scene> {
                     algebraics,
                     rows,
                 });
-                if let (Some(q), Some((joint, ..))) = (coordinate, self.scene.joint_rows.last()) {
+                if let Some((joint, ..)) = self.scene.joint_rows.last() {
                     let joint = joint.clone();
-                    self.spatial_joint_coordinate(joint, q, kind, &e.to_token_stream());
-                }
-                // A cylindrical joint turns as well as it slides.
-                if let (Some(q), Some((joint, ..))) = (angle, self.scene.joint_rows.last()) {
-                    let joint = joint.clone();
-                    self.spatial_joint_angle(joint, q, &e.to_token_stream());
+                    self.spatial_joint_coordinates(&joint, kind, [a, b], &coordinates, e);
                 }
             }
             Err(err) => self.cx.error_at(e, err),

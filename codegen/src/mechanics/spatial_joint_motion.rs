@@ -10,6 +10,7 @@ use super::algebra::{
     add3, axis_angle, conjugate, cross3, dot3, exact_where_rounded, mat_mul, mat_t_vec, mat_vec,
     quaternion_product, rodrigues, rotation, scale3, sub3, unit3, Mat3, Vec3,
 };
+use super::names::spatial_joint_doc;
 use super::unsupported;
 use super::Scene;
 use super::{Frame, SpatialJointRecord};
@@ -147,8 +148,6 @@ impl Lower<'_, Scene> {
             let u = mat_vec(g, &ra0, u_in_a)?;
             dot3(g, v, u)
         };
-        let turn_doc = "rotation of the second body relative to the first about the axis since the start (rad)";
-        let slide_doc = "slide of the second body's point from the first's along the axis (m)";
         let axis = match rec.axis {
             Some(u) => unit3(g, u)?,
             None => [zero; 3],
@@ -170,7 +169,7 @@ impl Lower<'_, Scene> {
         let (quaternion, rot, offset) = match rec.kind {
             "revolute" => {
                 let rate = along(g, w_rel, axis)?;
-                let q = coordinate(g, "q", zero, rate, turn_doc)?;
+                let q = coordinate(g, "q", zero, rate, spatial_joint_doc(rec.kind, "q"))?;
                 columns.push(turn_column(q));
                 let (quaternion, rot) = turned(g, q.0)?;
                 (quaternion, rot, [zero; 3])
@@ -178,17 +177,20 @@ impl Lower<'_, Scene> {
             "prismatic" => {
                 let s0 = dot3(g, gap0_in_a, axis)?;
                 let rate = along(g, v_rel, axis)?;
-                let (q, speed, acceleration) = coordinate(g, "q", s0, rate, slide_doc)?;
+                let doc = spatial_joint_doc(rec.kind, "q");
+                let (q, speed, acceleration) = coordinate(g, "q", s0, rate, doc)?;
                 columns.push(Column { axis: Axis::Slide { axis }, speed, acceleration });
                 (qc0, c0, scale3(g, q, axis)?)
             }
             "cylindrical" => {
                 let s0 = dot3(g, gap0_in_a, axis)?;
                 let rate = along(g, v_rel, axis)?;
-                let (q, speed, acceleration) = coordinate(g, "q", s0, rate, slide_doc)?;
+                let doc = spatial_joint_doc(rec.kind, "q");
+                let (q, speed, acceleration) = coordinate(g, "q", s0, rate, doc)?;
                 columns.push(Column { axis: Axis::Slide { axis }, speed, acceleration });
                 let rate = along(g, w_rel, axis)?;
-                let angle = coordinate(g, "angle", zero, rate, turn_doc)?;
+                let angle =
+                    coordinate(g, "angle", zero, rate, spatial_joint_doc(rec.kind, "angle"))?;
                 columns.push(turn_column(angle));
                 let (quaternion, rot) = turned(g, angle.0)?;
                 (quaternion, rot, scale3(g, q, axis)?)
@@ -199,7 +201,7 @@ impl Lower<'_, Scene> {
                     None => [zero; 3],
                 };
                 let rate = along(g, w_rel, axis)?;
-                let doc = "rotation about the axis in the first body since the start (rad)";
+                let doc = spatial_joint_doc(rec.kind, "q1");
                 let (q1, speed, acceleration) = coordinate(g, "q1", zero, rate, doc)?;
                 columns.push(Column {
                     axis: Axis::Turn { axis, in_b: false, fixed_in_b: false },
@@ -208,7 +210,7 @@ impl Lower<'_, Scene> {
                 });
                 let ub_world = mat_vec(g, &rb0, ub)?;
                 let rate = dot3(g, w_rel, ub_world)?;
-                let doc = "rotation about the axis in the second body since the start (rad)";
+                let doc = spatial_joint_doc(rec.kind, "q2");
                 let (q2, speed, acceleration) = coordinate(g, "q2", zero, rate, doc)?;
                 columns.push(Column {
                     axis: Axis::Turn { axis: ub, in_b: true, fixed_in_b: true },
@@ -232,19 +234,15 @@ impl Lower<'_, Scene> {
                 for (e, suffix) in [(e1, "u"), (e2, "v")] {
                     let s0 = dot3(g, gap0_in_a, e)?;
                     let rate = along(g, v_rel, e)?;
-                    let direction = if suffix == "u" {
-                        "n × e_k, e_k the axis of the first body least aligned with the normal n"
-                    } else {
-                        "n × u"
-                    };
-                    let doc = format!("slide of the second body's point from the first's along {direction}, normalised (m)");
-                    let (q, speed, acceleration) = coordinate(g, suffix, s0, rate, &doc)?;
+                    let doc = spatial_joint_doc(rec.kind, suffix);
+                    let (q, speed, acceleration) = coordinate(g, suffix, s0, rate, doc)?;
                     columns.push(Column { axis: Axis::Slide { axis: e }, speed, acceleration });
                     let step = scale3(g, q, e)?;
                     offset = add3(g, offset, step)?;
                 }
                 let rate = along(g, w_rel, axis)?;
-                let angle = coordinate(g, "angle", zero, rate, turn_doc)?;
+                let angle =
+                    coordinate(g, "angle", zero, rate, spatial_joint_doc(rec.kind, "angle"))?;
                 columns.push(turn_column(angle));
                 let (quaternion, rot) = turned(g, angle.0)?;
                 (quaternion, rot, offset)
@@ -258,8 +256,8 @@ impl Lower<'_, Scene> {
                     let symbol = g.as_symbol(q[k]).ok_or_else(|| unsupported("a quaternion"))?;
                     qs.push(symbol);
                     let init = if k == 0 { one } else { zero };
-                    let doc = "relative attitude quaternion since the start, second body's axes (q0 = cos(θ/2))";
-                    states.push(NewState { name: full, symbol, init, doc: doc.into(), rate: None });
+                    let doc = spatial_joint_doc(rec.kind, c).to_string();
+                    states.push(NewState { name: full, symbol, init, doc, rate: None });
                 }
                 let w_in_b = mat_t_vec(g, &rb0, w_rel)?;
                 let mut ws = Vec::with_capacity(3);
@@ -268,14 +266,8 @@ impl Lower<'_, Scene> {
                     let node = g.state(&full)?;
                     let symbol = g.as_symbol(node).ok_or_else(|| unsupported("a joint rate"))?;
                     ws.push(symbol);
-                    let doc = "angular velocity of the second body relative to the first, second body's axes (rad/s)";
-                    states.push(NewState {
-                        name: full,
-                        symbol,
-                        init: w_in_b[k],
-                        doc: doc.into(),
-                        rate: None,
-                    });
+                    let doc = spatial_joint_doc(rec.kind, c).to_string();
+                    states.push(NewState { name: full, symbol, init: w_in_b[k], doc, rate: None });
                     let mut e = [zero; 3];
                     e[k] = one;
                     columns.push(Column {

@@ -471,8 +471,12 @@ impl Lower<'_, Scene> {
             }
             drop_equations.extend(rec.equations.clone());
             drop_algebraics.extend(rec.algebraics.clone());
-            drop_outputs.insert(format!("{}.q", rec.name));
-            drop_outputs.insert(format!("{}.angle", rec.name));
+            // Its coordinates, now states, with their rates.
+            let names = super::names::SPATIAL_JOINT_COORDINATES.iter();
+            for suffix in names.filter(|(k, _)| *k == rec.kind).flat_map(|(_, s)| s.iter()) {
+                drop_outputs.insert(format!("{}.{suffix}", rec.name));
+                drop_outputs.insert(format!("der({}.{suffix})", rec.name));
+            }
         }
         let mut body_symbols = Vec::new();
         let mut norms = Vec::new();
@@ -808,6 +812,7 @@ impl Lower<'_, Scene> {
                     value,
                     doc,
                     origin: origin.clone(),
+                    declared: false,
                 });
             }
         }

@@ -40,7 +40,7 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
         Ok(made) => {
-            for line in made {
+            for line in &made {
                 println!("{line}");
             }
             ExitCode::SUCCESS
@@ -86,9 +86,15 @@ fn build(args: &[String], out: Option<PathBuf>) -> Result<Vec<String>, String> {
     if !output.status.success() {
         return Err("cargo build failed".to_string());
     }
-    let dir = match out {
-        Some(dir) => dir,
-        None => target_directory(args)?.join("fmu"),
+    let (dir, whence) = match out {
+        Some(dir) => (dir, "--out"),
+        None => {
+            let whence = match std::env::var_os("CARGO_TARGET_DIR") {
+                Some(_) => "fmu/ under CARGO_TARGET_DIR, cargo's target directory; --out DIR writes elsewhere",
+                None => "fmu/ under cargo's target directory; --out DIR writes elsewhere",
+            };
+            (target_directory(args)?.join("fmu"), whence)
+        }
     };
     let mut made = Vec::new();
     for line in String::from_utf8_lossy(&output.stdout).lines() {
@@ -110,6 +116,10 @@ fn build(args: &[String], out: Option<PathBuf>) -> Result<Vec<String>, String> {
             made.push(format!("{} (FMI 3.0)", archives.fmi3.display()));
             made.push(format!("{} (FMI 2.0)", archives.fmi2.display()));
         }
+    }
+    if !made.is_empty() {
+        let dir = std::fs::canonicalize(&dir).unwrap_or(dir);
+        made.push(format!("{} FMUs written to {} ({whence})", made.len(), dir.display()));
     }
     Ok(made)
 }

@@ -474,7 +474,8 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 let Some(value) = self.value(&call.args[0]) else {
                     return;
                 };
-                self.outputs.push(Output { name, value, doc, origin });
+                let declared = self.instance.is_none();
+                self.outputs.push(Output { name, value, doc, origin, declared });
                 self.bind(ident, Binding::Value { id: value, mutable: false });
             }
             Declaration::OutputArray => {
@@ -490,7 +491,8 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 };
                 for (i, &value) in values.iter().enumerate() {
                     let (name, doc, origin) = (format!("{name}[{i}]"), doc.clone(), origin.clone());
-                    self.outputs.push(Output { name, value, doc, origin });
+                    let declared = self.instance.is_none();
+                    self.outputs.push(Output { name, value, doc, origin, declared });
                 }
                 self.bind(ident, Binding::ValueArray(values));
             }

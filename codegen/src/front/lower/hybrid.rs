@@ -269,7 +269,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         let field = syn::Ident::new(&name, ident.span());
         self.inputs.push(InputDecl { ident: field, default, doc: doc.clone(), symbol, rate });
         let origin = local.to_token_stream();
-        self.outputs.push(Output { name, value: id, doc, origin });
+        self.outputs.push(Output { name, value: id, doc, origin, declared: false });
         self.bind(ident, Binding::Value { id, mutable: false });
     }
 }
