@@ -86,6 +86,10 @@ struct Pose {
     rot0: Mat3,
 }
 
+/// A joint's coordinate in body coordinates: its name after the joint's
+/// (`q`, `angle`, `q1`, …) and its value.
+type JointCoordinate = (&'static str, Id);
+
 /// Spatial joints and their number of rows.
 pub(crate) const SPATIAL_JOINTS: [(&str, usize); 8] = [
     ("spherical", 3),
@@ -398,7 +402,7 @@ impl Lower<'_, Scene> {
         let attitudes = [self.attitude(a), self.attitude(b)];
         // The rows, and the joint's coordinates as expressions of the
         // bodies' (named as joint coordinates name them).
-        let rows = (|| -> crate::Result<(Vec<Id>, Vec<(&'static str, Id)>)> {
+        let rows = (|| -> crate::Result<(Vec<Id>, Vec<JointCoordinate>)> {
             let (pa, pb, gap) = self.attachment_gap([a, b], [sa, sb])?;
             let g = &mut self.g;
             let mut rows = Vec::with_capacity(6);
