@@ -260,18 +260,17 @@ fn a_body_on_a_planar_joint_slides_and_turns_in_its_plane() {
 // started with a relative motion in each of the joint's coordinates. The
 // body's velocity follows from the joints: v = Ω e_z × P + v_slide + ω_b × d,
 // ω_b = Ω e_z + ω_rel (every attitude is the identity at the start).
+// `on_a_spinning_carrier!(global, recursive, v, ω_b, joint(axes))`.
 macro_rules! on_a_spinning_carrier {
-    ($global:ident, $recursive:ident, [$vx:expr, $vy:expr, $vz:expr], [$wx:expr, $wy:expr, $wz:expr],
-     |$carrier:ident, $body:ident| $joint:ident($($arguments:tt)*)) => {
-        on_a_spinning_carrier!(@one $global, (taylor = 0), [$vx, $vy, $vz], [$wx, $wy, $wz], |$carrier, $body| $joint($($arguments)*));
-        on_a_spinning_carrier!(@one $recursive, (scene = recursive, taylor = 0), [$vx, $vy, $vz], [$wx, $wy, $wz], |$carrier, $body| $joint($($arguments)*));
+    ($global:ident, $recursive:ident, $v:tt, $w:tt, $joint:ident($($axes:tt)*)) => {
+        on_a_spinning_carrier!(@one $global, (taylor = 0), $v, $w, $joint($($axes)*));
+        on_a_spinning_carrier!(@one $recursive, (scene = recursive, taylor = 0), $v, $w, $joint($($axes)*));
     };
-    (@one $name:ident, ($($attr:tt)*), [$vx:expr, $vy:expr, $vz:expr], [$wx:expr, $wy:expr, $wz:expr],
-     |$carrier:ident, $body:ident| $joint:ident($($arguments:tt)*)) => {
+    (@one $name:ident, ($($attr:tt)*), $v:tt, $w:tt, $joint:ident($($axes:tt)*)) => {
         #[dae_model($($attr)*)]
         fn $name() {
             let ground = ground();
-            let $carrier = spatial_body(
+            let carrier = spatial_body(
                 1.0,
                 vec3(0.1, 0.12, 0.2),
                 [0.0, 0.0, 0.0],
@@ -279,99 +278,36 @@ macro_rules! on_a_spinning_carrier {
                 [0.0, 0.0, 0.0],
                 [0.0, 0.0, 0.7],
             );
-            let spin = revolute(ground, vec3(0.0, 0.0, 0.0), $carrier, vec3(0.0, 0.0, 0.0), vec3(0.0, 0.0, 1.0));
-            let $body = spatial_body(
-                0.5,
-                vec3(0.02, 0.03, 0.01),
-                [0.3, 0.0, -0.4],
-                [1.0, 0.0, 0.0, 0.0],
-                [$vx, $vy, $vz],
-                [$wx, $wy, $wz],
-            );
-            let joint = $joint($($arguments)*);
+            let spin = revolute(ground, vec3(0.0, 0.0, 0.0), carrier, vec3(0.0, 0.0, 0.0), vec3(0.0, 0.0, 1.0));
+            let body = spatial_body(0.5, vec3(0.02, 0.03, 0.01), [0.3, 0.0, -0.4], [1.0, 0.0, 0.0, 0.0], $v, $w);
+            let joint = $joint(carrier, vec3(0.3, 0.0, 0.0), body, vec3(0.0, 0.0, 0.4) $($axes)*);
             gravity(vec3(0.0, 0.0, -9.81));
         }
     };
 }
 
 // ω_rel = (1.2, 0, 0): ω_b × d = (0, 0.48, 0).
-on_a_spinning_carrier!(
-    revolute_global,
-    revolute_recursive,
-    [0.0, 0.69, 0.0],
-    [1.2, 0.0, 0.7],
-    |carrier, body| revolute(
-        carrier,
-        vec3(0.3, 0.0, 0.0),
-        body,
-        vec3(0.0, 0.0, 0.4),
-        vec3(1.0, 0.0, 0.0)
-    )
-);
+on_a_spinning_carrier!(revolute_global, revolute_recursive, [0.0, 0.69, 0.0], [1.2, 0.0, 0.7],
+    revolute(, vec3(1.0, 0.0, 0.0)));
 // A slide of 0.5 m/s along x.
-on_a_spinning_carrier!(
-    prismatic_global,
-    prismatic_recursive,
-    [0.5, 0.21, 0.0],
-    [0.0, 0.0, 0.7],
-    |carrier, body| prismatic(
-        carrier,
-        vec3(0.3, 0.0, 0.0),
-        body,
-        vec3(0.0, 0.0, 0.4),
-        vec3(1.0, 0.0, 0.0)
-    )
-);
+on_a_spinning_carrier!(prismatic_global, prismatic_recursive, [0.5, 0.21, 0.0], [0.0, 0.0, 0.7],
+    prismatic(, vec3(1.0, 0.0, 0.0)));
 // Both.
-on_a_spinning_carrier!(
-    cylindrical_global,
-    cylindrical_recursive,
-    [0.5, 0.69, 0.0],
-    [1.2, 0.0, 0.7],
-    |carrier, body| cylindrical(
-        carrier,
-        vec3(0.3, 0.0, 0.0),
-        body,
-        vec3(0.0, 0.0, 0.4),
-        vec3(1.0, 0.0, 0.0)
-    )
-);
+on_a_spinning_carrier!(cylindrical_global, cylindrical_recursive, [0.5, 0.69, 0.0], [1.2, 0.0, 0.7],
+    cylindrical(, vec3(1.0, 0.0, 0.0)));
 // ω_rel = (1.2, −0.4, 0): ω_b × d = (0.16, 0.48, 0).
-on_a_spinning_carrier!(
-    universal_global,
-    universal_recursive,
-    [0.16, 0.69, 0.0],
-    [1.2, -0.4, 0.7],
-    |carrier, body| universal(
-        carrier,
-        vec3(0.3, 0.0, 0.0),
-        body,
-        vec3(0.0, 0.0, 0.4),
-        vec3(1.0, 0.0, 0.0),
-        vec3(0.0, 1.0, 0.0)
-    )
-);
+on_a_spinning_carrier!(universal_global, universal_recursive, [0.16, 0.69, 0.0], [1.2, -0.4, 0.7],
+    universal(, vec3(1.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0)));
 // Slides of (0.5, −0.3) in the carrier's xy-plane, ω_rel = (0, 0, 1.5).
-on_a_spinning_carrier!(
-    planar_global,
-    planar_recursive,
-    [0.5, -0.09, 0.0],
-    [0.0, 0.0, 2.2],
-    |carrier, body| planar(
-        carrier,
-        vec3(0.3, 0.0, 0.0),
-        body,
-        vec3(0.0, 0.0, 0.4),
-        vec3(0.0, 0.0, 1.0)
-    )
-);
+on_a_spinning_carrier!(planar_global, planar_recursive, [0.5, -0.09, 0.0], [0.0, 0.0, 2.2],
+    planar(, vec3(0.0, 0.0, 1.0)));
 // ω_rel = (1, −0.5, 0.3): ω_b × d = (0.2, 0.4, 0).
 on_a_spinning_carrier!(
     spherical_global,
     spherical_recursive,
     [0.2, 0.61, 0.0],
     [1.0, -0.5, 1.0],
-    |carrier, body| spherical(carrier, vec3(0.3, 0.0, 0.0), body, vec3(0.0, 0.0, 0.4))
+    spherical()
 );
 
 // In the plane: an arm hinged at the origin, started at 1 rad/s, a block
@@ -400,15 +336,34 @@ fn every_planar_joint_answers_to_its_documented_names_in_both_formulations() {
             names.extend([format!("{body}.{c}"), format!("der({body}.{c})")]);
         }
     }
-    for name in &names {
-        for t in [0.0, 0.5, 1.0] {
+    assert_same_by_name("a planar scene", &global, &recursive, &names, &[0.0, 0.5, 1.0], |_| false);
+}
+
+/// Asserts that every one of `names` reads in both solutions of `scene`
+/// and has the same value at `times`, `wraps(name)` telling the angles the
+/// global formulation reads in (−π, π].
+fn assert_same_by_name(
+    scene: &str,
+    global: &Solution,
+    recursive: &Solution,
+    names: &[String],
+    times: &[f64],
+    wraps: impl Fn(&str) -> bool,
+) {
+    for name in names {
+        for &t in times {
             let (a, b) = match (global.at(t, name), recursive.at(t, name)) {
                 (Ok(a), Ok(b)) => (a, b),
-                (a, b) => {
-                    panic!("`{name}` at {t}: {a:?} in body coordinates, {b:?} in joint coordinates")
-                }
+                (a, b) => panic!("{scene}: `{name}` at {t}: {a:?} in body coordinates, {b:?} in joint coordinates"),
             };
-            assert!((a - b).abs() < 1e-8 * (1.0 + b.abs()), "`{name}` at {t}: {a} against {b}");
+            let mut gap = a - b;
+            if wraps(name) {
+                gap -= (gap / std::f64::consts::TAU).round() * std::f64::consts::TAU;
+            }
+            assert!(
+                gap.abs() < 1e-8 * (1.0 + b.abs()),
+                "{scene}: `{name}` at {t}: {a} in body coordinates, {b} in joint coordinates"
+            );
         }
     }
 }
@@ -445,57 +400,32 @@ fn documented_body_names(body: &str) -> Vec<String> {
 
 #[test]
 fn every_joint_answers_to_its_documented_names_in_both_formulations() {
-    let scenes: [(&str, Solution, Solution); 6] = [
-        ("revolute", tight::<RevoluteGlobal>(1.5, 1e-11), tight::<RevoluteRecursive>(1.5, 1e-11)),
-        (
-            "prismatic",
-            tight::<PrismaticGlobal>(1.5, 1e-11),
-            tight::<PrismaticRecursive>(1.5, 1e-11),
-        ),
-        (
-            "cylindrical",
-            tight::<CylindricalGlobal>(1.5, 1e-11),
-            tight::<CylindricalRecursive>(1.5, 1e-11),
-        ),
-        (
-            "universal",
-            tight::<UniversalGlobal>(1.5, 1e-11),
-            tight::<UniversalRecursive>(1.5, 1e-11),
-        ),
-        ("planar", tight::<PlanarGlobal>(1.5, 1e-11), tight::<PlanarRecursive>(1.5, 1e-11)),
-        (
-            "spherical",
-            tight::<SphericalGlobal>(1.5, 1e-11),
-            tight::<SphericalRecursive>(1.5, 1e-11),
-        ),
+    fn both<G: Simulate + Default, R: Simulate + Default>() -> (Solution, Solution) {
+        (tight::<G>(1.5, 1e-11), tight::<R>(1.5, 1e-11))
+    }
+    let scenes = [
+        ("revolute", both::<RevoluteGlobal, RevoluteRecursive>()),
+        ("prismatic", both::<PrismaticGlobal, PrismaticRecursive>()),
+        ("cylindrical", both::<CylindricalGlobal, CylindricalRecursive>()),
+        ("universal", both::<UniversalGlobal, UniversalRecursive>()),
+        ("planar", both::<PlanarGlobal, PlanarRecursive>()),
+        ("spherical", both::<SphericalGlobal, SphericalRecursive>()),
     ];
-    for (kind, global, recursive) in &scenes {
+    for (kind, (global, recursive)) in &scenes {
         let mut names = documented_joint_names(kind, "joint");
         names.extend(documented_joint_names("revolute", "spin"));
         names.extend(documented_body_names("carrier"));
         names.extend(documented_body_names("body"));
-        for name in &names {
-            // The global formulation reads a joint's angles in (−π, π].
-            let wraps = !name.starts_with("der(")
+        // The global formulation reads a joint's angles in (−π, π].
+        let wraps = |name: &str| {
+            !name.starts_with("der(")
                 && (name.ends_with(".angle")
-                    || name.ends_with(".q1") && *kind == "universal"
-                    || name.ends_with(".q2") && *kind == "universal"
+                    || (name.ends_with(".q1") || name.ends_with(".q2")) && *kind == "universal"
                     || name == "spin.q"
-                    || name == "joint.q" && matches!(*kind, "revolute"));
-            for t in [0.0, 0.5, 1.0, 1.5] {
-                let (a, b) = match (global.at(t, name), recursive.at(t, name)) {
-                    (Ok(a), Ok(b)) => (a, b),
-                    (a, b) => panic!("{kind}: `{name}` at {t}: {a:?} in body coordinates, {b:?} in joint coordinates"),
-                };
-                let mut gap = a - b;
-                if wraps {
-                    gap -= (gap / std::f64::consts::TAU).round() * std::f64::consts::TAU;
-                }
-                assert!(
-                    gap.abs() < 1e-8 * (1.0 + b.abs()),
-                    "{kind}: `{name}` at {t}: {a} in body coordinates, {b} in joint coordinates"
-                );
-            }
+                    || name == "joint.q" && *kind == "revolute")
+        };
+        assert_same_by_name(kind, global, recursive, &names, &[0.0, 0.5, 1.0, 1.5], wraps);
+        for name in &names {
             // Every coordinate moves, so the comparison is not of zeros.
             let span = (global.at(1.5, name).unwrap() - global.at(0.0, name).unwrap()).abs();
             if name.starts_with("joint.") && !name.starts_with("joint.q0") {

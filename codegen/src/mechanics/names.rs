@@ -55,17 +55,7 @@ impl Lower<'_, Scene> {
                     let length = g.sqrt(length)?;
                     g.div(along, length)?
                 };
-                // The rate by the chain rule through the body coordinates.
-                let mut terms = Vec::new();
-                for &s in &coordinates {
-                    let d = g.partial(q, s)?;
-                    if g.as_number(d).is_some_and(|v| v.is_zero()) {
-                        continue;
-                    }
-                    let rate = g.derivative(s, 1)?;
-                    terms.push(g.mul(d, rate)?);
-                }
-                Ok((q, g.sum(&terms)?, doc))
+                Ok((q, rate_through(g, q, &coordinates)?, doc))
             })();
             match built {
                 Ok((q, rate, doc)) => {
@@ -127,20 +117,7 @@ impl Lower<'_, Scene> {
             if kind == "spherical" {
                 continue;
             }
-            let rate = (|| -> crate::Result<Id> {
-                let g = &mut self.g;
-                let mut terms = Vec::new();
-                for &s in &symbols {
-                    let d = g.partial(value, s)?;
-                    if g.as_number(d).is_some_and(|v| v.is_zero()) {
-                        continue;
-                    }
-                    let rate = g.derivative(s, 1)?;
-                    terms.push(g.mul(d, rate)?);
-                }
-                g.sum(&terms)
-            })();
-            match rate {
+            match rate_through(&mut self.g, value, &symbols) {
                 Ok(rate) => {
                     let doc = format!("rate of `{name}.{suffix}`");
                     self.push_output(format!("der({name}.{suffix})"), rate, &doc, &origin);
@@ -176,6 +153,21 @@ pub(crate) fn body_coordinate_doc(coordinate: &str) -> &'static str {
         "q0" | "q1" | "q2" | "q3" => "attitude quaternion, body to world (q0 = cos(θ/2))",
         _ => "angular velocity, body axes (rad/s)",
     }
+}
+
+/// The rate of `value`, a function of the coordinates `through`, by the
+/// chain rule: Σ ∂value/∂s · der(s).
+fn rate_through(g: &mut crate::Graph, value: Id, through: &[SymbolId]) -> crate::Result<Id> {
+    let mut terms = Vec::new();
+    for &s in through {
+        let d = g.partial(value, s)?;
+        if g.as_number(d).is_some_and(|v| v.is_zero()) {
+            continue;
+        }
+        let rate = g.derivative(s, 1)?;
+        terms.push(g.mul(d, rate)?);
+    }
+    g.sum(&terms)
 }
 
 /// The coordinates of each kind of spatial joint, by name, as the
