@@ -1,13 +1,16 @@
-//! FMI 2.0's C functions for a model `M`: the types and call order of
-//! `fmi2Functions.h`, each function checking its arguments and the state
-//! it is called in before the instance does the work. `export_fmu!` makes
-//! each of them an exported `fmi2…` symbol of the user's library.
+//! FMI 2.0: the types of `fmi2Functions.h`, its row of the table of
+//! [`crate::standard`], and the C functions only it has (instantiation,
+//! the experiment's setup, the event info, Co-Simulation's step and
+//! statuses), each checking its arguments and the state it is called in
+//! before the instance does the work. `export_fmu!` makes each an exported
+//! `fmi2…` symbol of the user's library, with [`crate::calls`] for the
+//! functions both standards share.
 
-use crate::boundary::{self, guarded, slice, slice_mut, target, text, Entry, Logger};
+use crate::boundary::{self, guarded, target, text, Logger};
+use crate::calls::{code, run, Exported, Handle};
 use crate::description::{instantiation_token, FmiVersion};
-use crate::fmu_state;
-use crate::instance::{refuse, Interface, Outcome, Phase, Status};
-use daegen_runtime::Model;
+use crate::instance::{refuse, Interface, Phase, Status};
+use crate::standard::{Call, Standard};
 use std::ffi::{c_char, c_int, c_uint, c_void, CString};
 
 /// `fmi2Status`.
@@ -63,29 +66,66 @@ pub struct Fmi2EventInfo {
     pub next_event_time: f64,
 }
 
-fn code(status: Status) -> Fmi2Status {
-    match status {
-        Status::Ok => 0,
-        Status::Warning => 1,
-        Status::Discard => 2,
-        Status::Error => 3,
-        Status::Fatal => 4,
+/// FMI 2.0's row of the table.
+pub struct Fmi2;
+
+impl Standard for Fmi2 {
+    const VERSION: FmiVersion = FmiVersion::V2;
+    const REAL: &'static str = "Real";
+    const VALUE_ARGUMENTS: [&'static str; 2] = ["vr", "value"];
+    const STATE_ARGUMENTS: [&'static str; 2] = ["x", "x_nominal"];
+    const DIRECTIONAL_ARGUMENTS: [&'static str; 4] =
+        ["vUnknown_ref", "vKnown_ref", "dvKnown", "dvUnknown"];
+    type Boolean = Fmi2Boolean;
+
+    fn boolean(b: bool) -> Fmi2Boolean {
+        Fmi2Boolean::from(b)
+    }
+
+    fn name(call: Call) -> &'static str {
+        match call {
+            Call::SetDebugLogging => "fmi2SetDebugLogging",
+            Call::ExitInitializationMode => "fmi2ExitInitializationMode",
+            Call::Terminate => "fmi2Terminate",
+            Call::Reset => "fmi2Reset",
+            Call::GetReal => "fmi2GetReal",
+            Call::SetReal => "fmi2SetReal",
+            Call::GetString => "fmi2GetString",
+            Call::SetString => "fmi2SetString",
+            Call::EnterEventMode => "fmi2EnterEventMode",
+            Call::EnterContinuousTimeMode => "fmi2EnterContinuousTimeMode",
+            Call::CompletedIntegratorStep => "fmi2CompletedIntegratorStep",
+            Call::SetTime => "fmi2SetTime",
+            Call::SetContinuousStates => "fmi2SetContinuousStates",
+            Call::GetDerivatives => "fmi2GetDerivatives",
+            Call::GetEventIndicators => "fmi2GetEventIndicators",
+            Call::GetContinuousStates => "fmi2GetContinuousStates",
+            Call::GetNominals => "fmi2GetNominalsOfContinuousStates",
+            Call::GetFmuState => "fmi2GetFMUstate",
+            Call::SetFmuState => "fmi2SetFMUstate",
+            Call::FreeFmuState => "fmi2FreeFMUstate",
+            Call::SerializedSize => "fmi2SerializedFMUstateSize",
+            Call::Serialize => "fmi2SerializeFMUstate",
+            Call::Deserialize => "fmi2DeSerializeFMUstate",
+            Call::GetDirectionalDerivative => "fmi2GetDirectionalDerivative",
+        }
+    }
+
+    fn phases(call: Call) -> Option<&'static [Phase]> {
+        Some(match call {
+            Call::GetReal => &[Initialization, Event, Continuous, Step, StepFailed, Terminated],
+            Call::GetDerivatives => &[Event, Continuous, Terminated],
+            Call::GetNominals => &[Instantiated, Event, Continuous, Terminated],
+            other => return crate::standard::shared_phases(other),
+        })
     }
 }
 
 fn flag(b: bool) -> Fmi2Boolean {
-    Fmi2Boolean::from(b)
+    Fmi2::boolean(b)
 }
 
 use Phase::{Continuous, Event, Initialization, Instantiated, Step, StepFailed, Terminated};
-
-fn run<M, F>(c: Fmi2Component, call: &str, body: F) -> Fmi2Status
-where
-    M: Model + Clone + Default + Send + Sync + 'static,
-    F: FnOnce(&mut Entry<M>) -> Outcome,
-{
-    code(boundary::with::<M, _>(c, call, body))
-}
 
 /// `fmi2GetTypesPlatform`.
 pub fn get_types_platform() -> *const c_char {
@@ -103,7 +143,7 @@ pub fn get_version() -> *const c_char {
 /// # Safety
 /// Pointer arguments must be null or valid, as FMI requires.
 #[allow(clippy::too_many_arguments)] // fmi2Instantiate's own
-pub unsafe fn instantiate<M: Model + Clone + Default + Send + Sync + 'static>(
+pub unsafe fn instantiate<M: Exported>(
     identifier: &str,
     instance_name: *const c_char,
     fmu_type: c_int,
@@ -166,39 +206,16 @@ pub unsafe fn instantiate<M: Model + Clone + Default + Send + Sync + 'static>(
     .unwrap_or(std::ptr::null_mut())
 }
 
-/// `fmi2FreeInstance`.
-pub fn free_instance(c: Fmi2Component) {
-    let _ = guarded(|| Some(boundary::release(c)));
-}
-
-/// `fmi2SetDebugLogging`.
-///
-/// # Safety
-/// `categories` must be null or point to `n` C strings.
-pub unsafe fn set_debug_logging<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    logging_on: Fmi2Boolean,
-    n: usize,
-    categories: *const *const c_char,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2SetDebugLogging", |e| {
-        // SAFETY: n category pointers, as FMI requires.
-        let _ = unsafe { slice(categories, n, "categories") }?;
-        e.debug = logging_on != 0;
-        Ok(())
-    })
-}
-
 /// `fmi2SetupExperiment`.
-pub fn setup_experiment<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
+pub fn setup_experiment<M: Exported>(
+    c: Handle,
     tolerance_defined: Fmi2Boolean,
     tolerance: f64,
     start: f64,
     stop_defined: Fmi2Boolean,
     stop: f64,
 ) -> Fmi2Status {
-    run::<M, _>(c, "fmi2SetupExperiment", |e| {
+    run::<M>(c, "fmi2SetupExperiment", |e| {
         e.instance.allow_in(&[Instantiated])?;
         let tolerance = Some(tolerance).filter(|_| tolerance_defined != 0);
         let stop = Some(stop).filter(|_| stop_defined != 0);
@@ -217,190 +234,22 @@ pub fn setup_experiment<M: Model + Clone + Default + Send + Sync + 'static>(
 }
 
 /// `fmi2EnterInitializationMode`.
-pub fn enter_initialization_mode<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2EnterInitializationMode", |e| {
+pub fn enter_initialization_mode<M: Exported>(c: Handle) -> Fmi2Status {
+    run::<M>(c, "fmi2EnterInitializationMode", |e| {
         e.instance.allow_in(&[Instantiated])?;
         e.instance.phase = Initialization;
         Ok(())
     })
 }
 
-/// `fmi2ExitInitializationMode`.
-pub fn exit_initialization_mode<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2ExitInitializationMode", |e| {
-        e.instance.allow_in(&[Initialization])?;
-        e.instance.exit_initialization()
-    })
-}
-
-/// `fmi2Terminate`.
-pub fn terminate<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2Terminate", |e| {
-        e.instance.allow_in(&[Event, Continuous, Step, StepFailed])?;
-        e.instance.phase = Terminated;
-        Ok(())
-    })
-}
-
-/// `fmi2Reset`.
-pub fn reset<M: Model + Clone + Default + Send + Sync + 'static>(c: Fmi2Component) -> Fmi2Status {
-    run::<M, _>(c, "fmi2Reset", |e| {
-        e.instance.reset();
-        Ok(())
-    })
-}
-
-/// `fmi2GetReal`.
-///
-/// # Safety
-/// `vr` and `value` must be null or point to `nvr` values.
-pub unsafe fn get_real<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    vr: *const Fmi2ValueReference,
-    nvr: usize,
-    value: *mut f64,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2GetReal", |e| {
-        e.instance.allow_in(&[Initialization, Event, Continuous, Step, StepFailed, Terminated])?;
-        // SAFETY: nvr values each, as FMI requires.
-        let (vr, value) = unsafe { (slice(vr, nvr, "vr")?, slice_mut(value, nvr, "value")?) };
-        for (k, &r) in vr.iter().enumerate() {
-            value[k] = e.instance.get_real(r)?;
-        }
-        Ok(())
-    })
-}
-
-/// `fmi2SetReal`.
-///
-/// # Safety
-/// `vr` and `value` must be null or point to `nvr` values.
-pub unsafe fn set_real<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    vr: *const Fmi2ValueReference,
-    nvr: usize,
-    value: *const f64,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2SetReal", |e| {
-        e.instance.allow_in(&[Instantiated, Initialization, Event, Continuous, Step])?;
-        // SAFETY: nvr values each, as FMI requires.
-        let (vr, value) = unsafe { (slice(vr, nvr, "vr")?, slice(value, nvr, "value")?) };
-        for (k, &r) in vr.iter().enumerate() {
-            e.instance.set_real(r, value[k])?;
-        }
-        Ok(())
-    })
-}
-
-/// `fmi2GetString`: `solver.method`. The strings stay valid until the
-/// next call on the instance.
-///
-/// # Safety
-/// `vr` and `value` must be null or point to `nvr` values.
-pub unsafe fn get_string<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    vr: *const Fmi2ValueReference,
-    nvr: usize,
-    value: *mut *const c_char,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2GetString", |e| {
-        e.instance.allow_in(&[
-            Instantiated,
-            Initialization,
-            Event,
-            Continuous,
-            Step,
-            StepFailed,
-            Terminated,
-        ])?;
-        // SAFETY: nvr values each, as FMI requires.
-        let (vr, value) = unsafe { (slice(vr, nvr, "vr")?, slice_mut(value, nvr, "value")?) };
-        e.strings.clear();
-        for (k, &r) in vr.iter().enumerate() {
-            let s = CString::new(e.instance.get_string(r)?).unwrap_or_default();
-            value[k] = s.as_ptr();
-            e.strings.push(s);
-        }
-        Ok(())
-    })
-}
-
-/// `fmi2SetString`: `solver.method`.
-///
-/// # Safety
-/// `vr` and `value` must be null or point to `nvr` values.
-pub unsafe fn set_string<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    vr: *const Fmi2ValueReference,
-    nvr: usize,
-    value: *const *const c_char,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2SetString", |e| {
-        e.instance.allow_in(&[Instantiated, Initialization, Event, Step])?;
-        // SAFETY: nvr values each, as FMI requires.
-        let (vr, value) = unsafe { (slice(vr, nvr, "vr")?, slice(value, nvr, "value")?) };
-        for (k, &r) in vr.iter().enumerate() {
-            // SAFETY: a C string, as FMI requires.
-            let v = unsafe { text(value[k], "value") }?;
-            e.instance.set_string(r, v)?;
-        }
-        Ok(())
-    })
-}
-
-/// `fmi2GetInteger`, `fmi2GetBoolean`, `fmi2SetInteger`,
-/// `fmi2SetBoolean`: a daegen model has no integer or boolean variables
-/// (a discrete value is a real), so any value reference is refused.
-///
-/// # Safety
-/// `vr` must be null or hold `nvr` references.
-pub unsafe fn no_such_values<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    call: &str,
-    kind: &str,
-    vr: *const Fmi2ValueReference,
-    nvr: usize,
-) -> Fmi2Status {
-    run::<M, _>(c, call, |e| {
-        if nvr == 0 {
-            return Ok(());
-        }
-        // SAFETY: nvr values, as FMI requires.
-        let vr = unsafe { slice(vr, nvr, "vr") }?;
-        let name = e.instance.variable(vr[0])?.name.clone();
-        Err(refuse(format!("`{name}` is not {kind}: every variable of this FMU is a Real (a discrete value too) but `solver.method`, a String")))
-    })
-}
-
 // ----- Model Exchange -----
-
-/// `fmi2EnterEventMode`.
-pub fn enter_event_mode<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2EnterEventMode", |e| {
-        e.instance.require_interface(Interface::ModelExchange)?;
-        e.instance.allow_in(&[Event, Continuous])?;
-        e.instance.phase = Event;
-        Ok(())
-    })
-}
 
 /// `fmi2NewDiscreteStates`.
 ///
 /// # Safety
 /// `info` must be null or point to an `fmi2EventInfo`.
-pub unsafe fn new_discrete_states<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    info: *mut Fmi2EventInfo,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2NewDiscreteStates", |e| {
+pub unsafe fn new_discrete_states<M: Exported>(c: Handle, info: *mut Fmi2EventInfo) -> Fmi2Status {
+    run::<M>(c, "fmi2NewDiscreteStates", |e| {
         e.instance.require_interface(Interface::ModelExchange)?;
         e.instance.allow_in(&[Event])?;
         // SAFETY: the importer's struct, checked for null.
@@ -416,159 +265,13 @@ pub unsafe fn new_discrete_states<M: Model + Clone + Default + Send + Sync + 'st
     })
 }
 
-/// `fmi2EnterContinuousTimeMode`.
-pub fn enter_continuous_time_mode<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2EnterContinuousTimeMode", |e| {
-        e.instance.require_interface(Interface::ModelExchange)?;
-        e.instance.allow_in(&[Event])?;
-        e.instance.phase = Continuous;
-        Ok(())
-    })
-}
-
-/// `fmi2CompletedIntegratorStep`.
-///
-/// # Safety
-/// The flags must be null or point to an `fmi2Boolean` each.
-pub unsafe fn completed_integrator_step<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    _no_set_prior: Fmi2Boolean,
-    enter_event_mode: *mut Fmi2Boolean,
-    terminate_simulation: *mut Fmi2Boolean,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2CompletedIntegratorStep", |e| {
-        e.instance.require_interface(Interface::ModelExchange)?;
-        e.instance.allow_in(&[Continuous])?;
-        // SAFETY: the importer's flags, checked for null.
-        let (event, stop) = unsafe {
-            (
-                target(enter_event_mode, "enterEventMode")?,
-                target(terminate_simulation, "terminateSimulation")?,
-            )
-        };
-        let (enter, terminate) = e.instance.completed_integrator_step();
-        *event = flag(enter);
-        *stop = flag(terminate);
-        Ok(())
-    })
-}
-
-/// `fmi2SetTime`.
-pub fn set_time<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    time: f64,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2SetTime", |e| {
-        e.instance.require_interface(Interface::ModelExchange)?;
-        e.instance.allow_in(&[Event, Continuous])?;
-        e.instance.set_time(time)
-    })
-}
-
-/// `fmi2SetContinuousStates`.
-///
-/// # Safety
-/// `x` must be null or point to `nx` values.
-pub unsafe fn set_continuous_states<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    x: *const f64,
-    nx: usize,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2SetContinuousStates", |e| {
-        e.instance.require_interface(Interface::ModelExchange)?;
-        e.instance.allow_in(&[Continuous])?;
-        // SAFETY: nx values, as FMI requires.
-        let x = unsafe { slice(x, nx, "x") }?;
-        e.instance.set_continuous_states(x)
-    })
-}
-
-/// `fmi2GetDerivatives`.
-///
-/// # Safety
-/// `dx` must be null or point to `nx` values.
-pub unsafe fn get_derivatives<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    dx: *mut f64,
-    nx: usize,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2GetDerivatives", |e| {
-        e.instance.require_interface(Interface::ModelExchange)?;
-        e.instance.allow_in(&[Event, Continuous, Terminated])?;
-        // SAFETY: nx values, as FMI requires.
-        let dx = unsafe { slice_mut(dx, nx, "derivatives") }?;
-        e.instance.derivatives(dx)
-    })
-}
-
-/// `fmi2GetEventIndicators`.
-///
-/// # Safety
-/// `g` must be null or point to `ni` values.
-pub unsafe fn get_event_indicators<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    g: *mut f64,
-    ni: usize,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2GetEventIndicators", |e| {
-        e.instance.require_interface(Interface::ModelExchange)?;
-        e.instance.allow_in(&[Initialization, Event, Continuous, Terminated])?;
-        // SAFETY: ni values, as FMI requires.
-        let g = unsafe { slice_mut(g, ni, "eventIndicators") }?;
-        e.instance.indicators(g)
-    })
-}
-
-/// `fmi2GetContinuousStates`.
-///
-/// # Safety
-/// `x` must be null or point to `nx` values.
-pub unsafe fn get_continuous_states<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    x: *mut f64,
-    nx: usize,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2GetContinuousStates", |e| {
-        e.instance.require_interface(Interface::ModelExchange)?;
-        e.instance.allow_in(&[Initialization, Event, Continuous, Terminated])?;
-        // SAFETY: nx values, as FMI requires.
-        let x = unsafe { slice_mut(x, nx, "x") }?;
-        e.instance.get_continuous_states(x)
-    })
-}
-
-/// `fmi2GetNominalsOfContinuousStates`.
-///
-/// # Safety
-/// `x` must be null or point to `nx` values.
-pub unsafe fn get_nominals<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    x: *mut f64,
-    nx: usize,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2GetNominalsOfContinuousStates", |e| {
-        e.instance.require_interface(Interface::ModelExchange)?;
-        e.instance.allow_in(&[Instantiated, Event, Continuous, Terminated])?;
-        // SAFETY: nx values, as FMI requires.
-        let x = unsafe { slice_mut(x, nx, "x_nominal") }?;
-        e.instance.nominals(x)
-    })
-}
-
 // ----- Co-Simulation -----
 
 /// `fmi2DoStep`: a terminal event inside the step ends it early with
 /// `fmi2Discard`; `fmi2GetBooleanStatus(fmi2Terminated)` then says so and
 /// `fmi2GetRealStatus(fmi2LastSuccessfulTime)` gives the time reached.
-pub fn do_step<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    t: f64,
-    h: f64,
-    _no_set_prior: Fmi2Boolean,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2DoStep", |e| {
+pub fn do_step<M: Exported>(c: Handle, t: f64, h: f64, _no_set_prior: Fmi2Boolean) -> Fmi2Status {
+    run::<M>(c, "fmi2DoStep", |e| {
         e.instance.require_interface(Interface::CoSimulation)?;
         e.instance.allow_in(&[Step])?;
         let done = e.instance.do_step(t, h)?;
@@ -583,10 +286,8 @@ pub fn do_step<M: Model + Clone + Default + Send + Sync + 'static>(
 }
 
 /// `fmi2CancelStep`: steps are synchronous, never pending.
-pub fn cancel_step<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2CancelStep", |_| {
+pub fn cancel_step<M: Exported>(c: Handle) -> Fmi2Status {
+    run::<M>(c, "fmi2CancelStep", |_| {
         Err(refuse("no step is pending: fmi2DoStep returns when its step is done"))
     })
 }
@@ -594,11 +295,8 @@ pub fn cancel_step<M: Model + Clone + Default + Send + Sync + 'static>(
 /// `fmi2SetRealInputDerivatives` and `fmi2GetRealOutputDerivatives`: the
 /// FMU holds its inputs constant over a step and gives no output
 /// derivatives (`canInterpolateInputs`, `maxOutputDerivativeOrder` unset).
-pub fn no_derivatives<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    call: &str,
-) -> Fmi2Status {
-    run::<M, _>(c, call, |_| {
+pub fn no_derivatives<M: Exported>(c: Handle, call: &str) -> Fmi2Status {
+    run::<M>(c, call, |_| {
         Err(refuse(
             "this FMU holds its inputs constant over a step and gives no output derivatives",
         ))
@@ -625,13 +323,13 @@ pub enum StatusValue<'a> {
 ///
 /// # Safety
 /// The value pointer must be null or point to a value of its type.
-pub unsafe fn get_status<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
+pub unsafe fn get_status<M: Exported>(
+    c: Handle,
     call: &str,
     kind: c_int,
     value: StatusValue<'_>,
 ) -> Fmi2Status {
-    run::<M, _>(c, call, |e| {
+    run::<M>(c, call, |e| {
         e.instance.require_interface(Interface::CoSimulation)?;
         e.instance.allow_in(&[Step, StepFailed, Terminated])?;
         let unknown = || refuse(format!("{call} has no status of kind {kind}"));
@@ -646,111 +344,5 @@ pub unsafe fn get_status<M: Model + Clone + Default + Send + Sync + 'static>(
             }
         }
         Ok(())
-    })
-}
-
-// ----- FMU state -----
-
-/// `fmi2GetFMUstate`: a new state, or the one `*state` names replaced.
-///
-/// # Safety
-/// `state` must be null or point to an `fmi2FMUstate`.
-pub unsafe fn get_fmu_state<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    state: *mut *mut c_void,
-) -> Fmi2Status {
-    // SAFETY: as this function's contract.
-    run::<M, _>(c, "fmi2GetFMUstate", |e| unsafe { fmu_state::get(e, state) })
-}
-
-/// `fmi2SetFMUstate`.
-pub fn set_fmu_state<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    state: *mut c_void,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2SetFMUstate", |e| fmu_state::set(e, state))
-}
-
-/// `fmi2FreeFMUstate`.
-///
-/// # Safety
-/// `state` must be null or point to an `fmi2FMUstate`.
-pub unsafe fn free_fmu_state<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    state: *mut *mut c_void,
-) -> Fmi2Status {
-    // SAFETY: as this function's contract.
-    run::<M, _>(c, "fmi2FreeFMUstate", |_| unsafe { fmu_state::free(state) })
-}
-
-/// `fmi2SerializedFMUstateSize`.
-///
-/// # Safety
-/// `size` must be null or point to a `size_t`.
-pub unsafe fn serialized_size<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    state: *mut c_void,
-    size: *mut usize,
-) -> Fmi2Status {
-    // SAFETY: as this function's contract.
-    run::<M, _>(c, "fmi2SerializedFMUstateSize", |_| unsafe { fmu_state::size(state, size) })
-}
-
-/// `fmi2SerializeFMUstate`: the state's numbers, little-endian.
-///
-/// # Safety
-/// `bytes` must be null or point to `size` bytes.
-pub unsafe fn serialize<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    state: *mut c_void,
-    bytes: *mut u8,
-    size: usize,
-) -> Fmi2Status {
-    // SAFETY: as this function's contract.
-    run::<M, _>(c, "fmi2SerializeFMUstate", |_| unsafe { fmu_state::serialize(state, bytes, size) })
-}
-
-/// `fmi2DeSerializeFMUstate`.
-///
-/// # Safety
-/// `bytes` must be null or point to `size` bytes; `state` null or to an
-/// `fmi2FMUstate`.
-pub unsafe fn deserialize<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    bytes: *const u8,
-    size: usize,
-    state: *mut *mut c_void,
-) -> Fmi2Status {
-    // SAFETY: as this function's contract.
-    run::<M, _>(c, "fmi2DeSerializeFMUstate", |e| unsafe {
-        fmu_state::deserialize(e, bytes, size, state)
-    })
-}
-
-/// `fmi2GetDirectionalDerivative`.
-///
-/// # Safety
-/// The arrays must be null or hold the counts given.
-pub unsafe fn get_directional_derivative<M: Model + Clone + Default + Send + Sync + 'static>(
-    c: Fmi2Component,
-    unknowns: *const Fmi2ValueReference,
-    n_unknowns: usize,
-    knowns: *const Fmi2ValueReference,
-    n_knowns: usize,
-    seed: *const f64,
-    sensitivity: *mut f64,
-) -> Fmi2Status {
-    run::<M, _>(c, "fmi2GetDirectionalDerivative", |e| {
-        e.instance.allow_in(&[Initialization, Event, Continuous, Step, StepFailed, Terminated])?;
-        // SAFETY: the counts given, as FMI requires.
-        let (u, k, s, out) = unsafe {
-            (
-                slice(unknowns, n_unknowns, "vUnknown_ref")?,
-                slice(knowns, n_knowns, "vKnown_ref")?,
-                slice(seed, n_knowns, "dvKnown")?,
-                slice_mut(sensitivity, n_unknowns, "dvUnknown")?,
-            )
-        };
-        e.instance.directional_derivative(u, k, s, out)
     })
 }

@@ -9,19 +9,26 @@
 //! references both versions share; [`description`] writes
 //! `modelDescription.xml` from them, with the model structure its
 //! Jacobian's pattern gives; [`instance`] is one instance, what every call
-//! computes; [`fmi2`] and [`fmi3`] are the two standards' C functions over
-//! it, each checking its state machine, with [`fmu_state`] what they share; [`boundary`] keeps the C boundary
-//! safe (handles, locks, no unwinding); [`export`] makes the symbols;
-//! [`archive`] writes the FMUs.
+//! computes; [`calls`] are the C functions both standards share, written
+//! once over [`standard`]'s table of what differs between them (names,
+//! phases, argument names, the boolean type), and [`fmi2`] and [`fmi3`]
+//! each standard's row and the functions only it has, each checking its
+//! state machine; [`fmu_state`] saves and restores instances;
+//! [`boundary`] keeps the C boundary safe (handles, locks, no unwinding);
+//! [`export`] makes the symbols; [`archive`] writes the FMUs.
+
+#![warn(missing_docs)]
 
 pub mod archive;
 pub mod boundary;
+pub mod calls;
 pub mod description;
 pub mod export;
 pub mod fmi2;
 pub mod fmi3;
 pub mod fmu_state;
 pub mod instance;
+pub mod standard;
 pub mod variables;
 
 pub use description::{model_description, FmiVersion};

@@ -65,21 +65,11 @@ fn fmi3_refers_by_value_reference_and_the_token_changes_with_the_model() {
     assert_ne!(token(&xml), token(&changed));
 }
 
-/// A ball that bounces: an event function (an event indicator), a
-/// derivative kept as a state.
-#[dae_model]
-fn bouncing_ball() {
-    /// Gravity (m/s²).
-    let g = param(9.81);
-    /// Coefficient of restitution.
-    let e = param(0.8);
-    /// Height (m).
-    let h = state(1.0);
-    init(der(h), 0.0);
-    der(der(h)) == -g;
-    /// It hits the ground and bounces back.
-    let bounce = event(h).falling().reinit(der(h), -e * pre(der(h)));
-}
+// A ball that bounces: an event function (an event indicator), a
+// derivative kept as a state.
+#[path = "../examples/models/bouncing_ball.rs"]
+mod bouncing_ball;
+use bouncing_ball::BouncingBall;
 
 #[test]
 fn the_descriptions_of_a_bouncing_ball() {
