@@ -4,6 +4,9 @@
 
 use daegen::prelude::*;
 
+mod support;
+use support::harness::{adaptive_methods_for, kind, methods_for, Kind};
+
 include!("models/drives.rs");
 
 include!("models/rlc_exact.rs");
@@ -55,7 +58,7 @@ fn rc_charging_follows_the_exponential() {
 
 #[test]
 fn rlc_series_rings_as_the_exact_solution() {
-    for method in [Method::Radau5, Method::Dop853, Method::Rodas5P, Method::Taylor] {
+    for method in adaptive_methods_for::<RlcSeries>() {
         let opts = Options::new().method(method).rtol(1e-10).atol(1e-10);
         let sol = RlcSeries::default().simulate(0.0, 10.0, &opts).unwrap();
         for &t in &[0.5, 2.0, 5.0, 10.0] {
@@ -119,7 +122,7 @@ fn a_speed_drive_of_components_is_the_flat_drive() {
     assert_eq!(info.states.len(), flat.states.len(), "{:?}", info.states);
     // Stiff (L/R = 0.5 ms against J R/k² = 40 ms): the explicit methods
     // report it, and Auto switches.
-    for method in [Method::Radau5, Method::Rodas5P, Method::Auto] {
+    for method in methods_for::<SpeedDrive>(|m| kind(m) == Kind::Stiff) {
         let opts = Options::new().method(method).rtol(1e-9).atol(1e-9);
         let a = SpeedDrive::default().simulate(0.0, 1.0, &opts).unwrap();
         let b = SpeedDriveFlat::default().simulate(0.0, 1.0, &opts).unwrap();
@@ -184,7 +187,7 @@ fn a_resistor_heats_up_as_the_exact_solution() {
     let b = (i * i * r0 * (1.0 - alpha * t_ref) + g * t_amb) / c;
     let t_star = -b / lambda;
     let exact = |t: f64| t_star + (293.15 - t_star) * (lambda * t).exp();
-    for method in [Method::Radau5, Method::Dop853, Method::Taylor] {
+    for method in adaptive_methods_for::<HeatingUp>() {
         let opts = Options::new().method(method).rtol(1e-11).atol(1e-11);
         let sol = HeatingUp::default().simulate(0.0, 200.0, &opts).unwrap();
         for &t in &[10.0, 50.0, 200.0] {

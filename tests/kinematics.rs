@@ -162,7 +162,7 @@ fn a_heavy_top_with_quaternions_conserves_energy_and_unit_norm() {
         norm = norm.max((s[..4].iter().map(|x| x * x).sum::<f64>() - 1.0).abs());
     }
     // Measured over 1021 steps (the order chosen for the model's cost,
-    // `taylor_order.rs`): 1.8e-15, 2.2e-15 and 2.2e-16.
+    // `runtime/src/methods/taylor/order.rs`): 1.8e-15, 2.2e-15 and 2.2e-16.
     assert!(steps >= 1000, "{steps} steps");
     assert!(energy <= 1e-12 * e0.abs().max(1.0), "energy drift {energy:e}");
     assert!(momentum <= 1e-12 * l0.abs().max(1.0), "L_z drift {momentum:e}");

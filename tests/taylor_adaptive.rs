@@ -290,7 +290,7 @@ fn taylor_without_dense_output_takes_the_same_steps() {
     assert!((b.at(t, "q1").unwrap() - hermite).abs() <= 1e-14);
 }
 
-/// The order follows the model's cost (taylor_order.rs): Kepler, a small
+/// The order follows the model's cost (`runtime/src/methods/taylor/order.rs`): Kepler, a small
 /// model, takes order 20 at 1e-12 (unrolled here), where Jorba & Zou take
 /// 15; fewer, longer steps, and the exact orbit followed as closely. The
 /// order can be fixed, and a fixed order below 2 is refused.

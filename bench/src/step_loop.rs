@@ -7,7 +7,7 @@
 //! default), and an event watched (one that never fires).
 //!
 //! Measured by `loop-subject` (bench/loop-subject: the cases of
-//! `step_loop_cases.rs` as a binary of their own, built for AVX2 at most
+//! `loop-subject/src/cases.rs` as a binary of their own, built for AVX2 at most
 //! so that valgrind can run it): time, the median of repeated runs on this
 //! shared machine, and instructions, `valgrind --tool=callgrind`,
 //! repeatable to the instruction, from the difference of three runs and
@@ -25,7 +25,7 @@
 
 use super::*;
 
-/// The cases, as `step_loop_cases.rs` names them.
+/// The cases, as `loop-subject/src/cases.rs` names them.
 const CASES: [&str; 6] =
     ["least", "stiffness test", "every step kept", "dense output", "event", "ode_solvers"];
 

@@ -6,7 +6,7 @@
 //! taken per round; the median over rounds is the figure.
 //!
 //! Equal tolerance is not equal error: our order follows the model's cost
-//! (runtime/src/taylor_order.rs), heyoka's the tolerance alone. So, as
+//! (`runtime/src/methods/taylor/order.rs`), heyoka's the tolerance alone. So, as
 //! against Dop853 below, heyoka's errors are first scanned on a grid of
 //! tolerances four to a decade, and each round times it at the two whose
 //! errors bracket ours, its time at our error interpolated log–log. Each

@@ -173,11 +173,14 @@ pub fn emit_mass_form(
             }
             fn constraints(&self, t: f64, y: &[f64], out: &mut [f64]) {
                 let model = #name { #(#params: self.#params,)* };
-                ::daegen::Model::constraints(&model, t, &y[..#differential], out)
+                // The model's own states: w's first components (all of a
+                // shorter slice, which the model then refuses).
+                let y = y.get(..#differential).unwrap_or(y);
+                ::daegen::Model::constraints(&model, t, y, out)
             }
             fn output(&self, index: usize, t: f64, y: &[f64]) -> f64 {
                 let model = #name { #(#params: self.#params,)* };
-                ::daegen::Model::output(&model, index, t, &y[..#differential])
+                ::daegen::Model::output(&model, index, t, y.get(..#differential).unwrap_or(y))
             }
         }
     };

@@ -1,7 +1,7 @@
 //! The adaptive Taylor method (Jorba & Zou 2005, as in heyoka's
 //! `taylor_determine_h`): coefficients from the model's AD tape
 //! (`taylor_tape`) or the macro's straight-line recurrences, the order
-//! of least work per unit time for the tolerance (`taylor_order.rs`;
+//! of least work per unit time for the tolerance (`order.rs`;
 //! Jorba & Zou's p₀ = ⌈−ln(tol)/2 + 1⌉ when the convolutions dominate),
 //! step h = min(ρ_{p−1}, ρ_p)·[`step_factor`] with
 //! ρ_k = (N/‖x^\[k\]‖∞)^(1/k), N = max(1, ‖x‖∞) (absolute below 1, relative
