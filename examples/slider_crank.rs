@@ -1,7 +1,7 @@
 //! A slider-crank mechanism (course notes Figure 4.7) described as a planar
 //! scene: a crank turning about the ground, a massless connecting rod, a
 //! slider on a horizontal guide, gravity, and a motor torque on the crank.
-//! The macro writes the DAE (global formulation), finds index 3, and the run
+//! The macro writes the DAE (body coordinates), finds index 3, and the run
 //! keeps the joints closed by projection; the same scene in the recursive
 //! formulation (joint coordinates) is run next to it. Both answer to the
 //! same names: the bodies' coordinates (`crank.theta`, `slider.x`), the
@@ -58,13 +58,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     let grid: Vec<f64> = (0..=10).map(|k| 0.2 * k as f64).collect();
     let names = ["crank.theta", "slider.x", "rod[0]", "prismatic3.q"];
-    println!("\nglobal formulation:\n{}", global.sample(&names, &grid)?);
+    println!("\nbody coordinates:\n{}", global.sample(&names, &grid)?);
     let largest = |name: &str| -> Result<f64, daegen::Error> {
         let (a, b) = (global.sample(&[name], &grid)?, recursive.sample(&[name], &grid)?);
         let (a, b) = (a.column(name).unwrap_or(&[]), b.column(name).unwrap_or(&[]));
         Ok(a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max))
     };
-    println!("\nlargest difference from the recursive formulation on that grid:");
+    println!("\nlargest difference from joint coordinates on that grid:");
     for name in names {
         println!("  {name:13} {:.1e}", largest(name)?);
     }

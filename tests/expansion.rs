@@ -215,7 +215,7 @@ expansion_test! {
     /// equation: a product, a sine/cosine pair of the time and a constant, each
     /// coefficient one slot of `r`, one function per order; the negation and
     /// `1 − x` are one folded sum, and `k·x·(1 − x)` is folded into the output
-    /// with its weight `k` computed once (`taylor_folding`).
+    /// with its weight `k` computed once (`taylor::folding`).
     logistic_with_unrolled_taylor_recurrences_of_order_2, (unroll = [2]), ["ForcedLogistic::taylor_jet_unrolled"],
     fn forced_logistic() {
         let t = time();
@@ -298,7 +298,7 @@ double_pendulum_cartesian!(expansion_test! {
 
 expansion_test! {
     /// Two products sharing the factor x, once shifted by a constant, at order
-    /// 2 (`taylor_factoring`): `(x + 1)·sin y + x·cos y` is written as its heads
+    /// 2 (`taylor::factoring`): `(x + 1)·sin y + x·cos y` is written as its heads
     /// `(x + 1)^[0]·sin^[k]` and `x^[0]·cos^[k]` plus one convolution
     /// `Σ_{j≥1} x^[j]·e^[k−j]` on the row `e = sin y + cos y`.
     products_sharing_a_factor_with_unrolled_taylor_recurrences_of_order_2, (unroll = [2]), ["SharedFactor::taylor_jet_unrolled"],
@@ -313,7 +313,7 @@ expansion_test! {
 expansion_test! {
     /// Two symmetric rows unrolled at order 2, x' = −x s, y' = −y s with
     /// s = x + y (Kepler's shape in first order, without the power): x and y
-    /// are a lane pair (`taylor_lanes`) — their rows interleaved in `r`,
+    /// are a lane pair (`taylor::vector_rows`) — their rows interleaved in `r`,
     /// written side by side and copied to `seeds` for the vectoriser — and the
     /// shared s is one row read by both lanes.
     symmetric_rows_as_a_lane_pair_at_order_2, (unroll = [2]), ["Central::taylor_jet_unrolled"],

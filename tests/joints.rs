@@ -1,5 +1,5 @@
 //! The universal (Cardan), cylindrical and planar joints of spatial scenes,
-//! in the global formulation and in joint coordinates (the recursive one),
+//! in body coordinates and in joint coordinates (`scene = recursive`),
 //! each against a motion derived by hand: the
 //! universal joint's pendulum swings about either cross axis as a compound
 //! pendulum, a body on a cylindrical joint falls along its axis spinning
@@ -162,8 +162,8 @@ fn a_body_on_a_cylindrical_joint_falls_along_its_axis_spinning_freely() {
                 (1.5 * t, [("body.q0", (1.5 * t).cos()), ("body.q3", (1.5 * t).sin())]);
             assert!((sol.at(t, "body.z").unwrap() - z).abs() <= 1e3 * tol, "t = {t}");
             // The joint's coordinates: the slide along the axis, and the
-            // turn about it (compared in (−π, π]: the global formulation
-            // reads it from the attitudes, the recursive one integrates it).
+            // turn about it (compared in (−π, π]: body coordinates read it
+            // from the attitudes, joint coordinates integrate it).
             assert!((sol.at(t, "sleeve.q").unwrap() - z).abs() <= 1e3 * tol, "t = {t}");
             let angle = wrap(sol.at(t, "sleeve.angle").unwrap());
             let wrapped = wrap(3.0 * t);
@@ -340,8 +340,8 @@ fn every_planar_joint_answers_to_its_documented_names_in_both_formulations() {
 }
 
 /// Asserts that every one of `names` reads in both solutions of `scene`
-/// and has the same value at `times`, `wraps(name)` telling the angles the
-/// global formulation reads in (−π, π].
+/// and has the same value at `times`, `wraps(name)` telling the angles
+/// body coordinates read in (−π, π].
 fn assert_same_by_name(
     scene: &str,
     global: &Solution,
@@ -416,7 +416,7 @@ fn every_joint_answers_to_its_documented_names_in_both_formulations() {
         names.extend(documented_joint_names("revolute", "spin"));
         names.extend(documented_body_names("carrier"));
         names.extend(documented_body_names("body"));
-        // The global formulation reads a joint's angles in (−π, π].
+        // Body coordinates read a joint's angles in (−π, π].
         let wraps = |name: &str| {
             !name.starts_with("der(")
                 && (name.ends_with(".angle")

@@ -1,4 +1,4 @@
-//! Planar multibody scenes (course notes §4.2, global formulation): bodies
+//! Planar multibody scenes (course notes §4.2, body coordinates): bodies
 //! with (x, y, θ) of their centres, joints as constraints with their
 //! reactions as algebraic variables, the Newton–Euler equations written by
 //! the macro. Checked against hand-written models and minimal-coordinate
@@ -247,7 +247,7 @@ fn a_ten_rod_chain_keeps_its_constraints_and_energy() {
     }
 }
 
-// The same scenes in the recursive formulation (relative joint coordinates).
+// The same scenes in joint coordinates (relative joint coordinates).
 
 // The double rod scene, recursive: two joint angles, no constraint.
 double_rod_model!(double_rod_recursive, scene = recursive);
@@ -292,9 +292,9 @@ fn the_recursive_four_bar_matches_the_global_one() {
     }
 }
 
-// The slider-crank in both formulations from the same exact start
-// (θ = 1): the recursive one has the crank angle and the slide as joint
-// coordinates and the massless rod as its cut joint.
+// The slider-crank in body and in joint coordinates from the same exact
+// start (θ = 1): in joint coordinates the crank angle and the slide are
+// the states and the massless rod is the cut joint.
 macro_rules! slider_crank_from_rest {
     ($name:ident, $($attr:tt)*) => {
         slider_crank_scene!($name, ($($attr)*),
@@ -428,7 +428,7 @@ fn a_welded_body_adds_no_joint_coordinate_and_both_formulations_agree() {
 }
 
 /// A pendulum whose hinge names the ground second (`revolute(rod, .., ground,
-/// ..)`): the recursive formulation reaches the joint from its second frame.
+/// ..)`): joint coordinates reach the joint from its second frame.
 macro_rules! hinge_written_backwards {
     ($name:ident, $($attr:tt)*) => {
         #[dae_model($($attr)*)]
@@ -450,9 +450,9 @@ fn same_values_by_name(a: &Solution, b: &Solution, times: &[f64], tol: f64) -> u
     shared.len()
 }
 
-/// Both formulations answer to the same names: the global one adds each
+/// Both formulations answer to the same names: body coordinates add each
 /// revolute and prismatic joint's coordinate `joint.q` (θ_b − θ_a, or the
-/// slide along the axis) and its rate as outputs, the recursive one each
+/// slide along the axis) and its rate as outputs, joint coordinates each
 /// body's `body.x`, `body.y`, `body.theta` and their rates.
 #[test]
 fn both_formulations_answer_to_the_same_names() {

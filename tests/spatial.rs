@@ -1,4 +1,4 @@
-//! Spatial multibody scenes (course notes §4.2, global formulation with
+//! Spatial multibody scenes (course notes §4.2, body coordinates with
 //! quaternion attitudes): checked against a hand-written model, against
 //! minimal-coordinate ODEs and against an exact solution.
 

@@ -1,6 +1,6 @@
-//! The recursive formulation of spatial scenes (joint coordinates, mass
+//! Joint coordinates for spatial scenes (joint coordinates, mass
 //! matrix by the composite-rigid-body algorithm, bias forces by recursive
-//! Newton–Euler) against the global formulation of the same scenes.
+//! Newton–Euler) against body coordinates of the same scenes.
 
 use daegen::prelude::*;
 
@@ -165,8 +165,8 @@ fn the_seven_joint_arm_matches_the_global_formulation() {
     // hand.
     assert_eq!(shared.len(), 7 * 13 + 7 + 3);
     assert_agree(&global, &recursive, &shared, &times, 1e-7);
-    // The joint angles: read from the attitudes in (−π, π] by the global
-    // formulation, integrated (unwrapped) by the recursive one.
+    // The joint angles: read from the attitudes in (−π, π] in body
+    // coordinates, integrated (unwrapped) in joint coordinates.
     use std::f64::consts::PI;
     for joint in joints {
         for t in times {
@@ -182,7 +182,7 @@ fn the_seven_joint_arm_matches_the_global_formulation() {
 
 in_both_formulations!(tumbling_pair, tumbling_pair_in_joint_coordinates, {
     // Two bodies joined by a spherical joint, floating without gravity:
-    // in the recursive formulation the first hangs from nothing (a free
+    // in joint coordinates the first hangs from nothing (a free
     // joint), the second from it. A consistent start: the joint point
     // moves at v1 + ω1 × (0.5, 0, 0) = v2 + ω2 × (−0.5, 0, 0) = (0.1, 0.5, 0).
     // Nothing holds it to the ground.

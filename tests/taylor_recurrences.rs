@@ -102,7 +102,7 @@ fn elementary_lanes() {
 /// The restricted three-body problem (Arenstorf's), whose accelerations
 /// sum products that share a factor, itself or shifted by a constant:
 /// (x + μ)/d₁³ and (x − μ′)/d₂³, y/d₁³ and y/d₂³, factored into one
-/// convolution each with the row −μ′/d₁³ − μ/d₂³ (`taylor_factoring`); a
+/// convolution each with the row −μ′/d₁³ − μ/d₂³ (`taylor::factoring`); a
 /// third sum shares the factor z with a product of its own. One function
 /// at order 4 (checked against the symbolic scheme too), one per order at 30.
 #[dae_model(taylor = 4, unroll = [4, 30])]

@@ -1,5 +1,5 @@
 //! The DAE benchmarks (`--dae`): the price of the DAE forms against the
-//! ODEs they reduce to, the global and recursive formulations of a scene,
+//! ODEs they reduce to, a scene in body and in joint coordinates,
 //! and Robertson as an index-1 DAE against diffsol's mass-matrix BDF and
 //! SUNDIALS' IDA. These
 //! compare forms of one problem rather than sweep a registered model, so
@@ -127,11 +127,11 @@ fn rod_chain_source(n: usize) -> String {
     s + "gravity(vec3(0.0, -g, 0.0)); }"
 }
 
-/// A ten-rod chain in the global and the recursive formulation: macro
+/// A ten-rod chain in body and in joint coordinates: macro
 /// expansion time and generated size, and the run's cost per step.
 fn formulations() {
     println!(
-        "\n### Ten-rod chain: global against recursive formulation (DOP853, tol 1e-8, t = 1)\n"
+        "\n### Ten-rod chain: body against joint coordinates (DOP853, tol 1e-8, t = 1)\n"
     );
     println!(
         "| formulation | expansion (ms) | generated (kB) | states | run (ms) | steps | µs/step |"
@@ -178,13 +178,13 @@ fn spatial_run<M: Simulate + Default>(
     }
 }
 
-/// The spatial scenes in the global and the recursive formulation: the
+/// The spatial scenes in body and in joint coordinates: the
 /// macro's expansion time, the generated code's size and rustc's time on
 /// it, and the run's cost per step by DOP853 at tol 1e-10, with the end
-/// error against the recursive formulation at 1e-13.
+/// error against joint coordinates at 1e-13.
 fn spatial_formulations() {
-    println!("\n### Spatial scenes: global against recursive formulation (DOP853, tol 1e-10)\n");
-    println!("Expansion: median of 5; rustc (release): the faster of 2 (one above a minute). Error: max over the outputs at the end against the recursive formulation at tol 1e-13.\n");
+    println!("\n### Spatial scenes: body against joint coordinates (DOP853, tol 1e-10)\n");
+    println!("Expansion: median of 5; rustc (release): the faster of 2 (one above a minute). Error: max over the outputs at the end against joint coordinates at tol 1e-13.\n");
     println!("| scene | formulation | states | expansion (ms) | generated (kB) | rustc (s) | run (ms) | steps | µs/step | error |");
     println!("|---|---|---|---|---|---|---|---|---|---|");
     let file = include_str!("../../tests/models/spatial_chains.rs");

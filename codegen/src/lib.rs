@@ -152,7 +152,7 @@ pub fn diagnostics(item: TokenStream) -> Vec<String> {
 /// The most generated code (bytes of its text) a scene in body
 /// coordinates may have unless `scene = global` is written out: a chain
 /// of five revolute joints makes about 2 MB, and a UR5 arm made 5.8 MB
-/// that rustc compiled for six minutes, where the recursive formulation
+/// that rustc compiled for six minutes, where joint coordinates
 /// makes 0.2 MB.
 pub const BODY_COORDINATES_LIMIT: usize = 2_000_000;
 

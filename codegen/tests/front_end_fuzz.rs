@@ -191,7 +191,7 @@ fn ode() -> impl Strategy<Value = String> {
 }
 
 /// A random scene: bodies and joints between random frames, and whether to
-/// use the recursive formulation (planar scenes only).
+/// use joint coordinates (planar scenes only).
 fn scene() -> impl Strategy<Value = (bool, String)> {
     (any::<bool>(), any::<bool>(), 1usize..4, prop::collection::vec((0usize..5, 0usize..5, 0usize..5, -2i32..3), 1..6))
         .prop_map(|(recursive, spatial, bodies, joints)| {

@@ -190,7 +190,7 @@
 //! prismatic is a translational flange on the displacement along its
 //! axis, its force at the second body's joint point. A motor, a gear or a
 //! spring-damper drives the mechanism through it, planar or in space, in
-//! the global and the recursive formulation alike. In a planar scene the
+//! in body and in joint coordinates alike. In a planar scene the
 //! angle is `θ_b − θ_a`; a spatial scene in body coordinates has no
 //! coordinate for it, so the flange's angle is the state `pivot.angle`,
 //! the relative rotation since the start integrated from the rates (in

@@ -53,8 +53,8 @@
 //! | `pin[0]`, `pin[1]` | the multipliers of the joint's constraint rows (its reaction is −Φ_qᵀλ) |
 //! | `revolute2.q`, `revolute2[0]` | an unnamed joint, by its kind and place among the joints |
 //!
-//! In the global formulation the body coordinates are states and the joint
-//! coordinates outputs; in the recursive one the other way round (only
+//! In body coordinates (the default) the bodies' coordinates are states and
+//! the joints' outputs; in joint coordinates the other way round (only
 //! the cut joints keep multipliers there). `println!("{}", model.describe())`
 //! lists them all with what they are.
 //!
@@ -124,10 +124,10 @@
 //! generated code would pass 2 MB (a chain of about six bodies) is refused
 //! with that advice; `#[dae_model(scene = global)]` written out keeps body
 //! coordinates anyway. Two differences: in joint coordinates an angle does not
-//! wrap (the global formulation reads a spatial joint's angle from the
+//! wrap (body coordinates read a spatial joint's angle from the
 //! attitudes, in (−π, π]), and the bodies must start where their joints
 //! put them, moving as the joints move them: a start the joints contradict
-//! is a compile error that names the joint (the global formulation would
+//! is a compile error that names the joint (body coordinates would
 //! project it and report `initial_corrections()`). The poses drawn are the
 //! joint coordinates' zero; `init(hinge.q, 0.5)` and
 //! `init(der(hinge.q), 1.0)` start a joint elsewhere, as a robot is

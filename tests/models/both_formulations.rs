@@ -1,5 +1,5 @@
 // `in_both_formulations!(global_name, recursive_name, { body })`: a scene
-// written once, generated in the global formulation and in joint
+// written once, generated in body coordinates and in joint
 // coordinates.
 
 #[allow(unused_macros)]

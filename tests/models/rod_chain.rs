@@ -7,7 +7,7 @@
 macro_rules! rod_chain_model {
     ($name:ident, $($attr:tt)*) => {
         /// Ten rods on revolute joints: 30 coordinates and 20 constraint
-        /// rows in the global formulation, 10 joint angles in the recursive.
+        /// rows in body coordinates, 10 joint angles in the recursive.
         #[dae_model($($attr)*)]
         fn $name() {
             let g = param(9.81);

@@ -1,4 +1,4 @@
-// Three spatial scenes shared by the tests of the recursive formulation and
+// Three spatial scenes shared by the tests of joint coordinates and
 // the benchmark, each written once and generated in either formulation:
 // a spatial double pendulum, a spatial four-bar (RSSR) loop and a
 // seven-joint arm.

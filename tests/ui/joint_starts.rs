@@ -1,6 +1,6 @@
 use daegen::prelude::*;
 
-/// Joint coordinates are states only in the recursive formulation.
+/// A joint's coordinates are states only with `scene = recursive`.
 #[dae_model]
 fn global_start() {
     let ground = ground();

@@ -1,6 +1,6 @@
 use daegen::prelude::*;
 
-/// In the recursive formulation a body starts where its joint places it:
+/// In joint coordinates a body starts where its joint places it:
 /// the top's joint point is 0.1 m below the pivot.
 #[dae_model(scene = recursive)]
 fn recursive_top() {

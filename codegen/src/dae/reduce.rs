@@ -208,15 +208,15 @@ fn structure_report(
     newton: Option<&crate::dae::system::NewtonBlock>,
     mass_only: bool,
     aliases: Vec<(SymbolId, Id)>,
-) -> crate::dae::system::StructureReport {
-    use crate::dae::sorting::BlockSolution;
-    use crate::dae::system::{BlockReport, BlockSolve};
-    let mut report = crate::dae::system::StructureReport { aliases, ..Default::default() };
+) -> crate::dae::system::StructureInfo {
+    use crate::dae::sorting::SortedSolution;
+    use crate::dae::system::{BlockInfo, BlockSolution};
+    let mut report = crate::dae::system::StructureInfo { aliases, ..Default::default() };
     // Where each shared solve's report is, by its key.
     let mut shared: FxHashMap<(u8, usize), usize> = FxHashMap::default();
     for block in &sorted.blocks {
         let unknowns: Vec<SymbolId> = block.unknowns.iter().map(|&j| symbols[j]).collect();
-        if block.solution == BlockSolution::Explicit {
+        if block.solution == SortedSolution::Explicit {
             report.one_at_a_time.push(unknowns[0]);
             continue;
         }
@@ -224,25 +224,28 @@ fn structure_report(
             .iter()
             .find_map(|s| all_index.get(s).and_then(|&j| solved.block_of[j]).map(|(b, _)| b));
         let (key, solution) = if mass_only {
-            ((0, 0), BlockSolve::MassMatrix)
+            ((0, 0), BlockSolution::MassMatrix)
         } else if let Some(b) = newton.filter(|b| unknowns.iter().any(|s| b.determines(s))) {
             let c = newton_part(b, &unknowns);
-            ((1, c), BlockSolve::Newton { tearing: b.components.get(c).map_or(0, |p| p.0.len()) })
+            (
+                (1, c),
+                BlockSolution::Newton { tearing: b.components.get(c).map_or(0, |p| p.0.len()) },
+            )
         } else if let Some(b) = run_time_block {
-            ((2, b), BlockSolve::Linear { lu: solved.blocks[b].unknowns.len() })
+            ((2, b), BlockSolution::Linear { lu: solved.blocks[b].unknowns.len() })
         } else if unknowns.len() == 1 {
             // Solved symbolically after a block it reads.
             report.one_at_a_time.push(unknowns[0]);
             continue;
         } else {
-            report.blocks.push(BlockReport { unknowns, solution: BlockSolve::Symbolic });
+            report.blocks.push(BlockInfo { unknowns, solution: BlockSolution::Symbolic });
             continue;
         };
         match shared.get(&key) {
             Some(&k) => report.blocks[k].unknowns.extend(unknowns),
             None => {
                 shared.insert(key, report.blocks.len());
-                report.blocks.push(BlockReport { unknowns, solution });
+                report.blocks.push(BlockInfo { unknowns, solution });
             }
         }
     }

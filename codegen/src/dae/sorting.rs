@@ -47,7 +47,7 @@ pub struct Unknown {
 
 /// How one block of the causal order is solved.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum BlockSolution {
+pub enum SortedSolution {
     /// One equation, linear in its unknown: solved symbolically here.
     Explicit,
     /// One equation, linear in its unknown, solved symbolically in terms
@@ -68,7 +68,7 @@ pub struct Block {
     /// The unknowns they determine (indices into `Problem::unknowns`).
     pub unknowns: Vec<usize>,
     /// How it is solved.
-    pub solution: BlockSolution,
+    pub solution: SortedSolution,
 }
 
 /// The equations in causal order, the explicit blocks solved.
@@ -165,13 +165,13 @@ pub fn sort(cx: &mut Ctxt, g: &mut Graph, problem: &Problem<'_>) -> Option<Sorte
                 residuals[equations[0]] = zero;
                 solved_equations[equations[0]] = true;
                 match after {
-                    true => BlockSolution::ExplicitAfterSolve,
-                    false => BlockSolution::Explicit,
+                    true => SortedSolution::ExplicitAfterSolve,
+                    false => SortedSolution::Explicit,
                 }
             }
             None => {
                 unknowns.iter().for_each(|&j| deferred[j] = true);
-                BlockSolution::Deferred
+                SortedSolution::Deferred
             }
         };
         blocks.push(Block { equations, unknowns, solution });

@@ -103,35 +103,35 @@ pub struct FirstOrder {
     /// What each event, then each clock, does where it fires, in order.
     pub actions: Vec<Vec<SlotAction>>,
     /// How the equations are solved for their unknowns, in causal order.
-    pub structure: StructureReport,
+    pub structure: StructureInfo,
 }
 
 /// How the equations are solved for their unknowns: the aliases removed,
 /// then in causal order the unknowns solved one equation at a time and the
 /// blocks solved together.
 #[derive(Clone, Debug, Default)]
-pub struct StructureReport {
+pub struct StructureInfo {
     /// Variables removed as aliases, with their values.
     pub aliases: Vec<(SymbolId, Id)>,
     /// Unknowns solved one equation at a time, symbolically, in causal
     /// order.
     pub one_at_a_time: Vec<SymbolId>,
     /// The blocks solved together, in causal order.
-    pub blocks: Vec<BlockReport>,
+    pub blocks: Vec<BlockInfo>,
 }
 
 /// Equations that determine their unknowns together.
 #[derive(Clone, Debug)]
-pub struct BlockReport {
+pub struct BlockInfo {
     /// The unknowns (as many as the equations) before tearing.
     pub unknowns: Vec<SymbolId>,
     /// How they are solved.
-    pub solution: BlockSolve,
+    pub solution: BlockSolution,
 }
 
 /// How a block is solved at each evaluation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BlockSolve {
+pub enum BlockSolution {
     /// Linear, solved symbolically.
     Symbolic,
     /// Linear, by a run-time LU of `lu` unknowns.
@@ -254,10 +254,10 @@ impl std::fmt::Display for crate::expr::display::WithGraph<'_, FirstOrder> {
         for b in &report.blocks {
             let unknowns: Vec<String> = b.unknowns.iter().map(|&s| name(s)).collect();
             let how = match b.solution {
-                BlockSolve::Symbolic => "symbolic".to_string(),
-                BlockSolve::Linear { lu } => format!("LU of {lu}"),
-                BlockSolve::Newton { tearing } => format!("Newton on {tearing}"),
-                BlockSolve::MassMatrix => "mass-matrix form".to_string(),
+                BlockSolution::Symbolic => "symbolic".to_string(),
+                BlockSolution::Linear { lu } => format!("LU of {lu}"),
+                BlockSolution::Newton { tearing } => format!("Newton on {tearing}"),
+                BlockSolution::MassMatrix => "mass-matrix form".to_string(),
             };
             writeln!(f, "block {}: {how}", unknowns.join(", "))?;
         }

@@ -2,7 +2,7 @@
 //! its `Default`, its documentation (what index reduction found), and
 //! `ModelInfo` with every name and doc comment.
 
-use crate::dae::system::{BlockSolve, FirstOrder, StructureReport};
+use crate::dae::system::{BlockSolution, FirstOrder, StructureInfo};
 use crate::emit::layout::index;
 use crate::front::ir::{EventDirection, ModelIr};
 use crate::front::names::upper_camel_case;
@@ -172,22 +172,22 @@ pub(crate) fn info(ir: &ModelIr, sys: &FirstOrder) -> TokenStream {
 }
 
 /// `StructureInfo`: the sizes of what the sorting found.
-fn structure_info(report: &StructureReport) -> TokenStream {
+fn structure_info(report: &StructureInfo) -> TokenStream {
     let aliases = index(report.aliases.len());
     let one_at_a_time = index(report.one_at_a_time.len());
     let blocks = report.blocks.iter().map(|b| {
         let size = index(b.unknowns.len());
         let solution = match b.solution {
-            BlockSolve::Symbolic => quote!(Symbolic),
-            BlockSolve::Linear { lu } => {
+            BlockSolution::Symbolic => quote!(Symbolic),
+            BlockSolution::Linear { lu } => {
                 let lu = index(lu);
                 quote!(Linear { lu: #lu })
             }
-            BlockSolve::Newton { tearing } => {
+            BlockSolution::Newton { tearing } => {
                 let tearing = index(tearing);
                 quote!(Newton { tearing: #tearing })
             }
-            BlockSolve::MassMatrix => quote!(MassMatrix),
+            BlockSolution::MassMatrix => quote!(MassMatrix),
         };
         quote!(::daegen::BlockInfo { size: #size, solution: ::daegen::BlockSolution::#solution })
     });
@@ -205,7 +205,7 @@ pub(crate) fn info_with(
     ir: &ModelIr,
     states: &[&str],
     algebraics: &[&str],
-    structure: &StructureReport,
+    structure: &StructureInfo,
 ) -> TokenStream {
     let structure = structure_info(structure);
     let name = type_name(ir).to_string();

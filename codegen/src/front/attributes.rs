@@ -14,7 +14,7 @@ pub struct Attributes {
     /// `taylor = 0`: no Taylor code at all, not even the tape.
     pub taylor_off: bool,
     /// `unroll = [p, ...]`, 2 ≤ p ≤ 40: orders of the adaptive Taylor method
-    /// to emit as straight-line code (see `taylor_unrolled`).
+    /// to emit as straight-line code (see `taylor::unrolled`).
     pub unroll: Vec<usize>,
     /// The odd orders of `unroll`, where they were written: `Method::Taylor`
     /// never picks them (see `warnings`).

@@ -248,7 +248,7 @@ pub struct ModelIr {
     /// Files the model was built from (a robot's URDF): the build depends on
     /// them, so a change to one expands the model again.
     pub depends_on: Vec<std::path::PathBuf>,
-    /// A scene in space in body coordinates (the global formulation),
+    /// A scene in space in body coordinates (body coordinates),
     /// whose generated code grows fast with its joints.
     pub body_coordinates: bool,
 }

@@ -1,8 +1,8 @@
 //! Multibody scenes lowered into equations (course notes §4.2): bodies
-//! and joints of a planar scene in the global formulation (`planar`) or
-//! the recursive one (`recursive`, on the spanning tree of `topology`),
-//! spatial scenes in the global formulation (`spatial`) or the recursive
-//! one (`spatial_recursive`, with `spatial_joint_motion` and
+//! and joints of a planar scene in body coordinates (`planar`) or in
+//! joint coordinates (`planar_recursive`, on the spanning tree of
+//! `topology`), spatial scenes in body coordinates (`spatial`) or in joint
+//! coordinates (`spatial_recursive`, with `spatial_joint_motion` and
 //! `joint_space_dynamics` over the tree of `spatial_tree`, and
 //! `spatial_vectors` and `algebra`), robots read from URDF files
 //! (`urdf`), and the names a scene answers to (`names`). The lowering hands scene statements over through
@@ -15,7 +15,7 @@ pub mod body_frame_dynamics;
 pub mod joint_space_dynamics;
 pub mod names;
 pub mod planar;
-pub mod recursive;
+pub mod planar_recursive;
 pub mod spatial;
 pub mod spatial_joint_motion;
 pub mod spatial_recursive;
@@ -56,7 +56,7 @@ pub(crate) struct Scene {
     pub summary: String,
     /// `#[dae_model(scene = recursive)]`: relative joint coordinates.
     pub recursive: bool,
-    /// Every joint, for the recursive formulation.
+    /// Every joint, for joint coordinates.
     pub records: Vec<JointRecord>,
     /// The bodies of a spatial scene (then `bodies` is empty).
     pub spatial: Vec<SpatialBody>,
@@ -68,14 +68,14 @@ pub(crate) struct Scene {
     pub joint_rows: Vec<(String, std::ops::Range<usize>, TokenStream)>,
     /// A `spatial_body` was declared (even one with an error).
     pub spatial_declared: bool,
-    /// Every spatial joint, for the recursive formulation.
+    /// Every spatial joint, for joint coordinates.
     pub spatial_records: Vec<SpatialJointRecord>,
     /// The robot descriptions read (`urdf(..)`), which the build depends on.
     pub robot_files: Vec<std::path::PathBuf>,
-    /// `init(j.q, ..)`, `init(der(j.q), ..)`: joint coordinates' starts in
-    /// the recursive formulation.
+    /// `init(j.q, ..)`, `init(der(j.q), ..)`: joint coordinates' starts
+    /// (`scene = recursive`).
     pub joint_inits: Vec<JointInit>,
-    /// Prismatic joints' flanges in the recursive formulation: the joint,
+    /// Prismatic joints' flanges in joint coordinates: the joint,
     /// the symbol standing for its displacement until the joint's
     /// coordinate replaces it, and the displacement in body coordinates.
     pub prismatic_flanges: Vec<(String, SymbolId, Id)>,
@@ -200,7 +200,7 @@ impl crate::front::lower::SceneLanguage for Scene {
     }
 }
 
-/// A joint as declared: what the recursive formulation needs to place the
+/// A joint as declared: what joint coordinates need to place the
 /// child from the parent, and which equations and multipliers it added.
 #[derive(Clone)]
 pub(crate) struct JointRecord {
@@ -216,7 +216,7 @@ pub(crate) struct JointRecord {
     pub rows: std::ops::Range<usize>,
 }
 
-/// A spatial joint as declared: what the recursive formulation needs to
+/// A spatial joint as declared: what joint coordinates need to
 /// place the child from the parent, and which equations and multipliers
 /// it added.
 #[derive(Clone)]

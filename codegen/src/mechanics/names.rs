@@ -1,6 +1,6 @@
 //! The names a scene answers to beyond its states, so a solution reads the
 //! same names in either formulation: where the bodies' coordinates are the
-//! states (the global formulation), each revolute and prismatic joint's
+//! states (body coordinates), each revolute and prismatic joint's
 //! coordinate `joint.q` (and in the plane its rate `der(joint.q)`) as an
 //! output; where joint coordinates are the states (the recursive
 //! formulation), each body's `body.x`, `body.y`, `body.theta` and their
@@ -23,7 +23,7 @@ use proc_macro2::TokenStream;
 impl Lower<'_, Scene> {
     /// `joint.q` and `der(joint.q)` of the revolute and prismatic joints
     /// among `joints` (indices into the scene's records), in the body
-    /// coordinates (which the recursive formulation then rewrites).
+    /// coordinates (which joint coordinates then rewrite).
     pub(crate) fn planar_joint_coordinates(&mut self, joints: &[usize], origin: &TokenStream) {
         let records: Vec<_> = joints
             .iter()
@@ -69,7 +69,7 @@ impl Lower<'_, Scene> {
     }
 
     /// `body.x`, `body.y`, `body.theta` and their rates, from the poses and
-    /// velocities of the recursive formulation (expressions of the joint
+    /// velocities of joint coordinates (expressions of the joint
     /// coordinates and their rates).
     pub(crate) fn body_coordinates(
         &mut self,
@@ -170,9 +170,9 @@ fn rate_through(g: &mut crate::Graph, value: Id, through: &[SymbolId]) -> crate:
     g.sum(&terms)
 }
 
-/// The coordinates of each kind of spatial joint, by name, as the
-/// recursive formulation's states and the global formulation's outputs
-/// both call them.
+/// The coordinates of each kind of spatial joint, by name, as the states
+/// in joint coordinates and the outputs in body coordinates both call
+/// them.
 pub(crate) const SPATIAL_JOINT_COORDINATES: [(&str, &[&str]); 6] = [
     ("revolute", &["q"]),
     ("prismatic", &["q"]),

@@ -1,4 +1,4 @@
-//! Planar multibody scenes in the global formulation (course notes
+//! Planar multibody scenes in body coordinates (course notes
 //! §4.2.2): each body is free, `(x, y, θ)` of its centre of mass, and each
 //! joint is a set of constraints on those coordinates with its reaction as
 //! algebraic variables. At the end of the model the macro writes each

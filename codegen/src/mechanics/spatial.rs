@@ -1,4 +1,4 @@
-//! Spatial multibody scenes in the global formulation (course notes §4.2,
+//! Spatial multibody scenes in body coordinates (course notes §4.2,
 //! with quaternion attitudes, §4.1.3): each body is free, the position of
 //! its centre of mass `r`, a unit quaternion `q` and its angular velocity
 //! `ω` in body axes; each joint is a set of constraints on `(r, q)` with its

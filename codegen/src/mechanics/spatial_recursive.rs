@@ -1,4 +1,4 @@
-//! The recursive formulation of a spatial scene: joint coordinates along a
+//! Joint coordinates for a spatial scene: joint coordinates along a
 //! spanning tree grown from the ground, the joint-space mass matrix by the
 //! composite-rigid-body algorithm and the bias forces by recursive
 //! Newton–Euler (Featherstone, *Rigid Body Dynamics Algorithms*, 2008,
@@ -14,7 +14,7 @@
 //! absolute coordinates), so a joint's motion subspace S is the axis's
 //! Plücker vector and needs no transforms; an axis fixed in body F changes
 //! as Ṡ = V_F × S. Coordinates: a revolute joint's turn `j.q` and a
-//! prismatic joint's slide `j.q` as in the global formulation; a
+//! prismatic joint's slide `j.q` as in body coordinates; a
 //! cylindrical joint's `j.q` and `j.angle`; a universal joint's turns
 //! `j.q1` (about the axis in a) and `j.q2` (about the axis in b); a planar
 //! joint's slides `j.u`, `j.v` and turn `j.angle`; a spherical joint's
@@ -544,7 +544,7 @@ impl Lower<'_, Scene> {
             } else {
                 format!("{worst:.1e}")
             };
-            return Some((at, format!("`{body}` starts {worst} m from where joint `{joint}` places it: in the recursive formulation a body's start follows from its joint, so give `{body}` an initial position that satisfies `{joint}`")));
+            return Some((at, format!("`{body}` starts {worst} m from where joint `{joint}` places it: in joint coordinates a body's start follows from its joint, so give `{body}` an initial position that satisfies `{joint}`")));
         }
         None
     }
@@ -595,7 +595,7 @@ impl Lower<'_, Scene> {
                     x.iter().map(|v| format!("{}", (v * 1e6).round() / 1e6)).collect();
                 format!("[{}], [{}]", parts[..3].join(", "), parts[3..].join(", "))
             };
-            return Some((at, format!("`{body}` starts moving at {} (velocity, body rates) but joint `{joint}` moves it at {}: in the recursive formulation a body's motion follows from its joints' rates, so give `{body}` a velocity and body rates that satisfy `{joint}`", show(&want), show(&got))));
+            return Some((at, format!("`{body}` starts moving at {} (velocity, body rates) but joint `{joint}` moves it at {}: in joint coordinates a body's motion follows from its joints' rates, so give `{body}` a velocity and body rates that satisfy `{joint}`", show(&want), show(&got))));
         }
         None
     }

@@ -179,7 +179,7 @@ fn shared_row(folding: &mut Folding, terms: Vec<LinearTerm>) -> usize {
 mod tests {
     use super::*;
     use crate::taylor::folding::fold_linear;
-    use crate::taylor::tape::{test_tape, Recurrence};
+    use crate::taylor::tape::{test_tape, TapeOp};
 
     fn term(times: &[usize], base: Base) -> LinearTerm {
         LinearTerm {
@@ -197,20 +197,20 @@ mod tests {
         use Operand::{Const, State, Var};
         let mut tape = test_tape(
             vec![
-                Recurrence::Add(State(0), Const(0)),
-                Recurrence::Add(State(0), Const(1)),
-                Recurrence::Pow(State(1), -1.5),
-                Recurrence::Pow(State(2), -1.5),
-                Recurrence::Mul(Var(0), Var(2)),
-                Recurrence::Scale(Var(4), 2),
-                Recurrence::Mul(Var(1), Var(3)),
-                Recurrence::Scale(Var(6), 3),
-                Recurrence::Add(Var(5), Var(7)),
-                Recurrence::Mul(Var(2), State(1)),
-                Recurrence::Scale(Var(9), 4),
-                Recurrence::Mul(Var(3), State(1)),
-                Recurrence::Scale(Var(11), 5),
-                Recurrence::Add(Var(10), Var(12)),
+                TapeOp::Add(State(0), Const(0)),
+                TapeOp::Add(State(0), Const(1)),
+                TapeOp::Pow(State(1), -1.5),
+                TapeOp::Pow(State(2), -1.5),
+                TapeOp::Mul(Var(0), Var(2)),
+                TapeOp::Scale(Var(4), 2),
+                TapeOp::Mul(Var(1), Var(3)),
+                TapeOp::Scale(Var(6), 3),
+                TapeOp::Add(Var(5), Var(7)),
+                TapeOp::Mul(Var(2), State(1)),
+                TapeOp::Scale(Var(9), 4),
+                TapeOp::Mul(Var(3), State(1)),
+                TapeOp::Scale(Var(11), 5),
+                TapeOp::Add(Var(10), Var(12)),
             ],
             vec![Var(8), Var(13)],
             6,
@@ -250,11 +250,11 @@ mod tests {
         use Operand::{Const, State, Time, Var};
         let tape = test_tape(
             vec![
-                Recurrence::Mul(State(0), State(1)),
-                Recurrence::Mul(Time, State(0)),
-                Recurrence::Mul(Time, State(1)),
-                Recurrence::Add(Var(1), Var(2)),
-                Recurrence::Add(Var(0), Const(0)),
+                TapeOp::Mul(State(0), State(1)),
+                TapeOp::Mul(Time, State(0)),
+                TapeOp::Mul(Time, State(1)),
+                TapeOp::Add(Var(1), Var(2)),
+                TapeOp::Add(Var(0), Const(0)),
             ],
             vec![Var(3), Var(4)],
             1,

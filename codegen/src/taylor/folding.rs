@@ -13,7 +13,7 @@
 //! u-variable keeps a row when a nonlinear recurrence reads it, or when it
 //! has several users and a convolution or many terms would be recomputed.
 
-use crate::taylor::tape::{Constant, Operand, Recurrence, Tape};
+use crate::taylor::tape::{Constant, Operand, Tape, TapeOp};
 
 /// Sums longer than this keep a row instead of being copied into users.
 const MAX_FOLDED_TERMS: usize = 64;
@@ -69,7 +69,7 @@ pub enum Base {
     /// The coefficients of `a·b`.
     Product(Operand, Operand),
     /// The first term of `a·b`'s convolution, `a^[0]·b^[k]` (see
-    /// `taylor_factoring`).
+    /// `taylor::factoring`).
     Head(Operand, Operand),
     /// The rest of `a·b`'s convolution, `Σ_{j=1..k} a^[j]·b^[k−j]`.
     Tail(Operand, Operand),
@@ -123,26 +123,25 @@ pub struct Folding {
     pub outputs: Vec<Vec<LinearTerm>>,
 }
 
-fn is_linear(r: &Recurrence) -> bool {
-    matches!(r, Recurrence::Add(..) | Recurrence::Scale(..) | Recurrence::Quotient(..))
+fn is_linear(r: &TapeOp) -> bool {
+    matches!(r, TapeOp::Add(..) | TapeOp::Scale(..) | TapeOp::Quotient(..))
 }
 
 /// The operands a recurrence reads, in order.
-pub fn operands(r: &Recurrence) -> Vec<Operand> {
+pub fn operands(r: &TapeOp) -> Vec<Operand> {
     match *r {
-        Recurrence::Scale(a, _)
-        | Recurrence::Quotient(a, _)
-        | Recurrence::Square(a)
-        | Recurrence::Pow(a, _)
-        | Recurrence::Exp(a)
-        | Recurrence::Ln(a)
-        | Recurrence::SinCos(a)
-        | Recurrence::SinhCosh(a) => vec![a],
-        Recurrence::Add(a, b)
-        | Recurrence::Mul(a, b)
-        | Recurrence::Div(a, b)
-        | Recurrence::Inverse(_, a, b) => vec![a, b],
-        Recurrence::Atan2(y, x, d) => vec![y, x, d],
+        TapeOp::Scale(a, _)
+        | TapeOp::Quotient(a, _)
+        | TapeOp::Square(a)
+        | TapeOp::Pow(a, _)
+        | TapeOp::Exp(a)
+        | TapeOp::Ln(a)
+        | TapeOp::SinCos(a)
+        | TapeOp::SinhCosh(a) => vec![a],
+        TapeOp::Add(a, b) | TapeOp::Mul(a, b) | TapeOp::Div(a, b) | TapeOp::Inverse(_, a, b) => {
+            vec![a, b]
+        }
+        TapeOp::Atan2(y, x, d) => vec![y, x, d],
     }
 }
 
@@ -196,13 +195,13 @@ pub fn fold_linear(tape: &Tape, known: &[Option<f64>]) -> Folding {
     for &(v, r) in &tape.recurrences {
         let uses = linear_uses[v] + other_uses[v] + output_uses[v];
         let terms = match r {
-            Recurrence::Add(a, b) => {
+            TapeOp::Add(a, b) => {
                 let mut t = terms_of(a, &folded);
                 t.extend(terms_of(b, &folded));
                 t
             }
-            Recurrence::Scale(a, c) | Recurrence::Quotient(a, c) => {
-                let divide = matches!(r, Recurrence::Quotient(..));
+            TapeOp::Scale(a, c) | TapeOp::Quotient(a, c) => {
+                let divide = matches!(r, TapeOp::Quotient(..));
                 terms_of(a, &folded)
                     .into_iter()
                     .map(|t| LinearTerm {
@@ -212,9 +211,9 @@ pub fn fold_linear(tape: &Tape, known: &[Option<f64>]) -> Folding {
                     .collect()
             }
             // A square or product read by one sum only becomes terms of it.
-            Recurrence::Square(a) | Recurrence::Mul(a, _) if linear_uses[v] == 1 && uses == 1 => {
+            TapeOp::Square(a) | TapeOp::Mul(a, _) if linear_uses[v] == 1 && uses == 1 => {
                 let base = match r {
-                    Recurrence::Mul(a, b) => Base::Product(a, b),
+                    TapeOp::Mul(a, b) => Base::Product(a, b),
                     _ => Base::Square(a),
                 };
                 folded[v] = Some(vec![LinearTerm { weight: Weight::one(), base }]);
@@ -225,7 +224,7 @@ pub fn fold_linear(tape: &Tape, known: &[Option<f64>]) -> Folding {
         };
         // One order for the terms of every sum (operands, squares,
         // products), so that sums built alike from different operands are
-        // written alike (`taylor_lanes` pairs them).
+        // written alike (`vector_rows` pairs them).
         let mut terms = terms;
         terms.sort_by_key(|t| t.base.kind());
         let convolutions = terms.iter().any(|t| t.base.is_convolution());
@@ -262,17 +261,17 @@ mod tests {
         // c0 = −1 (known), c1 = a mass (a parameter).
         let t = test_tape(
             vec![
-                Recurrence::Scale(State(0), 0),
-                Recurrence::Add(State(1), Var(0)),
-                Recurrence::Scale(State(2), 0),
-                Recurrence::Add(State(3), Var(2)),
-                Recurrence::Square(Var(1)),
-                Recurrence::Square(Var(3)),
-                Recurrence::Add(Var(4), Var(5)),
-                Recurrence::Pow(Var(6), -1.5),
-                Recurrence::Mul(Var(1), Var(7)),
-                Recurrence::Scale(Var(8), 1),
-                Recurrence::Scale(Var(8), 0),
+                TapeOp::Scale(State(0), 0),
+                TapeOp::Add(State(1), Var(0)),
+                TapeOp::Scale(State(2), 0),
+                TapeOp::Add(State(3), Var(2)),
+                TapeOp::Square(Var(1)),
+                TapeOp::Square(Var(3)),
+                TapeOp::Add(Var(4), Var(5)),
+                TapeOp::Pow(Var(6), -1.5),
+                TapeOp::Mul(Var(1), Var(7)),
+                TapeOp::Scale(Var(8), 1),
+                TapeOp::Scale(Var(8), 0),
             ],
             vec![Var(9), Var(10)],
             2,
@@ -322,9 +321,9 @@ mod tests {
         use Operand::{State, Var};
         let t = test_tape(
             vec![
-                Recurrence::Mul(State(0), State(1)),
-                Recurrence::Quotient(Var(0), 0),
-                Recurrence::Add(Var(1), State(0)),
+                TapeOp::Mul(State(0), State(1)),
+                TapeOp::Quotient(Var(0), 0),
+                TapeOp::Add(Var(1), State(0)),
             ],
             vec![Var(2), Var(2)],
             1,

@@ -11,7 +11,7 @@
 //! with their coefficients interleaved (coefficient k of lane l at
 //! `first + W·k + l`) is one loop over l whose body reads its operands'
 //! lane l, which the compiler vectorises. Groups are found as lane pairs
-//! are (`taylor_lanes`), with tuples in place of pairs: from a seed tuple
+//! are (`vector_rows`), with tuples in place of pairs: from a seed tuple
 //! (every row of one shape), unify the operands position by position —
 //! one operand read by every lane, a tuple that is itself a group in the
 //! same lane order, or states (the group's rows are then written lane by
@@ -25,8 +25,8 @@
 //! 3.0 µs with a loop per group and 2.6 µs with fused loops.
 
 use crate::taylor::folding::{Folding, Role};
-use crate::taylor::lanes::{schedule, shape, Lanes, Node, Shape};
 use crate::taylor::tape::{Operand, Tape};
+use crate::taylor::vector_rows::{schedule, shape, Node, Shape, VectorRows};
 use std::collections::BTreeMap;
 
 /// A seed class: the rows' shape and the kinds of their operands.
@@ -35,7 +35,7 @@ type Class = (Shape, Vec<u8>);
 /// Finds the lane groups of the rows of `tape` under `folding`; `known[i]`
 /// is constant i's value when it is a number (lanes reading different
 /// constants of one value read them as one).
-pub fn group_lanes(tape: &Tape, folding: &Folding, known: &[Option<f64>]) -> Lanes {
+pub fn group_rows(tape: &Tape, folding: &Folding, known: &[Option<f64>]) -> VectorRows {
     let mut nodes: Vec<Node> = Vec::new();
     for &(v, _) in &tape.recurrences {
         if folding.roles[v] == Role::Row {
@@ -49,7 +49,7 @@ pub fn group_lanes(tape: &Tape, folding: &Folding, known: &[Option<f64>]) -> Lan
     }
     let shapes: BTreeMap<Node, (Shape, Vec<Operand>)> =
         nodes.iter().filter_map(|&x| Some((x, shape(x, tape, folding)?))).collect();
-    let mut lanes = Lanes::default();
+    let mut vectors = VectorRows::default();
     // Seeds: every nonlinear row of one shape whose operands are of the
     // same kinds (rows, states, constants), in tape order.
     let mut classes: Vec<(Class, Vec<Node>)> = Vec::new();
@@ -68,7 +68,7 @@ pub fn group_lanes(tape: &Tape, folding: &Folding, known: &[Option<f64>]) -> Lan
         }
     }
     for (_, members) in &classes {
-        try_group(tape, folding, known, &shapes, &mut lanes, members.clone());
+        try_group(tape, folding, known, &shapes, &mut vectors, members.clone());
     }
     // Then rows whose operands are in groups, their lanes in the order of
     // their first grouped operand's lanes, until no group forms.
@@ -76,7 +76,7 @@ pub fn group_lanes(tape: &Tape, folding: &Folding, known: &[Option<f64>]) -> Lan
         let mut formed = false;
         let mut buckets: BTreeMap<String, Vec<(usize, Node)>> = BTreeMap::new();
         for &n in &nodes {
-            if lanes.group_of.contains_key(&n) {
+            if vectors.group_of.contains_key(&n) {
                 continue;
             }
             let Some((s, ops)) = shapes.get(&n) else {
@@ -85,7 +85,7 @@ pub fn group_lanes(tape: &Tape, folding: &Folding, known: &[Option<f64>]) -> Lan
             let mut key = format!("{s:?}");
             let mut lane = None;
             for o in ops {
-                match Node::of(*o).and_then(|m| lanes.group_of.get(&m)) {
+                match Node::of(*o).and_then(|m| vectors.group_of.get(&m)) {
                     Some(&(g, l)) => {
                         key.push_str(&format!(" g{g}"));
                         lane.get_or_insert(l);
@@ -100,13 +100,13 @@ pub fn group_lanes(tape: &Tape, folding: &Folding, known: &[Option<f64>]) -> Lan
         for (_, mut members) in buckets {
             members.sort();
             let tuple: Vec<Node> = members.into_iter().map(|(_, n)| n).collect();
-            formed |= try_group(tape, folding, known, &shapes, &mut lanes, tuple);
+            formed |= try_group(tape, folding, known, &shapes, &mut vectors, tuple);
         }
         if !formed {
             break;
         }
     }
-    lanes
+    vectors
 }
 
 /// Adds the groups that `tuple` implies to `lanes` when they unify and the
@@ -116,19 +116,19 @@ fn try_group(
     folding: &Folding,
     known: &[Option<f64>],
     shapes: &BTreeMap<Node, (Shape, Vec<Operand>)>,
-    lanes: &mut Lanes,
+    vectors: &mut VectorRows,
     tuple: Vec<Node>,
 ) -> bool {
     if tuple.len() < 2 {
         return false;
     }
-    let Some(found) = unify(lanes, shapes, known, tuple) else {
+    let Some(found) = unify(vectors, shapes, known, tuple) else {
         return false;
     };
-    let mut trial = Lanes {
-        groups: lanes.groups.clone(),
-        group_of: lanes.group_of.clone(),
-        ..Lanes::default()
+    let mut trial = VectorRows {
+        groups: vectors.groups.clone(),
+        group_of: vectors.group_of.clone(),
+        ..VectorRows::default()
     };
     for members in found {
         let g = trial.groups.len();
@@ -140,14 +140,14 @@ fn try_group(
     if schedule(tape, folding, &trial).is_none() {
         return false;
     }
-    *lanes = trial;
+    *vectors = trial;
     true
 }
 
 /// The groups that making `tuple` one group implies, or None if a shape or
 /// an existing group conflicts.
 fn unify(
-    lanes: &Lanes,
+    vectors: &VectorRows,
     shapes: &BTreeMap<Node, (Shape, Vec<Operand>)>,
     known: &[Option<f64>],
     tuple: Vec<Node>,
@@ -159,7 +159,7 @@ fn unify(
             continue;
         }
         let existing = |n: &Node| {
-            lanes
+            vectors
                 .group(*n)
                 .map(<[Node]>::to_vec)
                 .or_else(|| found.iter().find(|g| g.contains(n)).cloned())
@@ -235,34 +235,34 @@ mod tests {
     /// one value make another, reading the constants as one.
     #[test]
     fn seeds_split_by_operand_kind_and_equal_constants_match() {
-        use crate::taylor::tape::{test_tape, Recurrence};
+        use crate::taylor::tape::{test_tape, TapeOp};
         use Operand::{Const, State, Var};
         let t = test_tape(
             vec![
-                Recurrence::Square(State(0)), // u0
-                Recurrence::Square(State(1)), // u1
-                Recurrence::Square(Const(0)), // u2
-                Recurrence::Square(State(2)), // u3
-                Recurrence::Div(Var(0), Const(1)),
-                Recurrence::Div(Var(1), Const(2)),
-                Recurrence::Div(Var(3), Const(3)),
-                Recurrence::Add(Var(4), Var(2)),
+                TapeOp::Square(State(0)), // u0
+                TapeOp::Square(State(1)), // u1
+                TapeOp::Square(Const(0)), // u2
+                TapeOp::Square(State(2)), // u3
+                TapeOp::Div(Var(0), Const(1)),
+                TapeOp::Div(Var(1), Const(2)),
+                TapeOp::Div(Var(3), Const(3)),
+                TapeOp::Add(Var(4), Var(2)),
             ],
             vec![Var(7), Var(5), Var(6)],
             4,
         );
         let known = [Some(1.5), Some(2.0), Some(2.0), Some(2.0)];
         let folding = fold_linear(&t, &known);
-        let lanes = group_lanes(&t, &folding, &known);
+        let vectors = group_rows(&t, &folding, &known);
         let squares = [Node::Var(0), Node::Var(1), Node::Var(3)];
         let quotients = [Node::Var(4), Node::Var(5), Node::Var(6)];
-        assert_eq!(lanes.group(Node::Var(0)), Some(&squares[..]));
-        assert_eq!(lanes.group(Node::Var(4)), Some(&quotients[..]));
-        assert_eq!(lanes.group(Node::Var(2)), None);
+        assert_eq!(vectors.group(Node::Var(0)), Some(&squares[..]));
+        assert_eq!(vectors.group(Node::Var(4)), Some(&quotients[..]));
+        assert_eq!(vectors.group(Node::Var(2)), None);
         // With the constants unknown, the quotients read different ones.
         let unknown = [None; 4];
-        let lanes = group_lanes(&t, &fold_linear(&t, &unknown), &unknown);
-        assert_eq!(lanes.group(Node::Var(4)), None);
+        let vectors = group_rows(&t, &fold_linear(&t, &unknown), &unknown);
+        assert_eq!(vectors.group(Node::Var(4)), None);
     }
 
     /// Six bodies: each of the 8 rows of an interaction (3 differences,
@@ -272,20 +272,20 @@ mod tests {
     fn n_body_rows_make_one_group_per_row_of_an_interaction() {
         let t = n_body_tape(6);
         let folding = fold_linear(&t, &vec![None; t.constants.len()]);
-        let lanes = group_lanes(&t, &folding, &vec![None; t.constants.len()]);
-        assert_eq!(lanes.groups.len(), 8);
-        assert!(lanes.groups.iter().all(|g| g.len() == 15));
+        let vectors = group_rows(&t, &folding, &vec![None; t.constants.len()]);
+        assert_eq!(vectors.groups.len(), 8);
+        assert!(vectors.groups.iter().all(|g| g.len() == 15));
         // Lane l of the powers reads lane l of the sums of squares.
-        let powers = lanes
+        let powers = vectors
             .groups
             .iter()
-            .find(|g| matches!(shape(g[0], &t, &folding), Some((Shape::Recurrence(..), ops)) if ops.len() == 1))
+            .find(|g| matches!(shape(g[0], &t, &folding), Some((Shape::TapeOp(..), ops)) if ops.len() == 1))
             .expect("the powers' group");
         for (lane, &p) in powers.iter().enumerate() {
             let (_, ops) = shape(p, &t, &folding).expect("a shape");
             let sum = Node::of(ops[0]).expect("a row");
-            assert_eq!(lanes.group_of.get(&sum).map(|&(_, l)| l), Some(lane));
+            assert_eq!(vectors.group_of.get(&sum).map(|&(_, l)| l), Some(lane));
         }
-        assert!(schedule(&t, &folding, &lanes).is_some());
+        assert!(schedule(&t, &folding, &vectors).is_some());
     }
 }

@@ -1,7 +1,7 @@
 //! Statements of a split Taylor jet that are written the same at every
 //! order, emitted once as functions of the order instead of once per order.
 //!
-//! A jet split into one function per order (`taylor_unrolled`) repeats at
+//! A jet split into one function per order (`taylor::unrolled`) repeats at
 //! each order straight-line statements that only move coefficient k of
 //! some rows into coefficient k (or k + 1) of others: an N-body model's
 //! differences of positions and its state rows `x^[k+1] = f^[k]/(k + 1)`,
@@ -87,7 +87,7 @@ pub(super) fn share(
         .enumerate()
         .map(|(k, pieces)| {
             let mut body = TokenStream::new();
-            let scale = crate::taylor::layout::float(1.0 / (k + 1) as f64);
+            let scale = crate::taylor::jet_layout::float(1.0 / (k + 1) as f64);
             let k_lit = Literal::usize_unsuffixed(k);
             for (i, piece) in pieces.into_iter().enumerate() {
                 match (k > 0).then(|| run_of(i)).flatten() {

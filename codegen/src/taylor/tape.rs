@@ -60,13 +60,13 @@ pub enum Constant {
     Value(f64),
 }
 
-// The runtime's `TapeOp` mirrors these variants: the macro crate cannot
-// link the runtime, so each side names its own.
+// The runtime's `TapeOp` of the same name mirrors these variants: the
+// macro crate cannot link the runtime, so each side has its own.
 /// How a u-variable's Taylor coefficients follow from its operands' (the
 /// recurrences of `daegen::runtime::taylor_tape::Step`, for the unrolled
 /// layout). Constants are indices into [`Tape::constants`].
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Recurrence {
+pub enum TapeOp {
     /// `a + b`.
     Add(Operand, Operand),
     /// `a·c`, c a constant.
@@ -95,7 +95,7 @@ pub enum Recurrence {
     Atan2(Operand, Operand, Operand),
 }
 
-/// The inverse functions of [`Recurrence::Inverse`].
+/// The inverse functions of [`TapeOp::Inverse`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum InverseFunction {
     /// d = √(1 − a²), u' = a'/d.
@@ -109,11 +109,7 @@ pub enum InverseFunction {
 /// A tape of `recurrences` (u-variable i computed by recurrence i) and
 /// `constants` constants, for the unit tests of the passes that read tapes.
 #[cfg(test)]
-pub(crate) fn test_tape(
-    recurrences: Vec<Recurrence>,
-    outputs: Vec<Operand>,
-    constants: usize,
-) -> Tape {
+pub(crate) fn test_tape(recurrences: Vec<TapeOp>, outputs: Vec<Operand>, constants: usize) -> Tape {
     Tape {
         constants: (0..constants).map(|_| Constant::Integer(0)).collect(),
         ops: vec![TokenStream::new(); recurrences.len()],
@@ -133,8 +129,8 @@ pub(crate) fn n_body_tape(bodies: usize) -> Tape {
     // States: positions 3i + c, velocities 3(bodies + i) + c. Constants:
     // c0 = −1, then G·m_j, then −G·m_i.
     let position = |i: usize, c: usize| State(3 * i + c);
-    let mut ops: Vec<Recurrence> = Vec::new();
-    let push = |ops: &mut Vec<Recurrence>, r| {
+    let mut ops: Vec<TapeOp> = Vec::new();
+    let push = |ops: &mut Vec<TapeOp>, r| {
         ops.push(r);
         Var(ops.len() - 1)
     };
@@ -144,20 +140,20 @@ pub(crate) fn n_body_tape(bodies: usize) -> Tape {
             let mut d = Vec::new();
             let mut squares = Vec::new();
             for c in 0..3 {
-                let minus = push(&mut ops, Recurrence::Scale(position(i, c), 0));
-                let dc = push(&mut ops, Recurrence::Add(position(j, c), minus));
-                squares.push(push(&mut ops, Recurrence::Square(dc)));
+                let minus = push(&mut ops, TapeOp::Scale(position(i, c), 0));
+                let dc = push(&mut ops, TapeOp::Add(position(j, c), minus));
+                squares.push(push(&mut ops, TapeOp::Square(dc)));
                 d.push(dc);
             }
-            let partial = push(&mut ops, Recurrence::Add(squares[0], squares[1]));
-            let r2 = push(&mut ops, Recurrence::Add(partial, squares[2]));
-            let r3 = push(&mut ops, Recurrence::Pow(r2, -1.5));
+            let partial = push(&mut ops, TapeOp::Add(squares[0], squares[1]));
+            let r2 = push(&mut ops, TapeOp::Add(partial, squares[2]));
+            let r3 = push(&mut ops, TapeOp::Pow(r2, -1.5));
             for (c, &dc) in d.iter().enumerate() {
-                let product = push(&mut ops, Recurrence::Mul(dc, r3));
+                let product = push(&mut ops, TapeOp::Mul(dc, r3));
                 for (body, weight) in [(i, 1 + j), (j, 1 + bodies + i)] {
-                    let term = push(&mut ops, Recurrence::Scale(product, weight));
+                    let term = push(&mut ops, TapeOp::Scale(product, weight));
                     let sum = match acceleration[3 * body + c] {
-                        Some(previous) => push(&mut ops, Recurrence::Add(previous, term)),
+                        Some(previous) => push(&mut ops, TapeOp::Add(previous, term)),
                         None => term,
                     };
                     acceleration[3 * body + c] = Some(sum);
@@ -189,7 +185,7 @@ pub struct Tape {
     pub outputs: Vec<TokenStream>,
     /// Per u-variable with a recurrence of its own (cos and cosh come with
     /// sin and sinh), its index and recurrence.
-    pub recurrences: Vec<(usize, Recurrence)>,
+    pub recurrences: Vec<(usize, TapeOp)>,
     /// The operand of each output.
     pub output_operands: Vec<Operand>,
 }
@@ -201,7 +197,7 @@ struct Builder<'g> {
     operand_of: FxHashMap<Id, Operand>,
     constants: Vec<Constant>,
     ops: Vec<TokenStream>,
-    recurrences: Vec<(usize, Recurrence)>,
+    recurrences: Vec<(usize, TapeOp)>,
     /// ("Sin", a) → the u-variable of sin(a), paired with cos(a) after it
     /// (likewise "Sinh" and cosh), so the pair is made once per argument.
     pairs_of: FxHashMap<(&'static str, Id), usize>,
@@ -218,7 +214,7 @@ struct Builder<'g> {
 impl Builder<'_> {
     /// Appends a tape operation and, unless its value comes with the
     /// previous one (cos, cosh), its step for the emitted layout.
-    fn push(&mut self, op: TokenStream, recurrence: Option<Recurrence>) -> Operand {
+    fn push(&mut self, op: TokenStream, recurrence: Option<TapeOp>) -> Operand {
         if let Some(r) = recurrence {
             self.recurrences.push((self.ops.len(), r));
         }
@@ -255,14 +251,14 @@ impl Builder<'_> {
             let negated = self.binary("Mul", &minus_one, &square);
             let difference = self.binary("Add", &one, &negated);
             let (b, half) = (difference.tokens(), self.value_slot(0.5));
-            self.push(quote!(T::Pow(#b, #half)), Some(Recurrence::Pow(difference, 0.5)))
+            self.push(quote!(T::Pow(#b, #half)), Some(TapeOp::Pow(difference, 0.5)))
         };
         let function = match f {
             "Asin" => InverseFunction::Asin,
             "Acos" => InverseFunction::Acos,
             _ => InverseFunction::Atan,
         };
-        let recurrence = Recurrence::Inverse(function, *a, d);
+        let recurrence = TapeOp::Inverse(function, *a, d);
         let (a, d) = (a.tokens(), d.tokens());
         let f = quote::format_ident!("{}", f);
         self.push(
@@ -295,13 +291,13 @@ impl Builder<'_> {
             _ => None,
         };
         let step = match (name, constant(a), constant(b)) {
-            ("Mul", _, _) if a == b => Recurrence::Square(*a),
-            ("Mul", Some(c), None) => Recurrence::Scale(*b, c),
-            ("Mul", None, Some(c)) => Recurrence::Scale(*a, c),
-            ("Mul", _, _) => Recurrence::Mul(*a, *b),
-            ("Div", _, Some(c)) => Recurrence::Quotient(*a, c),
-            ("Div", _, _) => Recurrence::Div(*a, *b),
-            _ => Recurrence::Add(*a, *b),
+            ("Mul", _, _) if a == b => TapeOp::Square(*a),
+            ("Mul", Some(c), None) => TapeOp::Scale(*b, c),
+            ("Mul", None, Some(c)) => TapeOp::Scale(*a, c),
+            ("Mul", _, _) => TapeOp::Mul(*a, *b),
+            ("Div", _, Some(c)) => TapeOp::Quotient(*a, c),
+            ("Div", _, _) => TapeOp::Div(*a, *b),
+            _ => TapeOp::Add(*a, *b),
         };
         let (a, b) = (a.tokens(), b.tokens());
         let op = quote::format_ident!("{}", name);
@@ -310,10 +306,10 @@ impl Builder<'_> {
 
     fn unary(&mut self, name: &str, a: &Operand) -> Operand {
         let step = match name {
-            "Sin" => Recurrence::SinCos(*a),
-            "Sinh" => Recurrence::SinhCosh(*a),
-            "Exp" => Recurrence::Exp(*a),
-            _ => Recurrence::Ln(*a),
+            "Sin" => TapeOp::SinCos(*a),
+            "Sinh" => TapeOp::SinhCosh(*a),
+            "Exp" => TapeOp::Exp(*a),
+            _ => TapeOp::Ln(*a),
         };
         let a = a.tokens();
         let op = quote::format_ident!("{}", name);
@@ -483,7 +479,7 @@ impl Builder<'_> {
                         let (b, e) = (base.tokens(), self.value_slot(value));
                         self.push(
                             quote!(T::Pow(#b, #e)),
-                            Some(Recurrence::Pow(base, value)),
+                            Some(TapeOp::Pow(base, value)),
                         )
                     }
                     None => {
@@ -528,7 +524,7 @@ impl Builder<'_> {
                 let xx = self.binary("Mul", &x, &x);
                 let yy = self.binary("Mul", &y, &y);
                 let d = self.binary("Add", &xx, &yy);
-                let step = Recurrence::Atan2(y, x, d);
+                let step = TapeOp::Atan2(y, x, d);
                 let (y, x, d) = (y.tokens(), x.tokens(), d.tokens());
                 self.push(
                     quote!(T::Atan2(#y, #x, #d)),

@@ -12,21 +12,21 @@
 //! §3; heyoka's `ad_notes`), with 1/x₀ computed once per u-variable and the
 //! j/k weights folded into literals, so the coefficients agree with the
 //! interpreter's to rounding. Rows that repeat one computation on other
-//! operands are written side by side as lane pairs (`taylor_lanes`) in
-//! small jets, and computed by one loop per lane group (`taylor_groups`)
+//! operands are written side by side as lane pairs (`vector_rows`) in
+//! small jets, and computed by one loop per lane group (`groups`)
 //! in large ones; the compiler vectorises both. Products of one sum that
-//! share a factor are one convolution (`taylor_factoring`).
+//! share a factor are one convolution (`taylor::factoring`).
 
 use crate::taylor::factoring::factor_shared_operands;
 use crate::taylor::folding::{
     fold_linear, known_constants, Base, Folding, LinearTerm, Role, Weight,
 };
-use crate::taylor::groups::{group_lanes, same_operand};
-use crate::taylor::lanes::{pair_lanes, schedule, shape, Lanes, Node};
-use crate::taylor::layout::float;
-use crate::taylor::layout::Layout;
+use crate::taylor::groups::{group_rows, same_operand};
+use crate::taylor::jet_layout::float;
+use crate::taylor::jet_layout::JetLayout;
 use crate::taylor::sharing::{share, Piece};
-use crate::taylor::tape::{InverseFunction, Operand, Recurrence, Tape};
+use crate::taylor::tape::{InverseFunction, Operand, Tape, TapeOp};
+use crate::taylor::vector_rows::{pair_rows, schedule, shape, Node, VectorRows};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote, ToTokens};
 use std::collections::BTreeSet;
@@ -217,7 +217,7 @@ fn pairwise(mut terms: Vec<TokenStream>) -> TokenStream {
 /// The terms `w(j)·x^[j]·y^[k−j]` for `j` in `range`, each with when it
 /// can be added (see [`Layout::fresh`]).
 fn convolution(
-    l: &Layout,
+    l: &JetLayout,
     x: Operand,
     y: Operand,
     k: usize,
@@ -238,7 +238,7 @@ fn convolution(
 
 /// The terms of coefficient `k` of a base: the operand's coefficient, or
 /// the Cauchy product (a square by its half-sum, each cross term twice).
-fn base_terms(l: &Layout, base: Base, k: usize) -> Vec<Triple> {
+fn base_terms(l: &JetLayout, base: Base, k: usize) -> Vec<Triple> {
     match base {
         Base::Operand(o) => vec![(1.0, l.coefficient(o, k), Some(quote!(1.0)), l.fresh(o, k, k))],
         Base::Square(a) => convolution(l, a, a, k, (0..=k).filter(|&j| j <= k - j), |j| {
@@ -256,32 +256,32 @@ fn base_terms(l: &Layout, base: Base, k: usize) -> Vec<Triple> {
 
 /// `let` statements for coefficient `k` of u-variable `v` (and of `v + 1`
 /// for the sin/cos and sinh/cosh pairs).
-fn recurrence_at(l: &Layout, v: usize, r: Recurrence, k: usize) -> TokenStream {
+fn recurrence_at(l: &JetLayout, v: usize, r: TapeOp, k: usize) -> TokenStream {
     let c = |o: Operand, k: usize| l.coefficient(o, k);
     let name = l.slot(l.var_row(v), k);
     let kf = k as f64;
     if k == 0 {
         let zero = |o: Operand| c(o, 0).unwrap_or(quote!(0.0f64));
         let value = match r {
-            // Linear recurrences are folded sums (`taylor_folding`), never
+            // Linear recurrences are folded sums (`taylor::folding`), never
             // rows of their own.
-            Recurrence::Add(..) | Recurrence::Scale(..) | Recurrence::Quotient(..) => {
+            TapeOp::Add(..) | TapeOp::Scale(..) | TapeOp::Quotient(..) => {
                 return TokenStream::new()
             }
-            Recurrence::Mul(a, b) => {
+            TapeOp::Mul(a, b) => {
                 let (a, b) = (zero(a), zero(b));
                 quote!(#a * #b)
             }
-            Recurrence::Square(a) => {
+            TapeOp::Square(a) => {
                 let a = zero(a);
                 quote!(#a * #a)
             }
-            Recurrence::Div(b_over, d) => {
+            TapeOp::Div(b_over, d) => {
                 let (a, d) = (zero(b_over), zero(d));
                 let inv = l.reciprocal(v);
                 return quote!(#inv = 1.0 / #d; #name = #a * #inv;);
             }
-            Recurrence::Pow(a, e) => {
+            TapeOp::Pow(a, e) => {
                 let a0 = zero(a);
                 let inv = l.reciprocal(v);
                 // Half-integer powers (gravity's r^(-3/2)) by a square root.
@@ -299,25 +299,25 @@ fn recurrence_at(l: &Layout, v: usize, r: Recurrence, k: usize) -> TokenStream {
                 };
                 return quote!(#inv = 1.0 / #a0; #name = #value;);
             }
-            Recurrence::Exp(a) => {
+            TapeOp::Exp(a) => {
                 let a = zero(a);
                 quote!(#a.exp())
             }
-            Recurrence::Ln(a) => {
+            TapeOp::Ln(a) => {
                 let a = zero(a);
                 let inv = l.reciprocal(v);
                 return quote!(#inv = 1.0 / #a; #name = #a.ln(););
             }
-            Recurrence::SinCos(a) | Recurrence::SinhCosh(a) => {
+            TapeOp::SinCos(a) | TapeOp::SinhCosh(a) => {
                 let a = zero(a);
                 let second = l.slot(l.var_row(v + 1), 0);
-                return if let Recurrence::SinCos(_) = r {
+                return if let TapeOp::SinCos(_) = r {
                     quote!(let (sin, cos) = #a.sin_cos(); #name = sin; #second = cos;)
                 } else {
                     quote!(#name = #a.sinh(); #second = #a.cosh();)
                 };
             }
-            Recurrence::Inverse(f, a, d) => {
+            TapeOp::Inverse(f, a, d) => {
                 let (a, d) = (zero(a), zero(d));
                 let inv = l.reciprocal(v);
                 let value = match f {
@@ -327,7 +327,7 @@ fn recurrence_at(l: &Layout, v: usize, r: Recurrence, k: usize) -> TokenStream {
                 };
                 return quote!(#inv = 1.0 / #d; #name = #value;);
             }
-            Recurrence::Atan2(y, x, d) => {
+            TapeOp::Atan2(y, x, d) => {
                 let (y, x, d) = (zero(y), zero(x), zero(d));
                 let inv = l.reciprocal(v);
                 return quote!(#inv = 1.0 / #d; #name = #y.atan2(#x););
@@ -338,41 +338,39 @@ fn recurrence_at(l: &Layout, v: usize, r: Recurrence, k: usize) -> TokenStream {
     let own = Operand::Var(v);
     let by_k = |j: usize| j as f64 / kf;
     let value = match r {
-        Recurrence::Add(..) | Recurrence::Scale(..) | Recurrence::Quotient(..) => {
-            return TokenStream::new()
-        }
-        Recurrence::Mul(a, b) => sum(base_terms(l, Base::Product(a, b), k)),
-        Recurrence::Square(a) => sum(base_terms(l, Base::Square(a), k)),
-        Recurrence::Div(a, d) => {
+        TapeOp::Add(..) | TapeOp::Scale(..) | TapeOp::Quotient(..) => return TokenStream::new(),
+        TapeOp::Mul(a, b) => sum(base_terms(l, Base::Product(a, b), k)),
+        TapeOp::Square(a) => sum(base_terms(l, Base::Square(a), k)),
+        TapeOp::Div(a, d) => {
             // u = a/d: u^[k] = (a^[k] − Σ_{j<k} u^[j] d^[k−j]) / d^[0].
             let a = c(a, k).unwrap_or(quote!(0.0f64));
             let s = sum(convolution(l, own, d, k, 0..k, |_| 1.0));
             let inv = l.reciprocal(v);
             quote!((#a - (#s)) * #inv)
         }
-        Recurrence::Pow(a, e) => {
+        TapeOp::Pow(a, e) => {
             // u^[k] = Σ_{j<k} (k·e − j·(e+1)) u^[j] a^[k−j] / (k a^[0]).
             let w = |j: usize| (kf * e - j as f64 * (e + 1.0)) / kf;
             scaled_sum(convolution(l, own, a, k, 0..k, w), l.reciprocal(v))
         }
-        Recurrence::Exp(a) => sum(convolution(l, a, own, k, 1..=k, by_k)),
-        Recurrence::Ln(a) => {
+        TapeOp::Exp(a) => sum(convolution(l, a, own, k, 1..=k, by_k)),
+        TapeOp::Ln(a) => {
             let ak = c(a, k).unwrap_or(quote!(0.0f64));
             let s = sum(convolution(l, own, a, k, 1..k, by_k));
             let inv = l.reciprocal(v);
             quote!((#ak - (#s)) * #inv)
         }
-        Recurrence::SinCos(a) | Recurrence::SinhCosh(a) => {
+        TapeOp::SinCos(a) | TapeOp::SinhCosh(a) => {
             let s = sum(convolution(l, a, Operand::Var(v + 1), k, 1..=k, by_k));
             let co = sum(convolution(l, a, own, k, 1..=k, by_k));
             let second = l.slot(l.var_row(v + 1), k);
-            return if let Recurrence::SinCos(_) = r {
+            return if let TapeOp::SinCos(_) = r {
                 quote!(#name = #s; #second = -(#co);)
             } else {
                 quote!(#name = #s; #second = #co;)
             };
         }
-        Recurrence::Inverse(f, a, d) => {
+        TapeOp::Inverse(f, a, d) => {
             // d·u' = ±a': u^[k] = (±a^[k] − Σ_{0<j<k} (j/k) u^[j] d^[k−j]) / d^[0].
             let ak = c(a, k).unwrap_or(quote!(0.0f64));
             let ak = match f {
@@ -383,7 +381,7 @@ fn recurrence_at(l: &Layout, v: usize, r: Recurrence, k: usize) -> TokenStream {
             let inv = l.reciprocal(v);
             quote!((#ak - (#s)) * #inv)
         }
-        Recurrence::Atan2(y, x, d) => {
+        TapeOp::Atan2(y, x, d) => {
             // d·u' = x·y' − y·x'.
             let plus = sum(convolution(l, y, x, k, 1..=k, by_k));
             let minus = sum(convolution(l, x, y, k, 1..=k, by_k));
@@ -458,7 +456,7 @@ impl Weights {
 /// Where the lane pairs of the jet are copied for the vectoriser (see
 /// [`unrolled_jet`]): the next free slot of `seeds`.
 struct Seeds<'a> {
-    lanes: &'a Lanes,
+    vectors: &'a VectorRows,
     next: usize,
 }
 
@@ -488,7 +486,7 @@ fn weighted(weights: &Weights, w: &LinearTerm, value: TokenStream) -> Term {
 /// `x²` and `y²` of `x² + y²`) are summed apart, side by side, and copied to
 /// `seeds`, so that they are vectorised as one.
 fn folded_sum(
-    l: &Layout,
+    l: &JetLayout,
     weights: &Weights,
     seeds: &mut Seeds,
     terms: &[LinearTerm],
@@ -508,9 +506,9 @@ fn folded_sum(
                 continue;
             }
             let (a, b) = (terms[i].base, terms[j].base);
-            if seeds.lanes.match_bases(a, b) {
+            if seeds.vectors.match_bases(a, b) {
                 (partner[i], second[j]) = (Some(j), true);
-            } else if seeds.lanes.match_bases(b, a) {
+            } else if seeds.vectors.match_bases(b, a) {
                 (partner[j], second[i]) = (Some(i), true);
             }
         }
@@ -564,11 +562,11 @@ struct Loop {
 /// between lanes, or a row read both at the lane and as the one operand of
 /// every lane.
 fn group_loop(
-    l: &Layout,
+    l: &JetLayout,
     tape: &Tape,
     folding: &Folding,
     known: &[Option<f64>],
-    lanes: &Lanes,
+    vectors: &VectorRows,
     members: &[Node],
 ) -> Option<Loop> {
     let operands: Vec<Vec<Operand>> =
@@ -599,7 +597,7 @@ fn group_loop(
             continue;
         }
         let nodes: Vec<Node> = ops.iter().map(|&o| Node::of(o)).collect::<Option<_>>()?;
-        if lanes.group(nodes[0]) != Some(nodes.as_slice()) {
+        if vectors.group(nodes[0]) != Some(nodes.as_slice()) {
             return None;
         }
         looped.insert(l.row(nodes[0]));
@@ -713,16 +711,16 @@ fn jet_in(
     // keeps in registers, with lane pairs; large ones stay one function per
     // order, with lane groups, each computed by one loop.
     let single_function = row_count * order * order <= single_function_terms;
-    let lanes = if single_function {
-        pair_lanes(tape, &folding, n)
+    let vectors = if single_function {
+        pair_rows(tape, &folding, n)
     } else {
-        group_lanes(tape, &folding, &known)
+        group_rows(tape, &folding, &known)
     };
-    let l = Layout::new(order, n, rows, &lanes, !single_function);
-    let loops: Vec<Option<Loop>> = lanes
+    let l = JetLayout::new(order, n, rows, &vectors, !single_function);
+    let loops: Vec<Option<Loop>> = vectors
         .groups
         .iter()
-        .map(|members| group_loop(&l, tape, &folding, &known, &lanes, members))
+        .map(|members| group_loop(&l, tape, &folding, &known, &vectors, members))
         .collect();
     let len = Literal::usize_unsuffixed(l.len());
     let weights = Weights::collect(&folding, tape.constants.len());
@@ -731,17 +729,17 @@ fn jet_in(
     let weight_values = weights.values();
     let nc = Literal::usize_unsuffixed(constants.len() + weight_values.len());
     // The u-variables in the order they are written (lane pairs together).
-    // (The rows `taylor_factoring` adds come after the tape's.)
-    let written = schedule(tape, &folding, &lanes).unwrap_or_else(|| {
+    // (The rows `taylor::factoring` adds come after the tape's.)
+    let written = schedule(tape, &folding, &vectors).unwrap_or_else(|| {
         let added = tape.ops.len()..folding.roles.len();
         tape.recurrences.iter().map(|(v, _)| *v).chain(added).collect()
     });
-    let recurrence: std::collections::BTreeMap<usize, Recurrence> =
+    let recurrence: std::collections::BTreeMap<usize, TapeOp> =
         tape.recurrences.iter().copied().collect();
     // The states in the order their next coefficients are written.
     let mut state_order = Vec::with_capacity(n);
     for i in 0..n {
-        match lanes.of(Node::State(i)) {
+        match vectors.of(Node::State(i)) {
             Some((_, 1)) => {}
             Some((Node::State(j), _)) => state_order.extend([i, j]),
             _ => state_order.push(i),
@@ -753,7 +751,7 @@ fn jet_in(
     // vectoriser the adjacent stores it starts from. Split into functions,
     // the coefficients are stored in `r`, where lanes are neighbours.
     let seed_rows = single_function;
-    let mut seeds = Seeds { lanes: &lanes, next: 0 };
+    let mut seeds = Seeds { vectors: &vectors, next: 0 };
     let row_slot = |node: Node, k: usize| match node {
         Node::State(i) => l.slot(i, k),
         Node::Var(v) => l.slot(l.var_row(v), k),
@@ -781,14 +779,14 @@ fn jet_in(
         code.extend(quote!(r[#slot] = 1.0;));
     }
     // Split per order, statements written alike at every order are shared
-    // between the orders' functions (`taylor_shared`).
+    // between the orders' functions (`taylor::sharing`).
     let split = !single_function;
     let mut orders: Vec<Vec<Piece>> = Vec::with_capacity(order);
     for k in 0..order {
         let mut pieces = Vec::new();
         let mut fused: Option<FusedLoop> = None;
         for &v in &written {
-            // The rows `taylor_factoring` adds are read only by tails, which
+            // The rows `taylor::factoring` adds are read only by tails, which
             // read coefficients below k: the last order needs none of theirs.
             if v >= tape.ops.len() && k + 1 == order {
                 continue;
@@ -804,11 +802,11 @@ fn jet_in(
             };
             // A looped group's lane 0 writes its statement into the loop;
             // its other lanes are in it.
-            let group = lanes.group_of.get(&Node::Var(v)).copied();
+            let group = vectors.group_of.get(&Node::Var(v)).copied();
             match group.and_then(|(g, lane)| Some((loops[g].as_ref()?, lane, g))) {
                 Some((_, lane, _)) if lane > 0 => {}
                 Some((group_loop, _, g)) => {
-                    let width = crate::taylor::layout::padded(lanes.groups[g].len());
+                    let width = crate::taylor::jet_layout::padded(vectors.groups[g].len());
                     let body = l.looping(group_loop.looped.clone(), || write(&mut seeds));
                     pieces.extend(
                         FusedLoop::push(&mut fused, width, group_loop, body).map(Piece::Own),
@@ -824,7 +822,7 @@ fn jet_in(
                     }
                 }
             }
-            if let (true, Some((first, 1))) = (seed_rows, lanes.of(Node::Var(v))) {
+            if let (true, Some((first, 1))) = (seed_rows, vectors.of(Node::Var(v))) {
                 let (a, b) = (row_slot(first, k), row_slot(Node::Var(v), k));
                 pieces.push(Piece::Own(seeds.store(&a, &b)));
             }
@@ -877,7 +875,7 @@ fn jet_in(
             let any_order =
                 (split && k > 0).then(|| l.any_order(k, || state_row(&quote!(s), &mut seeds)));
             pieces.push(Piece::Statement { literal, any_order });
-            if let (true, Some((first, 1))) = (seed_rows, lanes.of(Node::State(i))) {
+            if let (true, Some((first, 1))) = (seed_rows, vectors.of(Node::State(i))) {
                 let (a, b) = (row_slot(first, k + 1), row_slot(Node::State(i), k + 1));
                 pieces.push(Piece::Own(seeds.store(&a, &b)));
             }
@@ -945,7 +943,7 @@ mod tests {
     /// three; the differences are written lane by lane (they read states),
     /// the sums of squares, the powers and the products each by one loop.
     /// Orders 1 and 2 call one function for their differences and one for
-    /// their state rows (`taylor_shared`); order 0, with its constants,
+    /// their state rows (`taylor::sharing`); order 0, with its constants,
     /// writes its own.
     #[test]
     fn three_bodies_in_lane_groups_at_order_3() {

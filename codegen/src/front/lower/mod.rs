@@ -32,8 +32,8 @@ use crate::front::ir::{InstanceSummary, ModelIr};
 use crate::{Graph, SymbolId};
 use std::collections::HashMap;
 
-/// Lowers `item`; a scene uses the recursive formulation when `recursive`
-/// (`#[dae_model(scene = recursive)]`), the global one otherwise.
+/// Lowers `item`; a scene uses joint coordinates when `recursive`
+/// (`#[dae_model(scene = recursive)]`), body coordinates otherwise.
 /// Errors go to `cx`; the IR is returned even then (with the parts that
 /// could be read) so that a stub can be emitted.
 pub(crate) fn lower_with<S: SceneLanguage>(

@@ -1,4 +1,4 @@
-//! The recursive formulation of a planar scene (course notes §4.2.2):
+//! Joint coordinates for a planar scene (course notes §4.2.2):
 //! relative joint coordinates along a spanning tree grown from the ground
 //! through revolute, prismatic and fixed joints (a welded body adds no
 //! coordinate), each body's pose an expression of
@@ -29,7 +29,7 @@ impl Lower<'_, Scene> {
             Ok(tree) => tree,
             Err(i) => {
                 let name = self.scene.bodies[i].name.clone();
-                return self.cx.error_at(&origin, format!("the recursive formulation needs every body on a tree of revolute, prismatic and fixed joints from the ground, and `{name}` is not: join it, or use the global formulation"));
+                return self.cx.error_at(&origin, format!("joint coordinates need every body on a tree of revolute, prismatic and fixed joints from the ground, and `{name}` is not: join it, or write `#[dae_model(scene = global)]` for body coordinates"));
             }
         };
         let rates = self.body_rates();
@@ -526,7 +526,7 @@ fn joint_pose(
     let relative0 = g.sub(ct0, parent_start[2])?;
     if rec.kind == "revolute" {
         // θ_child = θ_parent + q; the child hangs from the joint.
-        // q is always θ_b − θ_a, as in the global formulation:
+        // q is always θ_b − θ_a, as in body coordinates:
         // for a joint the tree reaches from b, the child is a.
         let theta = if child_is_b {
             g.add(parent_pose[2], q_node)?

@@ -1,9 +1,9 @@
 //! Where the unrolled Taylor recurrences keep their coefficients: one
 //! array of rows, lane pairs interleaved, and which coefficients each order
-//! may read early (`taylor_unrolled` emits the code that fills it).
+//! may read early (`taylor::unrolled` emits the code that fills it).
 
-use crate::taylor::lanes::{Lanes, Node};
 use crate::taylor::tape::Operand;
+use crate::taylor::vector_rows::{Node, VectorRows};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 use std::cell::{Cell, RefCell};
@@ -11,11 +11,11 @@ use std::collections::BTreeSet;
 
 /// Where the coefficients live: one array `r` of rows of `order + 1`
 /// coefficients, states first, then the u-variables that have a row (see
-/// `taylor_folding`), then one reciprocal 1/x₀ per such row; constants and the
+/// `taylor::folding`), then one reciprocal 1/x₀ per such row; constants and the
 /// weights of the folded sums in `c`, the time in `t`. The two rows of a
 /// lane pair are interleaved (coefficient k of lane l at `2k + l` of their
 /// block), so that their coefficients of one order are neighbours.
-pub(super) struct Layout {
+pub(super) struct JetLayout {
     states: usize,
     /// The row of each u-variable among the u-variables' rows, if it has one.
     rows: Vec<Option<usize>>,
@@ -30,7 +30,7 @@ pub(super) struct Layout {
     looped: RefCell<BTreeSet<usize>>,
     /// The slots of order 0 of the lanes that pad groups (see [`padded`]).
     padding: Vec<usize>,
-    /// While a statement is written for any order (`taylor_shared`): the
+    /// While a statement is written for any order (`taylor::sharing`): the
     /// order it is written at, whose coefficients k′ ≥ k are then read at
     /// `r[F + S * k]` with `k` a variable.
     any_order: Cell<Option<usize>>,
@@ -52,7 +52,7 @@ pub(super) fn padded(width: usize) -> usize {
     }
 }
 
-impl Layout {
+impl JetLayout {
     /// The layout for `order`, `states` states, the u-variables' `rows`
     /// (`None` for those folded away) and the pairs in `lanes`.
     /// With `by_coefficient`, the states' coefficients come first, order by
@@ -62,9 +62,9 @@ impl Layout {
         order: usize,
         states: usize,
         rows: Vec<Option<usize>>,
-        lanes: &Lanes,
+        vectors: &VectorRows,
         by_coefficient: bool,
-    ) -> Layout {
+    ) -> JetLayout {
         let row_count = rows.iter().flatten().count();
         let mut var_of_row = vec![0; row_count];
         for (v, row) in rows.iter().enumerate() {
@@ -88,17 +88,17 @@ impl Layout {
         // The rows of the vector whose lane 0 is `row`, in lane order.
         let vector = |row: usize| -> Option<Vec<usize>> {
             let n = node(row);
-            match lanes.vector_of(n)? {
-                (_, 0, _) => Some(match lanes.group(n) {
+            match vectors.vector_of(n)? {
+                (_, 0, _) => Some(match vectors.group(n) {
                     Some(members) => members.iter().map(|&m| row_of(m)).collect(),
-                    None => vec![row, row_of(lanes.of(n)?.0)],
+                    None => vec![row, row_of(vectors.of(n)?.0)],
                 }),
                 _ => None,
             }
         };
         let (mut next, mut padding) = (0, Vec::new());
         let by_coefficient =
-            by_coefficient && (0..states).all(|i| lanes.vector_of(Node::State(i)).is_none());
+            by_coefficient && (0..states).all(|i| vectors.vector_of(Node::State(i)).is_none());
         if by_coefficient {
             for (i, place) in place.iter_mut().enumerate().take(states) {
                 *place = (i, states);
@@ -106,7 +106,7 @@ impl Layout {
             next = states * (order + 1);
         }
         for row in (if by_coefficient { states } else { 0 })..total {
-            match (lanes.vector_of(node(row)), vector(row)) {
+            match (vectors.vector_of(node(row)), vector(row)) {
                 (_, Some(rows)) => {
                     let width = padded(rows.len());
                     padding.extend((rows.len()..width).map(|lane| next + lane));
@@ -123,7 +123,7 @@ impl Layout {
             }
         }
         for row in states..total {
-            match (lanes.vector_of(node(row)), vector(row)) {
+            match (vectors.vector_of(node(row)), vector(row)) {
                 (_, Some(rows)) => {
                     for (lane, r) in rows.iter().enumerate() {
                         reciprocals[r - states] = next + lane;
@@ -138,7 +138,7 @@ impl Layout {
                 }
             }
         }
-        Layout {
+        JetLayout {
             states,
             rows,
             place,
@@ -197,7 +197,7 @@ impl Layout {
     }
 
     /// `write` run as for order `k`, its slots of orders k′ ≥ k read as
-    /// `r[F + S * k]` for any k (see `taylor_shared`).
+    /// `r[F + S * k]` for any k (see `taylor::sharing`).
     pub(super) fn any_order<T>(&self, k: usize, write: impl FnOnce() -> T) -> T {
         self.any_order.set(Some(k));
         let written = write();

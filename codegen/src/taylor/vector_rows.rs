@@ -24,13 +24,13 @@
 //! then pair with any other (116 of the 120 rows; as one function its
 //! order-12 coefficients took 588 instead of 808 cycles of llvm-mca's
 //! throughput, the solve 15 % faster). Jets that large are now split per
-//! order with lane groups instead (`taylor_groups`): pairs serve the small
+//! order with lane groups instead (`groups`): pairs serve the small
 //! ones. Kepler pairs its components (x with y, vx with vy), both lanes
 //! reading its one power; Arenstorf pairs its two centres' rows, all but
 //! y².
 
 use crate::taylor::folding::{operands, Base, Folding, LinearTerm, Role};
-use crate::taylor::tape::{Operand, Recurrence, Tape};
+use crate::taylor::tape::{Operand, Tape, TapeOp};
 use std::cmp::Reverse;
 use std::collections::{BTreeMap, BinaryHeap};
 
@@ -55,10 +55,10 @@ impl Node {
 }
 
 /// The lane pairs of a model: each node with a partner, and its lane (0 or
-/// 1); or, for jets computed in memory, its lane groups (`taylor_groups`):
+/// 1); or, for jets computed in memory, its lane groups (`groups`):
 /// rows of one shape, any number of them, computed by one loop over lanes.
 #[derive(Debug, Default, PartialEq)]
-pub struct Lanes {
+pub struct VectorRows {
     pub(super) partner: BTreeMap<Node, (Node, u8)>,
     /// The groups, each its nodes in lane order.
     pub(super) groups: Vec<Vec<Node>>,
@@ -66,7 +66,7 @@ pub struct Lanes {
     pub(super) group_of: BTreeMap<Node, (usize, usize)>,
 }
 
-impl Lanes {
+impl VectorRows {
     /// The partner of `n` and `n`'s lane, when it has one.
     pub fn of(&self, n: Node) -> Option<(Node, u8)> {
         self.partner.get(&n).copied()
@@ -122,7 +122,7 @@ impl Lanes {
 #[derive(Clone, Debug, PartialEq)]
 pub(super) enum Shape {
     /// A nonlinear recurrence: its kind and its exponent, if any.
-    Recurrence(std::mem::Discriminant<Recurrence>, u64),
+    TapeOp(std::mem::Discriminant<TapeOp>, u64),
     /// A sum: per term, its literal weight (None when it reads constants
     /// that are not numbers) and the kind of its base.
     Sum(Vec<(Option<u64>, u8)>),
@@ -157,19 +157,19 @@ pub(super) fn shape(n: Node, tape: &Tape, folding: &Folding) -> Option<(Shape, V
             Role::Row => {
                 let (_, r) = tape.recurrences.iter().find(|(u, _)| *u == v)?;
                 let exponent = match r {
-                    Recurrence::SinCos(_) | Recurrence::SinhCosh(_) => return None,
-                    Recurrence::Pow(_, e) => e.to_bits(),
-                    Recurrence::Inverse(f, ..) => *f as u64,
+                    TapeOp::SinCos(_) | TapeOp::SinhCosh(_) => return None,
+                    TapeOp::Pow(_, e) => e.to_bits(),
+                    TapeOp::Inverse(f, ..) => *f as u64,
                     _ => 0,
                 };
-                Some((Shape::Recurrence(std::mem::discriminant(r), exponent), operands(r)))
+                Some((Shape::TapeOp(std::mem::discriminant(r), exponent), operands(r)))
             }
         },
     }
 }
 
 /// Finds the lane pairs of the rows of `tape` under `folding` (`n` states).
-pub fn pair_lanes(tape: &Tape, folding: &Folding, n: usize) -> Lanes {
+pub fn pair_rows(tape: &Tape, folding: &Folding, n: usize) -> VectorRows {
     let mut nodes: Vec<Node> = Vec::new();
     // Nonlinear recurrences first: they are the costly ones, and pairing
     // them pairs the sums they read.
@@ -186,34 +186,35 @@ pub fn pair_lanes(tape: &Tape, folding: &Folding, n: usize) -> Lanes {
     nodes.extend((0..n).map(Node::State));
     let shapes: BTreeMap<Node, (Shape, Vec<Operand>)> =
         nodes.iter().filter_map(|&x| Some((x, shape(x, tape, folding)?))).collect();
-    let mut lanes = Lanes::default();
+    let mut vectors = VectorRows::default();
     // First the pairs whose operands pair all the way down to the states;
     // then, among the rows left, those whose two lanes read states that
     // are not a pair (the vectoriser gathers those into one vector).
     for gather_states in [false, true] {
         for (i, &a) in nodes.iter().enumerate() {
-            if lanes.of(a).is_some() || !shapes.contains_key(&a) {
+            if vectors.of(a).is_some() || !shapes.contains_key(&a) {
                 continue;
             }
             for &b in &nodes[i + 1..] {
-                if lanes.of(b).is_some() {
+                if vectors.of(b).is_some() {
                     continue;
                 }
-                if let Some(found) = unify(&lanes, &shapes, a, b, gather_states) {
-                    let mut trial = Lanes { partner: lanes.partner.clone(), ..Lanes::default() };
+                if let Some(found) = unify(&vectors, &shapes, a, b, gather_states) {
+                    let mut trial =
+                        VectorRows { partner: vectors.partner.clone(), ..VectorRows::default() };
                     for (x, y) in found {
                         trial.partner.insert(x, (y, 0));
                         trial.partner.insert(y, (x, 1));
                     }
                     if schedule(tape, folding, &trial).is_some() {
-                        lanes = trial;
+                        vectors = trial;
                         break;
                     }
                 }
             }
         }
     }
-    lanes
+    vectors
 }
 
 /// The pairs that putting `a` and `b` in lanes 0 and 1 implies, or None if
@@ -221,7 +222,7 @@ pub fn pair_lanes(tape: &Tape, folding: &Folding, n: usize) -> Lanes {
 /// different states read in one position pair nothing and conflict with
 /// nothing (and no state row is itself paired).
 fn unify(
-    lanes: &Lanes,
+    vectors: &VectorRows,
     shapes: &BTreeMap<Node, (Shape, Vec<Operand>)>,
     a: Node,
     b: Node,
@@ -236,11 +237,11 @@ fn unify(
         if x == y {
             continue;
         }
-        let current = lanes.of(x).or_else(|| found.get(&x).copied());
+        let current = vectors.of(x).or_else(|| found.get(&x).copied());
         match current {
             Some(p) if p == (y, 0) => continue,
             Some(_) => return None,
-            None if lanes.of(y).or_else(|| found.get(&y).copied()).is_some() => return None,
+            None if vectors.of(y).or_else(|| found.get(&y).copied()).is_some() => return None,
             None => {}
         }
         let ((sx, ox), (sy, oy)) = (shapes.get(&x)?, shapes.get(&y)?);
@@ -269,12 +270,12 @@ fn unify(
 /// within one order: the tape's order, except that the second lane of a
 /// pair comes right after the first. None when pairs make the order
 /// impossible (lane 1 of one pair reads lane 0 of a pair that reads it).
-pub fn schedule(tape: &Tape, folding: &Folding, lanes: &Lanes) -> Option<Vec<usize>> {
+pub fn schedule(tape: &Tape, folding: &Folding, vectors: &VectorRows) -> Option<Vec<usize>> {
     let vars = folding.roles.len();
     let has_row = |v: usize| folding.roles[v] != Role::Folded;
     // Groups: a lane group, a pair or a single row, named by its first
     // u-variable.
-    let leader = |v: usize| match lanes.vector_of(Node::Var(v)) {
+    let leader = |v: usize| match vectors.vector_of(Node::Var(v)) {
         Some((Node::Var(w), _, _)) => w,
         _ => v,
     };
@@ -299,7 +300,7 @@ pub fn schedule(tape: &Tape, folding: &Folding, lanes: &Lanes) -> Option<Vec<usi
     // The second of a sin/cos pair is written with the first.
     let mut written_with = vec![None; vars];
     for &(v, r) in &tape.recurrences {
-        if matches!(r, Recurrence::SinCos(_) | Recurrence::SinhCosh(_)) {
+        if matches!(r, TapeOp::SinCos(_) | TapeOp::SinhCosh(_)) {
             written_with[v + 1] = Some(v);
         }
     }
@@ -310,7 +311,7 @@ pub fn schedule(tape: &Tape, folding: &Folding, lanes: &Lanes) -> Option<Vec<usi
     }
     // In lane order.
     for list in members.values_mut() {
-        list.sort_by_key(|&v| (lanes.vector_of(Node::Var(v)).map_or(0, |(_, lane, _)| lane), v));
+        list.sort_by_key(|&v| (vectors.vector_of(Node::Var(v)).map_or(0, |(_, lane, _)| lane), v));
     }
     let mut waits: BTreeMap<usize, usize> = members.keys().map(|&g| (g, 0)).collect();
     let mut users: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
@@ -354,10 +355,10 @@ mod tests {
     use Operand::{Const, State, Var};
 
     /// The lanes with every constant a parameter (no number known).
-    fn lanes_of(t: &Tape, n: usize) -> (Folding, Lanes) {
+    fn vector_rows_of(t: &Tape, n: usize) -> (Folding, VectorRows) {
         let folding = fold_linear(t, &vec![None; t.constants.len()]);
-        let lanes = pair_lanes(t, &folding, n);
-        (folding, lanes)
+        let vectors = pair_rows(t, &folding, n);
+        (folding, vectors)
     }
 
     /// Kepler in the plane, as the tape writes it: x and y are one pair,
@@ -369,29 +370,31 @@ mod tests {
         // x, y, vx, vy; c0 = −1 (a parameter here).
         let t = test_tape(
             vec![
-                Recurrence::Square(State(0)),
-                Recurrence::Square(State(1)),
-                Recurrence::Add(Var(0), Var(1)),
-                Recurrence::Pow(Var(2), -1.5),
-                Recurrence::Mul(State(0), Var(3)),
-                Recurrence::Scale(Var(4), 0),
-                Recurrence::Mul(State(1), Var(3)),
-                Recurrence::Scale(Var(6), 0),
+                TapeOp::Square(State(0)),
+                TapeOp::Square(State(1)),
+                TapeOp::Add(Var(0), Var(1)),
+                TapeOp::Pow(Var(2), -1.5),
+                TapeOp::Mul(State(0), Var(3)),
+                TapeOp::Scale(Var(4), 0),
+                TapeOp::Mul(State(1), Var(3)),
+                TapeOp::Scale(Var(6), 0),
             ],
             vec![State(2), State(3), Var(5), Var(7)],
             1,
         );
-        let (folding, lanes) = lanes_of(&t, 4);
+        let (folding, vectors) = vector_rows_of(&t, 4);
         assert_eq!(
-            lanes.pairs().collect::<Vec<_>>(),
+            vectors.pairs().collect::<Vec<_>>(),
             vec![(Node::State(0), Node::State(1)), (Node::State(2), Node::State(3))]
         );
-        assert!(lanes.match_bases(Base::Square(State(0)), Base::Square(State(1))));
-        assert!(!lanes.match_bases(Base::Square(State(1)), Base::Square(State(0))));
+        assert!(vectors.match_bases(Base::Square(State(0)), Base::Square(State(1))));
+        assert!(!vectors.match_bases(Base::Square(State(1)), Base::Square(State(0))));
         // A product with the shared power pairs; the power alone does not.
-        assert!(lanes.match_bases(Base::Product(State(0), Var(3)), Base::Product(State(1), Var(3))));
-        assert!(!lanes.match_bases(Base::Square(Var(3)), Base::Square(Var(3))));
-        assert_eq!(schedule(&t, &folding, &lanes), Some(vec![2, 3]));
+        assert!(
+            vectors.match_bases(Base::Product(State(0), Var(3)), Base::Product(State(1), Var(3)))
+        );
+        assert!(!vectors.match_bases(Base::Square(Var(3)), Base::Square(Var(3))));
+        assert_eq!(schedule(&t, &folding, &vectors), Some(vec![2, 3]));
     }
 
     /// Arenstorf's two attracting centres: the shifted positions, the
@@ -402,30 +405,30 @@ mod tests {
         // y1, y2, v1, v2; c0 = μ, c1 = μ − 1, c2 = −1 (parameters here).
         let t = test_tape(
             vec![
-                Recurrence::Add(State(0), Const(0)), // u0 = y1 + μ
-                Recurrence::Square(Var(0)),          // u1
-                Recurrence::Square(State(1)),        // u2 = y2²
-                Recurrence::Add(Var(1), Var(2)),     // u3
-                Recurrence::Add(State(0), Const(1)), // u4 = y1 + μ − 1
-                Recurrence::Square(Var(4)),          // u5
-                Recurrence::Add(Var(2), Var(5)),     // u6 (the other order)
-                Recurrence::Pow(Var(3), -1.5),       // u7
-                Recurrence::Pow(Var(6), -1.5),       // u8
-                Recurrence::Mul(Var(0), Var(7)),     // u9
-                Recurrence::Mul(Var(4), Var(8)),     // u10
-                Recurrence::Add(Var(9), Var(10)),    // u11
-                Recurrence::Scale(Var(11), 2),       // u12
+                TapeOp::Add(State(0), Const(0)), // u0 = y1 + μ
+                TapeOp::Square(Var(0)),          // u1
+                TapeOp::Square(State(1)),        // u2 = y2²
+                TapeOp::Add(Var(1), Var(2)),     // u3
+                TapeOp::Add(State(0), Const(1)), // u4 = y1 + μ − 1
+                TapeOp::Square(Var(4)),          // u5
+                TapeOp::Add(Var(2), Var(5)),     // u6 (the other order)
+                TapeOp::Pow(Var(3), -1.5),       // u7
+                TapeOp::Pow(Var(6), -1.5),       // u8
+                TapeOp::Mul(Var(0), Var(7)),     // u9
+                TapeOp::Mul(Var(4), Var(8)),     // u10
+                TapeOp::Add(Var(9), Var(10)),    // u11
+                TapeOp::Scale(Var(11), 2),       // u12
             ],
             vec![State(2), State(3), Var(12), Var(12)],
             3,
         );
-        let (folding, lanes) = lanes_of(&t, 4);
-        let pairs: Vec<_> = lanes.pairs().collect();
+        let (folding, vectors) = vector_rows_of(&t, 4);
+        let pairs: Vec<_> = vectors.pairs().collect();
         for (a, b) in [(0, 4), (3, 6), (7, 8)] {
             assert!(pairs.contains(&(Node::Var(a), Node::Var(b))), "u{a} and u{b} in {pairs:?}");
         }
-        assert_eq!(lanes.of(Node::Var(2)), None);
-        let order = schedule(&t, &folding, &lanes).expect("a schedule");
+        assert_eq!(vectors.of(Node::Var(2)), None);
+        let order = schedule(&t, &folding, &vectors).expect("a schedule");
         for (a, b) in [(0, 4), (3, 6), (7, 8)] {
             let at = |v| order.iter().position(|&u| u == v).unwrap();
             assert_eq!(at(b), at(a) + 1, "{order:?}");
@@ -446,26 +449,23 @@ mod tests {
     #[test]
     fn n_body_interactions_pair_by_gathering_states() {
         let t = n_body_tape(6);
-        let (folding, lanes) = lanes_of(&t, 36);
+        let (folding, vectors) = vector_rows_of(&t, 36);
         let rows: Vec<usize> =
             (0..t.ops.len()).filter(|&v| folding.roles[v] != Role::Folded).collect();
         assert_eq!(rows.len(), 15 * 8);
-        let paired = rows.iter().filter(|&&v| lanes.of(Node::Var(v)).is_some()).count();
+        let paired = rows.iter().filter(|&&v| vectors.of(Node::Var(v)).is_some()).count();
         assert_eq!(paired, 7 * 2 * 8 + 4, "{} of {} rows paired", paired, rows.len());
-        assert!(schedule(&t, &folding, &lanes).is_some());
+        assert!(schedule(&t, &folding, &vectors).is_some());
     }
 
     /// A row whose would-be partner reads it cannot share its lane pair:
     /// `exp(x)` and `exp(exp(x))` stay single.
     #[test]
     fn a_row_never_pairs_with_a_row_that_reads_it() {
-        let t = test_tape(
-            vec![Recurrence::Exp(State(0)), Recurrence::Exp(Var(0))],
-            vec![Var(0), Var(1)],
-            0,
-        );
-        let (folding, lanes) = lanes_of(&t, 2);
-        assert_eq!(lanes.of(Node::Var(0)), None);
-        assert_eq!(schedule(&t, &folding, &lanes), Some(vec![0, 1]));
+        let t =
+            test_tape(vec![TapeOp::Exp(State(0)), TapeOp::Exp(Var(0))], vec![Var(0), Var(1)], 0);
+        let (folding, vectors) = vector_rows_of(&t, 2);
+        assert_eq!(vectors.of(Node::Var(0)), None);
+        assert_eq!(schedule(&t, &folding, &vectors), Some(vec![0, 1]));
     }
 }
