@@ -61,6 +61,7 @@ pub mod front;
 pub mod mechanics;
 pub mod parts;
 pub mod pipeline;
+mod recorded;
 pub mod taylor;
 
 pub use emit::program::{emit_program, token_count};
@@ -113,8 +114,11 @@ pub(crate) fn expand_model_with(
             )
         }
     };
-    match expand_or_report(&mut cx, attr, &item, parts) {
-        Ok(tokens) => parts::Expansion::Done(tokens),
+    match expand_or_report(&mut cx, attr.clone(), &item, parts) {
+        Ok(tokens) => {
+            recorded::record(&attr, &item, &tokens);
+            parts::Expansion::Done(tokens)
+        }
         Err(ir) if !ir.missing_parts.is_empty() => parts::Expansion::Fetch(ir.missing_parts),
         Err(ir) => {
             let mut out = cx.to_compile_errors();
