@@ -32,6 +32,10 @@ expand() {
         DAEGEN_EXPANSIONS=$into CARGO_TARGET_DIR=$target \
             cargo build --quiet --workspace --all-features --tests --examples
     )
+    # A file a model reads (a URDF) is named by its absolute path, and the
+    # compiler breaks the tokens' lines by their lengths.
+    find "$into" -type f -exec sed -i "s#$tree/#<tree>/#g" {} +
+    find "$into" -type f -exec perl -0pi -e 's/\s+/ /g' {} +
 }
 
 git worktree remove --force "$work/base-tree" 2>/dev/null || true
