@@ -19,9 +19,11 @@
 //! 7. Taylor (`taylor/analysis`): the economic scheme, the AD tape, the
 //!    unrolled jets;
 //! 8. projection levels (`dae/constraints`);
+//! 9. programs (`programs/`): each generated item's straight-line
+//!    programs ([`Program`]), with the derivatives they need, common
+//!    subexpressions shared;
 //!
-//! then `emit/`: common-subexpression elimination into straight-line
-//! programs ([`Program`]) and each item of the model as Rust tokens.
+//! then `emit/` prints each item of the model as Rust tokens.
 //!
 //! Under all of them, `expr/`: [`Graph`], a hash-consed DAG of canonical
 //! nodes with exact rational constants whose constructors simplify without
@@ -53,6 +55,7 @@
 #![allow(clippy::needless_range_loop)]
 #![warn(missing_docs)]
 
+pub mod analysis;
 pub mod dae;
 pub mod emit;
 mod error;
@@ -61,11 +64,11 @@ pub mod front;
 pub mod mechanics;
 pub mod parts;
 pub mod pipeline;
+pub mod programs;
 mod recorded;
 pub mod taylor;
 
 pub use emit::program::{emit_program, token_count};
-pub use emit::schedule::{Program, Temp, MAX_INLINE_DEPTH};
 pub use error::{Error, Result};
 pub use expr::diff::VectorField;
 pub use expr::display::Show;
@@ -74,6 +77,7 @@ pub use expr::jacobian::SparseJacobian;
 pub use expr::node::{sign, Func, Id, Node, Symbol, SymbolId, SymbolKind};
 pub use expr::number::{pow_f64, Number};
 pub use expr::rational::Rational;
+pub use programs::schedule::{Program, Temp, MAX_INLINE_DEPTH};
 pub use taylor::economic::economic_taylor_derivatives;
 
 use front::components::definitions::Definitions;
@@ -172,8 +176,8 @@ fn expand_or_report(
     item: &syn::ItemFn,
     parts: Definitions,
 ) -> std::result::Result<TokenStream, Box<front::ir::ModelIr>> {
-    let mut model = pipeline::analyse_with_parts(cx, attr, item, parts)?;
-    match emit::model::expand(&mut model) {
+    let model = pipeline::analyse_with_parts(cx, attr, item, parts)?;
+    match emit::model::expand(&model) {
         Ok(tokens)
             if model.ir.body_coordinates
                 && !model.attributes.global_written

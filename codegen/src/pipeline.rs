@@ -5,8 +5,8 @@
 //! The order is part of the output: the graph grows as the stages run,
 //! and node ids order the generated code's operands and temporaries.
 
-use crate::dae::mass_form::MassForm;
-use crate::dae::system::{FirstOrder, ProjectionLevel};
+pub use crate::analysis::{SensitivityAnalysis, SystemAnalysis};
+use crate::dae::system::FirstOrder;
 use crate::dae::variational::Wrt;
 use crate::front::attributes::Attributes;
 use crate::front::components::definitions::Definitions;
@@ -27,36 +27,13 @@ pub struct Analysed {
     pub model: SystemAnalysis,
     /// The forward sensitivities asked for with `sensitivities = [..]`.
     pub sensitivities: Option<SensitivityAnalysis>,
-}
-
-/// A first-order system and what is derived from it. Analyses that can
-/// fail keep their error, raised where emission needs them, so a model
-/// with several problems reports the same one first as it always has.
-pub struct SystemAnalysis {
-    /// The reduced system.
-    pub system: FirstOrder,
-    /// The mass-matrix form, where the model has one and it is wanted
-    /// (never for a model with sensitivity columns).
-    pub mass_form: crate::Result<Option<MassForm>>,
-    /// The Taylor methods' part.
-    pub taylor: crate::Result<TaylorAnalysis>,
-    /// The invariants grouped by level, each with the states it corrects.
-    pub projection: Vec<ProjectionLevel>,
-}
-
-/// The variational system of the forward sensitivities.
-pub struct SensitivityAnalysis {
-    /// The parameters and initial values differentiated against.
-    pub wrt: Vec<Wrt>,
-    /// The attributes it is expanded with: the model's, with its columns.
-    pub attributes: Attributes,
-    /// The model with the sensitivities as states, and its analyses.
-    pub model: crate::Result<SystemAnalysis>,
+    /// Every generated item's programs, or the first error an item met.
+    pub programs: crate::Result<crate::programs::SystemPrograms>,
 }
 
 /// Runs every stage in order: attributes → lower → tied states →
 /// structure → reduce →
-/// variational → mass form → Taylor → projection levels. `Err` holds the
+/// variational → mass form → Taylor → projection levels → programs. `Err` holds the
 /// IR as far as it got (for the stub) when a stage reported errors to `cx`.
 pub fn analyse(
     cx: &mut Ctxt,
@@ -101,7 +78,8 @@ pub fn analyse_with_parts(
             augmented.map(|system| system_analysis(&mut ir.graph, ir.time, system, &attributes));
         SensitivityAnalysis { wrt, attributes, model }
     });
-    Ok(Analysed { ir, attributes, model, sensitivities })
+    let programs = crate::programs::programs(&mut ir, &model, &attributes, sensitivities.as_ref());
+    Ok(Analysed { ir, attributes, model, sensitivities, programs })
 }
 
 /// The model function lowered into the model IR, its scenes by

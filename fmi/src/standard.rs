@@ -1,7 +1,7 @@
 //! What differs between FMI 2.0 and FMI 3.0 where their C functions do
 //! the same work: the functions' names, the phases of the state machine
 //! each is allowed in, the names of their arguments in messages, and the
-//! C type of a boolean. [`crate::calls`] holds the functions once, generic
+//! C type of a boolean. The module `calls` holds the functions once, generic
 //! over this table; `fmi2` and `fmi3` each give their row and the
 //! functions only their standard has.
 

@@ -6,20 +6,22 @@
 //! them.
 
 use crate::dae::system::FirstOrder;
-use crate::emit::layout::{index, Layout};
-use crate::front::ir::Clock;
+use crate::emit::layout::{index, straight_program, Layout};
+use crate::programs::hybrid::Actions;
+use crate::programs::schedule::Program;
 use crate::{emit_program, FxHashMap, Graph, SymbolId};
 use proc_macro2::TokenStream;
 use quote::quote;
 
 /// `act`, one arm per event or clock with actions.
 pub(crate) fn act_method(
-    g: &mut Graph,
+    g: &Graph,
     layout: &Layout,
     sys: &FirstOrder,
     pre: &[(SymbolId, SymbolId)],
+    programs: &[Actions],
 ) -> TokenStream {
-    if sys.actions.iter().all(Vec::is_empty) {
+    if programs.iter().all(Vec::is_empty) {
         return TokenStream::new();
     }
     // `pre(x)` reads x's slot of the state before the instant.
@@ -27,15 +29,13 @@ pub(crate) fn act_method(
         pre.iter().filter_map(|&(p, of)| layout.slot_of.get(&of).map(|&i| (p, i))).collect();
     let n = index(sys.slots.len());
     let mut arms = Vec::new();
-    for (trigger, actions) in sys.actions.iter().enumerate() {
+    for (trigger, actions) in programs.iter().enumerate() {
         if actions.is_empty() {
             continue;
         }
         let mut body = TokenStream::new();
-        for action in actions {
-            let program = g.schedule(&[action.value]);
-            let slot = index(action.slot);
-            let g = &*g;
+        for (slot, program) in actions {
+            let slot = index(*slot);
             let tokens = |s: SymbolId| match pre_slot.get(&s) {
                 Some(&i) => {
                     let i = index(i);
@@ -43,7 +43,7 @@ pub(crate) fn act_method(
                 }
                 None => layout.tokens(g, s),
             };
-            let code = emit_program(g, &program, &tokens, &|_, v| quote!(y[#slot] = #v;));
+            let code = emit_program(g, program, &tokens, &|_, v| quote!(y[#slot] = #v;));
             body.extend(quote!({ #code }));
         }
         let trigger = index(trigger);
@@ -62,23 +62,19 @@ pub(crate) fn act_method(
 }
 
 /// `clock`, each clock's period and first instant from the parameters.
-pub(crate) fn clock_method(g: &mut Graph, layout: &Layout, clocks: &[Clock]) -> TokenStream {
-    if clocks.is_empty() {
+pub(crate) fn clock_method(g: &Graph, layout: &Layout, programs: &[Program]) -> TokenStream {
+    if programs.is_empty() {
         return TokenStream::new();
     }
     let mut arms = Vec::new();
-    for (k, clock) in clocks.iter().enumerate() {
-        let program = g.schedule(&[clock.period, clock.offset]);
-        let code = {
-            let g = &*g;
-            emit_program(g, &program, &|s| layout.tokens(g, s), &|i, v| {
-                if i == 0 {
-                    quote!(period = #v;)
-                } else {
-                    quote!(offset = #v;)
-                }
-            })
-        };
+    for (k, program) in programs.iter().enumerate() {
+        let code = straight_program(g, layout, program, &|i, v| {
+            if i == 0 {
+                quote!(period = #v;)
+            } else {
+                quote!(offset = #v;)
+            }
+        });
         let k = index(k);
         arms.push(quote!(#k => { #code }));
     }

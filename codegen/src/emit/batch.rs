@@ -3,63 +3,32 @@
 //! right-hand sides at once, the model's own straight-line program run on
 //! `daegen::runtime::lanes::Lanes<L>` values (heyoka's batch mode).
 
-use crate::dae::system::{FirstOrder, SlotDerivative};
-use crate::emit::docs::{doc_attr, type_name};
-use crate::emit::layout::{index, program, Layout};
-use crate::expr::node::Node;
+use crate::dae::system::FirstOrder;
+use crate::emit::docs::{doc_attr, type_name, Naming};
+use crate::emit::layout::{index, straight_program, Layout};
 use crate::front::ir::ModelIr;
-use crate::{Graph, Id, SymbolKind};
+use crate::programs::schedule::Program;
+use crate::Graph;
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
-/// The batch type and its `Model` and `Batch` implementations; `Err` with
-/// what to do instead where the model is not an explicit ODE whose
-/// right-hand side runs on lanes.
+/// The batch type and its `Model` and `Batch` implementations from the
+/// right-hand side's program for lanes.
 pub(crate) fn batch_items(
-    ir: &mut ModelIr,
+    g: &Graph,
+    ir: &ModelIr,
+    naming: &Naming,
     sys: &FirstOrder,
     lanes: usize,
-) -> Result<TokenStream, String> {
-    let fix = "batch lanes run explicit ODEs without events, clocks or inputs: drop `batch`, and run the members one by one with `daegen::Ensemble`";
-    let what = if sys.index > 0 || !ir.algebraics.is_empty() || sys.mass_only {
-        Some("is a DAE")
-    } else if !sys.blocks.is_empty() || sys.newton.is_some() {
-        Some("has equations solved for their derivatives at run time")
-    } else if !ir.events.is_empty() || !ir.clocks.is_empty() {
-        Some("has events or clocks")
-    } else if !ir.inputs.is_empty() {
-        Some("reads inputs")
-    } else if !sys.invariants.is_empty() || !ir.invariants.is_empty() {
-        Some("has invariants to project onto")
-    } else {
-        None
-    };
-    if let Some(what) = what {
-        return Err(format!("this model {what}; {fix}"));
-    }
-    let outputs: Vec<Id> = sys
-        .derivatives
-        .iter()
-        .filter_map(|d| match d {
-            SlotDerivative::Explicit(e) => Some(*e),
-            _ => None,
-        })
-        .collect();
-    if outputs.len() != sys.slots.len() {
-        return Err(format!("this model has derivatives solved at run time; {fix}"));
-    }
-    if let Some(why) = not_on_lanes(&ir.graph, &outputs) {
-        return Err(format!(
-            "its right-hand side has {why}, which lanes do not compute yet; {fix}"
-        ));
-    }
-    let name = type_name(ir);
+    program: &Program,
+) -> TokenStream {
+    let name = type_name(naming);
     let batch = format_ident!("{}Batch", name);
     let vis = &ir.vis;
     let (n, l) = (sys.slots.len(), lanes);
     let (n_lit, l_lit, nl_lit) = (index(n), index(l), index(n * l));
     let layout = Layout::of_system(sys);
-    let body = program(&mut ir.graph, &layout, &outputs, &|i, v| {
+    let body = straight_program(g, &layout, program, &|i, v| {
         let i = index(i);
         quote!(dy[#i] = ::core::convert::Into::into(#v);)
     });
@@ -74,7 +43,7 @@ pub(crate) fn batch_items(
         "{l} members of [`{name}`] stepped together with one step size: their parameters and states side by side, component `i` of lane `l` at `i·{l} + l`, the right-hand side computed for all lanes at once. Built from members by `daegen::runtime::Batch::from_members`; run by `daegen::Ensemble::final_states_batched` or as any model, with an explicit pair, `Method::Taylor` (the members' tapes on lanes) or a fixed-step method (each lane meets the tolerance as its member would alone)."
     ));
     let name_str = batch.to_string();
-    Ok(quote! {
+    quote! {
         #[doc = #doc]
         #[derive(Clone, Copy, Debug, PartialEq)]
         #vis struct #batch {
@@ -159,35 +128,5 @@ pub(crate) fn batch_items(
                 ::core::result::Result::Ok(())
             }
         }
-    })
-}
-
-/// What in the program of `outputs` lanes cannot compute, if anything: a
-/// sign (an `if` on a value), or a power or `atan2` whose first operand is
-/// the same in every lane while the second differs (`2^x`, with `x` a
-/// state: a number's method would be called with lanes).
-fn not_on_lanes(g: &Graph, outputs: &[Id]) -> Option<&'static str> {
-    let varies = |id: Id| {
-        g.free_symbols(id).iter().any(|&s| {
-            matches!(
-                g.symbol(s).kind,
-                SymbolKind::State | SymbolKind::Parameter | SymbolKind::Derivative { .. }
-            )
-        })
-    };
-    for id in g.reachable(outputs) {
-        match g.node(id) {
-            Node::Call(f, _) if *f == crate::Func::Sign => {
-                return Some("a sign (`sign` or `abs`'s derivative)")
-            }
-            Node::Pow([b, e]) if g.as_number(*e).is_none() && !varies(*b) && varies(*e) => {
-                return Some("a number raised to a varying power")
-            }
-            Node::Atan2([y, x]) if !varies(*y) && varies(*x) => {
-                return Some("an `atan2` of a number")
-            }
-            _ => {}
-        }
     }
-    None
 }

@@ -11,7 +11,7 @@ pub fn benchmark_impl(item: &syn::ItemFn, ir: &ModelIr, attributes: &Attributes)
     let Some(bench) = &attributes.bench else {
         return TokenStream::new();
     };
-    let ty = crate::emit::docs::type_name(ir);
+    let ty = crate::emit::docs::type_name(&crate::emit::docs::Naming::of(ir));
     let name = item.sig.ident.to_string();
     let source = quote::ToTokens::to_token_stream(item).to_string();
     let written = &attributes.written;

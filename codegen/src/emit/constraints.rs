@@ -3,28 +3,24 @@
 //! projection levels that `dae::constraints` found.
 
 use crate::dae::system::{FirstOrder, ProjectionLevel};
-use crate::{Graph, Id, SymbolId};
+use crate::emit::layout::{straight_program, Layout};
+use crate::programs::derivatives::ConstraintPrograms;
+use crate::Graph;
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-/// Emits straight-line code for expressions, handing each value to `assign`.
-pub type Emit<'a> =
-    &'a dyn Fn(&mut Graph, &[Id], &dyn Fn(usize, TokenStream) -> TokenStream) -> TokenStream;
-
 /// `CONSTRAINTS`, `PROJECTION`, `constraints` and `constraint_jacobian`;
 /// nothing for a model without constraints.
-pub fn constraint_methods(
-    g: &mut Graph,
-    emit: Emit<'_>,
-    slot_symbols: &[SymbolId],
+pub(crate) fn constraint_methods(
+    g: &Graph,
+    layout: &Layout,
     sys: &FirstOrder,
     levels: &[ProjectionLevel],
-) -> crate::Result<TokenStream> {
-    if sys.invariants.is_empty() {
-        return Ok(TokenStream::new());
-    }
+    programs: Option<&ConstraintPrograms>,
+) -> TokenStream {
+    let Some(programs) = programs else { return TokenStream::new() };
     let index = Literal::usize_unsuffixed;
-    let n = index(slot_symbols.len());
+    let n = index(sys.slots.len());
     let infos = sys.invariants.iter().map(|inv| {
         let text = &inv.text;
         let level = index(inv.level);
@@ -35,28 +31,15 @@ pub fn constraint_methods(
         let slots = l.slots.iter().map(|&s| index(s));
         quote!(::daegen::ProjectionLevel { rows: &[#(#rows),*], slots: &[#(#slots),*] })
     });
-    let residuals: Vec<Id> = sys.invariants.iter().map(|i| i.residual).collect();
-    let m = index(residuals.len());
-    let values = emit(g, &residuals, &|i, v| {
+    let m = index(sys.invariants.len());
+    let values = straight_program(g, layout, &programs.residuals, &|i, v| {
         let i = index(i);
         quote!(out[#i] = #v;)
     });
     let mut arms = Vec::new();
-    for (k, level) in levels.iter().enumerate() {
-        let cols = level.slots.len();
-        let mut entries = Vec::new();
-        let mut at = Vec::new();
-        for (r, &row) in level.rows.iter().enumerate() {
-            for (c, &slot) in level.slots.iter().enumerate() {
-                let d = g.partial(sys.invariants[row].residual, slot_symbols[slot])?;
-                if g.as_number(d).is_none_or(|v| !v.is_zero()) {
-                    entries.push(d);
-                    at.push(r * cols + c);
-                }
-            }
-        }
-        let len = index(level.rows.len() * cols);
-        let code = emit(g, &entries, &|i, v| {
+    for (k, (level, (at, program))) in levels.iter().zip(&programs.levels).enumerate() {
+        let len = index(level.rows.len() * level.slots.len());
+        let code = straight_program(g, layout, program, &|i, v| {
             let i = index(at[i]);
             quote!(out[#i] = #v;)
         });
@@ -69,20 +52,9 @@ pub fn constraint_methods(
             }
         });
     }
-    // Positions (slots whose derivative is another slot, their rate) that
-    // no level corrects: free coordinates, which the rank of Φ_q does not
-    // count.
-    let in_levels: std::collections::BTreeSet<usize> =
-        levels.iter().flat_map(|l| l.slots.iter().copied()).collect();
-    let unconstrained = (0..sys.slots.len())
-        .filter(|&i| !in_levels.contains(&i))
-        .filter(|&i| match sys.derivatives.get(i) {
-            Some(crate::dae::system::SlotDerivative::Explicit(e)) => {
-                g.as_symbol(*e).is_some_and(|s| slot_symbols.contains(&s))
-            }
-            _ => false,
-        })
-        .count();
+    // Positions no level corrects: free coordinates, which the rank of
+    // Φ_q does not count.
+    let unconstrained = programs.unconstrained;
     let unconstrained = match unconstrained {
         0 => TokenStream::new(),
         k => {
@@ -91,7 +63,7 @@ pub fn constraint_methods(
         }
     };
     let fixed = sys.slots.iter().enumerate().filter(|(_, s)| s.fixed).map(|(i, _)| index(i));
-    Ok(quote! {
+    quote! {
         const FIXED_STATES: &'static [usize] = &[#(#fixed),*];
         const CONSTRAINTS: &'static [::daegen::ConstraintInfo] = &[#(#infos),*];
         const PROJECTION: &'static [::daegen::ProjectionLevel] = &[#(#level_infos),*];
@@ -112,5 +84,5 @@ pub fn constraint_methods(
                 _ => {}
             }
         }
-    })
+    }
 }

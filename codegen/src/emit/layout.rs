@@ -4,7 +4,8 @@
 
 use crate::dae::system::FirstOrder;
 use crate::emit::program::emit_rolled_program;
-use crate::{emit_program, Graph, Id, SymbolId, SymbolKind};
+use crate::programs::schedule::Program;
+use crate::{emit_program, Graph, SymbolId, SymbolKind};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
@@ -104,38 +105,35 @@ pub(crate) fn index(i: usize) -> Literal {
     Literal::usize_unsuffixed(i)
 }
 
-/// Code computing `outputs` into `array[targets[i]]`, outputs that differ
-/// only in the states they read rolled into loops
+/// Code computing `program`'s outputs into `array[targets[i]]`, outputs
+/// that differ only in the states they read rolled into loops
 /// ([`crate::emit::program::emit_rolled_program`]); straight-line where
 /// some symbol is read from elsewhere than `y`, `self` and `t` (a run-time
 /// block's solution, a Taylor coefficient).
 pub(crate) fn rolled_program(
-    g: &mut Graph,
+    g: &Graph,
     layout: &Layout,
-    outputs: &[Id],
+    program: &Program,
     (array, targets): (&str, &[usize]),
 ) -> TokenStream {
     if !layout.block_of.is_empty() || !layout.taylor_of.is_empty() {
         let array = format_ident!("{}", array);
-        return program(g, layout, outputs, &|i, v| {
+        return straight_program(g, layout, program, &|i, v| {
             let i = index(targets[i]);
             quote!(#array[#i] = #v;)
         });
     }
-    let program = g.schedule(outputs);
-    let g = &*g;
     let state_slot = |s: SymbolId| layout.slot_of.get(&s).copied();
-    emit_rolled_program(g, &program, &|s| layout.tokens(g, s), &state_slot, (array, targets), "y")
+    emit_rolled_program(g, program, &|s| layout.tokens(g, s), &state_slot, (array, targets), "y")
 }
 
-/// Straight-line code computing `outputs` and handing each to `assign`.
-pub(crate) fn program(
-    g: &mut Graph,
+/// Straight-line code computing `program`'s outputs and handing each to
+/// `assign`.
+pub(crate) fn straight_program(
+    g: &Graph,
     layout: &Layout,
-    outputs: &[Id],
+    program: &Program,
     assign: &dyn Fn(usize, TokenStream) -> TokenStream,
 ) -> TokenStream {
-    let program = g.schedule(outputs);
-    let g = &*g;
-    emit_program(g, &program, &|s| layout.tokens(g, s), assign)
+    emit_program(g, program, &|s| layout.tokens(g, s), assign)
 }

@@ -3,32 +3,32 @@
 //! hands over.
 
 use crate::dae::mass_form::MassForm;
-use crate::emit::constraints::Emit;
-use crate::emit::layout::fixed_size_body;
-use crate::{Graph, Id};
+use crate::emit::layout::{fixed_size_body, straight_program, Layout};
+use crate::programs::mass_form::{MassFormPrograms, PrimaryPrograms};
+use crate::Graph;
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
 /// The `Model` items both uses of the form share: sizes, mass, the
 /// right-hand side and its analytic Jacobian.
-fn model_items(g: &mut Graph, form: &MassForm, emit: Emit<'_>) -> crate::Result<TokenStream> {
+fn model_items(g: &Graph, form: &MassForm, programs: &MassFormPrograms) -> TokenStream {
     let index = Literal::usize_unsuffixed;
+    let layout = Layout::of_components(&form.components);
     let n = index(form.components.len());
-    let rhs = emit(g, &form.rows, &|i, v| {
+    let rhs = straight_program(g, &layout, &programs.rhs, &|i, v| {
         let i = index(i);
         quote!(dy[#i] = #v;)
     });
-    let jacobian = g.jacobian(&form.rows, &form.components)?;
-    let nnz = index(jacobian.entries.len());
-    let pattern = jacobian.entries.iter().map(|&(r, c, _)| {
+    let nnz = index(programs.pattern.len());
+    let pattern = programs.pattern.iter().map(|&(r, c)| {
         let (r, c) = (index(r), index(c));
         quote!((#r, #c))
     });
-    let values = emit(g, &jacobian.expressions(), &|k, v| {
+    let values = straight_program(g, &layout, &programs.jacobian, &|k, v| {
         let k = index(k);
         quote!(values[#k] = #v;)
     });
-    let mass = match &form.general {
+    let mass = match &programs.mass {
         None => {
             let diagonal = (0..form.components.len()).map(|i| {
                 if i < form.differential {
@@ -39,14 +39,13 @@ fn model_items(g: &mut Graph, form: &MassForm, emit: Emit<'_>) -> crate::Result<
             });
             quote!(const MASS: ::daegen::MassMatrix = ::daegen::MassMatrix::Diagonal(&[#(#diagonal),*]);)
         }
-        Some(entries) => {
-            let pattern = entries.iter().map(|&(r, c, _)| {
+        Some((entries, program)) => {
+            let pattern = entries.iter().map(|&(r, c)| {
                 let (r, c) = (index(r), index(c));
                 quote!((#r, #c))
             });
             let k = index(entries.len());
-            let ids: Vec<Id> = entries.iter().map(|e| e.2).collect();
-            let values = emit(g, &ids, &|i, v| {
+            let values = straight_program(g, &layout, program, &|i, v| {
                 let i = index(i);
                 quote!(values[#i] = #v;)
             });
@@ -63,7 +62,7 @@ fn model_items(g: &mut Graph, form: &MassForm, emit: Emit<'_>) -> crate::Result<
     let index2 = form.index2.iter().map(|&i| index(i));
     let rhs = fixed_size_body(&n, "dy", &n, rhs);
     let values = fixed_size_body(&n, "values", &nnz, values);
-    Ok(quote! {
+    quote! {
         const STATES: usize = #n;
         type State = [f64; #n];
         const JACOBIAN: ::daegen::Jacobian = ::daegen::Jacobian::Symbolic {
@@ -78,36 +77,32 @@ fn model_items(g: &mut Graph, form: &MassForm, emit: Emit<'_>) -> crate::Result<
         fn jacobian(&self, t: f64, y: &[f64], values: &mut [f64]) -> ::core::result::Result<(), ::daegen::EvalError> {
             #values
         }
-    })
+    }
 }
 
 /// The items of the model's own `Model` implementation when only the
 /// mass-matrix form exists: initial values (states, then the algebraic
 /// variables' guesses, then μ = 0) and outputs read from the components.
-pub fn primary_items(
-    g: &mut Graph,
-    form: &MassForm,
-    inits: &[Id],
-    outputs: &[Id],
-    emit: Emit<'_>,
-) -> crate::Result<TokenStream> {
+pub fn primary_items(g: &Graph, form: &MassForm, programs: &PrimaryPrograms) -> TokenStream {
     let index = Literal::usize_unsuffixed;
+    let layout = Layout::of_components(&form.components);
     let n = index(form.components.len());
-    let items = model_items(g, form, emit)?;
-    let initial = emit(g, inits, &|i, v| {
+    let items = model_items(g, form, &programs.form);
+    let initial = straight_program(g, &layout, &programs.initial, &|i, v| {
         let i = index(i);
         quote!(y[#i] = #v;)
     });
-    let arms: Vec<TokenStream> = outputs
+    let arms: Vec<TokenStream> = programs
+        .outputs
         .iter()
         .enumerate()
-        .map(|(k, &o)| {
-            let body = emit(g, &[o], &|_, v| v);
+        .map(|(k, program)| {
+            let body = straight_program(g, &layout, program, &|_, v| v);
             let k = index(k);
             quote!(#k => { #body })
         })
         .collect();
-    Ok(quote! {
+    quote! {
         #items
         fn initial_state(&self, y: &mut [f64]) {
             let ::core::result::Result::Ok(y) = <&mut [f64; #n]>::try_from(y) else { return };
@@ -121,22 +116,22 @@ pub fn primary_items(
                 _ => f64::NAN,
             }
         }
-    })
+    }
 }
 
 /// The generated `{Name}MassForm` type and what the model needs to reach it.
 pub fn emit_mass_form(
-    g: &mut Graph,
+    g: &Graph,
     form: &MassForm,
+    programs: &MassFormPrograms,
     name: &syn::Ident,
     vis: &syn::Visibility,
     params: &[syn::Ident],
-    emit: Emit<'_>,
-) -> crate::Result<(TokenStream, TokenStream)> {
+) -> (TokenStream, TokenStream) {
     let index = Literal::usize_unsuffixed;
     let form_name = format_ident!("{}MassForm", name);
     let n = index(form.components.len());
-    let items = model_items(g, form, emit)?;
+    let items = model_items(g, form, programs);
     let names = &form.names;
     let name_str = form_name.to_string();
     let differential = index(form.differential);
@@ -207,5 +202,5 @@ pub fn emit_mass_form(
             ::core::option::Option::Some(::daegen::runtime::simulate_from(&form, t0, &w0, t1, options))
         }
     };
-    Ok((form_type, method))
+    (form_type, method)
 }

@@ -1,9 +1,9 @@
-//! Emission: common-subexpression elimination into straight-line programs
-//! (`schedule`), programs as Rust tokens (`program`) reading symbols as
+//! Emission, which only prints: the programs the pipeline scheduled
+//! (`crate::programs`) as Rust tokens (`program`) reading symbols as
 //! `layout` says, and the items of a model type: `model` assembles them
 //! from one emitter per item (`rhs`, `jacobian`, `events`, `outputs`,
-//! `taylor_items`, `newton`, `constraints`, `mass_form`, `docs`), `batch` steps several members
-//! at once, and `benchmark` registers it.
+//! `taylor_items`, `newton`, `constraints`, `mass_form`, `docs`), `batch`
+//! steps several members at once, and `benchmark` registers it.
 
 pub mod actions;
 pub mod batch;
@@ -19,5 +19,4 @@ pub mod newton;
 pub mod outputs;
 pub mod program;
 pub mod rhs;
-pub mod schedule;
 pub mod taylor_items;

@@ -1,84 +1,107 @@
 //! Expansion: the generated struct, its `Default`, and its `daegen::Model`
 //! implementation, assembled from one emitter per item (`rhs`, `jacobian`,
-//! `events`, `outputs`, `taylor_items`, `newton`, `docs`). The last step;
-//! everything it needs was decided before.
+//! `events`, `outputs`, `taylor_items`, `newton`, `docs`), each printing
+//! the programs the pipeline scheduled (`programs`). The last step; it
+//! decides nothing.
 
-use crate::dae::system::{FirstOrder, SlotDerivative};
+use crate::analysis::{SensitivityAnalysis, SystemAnalysis};
+use crate::dae::system::FirstOrder;
 use crate::emit::docs::{
-    dae_analysis, info, info_with, parameter_method, struct_and_default, type_name,
+    dae_analysis, info, info_with, parameter_method, struct_and_default, type_name, Naming,
 };
 use crate::emit::events::{event_rates_method, events_method};
 use crate::emit::jacobian::jacobian_items;
-use crate::emit::layout::{fixed_size_body, index, program, rolled_program, Layout};
+use crate::emit::layout::{fixed_size_body, index, rolled_program, straight_program, Layout};
 use crate::emit::newton::newton_block_code;
 use crate::emit::outputs::output_arms;
-use crate::emit::rhs::{explicit_derivatives, rhs_items};
+use crate::emit::rhs::rhs_items;
 use crate::emit::taylor_items::taylor_items;
 use crate::front::attributes::Attributes;
 use crate::front::ir::ModelIr;
-use crate::pipeline::{Analysed, SensitivityAnalysis, SystemAnalysis};
-use crate::{Graph, Id, SymbolId};
+use crate::pipeline::Analysed;
+use crate::programs::mass_form::PrimaryPrograms;
+use crate::programs::schedule::Program;
+use crate::programs::{ModelPrograms, SystemPrograms};
+use crate::Graph;
 use proc_macro2::TokenStream;
 use quote::{quote, quote_spanned};
 
 /// The full expansion of an analysed model: each item of the `Model`
-/// implementation from its emitter, in the order that fixes the shared
-/// subexpressions (the graph grows as they run).
-pub fn expand(model: &mut Analysed) -> crate::Result<TokenStream> {
-    let Analysed { ir, attributes, model, sensitivities } = model;
-    expand_system(ir, model, attributes, sensitivities.as_ref())
+/// implementation printed from its programs.
+pub fn expand(model: &Analysed) -> crate::Result<TokenStream> {
+    let Analysed { ir, attributes, model, sensitivities, programs } = model;
+    let programs = programs.as_ref().map_err(Clone::clone)?;
+    expand_system(ir, &Naming::of(ir), model, attributes, sensitivities.as_ref(), programs)
 }
 
 /// The expansion of one first-order system of the model: its own, or its
 /// variational system's.
 fn expand_system(
-    ir: &mut ModelIr,
+    ir: &ModelIr,
+    naming: &Naming,
     analysis: &SystemAnalysis,
     attributes: &Attributes,
     sensitivities: Option<&SensitivityAnalysis>,
+    programs: &SystemPrograms,
 ) -> crate::Result<TokenStream> {
     // Most of its length is the quoted `Model` implementation the items fill.
     let sys = &analysis.system;
-    let name = type_name(ir);
-    if sys.mass_only {
-        return expand_mass_only(ir, analysis);
-    }
+    let programs = match programs {
+        SystemPrograms::MassOnly(programs) => {
+            return Ok(expand_mass_only(ir, naming, analysis, programs))
+        }
+        SystemPrograms::Model(programs) => programs,
+    };
+    let ModelPrograms {
+        newton,
+        initial_state,
+        rhs,
+        event_rates,
+        jacobian,
+        outputs,
+        constraints,
+        events,
+        actions,
+        taylor,
+        own_rhs,
+        mass_form,
+        clocks,
+        degenerate,
+        batch,
+        sensitivities: sensitivity_programs,
+    } = &**programs;
+    let g = &ir.graph;
+    let name = type_name(naming);
     let n = sys.slots.len();
     let mut layout = Layout::of_system(sys);
     let (newton_method, newton_solve, newton_solve_for_outputs) =
-        newton_block_code(&mut ir.graph, &layout, sys, &name);
-    let g = &mut ir.graph;
-    let inits: Vec<Id> = sys.slots.iter().map(|s| s.init).collect();
-    let initial_state = program(g, &layout, &inits, &|i, v| {
+        newton_block_code(g, &layout, sys, newton.as_ref(), &name);
+    let initial_state = straight_program(g, &layout, initial_state, &|i, v| {
         let i = index(i);
         quote!(y[#i] = #v;)
     });
-    let (block_setup, rhs_body, block_solve) = rhs_items(g, &layout, sys);
-    let explicit = explicit_derivatives(sys);
-    let inputs: Vec<(SymbolId, SymbolId)> = ir.inputs.iter().map(|i| (i.symbol, i.rate)).collect();
-    let event_rates_method =
-        event_rates_method(g, &layout, sys, (ir.time, &inputs), explicit.as_ref())?;
-    let slot_symbols: Vec<SymbolId> = sys.slots.iter().map(|s| s.symbol).collect();
-    let jacobian =
-        jacobian_items(g, &layout, &slot_symbols, (ir.time, &inputs, &ir.discretes), explicit)?;
-    let output_arms = output_arms(g, &mut layout, sys, &newton_solve_for_outputs)?;
+    let (block_setup, rhs_body, block_solve) = rhs_items(g, &layout, sys, rhs);
+    let event_rates_method = event_rates_method(g, &layout, sys, event_rates.as_ref());
+    let jacobian = jacobian_items(g, &layout, n, jacobian.as_ref());
+    let output_arms = output_arms(g, &mut layout, sys, &newton_solve_for_outputs, outputs);
     let constraint_methods = crate::emit::constraints::constraint_methods(
         g,
-        &|g, ids, assign| program(g, &layout, ids, assign),
-        &slot_symbols,
+        &layout,
         sys,
         &analysis.projection,
-    )?;
-    let events_method = events_method(g, &layout, sys);
-    let act_method = crate::emit::actions::act_method(g, &layout, sys, &ir.pre);
+        constraints.as_ref(),
+    );
+    let events_method = events_method(g, &layout, sys, events.as_ref());
+    let act_method = crate::emit::actions::act_method(g, &layout, sys, &ir.pre, actions);
     let rhs_method_body = fixed_size_body(
         &index(n),
         "dy",
         &index(n),
         quote!(#newton_solve #block_setup #rhs_body #block_solve),
     );
-    let taylor = analysis.taylor.as_ref().map_err(Clone::clone)?;
-    let (taylor_tokens, taylor_unavailable) = taylor_items(g, &mut layout, n, taylor);
+    let taylor_analysis = analysis.taylor.as_ref().map_err(Clone::clone)?;
+    let (taylor_tokens, taylor_unavailable) =
+        taylor_items(g, &mut layout, n, taylor_analysis, taylor);
     let taylor_unavailable_const = match &taylor_unavailable {
         Some(reason) => {
             quote!(const TAYLOR_TAPE: ::daegen::Availability = ::daegen::Availability::Unavailable(#reason);)
@@ -87,31 +110,37 @@ fn expand_system(
             const TAYLOR_TAPE: ::daegen::Availability = ::daegen::Availability::Available;
         ),
     };
-    // Last, so its partial derivatives cannot change the code above.
-    let own_rhs = own_rhs_method(&mut ir.graph, &layout, sys, attributes.sensitivity_columns);
+    let own_rhs = own_rhs_method(g, &layout, sys, attributes.sensitivity_columns, own_rhs.as_ref());
     // A model with sensitivities has none: they would need the variational
     // equations of the mass-matrix form too.
-    let (mass_form_type, mass_form_method) = mass_form_items(ir, analysis, &name)?;
-    let clock_method = crate::emit::actions::clock_method(&mut ir.graph, &layout, &ir.clocks);
+    let (mass_form_type, mass_form_method) = match (mass_form, &analysis.mass_form) {
+        (Some(programs), Ok(Some(form))) => {
+            let params: Vec<syn::Ident> = ir.params.iter().map(|p| p.ident.clone()).collect();
+            crate::emit::mass_form::emit_mass_form(g, form, programs, &name, &ir.vis, &params)
+        }
+        _ => (TokenStream::new(), TokenStream::new()),
+    };
+    let clock_method = crate::emit::actions::clock_method(g, &layout, clocks);
     let input_breakpoints = crate::emit::actions::input_breakpoints_method(&ir.inputs);
-    let info = info(ir, sys);
+    let info = info(ir, naming, sys);
     let parameter = parameter_method(ir);
-    let degenerate = degenerate_parameters_method(&mut ir.graph, &layout, sys);
+    let degenerate = degenerate_parameters_method(g, &layout, sys, degenerate.as_ref());
     let model_index = index(sys.index);
     let mut analysis = dae_analysis(ir, sys);
     if let Some(reason) = &taylor_unavailable {
         let note = format!("`Method::Taylor` is not available: {reason}.");
         analysis = if analysis.is_empty() { note } else { format!("{analysis}\n\n{note}") };
     }
-    let struct_and_default = struct_and_default(ir, &analysis);
+    let struct_and_default = struct_and_default(ir, naming, &analysis);
     let n_lit = index(n);
-    // Last of all: its program cannot change the model's own code.
-    let batch = match attributes.batch {
-        Some((lanes, span)) => match crate::emit::batch::batch_items(ir, sys, lanes) {
-            Ok(items) => items,
-            Err(message) => quote_spanned!(span=> ::core::compile_error!(#message);),
-        },
-        None => TokenStream::new(),
+    let batch = match (attributes.batch, batch) {
+        (Some((lanes, _)), Some(Ok(program))) => {
+            crate::emit::batch::batch_items(g, ir, naming, sys, lanes, program)
+        }
+        (Some((_, span)), Some(Err(message))) => {
+            quote_spanned!(span=> ::core::compile_error!(#message);)
+        }
+        _ => TokenStream::new(),
     };
     let sensitivity_columns = match attributes.sensitivity_columns {
         0 => TokenStream::new(),
@@ -120,10 +149,12 @@ fn expand_system(
             quote!(const SENSITIVITY_COLUMNS: usize = #k;)
         }
     };
-    // Last too: the sensitivities' type is a model of its own.
-    let sensitivity_type = match sensitivities {
-        Some(sensitivities) => sensitivity_items(ir, sensitivities, &name)?,
-        None => TokenStream::new(),
+    // The sensitivities' type is a model of its own.
+    let sensitivity_type = match (sensitivities, sensitivity_programs) {
+        (Some(sensitivities), Some(programs)) => {
+            sensitivity_items(ir, naming, sensitivities, programs)?
+        }
+        _ => TokenStream::new(),
     };
     // A file the model was built from: `include_bytes!` makes the build
     // depend on it, so editing it expands the model again.
@@ -203,23 +234,25 @@ fn expand_system(
 /// states (`dae::variational`), expanded as a model of its own, and
 /// `<Model>::with_sensitivities` that makes one with the same parameters.
 fn sensitivity_items(
-    ir: &mut ModelIr,
+    ir: &ModelIr,
+    naming: &Naming,
     sensitivities: &SensitivityAnalysis,
-    name: &syn::Ident,
+    programs: &SystemPrograms,
 ) -> crate::Result<TokenStream> {
+    let name = type_name(naming);
     let augmented = sensitivities.model.as_ref().map_err(Clone::clone)?;
     let wrt = &sensitivities.wrt;
     let listed: Vec<String> = wrt.iter().map(|w| format!("`{}`", w.name())).collect();
-    let (fn_name, doc) = (ir.fn_name.clone(), ir.doc.clone());
-    ir.fn_name = syn::Ident::new(&format!("{fn_name}_sensitivities"), fn_name.span());
-    ir.doc = format!(
-        "The model `{name}` with its forward sensitivities with respect to {}: its states, then for each of them the states `d(x)/d(w)` = ∂x/∂w, integrated with them by any method (`Solution::sensitivity(t, \"x\", \"w\")` reads them). Made by `{name}::with_sensitivities`.",
-        listed.join(", ")
-    );
-    let expanded = expand_system(ir, augmented, &sensitivities.attributes, None);
-    let sensitivity_name = type_name(ir);
-    (ir.fn_name, ir.doc) = (fn_name, doc);
-    let model = expanded?;
+    let fn_name = &naming.fn_name;
+    let own = Naming {
+        fn_name: syn::Ident::new(&format!("{fn_name}_sensitivities"), fn_name.span()),
+        doc: format!(
+            "The model `{name}` with its forward sensitivities with respect to {}: its states, then for each of them the states `d(x)/d(w)` = ∂x/∂w, integrated with them by any method (`Solution::sensitivity(t, \"x\", \"w\")` reads them). Made by `{name}::with_sensitivities`.",
+            listed.join(", ")
+        ),
+    };
+    let model = expand_system(ir, &own, augmented, &sensitivities.attributes, None, programs)?;
+    let sensitivity_name = type_name(&own);
     let fields: Vec<&syn::Ident> = ir.params.iter().map(|p| &p.ident).collect();
     let vis = &ir.vis;
     let method_doc = format!(
@@ -238,73 +271,30 @@ fn sensitivity_items(
     })
 }
 
-/// The mass-matrix form's type and the `simulate_mass_form` that runs it,
-/// for a DAE whose differential equations solve symbolically.
-fn mass_form_items(
-    ir: &mut ModelIr,
-    analysis: &SystemAnalysis,
-    name: &syn::Ident,
-) -> crate::Result<(TokenStream, TokenStream)> {
-    // The mass-matrix form carries no actions, clocks or inputs: a run
-    // refuses the formulation for such a model.
-    if is_hybrid(ir, &analysis.system) {
-        return Ok((TokenStream::new(), TokenStream::new()));
-    }
-    Ok(match analysis.mass_form.as_ref().map_err(Clone::clone)? {
-        Some(form) => {
-            let form_layout = Layout::of_components(&form.components);
-            let params: Vec<syn::Ident> = ir.params.iter().map(|p| p.ident.clone()).collect();
-            crate::emit::mass_form::emit_mass_form(
-                &mut ir.graph,
-                form,
-                name,
-                &ir.vis,
-                &params,
-                &|g, ids, assign| program(g, &form_layout, ids, assign),
-            )?
-        }
-        None => (TokenStream::new(), TokenStream::new()),
-    })
-}
-
-/// Whether the model has actions, clocks or inputs.
-fn is_hybrid(ir: &ModelIr, sys: &FirstOrder) -> bool {
-    !ir.inputs.is_empty() || !ir.clocks.is_empty() || sys.actions.iter().any(|a| !a.is_empty())
-}
-
 /// A model whose algebraic equations are nonlinear in the algebraic
 /// variables: its own `Model` implementation is the mass-matrix form,
 /// integrated by RADAU5 (the algebraic variables are states).
-fn expand_mass_only(ir: &mut ModelIr, analysis: &SystemAnalysis) -> crate::Result<TokenStream> {
+fn expand_mass_only(
+    ir: &ModelIr,
+    naming: &Naming,
+    analysis: &SystemAnalysis,
+    programs: &PrimaryPrograms,
+) -> TokenStream {
     let sys = &analysis.system;
-    if is_hybrid(ir, sys) {
-        return Err(crate::Error::Unsupported {
-            message: "an algebraic equation is nonlinear in the algebraic variables and closes into no Newton block, so the model runs in its mass-matrix form, which has no actions, clocks or inputs yet: give the nonlinear equations' variables a guess each can be solved from, or leave the actions out".into(),
-        });
-    }
-    let name = type_name(ir);
-    let g = &mut ir.graph;
-    let form = analysis.mass_form.as_ref().map_err(Clone::clone)?;
-    let form = form.as_ref().ok_or_else(|| crate::Error::Unsupported {
-        message: "an algebraic equation is nonlinear in the algebraic variables, and the differential equations do not solve symbolically for the highest derivatives: daegen cannot integrate this model yet".into(),
-    })?;
-    let layout = Layout::of_components(&form.components);
-    let zero = g.zero();
-    let mut inits: Vec<Id> = sys.slots.iter().map(|s| s.init).collect();
-    inits.extend(ir.algebraics.iter().map(|a| a.init));
-    inits.resize(form.components.len(), zero);
-    let items =
-        crate::emit::mass_form::primary_items(g, form, &inits, &sys.outputs, &|g, ids, assign| {
-            program(g, &layout, ids, assign)
-        })?;
+    let name = type_name(naming);
+    let form = match &analysis.mass_form {
+        Ok(Some(form)) => form,
+        _ => return TokenStream::new(),
+    };
+    let items = crate::emit::mass_form::primary_items(&ir.graph, form, programs);
     let model_index = index(sys.index);
-    let struct_and_default = struct_and_default(ir, &dae_analysis(ir, sys));
+    let struct_and_default = struct_and_default(ir, naming, &dae_analysis(ir, sys));
     // The algebraic variables are states here.
     let states: Vec<&str> = form.names.iter().map(String::as_str).collect();
-    let info = info_with(ir, &states, &[], &sys.structure);
+    let info = info_with(ir, naming, &states, &[], &sys.structure);
     let parameter = parameter_method(ir);
     let reason = "the model runs in mass-matrix form only (an algebraic equation is nonlinear in its variable)";
-    Ok(quote! {
+    quote! {
         #struct_and_default
 
         #[allow(unused_variables, unused_mut, clippy::all, clippy::pedantic)]
@@ -315,19 +305,21 @@ fn expand_mass_only(ir: &mut ModelIr, analysis: &SystemAnalysis) -> crate::Resul
             #parameter
             #items
         }
-    })
+    }
 }
 
 /// `Model::degenerate_parameters`: the first pivot of the elimination that
 /// combined the model's equations (see `derivative_free`) that the run's
 /// parameters make zero or not finite.
-fn degenerate_parameters_method(g: &mut Graph, layout: &Layout, sys: &FirstOrder) -> TokenStream {
-    if sys.rank_conditions.is_empty() {
-        return TokenStream::new();
-    }
-    let pivots: Vec<Id> = sys.rank_conditions.iter().map(|c| c.pivot).collect();
-    let k = index(pivots.len());
-    let values = program(g, layout, &pivots, &|i, v| {
+fn degenerate_parameters_method(
+    g: &Graph,
+    layout: &Layout,
+    sys: &FirstOrder,
+    program: Option<&Program>,
+) -> TokenStream {
+    let Some(program) = program else { return TokenStream::new() };
+    let k = index(sys.rank_conditions.len());
+    let values = straight_program(g, layout, program, &|i, v| {
         let i = index(i);
         quote!(pivots[#i] = #v;)
     });
@@ -350,8 +342,9 @@ fn degenerate_parameters_method(g: &mut Graph, layout: &Layout, sys: &FirstOrder
 /// `Model` implementation that does nothing, so the user's other code still
 /// type-checks and only the real mistakes are reported.
 pub fn stub(ir: &ModelIr) -> TokenStream {
-    let name = type_name(ir);
-    let struct_and_default = struct_and_default(ir, "");
+    let naming = Naming::of(ir);
+    let name = type_name(&naming);
+    let struct_and_default = struct_and_default(ir, &naming, "");
     let name_str = name.to_string();
     quote_spanned! {name.span()=>
         #struct_and_default
@@ -379,27 +372,24 @@ pub fn stub(ir: &ModelIr) -> TokenStream {
 }
 
 /// `own_rhs` of a model with `columns` sensitivity columns: the model's own
-/// derivatives (the first `n / (1 + columns)` slots, explicit in a
-/// variational system) without the columns'; nothing for other models.
-fn own_rhs_method(g: &mut Graph, layout: &Layout, sys: &FirstOrder, columns: usize) -> TokenStream {
-    if columns == 0 {
-        return TokenStream::new();
-    }
+/// derivatives (the first `n / (1 + columns)` slots) without the
+/// columns'; nothing for other models.
+fn own_rhs_method(
+    g: &Graph,
+    layout: &Layout,
+    sys: &FirstOrder,
+    columns: usize,
+    program: Option<&Program>,
+) -> TokenStream {
+    let Some(program) = program else { return TokenStream::new() };
     let n = sys.slots.len();
     let own = n / (1 + columns);
-    let mut outputs = Vec::with_capacity(own);
-    for d in &sys.derivatives[..own] {
-        match d {
-            SlotDerivative::Explicit(e) => outputs.push(*e),
-            _ => return TokenStream::new(),
-        }
-    }
     let slots: Vec<usize> = (0..own).collect();
     let body = fixed_size_body(
         &index(n),
         "dy",
         &index(own),
-        rolled_program(g, layout, &outputs, ("dy", &slots)),
+        rolled_program(g, layout, program, ("dy", &slots)),
     );
     quote! {
         #[inline]

@@ -2,7 +2,10 @@
 //! equations, and the linear blocks a symbolic solve could not separate.
 
 use crate::dae::system::FirstOrder;
-use crate::emit::layout::{index, program, Layout};
+use crate::emit::layout::{index, straight_program, Layout};
+use crate::programs::newton::{NewtonEntry, NewtonPart, NewtonPrograms};
+use crate::programs::rhs::RhsEntry;
+use crate::programs::schedule::Program;
 use crate::Graph;
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote, ToTokens};
@@ -13,26 +16,24 @@ use quote::{format_ident, quote, ToTokens};
 /// `rhs` (an error on failure) and in `output` (NaN). Empty for a model
 /// without one.
 pub(crate) fn newton_block_code(
-    g: &mut Graph,
+    g: &Graph,
     layout: &Layout,
     sys: &FirstOrder,
+    programs: Option<&NewtonPrograms>,
     name: &syn::Ident,
 ) -> (TokenStream, TokenStream, TokenStream) {
-    let Some(newton) = &sys.newton else {
+    let (Some(newton), Some(programs)) = (&sys.newton, programs) else {
         return (TokenStream::new(), TokenStream::new(), TokenStream::new());
     };
-    if newton.components.len() > 1 {
-        return by_components(g, layout, sys, newton, name);
+    if !programs.whole {
+        return by_components(g, layout, sys, &programs.parts, name);
     }
     let k = newton.unknowns.len();
     let (kk, n) = (index(k), index(sys.slots.len()));
     let array = format_ident!("rhs{}", sys.blocks.len());
-    let (values, targets) = residuals_and_jacobian(g, &newton.residuals, &newton.unknowns);
-    let body = program(g, layout, &values, &|i, v| {
-        let target = &targets[i];
-        quote!(#target = #v;)
-    });
-    let guesses = program(g, layout, &newton.guesses, &|i, v| {
+    let part = &programs.parts[0];
+    let body = equations(g, layout, part);
+    let guesses = straight_program(g, layout, &part.guesses, &|i, v| {
         let i = index(i);
         quote!(guess[#i] = #v;)
     });
@@ -82,33 +83,19 @@ pub(crate) fn newton_block_code(
     (method, solve, for_outputs)
 }
 
-/// The residuals and their non-zero derivatives `∂g_i/∂z_j`, to be
-/// written into `residual[i]` and `jacobian[i][j]` by one program that
-/// shares their subexpressions.
-fn residuals_and_jacobian(
-    g: &mut Graph,
-    residuals: &[crate::Id],
-    unknowns: &[crate::SymbolId],
-) -> (Vec<crate::Id>, Vec<TokenStream>) {
-    let mut values = residuals.to_vec();
-    let mut targets: Vec<TokenStream> = (0..residuals.len())
-        .map(|i| {
+/// A part's residuals and Jacobian entries written into `residual[i]` and
+/// `jacobian[i][j]`.
+fn equations(g: &Graph, layout: &Layout, part: &NewtonPart) -> TokenStream {
+    straight_program(g, layout, &part.equations, &|i, v| match part.entries[i] {
+        NewtonEntry::Residual(i) => {
             let i = index(i);
-            quote!(residual[#i])
-        })
-        .collect();
-    for (i, &r) in residuals.iter().enumerate() {
-        for (j, &z) in unknowns.iter().enumerate() {
-            let Ok(d) = g.partial(r, z) else { continue };
-            if g.as_number(d).is_some_and(|v| v.is_zero()) {
-                continue;
-            }
-            values.push(d);
-            let (i, j) = (index(i), index(j));
-            targets.push(quote!(jacobian[#i][#j]));
+            quote!(residual[#i] = #v;)
         }
-    }
-    (values, targets)
+        NewtonEntry::Jacobian(i, j) => {
+            let (i, j) = (index(i), index(j));
+            quote!(jacobian[#i][#j] = #v;)
+        }
+    })
 }
 
 /// The Newton block solved part by part, in causal order, each part by
@@ -116,18 +103,22 @@ fn residuals_and_jacobian(
 /// known (a grid's independent cells one by one): one method returning
 /// all the block's variables, warm-started from the last solution.
 fn by_components(
-    g: &mut Graph,
+    g: &Graph,
     layout: &Layout,
     sys: &FirstOrder,
-    newton: &crate::dae::system::NewtonBlock,
+    programs: &[NewtonPart],
     name: &syn::Ident,
 ) -> (TokenStream, TokenStream, TokenStream) {
+    let Some(newton) = &sys.newton else {
+        return (TokenStream::new(), TokenStream::new(), TokenStream::new());
+    };
     let whole = sys.blocks.len();
     let (k, n) = (newton.unknowns.len(), index(sys.slots.len()));
     let (kk, array) = (index(k), format_ident!("rhs{}", whole));
     let (texts, names) = (&newton.texts, &newton.names);
     let mut parts = TokenStream::new();
-    for (c, (variables, rows)) in newton.components.iter().enumerate() {
+    for (c, program) in programs.iter().enumerate() {
+        let variables = &program.variables;
         let kc = index(variables.len());
         // This part's variables from the iteration's array, the parts
         // before it from the block's.
@@ -141,16 +132,8 @@ fn by_components(
         for (i, &v) in variables.iter().enumerate() {
             part_layout.block_of.insert(newton.unknowns[v], (local, i));
         }
-        let residuals: Vec<crate::Id> = rows.iter().map(|&r| newton.residuals[r]).collect();
-        let unknowns: Vec<crate::SymbolId> =
-            variables.iter().map(|&v| newton.unknowns[v]).collect();
-        let (values, targets) = residuals_and_jacobian(g, &residuals, &unknowns);
-        let body = program(g, &part_layout, &values, &|i, v| {
-            let target = &targets[i];
-            quote!(#target = #v;)
-        });
-        let guess_values: Vec<crate::Id> = variables.iter().map(|&v| newton.guesses[v]).collect();
-        let guesses = program(g, layout, &guess_values, &|i, v| {
+        let body = equations(g, &part_layout, program);
+        let guesses = straight_program(g, layout, &program.guesses, &|i, v| {
             let i = index(i);
             quote!(guess[#i] = #v;)
         });
@@ -215,47 +198,46 @@ fn by_components(
     (method, solve, for_outputs)
 }
 
+/// The statement writing a block's value where `entry` says:
+/// `rhs{b}[r]` or `mass{b}[r][c]` (`dy[i]` for a derivative).
+pub(crate) fn block_target(entry: RhsEntry, v: TokenStream) -> TokenStream {
+    match entry {
+        RhsEntry::Derivative(i) => {
+            let i = index(i);
+            quote!(dy[#i] = #v;)
+        }
+        RhsEntry::BlockRhs(b, r) => {
+            let (gv, r) = (format_ident!("rhs{}", b), index(r));
+            quote!(#gv[#r] = #v;)
+        }
+        RhsEntry::BlockMatrix(b, r, c) => {
+            let (m, r, c) = (format_ident!("mass{}", b), index(r), index(c));
+            quote!(#m[#r][#c] = #v;)
+        }
+    }
+}
+
 /// Assembles and solves every run-time block into `rhs{b}` arrays, running
 /// `on_singular` when one is singular.
 pub(crate) fn block_solve_code(
-    g: &mut Graph,
+    g: &Graph,
     layout: &Layout,
     sys: &FirstOrder,
+    (entries, program): &(Vec<RhsEntry>, Program),
     on_singular: TokenStream,
 ) -> TokenStream {
-    let mut entries = Vec::new();
-    let mut targets: Vec<TokenStream> = Vec::new();
     let mut setup = TokenStream::new();
     let mut solve = TokenStream::new();
     for (b, block) in sys.blocks.iter().enumerate() {
         let k = block.rhs.len();
         let (m, gv, kk) = (format_ident!("mass{}", b), format_ident!("rhs{}", b), index(k));
         setup.extend(quote!(let mut #m = [[0.0f64; #kk]; #kk]; let mut #gv = [0.0f64; #kk];));
-        for (r, &e) in block.rhs.iter().enumerate() {
-            let rl = index(r);
-            if !g.as_number(e).is_some_and(|v| v.is_zero()) {
-                entries.push(e);
-                targets.push(quote!(#gv[#rl]));
-            }
-            for c in 0..k {
-                let entry = block.matrix[r * k + c];
-                if g.as_number(entry).is_some_and(|v| v.is_zero()) {
-                    continue;
-                }
-                entries.push(entry);
-                let cl = index(c);
-                targets.push(quote!(#m[#rl][#cl]));
-            }
-        }
         solve.extend(quote! {
             if !::daegen::runtime::linalg::solve_in_place(&mut #m, &mut #gv) {
                 #on_singular;
             }
         });
     }
-    let code = program(g, layout, &entries, &|i, v| {
-        let target = &targets[i];
-        quote!(#target = #v;)
-    });
+    let code = straight_program(g, layout, program, &|i, v| block_target(entries[i], v));
     quote!(#setup #code #solve)
 }

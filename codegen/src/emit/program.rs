@@ -11,10 +11,10 @@
 //! The code is written as text and lexed once: building thousands of small
 //! token streams costs more than the rest of the pipeline.
 
-use crate::emit::schedule::Program;
 use crate::expr::graph::{FxHashMap, Graph};
 use crate::expr::node::{Func, Id, Node, SymbolId, SymbolKind};
 use crate::expr::number::Number;
+use crate::programs::schedule::Program;
 use proc_macro2::{TokenStream, TokenTree};
 use quote::quote;
 use std::cell::{Cell, RefCell};

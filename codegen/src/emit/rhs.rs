@@ -2,30 +2,21 @@
 //! linear block's matrix and right-hand side, solved at run time.
 
 use crate::dae::system::{FirstOrder, SlotDerivative};
-use crate::emit::layout::{index, program, rolled_program, Layout};
-use crate::{Graph, Id};
+use crate::emit::layout::{index, rolled_program, straight_program, Layout};
+use crate::emit::newton::block_target;
+use crate::programs::rhs::{RhsEntry, RhsPrograms};
+use crate::Graph;
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
 /// The body of `rhs` in three parts: the blocks' arrays, the straight-line
 /// code writing `dy` and the arrays, and the blocks' solves.
 pub(crate) fn rhs_items(
-    g: &mut Graph,
+    g: &Graph,
     layout: &Layout,
     sys: &FirstOrder,
+    programs: &RhsPrograms,
 ) -> (TokenStream, TokenStream, TokenStream) {
-    // Right-hand side: explicit entries, then each mass block's E and g.
-    let mut outputs = Vec::new();
-    let mut targets: Vec<TokenStream> = Vec::new();
-    let mut explicit_slots = Vec::new();
-    for (i, d) in sys.derivatives.iter().enumerate() {
-        if let SlotDerivative::Explicit(e) = d {
-            outputs.push(*e);
-            explicit_slots.push(i);
-            let i = index(i);
-            targets.push(quote!(dy[#i]));
-        }
-    }
     let mut block_setup = TokenStream::new();
     let mut block_solve = TokenStream::new();
     for (b, block) in sys.blocks.iter().enumerate() {
@@ -33,24 +24,6 @@ pub(crate) fn rhs_items(
         let (m, gv) = (format_ident!("mass{}", b), format_ident!("rhs{}", b));
         let kk = index(k);
         block_setup.extend(quote!(let mut #m = [[0.0f64; #kk]; #kk]; let mut #gv = [0.0f64; #kk];));
-        // The arrays start at zero: zero entries are not written.
-        let is_zero = |g: &Graph, e: Id| g.as_number(e).is_some_and(|v| v.is_zero());
-        for (r, &e) in block.rhs.iter().enumerate() {
-            let rl = index(r);
-            if !is_zero(g, e) {
-                outputs.push(e);
-                targets.push(quote!(#gv[#rl]));
-            }
-            for c in 0..k {
-                let entry = block.matrix[r * k + c];
-                if is_zero(g, entry) {
-                    continue;
-                }
-                outputs.push(entry);
-                let cl = index(c);
-                targets.push(quote!(#m[#rl][#cl]));
-            }
-        }
         let unknowns = &block.unknowns;
         block_solve.extend(quote! {
             if !::daegen::runtime::linalg::solve_in_place(&mut #m, &mut #gv) {
@@ -67,51 +40,31 @@ pub(crate) fn rhs_items(
         }
     }
     // Accelerations eliminated from a KKT block, from its multipliers.
-    let after: Vec<(usize, Id)> = sys
-        .derivatives
-        .iter()
-        .enumerate()
-        .filter_map(|(i, d)| match d {
-            SlotDerivative::AfterSolve(e) => Some((i, *e)),
-            _ => None,
-        })
-        .collect();
-    if !after.is_empty() {
+    if let Some((slots, program)) = &programs.after {
         let after_layout = Layout {
             slot_of: layout.slot_of.clone(),
             block_of: sys.block_unknowns.iter().map(|&(s, b, r)| (s, (b, r))).collect(),
             taylor_of: Default::default(),
         };
-        let ids: Vec<Id> = after.iter().map(|x| x.1).collect();
-        block_solve.extend(program(g, &after_layout, &ids, &|k, v| {
-            let i = index(after[k].0);
+        block_solve.extend(straight_program(g, &after_layout, program, &|k, v| {
+            let i = index(slots[k]);
             quote!(dy[#i] = #v;)
         }));
     }
     // Every entry explicit in the states: entries that differ only in the
     // states they read (a grid's cells) are rolled into loops.
     let rhs_body = if sys.blocks.is_empty() && block_solve.is_empty() {
-        rolled_program(g, layout, &outputs, ("dy", &explicit_slots))
+        let slots: Vec<usize> = programs
+            .entries
+            .iter()
+            .map(|e| match e {
+                RhsEntry::Derivative(i) => *i,
+                _ => usize::MAX,
+            })
+            .collect();
+        rolled_program(g, layout, &programs.body, ("dy", &slots))
     } else {
-        let targets_for_rhs = targets.clone();
-        program(g, layout, &outputs, &move |i, v| {
-            let target = &targets_for_rhs[i];
-            quote!(#target = #v;)
-        })
+        straight_program(g, layout, &programs.body, &|i, v| block_target(programs.entries[i], v))
     };
-
     (block_setup, rhs_body, block_solve)
-}
-
-/// f slot by slot when every derivative is explicit in the states (not
-/// through a Newton solve's variables): what the symbolic Jacobian and the
-/// event rates differentiate.
-pub(crate) fn explicit_derivatives(sys: &FirstOrder) -> Option<Vec<Id>> {
-    sys.derivatives
-        .iter()
-        .map(|d| match d {
-            SlotDerivative::Explicit(e) if sys.newton.is_none() => Some(*e),
-            _ => None,
-        })
-        .collect()
 }

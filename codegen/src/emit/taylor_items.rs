@@ -2,7 +2,9 @@
 //! economic scheme's derivatives (`taylor = p`), the adaptive method's tape
 //! and unrolled jets, or why there are none.
 
-use crate::emit::layout::{index, program, Layout};
+use crate::emit::layout::{index, straight_program, Layout};
+use crate::programs::schedule::Program;
+use crate::programs::taylor::TaylorPrograms;
 use crate::taylor::analysis::{EconomicDerivatives, TapeAnalysis, TaylorAnalysis};
 use crate::Graph;
 use proc_macro2::TokenStream;
@@ -11,19 +13,24 @@ use quote::quote;
 /// The Taylor methods' items, and the reason `Method::Taylor` refuses a
 /// model without a tape.
 pub(crate) fn taylor_items(
-    g: &mut Graph,
+    g: &Graph,
     layout: &mut Layout,
     n: usize,
     analysis: &TaylorAnalysis,
+    programs: &TaylorPrograms,
 ) -> (TokenStream, Option<String>) {
-    match analysis {
-        TaylorAnalysis::Scheme { economic, tape } => {
-            let economic = economic_taylor(g, layout, n, economic);
-            let tape = taylor_tape_items(g, layout, n, tape);
+    let constants = programs.constants.as_ref();
+    match (analysis, constants) {
+        (TaylorAnalysis::Scheme { economic, tape }, Some(constants)) => {
+            let economic = economic_taylor(g, layout, n, economic, &programs.economic);
+            let tape = taylor_tape_items(g, layout, n, tape, constants);
             (quote!(#tape #economic), None)
         }
-        TaylorAnalysis::Tape(tape) => (taylor_tape_items(g, layout, n, tape), None),
-        TaylorAnalysis::Refused(reason) => (TokenStream::new(), Some(reason.clone())),
+        (TaylorAnalysis::Tape(tape), Some(constants)) => {
+            (taylor_tape_items(g, layout, n, tape, constants), None)
+        }
+        (TaylorAnalysis::Refused(reason), _) => (TokenStream::new(), Some(reason.clone())),
+        (_, None) => (TokenStream::new(), Some("the tape's constants were not scheduled".into())),
     }
 }
 
@@ -31,12 +38,13 @@ pub(crate) fn taylor_items(
 /// read from `out`, one program per order, each reading the lower orders
 /// already written.
 fn economic_taylor(
-    g: &mut Graph,
+    g: &Graph,
     layout: &mut Layout,
     n: usize,
     economic: &EconomicDerivatives,
+    levels: &[Program],
 ) -> TokenStream {
-    let (order, levels) = (economic.order, &economic.levels);
+    let order = economic.order;
     for (i, symbols) in economic.symbols.iter().enumerate() {
         for (j, &s) in symbols.iter().enumerate() {
             layout.taylor_of.insert(s, j * n + i);
@@ -44,7 +52,7 @@ fn economic_taylor(
     }
     let mut body = TokenStream::new();
     for (k, level) in levels.iter().enumerate() {
-        let code = program(g, layout, level, &|i, v| {
+        let code = straight_program(g, layout, level, &|i, v| {
             let at = index(k * n + i);
             quote!(out[#at] = #v;)
         });
@@ -72,14 +80,15 @@ fn economic_taylor(
 /// layout, interpreted at run time), and the straight-line jets of the
 /// orders in `unroll`.
 fn taylor_tape_items(
-    g: &mut Graph,
+    g: &Graph,
     layout: &Layout,
     n: usize,
     analysis: &TapeAnalysis,
+    constants: &Program,
 ) -> TokenStream {
     let nn = index(n);
     let (tape, consts, jets) = (&analysis.tape, &analysis.constants, &analysis.jets);
-    let const_code = program(g, layout, consts, &|i, v| {
+    let const_code = straight_program(g, layout, constants, &|i, v| {
         let name = quote::format_ident!("c{}", i);
         quote!(let #name: f64 = #v;)
     });
