@@ -32,8 +32,11 @@ pub struct Analysed {
 }
 
 /// Runs every stage in order: attributes → lower → tied states →
-/// structure → reduce →
-/// variational → mass form → Taylor → projection levels → programs. `Err` holds the
+/// structure (equations, combinations free of derivatives, index
+/// reduction) → reduction (structural check, aliases, causal order, the
+/// Newton block, the linear blocks, the first-order system; mode by mode
+/// for a model with modes) → inputs not differentiated → variational →
+/// mass form → Taylor → projection levels → programs. `Err` holds the
 /// IR as far as it got (for the stub) when a stage reported errors to `cx`.
 pub fn analyse(
     cx: &mut Ctxt,
@@ -61,7 +64,7 @@ pub fn analyse_with_parts(
         crate::dae::tied_states::eliminate_tied_states(cx, &mut ir);
     }
     let system = match cx.is_ok() {
-        true => crate::dae::modes::reduce_modes(cx, &mut ir),
+        true => crate::dae::modes::reduce_modes(cx, &mut ir, structure_and_reduction),
         false => None,
     };
     let Some(system) = system.filter(|_| cx.is_ok()) else { return Err(Box::new(ir)) };
@@ -80,6 +83,37 @@ pub fn analyse_with_parts(
     });
     let programs = crate::programs::programs(&mut ir, &model, &attributes, sensitivities.as_ref());
     Ok(Analysed { ir, attributes, model, sensitivities, programs })
+}
+
+/// The structure and reduction of one mode's equations (all of them for a
+/// model without modes), step by step: the equations as residuals and
+/// each state's order, combinations free of the highest derivatives, the
+/// index reduced; then [`reduction`].
+pub fn structure_and_reduction(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
+    use crate::dae::structure;
+    let equations = structure::equations(cx, ir)?;
+    let separated = structure::separated(cx, ir, &equations)?;
+    let structure = structure::index_reduced(cx, ir, equations, separated)?;
+    reduction(cx, ir, structure)
+}
+
+/// The reduction of the structured equations, step by step: the
+/// structural check, the aliases, the causal order, the Newton block and
+/// its tearing, the linear blocks, and the first-order system they make.
+pub fn reduction(
+    cx: &mut Ctxt,
+    ir: &mut ModelIr,
+    structure: crate::dae::structure::Structure,
+) -> Option<FirstOrder> {
+    use crate::dae::reduce;
+    if !reduce::check(cx, ir, &structure) {
+        return None;
+    }
+    let left = reduce::without_aliases(cx, ir, &structure)?;
+    let sorted = reduce::sorted(cx, ir, &structure, &left)?;
+    let newton = reduce::newton(cx, ir, &structure, &left, &sorted)?;
+    let unknowns = reduce::solved_unknowns(cx, ir, &structure, &left, &sorted, newton.as_ref())?;
+    reduce::first_order(cx, ir, structure, left, sorted, newton, unknowns)
 }
 
 /// The model function lowered into the model IR, its scenes by

@@ -25,13 +25,14 @@ struct ModeVariable {
     values: Vec<i64>,
 }
 
-/// The structure and reduction of `ir`: at once for a model without
-/// modes, mode by mode and joined for one with.
-pub fn reduce_modes(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<FirstOrder> {
-    let reduce_all = |cx: &mut Ctxt, ir: &mut ModelIr| {
-        crate::dae::structure::structure(cx, ir)
-            .and_then(|structure| crate::dae::reduce::reduce(cx, ir, structure))
-    };
+/// The structure and reduction of `ir` by `reduce_all` (the pipeline's
+/// steps): at once for a model without modes, mode by mode and joined for
+/// one with.
+pub fn reduce_modes(
+    cx: &mut Ctxt,
+    ir: &mut ModelIr,
+    reduce_all: fn(&mut Ctxt, &mut ModelIr) -> Option<FirstOrder>,
+) -> Option<FirstOrder> {
     let Some(first_guarded) = ir.equations.iter().find(|e| !e.mode.is_empty()) else {
         return reduce_all(cx, ir);
     };

@@ -6,6 +6,12 @@
 //! unknowns (`E(t, y) (z, λ) = g(t, y)`), are solved block by block —
 //! symbolically when a block is one equation or has constant coefficients,
 //! by a dense solve at run time otherwise (the KKT system of a mechanism).
+//!
+//! The reduction's steps, each one entry the pipeline calls in order
+//! (`pipeline::reduction`): [`check`] (the structural check),
+//! [`without_aliases`], [`sorted`] (the causal order), [`newton`] (the
+//! Newton block and its tearing), [`solved_unknowns`] (the linear blocks)
+//! and [`first_order`] (the system they make).
 
 use crate::dae::structure::Structure;
 use crate::dae::system::{AlgebraicValue, FirstOrder, Slot, SlotDerivative};
@@ -22,56 +28,129 @@ struct Equation {
     index: usize,
 }
 
-/// Solves the structured model for its unknowns, or reports why it
-/// cannot: aliases removed, the equations sorted into blocks in causal
-/// order (the single ones solved there), the blocks left solved by Newton,
-/// symbolically or at run time; every mistake reported on the user's
-/// tokens.
-pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<FirstOrder> {
-    let Structure {
-        order,
-        z_symbols,
-        algebraic_symbols,
-        residuals,
-        written,
-        separated_combined,
-        rank_conditions,
-        reduction,
-        texts,
-        origins,
-    } = structure;
-    let g = &mut ir.graph;
-    let n_states = z_symbols.len();
-    if !check_structure(
+/// The structural check of the equations as index reduction left them,
+/// over every highest derivative and algebraic variable; `false` where it
+/// reported a mistake.
+pub fn check(cx: &mut Ctxt, ir: &ModelIr, structure: &Structure) -> bool {
+    check_structure(
         cx,
-        g,
+        &ir.graph,
         (&ir.states, &ir.algebraics),
-        &z_symbols,
-        &reduction,
-        (&texts, &origins),
-    ) {
-        return None;
-    }
+        &structure.z_symbols,
+        &structure.reduction,
+        (&structure.texts, &structure.origins),
+    )
+}
+
+/// The equations without their aliases, and the algebraic variables the
+/// aliases left.
+pub struct WithoutAliases {
+    /// The aliases and the equations left.
+    pub aliases: crate::dae::alias::Aliases,
+    /// Each variable removed, with its value.
+    pub removed: FxHashMap<SymbolId, Id>,
+    /// The algebraic variables kept.
+    pub kept_algebraics: Vec<AlgebraicDecl>,
+}
+
+/// Aliases (`a == b`, `a == -b`, …) removed, each variable with its
+/// alias's value.
+pub fn without_aliases(
+    cx: &mut Ctxt,
+    ir: &mut ModelIr,
+    structure: &Structure,
+) -> Option<WithoutAliases> {
+    let reduction = &structure.reduction;
     let aliases = match crate::dae::alias::eliminate_aliases(
-        g,
+        &mut ir.graph,
         &reduction.residuals,
         &reduction.differentiations,
-        &algebraic_symbols,
+        &structure.algebraic_symbols,
     ) {
         Ok(aliases) => aliases,
         Err(e) => {
-            cx.error_at(&origins[0], e);
+            cx.error_at(&structure.origins[0], e);
             return None;
         }
     };
     let removed: FxHashMap<SymbolId, Id> = aliases.removed.iter().copied().collect();
     let kept_algebraics: Vec<AlgebraicDecl> =
         ir.algebraics.iter().filter(|a| !removed.contains_key(&a.symbol)).cloned().collect();
-    let sorted =
-        sort(cx, g, (&ir.states, &kept_algebraics), &z_symbols, &aliases, (&texts, &origins))?;
-    let newton =
-        newton_block(cx, g, &kept_algebraics, &sorted, &reduction, &z_symbols, &texts, &origins)?;
-    let in_newton = |s: &SymbolId| newton.as_ref().is_some_and(|b| b.determines(s));
+    Some(WithoutAliases { aliases, removed, kept_algebraics })
+}
+
+/// The equations left after the aliases sorted into blocks in causal
+/// order over the highest derivatives and the algebraic variables kept,
+/// the single ones solved there.
+pub fn sorted(
+    cx: &mut Ctxt,
+    ir: &mut ModelIr,
+    structure: &Structure,
+    left: &WithoutAliases,
+) -> Option<crate::dae::sorting::Sorted> {
+    sort(
+        cx,
+        &mut ir.graph,
+        (&ir.states, &left.kept_algebraics),
+        &structure.z_symbols,
+        &left.aliases,
+        (&structure.texts, &structure.origins),
+    )
+}
+
+/// The Newton block of the algebraic equations nonlinear in their
+/// variables, torn (`Some(None)`: there is none; `None`: an error was
+/// reported).
+pub fn newton(
+    cx: &mut Ctxt,
+    ir: &mut ModelIr,
+    structure: &Structure,
+    left: &WithoutAliases,
+    sorted: &crate::dae::sorting::Sorted,
+) -> Option<Option<crate::dae::system::NewtonBlock>> {
+    newton_block(
+        cx,
+        &mut ir.graph,
+        &left.kept_algebraics,
+        sorted,
+        &structure.reduction,
+        &structure.z_symbols,
+        &structure.texts,
+        &structure.origins,
+    )
+}
+
+/// Every unknown solved: the highest derivatives, then the algebraic
+/// variables the Newton block does not determine.
+pub struct SolvedUnknowns {
+    /// The unknowns: z, then those algebraic variables.
+    pub all: Vec<SymbolId>,
+    /// Each one's position in `all`.
+    pub z_index: FxHashMap<SymbolId, usize>,
+    /// The variables the Newton block computes from its tearing variables.
+    pub computed: FxHashMap<SymbolId, Id>,
+    /// How each is solved: symbolically, by a run-time block, after one.
+    pub solved: crate::dae::solve_unknowns::Solved,
+    /// An algebraic equation is nonlinear in the algebraic variables: the
+    /// model has only its mass-matrix form.
+    pub mass_only: bool,
+}
+
+/// The unknowns the sorting and the Newton block left, solved as the
+/// linear system they form, block by block (symbolically, or by a
+/// run-time solve), with the sorting's solutions beside them.
+pub fn solved_unknowns(
+    cx: &mut Ctxt,
+    ir: &mut ModelIr,
+    structure: &Structure,
+    left: &WithoutAliases,
+    sorted: &crate::dae::sorting::Sorted,
+    newton: Option<&crate::dae::system::NewtonBlock>,
+) -> Option<SolvedUnknowns> {
+    let g = &mut ir.graph;
+    let (z_symbols, reduction) = (&structure.z_symbols, &structure.reduction);
+    let n_states = z_symbols.len();
+    let in_newton = |s: &SymbolId| newton.is_some_and(|b| b.determines(s));
     // The variables the Newton block computes from its tearing variables,
     // in every equation left.
     let computed: FxHashMap<SymbolId, Id> =
@@ -83,7 +162,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
     // The unknowns: z, then λ (but for the Newton block's); those the
     // sorting solved are known, the rest go to the linear solve.
     let linear_algebraics: Vec<AlgebraicDecl> =
-        kept_algebraics.iter().filter(|a| !in_newton(&a.symbol)).cloned().collect();
+        left.kept_algebraics.iter().filter(|a| !in_newton(&a.symbol)).cloned().collect();
     let mut all = z_symbols.clone();
     all.extend(linear_algebraics.iter().map(|a| a.symbol));
     let z_index: FxHashMap<SymbolId, usize> =
@@ -94,12 +173,12 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
     let rest_index: FxHashMap<SymbolId, usize> =
         rest_symbols.iter().enumerate().map(|(k, &s)| (s, k)).collect();
     let done = |e: usize| {
-        aliases.alias_equations[e]
+        left.aliases.alias_equations[e]
             || sorted.solved_equations[e]
-            || newton.as_ref().is_some_and(|b| b.equations.contains(&e))
+            || newton.is_some_and(|b| b.equations.contains(&e))
     };
     let equations = equations_in_unknowns(g, &ir.equations, &residuals_left, &done, &rest_index);
-    let owner = local_owner(&sorted, &equations, &rest_symbols, &z_index);
+    let owner = local_owner(sorted, &equations, &rest_symbols, &z_index);
     let unknowns = Unknowns {
         z: &rest_symbols,
         index: &rest_index,
@@ -115,18 +194,42 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
     )?;
     let local = solve(cx, g, &linear, &owner, &equations, &rest_symbols)?;
     let solved = with_explicit(g, local, (&rest, &all), (&sorted.explicit, &computed))?;
+    Some(SolvedUnknowns { all, z_index, computed, solved, mass_only: linear.mass_only })
+}
+
+/// The first-order system: the slots `x, der(x), …` and their
+/// derivatives, the outputs and event functions in them, the actions on
+/// the slots, the algebraic variables' values, the invariants, and how
+/// each block was solved; every mistake reported on the user's tokens.
+pub fn first_order(
+    cx: &mut Ctxt,
+    ir: &mut ModelIr,
+    structure: Structure,
+    left: WithoutAliases,
+    sorted: crate::dae::sorting::Sorted,
+    newton: Option<crate::dae::system::NewtonBlock>,
+    unknowns: SolvedUnknowns,
+) -> Option<FirstOrder> {
+    let Structure {
+        order,
+        z_symbols,
+        algebraic_symbols,
+        residuals,
+        written,
+        separated_combined,
+        rank_conditions,
+        reduction,
+        ..
+    } = structure;
+    let SolvedUnknowns { all, z_index, computed, solved, mass_only } = unknowns;
+    let g = &mut ir.graph;
+    let n_states = z_symbols.len();
     let unknowns = Unknowns { z: &all, index: &z_index, states: n_states };
     let mut ok = true;
-    let (slots, derivatives) = slots(
-        g,
-        (&ir.states, &ir.inits),
-        &order,
-        &reduction.explicit_highest,
-        &solved,
-        linear.mass_only,
-    )?;
+    let (slots, derivatives) =
+        slots(g, (&ir.states, &ir.inits), &order, &reduction.explicit_highest, &solved, mass_only)?;
     ok &= inits_are_below_the_highest_derivatives(cx, g, (&ir.states, &ir.inits), &slots);
-    let known = known_values(g, &all, (&solved, &sorted.explicit), (&computed, &removed))?;
+    let known = known_values(g, &all, (&solved, &sorted.explicit), (&computed, &left.removed))?;
     let (outputs, events, observed) =
         observables(cx, g, (&ir.outputs, &ir.events), &known, &z_index, newton.as_ref())?;
     ok &= observed;
@@ -146,7 +249,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
         &unknowns,
         &solved,
         newton.as_ref(),
-        (&known, linear.mass_only),
+        (&known, mass_only),
     )?;
     let (invariants, invariants_ok) =
         invariants(cx, g, &ir.invariants, &z_index, reduction.invariants);
@@ -164,14 +267,14 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
         }
     }
     let sorted_symbols: Vec<SymbolId> =
-        z_symbols.iter().copied().chain(kept_algebraics.iter().map(|a| a.symbol)).collect();
+        z_symbols.iter().copied().chain(left.kept_algebraics.iter().map(|a| a.symbol)).collect();
     let structure = structure_report(
         &sorted,
         &sorted_symbols,
         (&solved, &z_index),
         newton.as_ref(),
-        linear.mass_only,
-        aliases.removed.clone(),
+        mass_only,
+        left.aliases.removed.clone(),
     );
     ok.then_some(FirstOrder {
         structure,
@@ -193,7 +296,7 @@ pub fn reduce(cx: &mut Ctxt, ir: &mut ModelIr, structure: Structure) -> Option<F
         differentiations: reduction.differentiations,
         highest: z_symbols[..n_states].to_vec(),
         algebraic_symbols,
-        mass_only: linear.mass_only,
+        mass_only,
         newton,
     })
 }

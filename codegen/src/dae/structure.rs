@@ -35,30 +35,78 @@ pub struct Structure {
     pub origins: Vec<TokenStream>,
 }
 
-/// The structure of the model, or why it has none: every mistake reported
-/// on the user's tokens.
+/// The structure of the model, or why it has none, its three steps in
+/// order ([`equations`], [`separated`], [`index_reduced`], which the
+/// pipeline calls by name): every mistake reported on the user's tokens.
 pub fn structure(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<Structure> {
-    let (mut residuals, order) = residuals_and_orders(cx, ir)?;
+    let equations = equations(cx, ir)?;
+    let separated = separated(cx, ir, &equations)?;
+    index_reduced(cx, ir, equations, separated)
+}
+
+/// The equations as residuals over their unknowns, before any is
+/// combined or differentiated.
+pub struct Equations {
+    /// Each equation as a residual `lhs − rhs`.
+    pub residuals: Vec<Id>,
+    /// Each state's order.
+    pub order: Vec<u32>,
+    /// The highest derivatives, one per state.
+    pub z_symbols: Vec<SymbolId>,
+    /// The algebraic variables.
+    pub algebraic_symbols: Vec<SymbolId>,
+    /// Each equation as source text.
+    pub texts: Vec<String>,
+    /// Each equation's tokens, for the errors.
+    pub origins: Vec<TokenStream>,
+}
+
+/// The equations as residuals, each state's order and the unknowns: the
+/// highest derivatives and the algebraic variables.
+pub fn equations(cx: &mut Ctxt, ir: &mut ModelIr) -> Option<Equations> {
+    let (residuals, order) = residuals_and_orders(cx, ir)?;
     let g = &mut ir.graph;
-    // The unknowns z: highest derivatives, one per state.
     let mut z_symbols = Vec::with_capacity(ir.states.len() + ir.algebraics.len());
     for (i, s) in ir.states.iter().enumerate() {
         let id = g.derivative(s.symbol, order[i]).ok()?;
         z_symbols.push(g.as_symbol(id)?);
     }
     let algebraic_symbols: Vec<SymbolId> = ir.algebraics.iter().map(|a| a.symbol).collect();
-    let state_orders: Vec<(SymbolId, u32)> =
-        ir.states.iter().zip(&order).map(|(s, &k)| (s.symbol, k)).collect();
     let origins: Vec<TokenStream> = ir.equations.iter().map(|e| e.origin.clone()).collect();
     let texts: Vec<String> = origins.iter().map(crate::front::names::source_text).collect();
-    // Only a square system (as many equations as unknowns) is separated: in
-    // another, a repeated or missing equation is the mistake to report.
+    Some(Equations { residuals, order, z_symbols, algebraic_symbols, texts, origins })
+}
+
+/// Equations whose highest derivatives cancel in a combination of others
+/// replaced by it (`derivative_free`). Only a square system (as many
+/// equations as unknowns) is separated: in another, a repeated or missing
+/// equation is the mistake to report.
+pub fn separated(
+    cx: &mut Ctxt,
+    ir: &mut ModelIr,
+    equations: &Equations,
+) -> Option<crate::dae::derivative_free::Separated> {
+    let Equations { residuals, z_symbols, texts, origins, .. } = equations;
     let square = residuals.len() == z_symbols.len() + ir.algebraics.len();
-    let separated = derivative_free(cx, g, &residuals, &z_symbols, &texts, &origins, square)?;
-    let written = std::mem::replace(&mut residuals, separated.residuals);
+    derivative_free(cx, &mut ir.graph, residuals, z_symbols, texts, origins, square)
+}
+
+/// The index reduced: constraints differentiated until every equation
+/// involves an unknown (`index_reduction`).
+pub fn index_reduced(
+    cx: &mut Ctxt,
+    ir: &mut ModelIr,
+    equations: Equations,
+    separated: crate::dae::derivative_free::Separated,
+) -> Option<Structure> {
+    let Equations { residuals: written, order, z_symbols, algebraic_symbols, texts, origins } =
+        equations;
+    let residuals = separated.residuals;
+    let state_orders: Vec<(SymbolId, u32)> =
+        ir.states.iter().zip(&order).map(|(s, &k)| (s.symbol, k)).collect();
     let reduction = crate::dae::index_reduction::reduce_index(
         cx,
-        g,
+        &mut ir.graph,
         &crate::dae::index_reduction::Unknowns {
             time: ir.time,
             states: &state_orders,

@@ -28,7 +28,7 @@ fn reduced(item: TokenStream) -> (ModelIr, Structure, FirstOrder) {
     // `reduce` takes the structure; a second, equal one is printed.
     let again = structure(&mut cx, &mut ir).expect("a structure");
     assert_eq!(ir.graph.with(&again).to_string(), printed, "structure is deterministic");
-    let sys = daegen_codegen::dae::reduce::reduce(&mut cx, &mut ir, again).expect("reduced");
+    let sys = daegen_codegen::pipeline::reduction(&mut cx, &mut ir, again).expect("reduced");
     assert!(cx.is_ok(), "{:?}", cx.messages());
     (ir, s, sys)
 }
@@ -99,7 +99,7 @@ fn variational_system_of_exponential_decay() {
     let mut ir = lowered(&mut cx, attr.clone(), item.clone());
     let attributes = daegen_codegen::front::attributes::attributes(&mut cx, attr);
     let s = structure(&mut cx, &mut ir).expect("a structure");
-    let sys = daegen_codegen::dae::reduce::reduce(&mut cx, &mut ir, s).expect("reduced");
+    let sys = daegen_codegen::pipeline::reduction(&mut cx, &mut ir, s).expect("reduced");
     let wrt =
         daegen_codegen::dae::variational::resolve(&mut cx, &attributes.sensitivities, &ir, &sys);
     assert_eq!(wrt.len(), 2);
@@ -133,7 +133,7 @@ fn taylor_tape_and_economic_derivatives_of_the_pendulum_in_its_angle() {
     );
     let attributes = daegen_codegen::front::attributes::attributes(&mut cx, attr);
     let s = structure(&mut cx, &mut ir).expect("a structure");
-    let sys = daegen_codegen::dae::reduce::reduce(&mut cx, &mut ir, s).expect("reduced");
+    let sys = daegen_codegen::pipeline::reduction(&mut cx, &mut ir, s).expect("reduced");
     let analysis =
         taylor_analysis(&mut ir.graph, &sys, ir.time, &attributes).expect("a Taylor analysis");
     let TaylorAnalysis::Scheme { economic, tape } = &analysis else {
@@ -272,7 +272,12 @@ fn modes_are_reduced_alone_and_joined() {
         },
     );
     let lowered = ir.to_string();
-    let sys = daegen_codegen::dae::modes::reduce_modes(&mut cx, &mut ir).expect("reduced");
+    let sys = daegen_codegen::dae::modes::reduce_modes(
+        &mut cx,
+        &mut ir,
+        daegen_codegen::pipeline::structure_and_reduction,
+    )
+    .expect("reduced");
     assert!(cx.is_ok(), "{:?}", cx.messages());
     insta::assert_snapshot!("modes", format!("{lowered}\n{}", ir.graph.with(&sys)));
 }
