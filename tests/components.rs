@@ -368,6 +368,14 @@ fn a_motor_turns_a_crank_in_space() {
         <GearedSpatialCrankRecursive as Model>::INFO.states,
         ["drive.motor.winding.i", "hinge.q", "der(hinge.q)"]
     );
+    // Every name reads a number: the torques along the gear too, which
+    // alias values a run-time block gives.
+    for sol in [&global, &recursive] {
+        for name in sol.names() {
+            let v = sol.at(0.2, name).unwrap();
+            assert!(v.is_finite(), "{name} = {v}");
+        }
+    }
     for t in [0.05, 0.2, 0.5] {
         let (phi, i) = (flat.at(t, "phi").unwrap(), flat.at(t, "i").unwrap());
         for (name, sol) in [("global", &global), ("recursive", &recursive)] {

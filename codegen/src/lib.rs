@@ -67,6 +67,7 @@ pub mod pipeline;
 pub mod programs;
 mod recorded;
 pub mod taylor;
+mod verify;
 
 pub use emit::program::{emit_program, token_count};
 pub use error::{Error, Result};
@@ -120,12 +121,22 @@ pub(crate) fn expand_model_with(
     };
     match expand_or_report(&mut cx, attr.clone(), &item, parts) {
         Ok(tokens) => {
-            recorded::record(&attr, &item, &tokens);
-            parts::Expansion::Done(tokens)
+            // Nothing, unless a mistake was reported beside a model that
+            // expanded (a warning's error).
+            let mut out = cx.into_compile_errors();
+            if out.is_empty() {
+                recorded::record(&attr, &item, &tokens);
+            }
+            out.extend(tokens);
+            parts::Expansion::Done(out)
         }
-        Err(ir) if !ir.missing_parts.is_empty() => parts::Expansion::Fetch(ir.missing_parts),
+        Err(ir) if !ir.missing_parts.is_empty() => {
+            // Found again once the parts arrive.
+            cx.abandon();
+            parts::Expansion::Fetch(ir.missing_parts)
+        }
         Err(ir) => {
-            let mut out = cx.to_compile_errors();
+            let mut out = cx.into_compile_errors();
             out.extend(emit::model::stub(&ir));
             parts::Expansion::Done(out)
         }
@@ -152,7 +163,7 @@ pub fn diagnostics(item: TokenStream) -> Vec<String> {
         return vec!["not a function".to_string()];
     };
     let _ = expand_or_report(&mut cx, TokenStream::new(), &item, Definitions::default());
-    cx.messages()
+    cx.into_messages()
 }
 
 /// The pipeline, then emission; every error reported to `cx` on the
@@ -177,31 +188,15 @@ fn expand_or_report(
     parts: Definitions,
 ) -> std::result::Result<TokenStream, Box<front::ir::ModelIr>> {
     let model = pipeline::analyse_with_parts(cx, attr, item, parts)?;
-    match emit::model::expand(&model) {
-        Ok(tokens)
-            if model.ir.body_coordinates
-                && !model.attributes.global_written
-                && too_large(&tokens).is_some() =>
-        {
-            let megabytes = too_large(&tokens).unwrap_or_default();
+    let mut tokens = emit::model::expand(&model);
+    if model.ir.body_coordinates && !model.attributes.global_written {
+        if let Some(megabytes) = too_large(&tokens) {
             cx.error_at(&item.sig.ident, format!("in body coordinates this scene generates {megabytes:.1} MB of code, more than the {} MB rustc compiles in reasonable time: write `#[dae_model(scene = recursive)]` to use joint coordinates (or `scene = global` to keep body coordinates anyway)", BODY_COORDINATES_LIMIT / 1_000_000));
+            return Err(Box::new(model.ir));
         }
-        Ok(mut tokens) => {
-            let (ir, attributes) = (&model.ir, &model.attributes);
-            tokens.extend(emit::benchmark::benchmark_impl(item, ir, attributes));
-            tokens.extend(front::warnings::odd_unrolled_orders(&attributes.odd_unrolled));
-            return Ok(tokens);
-        }
-        Err(e @ crate::Error::NotSmooth { node, .. }) => {
-            // The call itself when the right-hand side kept the node the
-            // user wrote; else the first such call.
-            let calls = &model.ir.non_smooth_calls;
-            match calls.iter().find(|(id, _)| *id == node).or(calls.first()) {
-                Some((_, tokens)) => cx.error_at(tokens, e),
-                None => cx.error_at(&item.sig.ident, e),
-            }
-        }
-        Err(e) => cx.error_at(&item.sig.ident, e),
     }
-    Err(Box::new(model.ir))
+    let (ir, attributes) = (&model.ir, &model.attributes);
+    tokens.extend(emit::benchmark::benchmark_impl(item, ir, attributes));
+    tokens.extend(front::warnings::odd_unrolled_orders(&attributes.odd_unrolled));
+    Ok(tokens)
 }

@@ -217,6 +217,8 @@ fn expand_component_with(attr: TokenStream, item: TokenStream, parts: Definition
         definition.clone(),
     );
     if !missing.is_empty() {
+        // Its errors are found again once the parts arrive.
+        cx.abandon();
         let resolved = definition
             .parts
             .paths()
@@ -233,9 +235,11 @@ fn expand_component_with(attr: TokenStream, item: TokenStream, parts: Definition
         return request.fetch();
     }
     if !cx.is_ok() {
-        return cx.to_compile_errors();
+        return cx.into_compile_errors();
     }
-    component_macro(&definition)
+    let mut out = cx.into_compile_errors();
+    out.extend(component_macro(&definition));
+    out
 }
 
 /// The `macro_rules!` that hands `definition` to a callback, under a name

@@ -13,6 +13,7 @@ use crate::front::components::definitions::Definitions;
 use crate::front::ctxt::Ctxt;
 use crate::front::ir::ModelIr;
 use crate::taylor::analysis::TaylorAnalysis;
+use crate::verify;
 use crate::{FxHashMap, Graph, SymbolId};
 use proc_macro2::TokenStream;
 
@@ -27,8 +28,8 @@ pub struct Analysed {
     pub model: SystemAnalysis,
     /// The forward sensitivities asked for with `sensitivities = [..]`.
     pub sensitivities: Option<SensitivityAnalysis>,
-    /// Every generated item's programs, or the first error an item met.
-    pub programs: crate::Result<crate::programs::SystemPrograms>,
+    /// Every generated item's programs.
+    pub programs: crate::programs::SystemPrograms,
 }
 
 /// Runs every stage in order: attributes → lower → tied states →
@@ -60,14 +61,23 @@ pub fn analyse_with_parts(
     if !ir.missing_parts.is_empty() {
         return Err(Box::new(ir));
     }
+    if cx.is_ok() && !verify::after(cx, "lowering", &ir, None) {
+        return Err(Box::new(ir));
+    }
     if cx.is_ok() && !ir.instances.is_empty() {
         crate::dae::tied_states::eliminate_tied_states(cx, &mut ir);
+        if cx.is_ok() && !verify::after(cx, "the tied states", &ir, None) {
+            return Err(Box::new(ir));
+        }
     }
     let system = match cx.is_ok() {
         true => crate::dae::modes::reduce_modes(cx, &mut ir, structure_and_reduction),
         false => None,
     };
     let Some(system) = system.filter(|_| cx.is_ok()) else { return Err(Box::new(ir)) };
+    if !verify::after(cx, "the reduction", &ir, Some(&system)) {
+        return Err(Box::new(ir));
+    }
     if !crate::dae::inputs::inputs_not_differentiated(cx, &ir, &system) {
         return Err(Box::new(ir));
     }
@@ -75,13 +85,26 @@ pub fn analyse_with_parts(
     if !cx.is_ok() {
         return Err(Box::new(ir));
     }
+    if let Some((_, Ok(augmented), _)) = &sensitivities {
+        if !verify::after(cx, "the variational equations", &ir, Some(augmented)) {
+            return Err(Box::new(ir));
+        }
+    }
     let model = system_analysis(&mut ir.graph, ir.time, system, &attributes);
     let sensitivities = sensitivities.map(|(wrt, augmented, attributes)| {
         let model =
             augmented.map(|system| system_analysis(&mut ir.graph, ir.time, system, &attributes));
         SensitivityAnalysis { wrt, attributes, model }
     });
-    let programs = crate::programs::programs(&mut ir, &model, &attributes, sensitivities.as_ref());
+    if !verify::after(cx, "the mass form, Taylor and projection analyses", &ir, None) {
+        return Err(Box::new(ir));
+    }
+    let programs =
+        crate::programs::programs(cx, &mut ir, &model, &attributes, sensitivities.as_ref());
+    let Some(programs) = programs else { return Err(Box::new(ir)) };
+    if !verify::after(cx, "the programs", &ir, None) {
+        return Err(Box::new(ir));
+    }
     Ok(Analysed { ir, attributes, model, sensitivities, programs })
 }
 

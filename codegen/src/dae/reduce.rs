@@ -229,7 +229,7 @@ pub fn first_order(
     let (slots, derivatives) =
         slots(g, (&ir.states, &ir.inits), &order, &reduction.explicit_highest, &solved, mass_only)?;
     ok &= inits_are_below_the_highest_derivatives(cx, g, (&ir.states, &ir.inits), &slots);
-    let known = known_values(g, &all, (&solved, &sorted.explicit), (&computed, &left.removed))?;
+    let known = known_values(g, &all, &solved, (&computed, &left.removed))?;
     let (outputs, events, observed) =
         observables(cx, g, (&ir.outputs, &ir.events), &known, &z_index, newton.as_ref())?;
     ok &= observed;
@@ -519,23 +519,38 @@ fn with_explicit(
 fn known_values(
     g: &mut Graph,
     all: &[SymbolId],
-    (solved, explicit): (&crate::dae::solve_unknowns::Solved, &FxHashMap<SymbolId, Id>),
+    solved: &crate::dae::solve_unknowns::Solved,
     (computed, removed): (&FxHashMap<SymbolId, Id>, &FxHashMap<SymbolId, Id>),
 ) -> Option<FxHashMap<SymbolId, Id>> {
-    // The sorting's solutions evaluated after a run-time solve too: an
-    // output may read them (it solves the blocks first), an event not.
-    let value = |j: usize| match explicit.contains_key(&all[j]) {
-        true => solved.symbolic[j].or(solved.after_solve[j]),
-        false => solved.symbolic[j],
-    };
+    // The values evaluated after a run-time solve too: an output, an
+    // algebraic variable or an alias may read them (the blocks are solved
+    // first); an event may not, and still reads the solve's unknowns then.
+    let value = |j: usize| solved.symbolic[j].or(solved.after_solve[j]);
     let mut known: FxHashMap<SymbolId, Id> =
         all.iter().enumerate().filter_map(|(j, &s)| value(j).map(|v| (s, v))).collect();
     known.extend(computed.iter().map(|(&s, &v)| (s, v)));
     let mut aliases: Vec<(SymbolId, Id)> = removed.iter().map(|(&s, &v)| (s, v)).collect();
     aliases.sort_unstable();
-    for (s, v) in aliases {
+    for &(s, v) in &aliases {
         let v = g.substitute(v, &known).ok()?;
         known.insert(s, v);
+    }
+    // An alias of an alias met later in that order still reads it: those
+    // substituted again, until none does (the aliases form a forest, so
+    // as many rounds as the longest chain).
+    for _ in 0..aliases.len() {
+        let pending: Vec<SymbolId> = aliases
+            .iter()
+            .map(|&(s, _)| s)
+            .filter(|s| g.free_symbols(known[s]).iter().any(|x| removed.contains_key(x)))
+            .collect();
+        if pending.is_empty() {
+            break;
+        }
+        for s in pending {
+            let v = g.substitute(known[&s], &known).ok()?;
+            known.insert(s, v);
+        }
     }
     Some(known)
 }

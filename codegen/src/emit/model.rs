@@ -28,9 +28,8 @@ use quote::{quote, quote_spanned};
 
 /// The full expansion of an analysed model: each item of the `Model`
 /// implementation printed from its programs.
-pub fn expand(model: &Analysed) -> crate::Result<TokenStream> {
+pub fn expand(model: &Analysed) -> TokenStream {
     let Analysed { ir, attributes, model, sensitivities, programs } = model;
-    let programs = programs.as_ref().map_err(Clone::clone)?;
     expand_system(ir, &Naming::of(ir), model, attributes, sensitivities.as_ref(), programs)
 }
 
@@ -43,12 +42,12 @@ fn expand_system(
     attributes: &Attributes,
     sensitivities: Option<&SensitivityAnalysis>,
     programs: &SystemPrograms,
-) -> crate::Result<TokenStream> {
+) -> TokenStream {
     // Most of its length is the quoted `Model` implementation the items fill.
     let sys = &analysis.system;
     let programs = match programs {
         SystemPrograms::MassOnly(programs) => {
-            return Ok(expand_mass_only(ir, naming, analysis, programs))
+            return expand_mass_only(ir, naming, analysis, programs)
         }
         SystemPrograms::Model(programs) => programs,
     };
@@ -99,9 +98,10 @@ fn expand_system(
         &index(n),
         quote!(#newton_solve #block_setup #rhs_body #block_solve),
     );
-    let taylor_analysis = analysis.taylor.as_ref().map_err(Clone::clone)?;
-    let (taylor_tokens, taylor_unavailable) =
-        taylor_items(g, &mut layout, n, taylor_analysis, taylor);
+    let (taylor_tokens, taylor_unavailable) = match &analysis.taylor {
+        Ok(analysis) => taylor_items(g, &mut layout, n, analysis, taylor),
+        Err(_) => (TokenStream::new(), None),
+    };
     let taylor_unavailable_const = match &taylor_unavailable {
         Some(reason) => {
             quote!(const TAYLOR_TAPE: ::daegen::Availability = ::daegen::Availability::Unavailable(#reason);)
@@ -134,11 +134,8 @@ fn expand_system(
     let struct_and_default = struct_and_default(ir, naming, &analysis);
     let n_lit = index(n);
     let batch = match (attributes.batch, batch) {
-        (Some((lanes, _)), Some(Ok(program))) => {
+        (Some((lanes, _)), Some(program)) => {
             crate::emit::batch::batch_items(g, ir, naming, sys, lanes, program)
-        }
-        (Some((_, span)), Some(Err(message))) => {
-            quote_spanned!(span=> ::core::compile_error!(#message);)
         }
         _ => TokenStream::new(),
     };
@@ -152,7 +149,7 @@ fn expand_system(
     // The sensitivities' type is a model of its own.
     let sensitivity_type = match (sensitivities, sensitivity_programs) {
         (Some(sensitivities), Some(programs)) => {
-            sensitivity_items(ir, naming, sensitivities, programs)?
+            sensitivity_items(ir, naming, sensitivities, programs)
         }
         _ => TokenStream::new(),
     };
@@ -164,7 +161,7 @@ fn expand_system(
             const _: &[u8] = ::core::include_bytes!(#path);
         )
     });
-    Ok(quote! {
+    quote! {
         #struct_and_default
 
         #(#dependencies)*
@@ -227,7 +224,7 @@ fn expand_system(
                 }
             }
         }
-    })
+    }
 }
 
 /// `<Model>Sensitivities`, the model with its forward sensitivities as
@@ -238,9 +235,9 @@ fn sensitivity_items(
     naming: &Naming,
     sensitivities: &SensitivityAnalysis,
     programs: &SystemPrograms,
-) -> crate::Result<TokenStream> {
+) -> TokenStream {
     let name = type_name(naming);
-    let augmented = sensitivities.model.as_ref().map_err(Clone::clone)?;
+    let Ok(augmented) = &sensitivities.model else { return TokenStream::new() };
     let wrt = &sensitivities.wrt;
     let listed: Vec<String> = wrt.iter().map(|w| format!("`{}`", w.name())).collect();
     let fn_name = &naming.fn_name;
@@ -251,7 +248,7 @@ fn sensitivity_items(
             listed.join(", ")
         ),
     };
-    let model = expand_system(ir, &own, augmented, &sensitivities.attributes, None, programs)?;
+    let model = expand_system(ir, &own, augmented, &sensitivities.attributes, None, programs);
     let sensitivity_name = type_name(&own);
     let fields: Vec<&syn::Ident> = ir.params.iter().map(|p| &p.ident).collect();
     let vis = &ir.vis;
@@ -259,7 +256,7 @@ fn sensitivity_items(
         " This model with its forward sensitivities with respect to {}, as the model [`{sensitivity_name}`].",
         listed.join(", ")
     );
-    Ok(quote! {
+    quote! {
         #model
 
         impl #name {
@@ -268,7 +265,7 @@ fn sensitivity_items(
                 #sensitivity_name { #(#fields: self.#fields),* }
             }
         }
-    })
+    }
 }
 
 /// A model whose algebraic equations are nonlinear in the algebraic

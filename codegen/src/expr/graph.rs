@@ -75,6 +75,58 @@ impl Graph {
         self.nodes.is_empty()
     }
 
+    /// The arena's invariants, for the checks between passes: every node
+    /// reads only nodes made before it and is the one hash-consing finds
+    /// for itself; every symbol's node is that symbol, every symbol a node
+    /// names exists, a derivative's symbol and an intermediate's definition
+    /// exist.
+    pub fn verify(&self) -> std::result::Result<(), String> {
+        if self.smooth.len() != self.nodes.len() {
+            return Err(format!(
+                "{} nodes but {} smoothness flags",
+                self.nodes.len(),
+                self.smooth.len()
+            ));
+        }
+        for (i, node) in self.nodes.iter().enumerate() {
+            if let Some(c) = node.children().iter().find(|c| c.index() >= i) {
+                return Err(format!("node {i} reads node {} made after it", c.index()));
+            }
+            if let Node::Symbol(s) = node {
+                if s.index() >= self.symbols.len() {
+                    return Err(format!(
+                        "node {i} names symbol {}, which does not exist",
+                        s.index()
+                    ));
+                }
+            }
+            if self.interned.get(node).map(|id| id.index()) != Some(i) {
+                return Err(format!("node {i} is not the one hash-consing finds for itself"));
+            }
+        }
+        for (k, symbol) in self.symbols.iter().enumerate() {
+            let node = self.symbol_nodes.get(k).map(|&id| self.node(id));
+            if !matches!(node, Some(Node::Symbol(s)) if s.index() == k) {
+                return Err(format!("symbol `{}` has no node of its own", symbol.name));
+            }
+            match symbol.kind {
+                SymbolKind::Derivative { of, .. } if of.index() >= self.symbols.len() => {
+                    return Err(format!(
+                        "`{}` is the derivative of a symbol that does not exist",
+                        symbol.name
+                    ));
+                }
+                SymbolKind::Intermediate { definition }
+                    if definition.index() >= self.nodes.len() =>
+                {
+                    return Err(format!("`{}` stands for a node that does not exist", symbol.name));
+                }
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+
     /// The node behind an id.
     pub fn node(&self, id: Id) -> &Node {
         &self.nodes[id.index()]

@@ -21,6 +21,7 @@ pub mod taylor;
 
 use crate::analysis::{SensitivityAnalysis, SystemAnalysis};
 use crate::front::attributes::Attributes;
+use crate::front::ctxt::Ctxt;
 use crate::front::ir::ModelIr;
 use crate::{Id, SymbolId};
 use derivatives::{ConstraintPrograms, JacobianPrograms};
@@ -71,9 +72,8 @@ pub struct ModelPrograms {
     pub clocks: Vec<Program>,
     /// `degenerate_parameters`.
     pub degenerate: Option<Program>,
-    /// The batch type's right-hand side, or why there is none, where
-    /// `batch = L` asks for one.
-    pub batch: Option<Result<Program, String>>,
+    /// The batch type's right-hand side, where `batch = L` asks for one.
+    pub batch: Option<Program>,
     /// The model with its sensitivities, a model of its own.
     pub sensitivities: Option<Box<SystemPrograms>>,
 }
@@ -87,16 +87,64 @@ pub fn is_hybrid(ir: &ModelIr, analysis: &SystemAnalysis) -> bool {
 }
 
 /// The programs of `analysis`'s system, item by item in the order the
-/// expansion writes them; the first error an item meets.
+/// expansion writes them; `None` where an item met an error, reported to
+/// `cx` (on the call the user wrote, for a function that is not smooth
+/// where it is differentiated; else on the model's name).
 pub fn programs(
+    cx: &mut Ctxt,
     ir: &mut ModelIr,
     analysis: &SystemAnalysis,
     attributes: &Attributes,
     sensitivities: Option<&SensitivityAnalysis>,
-) -> crate::Result<SystemPrograms> {
+) -> Option<SystemPrograms> {
+    match system_programs(ir, analysis, attributes, sensitivities) {
+        Ok(programs) => Some(programs),
+        Err(Failure::Batch(message)) => {
+            let span = attributes.batch.map_or(ir.fn_name.span(), |(_, span)| span);
+            cx.error_span(span, message);
+            None
+        }
+        Err(Failure::Analysis(e @ crate::Error::NotSmooth { node, .. })) => {
+            // The call itself when the right-hand side kept the node the
+            // user wrote; else the first such call.
+            let calls = &ir.non_smooth_calls;
+            match calls.iter().find(|(id, _)| *id == node).or(calls.first()) {
+                Some((_, tokens)) => cx.error_at(tokens, e),
+                None => cx.error_at(&ir.fn_name, e),
+            }
+            None
+        }
+        Err(Failure::Analysis(e)) => {
+            cx.error_at(&ir.fn_name, e);
+            None
+        }
+    }
+}
+
+/// Why a system has no programs: an analysis failed where an item needed
+/// it, or `batch = L` asks for lanes the model cannot run on.
+enum Failure {
+    Analysis(crate::Error),
+    Batch(String),
+}
+
+impl From<crate::Error> for Failure {
+    fn from(e: crate::Error) -> Failure {
+        Failure::Analysis(e)
+    }
+}
+
+/// [`programs`], or the first failure.
+fn system_programs(
+    ir: &mut ModelIr,
+    analysis: &SystemAnalysis,
+    attributes: &Attributes,
+    sensitivities: Option<&SensitivityAnalysis>,
+) -> Result<SystemPrograms, Failure> {
     let sys = &analysis.system;
     if sys.mass_only {
-        return mass_only_programs(ir, analysis).map(|p| SystemPrograms::MassOnly(Box::new(p)));
+        let programs = mass_only_programs(ir, analysis)?;
+        return Ok(SystemPrograms::MassOnly(Box::new(programs)));
     }
     let hybrid = is_hybrid(ir, analysis);
     let inputs: Vec<(SymbolId, SymbolId)> = ir.inputs.iter().map(|i| (i.symbol, i.rate)).collect();
@@ -137,11 +185,14 @@ pub fn programs(
         let pivots: Vec<Id> = sys.rank_conditions.iter().map(|c| c.pivot).collect();
         g.schedule(&pivots)
     });
-    let batch = attributes.batch.map(|_| batch::batch_program(ir, sys));
+    let batch = match attributes.batch {
+        Some(_) => Some(batch::batch_program(ir, sys).map_err(Failure::Batch)?),
+        None => None,
+    };
     let sensitivities = match sensitivities {
         Some(s) => {
             let augmented = s.model.as_ref().map_err(Clone::clone)?;
-            Some(Box::new(programs(ir, augmented, &s.attributes, None)?))
+            Some(Box::new(system_programs(ir, augmented, &s.attributes, None)?))
         }
         None => None,
     };
