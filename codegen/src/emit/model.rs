@@ -51,47 +51,30 @@ fn expand_system(
         }
         SystemPrograms::Model(programs) => programs,
     };
-    let ModelPrograms {
-        newton,
-        initial_state,
-        rhs,
-        event_rates,
-        jacobian,
-        outputs,
-        constraints,
-        events,
-        actions,
-        taylor,
-        own_rhs,
-        mass_form,
-        clocks,
-        degenerate,
-        batch,
-        sensitivities: sensitivity_programs,
-    } = &**programs;
+    let p: &ModelPrograms = programs;
     let g = &ir.graph;
     let name = type_name(naming);
     let n = sys.slots.len();
     let mut layout = Layout::of_system(sys);
     let (newton_method, newton_solve, newton_solve_for_outputs) =
-        newton_block_code(g, &layout, sys, newton.as_ref(), &name);
-    let initial_state = straight_program(g, &layout, initial_state, &|i, v| {
+        newton_block_code(g, &layout, sys, p.newton.as_ref(), &name);
+    let initial_state = straight_program(g, &layout, &p.initial_state, &|i, v| {
         let i = index(i);
         quote!(y[#i] = #v;)
     });
-    let (block_setup, rhs_body, block_solve) = rhs_items(g, &layout, sys, rhs);
-    let event_rates_method = event_rates_method(g, &layout, sys, event_rates.as_ref());
-    let jacobian = jacobian_items(g, &layout, n, jacobian.as_ref());
-    let output_arms = output_arms(g, &mut layout, sys, &newton_solve_for_outputs, outputs);
+    let (block_setup, rhs_body, block_solve) = rhs_items(g, &layout, sys, &p.rhs);
+    let event_rates_method = event_rates_method(g, &layout, sys, p.event_rates.as_ref());
+    let jacobian = jacobian_items(g, &layout, n, p.jacobian.as_ref());
+    let output_arms = output_arms(g, &mut layout, sys, &newton_solve_for_outputs, &p.outputs);
     let constraint_methods = crate::emit::constraints::constraint_methods(
         g,
         &layout,
         sys,
         &analysis.projection,
-        constraints.as_ref(),
+        p.constraints.as_ref(),
     );
-    let events_method = events_method(g, &layout, sys, events.as_ref());
-    let act_method = crate::emit::actions::act_method(g, &layout, sys, &ir.pre, actions);
+    let events_method = events_method(g, &layout, sys, p.events.as_ref());
+    let act_method = crate::emit::actions::act_method(g, &layout, sys, &ir.pre, &p.actions);
     let rhs_method_body = fixed_size_body(
         &index(n),
         "dy",
@@ -99,7 +82,7 @@ fn expand_system(
         quote!(#newton_solve #block_setup #rhs_body #block_solve),
     );
     let (taylor_tokens, taylor_unavailable) = match &analysis.taylor {
-        Ok(analysis) => taylor_items(g, &mut layout, n, analysis, taylor),
+        Ok(analysis) => taylor_items(g, &mut layout, n, analysis, &p.taylor),
         Err(_) => (TokenStream::new(), None),
     };
     let taylor_unavailable_const = match &taylor_unavailable {
@@ -110,21 +93,22 @@ fn expand_system(
             const TAYLOR_TAPE: ::daegen::Availability = ::daegen::Availability::Available;
         ),
     };
-    let own_rhs = own_rhs_method(g, &layout, sys, attributes.sensitivity_columns, own_rhs.as_ref());
+    let own_rhs =
+        own_rhs_method(g, &layout, sys, attributes.sensitivity_columns, p.own_rhs.as_ref());
     // A model with sensitivities has none: they would need the variational
     // equations of the mass-matrix form too.
-    let (mass_form_type, mass_form_method) = match (mass_form, &analysis.mass_form) {
+    let (mass_form_type, mass_form_method) = match (&p.mass_form, &analysis.mass_form) {
         (Some(programs), Ok(Some(form))) => {
             let params: Vec<syn::Ident> = ir.params.iter().map(|p| p.ident.clone()).collect();
             crate::emit::mass_form::emit_mass_form(g, form, programs, &name, &ir.vis, &params)
         }
         _ => (TokenStream::new(), TokenStream::new()),
     };
-    let clock_method = crate::emit::actions::clock_method(g, &layout, clocks);
+    let clock_method = crate::emit::actions::clock_method(g, &layout, &p.clocks);
     let input_breakpoints = crate::emit::actions::input_breakpoints_method(&ir.inputs);
     let info = info(ir, naming, sys);
     let parameter = parameter_method(ir);
-    let degenerate = degenerate_parameters_method(g, &layout, sys, degenerate.as_ref());
+    let degenerate = degenerate_parameters_method(g, &layout, sys, p.degenerate.as_ref());
     let model_index = index(sys.index);
     let mut analysis = dae_analysis(ir, sys);
     if let Some(reason) = &taylor_unavailable {
@@ -133,7 +117,7 @@ fn expand_system(
     }
     let struct_and_default = struct_and_default(ir, naming, &analysis);
     let n_lit = index(n);
-    let batch = match (attributes.batch, batch) {
+    let batch = match (attributes.batch, &p.batch) {
         (Some((lanes, _)), Some(program)) => {
             crate::emit::batch::batch_items(g, ir, naming, sys, lanes, program)
         }
@@ -147,7 +131,7 @@ fn expand_system(
         }
     };
     // The sensitivities' type is a model of its own.
-    let sensitivity_type = match (sensitivities, sensitivity_programs) {
+    let sensitivity_type = match (sensitivities, &p.sensitivities) {
         (Some(sensitivities), Some(programs)) => {
             sensitivity_items(ir, naming, sensitivities, programs)
         }
