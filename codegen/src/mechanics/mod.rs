@@ -18,6 +18,7 @@ pub mod planar;
 pub mod planar_recursive;
 pub mod spatial;
 pub mod spatial_joint_motion;
+pub mod spatial_joint_rows;
 pub mod spatial_recursive;
 pub mod spatial_tree;
 pub mod spatial_vectors;

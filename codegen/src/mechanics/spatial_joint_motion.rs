@@ -228,7 +228,7 @@ impl Lower<'_, Scene> {
             }
             "planar" => {
                 let values = rec.axis_values.unwrap_or([0.0, 0.0, 1.0]);
-                let [n1, n2] = super::spatial::normals(g, axis, values)?;
+                let [n1, n2] = super::spatial_joint_rows::normals(g, axis, values)?;
                 let (e1, e2) = (unit3(g, n1)?, unit3(g, n2)?);
                 let mut offset = [zero; 3];
                 for (e, suffix) in [(e1, "u"), (e2, "v")] {
