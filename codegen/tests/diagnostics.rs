@@ -197,30 +197,26 @@ fn dependent_derivative_rows_with_a_regular_pencil_are_a_dae() {
     assert!(m.is_empty(), "{m:#?}");
 }
 
-/// A speed drive of library parts whose set point `extra` completes.
+/// The model `name` of `tests/ui/newcomer_drive.rs`, whose compiler output
+/// trybuild pins: the same models, checked here message by message.
+fn newcomer_model(name: &str) -> syn::ItemFn {
+    let file = syn::parse_file(include_str!("../../tests/ui/newcomer_drive.rs"))
+        .expect("the newcomer's models parse");
+    let found = file.items.into_iter().find_map(|item| match item {
+        syn::Item::Fn(f) if f.sig.ident == name => Some(f),
+        _ => None,
+    });
+    found.unwrap_or_else(|| panic!("no model `{name}` in tests/ui/newcomer_drive.rs"))
+}
+
+/// The newcomer's speed drive, its set point left open, with `extra`
+/// statements added.
 fn drive_with(extra: proc_macro2::TokenStream) -> proc_macro2::TokenStream {
-    quote! {
-        fn drive() {
-            let controller = pi_controller(kp = 0.02, ki = 0.5);
-            let sensor = speed_sensor();
-            let supply = signal_voltage();
-            let winding = resistor(0.5);
-            let motor = emf(k = 0.05);
-            let rotor = inertia(j = 1e-3);
-            let friction = damper(d = 1e-4);
-            let housing = fixed();
-            let gnd = ground();
-            connect(sensor.w, controller.u_m);
-            connect(controller.y, supply.u);
-            connect(supply.p, winding.p);
-            connect(winding.n, motor.p);
-            connect(supply.n, motor.n, gnd.p);
-            connect(motor.flange, rotor.flange_a);
-            connect(rotor.flange_b, friction.flange_a, sensor.flange);
-            connect(friction.flange_b, housing.flange);
-            #extra
-        }
-    }
+    let mut model = newcomer_model("set_point_left_open");
+    let extra: syn::Block = syn::parse2(quote!({ #extra })).expect("the statements parse");
+    model.block.stmts.extend(extra.stmts);
+    model.attrs.clear();
+    quote!(#model)
 }
 
 #[test]
@@ -250,16 +246,8 @@ fn a_block_s_open_input_says_how_to_connect_or_set_it() {
 
 #[test]
 fn a_misspelt_parameter_is_one_message() {
-    let m = messages(quote! {
-        fn m() {
-            let rotor = inertia(jj = 1.0, w0 = 10.0);
-            let spring = spring(c = 100.0);
-            let housing = fixed();
-            connect(rotor.flange_a, spring.flange_a);
-            connect(spring.flange_b, housing.flange);
-            let e_kin = output(0.5 * rotor.w * rotor.w);
-            let e_total = output(e_kin + 1.0);
-        }
-    });
+    let mut model = newcomer_model("misspelt_parameter");
+    model.attrs.clear();
+    let m = messages(quote!(#model));
     assert_eq!(m, ["`inertia` has no parameter `jj`; its parameters are `j`, `phi0`, `w0`"]);
 }

@@ -3,7 +3,7 @@
 //! projection levels that `dae::constraints` found.
 
 use crate::dae::system::{FirstOrder, ProjectionLevel};
-use crate::emit::layout::{straight_program, Layout};
+use crate::emit::layout::{program_into, straight_program, Layout};
 use crate::programs::derivatives::ConstraintPrograms;
 use crate::Graph;
 use proc_macro2::{Literal, TokenStream};
@@ -32,10 +32,7 @@ pub(crate) fn constraint_methods(
         quote!(::daegen::ProjectionLevel { rows: &[#(#rows),*], slots: &[#(#slots),*] })
     });
     let m = index(sys.invariants.len());
-    let values = straight_program(g, layout, &programs.residuals, &|i, v| {
-        let i = index(i);
-        quote!(out[#i] = #v;)
-    });
+    let values = program_into(g, layout, &programs.residuals, "out");
     let mut arms = Vec::new();
     for (k, (level, (at, program))) in levels.iter().zip(&programs.levels).enumerate() {
         let len = index(level.rows.len() * level.slots.len());

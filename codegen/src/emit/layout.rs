@@ -127,6 +127,21 @@ pub(crate) fn rolled_program(
     emit_rolled_program(g, program, &|s| layout.tokens(g, s), &state_slot, (array, targets), "y")
 }
 
+/// Straight-line code computing `program`'s outputs into `array[0..]`, in
+/// the program's order.
+pub(crate) fn program_into(
+    g: &Graph,
+    layout: &Layout,
+    program: &Program,
+    array: &str,
+) -> TokenStream {
+    let array = format_ident!("{}", array);
+    straight_program(g, layout, program, &|i, v| {
+        let i = index(i);
+        quote!(#array[#i] = #v;)
+    })
+}
+
 /// Straight-line code computing `program`'s outputs and handing each to
 /// `assign`.
 pub(crate) fn straight_program(

@@ -3,7 +3,7 @@
 //! hands over.
 
 use crate::dae::mass_form::MassForm;
-use crate::emit::layout::{fixed_size_body, straight_program, Layout};
+use crate::emit::layout::{fixed_size_body, program_into, straight_program, Layout};
 use crate::programs::mass_form::{MassFormPrograms, PrimaryPrograms};
 use crate::Graph;
 use proc_macro2::{Literal, TokenStream};
@@ -15,19 +15,13 @@ fn model_items(g: &Graph, form: &MassForm, programs: &MassFormPrograms) -> Token
     let index = Literal::usize_unsuffixed;
     let layout = Layout::of_components(&form.components);
     let n = index(form.components.len());
-    let rhs = straight_program(g, &layout, &programs.rhs, &|i, v| {
-        let i = index(i);
-        quote!(dy[#i] = #v;)
-    });
+    let rhs = program_into(g, &layout, &programs.rhs, "dy");
     let nnz = index(programs.pattern.len());
     let pattern = programs.pattern.iter().map(|&(r, c)| {
         let (r, c) = (index(r), index(c));
         quote!((#r, #c))
     });
-    let values = straight_program(g, &layout, &programs.jacobian, &|k, v| {
-        let k = index(k);
-        quote!(values[#k] = #v;)
-    });
+    let values = program_into(g, &layout, &programs.jacobian, "values");
     let mass = match &programs.mass {
         None => {
             let diagonal = (0..form.components.len()).map(|i| {
@@ -45,10 +39,7 @@ fn model_items(g: &Graph, form: &MassForm, programs: &MassFormPrograms) -> Token
                 quote!((#r, #c))
             });
             let k = index(entries.len());
-            let values = straight_program(g, &layout, program, &|i, v| {
-                let i = index(i);
-                quote!(values[#i] = #v;)
-            });
+            let values = program_into(g, &layout, program, "values");
             quote! {
                 const MASS: ::daegen::MassMatrix = ::daegen::MassMatrix::Pattern(&[#(#pattern),*]);
                 fn mass_values(&self, values: &mut [f64]) {
@@ -88,10 +79,7 @@ pub fn primary_items(g: &Graph, form: &MassForm, programs: &PrimaryPrograms) -> 
     let layout = Layout::of_components(&form.components);
     let n = index(form.components.len());
     let items = model_items(g, form, &programs.form);
-    let initial = straight_program(g, &layout, &programs.initial, &|i, v| {
-        let i = index(i);
-        quote!(y[#i] = #v;)
-    });
+    let initial = program_into(g, &layout, &programs.initial, "y");
     let arms: Vec<TokenStream> = programs
         .outputs
         .iter()

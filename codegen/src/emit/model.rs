@@ -11,7 +11,7 @@ use crate::emit::docs::{
 };
 use crate::emit::events::{event_rates_method, events_method};
 use crate::emit::jacobian::jacobian_items;
-use crate::emit::layout::{fixed_size_body, index, rolled_program, straight_program, Layout};
+use crate::emit::layout::{fixed_size_body, index, program_into, rolled_program, Layout};
 use crate::emit::newton::newton_block_code;
 use crate::emit::outputs::output_arms;
 use crate::emit::rhs::rhs_items;
@@ -58,10 +58,7 @@ fn expand_system(
     let mut layout = Layout::of_system(sys);
     let (newton_method, newton_solve, newton_solve_for_outputs) =
         newton_block_code(g, &layout, sys, p.newton.as_ref(), &name);
-    let initial_state = straight_program(g, &layout, &p.initial_state, &|i, v| {
-        let i = index(i);
-        quote!(y[#i] = #v;)
-    });
+    let initial_state = program_into(g, &layout, &p.initial_state, "y");
     let (block_setup, rhs_body, block_solve) = rhs_items(g, &layout, sys, &p.rhs);
     let event_rates_method = event_rates_method(g, &layout, sys, p.event_rates.as_ref());
     let jacobian = jacobian_items(g, &layout, n, p.jacobian.as_ref());
@@ -300,10 +297,7 @@ fn degenerate_parameters_method(
 ) -> TokenStream {
     let Some(program) = program else { return TokenStream::new() };
     let k = index(sys.rank_conditions.len());
-    let values = straight_program(g, layout, program, &|i, v| {
-        let i = index(i);
-        quote!(pivots[#i] = #v;)
-    });
+    let values = program_into(g, layout, program, "pivots");
     let texts = sys.rank_conditions.iter().map(|c| c.text.as_str());
     quote! {
         fn degenerate_parameters(&self) -> ::core::option::Option<&'static str> {

@@ -2,7 +2,7 @@
 //! equations, and the linear blocks a symbolic solve could not separate.
 
 use crate::dae::system::FirstOrder;
-use crate::emit::layout::{index, straight_program, Layout};
+use crate::emit::layout::{index, program_into, straight_program, Layout};
 use crate::programs::newton::{NewtonEntry, NewtonPart, NewtonPrograms};
 use crate::programs::rhs::RhsEntry;
 use crate::programs::schedule::Program;
@@ -33,10 +33,7 @@ pub(crate) fn newton_block_code(
     let array = format_ident!("rhs{}", sys.blocks.len());
     let part = &programs.parts[0];
     let body = equations(g, layout, part);
-    let guesses = straight_program(g, layout, &part.guesses, &|i, v| {
-        let i = index(i);
-        quote!(guess[#i] = #v;)
-    });
+    let guesses = program_into(g, layout, &part.guesses, "guess");
     let (texts, names) = (&newton.texts, &newton.names);
     let method = quote! {
         #[allow(unused_variables, clippy::all, clippy::pedantic)]
@@ -133,10 +130,7 @@ fn by_components(
             part_layout.block_of.insert(newton.unknowns[v], (local, i));
         }
         let body = equations(g, &part_layout, program);
-        let guesses = straight_program(g, layout, &program.guesses, &|i, v| {
-            let i = index(i);
-            quote!(guess[#i] = #v;)
-        });
+        let guesses = program_into(g, layout, &program.guesses, "guess");
         let positions: Vec<TokenStream> =
             variables.iter().map(|&v| index(v).into_token_stream()).collect();
         let locals: Vec<TokenStream> =
