@@ -26,6 +26,8 @@ pub fn method(name: &str) -> Method {
     match name {
         "Dop853" => Method::Dop853,
         "Taylor" => Method::Taylor,
+        "Radau5" => Method::Radau5,
+        "Rodas5P" => Method::Rodas5P,
         _ => Method::Dopri5,
     }
 }

@@ -10,8 +10,7 @@ use crate::methods::Problem;
 use crate::model::{Model, StateVector};
 use crate::solution::Solution;
 use crate::step::control::{error_weights, initial_step, Controller, PiState};
-use crate::step::events::{after_accepted_step, EventWatch};
-use crate::step::projection::{project_onto_constraints, Projector};
+use crate::step::driver::{Counts, DenseOutput, Driver};
 
 /// What the driver needs from one embedded pair.
 pub trait EmbeddedPair {
@@ -51,12 +50,12 @@ pub trait EmbeddedPair {
 /// Counts right-hand-side evaluations.
 struct Rhs<'m, M> {
     model: &'m M,
-    evals: usize,
+    counts: Counts,
 }
 
 impl<M: Model> Rhs<'_, M> {
     fn call(&mut self, t: f64, y: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
-        self.evals += 1;
+        self.counts.evals += 1;
         self.model.rhs(t, y, out)
     }
 }
@@ -280,25 +279,23 @@ pub(crate) fn integrate<M: Model, P: EmbeddedPair>(
     stiffness: Stiffness,
     solution: Solution,
 ) -> Result<(Solution, Finish), Error> {
-    let Problem { model, t0, t1, y0, options } = problem;
-    integrate_from::<M, P>(model, t0, t1, y0, options, stiffness, solution)
+    let dense = DenseOutput { width: P::DENSE_WIDTH, interpolate: P::interpolate };
+    let run = Driver::new(&problem, solution, Some(dense), 1);
+    let Problem { model, t0, y0, options, .. } = problem;
+    integrate_from::<M, P>(model, t0, y0, options, stiffness, run)
 }
 
 /// The step loop of [`integrate`], its inputs as separate arguments: taking
 /// the one `Problem` value, it ran 6 % slower (DOP853 on Kepler at 1e-12 …
 /// 1e-14, timed in alternation with `ode_solvers`' DOP853).
-#[allow(clippy::too_many_arguments)]
 fn integrate_from<M: Model, P: EmbeddedPair>(
     model: &M,
     t0: f64,
-    t1: f64,
     y0: &[f64],
     options: &crate::options::Options,
     stiffness: Stiffness,
-    mut solution: Solution,
+    mut run: Driver<'_, M>,
 ) -> Result<(Solution, Finish), Error> {
-    // One function, as dopri5.f's and dop853.f's step loops are: step control, stiffness
-    // detection, events and projection act on the same step.
     let n = M::STATES;
     let (rtol, atol) = (options.rtol, options.atol);
     let mut test = match stiffness {
@@ -307,7 +304,6 @@ fn integrate_from<M: Model, P: EmbeddedPair>(
         Stiffness::Switch(test) => Some(test),
     };
     let fail_when_stiff = matches!(stiffness, Stiffness::Fail);
-    let direction = if t1 >= t0 { 1.0 } else { -1.0 };
     let controller = P::controller();
     let mut k = vec![M::State::zeros(); P::STAGES + P::DENSE_STAGES];
     let (mut y, mut y_new, mut stage) = (M::State::zeros(), M::State::zeros(), M::State::zeros());
@@ -318,80 +314,43 @@ fn integrate_from<M: Model, P: EmbeddedPair>(
     let n_error = crate::methods::error_states::<M>(options);
     let error_dilution = (n as f64 / n_error as f64).sqrt();
     let mut dense = vec![0.0; P::DENSE_WIDTH * n];
-    let mut rhs = Rhs { model, evals: 0 };
-    let mut events = EventWatch::new(model, t0, y0, 1);
-    let mut projector = Projector::new(model);
-    let keep_dense = options.dense_output || events.is_some();
-    if keep_dense {
-        solution.set_interpolant(P::DENSE_WIDTH, P::interpolate);
-    }
+    let mut rhs = Rhs { model, counts: Counts::default() };
 
     y.as_mut().copy_from_slice(y0);
     if let Err(cause) = rhs.call(t0, y.as_ref(), k[0].as_mut()) {
-        return Err(Error::Evaluation { t: t0, cause, partial: Box::new(solution) });
+        return Err(run.evaluation_failed(t0, cause, &rhs.counts));
     }
     if let Some(i) = k[0].as_ref().iter().position(|v| !v.is_finite()) {
-        return Err(Error::NonFinite {
-            t: t0,
-            variable: M::INFO.states[i],
-            partial: Box::new(solution),
-        });
+        return Err(run.non_finite(t0, i, &Counts::default()));
     }
-    if t0 == t1 {
-        return Ok((solution, Finish::Done));
+    if t0 == run.t1 {
+        return Ok((run.finish(&Counts::default()), Finish::Done));
     }
-    let hmax = options.max_step.unwrap_or((t1 - t0).abs()).min((t1 - t0).abs());
     let mut h = match options.initial_step {
-        Some(h0) => h0.abs().min(hmax),
-        None => {
-            let (f0, rest) = k.split_at_mut(1);
-            let mut f = |t: f64, y: &[f64], out: &mut [f64]| rhs.call(t, y, out).is_ok();
-            initial_step(
-                &mut f,
-                t0,
-                y.as_ref(),
-                f0[0].as_ref(),
-                direction,
-                P::ORDER,
-                hmax,
-                (atol, rtol),
-                stage.as_mut(),
-                rest[0].as_mut(),
-                M::LANES,
-            )
-        }
-    } * direction;
+        Some(h0) => h0.abs().min(run.hmax),
+        None => first_step::<M, P>(&mut rhs, t0, &y, &mut k, &mut stage, &run, options),
+    } * run.direction;
 
     let (mut t, mut compensation) = (t0, 0.0);
     let mut pi = PiState::default();
-    let (mut last_rejected, mut accepted, mut rejected) = (false, 0usize, 0usize);
+    let mut last_rejected = false;
     let mut non_finite: Option<usize> = None;
     loop {
-        if accepted + rejected >= options.max_steps {
-            finish_stats(&mut solution, accepted, rejected, rhs.evals);
-            return Err(Error::MaxSteps {
-                t,
-                max_steps: options.max_steps,
-                partial: Box::new(solution),
-            });
-        }
-        if 0.1 * h.abs() <= t.abs().max(1e-300) * f64::EPSILON || h.abs() < options.min_step {
-            finish_stats(&mut solution, accepted, rejected, rhs.evals);
-            let partial = Box::new(solution);
-            return Err(match non_finite {
+        run.check_steps(t, &rhs.counts)?;
+        if run.step_too_small(t, h) {
+            return Err(run.fail(&rhs.counts, |partial| match non_finite {
                 Some(i) => Error::NonFinite { t, variable: M::INFO.states[i], partial },
                 None => Error::StepSizeUnderflow { t, h, partial },
-            });
+            }));
         }
-        let last = (t + 1.01 * h - t1) * direction >= 0.0;
+        let last = run.reaches_end(t, 1.01 * h);
         if last {
-            h = t1 - t;
+            h = run.t1 - t;
         }
         if let Err((ts, cause)) =
             stages::<M, P>(&mut rhs, t, h, &y, &mut k, &mut stage, &mut y_new, &mut carry)
         {
-            finish_stats(&mut solution, accepted, rejected, rhs.evals);
-            return Err(Error::Evaluation { t: ts, cause, partial: Box::new(solution) });
+            return Err(run.evaluation_failed(ts, cause, &rhs.counts));
         }
         error_weights(atol, rtol, y.as_ref(), y_new.as_ref(), weights.as_mut());
         // Sensitivities left out of the error test weigh nothing, and the
@@ -406,94 +365,102 @@ fn integrate_from<M: Model, P: EmbeddedPair>(
                     || k[..P::STAGES].iter().any(|ks| !ks.as_ref()[i].is_finite())
             });
             h *= 0.1;
-            rejected += 1;
+            run.rejected += 1;
             last_rejected = true;
             continue;
         }
-        if err <= 1.0 {
-            // h·ρ from the last two stages, both at t + h (before the dense
-            // stages reuse `stage`), where a stiffness test reads it.
-            let (turned_stiff, h_rho) = match test.as_mut() {
-                Some(test) => {
-                    let h_rho = stage_quotient(
-                        h,
-                        k[P::STAGES - 1].as_ref(),
-                        k[P::STAGES - 2].as_ref(),
-                        y_new.as_ref(),
-                        stage.as_ref(),
-                    );
-                    let change = || relative_change(y.as_ref(), y_new.as_ref(), weights.as_ref());
-                    (test.step_is_stiff(t + h, h_rho, change), h_rho)
-                }
-                None => (false, 0.0),
-            };
-            let (factor, state) = controller.factor(err, pi);
-            pi = state;
-            if keep_dense {
-                if let Err((ts, cause)) =
-                    dense_stages::<M, P>(&mut rhs, t, h, &y, &mut k, &mut stage)
-                {
-                    finish_stats(&mut solution, accepted, rejected, rhs.evals);
-                    return Err(Error::Evaluation { t: ts, cause, partial: Box::new(solution) });
-                }
-                P::dense_coefficients(h, &y, &y_new, &k, &mut dense);
-            }
-            // Compensated summation: long runs keep t exact to rounding.
-            let step = h - compensation;
-            let t_next = t + step;
-            compensation = (t_next - t) - step;
-            t = if last { t1 } else { t_next };
-            std::mem::swap(&mut y, &mut y_new);
-            std::mem::swap(&mut carry.carried, &mut carry.next);
-            if project_onto_constraints!(projector, t, y.as_mut(), solution) {
-                // The carried rounding errors belong to the state before it moved.
-                carry.carried = M::State::zeros();
-                // The last stage was evaluated before the projection.
-                if let Err(cause) = rhs.call(t, y.as_ref(), k[0].as_mut()) {
-                    finish_stats(&mut solution, accepted, rejected, rhs.evals);
-                    return Err(Error::Evaluation { t, cause, partial: Box::new(solution) });
-                }
-            } else {
-                k[0] = k[P::STAGES - 1];
-            }
-            accepted += 1;
-            non_finite = None;
-            if keep_dense {
-                solution.push_dense(t, y.as_ref(), &dense);
-            } else {
-                solution.push(t, y.as_ref());
-            }
-            after_accepted_step!(events, solution);
-            if last {
-                break;
-            }
-            if turned_stiff {
-                finish_stats(&mut solution, accepted, rejected, rhs.evals);
-                if fail_when_stiff {
-                    return Err(Error::Stiff {
-                        t,
-                        onset: test.map_or(t, |test| test.onset()),
-                        h,
-                        h_rho,
-                        partial: Box::new(solution),
-                    });
-                }
-                return Ok((solution, Finish::StiffAt { t, h, h_rho }));
-            }
-            let mut h_new = h * factor;
-            if last_rejected {
-                h_new = direction * h_new.abs().min(h.abs());
-            }
-            h = direction * h_new.abs().min(hmax);
-            last_rejected = false;
-        } else {
+        if err > 1.0 {
             h *= controller.rejected_factor(err);
-            rejected += 1;
+            run.rejected += 1;
             last_rejected = true;
+            continue;
         }
+        // h·ρ from the last two stages, both at t + h (before the dense
+        // stages reuse `stage`), where a stiffness test reads it.
+        let (turned_stiff, h_rho) = match test.as_mut() {
+            Some(test) => {
+                let h_rho = stage_quotient(
+                    h,
+                    k[P::STAGES - 1].as_ref(),
+                    k[P::STAGES - 2].as_ref(),
+                    y_new.as_ref(),
+                    stage.as_ref(),
+                );
+                let change = || relative_change(y.as_ref(), y_new.as_ref(), weights.as_ref());
+                (test.step_is_stiff(t + h, h_rho, change), h_rho)
+            }
+            None => (false, 0.0),
+        };
+        let (factor, state) = controller.factor(err, pi);
+        pi = state;
+        if run.keep_dense() {
+            if let Err((ts, cause)) = dense_stages::<M, P>(&mut rhs, t, h, &y, &mut k, &mut stage)
+            {
+                return Err(run.evaluation_failed(ts, cause, &rhs.counts));
+            }
+            P::dense_coefficients(h, &y, &y_new, &k, &mut dense);
+        }
+        // Compensated summation: long runs keep t exact to rounding.
+        let step = h - compensation;
+        let t_next = t + step;
+        compensation = (t_next - t) - step;
+        t = if last { run.t1 } else { t_next };
+        std::mem::swap(&mut y, &mut y_new);
+        std::mem::swap(&mut carry.carried, &mut carry.next);
+        if run.project(t, y.as_mut(), &rhs.counts)? {
+            // The carried rounding errors belong to the state before it moved.
+            carry.carried = M::State::zeros();
+            // The last stage was evaluated before the projection.
+            if let Err(cause) = rhs.call(t, y.as_ref(), k[0].as_mut()) {
+                return Err(run.evaluation_failed(t, cause, &rhs.counts));
+            }
+        } else {
+            k[0] = k[P::STAGES - 1];
+        }
+        non_finite = None;
+        if run.record(t, y.as_ref(), &dense, &rhs.counts)? || last {
+            break;
+        }
+        if turned_stiff {
+            let solution = run.finish(&rhs.counts);
+            if fail_when_stiff {
+                let onset = test.map_or(t, |test| test.onset());
+                return Err(Error::Stiff { t, onset, h, h_rho, partial: Box::new(solution) });
+            }
+            return Ok((solution, Finish::StiffAt { t, h, h_rho }));
+        }
+        h = run.next_step(h * factor, h, last_rejected);
+        last_rejected = false;
     }
-    finish_stats(&mut solution, accepted, rejected, rhs.evals);
-    Ok((solution, Finish::Done))
+    Ok((run.finish(&rhs.counts), Finish::Done))
+}
+
+/// The first step when none is given: Hairer's estimate from the initial
+/// derivatives ([`initial_step`]), `k[0]` holding f(t0, y0).
+fn first_step<M: Model, P: EmbeddedPair>(
+    rhs: &mut Rhs<'_, M>,
+    t0: f64,
+    y: &M::State,
+    k: &mut [M::State],
+    stage: &mut M::State,
+    run: &Driver<'_, M>,
+    options: &crate::options::Options,
+) -> f64 {
+    let (f0, rest) = k.split_at_mut(1);
+    let mut f = |t: f64, y: &[f64], out: &mut [f64]| rhs.call(t, y, out).is_ok();
+    initial_step(
+        &mut f,
+        t0,
+        y.as_ref(),
+        f0[0].as_ref(),
+        run.direction,
+        P::ORDER,
+        run.hmax,
+        (options.atol, options.rtol),
+        stage.as_mut(),
+        rest[0].as_mut(),
+        M::LANES,
+    )
 }
 
 /// ‖y_new − y‖/‖y‖ in the norm the tolerances weigh by (`weights` holds
@@ -559,13 +526,6 @@ pub(crate) fn worst_lane<const K: usize>(
     worst
 }
 
-fn finish_stats(solution: &mut Solution, steps: usize, rejected: usize, evals: usize) {
-    let stats = solution.stats_mut();
-    stats.steps += steps;
-    stats.rejected += rejected;
-    stats.rhs_evals += evals;
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -610,7 +570,7 @@ mod tests {
 
     /// Error of one step of size h from the exact state at t.
     fn local_error<P: EmbeddedPair>(t: f64, h: f64) -> f64 {
-        let mut rhs = Rhs { model: &Kepler, evals: 0 };
+        let mut rhs = Rhs { model: &Kepler, counts: Counts::default() };
         let y = exact(t);
         let mut k = vec![[0.0; 4]; P::STAGES + P::DENSE_STAGES];
         let (mut stage, mut y_new) = ([0.0; 4], [0.0; 4]);
@@ -650,7 +610,7 @@ mod tests {
     /// divides the error at the step's midpoint by about 2^(q+1).
     fn dense_error<P: EmbeddedPair>(h: f64) -> f64 {
         let t = 0.3;
-        let mut rhs = Rhs { model: &Kepler, evals: 0 };
+        let mut rhs = Rhs { model: &Kepler, counts: Counts::default() };
         let y = exact(t);
         let n = 4;
         let mut k = vec![[0.0; 4]; P::STAGES + P::DENSE_STAGES];

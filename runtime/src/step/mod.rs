@@ -1,8 +1,10 @@
 //! What every method does around a step: step-size control, events on the
 //! step's continuous extension, projection onto the constraints, and
-//! finite-difference Jacobians.
+//! finite-difference Jacobians, and the driver that runs them around a
+//! method's step ([`driver`]).
 
 pub mod control;
+pub(crate) mod driver;
 pub(crate) mod events;
 pub(crate) mod jacobian;
 pub(crate) mod projection;
