@@ -394,8 +394,7 @@ fn integrate_from<M: Model, P: EmbeddedPair>(
         let (factor, state) = controller.factor(err, pi);
         pi = state;
         if run.keep_dense() {
-            if let Err((ts, cause)) = dense_stages::<M, P>(&mut rhs, t, h, &y, &mut k, &mut stage)
-            {
+            if let Err((ts, cause)) = dense_stages::<M, P>(&mut rhs, t, h, &y, &mut k, &mut stage) {
                 return Err(run.evaluation_failed(ts, cause, &rhs.counts));
             }
             P::dense_coefficients(h, &y, &y_new, &k, &mut dense);

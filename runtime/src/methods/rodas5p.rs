@@ -15,16 +15,16 @@
 
 use crate::error::Error;
 use crate::info::EvalError;
-use crate::linalg::apply_mass;
 use crate::linalg::newton::{Factored, Newton, Shifts, Structure};
+use crate::linalg::{apply_mass, Mass};
 use crate::methods::stiffness::{Finish, NonStiffWatch};
 use crate::methods::Problem;
 use crate::model::{has_mass_matrix, Model};
 use crate::options::LinearSolver;
 use crate::solution::Solution;
-use crate::step::events::{after_accepted_step, EventWatch};
+use crate::step::control::Predictive;
+use crate::step::driver::{Counts, DenseOutput, Driver};
 use crate::step::jacobian::DenseJacobian;
-use crate::step::projection::{project_onto_constraints, Projector};
 
 /// The diagonal γ of the method's Γ.
 const GAMMA: f64 = 0.21193756319429014;
@@ -219,30 +219,6 @@ pub(crate) fn integrate<M: Model>(
     integrate_watching(problem, None, solution).map(|(s, _)| s)
 }
 
-/// What the run has counted, for the statistics of its solution.
-#[derive(Default)]
-struct Counts {
-    accepted: usize,
-    rejected: usize,
-    evals: usize,
-    jacobian_evals: usize,
-    /// How the linear systems were solved, and GMRES's iterations.
-    linear_solver: &'static str,
-    linear_iterations: usize,
-}
-
-impl Counts {
-    fn record(&self, solution: &mut Solution) {
-        let stats = solution.stats_mut();
-        stats.steps += self.accepted;
-        stats.rejected += self.rejected;
-        stats.rhs_evals += self.evals;
-        stats.jacobian_evals += self.jacobian_evals;
-        stats.linear_solver = self.linear_solver;
-        stats.linear_iterations += self.linear_iterations;
-    }
-}
-
 /// The model's ∂f/∂y, ∂f/∂t and right-hand side, counted.
 struct Derivatives<'m, M> {
     model: &'m M,
@@ -251,17 +227,12 @@ struct Derivatives<'m, M> {
     dfdt: Vec<f64>,
     /// f at a later time (differencing ∂f/∂t where the model has none).
     shifted: Vec<f64>,
+    counts: Counts,
 }
 
 impl<M: Model> Derivatives<'_, M> {
-    fn rhs(
-        &self,
-        counts: &mut Counts,
-        t: f64,
-        y: &[f64],
-        out: &mut [f64],
-    ) -> Result<(), EvalError> {
-        counts.evals += 1;
+    fn rhs(&mut self, t: f64, y: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
+        self.counts.evals += 1;
         self.model.rhs(t, y, out)
     }
 
@@ -269,15 +240,9 @@ impl<M: Model> Derivatives<'_, M> {
     /// difference (`rodas.f`'s increment) where the model has none, or
     /// where its value is not finite (a rate such as exp(−a/sin ωt), flat
     /// where sin ωt = 0 but 0·∞ there when written out).
-    fn evaluate(
-        &mut self,
-        counts: &mut Counts,
-        t: f64,
-        y: &mut [f64],
-        f0: &[f64],
-    ) -> Result<(), EvalError> {
-        counts.jacobian_evals += 1;
-        self.jacobian.evaluate(self.model, t, y, f0, &mut counts.evals)?;
+    fn evaluate(&mut self, t: f64, y: &mut [f64], f0: &[f64]) -> Result<(), EvalError> {
+        self.counts.jacobian_evals += 1;
+        self.jacobian.evaluate(self.model, t, y, f0, &mut self.counts.evals)?;
         if M::JACOBIAN.has_time_derivative() {
             self.model.time_derivative(t, y, &mut self.dfdt)?;
             if self.dfdt.iter().all(|v| v.is_finite()) {
@@ -285,7 +250,7 @@ impl<M: Model> Derivatives<'_, M> {
             }
         }
         let delta = (f64::EPSILON * t.abs().max(1e-5)).sqrt();
-        counts.evals += 1;
+        self.counts.evals += 1;
         self.model.rhs(t + delta, y, &mut self.shifted)?;
         for ((d, s), f) in self.dfdt.iter_mut().zip(&self.shifted).zip(f0) {
             *d = (s - f) / delta;
@@ -294,212 +259,162 @@ impl<M: Model> Derivatives<'_, M> {
     }
 }
 
-/// Integrates `model` from `t0` to `t1` with RODAS5P, stopping early with
-/// [`Finish::NonStiffAt`] where `watch` finds the problem no longer stiff
-/// (h·ρ(J), ρ by the power iteration on each new Jacobian).
-pub(crate) fn integrate_watching<M: Model>(
-    problem: Problem<'_, M>,
-    watch: Option<NonStiffWatch>,
-    mut solution: Solution,
-) -> Result<(Solution, Finish), Error> {
-    // One function, as rodas.f's step loop is: the stages, the error test
-    // and the step control share the factored matrix, the increments and h.
-    let Problem { model, t0, t1, y0: start, options } = problem;
-    let n = M::STATES;
-    let (rtol, atol) = (options.rtol, options.atol);
-    // The error test's states (the model's own, where sensitivities are
-    // left out of it).
-    let n_error = crate::methods::error_states::<M>(options);
-    let direction = if t1 >= t0 { 1.0 } else { -1.0 };
-    let hmax = options.max_step.unwrap_or((t1 - t0).abs()).min((t1 - t0).abs());
+/// RODAS5P's work on one run: the derivatives, the linear systems, the
+/// increments of a step and its dense output.
+struct Rodas<'m, M> {
+    d: Derivatives<'m, M>,
+    mass: Mass,
+    /// The Jacobian's pattern (empty for a mass-matrix model).
+    pattern: &'static [(usize, usize)],
+    newton: Newton,
+    /// The transformed stages u_1 … u_8.
+    u: Vec<Vec<f64>>,
+    /// f at the step's start.
+    f0: Vec<f64>,
+    /// A stage's argument (the last stage's, after a step).
+    arg: Vec<f64>,
+    coupling: Vec<f64>,
+    applied: Vec<f64>,
+    /// The dense output's coefficients `[y_old, y_new, d₁, d₂, d₃]`.
+    cont: Vec<f64>,
+    /// GMRES solves that fell short in a row.
+    unsolved_in_a_row: usize,
+}
 
-    // A mass matrix: its diagonal, or the dense matrix (`mass_matrix`).
-    let mass: Vec<f64> =
-        if M::MASS.diagonal().len() == n { M::MASS.diagonal().to_vec() } else { vec![1.0; n] };
-    let mass_matrix = if M::MASS.pattern().is_empty() {
-        Vec::new()
-    } else {
-        crate::model::dense_mass_matrix(model)
-    };
-    let pattern = if has_mass_matrix::<M>() { &[] } else { M::JACOBIAN.pattern() };
-    let mut newton = linear_systems::<M>(pattern, options.linear_solver);
-    let mut d = Derivatives {
-        model,
-        jacobian: DenseJacobian::with_matrix::<M>(newton.dense_jacobian()),
-        dfdt: vec![0.0; n],
-        shifted: vec![0.0; n],
-    };
-    let mut counts = Counts { linear_solver: newton.label(), ..Counts::default() };
-    let mut unsolved_in_a_row = 0;
-    let mut u: Vec<Vec<f64>> = vec![vec![0.0; n]; STAGES];
-    let (mut y, mut f0) = (start.to_vec(), vec![0.0; n]);
-    let (mut arg, mut coupling, mut applied) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let mut cont = vec![0.0; 5 * n];
-    let mut events = EventWatch::new(model, t0, start, 1);
-    let mut projector = Projector::new(model);
-    let keep_dense = options.dense_output || events.is_some();
-    if keep_dense {
-        solution.set_interpolant(5, interpolate);
-    }
-    if t0 == t1 {
-        return Ok((solution, Finish::Done));
-    }
-    let fail = |mut solution: Solution, counts: &Counts, t: f64, cause: EvalError| {
-        counts.record(&mut solution);
-        Err(Error::Evaluation { t, cause, partial: Box::new(solution) })
-    };
-    if let Err(cause) = d.rhs(&mut counts, t0, &y, &mut f0) {
-        return fail(solution, &counts, t0, cause);
-    }
-
-    let mut t = t0;
-    let mut h = options.initial_step.unwrap_or(1e-6).abs().min(hmax) * direction;
-    let mut last = false;
-    if (t + h * 1.0001 - t1) * direction >= 0.0 {
-        h = t1 - t;
-        last = true;
-    }
-    let (mut h_acc, mut err_acc) = (h, 1e-2);
-    let (mut reject, mut fresh_jacobian, mut singular) = (false, true, 0usize);
-    // ρ(J) at the last Jacobian, and the steps in a row with h·ρ below the watch's bound.
-    let (mut rho, mut calm) = (f64::INFINITY, 0usize);
-
-    loop {
-        if fresh_jacobian {
-            if let Err(cause) = d.evaluate(&mut counts, t, &mut y, &f0) {
-                return fail(solution, &counts, t, cause);
-            }
-            if watch.is_some() {
-                rho = d.jacobian.spectral_radius::<M>();
-            }
-            fresh_jacobian = false;
-        }
-        if counts.accepted + counts.rejected >= options.max_steps {
-            counts.record(&mut solution);
-            let max_steps = options.max_steps;
-            return Err(Error::MaxSteps { t, max_steps, partial: Box::new(solution) });
-        }
-        if 0.1 * h.abs() <= t.abs().max(1e-300) * f64::EPSILON || h.abs() < options.min_step {
-            counts.record(&mut solution);
-            return Err(Error::StepSizeUnderflow { t, h, partial: Box::new(solution) });
-        }
-        let shift = 1.0 / (h * GAMMA);
-        let factor_mass =
-            if mass_matrix.is_empty() { M::MASS.diagonal() } else { &mass_matrix[..] };
-        let mut factored = newton.factor(
-            shift,
-            (0.0, 0.0),
-            factor_mass,
-            &d.jacobian.matrix,
-            d.jacobian.values(),
+impl<'m, M: Model> Rodas<'m, M> {
+    fn new(model: &'m M, choice: LinearSolver) -> Rodas<'m, M> {
+        let n = M::STATES;
+        let pattern = if has_mass_matrix::<M>() { &[] } else { M::JACOBIAN.pattern() };
+        let newton = linear_systems::<M>(pattern, choice);
+        let d = Derivatives {
+            model,
+            jacobian: DenseJacobian::with_matrix::<M>(newton.dense_jacobian()),
+            dfdt: vec![0.0; n],
+            shifted: vec![0.0; n],
+            counts: Counts { linear_solver: newton.label(), ..Counts::default() },
+        };
+        Rodas {
+            d,
+            mass: Mass::of(model),
             pattern,
-        );
-        if factored == Factored::NeedsDenseJacobian {
-            d.jacobian = DenseJacobian::new::<M>();
-            if let Err(cause) = d.evaluate(&mut counts, t, &mut y, &f0) {
-                return fail(solution, &counts, t, cause);
-            }
-            factored = newton.factor(
-                shift,
-                (0.0, 0.0),
-                factor_mass,
-                &d.jacobian.matrix,
-                d.jacobian.values(),
-                pattern,
-            );
-            let after_gmres = counts.linear_solver.starts_with("GMRES");
-            counts.linear_solver = if after_gmres { newton.after_gmres() } else { newton.label() };
+            newton,
+            u: vec![vec![0.0; n]; STAGES],
+            f0: vec![0.0; n],
+            arg: vec![0.0; n],
+            coupling: vec![0.0; n],
+            applied: vec![0.0; n],
+            cont: vec![0.0; 5 * n],
+            unsolved_in_a_row: 0,
         }
-        if factored != Factored::Yes {
-            singular += 1;
-            if singular >= 5 {
-                counts.record(&mut solution);
-                return Err(Error::SingularMatrix { t, h, partial: Box::new(solution) });
-            }
-            (h, reject, last) = (h * 0.5, true, false);
-            continue;
-        }
+    }
 
-        newton.set_error_weights(&y, rtol, atol);
-        let mut unsolved = false;
-        // The stages: u_i = (M/(hγ) − J)⁻¹ (f(t + c_i h, arg_i) + h γ_i ∂f/∂t
-        // + M Σ_j (C_ij/h) u_j).
+    /// Factors `M/(hγ) − J`, evaluating the dense Jacobian where the
+    /// structure asks for it: `false` where the matrix is singular.
+    fn factor(&mut self, t: f64, y: &mut [f64], h: f64) -> Result<bool, EvalError> {
+        let shift = 1.0 / (h * GAMMA);
+        let mass = self.mass.for_factorisation::<M>();
+        let jacobian = &self.d.jacobian;
+        let (matrix, values) = (&jacobian.matrix, jacobian.values());
+        let mut factored =
+            self.newton.factor(shift, (0.0, 0.0), mass, matrix, values, self.pattern);
+        if factored == Factored::NeedsDenseJacobian {
+            self.d.jacobian = DenseJacobian::new::<M>();
+            self.d.evaluate(t, y, &self.f0)?;
+            let jacobian = &self.d.jacobian;
+            let (matrix, values) = (&jacobian.matrix, jacobian.values());
+            factored = self.newton.factor(shift, (0.0, 0.0), mass, matrix, values, self.pattern);
+            let counts = &mut self.d.counts;
+            let after_gmres = counts.linear_solver.starts_with("GMRES");
+            counts.linear_solver =
+                if after_gmres { self.newton.after_gmres() } else { self.newton.label() };
+        }
+        Ok(factored == Factored::Yes)
+    }
+
+    /// The stages of a step of `h` from `(t, y)`: u_i = (M/(hγ) − J)⁻¹
+    /// (f(t + c_i h, arg_i) + h γ_i ∂f/∂t + M Σ_j (C_ij/h) u_j). `false`
+    /// where GMRES fell short of a solve.
+    fn stages(&mut self, t: f64, h: f64, y: &[f64]) -> Result<bool, (f64, EvalError)> {
+        // Slices of the model's constant length: with the vectors' lengths
+        // unknown here, every copy and sum became a call or a loop, and
+        // RODAS5P took 17 % more instructions a step on Lorenz (3 states).
+        let n = M::STATES;
+        let Rodas { d, mass, newton, u, f0, arg, coupling, applied, .. } = self;
+        let (arg, coupling, applied) = (&mut arg[..n], &mut coupling[..n], &mut applied[..n]);
+        let (y, f0, diagonal, dense) = (&y[..n], &f0[..n], &mass.diagonal[..n], &mass.dense[..]);
         for i in 0..STAGES {
             let (done, rest) = u.split_at_mut(i);
-            let ui = &mut rest[0];
+            let ui = &mut rest[0][..n];
             if i == 0 {
-                arg.copy_from_slice(&y);
-                ui.copy_from_slice(&f0);
+                arg.copy_from_slice(y);
+                ui.copy_from_slice(f0);
             } else {
                 if i <= 5 {
-                    arg.copy_from_slice(&y);
+                    arg.copy_from_slice(y);
                     for (uj, &a) in done.iter().zip(&A[i - 1]) {
-                        arg.iter_mut().zip(uj).for_each(|(x, v)| *x += a * v);
+                        arg.iter_mut().zip(&uj[..n]).for_each(|(x, v)| *x += a * v);
                     }
                 } else {
-                    arg.iter_mut().zip(&done[i - 1]).for_each(|(x, v)| *x += v);
+                    arg.iter_mut().zip(&done[i - 1][..n]).for_each(|(x, v)| *x += v);
                 }
                 let ti = t + STAGE_TIME[i] * h;
-                if let Err(cause) = d.rhs(&mut counts, ti, &arg, ui) {
-                    return fail(solution, &counts, ti, cause);
-                }
+                d.rhs(ti, arg, ui).map_err(|cause| (ti, cause))?;
                 coupling.fill(0.0);
                 for (uj, &c) in done.iter().zip(&C[i - 1]) {
                     let c_over_h = c / h;
-                    coupling.iter_mut().zip(uj).for_each(|(x, v)| *x += c_over_h * v);
+                    coupling.iter_mut().zip(&uj[..n]).for_each(|(x, v)| *x += c_over_h * v);
                 }
-                if mass_matrix.is_empty() {
-                    for ((f, c), m) in ui.iter_mut().zip(&coupling).zip(&mass) {
+                if dense.is_empty() {
+                    for ((f, c), m) in ui.iter_mut().zip(&*coupling).zip(diagonal) {
                         *f += m * c;
                     }
                 } else {
-                    apply_mass(&mass_matrix, &coupling, &mut applied);
-                    ui.iter_mut().zip(&applied).for_each(|(f, c)| *f += c);
+                    apply_mass(dense, coupling, applied);
+                    ui.iter_mut().zip(&*applied).for_each(|(f, c)| *f += c);
                 }
             }
             if TIME_WEIGHT[i] != 0.0 {
                 let w = h * TIME_WEIGHT[i];
-                ui.iter_mut().zip(&d.dfdt).for_each(|(f, g)| *f += w * g);
+                ui.iter_mut().zip(&d.dfdt[..n]).for_each(|(f, g)| *f += w * g);
             }
             if !newton.solve_real(ui) {
-                unsolved = true;
-                break;
+                return Ok(false);
             }
         }
-        counts.linear_iterations = counts.linear_iterations.max(newton.linear_iterations());
-        if unsolved {
-            // GMRES fell short: a shorter step brings the matrix nearer
-            // its diagonal, where the preconditioner is better; where that
-            // does not help, the rest of the run factors the matrix.
-            unsolved_in_a_row += 1;
-            if unsolved_in_a_row >= KRYLOV_RETRIES {
-                newton = Newton::for_pattern(n, pattern, Shifts::Real).0;
-                counts.linear_solver = newton.after_gmres();
-                unsolved_in_a_row = 0;
-                if newton.dense_jacobian() {
-                    // GMRES kept the Jacobian's values alone.
-                    d.jacobian = DenseJacobian::new::<M>();
-                    if let Err(cause) = d.evaluate(&mut counts, t, &mut y, &f0) {
-                        return fail(solution, &counts, t, cause);
-                    }
-                }
-            } else {
-                h *= 0.5;
-            }
-            (reject, last) = (true, false);
-            counts.rejected += usize::from(counts.accepted > 0);
-            continue;
+        Ok(true)
+    }
+
+    /// After GMRES fell short: `true` where it has done so often enough in
+    /// a row that the rest of the run factors the matrix instead (a
+    /// shorter step brings the matrix nearer its diagonal, where the
+    /// preconditioner is better; the caller halves it otherwise).
+    fn after_unsolved(&mut self, t: f64, y: &mut [f64]) -> Result<bool, EvalError> {
+        self.unsolved_in_a_row += 1;
+        if self.unsolved_in_a_row < KRYLOV_RETRIES {
+            return Ok(false);
         }
-        unsolved_in_a_row = 0;
-        // arg is stage 8's; the solution adds its increment, the error
-        // estimate. A step that overflows (an exponential taken too far by
-        // the linearisation) is retried shorter, as one that fails the test.
-        let estimate = &u[STAGES - 1];
+        self.newton = Newton::for_pattern(M::STATES, self.pattern, Shifts::Real).0;
+        self.d.counts.linear_solver = self.newton.after_gmres();
+        self.unsolved_in_a_row = 0;
+        if self.newton.dense_jacobian() {
+            // GMRES kept the Jacobian's values alone.
+            self.d.jacobian = DenseJacobian::new::<M>();
+            self.d.evaluate(t, y, &self.f0)?;
+        }
+        Ok(true)
+    }
+
+    /// The scaled error of the step from `y` (stage 8's increment, over
+    /// the first `n_error` states), or `None` where the new solution
+    /// overflows (an exponential taken too far by the linearisation).
+    fn error(&self, y: &[f64], (rtol, atol): (f64, f64), n_error: usize) -> Option<f64> {
+        let n = M::STATES;
+        let estimate = &self.u[STAGES - 1][..n];
         let mut overflow = false;
         let err = (estimate
             .iter()
-            .zip(&arg)
-            .zip(&y)
+            .zip(&self.arg[..n])
+            .zip(&y[..n])
             .enumerate()
             .map(|(i, ((e, new), old))| {
                 overflow |= !(new + e).is_finite();
@@ -514,84 +429,162 @@ pub(crate) fn integrate_watching<M: Model>(
             / n_error as f64)
             .sqrt()
             .max(1e-10);
-        if overflow || !err.is_finite() {
-            (h, reject, last) = (h * 0.5, true, false);
-            counts.rejected += usize::from(counts.accepted > 0);
-            continue;
+        (!overflow && err.is_finite()).then_some(err)
+    }
+
+    /// Takes the step: `y` becomes stage 8's argument plus its increment,
+    /// and, where the run keeps it, the dense output its coefficients.
+    fn advance(&mut self, y: &mut [f64], keep_dense: bool) {
+        // Slices of the model's constant length, as in `stages`.
+        let n = M::STATES;
+        let (y, u, arg, cont) = (&mut y[..n], &self.u[..], &self.arg[..n], &mut self.cont[..5 * n]);
+        if keep_dense {
+            cont[..n].copy_from_slice(y);
         }
-        let mut quot = (err.powf(ERROR_EXPONENT) / SAFE).clamp(1.0 / MAX_GROWTH, MAX_SHRINK);
-        if err <= 1.0 {
-            counts.accepted += 1;
-            singular = 0;
-            if counts.accepted > 1 {
-                // Gustafsson's predictive controller.
-                let predicted = ((h_acc / h) * (err * err / err_acc).powf(ERROR_EXPONENT) / SAFE)
-                    .clamp(1.0 / MAX_GROWTH, MAX_SHRINK);
-                quot = quot.max(predicted);
-            }
-            (h_acc, err_acc) = (h, err.max(1e-2));
-            if keep_dense {
-                cont[..n].copy_from_slice(&y);
-            }
-            for ((yi, a), e) in y.iter_mut().zip(&arg).zip(&u[STAGES - 1]) {
-                *yi = a + e;
-            }
-            if keep_dense {
-                cont[n..2 * n].copy_from_slice(&y);
-                for (r, weights) in DENSE.iter().enumerate() {
-                    let out = &mut cont[(2 + r) * n..(3 + r) * n];
-                    out.fill(0.0);
-                    for (uj, &wj) in u.iter().zip(weights) {
-                        out.iter_mut().zip(uj).for_each(|(o, v)| *o += wj * v);
-                    }
+        for ((yi, a), e) in y.iter_mut().zip(arg).zip(&u[STAGES - 1][..n]) {
+            *yi = a + e;
+        }
+        if keep_dense {
+            cont[n..2 * n].copy_from_slice(y);
+            for (r, weights) in DENSE.iter().enumerate() {
+                let out = &mut cont[(2 + r) * n..(3 + r) * n];
+                out.fill(0.0);
+                for (uj, &wj) in u.iter().zip(weights) {
+                    out.iter_mut().zip(&uj[..n]).for_each(|(o, v)| *o += wj * v);
                 }
             }
-            t = if last { t1 } else { t + h };
-            if let Some(i) = y.iter().position(|v| !v.is_finite()) {
-                counts.record(&mut solution);
-                let variable = M::INFO.states[i];
-                return Err(Error::NonFinite { t, variable, partial: Box::new(solution) });
-            }
-            project_onto_constraints!(projector, t, &mut y, solution);
-            if keep_dense {
-                solution.push_dense(t, &y, &cont);
-            } else {
-                solution.push(t, &y);
-            }
-            after_accepted_step!(events, solution);
-            if last {
-                break;
-            }
-            if let Err(cause) = d.rhs(&mut counts, t, &y, &mut f0) {
-                return fail(solution, &counts, t, cause);
-            }
-            let mut h_new = direction * (h / quot).abs().min(hmax);
-            if reject {
-                h_new = direction * h_new.abs().min(h.abs());
-            }
-            reject = false;
-            if let Some(watch) = watch {
-                calm = if h.abs() * rho < watch.below { calm + 1 } else { 0 };
-                if calm >= watch.confirmations {
-                    counts.record(&mut solution);
-                    return Ok((solution, Finish::NonStiffAt { t, h: h_new }));
-                }
-            }
-            h = h_new;
-            // A remainder within rounding of t1 joins this step.
-            if (t + h * 1.0001 - t1) * direction >= 0.0 {
-                h = t1 - t;
-                last = true;
-            }
-            fresh_jacobian = true;
-        } else {
-            // Rejected: the same Jacobian, a smaller step.
-            counts.rejected += usize::from(counts.accepted > 0);
-            (h, reject, last) = (h / quot, true, false);
         }
     }
-    counts.record(&mut solution);
-    Ok((solution, Finish::Done))
+}
+
+/// Integrates `model` from `t0` to `t1` with RODAS5P, stopping early with
+/// [`Finish::NonStiffAt`] where `watch` finds the problem no longer stiff
+/// (h·ρ(J), ρ by the power iteration on each new Jacobian).
+pub(crate) fn integrate_watching<M: Model>(
+    problem: Problem<'_, M>,
+    watch: Option<NonStiffWatch>,
+    solution: Solution,
+) -> Result<(Solution, Finish), Error> {
+    let dense = DenseOutput { width: 5, interpolate };
+    let mut run = Driver::new(&problem, solution, Some(dense), 1).watching(watch);
+    let Problem { model, t0, y0: start, options, .. } = problem;
+    let tolerances = (options.rtol, options.atol);
+    // The error test's states (the model's own, where sensitivities are
+    // left out of it).
+    let n_error = crate::methods::error_states::<M>(options);
+    let mut r = Rodas::new(model, options.linear_solver);
+    let mut y = start.to_vec();
+    if t0 == run.t1 {
+        return Ok((run.finish(&r.d.counts), Finish::Done));
+    }
+    if let Err(cause) = r.d.rhs(t0, &y, &mut r.f0) {
+        return Err(run.evaluation_failed(t0, cause, &r.d.counts));
+    }
+
+    let mut t = t0;
+    let mut h = options.initial_step.unwrap_or(1e-6).abs().min(run.hmax) * run.direction;
+    let mut last = false;
+    if run.reaches_end(t, h * 1.0001) {
+        h = run.t1 - t;
+        last = true;
+    }
+    let bounds = (1.0 / MAX_GROWTH, MAX_SHRINK);
+    let mut control = Predictive::new(ERROR_EXPONENT, SAFE, bounds, h);
+    let (mut reject, mut fresh_jacobian, mut singular) = (false, true, 0usize);
+    // ρ(J) at the last Jacobian.
+    let mut rho = f64::INFINITY;
+    loop {
+        if fresh_jacobian {
+            if let Err(cause) = r.d.evaluate(t, &mut y, &r.f0) {
+                return Err(run.evaluation_failed(t, cause, &r.d.counts));
+            }
+            if watch.is_some() {
+                rho = r.d.jacobian.spectral_radius::<M>();
+            }
+            fresh_jacobian = false;
+        }
+        run.check_steps(t, &r.d.counts)?;
+        if run.step_too_small(t, h) {
+            return Err(run.fail(&r.d.counts, |partial| Error::StepSizeUnderflow {
+                t,
+                h,
+                partial,
+            }));
+        }
+        match r.factor(t, &mut y, h) {
+            Err(cause) => return Err(run.evaluation_failed(t, cause, &r.d.counts)),
+            Ok(true) => {}
+            Ok(false) => {
+                singular += 1;
+                if singular >= 5 {
+                    let counts = &r.d.counts;
+                    return Err(run.fail(counts, |partial| Error::SingularMatrix {
+                        t,
+                        h,
+                        partial,
+                    }));
+                }
+                (h, reject, last) = (h * 0.5, true, false);
+                continue;
+            }
+        }
+        r.newton.set_error_weights(&y, tolerances.0, tolerances.1);
+        let solved = r.stages(t, h, &y);
+        r.d.counts.linear_iterations =
+            r.d.counts.linear_iterations.max(r.newton.linear_iterations());
+        match solved {
+            Err((ti, cause)) => return Err(run.evaluation_failed(ti, cause, &r.d.counts)),
+            Ok(true) => r.unsolved_in_a_row = 0,
+            Ok(false) => {
+                match r.after_unsolved(t, &mut y) {
+                    Err(cause) => return Err(run.evaluation_failed(t, cause, &r.d.counts)),
+                    Ok(true) => {}
+                    Ok(false) => h *= 0.5,
+                }
+                (reject, last) = (true, false);
+                run.rejected += usize::from(run.accepted > 0);
+                continue;
+            }
+        }
+        // A step that overflows is retried shorter, as one that fails the test.
+        let Some(err) = r.error(&y, tolerances, n_error) else {
+            (h, reject, last) = (h * 0.5, true, false);
+            run.rejected += usize::from(run.accepted > 0);
+            continue;
+        };
+        let quot = (err.powf(ERROR_EXPONENT) / SAFE).clamp(1.0 / MAX_GROWTH, MAX_SHRINK);
+        if err > 1.0 {
+            // Rejected: the same Jacobian, a smaller step.
+            run.rejected += usize::from(run.accepted > 0);
+            (h, reject, last) = (h / quot, true, false);
+            continue;
+        }
+        singular = 0;
+        let quot = control.accepted(h, err, quot, run.accepted > 0);
+        r.advance(&mut y, run.keep_dense());
+        t = if last { run.t1 } else { t + h };
+        run.check_finite(t, &y, &r.d.counts)?;
+        run.project(t, &mut y, &r.d.counts)?;
+        if run.record(t, &y, &r.cont, &r.d.counts)? || last {
+            break;
+        }
+        if let Err(cause) = r.d.rhs(t, &y, &mut r.f0) {
+            return Err(run.evaluation_failed(t, cause, &r.d.counts));
+        }
+        let h_new = run.next_step(h / quot, h, reject);
+        reject = false;
+        if run.calm(h.abs() * rho) {
+            return Ok((run.finish(&r.d.counts), Finish::NonStiffAt { t, h: h_new }));
+        }
+        h = h_new;
+        // A remainder within rounding of t1 joins this step.
+        if run.reaches_end(t, h * 1.0001) {
+            h = run.t1 - t;
+            last = true;
+        }
+        fresh_jacobian = true;
+    }
+    Ok((run.finish(&r.d.counts), Finish::Done))
 }
 
 #[cfg(test)]

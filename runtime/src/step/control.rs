@@ -1,7 +1,7 @@
-//! Step-size control shared by the embedded Runge–Kutta pairs: Hairer's
-//! weighted RMS error norm, the PI controller of DOPRI5/DOP853 and the
-//! initial step selection (Hairer, Nørsett, Wanner, *Solving ODEs I*, §II.4,
-//! and the codes `dopri5.f`, `dop853.f`).
+//! Step-size control: Hairer's weighted RMS error norm, the PI controller
+//! of DOPRI5/DOP853 and their initial step selection (Hairer, Nørsett,
+//! Wanner, *Solving ODEs I*, §II.4, and the codes `dopri5.f`, `dop853.f`),
+//! and the predictive controller of RADAU5 and RODAS5P.
 
 /// Controller constants of one method.
 #[derive(Clone, Copy, Debug)]
@@ -154,6 +154,48 @@ pub fn initial_step(
         step = step.min((100.0 * h).min(h1).min(hmax));
     }
     step
+}
+
+/// Gustafsson's predictive step control, as RADAU5 and RODAS have it
+/// (Hairer & Wanner II, §IV.8, (8.21); `radau5.f`, `rodas.f`): from the
+/// second accepted step on, h/h_new is at least the quotient predicted
+/// from the last two accepted steps and their errors, which holds the step
+/// back where the error grows.
+#[derive(Clone, Copy)]
+pub(crate) struct Predictive {
+    /// The error's exponent 1/(q+1).
+    exponent: f64,
+    /// The safety factor.
+    safety: f64,
+    /// h/h_new's bounds.
+    bounds: (f64, f64),
+    /// The last accepted step, and its error (at least 1e-2).
+    h_accepted: f64,
+    err_accepted: f64,
+}
+
+impl Predictive {
+    /// The controller of a method with these constants, from the first
+    /// step `h`.
+    pub(crate) fn new(exponent: f64, safety: f64, bounds: (f64, f64), h: f64) -> Predictive {
+        Predictive { exponent, safety, bounds, h_accepted: h, err_accepted: 1e-2 }
+    }
+
+    /// h/h_new after the accepted step `h` with error `err`, from the
+    /// classical quotient `quot`; `predict` from the second accepted step.
+    #[inline]
+    pub(crate) fn accepted(&mut self, h: f64, err: f64, quot: f64, predict: bool) -> f64 {
+        let mut quot = quot;
+        if predict {
+            let growth = (err * err / self.err_accepted).powf(self.exponent);
+            let predicted =
+                ((self.h_accepted / h) * growth / self.safety).clamp(self.bounds.0, self.bounds.1);
+            quot = quot.max(predicted);
+        }
+        self.h_accepted = h;
+        self.err_accepted = err.max(1e-2);
+        quot
+    }
 }
 
 #[cfg(test)]

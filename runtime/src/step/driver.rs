@@ -170,7 +170,12 @@ impl<'m, M: Model> Driver<'m, M> {
     /// Projects the accepted step's `y` at `t` onto the constraints (models
     /// without any skip this): `true` when the state moved.
     #[inline(always)]
-    pub(crate) fn project(&mut self, t: f64, y: &mut [f64], counts: &Counts) -> Result<bool, Error> {
+    pub(crate) fn project(
+        &mut self,
+        t: f64,
+        y: &mut [f64],
+        counts: &Counts,
+    ) -> Result<bool, Error> {
         let Some(projector) = self.projector.as_mut() else { return Ok(false) };
         match projector.project(t, y, STEP_ITERATIONS, None) {
             Ok(residuals) => {
