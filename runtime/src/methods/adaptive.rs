@@ -532,7 +532,7 @@ mod tests {
     use crate::methods::dop853::Dop853;
     use crate::methods::dopri5::Dopri5;
 
-    // Written out like the GGL pendulum of radau5.rs's tests: unit tests
+    // Written out like the GGL pendulum of radau5's tests: unit tests
     // of the runtime cannot use the macro.
     /// Kepler problem with e = 0.5 written by hand (the runtime cannot use
     /// the macro): q'' = -q/|q|³.
