@@ -29,10 +29,8 @@ use crate::linalg::dense_lu::RealLu;
 use crate::methods::Problem;
 use crate::model::Model;
 use crate::solution::Solution;
-use crate::step::events::{after_accepted_step, EventWatch};
+use crate::step::driver::{Counts, Driver};
 use crate::step::jacobian::DenseJacobian;
-use crate::step::projection::{project_onto_constraints, Projector};
-use crate::step::return_if_not_finite;
 
 /// Iterations with one Newton matrix before it is refreshed.
 const ITERATIONS_PER_MATRIX: usize = 10;
@@ -123,6 +121,11 @@ impl Newton {
             evals: 0,
             jacobian_evals: 0,
         }
+    }
+
+    /// The evaluations so far, for the run's statistics.
+    fn counts(&self) -> Counts {
+        Counts { evals: self.evals, jacobian_evals: self.jacobian_evals, ..Counts::default() }
     }
 
     /// Evaluates the residual `(Y − y)/h − f(t₁, Y)` at `Y = self.trial`
@@ -304,34 +307,9 @@ impl Newton {
                 // merit that is no root (near a fold, the one root may lie
                 // far beyond). Plain Newton from here: full steps, a new
                 // matrix at every iterate.
-                effort.iterations += 1;
-                let target = self.target(big_y);
-                if let Some(before) = plain_previous {
-                    let theta = size / before;
-                    if size <= target || (theta < 1.0 && theta / (1.0 - theta) * size <= target) {
-                        for (v, d) in big_y.iter_mut().zip(&self.delta) {
-                            *v += d;
-                        }
-                        return Ok(());
-                    }
+                if self.plain_step(model, (t1, y), big_y, size, &mut plain_previous, effort)? {
+                    return Ok(());
                 }
-                plain_previous = Some(size);
-                let mut damping = 1.0;
-                loop {
-                    for i in 0..self.n {
-                        self.trial[i] = big_y[i] + damping * self.delta[i];
-                    }
-                    if self.trial_residual(model, t1, y).is_ok() {
-                        break;
-                    }
-                    damping *= 0.5;
-                    if damping < MIN_DAMPING {
-                        return Err(Trouble::NoConvergence);
-                    }
-                }
-                effort.undamped += 1;
-                big_y.copy_from_slice(&self.trial);
-                std::mem::swap(&mut self.residual, &mut self.trial_residual);
                 continue 'matrices;
             }
             for _ in 0..ITERATIONS_PER_MATRIX {
@@ -339,53 +317,12 @@ impl Newton {
                 if !size.is_finite() {
                     continue 'matrices;
                 }
-                // The largest λ ∈ {1, 1/2, …} that passes the natural
-                // monotonicity test, or decreases the scaled residual.
-                let mut damping = 1.0;
-                let next_size = loop {
-                    for i in 0..self.n {
-                        self.trial[i] = big_y[i] + damping * self.delta[i];
-                    }
-                    let evaluated = self.trial_residual(model, t1, y).is_ok();
-                    let next = correction(
-                        &self.lu,
-                        &self.weights,
-                        &self.trial_residual,
-                        &mut self.next_delta,
-                    );
-                    let trial_norm = norm(&self.trial_residual, &self.weights);
-                    if evaluated
-                        && (next <= (1.0 - damping / 4.0) * size
-                            || next <= self.target(&self.trial)
-                            || trial_norm <= (1.0 - 1e-4 * damping) * residual_norm)
-                    {
-                        residual_norm = trial_norm;
-                        break next;
-                    }
-                    damping *= 0.5;
-                    if damping >= MIN_DAMPING {
-                        continue;
-                    }
-                    if !formed_here {
-                        // No descent along this direction: a new matrix here.
-                        continue 'matrices;
-                    }
-                    // Not even with a matrix formed here: across the fold of
-                    // a slow manifold the root lies beyond where either test
-                    // can see. Take the full Newton step (plain Newton, as
-                    // near a root) and form the matrix anew there.
-                    for i in 0..self.n {
-                        self.trial[i] = big_y[i] + self.delta[i];
-                    }
-                    if self.trial_residual(model, t1, y).is_err() {
-                        return Err(Trouble::NoConvergence);
-                    }
-                    effort.undamped += 1;
-                    big_y.copy_from_slice(&self.trial);
-                    std::mem::swap(&mut self.residual, &mut self.trial_residual);
-                    residual_norm = norm(&self.residual, &self.weights);
-                    continue 'matrices;
-                };
+                let search = (size, formed_here, &mut residual_norm);
+                let (damping, next_size) =
+                    match self.line_search(model, (t1, y), big_y, search, effort)? {
+                        Search::Accepted { damping, next_size } => (damping, next_size),
+                        Search::NewMatrix => continue 'matrices,
+                    };
                 effort.smallest_damping = effort.smallest_damping.min(damping);
                 formed_here = false;
                 big_y.copy_from_slice(&self.trial);
@@ -414,6 +351,114 @@ impl Newton {
             }
         }
     }
+
+    /// One step of plain Newton (full steps, a new matrix at every
+    /// iterate), damped only where the residual cannot be evaluated:
+    /// `true` when the last correction `size` shows convergence (and
+    /// `big_y` has taken it); `previous` is the correction before.
+    fn plain_step<M: Model>(
+        &mut self,
+        model: &M,
+        (t1, y): (f64, &[f64]),
+        big_y: &mut [f64],
+        size: f64,
+        previous: &mut Option<f64>,
+        effort: &mut Effort,
+    ) -> Result<bool, Trouble> {
+        effort.iterations += 1;
+        let target = self.target(big_y);
+        if let Some(before) = *previous {
+            let theta = size / before;
+            if size <= target || (theta < 1.0 && theta / (1.0 - theta) * size <= target) {
+                for (v, d) in big_y.iter_mut().zip(&self.delta) {
+                    *v += d;
+                }
+                return Ok(true);
+            }
+        }
+        *previous = Some(size);
+        let mut damping = 1.0;
+        loop {
+            for i in 0..self.n {
+                self.trial[i] = big_y[i] + damping * self.delta[i];
+            }
+            if self.trial_residual(model, t1, y).is_ok() {
+                break;
+            }
+            damping *= 0.5;
+            if damping < MIN_DAMPING {
+                return Err(Trouble::NoConvergence);
+            }
+        }
+        effort.undamped += 1;
+        big_y.copy_from_slice(&self.trial);
+        std::mem::swap(&mut self.residual, &mut self.trial_residual);
+        Ok(false)
+    }
+
+    /// The largest λ ∈ {1, 1/2, …} along the correction that passes the
+    /// natural monotonicity test, or decreases the scaled residual (whose
+    /// norm `residual_norm` it updates), from a correction of `size`.
+    /// Where none does, a new matrix: at once where the matrix was not
+    /// `formed_here`, else after the full step.
+    fn line_search<M: Model>(
+        &mut self,
+        model: &M,
+        (t1, y): (f64, &[f64]),
+        big_y: &mut [f64],
+        (size, formed_here, residual_norm): (f64, bool, &mut f64),
+        effort: &mut Effort,
+    ) -> Result<Search, Trouble> {
+        let mut damping = 1.0;
+        loop {
+            for i in 0..self.n {
+                self.trial[i] = big_y[i] + damping * self.delta[i];
+            }
+            let evaluated = self.trial_residual(model, t1, y).is_ok();
+            let next =
+                correction(&self.lu, &self.weights, &self.trial_residual, &mut self.next_delta);
+            let trial_norm = norm(&self.trial_residual, &self.weights);
+            if evaluated
+                && (next <= (1.0 - damping / 4.0) * size
+                    || next <= self.target(&self.trial)
+                    || trial_norm <= (1.0 - 1e-4 * damping) * *residual_norm)
+            {
+                *residual_norm = trial_norm;
+                return Ok(Search::Accepted { damping, next_size: next });
+            }
+            damping *= 0.5;
+            if damping >= MIN_DAMPING {
+                continue;
+            }
+            if !formed_here {
+                // No descent along this direction: a new matrix here.
+                return Ok(Search::NewMatrix);
+            }
+            // Not even with a matrix formed here: across the fold of a slow
+            // manifold the root lies beyond where either test can see. Take
+            // the full Newton step (plain Newton, as near a root) and form
+            // the matrix anew there.
+            for i in 0..self.n {
+                self.trial[i] = big_y[i] + self.delta[i];
+            }
+            if self.trial_residual(model, t1, y).is_err() {
+                return Err(Trouble::NoConvergence);
+            }
+            effort.undamped += 1;
+            big_y.copy_from_slice(&self.trial);
+            std::mem::swap(&mut self.residual, &mut self.trial_residual);
+            *residual_norm = norm(&self.residual, &self.weights);
+            return Ok(Search::NewMatrix);
+        }
+    }
+}
+
+/// What a line search found.
+enum Search {
+    /// The step damped by `damping`, whose next correction is `next_size`.
+    Accepted { damping: f64, next_size: f64 },
+    /// No descent: the iteration goes on with a new matrix.
+    NewMatrix,
 }
 
 /// `out = −(I/h − J)⁻¹ residual` with the factorisation `lu`, and its
@@ -465,9 +510,10 @@ pub(crate) fn integrate<M: Model>(
 fn integrate_in_steps<M: Model>(
     problem: Problem<'_, M>,
     steps: usize,
-    mut solution: Solution,
+    solution: Solution,
 ) -> Result<Solution, Error> {
     let Problem { model, t0, t1, y0, options } = problem;
+    let mut run = Driver::new(&problem, solution, None, 1);
     let n = M::STATES;
     let h = (t1 - t0) / steps as f64;
     let grid = |k: usize| {
@@ -481,10 +527,8 @@ fn integrate_in_steps<M: Model>(
     let (mut y, mut next) = (y0.to_vec(), vec![0.0; n]);
     newton.evals += 1;
     if let Err(cause) = model.rhs(t0, &y, &mut newton.f_start) {
-        return Err(Error::Evaluation { t: t0, cause, partial: Box::new(solution) });
+        return Err(run.evaluation_failed(t0, cause, &newton.counts()));
     }
-    let mut events = EventWatch::new(model, t0, y0, 1);
-    let mut projector = Projector::new(model);
     // The largest magnitude of each component so far: the scale of the
     // test of resolution.
     let mut magnitude: Vec<f64> = y0.iter().map(|v| v.abs() + options.atol).collect();
@@ -506,9 +550,6 @@ fn integrate_in_steps<M: Model>(
         let mut effort = Effort::default();
         let outcome =
             newton.solve(model, t_next, &y, &mut next, options.rtol, options.atol, &mut effort);
-        let stats = solution.stats_mut();
-        stats.rhs_evals = newton.evals;
-        stats.jacobian_evals = newton.jacobian_evals;
         let outcome = outcome.and_then(|()| {
             for ((s, m), v) in scale.iter_mut().zip(&magnitude).zip(&next) {
                 *s = m.max(v.abs());
@@ -525,45 +566,20 @@ fn integrate_in_steps<M: Model>(
                 magnitude.copy_from_slice(&scale);
             }
             Err(Trouble::Evaluation(t, cause)) => {
-                return Err(Error::Evaluation { t, cause, partial: Box::new(solution) })
+                return Err(run.evaluation_failed(t, cause, &newton.counts()));
             }
             Err(trouble) => {
-                solution.stats_mut().rejected += 1;
+                run.rejected += 1;
                 halvings += 1;
                 let smaller = h * 0.5f64.powi(halvings);
                 if halvings <= MAX_HALVINGS && smaller.abs() > 64.0 * f64::EPSILON * t.abs() {
                     continue;
                 }
-                let partial = Box::new(solution);
-                return Err(match trouble {
-                    Trouble::Evaluation(t, cause) => Error::Evaluation { t, cause, partial },
-                    Trouble::Singular => Error::SingularMatrix {
-                        t: t_next,
-                        h: t_next - t,
-                        partial,
-                    },
-                    Trouble::Unresolved => Error::StepSizeUnderflow {
-                        t,
-                        h: smaller,
-                        partial,
-                    },
-                    Trouble::NoConvergence => Error::NewtonFailure {
-                    t: t_next,
-                    h: t_next - t,
-                    tried: format!(
-                        "the step halved {} times from {h:e}; at the last, {} Newton iterations with {} Jacobians evaluated at the iterates, updates damped down to {}, {} full steps past where damping stalled",
-                        halvings - 1,
-                        effort.iterations,
-                        effort.matrices,
-                        effort.smallest_damping,
-                        effort.undamped
-                    ),
-                    partial,
-                    },
-                });
+                let failed = Failed { trouble, t, t_next, h, smaller, halvings, effort };
+                return Err(run.fail(&newton.counts(), |partial| failed.error(partial)));
             }
         }
-        return_if_not_finite!(next, t_next, M, solution);
+        run.check_finite(t_next, &next, &newton.counts())?;
         y.copy_from_slice(&next);
         t = t_next;
         if t == end {
@@ -571,10 +587,48 @@ fn integrate_in_steps<M: Model>(
         }
         // Grow back towards the step asked for.
         halvings = (halvings - 1).max(0);
-        project_onto_constraints!(projector, t, &mut y, solution);
-        solution.push(t, &y);
-        solution.stats_mut().steps += 1;
-        after_accepted_step!(events, solution);
+        run.project(t, &mut y, &newton.counts())?;
+        if run.record(t, &y, &[], &newton.counts())? {
+            break;
+        }
     }
-    Ok(solution)
+    Ok(run.finish(&newton.counts()))
+}
+
+/// A step that could not be taken however often it was halved.
+struct Failed {
+    trouble: Trouble,
+    /// The step's start and end, the step asked for and the last tried.
+    t: f64,
+    t_next: f64,
+    h: f64,
+    smaller: f64,
+    halvings: i32,
+    /// The last Newton iteration's effort.
+    effort: Effort,
+}
+
+impl Failed {
+    /// The run's error, with the solution so far.
+    fn error(self, partial: Box<Solution>) -> Error {
+        let Failed { trouble, t, t_next, h, smaller, halvings, effort } = self;
+        match trouble {
+            Trouble::Evaluation(t, cause) => Error::Evaluation { t, cause, partial },
+            Trouble::Singular => Error::SingularMatrix { t: t_next, h: t_next - t, partial },
+            Trouble::Unresolved => Error::StepSizeUnderflow { t, h: smaller, partial },
+            Trouble::NoConvergence => Error::NewtonFailure {
+                t: t_next,
+                h: t_next - t,
+                tried: format!(
+                    "the step halved {} times from {h:e}; at the last, {} Newton iterations with {} Jacobians evaluated at the iterates, updates damped down to {}, {} full steps past where damping stalled",
+                    halvings - 1,
+                    effort.iterations,
+                    effort.matrices,
+                    effort.smallest_damping,
+                    effort.undamped
+                ),
+                partial,
+            },
+        }
+    }
 }

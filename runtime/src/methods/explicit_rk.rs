@@ -7,9 +7,7 @@ use crate::methods::Problem;
 use crate::model::Model;
 use crate::options::Method;
 use crate::solution::Solution;
-use crate::step::events::{after_accepted_step, EventWatch};
-use crate::step::projection::{project_onto_constraints, Projector};
-use crate::step::return_if_not_finite;
+use crate::step::driver::{Counts, Driver};
 
 /// An explicit Butcher tableau: `a` strictly lower triangular (row i has i
 /// entries), weights `b`, nodes `c`.
@@ -73,7 +71,7 @@ pub(crate) fn integrate<M: Model>(
     problem: Problem<'_, M>,
     solution: Solution,
 ) -> Result<Solution, Error> {
-    let Problem { model, t0, t1, y0, options } = problem;
+    let Problem { t0, t1, options, .. } = problem;
     let (steps, solution) = crate::step::option_steps(t0, t1, options, solution)?;
     let tableau = match options.method {
         Method::Rk4 => &RK4,
@@ -84,20 +82,20 @@ pub(crate) fn integrate<M: Model>(
         Method::Ralston => &RALSTON,
         other => return Err(Error::MethodNotAvailable { method: other }),
     };
-    integrate_tableau(model, tableau, t0, t1, y0, steps, solution)
+    integrate_tableau(&problem, tableau, steps, solution)
 }
 
-/// Integrates `model` from `t0` to `t1` in `steps` equal steps, landing
+/// Integrates `problem` from `t0` to `t1` in `steps` equal steps, landing
 /// exactly on `t1`. Stage buffers are allocated once, before the loop.
 fn integrate_tableau<M: Model>(
-    model: &M,
+    problem: &Problem<'_, M>,
     tableau: &Tableau,
-    t0: f64,
-    t1: f64,
-    y0: &[f64],
     steps: usize,
-    mut solution: Solution,
+    solution: Solution,
 ) -> Result<Solution, Error> {
+    let Problem { model, t0, t1, y0, .. } = *problem;
+    let mut run = Driver::new(problem, solution, None, 1);
+    let mut counts = Counts::default();
     let n = M::STATES;
     let s = tableau.b.len();
     let mut y = vec![0.0; n];
@@ -106,8 +104,6 @@ fn integrate_tableau<M: Model>(
     let h = span / steps as f64;
     let mut k = vec![0.0; s * n];
     let mut stage = vec![0.0; n];
-    let mut events = EventWatch::new(model, t0, y0, 1);
-    let mut projector = Projector::new(model);
     for step in 0..steps {
         // t from the step count, not by accumulation: no drift over long runs.
         let t = t0 + span * (step as f64 / steps as f64);
@@ -123,9 +119,9 @@ fn integrate_tableau<M: Model>(
             let ti = t + tableau.c[i] * h;
             let (_, rest) = k.split_at_mut(i * n);
             if let Err(cause) = model.rhs(ti, &stage, &mut rest[..n]) {
-                return Err(Error::Evaluation { t: ti, cause, partial: Box::new(solution) });
+                return Err(run.evaluation_failed(ti, cause, &counts));
             }
-            solution.stats_mut().rhs_evals += 1;
+            counts.evals += 1;
         }
         for (i, &bi) in tableau.b.iter().enumerate() {
             for (yv, ki) in y.iter_mut().zip(&k[i * n..(i + 1) * n]) {
@@ -134,13 +130,13 @@ fn integrate_tableau<M: Model>(
         }
         let t_next =
             if step + 1 == steps { t1 } else { t0 + span * ((step + 1) as f64 / steps as f64) };
-        return_if_not_finite!(y, t_next, M, solution);
-        project_onto_constraints!(projector, t_next, &mut y, solution);
-        solution.push(t_next, &y);
-        solution.stats_mut().steps += 1;
-        after_accepted_step!(events, solution);
+        run.check_finite(t_next, &y, &counts)?;
+        run.project(t_next, &mut y, &counts)?;
+        if run.record(t_next, &y, &[], &counts)? {
+            break;
+        }
     }
-    Ok(solution)
+    Ok(run.finish(&counts))
 }
 
 #[cfg(test)]

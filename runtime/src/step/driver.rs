@@ -13,7 +13,7 @@ use crate::methods::stiffness::NonStiffWatch;
 use crate::methods::Problem;
 use crate::model::Model;
 use crate::solution::{Interpolant, Solution};
-use crate::step::events::{stop_after_step, EventWatch};
+use crate::step::events::EventWatch;
 use crate::step::projection::{Projector, STEP_ITERATIONS};
 
 /// What a method counts as it runs, added to the solution's statistics
@@ -214,8 +214,8 @@ impl<'m, M: Model> Driver<'m, M> {
         } else {
             self.solution.push(t, y);
         }
-        if self.events.is_some() {
-            match stop_after_step(&mut self.events, &mut self.solution) {
+        if let Some(events) = self.events.as_mut() {
+            match events.after_step(&mut self.solution) {
                 Ok(true) => return Ok(true),
                 Ok(false) => {}
                 Err(mut e) => {

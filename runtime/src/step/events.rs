@@ -49,37 +49,6 @@ fn stops<M: Model>(i: usize) -> bool {
     event.terminal || !event.resets.is_empty()
 }
 
-/// Checks the step just pushed to `solution` for events, if the model has
-/// any: `true` when a terminal one ended the run there.
-pub(crate) fn stop_after_step<M: Model>(
-    watch: &mut Option<EventWatch<'_, M>>,
-    solution: &mut Solution,
-) -> Result<bool, Error> {
-    match watch {
-        Some(watch) => watch.after_step(solution),
-        None => Ok(false),
-    }
-}
-
-/// In an integrator's step loop, after an accepted step was pushed: checks
-/// it for events if the model has any, shows it to the step callback and the progress
-/// bar, and breaks out of the loop at a terminal event or when the
-/// callback says stop.
-macro_rules! after_accepted_step {
-    ($events:ident, $solution:ident) => {
-        if $events.is_some() {
-            let stop = $crate::step::events::stop_after_step(&mut $events, &mut $solution)?;
-            if stop {
-                break;
-            }
-        }
-        if $solution.after_accepted_step() {
-            break;
-        }
-    };
-}
-pub(crate) use after_accepted_step;
-
 impl<'m, M: Model> EventWatch<'m, M> {
     /// A watch for `model`'s events from `(t0, y0)`, or `None` if it has none.
     /// `subdivisions` ≥ 1 sub-intervals of each step are checked for a sign change.

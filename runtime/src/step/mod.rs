@@ -13,21 +13,6 @@ use crate::error::Error;
 use crate::options::Options;
 use crate::solution::Solution;
 
-/// In a method's step loop: returns `Error::NonFinite`, naming the first
-/// state that is NaN or infinite at time `t`, with the solution so far.
-macro_rules! return_if_not_finite {
-    ($y:expr, $t:expr, $model:ty, $solution:ident) => {
-        if let Some(i) = $y.iter().position(|v| !v.is_finite()) {
-            return Err($crate::error::Error::NonFinite {
-                t: $t,
-                variable: <$model as $crate::model::Model>::INFO.states[i],
-                partial: Box::new($solution),
-            });
-        }
-    };
-}
-pub(crate) use return_if_not_finite;
-
 /// The number of equal steps of about `step` from `t0` to `t1` for a
 /// fixed-step method, or `Error::MaxSteps` (with `solution`) when that is
 /// more than `options` allow.

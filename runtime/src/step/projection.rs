@@ -340,33 +340,6 @@ pub(crate) fn consistent_initial_values<M: Model>(
     Ok(solution)
 }
 
-/// In an integrator's step loop, after an accepted step and before it is
-/// stored: projects the new state onto the constraints (models without
-/// constraints skip this) and evaluates to `true` when the state changed.
-macro_rules! project_onto_constraints {
-    ($projector:ident, $t:expr, $y:expr, $solution:ident) => {
-        match $projector.as_mut() {
-            None => false,
-            Some(p) => match p.project($t, $y, $crate::step::projection::STEP_ITERATIONS, None) {
-                Ok(residuals) => {
-                    $solution.note_constraint_residuals(residuals);
-                    !M::PROJECTION.is_empty()
-                }
-                Err(f) => {
-                    return Err($crate::error::Error::Constraint {
-                        t: $t,
-                        constraint: M::CONSTRAINTS[f.row].equation,
-                        level: M::CONSTRAINTS[f.row].level,
-                        message: f.message,
-                        partial: Box::new($solution),
-                    })
-                }
-            },
-        }
-    };
-}
-pub(crate) use project_onto_constraints;
-
 /// Makes the algebraic components of a mass-matrix model consistent at
 /// `t0`: Newton on its algebraic rows `0 = F_a(t0, w)` in the algebraic
 /// components, from the model's guesses (the generated Jacobian, or

@@ -5,14 +5,13 @@
 //! scheme's order.
 
 use crate::error::Error;
+use crate::methods::taylor::interpolate;
 use crate::methods::taylor::series::taylor_step;
 use crate::methods::Problem;
 use crate::model::Model;
 use crate::options::Method;
 use crate::solution::Solution;
-use crate::step::events::{after_accepted_step, EventWatch};
-use crate::step::projection::{project_onto_constraints, Projector};
-use crate::step::return_if_not_finite;
+use crate::step::driver::{Counts, DenseOutput, Driver};
 
 /// Integrates with the order and step of `Method::TaylorFixed` in
 /// `options`, in equal steps that end at `t1`.
@@ -24,19 +23,16 @@ pub(crate) fn integrate<M: Model>(
     let Method::TaylorFixed { order, step } = options.method else {
         return Err(Error::MethodNotAvailable { method: options.method });
     };
-    let (steps, mut solution) = crate::step::equal_steps(t0, t1, step, options, solution)?;
+    let (steps, solution) = crate::step::equal_steps(t0, t1, step, options, solution)?;
+    let dense_output = DenseOutput { width: order + 1, interpolate };
+    let mut run = Driver::new(&problem, solution, Some(dense_output), 1);
+    let mut counts = Counts::default();
     let n = M::STATES;
     let (mut y, mut next) = (y0.to_vec(), vec![0.0; n]);
     // The generated code writes all TAYLOR_ORDER blocks' room; only `order` are filled.
     let mut derivatives = vec![0.0; M::TAYLOR_ORDER * n];
-    let mut events = EventWatch::new(model, t0, y0, 1);
-    let mut projector = Projector::new(model);
     // The step's polynomial in s = (t - t_k)/h: c_j = h^j/j! y^(j), per component.
     let mut dense = vec![0.0; (order + 1) * n];
-    let keep_dense = options.dense_output || events.is_some();
-    if keep_dense {
-        solution.set_interpolant(order + 1, crate::methods::taylor::interpolate);
-    }
     for step in 0..steps {
         let t = t0 + (t1 - t0) * (step as f64 / steps as f64);
         let t_next = if step + 1 == steps {
@@ -45,11 +41,12 @@ pub(crate) fn integrate<M: Model>(
             t0 + (t1 - t0) * ((step + 1) as f64 / steps as f64)
         };
         if let Err(cause) = model.taylor_derivatives(t, &y, order, &mut derivatives) {
-            return Err(Error::Evaluation { t, cause, partial: Box::new(solution) });
+            return Err(run.evaluation_failed(t, cause, &counts));
         }
+        counts.evals += 1;
         let h = t_next - t;
         taylor_step(&y, &derivatives[..order * n], h, &mut next);
-        if keep_dense {
+        if run.keep_dense() {
             for i in 0..n {
                 let c = &mut dense[i * (order + 1)..(i + 1) * (order + 1)];
                 c[0] = y[i];
@@ -61,17 +58,11 @@ pub(crate) fn integrate<M: Model>(
             }
         }
         std::mem::swap(&mut y, &mut next);
-        return_if_not_finite!(y, t_next, M, solution);
-        project_onto_constraints!(projector, t_next, &mut y, solution);
-        if keep_dense {
-            solution.push_dense(t_next, &y, &dense);
-        } else {
-            solution.push(t_next, &y);
+        run.check_finite(t_next, &y, &counts)?;
+        run.project(t_next, &mut y, &counts)?;
+        if run.record(t_next, &y, &dense, &counts)? {
+            break;
         }
-        let stats = solution.stats_mut();
-        stats.steps += 1;
-        stats.rhs_evals += 1;
-        after_accepted_step!(events, solution);
     }
-    Ok(solution)
+    Ok(run.finish(&counts))
 }

@@ -24,9 +24,7 @@ use crate::methods::taylor::order::{choose_order, chosen_order_step_factor, step
 use crate::methods::Problem;
 use crate::model::Model;
 use crate::solution::Solution;
-use crate::step::events::{after_accepted_step, EventWatch};
-use crate::step::projection::{project_onto_constraints, Projector};
-use crate::step::return_if_not_finite;
+use crate::step::driver::{Counts, DenseOutput, Driver};
 use crate::taylor_tape::{mul_add, TaylorWork};
 
 /// Sub-intervals of each step on which event functions are checked for a
@@ -260,9 +258,7 @@ pub(crate) fn integrate<M: Model>(
     if M::LANES > 1 {
         return lanes::integrate(problem, solution);
     }
-    let Problem { model, t0, t1, y0, options } = problem;
-    // One function for the step loop: the order, the step-size rule, the compensated time and
-    // the dense output act on the same step.
+    let Problem { model, t0, y0, options, .. } = problem;
     let Some((tape, outputs)) = model.taylor_tape() else {
         // A model with its reason is refused before the run; this one
         // hands over no tape and gives none.
@@ -280,6 +276,10 @@ pub(crate) fn integrate<M: Model>(
     };
     solution.stats_mut().taylor_order = p;
     solution.stats_mut().taylor_unrolled = unrolled;
+    // Taylor steps are long (a good part of an orbit): the event functions
+    // are sampled inside them, so two crossings in one step are both found.
+    let dense_output = DenseOutput { width: p + 1, interpolate };
+    let mut run = Driver::new(&problem, solution, Some(dense_output), EVENT_SAMPLES);
     let mut work = (!unrolled).then(|| TaylorWork::new(&tape, &outputs, n, p));
     let mut jet = vec![0.0; if unrolled { model.taylor_jet_len(p) } else { 0 }];
     // Large jets write their coefficients order by order.
@@ -288,32 +288,16 @@ pub(crate) fn integrate<M: Model>(
     let mut carried = vec![0.0; n];
     let mut dense = vec![0.0; (p + 1) * n];
     let mut powers = vec![0.0; p + 1];
-    // Taylor steps are long (a good part of an orbit): the event functions
-    // are sampled inside them, so two crossings in one step are both found.
-    let mut events = EventWatch::new(model, t0, y0, EVENT_SAMPLES);
-    let mut projector = Projector::new(model);
-    let keep_dense = options.dense_output || events.is_some();
-    if keep_dense {
-        solution.set_interpolant(p + 1, interpolate);
-    }
-    let direction = if t1 >= t0 { 1.0 } else { -1.0 };
-    let hmax = options.max_step.unwrap_or(f64::INFINITY);
     // An order given keeps Jorba & Zou's step; one picked here drops less.
     let safety = match options.taylor_order {
         Some(_) => step_factor(tol, p),
         None => chosen_order_step_factor(tol, p),
     };
-    let (inv_pm1, inv_p) = (1.0 / (p - 1) as f64, 1.0 / p as f64);
-    let measured = crate::methods::error_states::<M>(options);
-    let (mut t, mut compensation, mut steps) = (t0, 0.0f64, 0usize);
-    while (t1 - t) * direction > 0.0 {
-        if steps >= options.max_steps {
-            return Err(Error::MaxSteps {
-                t,
-                max_steps: options.max_steps,
-                partial: Box::new(solution),
-            });
-        }
+    let radius = Radius::new(p, crate::methods::error_states::<M>(options), by_coefficient);
+    let (mut t, mut compensation) = (t0, 0.0f64);
+    let mut counts = Counts::default();
+    while (run.t1 - t) * run.direction > 0.0 {
+        run.check_steps(t, &counts)?;
         let coefficients: &[f64] = match work.as_mut() {
             Some(work) => {
                 work.compute(t, &y);
@@ -325,34 +309,11 @@ pub(crate) fn integrate<M: Model>(
             }
         };
         let w = p + 1;
-        solution.stats_mut().rhs_evals += 1;
-        // Over the states the error test measures (the model's own, where
-        // sensitivities are left out of it).
-        let norm = |k: usize| match by_coefficient {
-            true => column_max(coefficients.get(k * n..k * n + measured).unwrap_or(&[]), 1, 0),
-            false => column_max(&coefficients[..measured * w], w, k),
-        };
-        // ρ_k = (N/‖x^[k]‖)^(1/k); of ρ_{p−1} and ρ_p the smaller, compared
-        // through logarithms so that only one power is taken. The step
-        // waits for ρ: ln N − ln ‖x^[k]‖ times 1/k keeps two divisions off
-        // that path.
-        let log_n = norm(0).max(1.0).ln();
-        let (norm_pm1, norm_p) = (norm(p - 1), norm(p));
-        let log_rho = |nk: f64, inv_k: f64| {
-            if nk == 0.0 {
-                f64::INFINITY
-            } else {
-                (log_n - nk.ln()) * inv_k
-            }
-        };
-        let mut rho = log_rho(norm_pm1, inv_pm1).min(log_rho(norm_p, inv_p)).exp();
-        if norm_pm1 == 0.0 && norm_p == 0.0 {
-            rho = radius_from_lower_orders(&norm, log_n, p);
-        }
-        let remaining = (t1 - t).abs();
+        counts.evals += 1;
+        let remaining = (run.t1 - t).abs();
         // A polynomial solution has an infinite radius: the step is then
         // limited by the interval and max_step only.
-        let mut h = (rho * safety).min(hmax);
+        let mut h = (radius.of(coefficients, n) * safety).min(run.hmax);
         // A NaN step ends the run here too, and is caught just below.
         // Within 1 % of the end the step reaches it (as Hairer's codes do),
         // rather than leave a remainder that may be below the time's ulp.
@@ -364,39 +325,13 @@ pub(crate) fn integrate<M: Model>(
             // Non-finite coefficients make the step collapse: say which.
             if let Some(at) = first_non_finite(&coefficients[..n * w]) {
                 let state = if by_coefficient { at % n } else { at / w };
-                return Err(Error::NonFinite {
-                    t,
-                    variable: M::INFO.states[state],
-                    partial: Box::new(solution),
-                });
+                return Err(run.non_finite(t, state, &counts));
             }
-            return Err(Error::StepSizeUnderflow { t, h, partial: Box::new(solution) });
+            return Err(run.fail(&counts, |partial| Error::StepSizeUnderflow { t, h, partial }));
         }
-        let h = direction * h;
-        if keep_dense {
-            // The coefficients scaled by hᵏ are the step's dense output
-            // (the powers as four interleaved chains of h⁴ products).
-            let (h2, h3) = (h * h, h * h * h);
-            let h4 = h2 * h2;
-            for (k, power) in powers.iter_mut().enumerate().take(4) {
-                *power = [1.0, h, h2, h3][k];
-            }
-            for k in 4..=p {
-                powers[k] = powers[k - 4] * h4;
-            }
-            if by_coefficient {
-                for (k, (c, power)) in coefficients.chunks_exact(n).zip(&powers).enumerate() {
-                    for (d, c) in dense.iter_mut().skip(k).step_by(w).zip(c) {
-                        *d = c * power;
-                    }
-                }
-            } else {
-                for (d, c) in dense.chunks_exact_mut(w).zip(coefficients.chunks_exact(w)) {
-                    for ((d, c), power) in d.iter_mut().zip(c).zip(&powers) {
-                        *d = c * power;
-                    }
-                }
-            }
+        let h = run.direction * h;
+        if run.keep_dense() {
+            scale_by_powers(&coefficients[..n * w], (h, by_coefficient), &mut powers, &mut dense);
         }
         // A non-finite coefficient makes its state non-finite (h is finite
         // and non-zero), which the check after the step reports.
@@ -408,22 +343,99 @@ pub(crate) fn integrate<M: Model>(
         let step = h - compensation;
         let t_next = t + step;
         compensation = (t_next - t) - step;
-        t = if last { t1 } else { t_next };
-        return_if_not_finite!(y, t, M, solution);
-        if project_onto_constraints!(projector, t, &mut y, solution) {
+        t = if last { run.t1 } else { t_next };
+        run.check_finite(t, &y, &counts)?;
+        if run.project(t, &mut y, &counts)? {
             // The carried rounding errors belong to the state before it moved.
             carried.fill(0.0);
         }
-        if keep_dense {
-            solution.push_dense(t, &y, &dense);
-        } else {
-            solution.push(t, &y);
+        if run.record(t, &y, &dense, &counts)? {
+            break;
         }
-        solution.stats_mut().steps += 1;
-        steps += 1;
-        after_accepted_step!(events, solution);
     }
-    Ok(solution)
+    Ok(run.finish(&counts))
+}
+
+/// The radius of convergence a step is a fraction of, from a point's
+/// coefficients: ρ = min(ρ_{p−1}, ρ_p), ρ_k = (N/‖x^\[k\]‖)^(1/k).
+struct Radius {
+    p: usize,
+    /// 1/(p − 1) and 1/p.
+    inverse_orders: (f64, f64),
+    /// The states the error test measures (the model's own, where
+    /// sensitivities are left out of it).
+    measured: usize,
+    /// Whether the coefficients lie order by order (else state by state).
+    by_coefficient: bool,
+}
+
+impl Radius {
+    fn new(p: usize, measured: usize, by_coefficient: bool) -> Radius {
+        let inverse_orders = (1.0 / (p - 1) as f64, 1.0 / p as f64);
+        Radius { p, inverse_orders, measured, by_coefficient }
+    }
+
+    /// ρ from the `n` states' coefficients.
+    #[inline(always)]
+    fn of(&self, coefficients: &[f64], n: usize) -> f64 {
+        let (p, w, measured) = (self.p, self.p + 1, self.measured);
+        let norm = |k: usize| match self.by_coefficient {
+            true => column_max(coefficients.get(k * n..k * n + measured).unwrap_or(&[]), 1, 0),
+            false => column_max(&coefficients[..measured * w], w, k),
+        };
+        // Of ρ_{p−1} and ρ_p the smaller, compared through logarithms so
+        // that only one power is taken. The step waits for ρ: ln N −
+        // ln ‖x^[k]‖ times 1/k keeps two divisions off that path.
+        let log_n = norm(0).max(1.0).ln();
+        let (norm_pm1, norm_p) = (norm(p - 1), norm(p));
+        let log_rho = |nk: f64, inv_k: f64| {
+            if nk == 0.0 {
+                f64::INFINITY
+            } else {
+                (log_n - nk.ln()) * inv_k
+            }
+        };
+        let (inv_pm1, inv_p) = self.inverse_orders;
+        let rho = log_rho(norm_pm1, inv_pm1).min(log_rho(norm_p, inv_p)).exp();
+        if norm_pm1 == 0.0 && norm_p == 0.0 {
+            return radius_from_lower_orders(&norm, log_n, p);
+        }
+        rho
+    }
+}
+
+/// The step's dense output: the coefficients scaled by hᵏ (the powers as
+/// four interleaved chains of h⁴ products), laid out state by state.
+#[inline(always)]
+fn scale_by_powers(
+    coefficients: &[f64],
+    (h, by_coefficient): (f64, bool),
+    powers: &mut [f64],
+    dense: &mut [f64],
+) {
+    let (w, p) = (powers.len(), powers.len() - 1);
+    let n = coefficients.len() / w;
+    let (h2, h3) = (h * h, h * h * h);
+    let h4 = h2 * h2;
+    for (k, power) in powers.iter_mut().enumerate().take(4) {
+        *power = [1.0, h, h2, h3][k];
+    }
+    for k in 4..=p {
+        powers[k] = powers[k - 4] * h4;
+    }
+    if by_coefficient {
+        for (k, (c, power)) in coefficients.chunks_exact(n).zip(&*powers).enumerate() {
+            for (d, c) in dense.iter_mut().skip(k).step_by(w).zip(c) {
+                *d = c * power;
+            }
+        }
+    } else {
+        for (d, c) in dense.chunks_exact_mut(w).zip(coefficients.chunks_exact(w)) {
+            for ((d, c), power) in d.iter_mut().zip(c).zip(&*powers) {
+                *d = c * power;
+            }
+        }
+    }
 }
 
 /// ρ when the last two coefficients vanish at this point but the solution
