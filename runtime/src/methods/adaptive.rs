@@ -5,12 +5,12 @@
 
 use crate::error::Error;
 use crate::info::EvalError;
-use crate::methods::stiffness::{stage_quotient, Finish, StiffnessTest};
-use crate::methods::Problem;
 use crate::model::{Model, StateVector};
 use crate::solution::Solution;
 use crate::step::control::{error_weights, initial_step, Controller, PiState};
 use crate::step::driver::{Counts, DenseOutput, Driver};
+use crate::step::stiffness::{stage_quotient, Finish, StiffnessTest};
+use crate::step::Problem;
 
 /// What the driver needs from one embedded pair.
 pub trait EmbeddedPair {

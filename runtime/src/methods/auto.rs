@@ -23,7 +23,7 @@
 //!   the fraction grows
 //!   with `K`, from 0.1 where the stiff step is as cheap as the pair's (a
 //!   pair held well inside its stability region by the error of a stiff
-//!   component, [`crate::methods::stiffness`]) to 0.9, Hairer's own test,
+//!   component, [`crate::step::stiffness`]) to 0.9, Hairer's own test,
 //!   where it is dear.
 //! - The stiff method hands back, once its step has settled, when it is no
 //!   longer `K` times the pair's (compared as h·ρ, so a change of ρ counts).
@@ -35,12 +35,12 @@ use crate::error::Error;
 use crate::methods::adaptive::{self, EmbeddedPair, Stiffness};
 use crate::methods::dop853::Dop853;
 use crate::methods::dopri5::Dopri5;
-use crate::methods::stiffness::{Finish, NonStiffWatch, StiffnessTest};
-use crate::methods::Problem;
 use crate::methods::{radau5, rodas5p};
 use crate::model::{has_mass_matrix, Model};
 use crate::options::Options;
 use crate::solution::Solution;
+use crate::step::stiffness::{Finish, NonStiffWatch, StiffnessTest};
+use crate::step::Problem;
 
 /// Steps with h·ρ above the threshold that decide the pair is held back.
 pub(crate) const CONFIRMATIONS: usize = 8;

@@ -26,11 +26,11 @@
 use crate::error::Error;
 use crate::info::EvalError;
 use crate::linalg::dense_lu::RealLu;
-use crate::methods::Problem;
 use crate::model::Model;
 use crate::solution::Solution;
 use crate::step::driver::{Counts, Driver};
 use crate::step::jacobian::DenseJacobian;
+use crate::step::Problem;
 
 /// Iterations with one Newton matrix before it is refreshed.
 const ITERATIONS_PER_MATRIX: usize = 10;

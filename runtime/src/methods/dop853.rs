@@ -8,11 +8,11 @@
 
 use crate::error::Error;
 use crate::methods::adaptive::{self, sums_of_squares, worst_lane, EmbeddedPair};
-use crate::methods::Problem;
 use crate::model::Model;
 use crate::model::StateVector;
 use crate::solution::Solution;
 use crate::step::control::Controller;
+use crate::step::Problem;
 
 /// The DOP853 method.
 pub struct Dop853;

@@ -3,11 +3,11 @@
 //! §II.1). The tableaux are data; one stepping routine serves them all.
 
 use crate::error::Error;
-use crate::methods::Problem;
 use crate::model::Model;
 use crate::options::Method;
 use crate::solution::Solution;
 use crate::step::driver::{Counts, Driver};
+use crate::step::Problem;
 
 /// An explicit Butcher tableau: `a` strictly lower triangular (row i has i
 /// entries), weights `b`, nodes `c`.

@@ -15,16 +15,17 @@
 
 use crate::error::Error;
 use crate::info::EvalError;
+use crate::linalg::apply_mass;
 use crate::linalg::newton::{Factored, Newton, Shifts, Structure};
-use crate::linalg::{apply_mass, Mass};
-use crate::methods::stiffness::{Finish, NonStiffWatch};
-use crate::methods::Problem;
+use crate::methods::mass::Mass;
 use crate::model::{has_mass_matrix, Model};
 use crate::options::LinearSolver;
 use crate::solution::Solution;
 use crate::step::control::Predictive;
 use crate::step::driver::{Counts, DenseOutput, Driver};
 use crate::step::jacobian::DenseJacobian;
+use crate::step::stiffness::{Finish, NonStiffWatch};
+use crate::step::Problem;
 
 /// The diagonal γ of the method's Γ.
 const GAMMA: f64 = 0.21193756319429014;

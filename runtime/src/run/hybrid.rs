@@ -24,10 +24,11 @@
 
 use crate::error::Error;
 use crate::info::EventDirection;
-use crate::methods::{Integrate, Problem};
+use crate::methods::Integrate;
 use crate::model::Model;
 use crate::solution::{EventHit, Solution};
 use crate::step::projection::INITIAL_ITERATIONS;
+use crate::step::Problem;
 
 /// Most rounds of actions at one instant before [`Error::EventLoop`].
 pub const MAX_EVENT_ITERATIONS: usize = 64;

@@ -7,10 +7,10 @@ pub use hybrid::MAX_EVENT_ITERATIONS;
 pub(crate) mod observables;
 
 use crate::error::Error;
-use crate::methods::Problem;
 use crate::model::{has_mass_matrix, Model};
 use crate::options::Options;
 use crate::solution::{InitialCorrection, Solution};
+use crate::step::Problem;
 
 /// Running a model: `model.simulate(t0, t1, &options)`, for every
 /// [`Model`] (brought into scope by `daegen::prelude`).

@@ -9,12 +9,12 @@
 
 use crate::error::Error;
 use crate::info::EvalError;
-use crate::methods::stiffness::NonStiffWatch;
-use crate::methods::Problem;
 use crate::model::Model;
 use crate::solution::{Interpolant, Solution};
 use crate::step::events::EventWatch;
 use crate::step::projection::{Projector, STEP_ITERATIONS};
+use crate::step::stiffness::NonStiffWatch;
+use crate::step::Problem;
 
 /// What a method counts as it runs, added to the solution's statistics
 /// however the run ends (the driver counts the steps).

@@ -1,17 +1,37 @@
-//! What every method does around a step: step-size control, events on the
-//! step's continuous extension, projection onto the constraints, and
-//! finite-difference Jacobians, and the driver that runs them around a
-//! method's step ([`driver`]).
+//! What every method does around a step: the initial-value [`Problem`] it
+//! is handed, step-size control, events on the step's continuous
+//! extension, projection onto the constraints, finite-difference
+//! Jacobians, the stiffness tests `Method::Auto` switches on, and the
+//! driver that runs them around a method's step ([`driver`]).
 
 pub mod control;
 pub(crate) mod driver;
 pub(crate) mod events;
 pub(crate) mod jacobian;
 pub(crate) mod projection;
+pub(crate) mod stiffness;
 
 use crate::error::Error;
 use crate::options::Options;
 use crate::solution::Solution;
+
+/// The initial-value problem a method is asked to solve: `model` from the
+/// state `y0` at `t0` to `t1` (either direction), with `options`.
+pub(crate) struct Problem<'a, M> {
+    pub model: &'a M,
+    pub t0: f64,
+    pub t1: f64,
+    pub y0: &'a [f64],
+    pub options: &'a Options,
+}
+
+impl<M> Clone for Problem<'_, M> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<M> Copy for Problem<'_, M> {}
 
 /// The number of equal steps of about `step` from `t0` to `t1` for a
 /// fixed-step method, or `Error::MaxSteps` (with `solution`) when that is

@@ -3,7 +3,7 @@
 //! Wanner II, §IV.8).
 
 use super::coefficients::{C1, C2, NIT, T, TI};
-use super::work::Work;
+use super::counted::Counted;
 use crate::info::EvalError;
 use crate::linalg::apply_mass;
 use crate::linalg::newton::Newton;
@@ -64,7 +64,7 @@ pub(super) struct Iteration<'a> {
 /// bounds.
 #[inline(always)]
 pub(super) fn simplified_newton<M: Model>(
-    w: &mut Work<'_, M>,
+    w: &mut Counted<'_, M>,
     newton: &mut Newton,
     (it, part, mass_matrix): (&Iteration<'_>, Part, &[f64]),
     (z, f): ([&mut [f64]; 3], [&mut [f64]; 3]),

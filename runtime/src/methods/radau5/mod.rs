@@ -10,6 +10,7 @@
 //! the same LU.
 
 mod coefficients;
+mod counted;
 mod iteration;
 mod work;
 
@@ -17,12 +18,12 @@ pub(crate) use coefficients::interpolate;
 
 use crate::error::Error;
 use crate::linalg::newton::Structure;
-use crate::methods::stiffness::{Finish, NonStiffWatch};
-use crate::methods::Problem;
 use crate::model::Model;
 use crate::solution::Solution;
 use crate::step::control::Predictive;
 use crate::step::driver::{DenseOutput, Driver};
+use crate::step::stiffness::{Finish, NonStiffWatch};
+use crate::step::Problem;
 use coefficients::{FACL, FACR, NIT, SAFE};
 use iteration::Iterated;
 use work::Radau;
@@ -231,9 +232,9 @@ fn retry(h: &mut f64, factor: f64, reject: &mut bool, last: &mut bool, caljac: b
     }
 }
 
-#[cfg(test)]
 // Published reference values are kept digit for digit as printed.
 #[allow(clippy::excessive_precision)]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::info::{EvalError, ModelInfo};

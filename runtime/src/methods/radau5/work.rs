@@ -4,50 +4,21 @@
 //! and the step taken).
 
 use super::coefficients::{eigenvalues, Reuse, C1, C1M1, C1MC2, C2, C2M1, DD1, DD2, DD3, TI};
+use super::counted::Counted;
 use super::iteration::{simplified_newton, Contraction, Iterated, Iteration, Part};
 use crate::info::EvalError;
+use crate::linalg::apply_mass;
 use crate::linalg::newton::{Factored, Newton, Shifts};
-use crate::linalg::{apply_mass, Mass};
+use crate::methods::mass::Mass;
 use crate::model::{has_mass_matrix, Model};
 use crate::step::driver::Counts;
 use crate::step::jacobian::DenseJacobian;
-
-/// The model's right-hand side and Jacobian, counted.
-pub(super) struct Work<'m, M> {
-    pub(super) model: &'m M,
-    pub(super) jacobian: DenseJacobian,
-    pub(super) counts: Counts,
-}
-
-impl<M: Model> Work<'_, M> {
-    pub(super) fn rhs(&mut self, t: f64, y: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
-        self.counts.evals += 1;
-        self.model.rhs(t, y, out)
-    }
-
-    /// The model's own derivatives alone (`Model::own_rhs`).
-    pub(super) fn own_rhs(&mut self, t: f64, y: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
-        self.counts.evals += 1;
-        self.model.own_rhs(t, y, out).unwrap_or(Err(EvalError::JacobianUnavailable))
-    }
-
-    /// The dense Jacobian at `(t, y)`, `f0 = f(t, y)`.
-    pub(super) fn evaluate_jacobian(
-        &mut self,
-        t: f64,
-        y: &mut [f64],
-        f0: &[f64],
-    ) -> Result<(), EvalError> {
-        self.counts.jacobian_evals += 1;
-        self.jacobian.evaluate(self.model, t, y, f0, &mut self.counts.evals)
-    }
-}
 
 /// RADAU5's work on one run: the model counted, the Newton matrices,
 /// the stages and their transforms, the continuous output and Newton's
 /// state between steps.
 pub(super) struct Radau<'m, M> {
-    pub(super) w: Work<'m, M>,
+    pub(super) w: Counted<'m, M>,
     pub(super) newton: Newton,
     pub(super) mass: Mass,
     /// The tightened tolerances and Newton's (`radau5.f`'s FNEWT).
@@ -105,7 +76,7 @@ impl<'m, M: Model> Radau<'m, M> {
         let zeros = || [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
         let control = Contraction { theta: reuse.thet, faccon: 1.0 };
         Radau {
-            w: Work { model, jacobian, counts },
+            w: Counted { model, jacobian, counts },
             newton,
             mass: Mass::of(model),
             rtol,

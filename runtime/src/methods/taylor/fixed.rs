@@ -7,11 +7,11 @@
 use crate::error::Error;
 use crate::methods::taylor::interpolate;
 use crate::methods::taylor::series::taylor_step;
-use crate::methods::Problem;
 use crate::model::Model;
 use crate::options::Method;
 use crate::solution::Solution;
 use crate::step::driver::{Counts, DenseOutput, Driver};
+use crate::step::Problem;
 
 /// Integrates with the order and step of `Method::TaylorFixed` in
 /// `options`, in equal steps that end at `t1`.

@@ -9,10 +9,10 @@ use super::order::{choose_order, chosen_order_step_factor, step_factor, JetCost}
 use super::{horner_by_coefficient, interpolate};
 use crate::error::Error;
 use crate::lanes::Lanes;
-use crate::methods::Problem;
 use crate::model::Model;
 use crate::options::Options;
 use crate::solution::Solution;
+use crate::step::Problem;
 use crate::taylor_tape::{Tape, TapeOp, TaylorWork};
 
 /// Integrates the batch `model` from `t0` to `t1`, its members' tapes

@@ -21,10 +21,10 @@ pub use crate::taylor_tape::coefficient;
 
 use crate::error::Error;
 use crate::methods::taylor::order::{choose_order, chosen_order_step_factor, step_factor, JetCost};
-use crate::methods::Problem;
 use crate::model::Model;
 use crate::solution::Solution;
 use crate::step::driver::{Counts, DenseOutput, Driver};
+use crate::step::Problem;
 use crate::taylor_tape::{mul_add, TaylorWork};
 
 /// Sub-intervals of each step on which event functions are checked for a
