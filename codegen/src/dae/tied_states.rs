@@ -18,6 +18,8 @@
 //! prefer, and of two the later declared goes. The eliminated state
 //! stays readable by name.
 
+use crate::dae::hidden_ties::Hidden;
+use crate::dae::linear_form::{is_constant, Linear};
 use crate::front::ctxt::Ctxt;
 use crate::front::ir::{ModelIr, Output};
 use crate::{FxHashMap, Graph, Id, SymbolId, SymbolKind};
@@ -130,85 +132,6 @@ fn role(g: &Graph, s: SymbolId, orders: &FxHashMap<SymbolId, u32>) -> Role {
     }
 }
 
-/// `Σ c_k y_k + b` over states and derivatives, with `c_k` and `b`
-/// reading parameters only.
-struct Linear {
-    terms: Vec<(SymbolId, Id)>,
-    constant: Id,
-}
-
-impl Linear {
-    /// `r` so; `None` when it is not linear so or reads another variable.
-    fn of(g: &mut Graph, r: Id) -> crate::Result<Option<Linear>> {
-        let variables: Vec<SymbolId> = g
-            .free_symbols(r)
-            .into_iter()
-            .filter(|&s| g.symbol(s).kind != SymbolKind::Parameter)
-            .collect();
-        let mut terms = Vec::with_capacity(variables.len());
-        let mut zeros = FxHashMap::default();
-        for &y in &variables {
-            if !matches!(g.symbol(y).kind, SymbolKind::State | SymbolKind::Derivative { .. }) {
-                return Ok(None);
-            }
-            let c = g.partial(r, y)?;
-            if !is_constant(g, c) {
-                return Ok(None);
-            }
-            terms.push((y, c));
-            zeros.insert(y, g.zero());
-        }
-        let constant = g.substitute(r, &zeros)?;
-        Ok(Some(Linear { terms, constant }))
-    }
-
-    fn coefficient(&self, y: SymbolId) -> Option<Id> {
-        self.terms.iter().find(|t| t.0 == y).map(|t| t.1)
-    }
-
-    /// `self / a − other / b`, term by term.
-    fn difference(&self, a: Id, other: &Linear, b: Id, g: &mut Graph) -> crate::Result<Linear> {
-        let mut symbols: Vec<SymbolId> = self.terms.iter().map(|t| t.0).collect();
-        for &(y, _) in &other.terms {
-            if !symbols.contains(&y) {
-                symbols.push(y);
-            }
-        }
-        let zero = g.zero();
-        let scaled = |l: &Linear, y: Option<SymbolId>, by: Id, g: &mut Graph| {
-            let c = match y {
-                Some(y) => l.coefficient(y).unwrap_or(zero),
-                None => l.constant,
-            };
-            g.div(c, by)
-        };
-        let mut terms = Vec::new();
-        for y in symbols {
-            let c = scaled(self, Some(y), a, g)?;
-            let d = scaled(other, Some(y), b, g)?;
-            let c = g.sub(c, d)?;
-            if !g.as_number(c).is_some_and(|n| n.is_zero()) {
-                terms.push((y, c));
-            }
-        }
-        let c = scaled(self, None, a, g)?;
-        let d = scaled(other, None, b, g)?;
-        let constant = g.sub(c, d)?;
-        Ok(Linear { terms, constant })
-    }
-
-    /// `Σ c_k y_k + b` as an expression.
-    fn value(&self, g: &mut Graph) -> crate::Result<Id> {
-        let mut sum = Vec::with_capacity(self.terms.len() + 1);
-        for &(y, c) in &self.terms {
-            let y = g.symbol_node(y);
-            sum.push(g.mul(c, y)?);
-        }
-        sum.push(self.constant);
-        g.sum(&sum)
-    }
-}
-
 /// The first tie.
 fn find_tie(
     ir: &mut ModelIr,
@@ -268,7 +191,17 @@ fn find_tie(
             _ => {}
         }
     }
-    Ok(None)
+    // Ties behind algebraic variables: an over-determined part of the
+    // equations, its unknowns eliminated.
+    let is_unknown = |g: &Graph, s: SymbolId| {
+        g.symbol(s).kind == SymbolKind::Algebraic || role(g, s, orders) == Role::Highest
+    };
+    match crate::dae::hidden_ties::hidden_tie(ir, residuals, gone, &is_unknown)? {
+        Some(Hidden::Tie { equation, relation }) => Ok(solve_for_component_state(ir, &relation)?
+            .map(|(state, value)| Tie::State { equation, state, value })),
+        Some(Hidden::Redundant { equation }) => Ok(Some(Tie::Redundant { equation })),
+        None => Ok(None),
+    }
 }
 
 /// Whether `c d + Σ a_k y_k' = 0` (`d = s'`, each other term the first
@@ -318,10 +251,6 @@ fn integrated(ir: &mut ModelIr, linear: &Linear) -> crate::Result<Option<Linear>
 /// `.fixed()`, a numeric coefficient, the declaration's position; the
 /// largest goes.
 type Preference = (bool, bool, bool, usize);
-
-fn is_constant(g: &Graph, c: Id) -> bool {
-    g.free_symbols(c).iter().all(|&s| g.symbol(s).kind == SymbolKind::Parameter)
-}
 
 /// The tie `Σ c_k y_k + b = 0` solved for a state of a component (an
 /// `.avoid()` one first, never a `.fixed()` one while another will do,
@@ -393,7 +322,7 @@ fn replace_state(ir: &mut ModelIr, state: SymbolId, value: Id, top: u32) -> crat
     let mut replace = FxHashMap::from_iter([(state, value)]);
     let mut current = value;
     for k in 1..=top {
-        current = time_derivative_of_linear(g, current)?;
+        current = time_derivative_of_linear(g, current, ir.time)?;
         if let Some(d) = g.existing_derivative(state, k) {
             replace.insert(d, current);
         }
@@ -427,8 +356,23 @@ fn replace_state(ir: &mut ModelIr, state: SymbolId, value: Id, top: u32) -> crat
     Ok(())
 }
 
-/// d/dt of `Σ c_k y_k + b` with constant `c_k`, `b`: `Σ c_k y_k'`.
-fn time_derivative_of_linear(g: &mut Graph, v: Id) -> crate::Result<Id> {
+/// d/dt of `Σ c_k y_k + b` with constant `c_k`: `Σ c_k y_k' + ∂b/∂t`
+/// (`b` a function of the time where a source ties a state).
+fn time_derivative_of_linear(g: &mut Graph, v: Id, time: SymbolId) -> crate::Result<Id> {
+    if g.free_symbols(v).contains(&time) {
+        let Some(linear) = Linear::over_variables(g, v, time)? else {
+            return Err(crate::Error::Unsupported {
+                message: format!("`{}` ties states nonlinearly", g.show(v)),
+            });
+        };
+        let mut sum = Vec::with_capacity(linear.terms.len() + 1);
+        for (y, c) in linear.terms {
+            let d = g.derivative(y, 1)?;
+            sum.push(g.mul(c, d)?);
+        }
+        sum.push(g.partial(linear.constant, time)?);
+        return g.sum(&sum);
+    }
     let Some(linear) = Linear::of(g, v)? else {
         return Err(crate::Error::Unsupported {
             message: format!("`{}` ties states nonlinearly", g.show(v)),

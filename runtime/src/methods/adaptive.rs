@@ -310,9 +310,11 @@ fn integrate_from<M: Model, P: EmbeddedPair>(
     let mut carry = Carry::<M::State>::new();
     let mut weights = M::State::zeros();
     // The error test's states (the model's own, where sensitivities are
-    // left out of it), and the factor from the norm over all to theirs.
+    // left out of it), and the factor from the norm over all to theirs
+    // (none for a model without states, every variable a function of the
+    // time: its error is zero).
     let n_error = crate::methods::error_states::<M>(options);
-    let error_dilution = (n as f64 / n_error as f64).sqrt();
+    let error_dilution = if n_error == 0 { 1.0 } else { (n as f64 / n_error as f64).sqrt() };
     let mut dense = vec![0.0; P::DENSE_WIDTH * n];
     let mut rhs = Rhs { model, counts: Counts::default() };
 

@@ -192,5 +192,6 @@ pub(super) fn rms(values: [&[f64]; 3], scale: &[f64]) -> f64 {
     let n = scale.len();
     let sum: f64 =
         values.iter().map(|v| v.iter().zip(scale).map(|(x, s)| (x / s).powi(2)).sum::<f64>()).sum();
-    (sum / (3 * n) as f64).sqrt()
+    // A model without states has nothing to converge: its norm is zero.
+    (sum / (3 * n).max(1) as f64).sqrt()
 }

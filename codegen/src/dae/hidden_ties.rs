@@ -1,0 +1,156 @@
+//! Ties hidden behind algebraic variables: connected parts whose states
+//! are related through the connections' potentials and flows, as two
+//! capacitors in parallel (`c1.v = n.v = c2.v`), a loop of capacitors
+//! (`c2.v = c1.v − c3.v`), a gear between an inertia and a damper (the
+//! damper's relative angle is the load's angle less the rotor's over the
+//! ratio), or a voltage source across a capacitor (`c.v = v(t)`).
+//!
+//! Taken alone, each equation determines an unknown; together they
+//! over-determine them: with the states known, the equations reachable by
+//! alternating paths from an equation a maximum matching leaves unmatched
+//! are more than the unknowns they read (the over-determined part of the
+//! Dulmage–Mendelsohn decomposition; Pantelides 1988 calls it a
+//! structurally singular subset and differentiates it). Where that part is
+//! linear with coefficients that read parameters only, eliminating its
+//! unknowns from the unmatched equation leaves the relation among the
+//! states it hides, `Σ c_k y_k + b(t) = 0`: the tie `tied_states`
+//! eliminates one state by (static state selection, as Mattsson &
+//! Söderlind's dummy derivatives pick one per tie), the unmatched equation
+//! then implied by the others.
+
+use crate::dae::linear_form::Linear;
+use crate::dae::matching::{maximum_matching, over_determined};
+use crate::front::ir::ModelIr;
+use crate::{FxHashMap, Id, SymbolId, SymbolKind};
+
+/// What an over-determined part hides.
+pub(crate) enum Hidden {
+    /// The relation `Σ c_k y_k + b(t) = 0` among carried values (states and
+    /// derivatives below the highest) that `equation`, with the others of
+    /// its part, makes; once a state is eliminated by it, `equation` is
+    /// implied by the others.
+    Tie { equation: usize, relation: Linear },
+    /// `equation` repeats what the others of its part say.
+    Redundant { equation: usize },
+}
+
+/// The first tie an over-determined part of the equations hides, over the
+/// unknowns `is_unknown` says (the highest derivatives and the algebraic
+/// variables); `residuals[e]` is equation `e` after the aliases, `passed`
+/// the equations to leave out.
+pub(crate) fn hidden_tie(
+    ir: &mut ModelIr,
+    residuals: &[Id],
+    passed: &[bool],
+    is_unknown: &dyn Fn(&crate::Graph, SymbolId) -> bool,
+) -> crate::Result<Option<Hidden>> {
+    let g = &ir.graph;
+    let mut column_of: FxHashMap<SymbolId, usize> = FxHashMap::default();
+    let mut columns: Vec<SymbolId> = Vec::new();
+    let mut rows: Vec<Vec<usize>> = Vec::new();
+    let mut equation_of: Vec<usize> = Vec::new();
+    for (e, &r) in residuals.iter().enumerate() {
+        if passed[e] || ir.equations[e].is_constraint || g.as_number(r).is_some() {
+            continue;
+        }
+        let mut row = Vec::new();
+        for s in g.free_symbols(r) {
+            if is_unknown(g, s) {
+                let next = columns.len();
+                let c = *column_of.entry(s).or_insert(next);
+                if c == next {
+                    columns.push(s);
+                }
+                row.push(c);
+            }
+        }
+        rows.push(row);
+        equation_of.push(e);
+    }
+    let owner = maximum_matching(&rows, columns.len());
+    let mut matched = vec![false; rows.len()];
+    for r in owner.iter().flatten() {
+        matched[*r] = true;
+    }
+    for r in (0..rows.len()).filter(|&r| !matched[r]) {
+        let (part, unknowns) = over_determined(r, &rows, &owner);
+        let unknowns: Vec<SymbolId> = unknowns.iter().map(|&c| columns[c]).collect();
+        let equations: Vec<usize> = part.iter().map(|&k| equation_of[k]).collect();
+        let unmatched = equation_of[r];
+        if let Some(hidden) = eliminated(ir, residuals, &equations, unmatched, &unknowns)? {
+            return Ok(Some(hidden));
+        }
+    }
+    Ok(None)
+}
+
+/// The unknowns of an over-determined part eliminated from its unmatched
+/// equation by the others (Gaussian elimination over coefficients that
+/// read parameters only, a numeric pivot first), or `None` where the part
+/// is not linear so or the relation left reads an unknown.
+fn eliminated(
+    ir: &mut ModelIr,
+    residuals: &[Id],
+    equations: &[usize],
+    unmatched: usize,
+    unknowns: &[SymbolId],
+) -> crate::Result<Option<Hidden>> {
+    let time = ir.time;
+    let g = &mut ir.graph;
+    let mut forms: Vec<(usize, Linear)> = Vec::with_capacity(equations.len());
+    for &e in equations {
+        match Linear::over_variables(g, residuals[e], time)? {
+            Some(form) => forms.push((e, form)),
+            None => return Ok(None),
+        }
+    }
+    // The unmatched equation last, so that it is never a pivot: the
+    // relation left is it, plus multiples of the others.
+    let last = forms.iter().position(|(e, _)| *e == unmatched).expect("in its part");
+    let end = forms.len() - 1;
+    forms.swap(last, end);
+    let mut pivoted = vec![false; end];
+    for &u in unknowns {
+        let nonzero = |f: &Linear| f.coefficient(u).filter(|&c| !is_zero(g, c));
+        let candidates = (0..end).filter(|&k| !pivoted[k]);
+        let numeric = candidates
+            .clone()
+            .find(|&k| nonzero(&forms[k].1).is_some_and(|c| g.as_number(c).is_some()));
+        let Some(p) =
+            numeric.or_else(|| candidates.clone().find(|&k| nonzero(&forms[k].1).is_some()))
+        else {
+            continue;
+        };
+        pivoted[p] = true;
+        let pivot = forms[p].1.coefficient(u).expect("a pivot");
+        let pivot_form =
+            std::mem::replace(&mut forms[p].1, Linear { terms: Vec::new(), constant: g.zero() });
+        for (k, (_, form)) in forms.iter_mut().enumerate() {
+            if k == p {
+                continue;
+            }
+            let Some(c) = form.coefficient(u).filter(|&c| !is_zero(g, c)) else { continue };
+            let factor = g.div(c, pivot)?;
+            *form = form.minus_scaled(factor, &pivot_form, g)?;
+        }
+        forms[p].1 = pivot_form;
+    }
+    let relation = forms.pop().expect("the unmatched equation").1;
+    let g = &ir.graph;
+    if relation.terms.iter().any(|(y, _)| unknowns.contains(y)) {
+        return Ok(None);
+    }
+    if relation.terms.is_empty() {
+        let redundant = g.as_number(relation.constant).is_some_and(|n| n.is_zero());
+        return Ok(redundant.then_some(Hidden::Redundant { equation: unmatched }));
+    }
+    // The relation must be among values the integrator carries.
+    let carried = relation.terms.iter().all(|(y, _)| {
+        matches!(g.symbol(*y).kind, SymbolKind::State | SymbolKind::Derivative { .. })
+    });
+    Ok(carried.then_some(Hidden::Tie { equation: unmatched, relation }))
+}
+
+fn is_zero(g: &crate::Graph, c: Id) -> bool {
+    g.as_number(c).is_some_and(|n| n.is_zero())
+}

@@ -1,0 +1,166 @@
+//! Index reduction of connected parts: library parts joined as a Modelica
+//! user joins them, whose connections relate states through potentials
+//! and flows (capacitors in parallel, a source across a capacitor, a gear
+//! between an inertia and a compliant coupling). Each compiles, keeps the
+//! states of the physics, and follows the exact solution or the same
+//! physics written flat.
+
+use daegen::prelude::*;
+
+/// 1 V through R = 1 Ω into C1 = 1 F and C2 = 2 F in parallel: one state,
+/// `v = 1 − e^(−t/3)`.
+#[dae_model]
+fn parallel_capacitors() {
+    let source = constant_voltage(1.0);
+    let r = resistor(1.0);
+    let c1 = capacitor(1.0);
+    let c2 = capacitor(2.0);
+    let gnd = ground();
+    connect(source.p, r.p);
+    connect(r.n, c1.p, c2.p);
+    connect(c1.n, c2.n, source.n, gnd.p);
+}
+
+#[test]
+fn two_capacitors_in_parallel_are_one_state() {
+    assert_eq!(<ParallelCapacitors as Model>::INFO.states, ["c1.v"]);
+    let opts = Options::new().method(Method::Radau5).rtol(1e-10).atol(1e-12);
+    let sol = ParallelCapacitors::default().simulate(0.0, 5.0, &opts).unwrap();
+    for &t in &[0.5f64, 1.0, 3.0, 5.0] {
+        let v = 1.0 - (-t / 3.0).exp();
+        let rate = (-t / 3.0).exp() / 3.0;
+        let (v1, v2): (f64, f64) = (sol.at(t, "c1.v").unwrap(), sol.at(t, "c2.v").unwrap());
+        assert!((v1 - v).abs() < 1e-8 && (v2 - v).abs() < 1e-8, "t = {t}: {v1}, {v2} vs {v}");
+        // Each capacitor's current is its own C dv/dt.
+        let (i1, i2): (f64, f64) = (sol.at(t, "c1.i").unwrap(), sol.at(t, "c2.i").unwrap());
+        assert!((i1 - rate).abs() < 1e-8 && (i2 - 2.0 * rate).abs() < 1e-8, "t = {t}: {i1}, {i2}");
+    }
+}
+
+/// A sine source of 1 V at 1 Hz directly across C = 2 F.
+#[dae_model]
+fn source_across_a_capacitor() {
+    let source = sine_voltage(amplitude = 1.0, f = 1.0);
+    let c = capacitor(2.0);
+    let gnd = ground();
+    connect(source.p, c.p);
+    connect(c.n, source.n, gnd.p);
+}
+
+#[test]
+fn a_source_across_a_capacitor_drives_its_current_by_its_derivative() {
+    // No state is left: the capacitor's voltage is the source's.
+    assert!(<SourceAcrossACapacitor as Model>::INFO.states.is_empty());
+    // Every method runs a model without states: its error is zero.
+    let w = 2.0 * std::f64::consts::PI;
+    for method in
+        Method::ALL.into_iter().filter(|m| m.refusal::<SourceAcrossACapacitor>().is_none())
+    {
+        let opts = Options::new().method(method).rtol(1e-10).atol(1e-12).step(1e-2);
+        let sol = SourceAcrossACapacitor::default().simulate(0.0, 1.0, &opts).unwrap();
+        for &t in &[0.1f64, 0.3, 0.55, 0.9] {
+            let (v, i): (f64, f64) = (sol.at(t, "c.v").unwrap(), sol.at(t, "c.i").unwrap());
+            assert!((v - (w * t).sin()).abs() < 1e-12, "{method:?} t = {t}: v = {v}");
+            assert!((i - 2.0 * w * (w * t).cos()).abs() < 1e-12, "{method:?} t = {t}: i = {i}");
+            let source_i: f64 = sol.at(t, "source.i").unwrap();
+            assert!((source_i + i).abs() < 1e-12, "t = {t}: the source's current {source_i}");
+        }
+    }
+}
+
+/// `geared_coupling!(name, coupling(arguments))`: a torque of 1 N m on a
+/// rotor (J = 1 kg m²) behind a 10:1 gear, coupled to a load (J = 3 kg m²)
+/// by `coupling`, nothing between the gear and the coupling.
+macro_rules! geared_coupling {
+    ($name:ident, $coupling:ident($($arguments:tt)*)) => {
+        #[dae_model]
+        fn $name() {
+            let drive = torque_source(1.0);
+            let rotor = inertia(j = 1.0);
+            let gear = ideal_gear(10.0);
+            let coupling = $coupling($($arguments)*);
+            let load = inertia(j = 3.0);
+            connect(drive.flange, rotor.flange_a);
+            connect(rotor.flange_b, gear.flange_a);
+            connect(gear.flange_b, coupling.flange_a);
+            connect(coupling.flange_b, load.flange_a);
+        }
+    };
+}
+
+geared_coupling!(geared_damper, damper(2.0));
+geared_coupling!(geared_spring_damper, spring_damper(c = 100.0, d = 2.0));
+
+/// The rotor's and the load's speeds behind a gear n with a damper d:
+/// with `u = w_load − w_rotor/n`, `u' = −a u − b`, `a = d (1/J_load +
+/// 1/(n² J_rotor))`, `b = τ/(n J_rotor)`, from rest.
+fn geared_damper_exact(t: f64) -> (f64, f64) {
+    let (n, d, j_rotor, j_load, tau) = (10.0, 2.0, 1.0, 3.0, 1.0);
+    let a = d * (1.0 / j_load + 1.0 / (n * n * j_rotor));
+    let b = tau / (n * j_rotor);
+    let u = b / a * ((-a * t).exp() - 1.0);
+    let w_load = -d / j_load * b / a * ((1.0 - (-a * t).exp()) / a - t);
+    (n * (w_load - u), w_load)
+}
+
+#[test]
+fn a_gear_then_a_damper_follows_the_exact_speeds() {
+    // The damper's relative angle is the load's less the rotor's over the
+    // ratio: the states are the two inertias'.
+    assert_eq!(
+        <GearedDamper as Model>::INFO.states,
+        ["rotor.phi", "rotor.w", "load.phi", "load.w"]
+    );
+    for method in [Method::Radau5, Method::Rodas5P, Method::Dop853] {
+        let opts = Options::new().method(method).rtol(1e-10).atol(1e-12);
+        let sol = GearedDamper::default().simulate(0.0, 5.0, &opts).unwrap();
+        for &t in &[0.5f64, 2.0, 5.0] {
+            let (w_rotor, w_load) = geared_damper_exact(t);
+            let (r, l): (f64, f64) = (sol.at(t, "rotor.w").unwrap(), sol.at(t, "load.w").unwrap());
+            assert!((r - w_rotor).abs() < 1e-7, "{method:?} t = {t}: rotor {r} vs {w_rotor}");
+            assert!((l - w_load).abs() < 1e-7, "{method:?} t = {t}: load {l} vs {w_load}");
+            // The damper reads the speeds through the gear.
+            let tau: f64 = sol.at(t, "coupling.tau").unwrap();
+            assert!((tau - 2.0 * (w_load - w_rotor / 10.0)).abs() < 1e-7, "t = {t}: {tau}");
+        }
+    }
+}
+
+/// The geared spring-damper written flat: the rotor's angle and speed,
+/// the load's angle and speed, the coupling's torque from their
+/// difference through the gear.
+#[dae_model]
+fn geared_spring_damper_flat() {
+    let n = param(10.0);
+    let phi = state(0.0);
+    let w = state(0.0);
+    let phi_load = state(0.0);
+    let w_load = state(0.0);
+    let tau = 100.0 * (phi_load - phi / n) + 2.0 * (w_load - w / n);
+    der(phi) == w;
+    der(w) == 1.0 + tau / n;
+    der(phi_load) == w_load;
+    3.0 * der(w_load) == -tau;
+}
+
+#[test]
+fn a_gear_then_a_spring_damper_follows_the_flat_model() {
+    assert_eq!(
+        <GearedSpringDamper as Model>::INFO.states,
+        ["rotor.phi", "rotor.w", "load.phi", "load.w"]
+    );
+    let opts = Options::new().method(Method::Radau5).rtol(1e-11).atol(1e-13);
+    let parts = GearedSpringDamper::default().simulate(0.0, 3.0, &opts).unwrap();
+    let flat = GearedSpringDamperFlat::default().simulate(0.0, 3.0, &opts).unwrap();
+    for &t in &[0.3f64, 1.0, 2.2, 3.0] {
+        for (name, flat_name) in [("rotor.w", "w"), ("load.w", "w_load"), ("load.phi", "phi_load")]
+        {
+            let (a, b): (f64, f64) = (parts.at(t, name).unwrap(), flat.at(t, flat_name).unwrap());
+            assert!((a - b).abs() < 1e-8 * (1.0 + b.abs()), "t = {t}: {name} {a} vs {b}");
+        }
+        let phi_rel: f64 = parts.at(t, "coupling.phi_rel").unwrap();
+        let (phi, phi_load): (f64, f64) =
+            (flat.at(t, "phi").unwrap(), flat.at(t, "phi_load").unwrap());
+        assert!((phi_rel - (phi_load - phi / 10.0)).abs() < 1e-8, "t = {t}: {phi_rel}");
+    }
+}
