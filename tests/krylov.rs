@@ -111,6 +111,36 @@ fn by_default_a_large_grid_runs_rodas5p_with_gmres_at_any_tolerance() {
     assert!(worst <= 10.0 * tol, "error {worst:e}");
 }
 
+/// The names of a model written by hand: its states and their docs, no
+/// parameters, outputs, events or structure.
+const fn hand_written_info(
+    name: &'static str,
+    states: &'static [&'static str],
+    state_docs: &'static [&'static str],
+    equations: usize,
+) -> ModelInfo {
+    ModelInfo {
+        name,
+        doc: "",
+        states,
+        state_docs,
+        parameters: &[],
+        parameter_docs: &[],
+        outputs: &[],
+        output_docs: &[],
+        declared_outputs: &[],
+        equations,
+        events: &[],
+        clocks: &[],
+        discrete: &[],
+        inputs: &[],
+        algebraics: &[],
+        algebraic_docs: &[],
+        structure: StructureInfo::NONE,
+        components: &[],
+    }
+}
+
 /// y′ = −y with a hand-written right-hand side: no Jacobian to build the
 /// matrix from.
 #[derive(Clone)]
@@ -120,26 +150,7 @@ impl Model for HandWritten {
     const STATES: usize = 1;
     type State = [f64; 1];
     const INDEX: usize = 0;
-    const INFO: ModelInfo = ModelInfo {
-        name: "HandWritten",
-        doc: "",
-        states: &["y"],
-        state_docs: &[""],
-        parameters: &[],
-        parameter_docs: &[],
-        outputs: &[],
-        output_docs: &[],
-        declared_outputs: &[],
-        equations: 1,
-        events: &[],
-        clocks: &[],
-        discrete: &[],
-        inputs: &[],
-        algebraics: &[],
-        algebraic_docs: &[],
-        structure: StructureInfo::NONE,
-        components: &[],
-    };
+    const INFO: ModelInfo = hand_written_info("HandWritten", &["y"], &[""], 1);
     fn initial_state(&self, y: &mut [f64]) {
         y[0] = 1.0;
     }
@@ -244,26 +255,8 @@ impl Model for SkewOscillators {
     const STATES: usize = SKEW_N;
     type State = [f64; SKEW_N];
     const INDEX: usize = 0;
-    const INFO: ModelInfo = ModelInfo {
-        name: "SkewOscillators",
-        doc: "",
-        states: &[""; SKEW_N],
-        state_docs: &[""; SKEW_N],
-        parameters: &[],
-        parameter_docs: &[],
-        outputs: &[],
-        output_docs: &[],
-        declared_outputs: &[],
-        equations: SKEW_N,
-        events: &[],
-        clocks: &[],
-        discrete: &[],
-        inputs: &[],
-        algebraics: &[],
-        algebraic_docs: &[],
-        structure: StructureInfo::NONE,
-        components: &[],
-    };
+    const INFO: ModelInfo =
+        hand_written_info("SkewOscillators", &[""; SKEW_N], &[""; SKEW_N], SKEW_N);
     const JACOBIAN: daegen::Jacobian =
         daegen::Jacobian::Symbolic { pattern: &SKEW_PATTERN, time_derivative: true };
     fn initial_state(&self, y: &mut [f64]) {
