@@ -136,15 +136,19 @@ fn low_pass_exact(t: f64, tau: f64, omega: f64) -> f64 {
     ((omega * t).sin() - wt * (omega * t).cos() + wt * (-t / tau).exp()) / (1.0 + wt * wt)
 }
 
+/// `akzo_nobel_with! { doc fn name(attributes) { y6 = { value }; statements } }`:
+/// the concentrations, rates and rate equations of Akzo Nobel (test set
+/// `chemakzo`) as `name`, with `y6` bound to `value` and `statements`
+/// after the rate equations: its two forms differ only in how y6 enters.
 #[allow(unused_macros)]
-macro_rules! akzo_nobel_model {
-    ($($arguments:tt)*) => {
-/// The chemical Akzo Nobel problem (test set `chemakzo`), as its authors
-/// write it: five differential equations for the concentrations and one
-/// algebraic, `0 == ks * y1 * y4 - y6`, whose variable enters two rates
-/// squared. An index-1 DAE on t ∈ [0, 180].
+macro_rules! akzo_nobel_with {
+    ($(#[$($doc:tt)*])* fn $name:ident($($arguments:tt)*) {
+        y6 = { $($y6:tt)* };
+        $($more:tt)*
+    }) => {
+$(#[$($doc)*])*
 #[dae_model($($arguments)*)]
-fn akzo_nobel() {
+fn $name() {
     let k1 = param(18.7);
     let k2 = param(0.58);
     let k3 = param(0.09);
@@ -159,7 +163,7 @@ fn akzo_nobel() {
     let y3 = state(0.0);
     let y4 = state(0.007);
     let y5 = state(0.0);
-    let y6 = algebraic(0.444 * 0.007 * 115.83);
+    let y6 = $($y6)*;
     let r1 = k1 * y1.powi(4) * sqrt(y2);
     let r2 = k2 * y3 * y4;
     let r3 = k2 / kbig * y1 * y5;
@@ -171,45 +175,37 @@ fn akzo_nobel() {
     der(y3) == r1 - r2 + r3;
     der(y4) == -r2 + r3 - 2.0 * r4;
     der(y5) == r2 - r3 + r5;
-    0.0 == ks * y1 * y4 - y6;
+    $($more)*
 }
+    };
+}
+
+#[allow(unused_macros)]
+macro_rules! akzo_nobel_model {
+    ($($arguments:tt)*) => {
+        akzo_nobel_with! {
+            /// The chemical Akzo Nobel problem (test set `chemakzo`), as its authors
+            /// write it: five differential equations for the concentrations and one
+            /// algebraic, `0 == ks * y1 * y4 - y6`, whose variable enters two rates
+            /// squared. An index-1 DAE on t ∈ [0, 180].
+            fn akzo_nobel($($arguments)*) {
+                y6 = { algebraic(0.444 * 0.007 * 115.83) };
+                0.0 == ks * y1 * y4 - y6;
+            }
+        }
     };
 }
 
 #[allow(unused_macros)]
 macro_rules! akzo_nobel_by_hand_model {
     ($($arguments:tt)*) => {
-/// Akzo Nobel with y6 = ks·y1·y4 substituted by hand into the rate that
-/// reads it: the ODE in five concentrations.
-#[dae_model($($arguments)*)]
-fn akzo_nobel_by_hand() {
-    let k1 = param(18.7);
-    let k2 = param(0.58);
-    let k3 = param(0.09);
-    let k4 = param(0.42);
-    let kbig = param(34.4);
-    let kla = param(3.3);
-    let ks = param(115.83);
-    let po2 = param(0.9);
-    let hen = param(737.0);
-    let y1 = state(0.444);
-    let y2 = state(0.00123);
-    let y3 = state(0.0);
-    let y4 = state(0.007);
-    let y5 = state(0.0);
-    let y6 = ks * y1 * y4;
-    let r1 = k1 * y1.powi(4) * sqrt(y2);
-    let r2 = k2 * y3 * y4;
-    let r3 = k2 / kbig * y1 * y5;
-    let r4 = k3 * y1 * y4 * y4;
-    let r5 = k4 * y6 * y6 * sqrt(y2);
-    let f_in = kla * (po2 / hen - y2);
-    der(y1) == -2.0 * r1 + r2 - r3 - r4;
-    der(y2) == -0.5 * r1 - r4 - 0.5 * r5 + f_in;
-    der(y3) == r1 - r2 + r3;
-    der(y4) == -r2 + r3 - 2.0 * r4;
-    der(y5) == r2 - r3 + r5;
-}
+        akzo_nobel_with! {
+            /// Akzo Nobel with y6 = ks·y1·y4 substituted by hand into the rate that
+            /// reads it: the ODE in five concentrations.
+            fn akzo_nobel_by_hand($($arguments)*) {
+                y6 = { ks * y1 * y4 };
+            }
+        }
     };
 }
 
