@@ -155,26 +155,12 @@ fn fixed_step_methods_bounce_at_their_order() {
     }
 }
 
-/// A first-order plant x' = −a x + b u under a PI controller sampled
-/// every `h`, its output held between samples (a zero-order hold).
-#[dae_model(taylor = 1)]
-fn sampled_pi() {
-    let a = param(2.0);
-    let b = param(3.0);
-    let kp = param(0.8);
-    let ki = param(1.5);
-    let r = param(1.0);
-    let h = param(0.1);
-    let x = state(0.0);
-    /// The controller's output, held between samples.
-    let u = discrete(0.0);
-    /// The integral of the error, summed at the samples.
-    let integral = discrete(0.0);
-    der(x) == -a * x + b * u;
-    /// The controller reads x and sets u.
-    let sample =
-        every(h).reinit(integral, integral + ki * h * (r - x)).reinit(u, kp * (r - x) + integral);
-}
+// The sampled PI loop of the FMU example (the plant x' = −a x + b u under
+// a PI controller sampled every `h`, its output held between samples),
+// so that the recursion below checks the very model the FMU exports.
+#[path = "../fmi/examples/models/sampled_pi.rs"]
+mod sampled_pi_loop;
+use sampled_pi_loop::SampledPi;
 
 /// The exact discrete-time recursion of the sampled loop: with the input
 /// held, x_{k+1} = φ x_k + (b/a)(1 − φ) u_k, φ = e^{−a h}; the controller
@@ -794,7 +780,7 @@ fn the_library_ideal_diode_rectifies_like_the_flat_model() {
 }
 
 /// The sampled PI loop from the library's blocks: `sampled_pi` on the
-/// plant `first_order(k, t)`, t y' + y = k u, the same loop as `sampled_pi`
+/// plant `first_order(k, t)`, t y' + y = k u, the same loop as `SampledPi`
 /// above with a = 1/t, b = k/t.
 #[dae_model]
 fn sampled_loop_of_parts() {
