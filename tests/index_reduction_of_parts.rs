@@ -164,3 +164,183 @@ fn a_gear_then_a_spring_damper_follows_the_flat_model() {
         assert!((phi_rel - (phi_load - phi / 10.0)).abs() < 1e-8, "t = {t}: {phi_rel}");
     }
 }
+
+/// MSL's `Modelica.Electrical.Analog.Examples.CauerLowPassAnalog`, as a
+/// Modelica user connects it: a fifth-order low-pass filter of five
+/// library capacitors and two inductors behind R1 = 1 Ω, loaded by
+/// R2 = 1 Ω, a 1 V step at t = 1. C1–C2–C3 and C3–C4–C5 are loops of
+/// capacitors.
+#[dae_model]
+fn cauer_low_pass() {
+    let l1 = param(1.304);
+    let l2 = param(0.8586);
+    let v = step_voltage(height = 1.0, start_time = 1.0);
+    let g = ground();
+    let r1 = resistor(1.0);
+    let r2 = resistor(1.0);
+    let c1 = capacitor(1.072);
+    let c2 = capacitor(1.0 / (1.704992 * 1.704992 * l1));
+    let c3 = capacitor(1.682);
+    let c4 = capacitor(1.0 / (1.179945 * 1.179945 * l2));
+    let c5 = capacitor(0.7262);
+    let ind1 = inductor(l1);
+    let ind2 = inductor(l2);
+    connect(v.p, r1.p);
+    connect(r1.n, c1.p, ind1.p, c2.p);
+    connect(ind1.n, c2.n, c3.p, c4.p, ind2.p);
+    connect(ind2.n, c4.n, c5.p, r2.p);
+    connect(v.n, g.p, c1.n, c3.n, c5.n, r2.n);
+    // MSL's `C1(v(start = 0, fixed = true))` and the like.
+    init(c1.v, 0.0);
+    init(c3.v, 0.0);
+    init(c5.v, 0.0);
+    init(ind1.i, 0.0);
+    init(ind2.i, 0.0);
+}
+
+/// The Cauer filter by nodal analysis, written by hand: the node
+/// voltages and the inductors' currents, the capacitances between the
+/// nodes a mass matrix.
+#[dae_model]
+fn cauer_low_pass_nodal() {
+    let t = time();
+    let l1 = 1.304;
+    let l2 = 0.8586;
+    let c1 = 1.072;
+    let c3 = 1.682;
+    let c5 = 0.7262;
+    let c2 = 1.0 / (1.704992 * 1.704992 * l1);
+    let c4 = 1.0 / (1.179945 * 1.179945 * l2);
+    let v1 = state(0.0);
+    let v2 = state(0.0);
+    let v3 = state(0.0);
+    let i1 = state(0.0);
+    let i2 = state(0.0);
+    let source = heaviside(t - 1.0);
+    c1 * der(v1) + c2 * (der(v1) - der(v2)) + i1 == source - v1;
+    c2 * (der(v2) - der(v1)) + c3 * der(v2) + c4 * (der(v2) - der(v3)) - i1 + i2 == 0.0;
+    c4 * (der(v3) - der(v2)) + c5 * der(v3) - i2 + v3 == 0.0;
+    l1 * der(i1) == v1 - v2;
+    l2 * der(i2) == v2 - v3;
+}
+
+#[test]
+fn the_cauer_filter_of_library_capacitors_keeps_five_states_and_follows_nodal_analysis() {
+    // Seven storage elements less two loops of capacitors: five states,
+    // those whose starts are set, as Dymola keeps.
+    let states = <CauerLowPass as Model>::INFO.states;
+    assert_eq!(states, ["c1.v", "c3.v", "c5.v", "ind1.i", "ind2.i"]);
+    let opts = Options::new().method(Method::Radau5).rtol(1e-10).atol(1e-12);
+    let parts = CauerLowPass::default().simulate(0.0, 60.0, &opts).unwrap();
+    let nodal = CauerLowPassNodal::default().simulate(0.0, 60.0, &opts).unwrap();
+    for &t in &[0.5f64, 1.5, 3.0, 7.0, 15.0, 30.0, 60.0] {
+        for (name, node) in [("c1.v", "v1"), ("c3.v", "v2"), ("r2.v", "v3"), ("ind1.i", "i1")] {
+            let (a, b): (f64, f64) = (parts.at(t, name).unwrap(), nodal.at(t, node).unwrap());
+            assert!((a - b).abs() < 1e-7, "t = {t}: {name} {a} vs {b}");
+        }
+        // The loop's capacitor reads the difference of its neighbours.
+        let (c2, c1, c3): (f64, f64, f64) = (
+            parts.at(t, "c2.v").unwrap(),
+            parts.at(t, "c1.v").unwrap(),
+            parts.at(t, "c3.v").unwrap(),
+        );
+        assert!((c2 - (c1 - c3)).abs() < 1e-12, "t = {t}");
+    }
+}
+
+/// An accelerometer as a user writes one: the flange's angle and its
+/// second derivative.
+#[component]
+fn acceleration_sensor() {
+    let flange = flange();
+    let a = real_output();
+    let phi = state(0.0).avoid();
+    phi == flange.phi;
+    flange.tau == 0.0;
+    a == der(der(phi));
+}
+
+/// A rotor spinning at 10 rad/s, braked by a damper to the housing, its
+/// acceleration measured.
+#[dae_model]
+fn measured_rotor() {
+    let rotor = inertia(j = 1.0, w0 = 10.0);
+    let brake = damper(0.5);
+    let housing = fixed();
+    let sensor = acceleration_sensor();
+    connect(rotor.flange_a, sensor.flange);
+    connect(rotor.flange_b, brake.flange_a);
+    connect(brake.flange_b, housing.flange);
+}
+
+#[test]
+fn an_accelerometer_keeps_the_rotors_start() {
+    // The sensor's `der(der(phi))` makes the rotor's angle a state of
+    // order two: its speed is the slot `der(rotor.phi)`, started at w0.
+    assert_eq!(<MeasuredRotor as Model>::INFO.states, ["rotor.phi", "der(rotor.phi)"]);
+    let opts = Options::new().method(Method::Radau5).rtol(1e-10).atol(1e-12);
+    let sol = MeasuredRotor::default().simulate(0.0, 4.0, &opts).unwrap();
+    for &t in &[0.0f64, 1.0, 4.0] {
+        // w = 10 e^(−t/2), a = −5 e^(−t/2).
+        let (w, a): (f64, f64) = (sol.at(t, "rotor.w").unwrap(), sol.at(t, "sensor.a").unwrap());
+        assert!((w - 10.0 * (-t / 2.0).exp()).abs() < 1e-8 * 10.0, "t = {t}: w = {w}");
+        assert!((a + 5.0 * (-t / 2.0).exp()).abs() < 1e-8 * 5.0, "t = {t}: a = {a}");
+    }
+}
+
+/// A compliant coupling as a user writes one, differentiating its
+/// algebraic relative speed: `w_rel = der(phi_rel)`, `a_rel = der(w_rel)`.
+#[component]
+fn coupling_with_rates() {
+    let c = param(100.0);
+    let d = param(2.0);
+    let flange_a = flange();
+    let flange_b = flange();
+    let phi_rel = state(0.0).avoid();
+    let w_rel = algebraic(0.0);
+    let a_rel = algebraic(0.0);
+    let tau = algebraic(0.0);
+    phi_rel == flange_b.phi - flange_a.phi;
+    w_rel == der(phi_rel);
+    a_rel == der(w_rel);
+    flange_b.tau == tau;
+    flange_a.tau == -tau;
+    tau == c * phi_rel + d * w_rel;
+}
+
+geared_coupling!(geared_coupling_with_rates, coupling_with_rates());
+
+#[test]
+fn the_derivative_of_an_algebraic_variable_is_the_derivative_of_what_ties_it() {
+    // `w_rel`, differentiated, is tied to the speeds through the gear and
+    // goes with `phi_rel`: the states are the inertias'.
+    assert_eq!(
+        <GearedCouplingWithRates as Model>::INFO.states,
+        ["rotor.phi", "rotor.w", "load.phi", "load.w"]
+    );
+    let opts = Options::new().method(Method::Radau5).rtol(1e-11).atol(1e-13);
+    let parts = GearedCouplingWithRates::default().simulate(0.0, 3.0, &opts).unwrap();
+    let flat = GearedSpringDamperFlat::default().simulate(0.0, 3.0, &opts).unwrap();
+    for &t in &[0.3f64, 1.0, 2.2, 3.0] {
+        for (name, flat_name) in [("rotor.w", "w"), ("load.w", "w_load")] {
+            let (a, b): (f64, f64) = (parts.at(t, name).unwrap(), flat.at(t, flat_name).unwrap());
+            assert!((a - b).abs() < 1e-8 * (1.0 + b.abs()), "t = {t}: {name} {a} vs {b}");
+        }
+        // a_rel is the load's acceleration less the rotor's over the ratio,
+        // each from its inertia's balance in the flat model.
+        let (phi, w, phi_load, w_load): (f64, f64, f64, f64) = (
+            flat.at(t, "phi").unwrap(),
+            flat.at(t, "w").unwrap(),
+            flat.at(t, "phi_load").unwrap(),
+            flat.at(t, "w_load").unwrap(),
+        );
+        let tau = 100.0 * (phi_load - phi / 10.0) + 2.0 * (w_load - w / 10.0);
+        let (rotor_acceleration, load_acceleration) = (1.0 + tau / 10.0, -tau / 3.0);
+        let a_rel: f64 = parts.at(t, "coupling.a_rel").unwrap();
+        let expected = load_acceleration - rotor_acceleration / 10.0;
+        assert!(
+            (a_rel - expected).abs() < 1e-7 * (1.0 + expected.abs()),
+            "t = {t}: {a_rel} vs {expected}"
+        );
+    }
+}

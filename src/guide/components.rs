@@ -155,7 +155,10 @@
 //! `daegen` under that name (see the workspace's `parts-example` crate,
 //! used from another crate in its tests). A library part's name wins over
 //! a part of yours with the same name: call yours by path
-//! (`self::resistor(..)`).
+//! (`self::resistor(..)`). A name only like a library part's
+//! (`conductor`, `my_damper`) is yours: it is fetched, never taken for a
+//! misspelling, and where you have no such part the compiler says it
+//! cannot find it.
 //!
 //! A state a part declares only to differentiate a connector's potential
 //! (an EMF's shaft angle, a damper's relative angle, a speed sensor's
@@ -176,7 +179,25 @@
 //! is solved for one of them, which is replaced with its derivatives
 //! everywhere and stays readable. Modelica tools reach the same by index
 //! reduction and dummy derivatives; a linear tie with constant
-//! coefficients needs neither. What remains is sorted and torn as in
+//! coefficients needs neither.
+//!
+//! A tie may hide behind the connections' potentials and flows: two
+//! capacitors in parallel (`c1.v` and `c2.v` both the node's voltage), a
+//! loop of capacitors (`c2.v = c1.v − c3.v` in a Cauer filter), a damper
+//! behind a gear (its relative angle the load's angle less the rotor's
+//! over the ratio), a voltage source across a capacitor (`c.v` the
+//! source's `v(t)`). The equations that hide it over-determine the
+//! unknowns they read (the over-determined part of the Dulmage–Mendelsohn
+//! decomposition, Pantelides' structurally singular subset); where they
+//! are linear with coefficients of parameters, their unknowns are
+//! eliminated, the relation among the states left is the tie, and one
+//! state goes by it: two capacitors in parallel keep one state, the Cauer
+//! filter of five library capacitors and two inductors keeps five (as
+//! Dymola), a source across a capacitor drives its current by the
+//! source's derivative, `c dv/dt`. Which state of a tie goes: an
+//! `.avoid()` one, never a `.fixed()` one (or one started with
+//! `init(c3.v, 0.0)`) or a `.prefer()` one while another will do, then
+//! the later declared. What remains is sorted and torn as in
 //! [`super::structure`]. A connected model then has as many states as the
 //! same physics written flat (a motor driving a slider-crank through a
 //! gear keeps the winding's current and the crank's angle and rate).

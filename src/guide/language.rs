@@ -11,7 +11,9 @@
 //! | `let k = param(2.0);` | a parameter: a field of the struct, constant during a run |
 //! | `let x = state(1.0);` | a state with its initial value (constants and parameters) |
 //! | `let q = state_array([1.0, 0.0]);`, `state_array([0.0; N])`, `state_array((0..N).map(|i| ...))` | an array of states, `q[i]`; initial values by index with `map` |
-//! | `der(x) == f;`, `der(der(x)) == a;` | an equation; second derivatives are reduced to first order (`init(der(x), v0)` sets the initial rate) |
+//! | `der(x) == f;`, `der(der(x)) == a;` | an equation; second derivatives are reduced to first order (`init(der(x), v0)` sets the initial rate); `der(w)` of an algebraic `w` makes it a state the structure eliminates where its equation ties it to others |
+//! | `state(x0).fixed()`, `.avoid()`, `.prefer()` | the start kept by initialization; the state eliminated, or kept, when connections tie it to others (Modelica's `fixed = true`, `StateSelect.avoid`, `.prefer`) |
+//! | `init(c1.v, 0.0);` | a part's state started at a value, kept (Modelica's `C1(v(start = 0, fixed = true))`) |
 //! | `lhs == rhs;` | any equation, in any order, also implicit in the derivatives (solved symbolically; see [`super::structure`]) |
 //! | `let y = algebraic(0.0);` and `constraint(g);` | a DAE: see [`super::daes`] |
 //! | `let i = algebraic_array([0.0; N]);` | an array of algebraic variables, `i[k]`: see [`super::structure`] |

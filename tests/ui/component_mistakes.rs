@@ -21,12 +21,22 @@ fn kinds_that_do_not_match() {
     connect(r1.p, r1.q);
 }
 
-/// A misspelt part, and parts declared in a loop.
+/// Parts declared in a loop.
 #[dae_model]
-fn misspelt_part() {
+fn parts_in_a_loop() {
     for k in 0..3 {
         let r = resistor(1.0);
     }
+    let r1 = resistor(1.0);
+    let gnd = ground();
+    connect(r1.p, gnd.p);
+}
+
+/// A misspelt part: a name no part has, though it is like a library
+/// part's, is fetched as the user's own part (the user's parts come
+/// first), and the compiler says there is none.
+#[dae_model]
+fn misspelt_part() {
     let r1 = resistr(1.0);
     let gnd = ground();
     connect(r1.p, gnd.p);

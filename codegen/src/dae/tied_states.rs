@@ -13,10 +13,12 @@
 //! `emf.phi == emf.flange.phi == rotor.flange_a.phi == rotor.phi`
 //! reads `emf.phi == rotor.phi`), or from two equations that give the
 //! same highest derivative from states (`der(phi) == w1` and
-//! `der(phi) == w2` tie `w1` and `w2`). Only states declared in
-//! components are eliminated; `state(x0).avoid()` marks the one to
-//! prefer, and of two the later declared goes. The eliminated state
-//! stays readable by name.
+//! `der(phi) == w2` tie `w1` and `w2`), or from an over-determined part
+//! of the equations that hides a tie behind algebraic variables
+//! (`hidden_ties`). Only states declared in components are eliminated;
+//! `state(x0).avoid()` marks the one to eliminate, `.prefer()` one to
+//! keep, and of two the later declared goes. The eliminated state stays
+//! readable by name.
 
 use crate::dae::hidden_ties::Hidden;
 use crate::dae::linear_form::{is_constant, Linear};
@@ -59,6 +61,7 @@ fn eliminate(ir: &mut ModelIr) -> crate::Result<()> {
             Some(Tie::Redundant { equation }) => gone[equation] = true,
             Some(Tie::State { equation, state, value }) => {
                 gone[equation] = true;
+                carry_start(ir, state, value)?;
                 replace_state(ir, state, value, orders.get(&state).copied().unwrap_or(1))?;
             }
         }
@@ -248,13 +251,14 @@ fn integrated(ir: &mut ModelIr, linear: &Linear) -> crate::Result<Option<Linear>
 }
 
 /// Which state of a tie goes: `.avoid()` and not `.fixed()`, not
-/// `.fixed()`, a numeric coefficient, the declaration's position; the
-/// largest goes.
-type Preference = (bool, bool, bool, usize);
+/// `.fixed()`, not `.prefer()`, a numeric coefficient, the declaration's
+/// position; the largest goes.
+type Preference = (bool, bool, bool, bool, usize);
 
 /// The tie `Σ c_k y_k + b = 0` solved for a state of a component (an
-/// `.avoid()` one first, never a `.fixed()` one while another will do,
-/// then one with a numeric coefficient, then the latest declared):
+/// `.avoid()` one first, never a `.fixed()` or `.prefer()` one while
+/// another will do, then one with a numeric coefficient, then the latest
+/// declared):
 /// `y = −(Σ_{k≠y} c_k y_k + b) / c_y`.
 fn solve_for_component_state(
     ir: &mut ModelIr,
@@ -295,7 +299,7 @@ fn solve_for_component_state(
             continue;
         }
         // A `.fixed()` state keeps its start value: it stays.
-        let key = (decl.avoid && !decl.fixed, !decl.fixed, numeric.is_some(), k);
+        let key = (decl.avoid && !decl.fixed, !decl.fixed, !decl.prefer, numeric.is_some(), k);
         if best.as_ref().is_none_or(|(b, _, _)| key > *b) {
             best = Some((key, y, c));
         }
@@ -313,6 +317,26 @@ fn solve_for_component_state(
     let constant = g.mul(scale, tie.constant)?;
     let value = Linear { terms, constant }.value(g)?;
     Ok(Some((y, value)))
+}
+
+/// Where `state` is tied to a derivative of another, `c der(x) + b`, and
+/// nothing sets that derivative's start, the start of `state` becomes
+/// its start: a rotor's speed `w0` kept when a sensor that reads
+/// `der(der(phi))` makes `der(phi)` the slot its speed ties to.
+fn carry_start(ir: &mut ModelIr, state: SymbolId, value: Id) -> crate::Result<()> {
+    let Some(linear) = Linear::of(&mut ir.graph, value)? else { return Ok(()) };
+    let [(d, c)] = linear.terms[..] else { return Ok(()) };
+    let is_derivative = matches!(ir.graph.symbol(d).kind, SymbolKind::Derivative { .. });
+    if !is_derivative || ir.inits.iter().any(|i| i.target == d) {
+        return Ok(());
+    }
+    let Some(decl) = ir.states.iter().find(|s| s.symbol == state) else { return Ok(()) };
+    let (start, origin) = (decl.init, decl.origin.clone());
+    let g = &mut ir.graph;
+    let rest = g.sub(start, linear.constant)?;
+    let value = g.div(rest, c)?;
+    ir.inits.push(crate::front::ir::Init { target: d, value, origin });
+    Ok(())
 }
 
 /// Replaces `state` (reaching derivative `top`) by `value` and its

@@ -241,6 +241,16 @@ impl Graph {
         &self.symbols[s.index()]
     }
 
+    /// Makes the algebraic variable `s` a state: a model differentiates
+    /// it (`der(w_rel)`), so the integrator carries it, and the structure
+    /// eliminates it again where a tie determines it.
+    pub fn promote_to_state(&mut self, s: SymbolId) {
+        let symbol = &mut self.symbols[s.index()];
+        if symbol.kind == SymbolKind::Algebraic {
+            symbol.kind = SymbolKind::State;
+        }
+    }
+
     /// The node standing for a symbol.
     pub fn symbol_node(&self, s: SymbolId) -> Id {
         self.symbol_nodes[s.index()]

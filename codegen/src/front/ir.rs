@@ -49,6 +49,9 @@ pub struct StateDecl {
     /// `state(x0).avoid()`: when an equation ties it to other states, it
     /// is the one eliminated.
     pub avoid: bool,
+    /// `state(x0).prefer()`: when an equation ties it to other states, it
+    /// is kept while another can go.
+    pub prefer: bool,
 }
 
 /// `let z = algebraic(guess);`

@@ -307,6 +307,7 @@ impl Lower<'_, Scene> {
                 fixed: false,
                 doc: crate::mechanics::names::planar_joint_doc(kind).to_string(),
                 avoid: false,
+                prefer: false,
             });
             if self.g.as_number(rate).is_some_and(|v| v.is_zero()) {
                 continue;

@@ -401,6 +401,7 @@ impl Lower<'_, Scene> {
                 fixed: false,
                 doc: s.doc.clone(),
                 avoid: false,
+                prefer: false,
             });
         }
         for s in states {

@@ -217,9 +217,11 @@ fn lower_flattens_components_and_writes_the_connections() {
 
 /// A motor's EMF on a rotor joined rigidly to a load: the EMF's shaft
 /// angle, the rotor's and the load's angles and rates tied by the
-/// connections, one angle and one rate left.
+/// connections, one angle and one rate left; and that rate tied to the
+/// ideal source across the EMF (`k w = V`, behind the pins' potentials),
+/// one angle left, turning at V/k.
 #[test]
-fn tied_states_leave_one_angle_and_one_rate() {
+fn tied_states_leave_one_angle_turning_as_the_source_says() {
     let mut cx = Ctxt::default();
     let mut ir = lowered(
         &mut cx,

@@ -129,7 +129,16 @@ impl<S: SceneLanguage> Lower<'_, S> {
     ) -> Option<SymbolId> {
         let (_, symbol) = self.new_symbol(&name, SymbolKind::State, at)?;
         let (origin, doc) = (origin.clone(), doc.to_string());
-        self.states.push(StateDecl { name, symbol, init, origin, fixed: false, doc, avoid: false });
+        self.states.push(StateDecl {
+            name,
+            symbol,
+            init,
+            origin,
+            fixed: false,
+            doc,
+            avoid: false,
+            prefer: false,
+        });
         Some(symbol)
     }
 
@@ -378,6 +387,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                         fixed: false,
                         doc: doc.clone(),
                         avoid: false,
+                        prefer: false,
                     });
                     symbols.push(symbol);
                 }

@@ -336,12 +336,35 @@ impl<S: SceneLanguage> Lower<'_, S> {
         self.graph_result(r, e)
     }
 
+    /// An algebraic variable the model differentiates (`der(w_rel)`, as
+    /// Modelica allows of any variable) becomes a state the structure may
+    /// eliminate (`.avoid()`): where a tie determines it, it goes, its
+    /// derivative the tie's; otherwise its defining equation is a
+    /// constraint on it that index reduction differentiates.
+    fn promote_differentiated_algebraic(&mut self, value: Id) {
+        let Some(s) = self.g.as_symbol(value) else { return };
+        let Some(k) = self.algebraics.iter().position(|a| a.symbol == s) else { return };
+        let a = self.algebraics.remove(k);
+        self.g.promote_to_state(s);
+        self.states.push(crate::front::ir::StateDecl {
+            name: a.name,
+            symbol: s,
+            init: a.init,
+            origin: a.origin,
+            fixed: false,
+            doc: a.doc,
+            avoid: true,
+            prefer: false,
+        });
+    }
+
     pub(in crate::front) fn der(&mut self, c: &syn::ExprCall, e: &Expr) -> Option<Id> {
         if !self.arity(c, "der", 1) {
             return None;
         }
         let arg = &c.args[0];
         let inner = self.value(arg)?;
+        self.promote_differentiated_algebraic(inner);
         let symbol = self.g.as_symbol(inner).filter(|&s| {
             matches!(self.g.symbol(s).kind, SymbolKind::State | SymbolKind::Derivative { .. })
         });

@@ -70,15 +70,13 @@ impl<S: SceneLanguage> Lower<'_, S> {
         if known_function {
             return None;
         }
-        // A misspelt function or part is a mistake here, not a component
-        // to fetch from elsewhere.
+        // A misspelt function is a mistake here, not a component to fetch
+        // from elsewhere. A name like a library part's may be the user's
+        // own part (`conductor` beside `inductor`): it is fetched, and
+        // where no part of that name exists the compiler says so.
         if let Some(name) = single.as_deref() {
             if did_you_mean(name, super::syntax::FUNCTIONS.into_iter()).is_some() {
                 return None;
-            }
-            if let Some(part) = did_you_mean(name, self.library.paths()) {
-                self.cx.error_at(&c.func, format!("unknown part `{name}`; did you mean `{part}`?"));
-                return Some(None);
             }
         }
         if !self.missing_parts.iter().any(|p| path_text(p) == path) {

@@ -108,8 +108,9 @@ impl<S: SceneLanguage> Lower<'_, S> {
             return self.event(Some(&ident), call, &settings, doc, local);
         }
         // `state(x0).fixed()`: a value consistent initialization keeps;
-        // `state(x0).avoid()`: the state eliminated when tied to others.
-        let (mut e, mut fixed, mut avoid) = (e, false, false);
+        // `state(x0).avoid()`: the state eliminated when tied to others;
+        // `state(x0).prefer()`: the state kept.
+        let (mut e, mut fixed, mut avoid, mut prefer) = (e, false, false, false);
         while let Expr::MethodCall(m) = e {
             let is_state = |r: &Expr| {
                 let mut r = r;
@@ -121,6 +122,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
             match m.method.to_string().as_str() {
                 "fixed" if m.args.is_empty() && is_state(&m.receiver) => fixed = true,
                 "avoid" if m.args.is_empty() && is_state(&m.receiver) => avoid = true,
+                "prefer" if m.args.is_empty() && is_state(&m.receiver) => prefer = true,
                 _ => break,
             }
             e = &m.receiver;
@@ -165,6 +167,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 for state in &mut self.states[first..] {
                     state.fixed = fixed;
                     state.avoid = avoid;
+                    state.prefer = prefer;
                 }
                 return;
             }
@@ -370,7 +373,15 @@ impl<S: SceneLanguage> Lower<'_, S> {
             Some((s, SymbolKind::Derivative { .. })) => {
                 self.inits.push(Init { target: s, value, origin: whole.to_token_stream() })
             }
-            _ => self.cx.error_at(&call.args[0], "`init` sets a derivative of a state: `init(der(x), 0.0)`; set the state itself in `state(...)`"),
+            // A part's state (`init(c1.v, 1.0)`), as Modelica's modifier
+            // `C1(v(start = 1, fixed = true))`: the start the run keeps,
+            // so a tie keeps the state while another will do.
+            Some((s, SymbolKind::State)) if self.states.iter().any(|d| d.symbol == s) => {
+                let decl = self.states.iter_mut().find(|d| d.symbol == s).expect("found");
+                decl.init = value;
+                decl.fixed = true;
+            }
+            _ => self.cx.error_at(&call.args[0], "`init` sets a state's start, `init(c1.v, 1.0)`, or a derivative's, `init(der(x), 0.0)`"),
         }
     }
 }
