@@ -15,7 +15,8 @@
 
 use super::*;
 use daegen_fmi::description::{instantiation_token, FmiVersion};
-use daegen_fmi::fmi3;
+use daegen_fmi::calls;
+use daegen_fmi::fmi3::{self, Fmi3};
 use daegen_workprecision::median_time;
 use std::ffi::{c_void, CString};
 use std::ptr::{null, null_mut};
@@ -70,14 +71,14 @@ fn model_exchange<M: Model + Clone + Default + Send + Sync + 'static>() -> *mut 
         )
     };
     assert_eq!(fmi3::enter_initialization_mode::<M>(c, false, 0.0, 0.0, false, 0.0), 0);
-    assert_eq!(fmi3::exit_initialization_mode::<M>(c), 0);
+    assert_eq!(calls::exit_initialization_mode::<Fmi3, M>(c), 0);
     let (mut a, mut b, mut d, mut e, mut f, mut g) = (false, false, false, false, false, 0.0);
     // SAFETY: valid flags.
     let s = unsafe {
         fmi3::update_discrete_states::<M>(c, &mut a, &mut b, &mut d, &mut e, &mut f, &mut g)
     };
     assert_eq!(s, 0);
-    assert_eq!(fmi3::enter_continuous_time_mode::<M>(c), 0);
+    assert_eq!(calls::enter_continuous_time_mode::<Fmi3, M>(c), 0);
     c
 }
 
@@ -90,21 +91,21 @@ fn evaluation<M: Model + Clone + Default + Send + Sync + 'static>(
     let n = M::STATES;
     let mut x = vec![0.0; n];
     // SAFETY: n values.
-    unsafe { fmi3::get_continuous_states::<M>(c, x.as_mut_ptr(), n) };
+    unsafe { calls::get_continuous_states::<Fmi3, M>(c, x.as_mut_ptr(), n) };
     let mut dx = vec![0.0; n];
     let (through, _) = median_time(settings, || {
         for k in 0..CALLS {
             x[0] += 1e-12;
-            fmi3::set_time::<M>(c, k as f64 * 1e-6);
+            calls::set_time::<Fmi3, M>(c, k as f64 * 1e-6);
             // SAFETY: n values each.
             unsafe {
-                fmi3::set_continuous_states::<M>(c, x.as_ptr(), n);
-                fmi3::get_derivatives::<M>(c, dx.as_mut_ptr(), n);
+                calls::set_continuous_states::<Fmi3, M>(c, x.as_ptr(), n);
+                calls::get_derivatives::<Fmi3, M>(c, dx.as_mut_ptr(), n);
             }
         }
         dx[0]
     });
-    fmi3::free_instance(c);
+    calls::free_instance(c);
     let model = M::default();
     let (direct, _) = median_time(settings, || {
         for k in 0..CALLS {
@@ -143,17 +144,17 @@ fn co_simulation(h: f64, tol: f64, settings: &Settings) -> (f64, f64) {
             )
         };
         fmi3::enter_initialization_mode::<M>(c, true, tol, 0.0, false, 0.0);
-        fmi3::exit_initialization_mode::<M>(c);
+        calls::exit_initialization_mode::<Fmi3, M>(c);
         let (mut a, mut b, mut d, mut last) = (false, false, false, 0.0);
         let mut x = 0.0;
         for k in 0..steps {
             // SAFETY: valid flags and one value reference.
             unsafe {
                 fmi3::do_step::<M>(c, k as f64 * h, h, true, &mut a, &mut b, &mut d, &mut last);
-                fmi3::get_float64::<M>(c, &1, 1, &mut x, 1);
+                calls::get_real::<Fmi3, M>(c, &1, 1, &mut x, 1);
             }
         }
-        fmi3::free_instance(c);
+        calls::free_instance(c);
         x
     });
     (seconds, x)

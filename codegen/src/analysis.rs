@@ -22,6 +22,8 @@ pub struct SystemAnalysis {
     pub taylor: crate::Result<TaylorAnalysis>,
     /// The invariants grouped by level, each with the states it corrects.
     pub projection: Vec<ProjectionLevel>,
+    /// The start values the initial equations decide, where it has any.
+    pub initialization: Option<crate::dae::initialization::Initialization>,
 }
 
 /// The variational system of the forward sensitivities.

@@ -32,11 +32,13 @@ pub struct Analysed {
     pub programs: crate::programs::SystemPrograms,
 }
 
-/// Runs every stage in order: attributes → lower → tied states →
-/// structure (equations, combinations free of derivatives, index
-/// reduction) → reduction (structural check, aliases, causal order, the
-/// Newton block, the linear blocks, the first-order system; mode by mode
-/// for a model with modes) → inputs not differentiated → variational →
+/// Runs every stage in order: attributes → lower → tied states (those
+/// hidden behind algebraic variables too) → structure (equations,
+/// combinations free of derivatives, index reduction) → reduction
+/// (structural check, aliases, causal order, the Newton block, the linear
+/// blocks, the first-order system; mode by mode for a model with modes) →
+/// inputs not differentiated → the starts initial equations decide →
+/// variational →
 /// mass form → Taylor → projection levels → programs. `Err` holds the
 /// IR as far as it got (for the stub) when a stage reported errors to `cx`.
 pub fn analyse(
@@ -81,6 +83,9 @@ pub fn analyse_with_parts(
     if !crate::dae::inputs::inputs_not_differentiated(cx, &ir, &system) {
         return Err(Box::new(ir));
     }
+    let Some(initialization) = crate::dae::initialization::initialization(cx, &ir, &system) else {
+        return Err(Box::new(ir));
+    };
     let sensitivities = variational(cx, &mut ir, &attributes, &system);
     if !cx.is_ok() {
         return Err(Box::new(ir));
@@ -90,7 +95,8 @@ pub fn analyse_with_parts(
             return Err(Box::new(ir));
         }
     }
-    let model = system_analysis(&mut ir.graph, ir.time, system, &attributes);
+    let mut model = system_analysis(&mut ir.graph, ir.time, system, &attributes);
+    model.initialization = initialization;
     let sensitivities = sensitivities.map(|(wrt, augmented, attributes)| {
         let model =
             augmented.map(|system| system_analysis(&mut ir.graph, ir.time, system, &attributes));
@@ -206,5 +212,5 @@ fn system_analysis(
     let slot_of: FxHashMap<SymbolId, usize> =
         system.slots.iter().enumerate().map(|(i, s)| (s.symbol, i)).collect();
     let projection = crate::dae::constraints::projection_levels(g, &system, &slot_of);
-    SystemAnalysis { system, mass_form, taylor, projection }
+    SystemAnalysis { system, mass_form, taylor, projection, initialization: None }
 }

@@ -13,14 +13,18 @@ use crate::run::observables::solution_of;
 use crate::step::projection::{Projector, INITIAL_ITERATIONS};
 
 /// Makes `y` a consistent state of `model` at `t0`, as a run does before
-/// its first step: a DAE's states are projected onto its constraints and
-/// their hidden levels (keeping the states `state(x0).fixed()` fixes).
+/// its first step: the relations set as they hold there, the initial
+/// equations solved for the starts they decide, a DAE's states projected
+/// onto its constraints and their hidden levels (keeping the states
+/// `state(x0).fixed()` fixes).
 pub fn consistent_state<M: Model + Clone + Send + Sync + 'static>(
     model: &M,
     t0: f64,
     y: &mut [f64],
 ) -> Result<(), Error> {
+    model.start_relations(t0, y);
     let solution = solution_of(model);
+    let solution = crate::run::initialization::solve_initial_equations(model, t0, y, solution)?;
     let solution = crate::step::projection::consistent_initial_values(model, t0, y, solution)?;
     crate::step::projection::consistent_algebraic_components(model, t0, y, solution)?;
     Ok(())

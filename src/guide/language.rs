@@ -14,6 +14,7 @@
 //! | `der(x) == f;`, `der(der(x)) == a;` | an equation; second derivatives are reduced to first order (`init(der(x), v0)` sets the initial rate); `der(w)` of an algebraic `w` makes it a state the structure eliminates where its equation ties it to others |
 //! | `state(x0).fixed()`, `.avoid()`, `.prefer()` | the start kept by initialization; the state eliminated, or kept, when connections tie it to others (Modelica's `fixed = true`, `StateSelect.avoid`, `.prefer`) |
 //! | `init(c1.v, 0.0);` | a part's state started at a value, kept (Modelica's `C1(v(start = 0, fixed = true))`) |
+//! | `initial(der(w) == 0.0);` | an equation that holds at the start only (Modelica's `initial equation`): it decides the start of a state it reads whose start is not fixed, solved by Newton's method before the first step (a steady start: `initial(der(x) == 0.0)` for each state); the values chosen are in `Solution::initial_corrections()`; an equation that can move no start, or more equations than the starts they can move, is a compile error |
 //! | `lhs == rhs;` | any equation, in any order, also implicit in the derivatives (solved symbolically; see [`super::structure`]) |
 //! | `let y = algebraic(0.0);` and `constraint(g);` | a DAE: see [`super::daes`] |
 //! | `let i = algebraic_array([0.0; N]);` | an array of algebraic variables, `i[k]`: see [`super::structure`] |
@@ -22,6 +23,8 @@
 //! | `let hit = event(g).falling().terminal();` | a zero crossing of `g`, located to machine precision |
 //! | `event(h).falling().reinit(der(h), -e * pre(der(h)))` | an action at an event: a state set from the values there (`pre(x)`: just before): see [`super::hybrid`] |
 //! | `let on = discrete(true);`, `if on { .. } else { .. }` | a value that changes only at events; a mode selecting equations |
+//! | `let i = if v < -ve { a } else if v > ve { b } else { c };`, `if x > 1.0 { eqs } else { eqs }`, `min(a, b)`, `max(a, b)`, `sign(x)` | relations on model variables, with Modelica's event semantics: each relation is held in a discrete boolean `(v < -ve)` between events, and two events on it (named `(v < -ve)` where it turns true, `!(v < -ve)` where it turns false) switch it where it crosses; the run sets it from its value at the start; every method steps to the crossing and restarts there. `no_event(expr)` evaluates the relations in `expr` as steps without events, for an expression smooth enough at the switch |
+//! | `heaviside(t - t0)`, a library step, ramp or pulse | a switch in the time alone: every method steps to `t0` exactly and restarts there |
 //! | `let tick = every(0.01).reinit(u, expr);` | a clock: actions at each sample instant |
 //! | `let u = input(0.0);` | a signal the caller supplies at run time (a function, a table) |
 //! | `let t = time();` | the independent variable |
@@ -32,8 +35,9 @@
 //! | `let f = \|dh\| cd * sqrt(dh);`, `f(h)` | a function of the model, inlined where it is called |
 //!
 //! Functions: `sin cos tan asin acos atan atan2 sinh cosh tanh exp ln sqrt
-//! abs heaviside`, `x.powi(n)`, `x.powf(a)`. Everything must be smooth for the Taylor
-//! methods (`abs` is refused there, with its span). Mistakes are compile
+//! abs heaviside min max sign no_event`, `x.powi(n)`, `x.powf(a)`. The Taylor
+//! methods need a smooth right-hand side between events (`abs` and
+//! `heaviside` are refused there, with their span). Mistakes are compile
 //! errors on the tokens at fault, with the fix: an unknown name suggests the
 //! nearest declared one, `ln(0.0)` is refused as it is written.
 //!

@@ -17,26 +17,9 @@ pub(crate) struct Linear {
 impl Linear {
     /// `r` so; `None` when it is not linear so or reads another variable.
     pub(crate) fn of(g: &mut Graph, r: Id) -> crate::Result<Option<Linear>> {
-        let variables: Vec<SymbolId> = g
-            .free_symbols(r)
-            .into_iter()
-            .filter(|&s| g.symbol(s).kind != SymbolKind::Parameter)
-            .collect();
-        let mut terms = Vec::with_capacity(variables.len());
-        let mut zeros = FxHashMap::default();
-        for &y in &variables {
-            if !matches!(g.symbol(y).kind, SymbolKind::State | SymbolKind::Derivative { .. }) {
-                return Ok(None);
-            }
-            let c = g.partial(r, y)?;
-            if !is_constant(g, c) {
-                return Ok(None);
-            }
-            terms.push((y, c));
-            zeros.insert(y, g.zero());
-        }
-        let constant = g.substitute(r, &zeros)?;
-        Ok(Some(Linear { terms, constant }))
+        Linear::in_terms(g, r, None, |kind| {
+            matches!(kind, SymbolKind::State | SymbolKind::Derivative { .. })
+        })
     }
 
     /// `r` as `Σ c_k y_k + b(t)` over every variable it reads (states,
@@ -47,19 +30,31 @@ impl Linear {
         r: Id,
         time: SymbolId,
     ) -> crate::Result<Option<Linear>> {
+        Linear::in_terms(g, r, Some(time), |kind| {
+            matches!(
+                kind,
+                SymbolKind::State | SymbolKind::Algebraic | SymbolKind::Derivative { .. }
+            )
+        })
+    }
+
+    /// `r` linear in every symbol it reads but the parameters (and `time`,
+    /// where given, left in `b`), each of a kind `term` accepts.
+    fn in_terms(
+        g: &mut Graph,
+        r: Id,
+        time: Option<SymbolId>,
+        term: impl Fn(SymbolKind) -> bool,
+    ) -> crate::Result<Option<Linear>> {
         let variables: Vec<SymbolId> = g
             .free_symbols(r)
             .into_iter()
-            .filter(|&s| s != time && g.symbol(s).kind != SymbolKind::Parameter)
+            .filter(|&s| Some(s) != time && g.symbol(s).kind != SymbolKind::Parameter)
             .collect();
         let mut terms = Vec::with_capacity(variables.len());
         let mut zeros = FxHashMap::default();
         for &y in &variables {
-            let kind = g.symbol(y).kind;
-            if !matches!(
-                kind,
-                SymbolKind::State | SymbolKind::Algebraic | SymbolKind::Derivative { .. }
-            ) {
+            if !term(g.symbol(y).kind) {
                 return Ok(None);
             }
             let c = g.partial(r, y)?;

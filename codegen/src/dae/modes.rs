@@ -268,6 +268,10 @@ fn join(
     for i in 0..first.events.len() {
         events.push(blend(g, systems.iter().map(|s| s.events[i]).collect())?);
     }
+    let mut initial = Vec::with_capacity(first.initial.len());
+    for i in 0..first.initial.len() {
+        initial.push(blend(g, systems.iter().map(|s| s.initial[i]).collect())?);
+    }
     let mut actions = first.actions.clone();
     for (t, trigger) in actions.iter_mut().enumerate() {
         for (a, action) in trigger.iter_mut().enumerate() {
@@ -282,6 +286,7 @@ fn join(
     joined.algebraics = algebraics;
     joined.outputs = outputs;
     joined.events = events;
+    joined.initial = initial;
     joined.actions = actions;
     Ok(joined)
 }

@@ -233,6 +233,9 @@ pub fn first_order(
     let (outputs, events, observed) =
         observables(cx, g, (&ir.outputs, &ir.events), &known, &z_index, newton.as_ref())?;
     ok &= observed;
+    let (initial, initial_ok) =
+        initial_residuals(cx, g, &ir.initial_equations, &known, &z_index, newton.as_ref())?;
+    ok &= initial_ok;
     let solved_at_run_time =
         |s: SymbolId| z_index.contains_key(&s) || newton.as_ref().is_some_and(|b| b.determines(&s));
     let actions = crate::dae::actions::slot_actions(
@@ -283,6 +286,7 @@ pub fn first_order(
         blocks: solved.blocks,
         outputs,
         events,
+        initial,
         actions,
         algebraics,
         invariants,
@@ -592,6 +596,34 @@ fn observables(
         events.push(observe(e.value, &e.origin, "event")?);
     }
     Some((outputs, events, ok))
+}
+
+/// The initial equations' residuals with the highest derivatives and the
+/// algebraic variables replaced by their solutions; one that reads an
+/// unknown solved at run time is an error (`false`).
+fn initial_residuals(
+    cx: &mut Ctxt,
+    g: &mut Graph,
+    equations: &[crate::front::ir::InitialEquation],
+    replace: &FxHashMap<SymbolId, Id>,
+    z_index: &FxHashMap<SymbolId, usize>,
+    newton: Option<&crate::dae::system::NewtonBlock>,
+) -> Option<(Vec<Id>, bool)> {
+    let mut ok = true;
+    let mut residuals = Vec::with_capacity(equations.len());
+    for e in equations {
+        let r = g.sub(e.lhs, e.rhs).ok()?;
+        let r = g.substitute(r, replace).ok()?;
+        let solved_at_run_time =
+            |s: &SymbolId| z_index.contains_key(s) || newton.is_some_and(|b| b.determines(s));
+        if let Some(s) = g.free_symbols(r).into_iter().find(solved_at_run_time) {
+            let name = g.symbol(s).name.clone();
+            cx.error_at(&e.origin, format!("this initial equation reads `{name}`, which is only known after a numerical solve; write it in the states instead"));
+            ok = false;
+        }
+        residuals.push(r);
+    }
+    Some((residuals, ok))
 }
 
 /// The unknowns at a point: the highest derivatives (the first `states`),

@@ -100,6 +100,9 @@ pub struct FirstOrder {
     pub outputs: Vec<Id>,
     /// Event functions, likewise.
     pub events: Vec<Id>,
+    /// The initial equations' residuals `lhs − rhs` (`initial(..)`),
+    /// likewise: functions of the time and the slots, zero at the start.
+    pub initial: Vec<Id>,
     /// What each event, then each clock, does where it fires, in order.
     pub actions: Vec<Vec<SlotAction>>,
     /// How the equations are solved for their unknowns, in causal order.

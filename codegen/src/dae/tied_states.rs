@@ -25,16 +25,50 @@ use crate::dae::linear_form::{is_constant, Linear};
 use crate::front::ctxt::Ctxt;
 use crate::front::ir::{ModelIr, Output};
 use crate::{FxHashMap, Graph, Id, SymbolId, SymbolKind};
+use proc_macro2::TokenStream;
 
 /// Eliminates every tie among the states of `ir`'s components.
 pub fn eliminate_tied_states(cx: &mut Ctxt, ir: &mut ModelIr) {
-    if let Err(e) = eliminate(ir) {
-        let at = ir.equations.first().map(|e| e.origin.clone());
-        match at {
-            Some(at) => cx.error_at(at, e),
-            None => cx.error_at(&ir.fn_name, e),
+    match eliminate(ir) {
+        Ok(conflicts) => {
+            for (at, message) in conflicts {
+                cx.error_at(at, message);
+            }
+        }
+        Err(e) => {
+            let at = ir.equations.first().map(|e| e.origin.clone());
+            match at {
+                Some(at) => cx.error_at(at, e),
+                None => cx.error_at(&ir.fn_name, e),
+            }
         }
     }
+}
+
+/// A tie that must eliminate a state whose start is fixed (every state of
+/// the tie is): the starts conflict, as the run could honour only one.
+/// Said where the eliminated state's start was set, naming the others.
+fn start_conflict(ir: &ModelIr, state: SymbolId, value: Id) -> Option<(TokenStream, String)> {
+    let decl = ir.states.iter().find(|s| s.symbol == state && s.fixed)?;
+    let g = &ir.graph;
+    let others: Vec<String> = g
+        .free_symbols(value)
+        .iter()
+        .filter_map(|s| ir.states.iter().find(|d| d.symbol == *s && d.fixed))
+        .map(|d| format!("`{}`", d.name))
+        .collect();
+    let at = ir.fixed_starts.iter().find(|(s, _)| *s == state).map(|(_, at)| at.clone());
+    let at = at.unwrap_or_else(|| decl.origin.clone());
+    Some((
+        at,
+        format!(
+            "the start of `{}` conflicts with the start of {}: the connections tie them (`{}` = {}), so only one can be set; set the start of one",
+            decl.name,
+            others.join(" and "),
+            decl.name,
+            g.show(value)
+        ),
+    ))
 }
 
 /// An equation of more operations than this is no tie (a tie is linear in
@@ -43,7 +77,8 @@ pub fn eliminate_tied_states(cx: &mut Ctxt, ir: &mut ModelIr) {
 /// again at every tie found.
 const TIE_OPERATIONS: usize = 1000;
 
-fn eliminate(ir: &mut ModelIr) -> crate::Result<()> {
+fn eliminate(ir: &mut ModelIr) -> crate::Result<Vec<(TokenStream, String)>> {
+    let mut conflicts = Vec::new();
     let mut gone = vec![false; ir.equations.len()];
     // An equation of one mode ties nothing for good, nor does a large
     // one: the search passes them by, as if gone, and they stay.
@@ -61,6 +96,7 @@ fn eliminate(ir: &mut ModelIr) -> crate::Result<()> {
             Some(Tie::Redundant { equation }) => gone[equation] = true,
             Some(Tie::State { equation, state, value }) => {
                 gone[equation] = true;
+                conflicts.extend(start_conflict(ir, state, value));
                 carry_start(ir, state, value)?;
                 replace_state(ir, state, value, orders.get(&state).copied().unwrap_or(1))?;
             }
@@ -71,7 +107,7 @@ fn eliminate(ir: &mut ModelIr) -> crate::Result<()> {
         k += 1;
         !gone[k - 1]
     });
-    Ok(())
+    Ok(conflicts)
 }
 
 /// What `find_tie` found.
@@ -355,6 +391,10 @@ fn replace_state(ir: &mut ModelIr, state: SymbolId, value: Id, top: u32) -> crat
     // rewritten once.
     let mut slots: Vec<&mut Id> = Vec::new();
     for eq in &mut ir.equations {
+        slots.push(&mut eq.lhs);
+        slots.push(&mut eq.rhs);
+    }
+    for eq in &mut ir.initial_equations {
         slots.push(&mut eq.lhs);
         slots.push(&mut eq.rhs);
     }

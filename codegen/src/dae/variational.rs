@@ -164,6 +164,7 @@ pub fn variational_system(
         blocks: Vec::new(),
         outputs: sys.outputs.clone(),
         events: sys.events.clone(),
+        initial: sys.initial.clone(),
         actions: sys.actions.clone(),
         structure: sys.structure.clone(),
     };

@@ -90,10 +90,32 @@ pub(crate) fn clock_method(g: &Graph, layout: &Layout, programs: &[Program]) -> 
     }
 }
 
-/// `input_breakpoints`, every input's breakpoints, and `set_input`.
-pub(crate) fn input_breakpoints_method(inputs: &[crate::front::ir::InputDecl]) -> TokenStream {
+/// `input_breakpoints`, every input's breakpoints and the instants of the
+/// model's switches in the time alone (`time_events`), and `set_input`.
+pub(crate) fn input_breakpoints_method(
+    g: &Graph,
+    layout: &Layout,
+    inputs: &[crate::front::ir::InputDecl],
+    time_events: Option<&Program>,
+) -> TokenStream {
+    let switches = match time_events {
+        Some(program) => {
+            let code = straight_program(g, layout, program, &|_, v| quote!(breakpoints.push(#v);));
+            quote!({ #code })
+        }
+        None => TokenStream::new(),
+    };
     if inputs.is_empty() {
-        return TokenStream::new();
+        if time_events.is_none() {
+            return TokenStream::new();
+        }
+        return quote! {
+            fn input_breakpoints(&self) -> ::std::vec::Vec<f64> {
+                let mut breakpoints = ::std::vec::Vec::new();
+                #switches
+                breakpoints
+            }
+        };
     }
     let fields = inputs.iter().map(|i| &i.ident);
     let set_arms = inputs.iter().enumerate().map(|(k, i)| {
@@ -104,6 +126,7 @@ pub(crate) fn input_breakpoints_method(inputs: &[crate::front::ir::InputDecl]) -
         fn input_breakpoints(&self) -> ::std::vec::Vec<f64> {
             let mut breakpoints = ::std::vec::Vec::new();
             #(breakpoints.extend_from_slice(self.#fields.breakpoints());)*
+            #switches
             breakpoints
         }
 
@@ -111,6 +134,50 @@ pub(crate) fn input_breakpoints_method(inputs: &[crate::front::ir::InputDecl]) -
             match index {
                 #(#set_arms)*
                 _ => {}
+            }
+        }
+    }
+}
+
+/// `start_relations`: each relation's discrete boolean set from its value
+/// at the start, through the event function that watches it, again until
+/// none changes (a relation may read a value another switches).
+pub(crate) fn start_relations_method(
+    sys: &FirstOrder,
+    relations: &[crate::front::ir::Relation],
+) -> TokenStream {
+    if relations.is_empty() {
+        return TokenStream::new();
+    }
+    let events = index(sys.events.len());
+    let rounds = index(relations.len() + 1);
+    let sets = relations.iter().filter_map(|r| {
+        let slot = sys.slots.iter().position(|s| s.symbol == r.discrete)?;
+        let (slot, event) = (index(slot), index(r.event));
+        let holds = match r.inclusive {
+            true => quote!(g[#event] >= 0.0),
+            false => quote!(g[#event] > 0.0),
+        };
+        Some(quote! {
+            let held = if #holds { 1.0 } else { 0.0 };
+            if let ::core::option::Option::Some(value) = y.get_mut(#slot) {
+                if *value != held {
+                    *value = held;
+                    changed = true;
+                }
+            }
+        })
+    });
+    quote! {
+        fn start_relations(&self, t: f64, y: &mut [f64]) {
+            let mut g = [0.0f64; #events];
+            for _ in 0..#rounds {
+                <Self as ::daegen::Model>::events(self, t, y, &mut g);
+                let mut changed = false;
+                #(#sets)*
+                if !changed {
+                    break;
+                }
             }
         }
     }

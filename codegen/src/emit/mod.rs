@@ -2,7 +2,8 @@
 //! (`crate::programs`) as Rust tokens (`program`) reading symbols as
 //! `layout` says, and the items of a model type: `model` assembles them
 //! from one emitter per item (`rhs`, `jacobian`, `events`, `outputs`,
-//! `taylor_items`, `newton`, `constraints`, `mass_form`, `docs`), `batch`
+//! `taylor_items`, `newton`, `constraints`, `initialization`, `mass_form`,
+//! `docs`), `batch`
 //! steps several members at once, and `benchmark` registers it.
 
 pub mod actions;
@@ -11,6 +12,7 @@ pub mod benchmark;
 pub mod constraints;
 pub mod docs;
 pub mod events;
+pub mod initialization;
 pub mod jacobian;
 pub mod layout;
 pub mod mass_form;

@@ -70,7 +70,14 @@ fn expand_system(
         &analysis.projection,
         p.constraints.as_ref(),
     );
+    let initialization_methods = crate::emit::initialization::initialization_methods(
+        g,
+        &layout,
+        n,
+        p.initialization.as_ref(),
+    );
     let events_method = events_method(g, &layout, sys, p.events.as_ref());
+    let start_relations = crate::emit::actions::start_relations_method(sys, &ir.relations);
     let act_method = crate::emit::actions::act_method(g, &layout, sys, &ir.pre, &p.actions);
     let rhs_method_body = fixed_size_body(
         &index(n),
@@ -102,7 +109,12 @@ fn expand_system(
         _ => (TokenStream::new(), TokenStream::new()),
     };
     let clock_method = crate::emit::actions::clock_method(g, &layout, &p.clocks);
-    let input_breakpoints = crate::emit::actions::input_breakpoints_method(&ir.inputs);
+    let input_breakpoints = crate::emit::actions::input_breakpoints_method(
+        g,
+        &layout,
+        &ir.inputs,
+        p.breakpoints.as_ref(),
+    );
     let info = info(ir, naming, sys);
     let parameter = parameter_method(ir);
     let degenerate = degenerate_parameters_method(g, &layout, sys, p.degenerate.as_ref());
@@ -193,6 +205,10 @@ fn expand_system(
             #input_breakpoints
 
             #constraint_methods
+
+            #initialization_methods
+
+            #start_relations
 
             #mass_form_method
 

@@ -193,6 +193,30 @@ pub struct UserInvariant {
     pub origin: TokenStream,
 }
 
+/// `initial(lhs == rhs);`: an equation that holds at the start only
+/// (Modelica's `initial equation`).
+pub struct InitialEquation {
+    /// Its left-hand side.
+    pub lhs: Id,
+    /// Its right-hand side.
+    pub rhs: Id,
+    /// The statement, for errors.
+    pub origin: TokenStream,
+}
+
+/// A relation on model variables, `p > 0` (`p >= 0` where `inclusive`),
+/// held in a discrete boolean between events.
+pub struct Relation {
+    /// `p`.
+    pub value: Id,
+    /// The discrete boolean that holds it.
+    pub discrete: SymbolId,
+    /// The event where it turns true; the next one turns it false.
+    pub event: usize,
+    /// `>=` or `<=`: true where `p` is zero at the start.
+    pub inclusive: bool,
+}
+
 /// `init(der(x), v);`
 pub struct Init {
     /// The derivative symbol `der^k(x)`.
@@ -238,6 +262,12 @@ pub struct ModelIr {
     pub equations: Vec<Equation>,
     /// Initial values of derivatives.
     pub inits: Vec<Init>,
+    /// Equations that hold at the start only.
+    pub initial_equations: Vec<InitialEquation>,
+    /// The states whose starts `init(part.x, v)` set, with the statement.
+    pub fixed_starts: Vec<(SymbolId, TokenStream)>,
+    /// The relations on model variables, each held in a discrete boolean.
+    pub relations: Vec<Relation>,
     /// Invariants to project onto (`invariant(e)`, quaternion norms).
     pub invariants: Vec<UserInvariant>,
     /// Calls of non-smooth functions (`abs`) and their tokens, for errors
@@ -308,6 +338,9 @@ impl std::fmt::Display for ModelIr {
         }
         for i in &self.inits {
             writeln!(f, "init {} = {}", name(i.target), g.show(i.value))?;
+        }
+        for e in &self.initial_equations {
+            writeln!(f, "initial {} == {}", g.show(e.lhs), g.show(e.rhs))?;
         }
         for i in &self.invariants {
             writeln!(f, "invariant {}", g.show(i.value))?;

@@ -12,6 +12,7 @@
 pub mod batch;
 pub mod derivatives;
 pub mod hybrid;
+pub mod initialization;
 pub mod mass_form;
 pub mod newton;
 pub mod outputs;
@@ -76,6 +77,13 @@ pub struct ModelPrograms {
     pub batch: Option<Program>,
     /// The model with its sensitivities, a model of its own.
     pub sensitivities: Option<Box<SystemPrograms>>,
+    /// The instants of switches in the time alone (`heaviside(t − t0)`),
+    /// where the model has any: scheduled last, so no other item's
+    /// operands move.
+    pub breakpoints: Option<Program>,
+    /// The initialization's residuals and Jacobian, where the model has
+    /// initial equations; scheduled last, likewise.
+    pub initialization: Option<initialization::InitializationPrograms>,
 }
 
 /// Whether the model has actions, clocks or inputs (its mass-matrix form
@@ -196,6 +204,11 @@ fn system_programs(
         }
         None => None,
     };
+    let breakpoints = breakpoint_program(ir)?;
+    let initialization = match &analysis.initialization {
+        Some(i) => Some(initialization::initialization_programs(&mut ir.graph, sys, i)?),
+        None => None,
+    };
     Ok(SystemPrograms::Model(Box::new(ModelPrograms {
         newton,
         initial_state,
@@ -213,7 +226,20 @@ fn system_programs(
         degenerate,
         batch,
         sensitivities,
+        breakpoints,
+        initialization,
     })))
+}
+
+/// The program of the instants where the model switches in the time
+/// alone (`dae::time_events`), or `None` where it has none.
+fn breakpoint_program(ir: &mut ModelIr) -> crate::Result<Option<Program>> {
+    let mut roots: Vec<Id> = ir.equations.iter().flat_map(|e| [e.lhs, e.rhs]).collect();
+    roots.extend(ir.outputs.iter().map(|o| o.value));
+    roots.extend(ir.events.iter().map(|e| e.value));
+    let g = &mut ir.graph;
+    let instants = crate::dae::time_events::breakpoints(g, &roots, ir.time)?;
+    Ok((!instants.is_empty()).then(|| g.schedule(&instants)))
 }
 
 /// The programs of a model whose algebraic equations are nonlinear in the

@@ -211,6 +211,34 @@ pub trait Model {
         let _ = (level, t, y, out);
     }
 
+    // ----- Initialization -----
+
+    /// Sets each relation on model variables (`if v < -ve { .. }`, `min`,
+    /// `max`, `sign`), held in a discrete boolean between events, from its
+    /// value at `(t, y)`: the run calls it at its start.
+    fn start_relations(&self, t: f64, y: &mut [f64]) {
+        let _ = (t, y);
+    }
+
+    /// The states the initial equations (`initial(lhs == rhs)`) decide,
+    /// solved for before the first step; every other state keeps its
+    /// start.
+    const INITIAL_FREE: &'static [usize] = &[];
+
+    /// Each initial equation as written.
+    const INITIAL_EQUATIONS: &'static [&'static str] = &[];
+
+    /// Writes each initial equation's residual `lhs − rhs` at `(t, y)`.
+    fn initial_residuals(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        let _ = (t, y, out);
+    }
+
+    /// Writes the initial residuals' Jacobian with respect to the states
+    /// of [`Model::INITIAL_FREE`], dense and row-major.
+    fn initial_jacobian(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        let _ = (t, y, out);
+    }
+
     // ----- Events -----
 
     /// Writes the value of every event function (see [`ModelInfo::events`])
@@ -251,7 +279,9 @@ pub trait Model {
 
     /// The breakpoints of this instance's inputs ([`ModelInfo::inputs`]):
     /// the times where a table's interpolation has a kink or a jump in a
-    /// derivative, which a run steps to.
+    /// derivative, and the instants where the model's own expressions
+    /// switch in the time alone (`heaviside(t − t0)`, a step source): a
+    /// run steps to each exactly and restarts there.
     fn input_breakpoints(&self) -> Vec<f64> {
         Vec::new()
     }

@@ -92,7 +92,7 @@ pub(crate) fn integrate_hybrid<M: Model>(
         solution = integrate(stretch, solution)?;
         t = solution.final_time();
         y.copy_from_slice(solution.final_state());
-        due = solution.take_pending_action().map(|hit| vec![hit.index]).unwrap_or_default();
+        due = solution.take_pending_actions();
         if due.is_empty() && solution.ended() {
             return Ok(solution);
         }
@@ -336,8 +336,15 @@ struct Breakpoints {
 impl Breakpoints {
     fn of<M: Model>(model: &M, t0: f64, t1: f64) -> Breakpoints {
         let (lo, hi) = (t0.min(t1), t0.max(t1));
-        let mut times: Vec<f64> =
-            model.input_breakpoints().into_iter().filter(|&b| b > lo && b < hi).collect();
+        // One a few ulps from an end is that end (a step from 0.2 by 0.1
+        // ends an ulp past a breakpoint at 0.3): a restart there would
+        // leave an interval no step can take.
+        let resolution = 64.0 * f64::EPSILON * lo.abs().max(hi.abs());
+        let mut times: Vec<f64> = model
+            .input_breakpoints()
+            .into_iter()
+            .filter(|&b| b > lo + resolution && b < hi - resolution)
+            .collect();
         times.sort_by(f64::total_cmp);
         times.dedup();
         if t1 < t0 {

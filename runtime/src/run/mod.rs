@@ -2,6 +2,7 @@
 
 mod checks;
 pub(crate) mod hybrid;
+pub(crate) mod initialization;
 
 pub use hybrid::MAX_EVENT_ITERATIONS;
 pub(crate) mod observables;
@@ -179,13 +180,23 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     let mut solution = observables::solution_of(model);
     solution.configure(options, t0, t1);
     let mut y0 = y0.to_vec();
+    // Relations start as they hold there; a run that continues another
+    // keeps them as the events left them (at a crossing, the value there
+    // is ambiguous).
+    if !options.continues {
+        model.start_relations(t0, &mut y0);
+    }
     let given = y0.clone();
+    let solution = initialization::solve_initial_equations(model, t0, &mut y0, solution)?;
     let solution =
         crate::step::projection::consistent_initial_values(model, t0, &mut y0, solution)?;
     let mut solution =
         crate::step::projection::consistent_algebraic_components(model, t0, &mut y0, solution)?;
     let corrections = initial_corrections::<M>(&given, &y0, options);
-    if options.strict_initial_values && !corrections.is_empty() {
+    // The states the initial equations decide move by request.
+    let decided =
+        |c: &InitialCorrection| M::INITIAL_FREE.iter().any(|&j| M::INFO.states[j] == c.name);
+    if options.strict_initial_values && !corrections.iter().all(decided) {
         return Err(inconsistent_start(model, t0, &given, &corrections, solution));
     }
     solution.set_initial_corrections(corrections);
@@ -247,7 +258,9 @@ fn checked_run<M: Model + Clone + Send + Sync + 'static>(
     solution.push_initial(t0, &y0);
     let problem = Problem { model, t0, t1, y0: &y0, options };
     let integrate = crate::methods::integrator::<M>(options.method);
-    if M::INFO.is_hybrid() {
+    // A model that switches in the time alone (a step source) is run from
+    // instant to instant as a hybrid one, each switch stepped to exactly.
+    if M::INFO.is_hybrid() || !model.input_breakpoints().is_empty() {
         return hybrid::integrate_hybrid(integrate, problem, solution);
     }
     integrate(problem, solution)

@@ -186,8 +186,8 @@ pub struct Solution {
     jumps: Vec<Jump>,
     /// The position in `events` of the terminal event that ended the run.
     stopped: Option<usize>,
-    /// The run was interrupted at its last event for the event's actions.
-    pending_action: bool,
+    /// The events whose actions interrupted the run at its last instant.
+    pending_actions: Vec<usize>,
     /// Where the step callback stopped the run.
     cancelled_at: Option<f64>,
     /// The step callback and progress bar, during the run.
@@ -262,7 +262,7 @@ impl Solution {
             cuts: Vec::new(),
             jumps: Vec::new(),
             stopped: None,
-            pending_action: false,
+            pending_actions: Vec::new(),
             cancelled_at: None,
             stream: None,
             interpolation_evals: 0,

@@ -342,13 +342,22 @@ impl Solution {
         self.events.push(hit);
     }
 
-    /// The run stopped at its last event: a terminal one, or one whose
-    /// actions the driver applies before going on.
-    pub(crate) fn stop_at_last_event(&mut self, terminal: bool, acts: bool) {
-        if terminal {
-            self.stopped = Some(self.events.len().saturating_sub(1));
+    /// The run stopped at the events `instant` it last recorded (the
+    /// crossings at one instant): at a terminal one, or for the actions of
+    /// those that act, which the driver applies before going on.
+    pub(crate) fn stop_at_last_events(&mut self, instant: usize) {
+        let events = self.names.events;
+        let first = self.events.len().saturating_sub(instant);
+        let at = first..self.events.len();
+        if let Some(k) =
+            at.clone().find(|&k| events.get(self.events[k].index).is_some_and(|e| e.terminal))
+        {
+            self.stopped = Some(k);
         }
-        self.pending_action = acts;
+        self.pending_actions = at
+            .map(|k| self.events[k].index)
+            .filter(|&i| events.get(i).is_some_and(|e| !e.resets.is_empty()))
+            .collect();
     }
 
     /// A terminal event fired by the actions at the end of the run ends it.
@@ -358,12 +367,9 @@ impl Solution {
             self.events.iter().rposition(|h| events.get(h.index).is_some_and(|e| e.terminal));
     }
 
-    /// The event whose actions interrupted the run, if one did (once).
-    pub(crate) fn take_pending_action(&mut self) -> Option<&crate::solution::EventHit> {
-        if !std::mem::take(&mut self.pending_action) {
-            return None;
-        }
-        self.events.last()
+    /// The events whose actions interrupted the run, in time order (once).
+    pub(crate) fn take_pending_actions(&mut self) -> Vec<usize> {
+        std::mem::take(&mut self.pending_actions)
     }
 
     /// Whether the run ended for good: a terminal event, or the step callback.

@@ -14,8 +14,11 @@
 //! extremum is located and each side bracketed, so a pair of crossings
 //! between samples is found too (models with a mass matrix solved at run
 //! time have no rates: there such a pair is missed). A root where `g` only
-//! touches zero is not a crossing. A run that starts exactly on a zero of `g` does not fire
-//! there (restarting a bouncing ball from the ground does not bounce again).
+//! touches zero is not a crossing; `g` reaching zero, or leaving it after
+//! sitting on it (a step source's output from 0 to 1), is, as Modelica's
+//! relations `g <= 0` and `g > 0` change there. A run that starts exactly
+//! on a zero of `g` does not fire there (restarting a bouncing ball from
+//! the ground does not bounce again).
 //! Rising and falling refer to time: in a backward run a rising crossing is
 //! one where g decreases along the integration.
 
@@ -157,16 +160,22 @@ impl<'m, M: Model> EventWatch<'m, M> {
                     partial: solution.take(),
                 });
             }
-            hits.truncate(k + 1);
+            // Crossings at the same instant (two relations on one value)
+            // happen there too, and act in the same round.
+            let instant = hits[k].t;
+            let resolution = 64.0 * f64::EPSILON * instant.abs().max((t_new - t_old).abs());
+            let same = hits[k + 1..].iter().take_while(|h| (h.t - instant).abs() <= resolution);
+            let end = k + 1 + same.count();
+            hits.truncate(end);
             let last = &hits[k];
             solution.end_last_step_at(last.t, &last.state);
         }
-        let stopping = stop.map(|k| &M::INFO.events[hits[k].index]);
+        let at_instant = stop.map(|k| hits.len() - k);
         for hit in hits {
             solution.push_event(hit);
         }
-        if let Some(event) = stopping {
-            solution.stop_at_last_event(event.terminal, !event.resets.is_empty());
+        if let Some(count) = at_instant {
+            solution.stop_at_last_events(count);
         }
         Ok(stop.is_some())
     }
@@ -184,7 +193,18 @@ impl<'m, M: Model> EventWatch<'m, M> {
     ) {
         let (g_a, g_b) = (self.g_old[i], self.g_new[i]);
         let (r_a, r_b) = (self.rate_old[i], self.rate_new[i]);
-        let same_side = g_a * g_b > 0.0 || (g_a == 0.0 && g_b != 0.0);
+        // Leaving zero (a step source's `y` from 0 to 1) is a crossing, as
+        // Modelica's relation `y > 0` turns true there; but a run that
+        // starts on a zero it leaves at once (a ball restarted from the
+        // ground) has none there, as if it started on that side.
+        let leaves_at_start = g_a == 0.0 && g_b != 0.0 && a == self.t_start && {
+            let left = left_zero(|t| self.along(solution, i, t, false), a, b);
+            let t_new = solution.last_step().map_or(b, |(_, t_new)| t_new);
+            let start_tolerance =
+                16.0 * f64::EPSILON * self.t_start.abs().max((t_new - self.t_start).abs());
+            (left - self.t_start).abs() <= start_tolerance
+        };
+        let same_side = g_a * g_b > 0.0 || (g_a == 0.0 && g_b == 0.0) || leaves_at_start;
         // Only an extremum turning back towards zero (a minimum of a positive
         // g, a maximum of a negative one) can hide two crossings.
         let turns_to_zero = self.has_rates && r_a * g_b < 0.0 && r_b * g_b > 0.0;
@@ -204,8 +224,8 @@ impl<'m, M: Model> EventWatch<'m, M> {
             let ((lo, g_lo), (hi, g_hi)) = (pieces[k - 1], pieces[k]);
             // Up or down along the integration; rising and falling are in
             // time, so a backward run swaps them.
-            let up = g_lo < 0.0 && g_hi >= 0.0;
-            let down = g_lo > 0.0 && g_hi <= 0.0;
+            let up = (g_lo < 0.0 && g_hi >= 0.0) || (g_lo == 0.0 && g_hi > 0.0);
+            let down = (g_lo > 0.0 && g_hi <= 0.0) || (g_lo == 0.0 && g_hi < 0.0);
             let (rising, falling) = if hi >= lo { (up, down) } else { (down, up) };
             let fires = match M::INFO.events[i].direction {
                 EventDirection::Any => rising || falling,
@@ -215,7 +235,10 @@ impl<'m, M: Model> EventWatch<'m, M> {
             if !fires {
                 continue;
             }
-            let t = bracketed_root(|t| self.along(solution, i, t, false), lo, hi, g_lo, g_hi);
+            let t = match g_lo == 0.0 {
+                true => left_zero(|t| self.along(solution, i, t, false), lo, hi),
+                false => bracketed_root(|t| self.along(solution, i, t, false), lo, hi, g_lo, g_hi),
+            };
             let t_new = solution.last_step().map_or(t, |(_, t_new)| t_new);
             let start_tolerance =
                 16.0 * f64::EPSILON * self.t_start.abs().max((t_new - self.t_start).abs());
@@ -302,6 +325,24 @@ pub(crate) fn bracketed_root(
         }
     }
     bracket.hi
+}
+
+/// Where `f`, zero at `a` and not at `b`, leaves zero: the first float
+/// from `a` towards `b` where it is not zero, by bisection on that
+/// predicate (a piecewise function that sits on zero, then steps off).
+fn left_zero(mut f: impl FnMut(f64) -> f64, a: f64, b: f64) -> f64 {
+    let (mut zero, mut off) = (a, b);
+    loop {
+        let mid = zero + (off - zero) / 2.0;
+        if mid == zero || mid == off {
+            return off;
+        }
+        if f(mid) == 0.0 {
+            zero = mid;
+        } else {
+            off = mid;
+        }
+    }
 }
 
 /// A bracket of a zero, `lo` on the side of the start and `hi` past it,

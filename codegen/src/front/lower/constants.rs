@@ -177,7 +177,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                         })
                     }
                     _ => {
-                        self.cx.error_at(e, "`if` is only for constants (loop indices), not model variables: the model must be smooth; use `abs`, or split the model");
+                        self.cx.error_at(e, "`if` on model variables compares them with `<`, `<=`, `>` or `>=` (a relation, switched by events where it crosses); `==` and `!=` compare constants (loop indices) or a discrete value");
                         None
                     }
                 }

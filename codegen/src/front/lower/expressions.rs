@@ -193,6 +193,9 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 self.cx.error_at(e, "a closure is a function of the model: bind it, `let f = |x| ...;`, and call it, `f(x)`");
                 None
             }
+            Expr::If(i) if self.no_event_depth > 0 && self.mentions_variable(&i.cond) => {
+                self.stepped_if_value(i)
+            }
             Expr::If(i) if self.mode_condition(&i.cond).is_some() => self.mode_value(i),
             Expr::If(i) => self.const_if_value(i),
             Expr::Match(_) => self.unsupported(e, "`match`"),
@@ -289,6 +292,18 @@ impl<S: SceneLanguage> Lower<'_, S> {
         if matches!(name.as_str(), "init" | "constraint" | "invariant") {
             self.cx.error_at(e, format!("`{name}(...)` is a statement, not a value"));
             return None;
+        }
+        if matches!(name.as_str(), "min" | "max" | "sign") {
+            return self.switching_function(&name, c, e);
+        }
+        if name == "no_event" {
+            if !self.arity(c, "no_event", 1) {
+                return None;
+            }
+            self.no_event_depth += 1;
+            let v = self.value(&c.args[0]);
+            self.no_event_depth -= 1;
+            return v;
         }
         if name == "heaviside" {
             // 0 below zero, 1 above, ½ at zero: (1 + sign x) / 2.

@@ -16,6 +16,7 @@ mod hybrid;
 mod instances;
 pub(crate) mod integers;
 mod modes;
+mod relations;
 mod scene;
 mod scopes;
 mod statements;
@@ -94,6 +95,9 @@ pub(crate) fn lower_with<S: SceneLanguage>(
         pre: l.pre,
         equations: l.equations,
         inits: l.inits,
+        initial_equations: l.initial_equations,
+        fixed_starts: l.fixed_starts,
+        relations: l.relations,
         invariants: l.invariants,
         non_smooth_calls: l.non_smooth_calls,
         instances: l
@@ -133,6 +137,10 @@ fn new_lower<S: SceneLanguage>(cx: &mut Ctxt, recursive: bool, parts: Definition
         mode_depth: 0,
         equations: Vec::new(),
         inits: Vec::new(),
+        initial_equations: Vec::new(),
+        fixed_starts: Vec::new(),
+        relations: Vec::new(),
+        no_event_depth: 0,
         invariants: Vec::new(),
         scene: S::new(recursive),
         unrolled: 0,

@@ -13,10 +13,19 @@ use syn::{BinOp, Expr, Lit, UnOp};
 
 impl<S: SceneLanguage> Lower<'_, S> {
     /// The condition on a discrete value a condition is: `on`, `!on`,
-    /// `gear == 2`, `gear != 2`; `None` for any other (one on constants,
-    /// unrolled as written).
-    pub(in crate::front) fn mode_condition(&self, cond: &Expr) -> Option<ModeGuard> {
+    /// `gear == 2`, `gear != 2`, or a relation on model variables held in
+    /// a discrete boolean (`v < -ve`, see `relations`); `None` for any
+    /// other (one on constants, unrolled as written).
+    pub(in crate::front) fn mode_condition(&mut self, cond: &Expr) -> Option<ModeGuard> {
         match cond {
+            Expr::Binary(b)
+                if matches!(b.op, BinOp::Lt(_) | BinOp::Le(_) | BinOp::Gt(_) | BinOp::Ge(_))
+                    && self.no_event_depth == 0 =>
+            {
+                let held = self.relation(cond)?;
+                let mode = self.g.as_symbol(held)?;
+                Some(ModeGuard { mode, values: vec![1], holds: true, boolean: true })
+            }
             Expr::Paren(p) => self.mode_condition(&p.expr),
             Expr::Unary(u) if matches!(u.op, UnOp::Not(_)) => {
                 self.mode_condition(&u.expr).map(|g| ModeGuard { holds: !g.holds, ..g })
@@ -68,12 +77,18 @@ impl<S: SceneLanguage> Lower<'_, S> {
 
     /// The statements of one branch, their equations marked with `guard`.
     fn mode_branch(&mut self, stmts: &[syn::Stmt], guard: ModeGuard, at: &syn::ExprIf) {
+        // A relation a branch compares is held in a discrete boolean of its
+        // own, with its events: those are the relation's, not declarations.
+        let relations = |l: &Self| l.relations.len();
         let before = (
             self.equations.len(),
-            self.states.len(),
+            self.states.len() - relations(self),
             self.algebraics.len(),
             self.params.len(),
-            self.events.len() + self.clocks.len() + self.outputs.len() + self.inputs.len(),
+            self.events.len() - 2 * relations(self)
+                + self.clocks.len()
+                + self.outputs.len()
+                + self.inputs.len(),
         );
         self.scopes.push(HashMap::new());
         self.mode_depth += 1;
@@ -83,10 +98,13 @@ impl<S: SceneLanguage> Lower<'_, S> {
         self.mode_depth -= 1;
         self.scopes.pop();
         let after = (
-            self.states.len(),
+            self.states.len() - relations(self),
             self.algebraics.len(),
             self.params.len(),
-            self.events.len() + self.clocks.len() + self.outputs.len() + self.inputs.len(),
+            self.events.len() - 2 * relations(self)
+                + self.clocks.len()
+                + self.outputs.len()
+                + self.inputs.len(),
         );
         if after != (before.1, before.2, before.3, before.4) {
             self.cx.error_at(
@@ -94,7 +112,16 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 "a mode selects equations: declare states, variables, parameters, outputs and events before `if`, and write only equations inside",
             );
         }
+        let held: Vec<SymbolId> = self.relations.iter().map(|r| r.discrete).collect();
         for equation in &mut self.equations[before.0..] {
+            // A relation's discrete is constant in every mode.
+            let rate_of = match self.g.as_symbol(equation.lhs).map(|s| self.g.symbol(s).kind) {
+                Some(crate::SymbolKind::Derivative { of, .. }) => Some(of),
+                _ => None,
+            };
+            if rate_of.is_some_and(|of| held.contains(&of)) {
+                continue;
+            }
             // Inner modes first: the outer guard joins theirs, all to hold.
             equation.mode.insert(0, guard.clone());
         }

@@ -111,6 +111,11 @@ pub(crate) struct Lower<'c, S> {
     pub(in crate::front) mode_depth: usize,
     pub(crate) equations: Vec<Equation>,
     pub(crate) inits: Vec<Init>,
+    pub(crate) initial_equations: Vec<crate::front::ir::InitialEquation>,
+    pub(crate) fixed_starts: Vec<(crate::SymbolId, proc_macro2::TokenStream)>,
+    pub(crate) relations: Vec<crate::front::ir::Relation>,
+    /// How deep `no_event(..)` calls are nested here.
+    pub(in crate::front) no_event_depth: usize,
     pub(crate) invariants: Vec<UserInvariant>,
     pub(crate) scene: S,
     pub(in crate::front) unrolled: usize,

@@ -317,6 +317,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     }
                 }
                 Some((name, call)) if name == "init" => self.init(call, e),
+                Some((name, call)) if name == "initial" => self.initial_equation(call, e),
                 Some((name, call)) if name == "connect" => self.connect(call, e),
                 Some((name, _)) if Declaration::from_name(&name).is_some() => {
                     self.cx.error_at(e, format!("`{name}(...)` declares a variable: write `let x = {name}(...);`"))
@@ -358,6 +359,33 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
     }
 
+    /// `initial(lhs == rhs);`: an equation for the start alone.
+    fn initial_equation(&mut self, call: &syn::ExprCall, whole: &Expr) {
+        if !self.arity(call, "initial", 1) {
+            return;
+        }
+        let Expr::Binary(b) = &call.args[0] else {
+            return self.cx.error_at(
+                &call.args[0],
+                "`initial` takes an equation that holds at the start: `initial(der(w) == 0.0);`",
+            );
+        };
+        if !matches!(b.op, BinOp::Eq(_)) {
+            return self.cx.error_at(
+                &call.args[0],
+                "`initial` takes an equation that holds at the start: `initial(der(w) == 0.0);`",
+            );
+        }
+        let (lhs, rhs) = (self.value(&b.left), self.value(&b.right));
+        if let (Some(lhs), Some(rhs)) = (lhs, rhs) {
+            self.initial_equations.push(crate::front::ir::InitialEquation {
+                lhs,
+                rhs,
+                origin: whole.to_token_stream(),
+            });
+        }
+    }
+
     pub(in crate::front) fn init(&mut self, call: &syn::ExprCall, whole: &Expr) {
         if !self.arity(call, "init", 2) {
             return;
@@ -380,6 +408,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 let decl = self.states.iter_mut().find(|d| d.symbol == s).expect("found");
                 decl.init = value;
                 decl.fixed = true;
+                self.fixed_starts.push((s, whole.to_token_stream()));
             }
             _ => self.cx.error_at(&call.args[0], "`init` sets a state's start, `init(c1.v, 1.0)`, or a derivative's, `init(der(x), 0.0)`"),
         }

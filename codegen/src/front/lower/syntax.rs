@@ -4,7 +4,7 @@
 use syn::{BinOp, Expr, Lit};
 
 /// The functions of the language, for suggestions.
-pub(super) const FUNCTIONS: [&str; 22] = [
+pub(super) const FUNCTIONS: [&str; 27] = [
     "sin",
     "cos",
     "tan",
@@ -20,9 +20,14 @@ pub(super) const FUNCTIONS: [&str; 22] = [
     "sqrt",
     "abs",
     "heaviside",
+    "min",
+    "max",
+    "sign",
+    "no_event",
     "der",
     "pre",
     "init",
+    "initial",
     "constraint",
     "invariant",
     "powi",
