@@ -4,38 +4,51 @@
 
 use daegen::prelude::*;
 
-/// A DC drive (R = 1 Ω, L = 0.5 mH, k = 0.05 V s, J = 1e-4 kg m²,
-/// friction 1e-5 N m s) under a PI speed controller (kp = 0.02,
-/// ki = 0.5) holding 100 rad/s against a load of 0.02 N m, started in its
-/// steady state (MSL's `initType = SteadyState`).
-#[dae_model]
-fn drive_in_steady_state() {
-    let reference = constant(100.0);
-    let controller = pi_controller(kp = 0.02, ki = 0.5);
-    let sensor = speed_sensor();
-    let supply = signal_voltage();
-    let armature = resistor(1.0);
-    let winding = inductor(0.5e-3);
-    let emf = emf(0.05);
-    let rotor = inertia(j = 1e-4);
-    let friction = damper(1e-5);
-    let housing = fixed();
-    let load = torque_source(-0.02);
-    let gnd = ground();
-    connect(reference.y, controller.u_s);
-    connect(sensor.w, controller.u_m);
-    connect(controller.y, supply.u);
-    connect(supply.p, armature.p);
-    connect(armature.n, winding.p);
-    connect(winding.n, emf.p);
-    connect(emf.n, supply.n, gnd.p);
-    connect(emf.flange, rotor.flange_a);
-    connect(rotor.flange_b, friction.flange_a, sensor.flange, load.flange);
-    connect(friction.flange_b, housing.flange);
-    initial(der(winding.i) == 0.0);
-    initial(der(rotor.w) == 0.0);
-    initial(der(controller.x) == 0.0);
+/// `drive!(name { statements })`: a DC drive (R = 1 Ω, L = 0.5 mH,
+/// k = 0.05 V s, J = 1e-4 kg m²) under a PI speed controller (kp = 0.02,
+/// ki = 0.5) set to 100 rad/s, the rotor's free flange and the rest
+/// given by `statements`.
+macro_rules! drive {
+    ($(#[$doc:meta])* $name:ident { $($rest:tt)* }) => {
+        $(#[$doc])*
+        #[dae_model]
+        fn $name() {
+            let reference = constant(100.0);
+            let controller = pi_controller(kp = 0.02, ki = 0.5);
+            let sensor = speed_sensor();
+            let supply = signal_voltage();
+            let armature = resistor(1.0);
+            let winding = inductor(0.5e-3);
+            let emf = emf(0.05);
+            let rotor = inertia(j = 1e-4);
+            let gnd = ground();
+            connect(reference.y, controller.u_s);
+            connect(sensor.w, controller.u_m);
+            connect(controller.y, supply.u);
+            connect(supply.p, armature.p);
+            connect(armature.n, winding.p);
+            connect(winding.n, emf.p);
+            connect(emf.n, supply.n, gnd.p);
+            connect(emf.flange, rotor.flange_a, sensor.flange);
+            $($rest)*
+        }
+    };
 }
+
+drive!(
+    /// The drive with friction (1e-5 N m s) against a load of 0.02 N m,
+    /// started in its steady state (MSL's `initType = SteadyState`).
+    drive_in_steady_state {
+        let friction = damper(1e-5);
+        let housing = fixed();
+        let load = torque_source(-0.02);
+        connect(rotor.flange_b, friction.flange_a, load.flange);
+        connect(friction.flange_b, housing.flange);
+        initial(der(winding.i) == 0.0);
+        initial(der(rotor.w) == 0.0);
+        initial(der(controller.x) == 0.0);
+    }
+);
 
 #[test]
 fn a_steady_state_start_is_the_exact_operating_point() {
@@ -63,29 +76,13 @@ fn a_steady_state_start_is_the_exact_operating_point() {
     assert!(DriveInSteadyState::default().simulate(0.0, 0.1, &strict).is_ok());
 }
 
-/// The same drive from a standstill, its controller's integral part
-/// started at −10 V.
-#[dae_model]
-fn drive_with_a_wound_up_controller() {
-    let reference = constant(100.0);
-    let controller = pi_controller(kp = 0.02, ki = 0.5);
-    let sensor = speed_sensor();
-    let supply = signal_voltage();
-    let armature = resistor(1.0);
-    let winding = inductor(0.5e-3);
-    let emf = emf(0.05);
-    let rotor = inertia(j = 1e-4);
-    let gnd = ground();
-    connect(reference.y, controller.u_s);
-    connect(sensor.w, controller.u_m);
-    connect(controller.y, supply.u);
-    connect(supply.p, armature.p);
-    connect(armature.n, winding.p);
-    connect(winding.n, emf.p);
-    connect(emf.n, supply.n, gnd.p);
-    connect(emf.flange, rotor.flange_a, sensor.flange);
-    init(controller.x, -10.0);
-}
+drive!(
+    /// The drive from a standstill, unloaded, its controller's integral
+    /// part started at −10 V.
+    drive_with_a_wound_up_controller {
+        init(controller.x, -10.0);
+    }
+);
 
 #[test]
 fn init_starts_a_parts_state() {
