@@ -230,3 +230,30 @@ fn chuas_resistor_as_an_if_follows_the_hand_made_events() {
         }
     }
 }
+
+/// A gearbox whose integer mode is set by an expression of a relation: at
+/// w = 1 it shifts into second gear before t = 5 and into third after.
+#[dae_model]
+fn shifting_gearbox() {
+    let t = time();
+    let w = state(0.0);
+    let gear = discrete(1);
+    let shift = event(w - 1.0).rising().reinit(gear, if t < 5.0 { 2 } else { 3 });
+    if gear == 1 {
+        der(w) == 1.0;
+    } else if gear == 2 {
+        der(w) == 0.5;
+    } else {
+        der(w) == 0.25;
+    }
+}
+
+#[test]
+fn an_integer_mode_is_set_by_an_expression_of_a_relation() {
+    let opts = Options::new().method(Method::Dopri5).rtol(1e-10).atol(1e-12);
+    let sol = ShiftingGearbox::default().simulate(0.0, 3.0, &opts).unwrap();
+    // w = t to 1, then in second gear w = 1 + (t − 1)/2.
+    let (w, gear): (f64, f64) = (sol.at(3.0, "w").unwrap(), sol.at(3.0, "gear").unwrap());
+    assert_eq!(gear, 2.0);
+    assert!((w - 2.0).abs() < 1e-9, "{w}");
+}

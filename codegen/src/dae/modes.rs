@@ -140,13 +140,40 @@ fn mode_variables(
             match whole(action.value) {
                 Some(value) => v.values.push(value),
                 None if boolean => {}
-                None => return Err((format!("the integer mode `{name}` is set to whole numbers, each a mode analysed at compile time: `.reinit({name}, 2)`"), Some(action.origin.clone()))),
+                None => match values_set_by(ir, action.value) {
+                    Some(values) => v.values.extend(values),
+                    None => return Err((format!("the integer mode `{name}` is set to whole numbers, or to an expression of discrete values and relations that gives one (`if w > 20.0 {{ 3 }} else {{ 2 }}`), each a mode analysed at compile time: `.reinit({name}, 2)`"), Some(action.origin.clone()))),
+                },
             }
         }
         v.values.sort_unstable();
         v.values.dedup();
     }
     Ok(variables)
+}
+
+/// Every whole number `value`, an expression of discrete booleans alone
+/// (relations among them), can take, each boolean 0 or 1; `None` where it
+/// reads anything else or gives a number that is not whole.
+fn values_set_by(ir: &ModelIr, value: Id) -> Option<Vec<i64>> {
+    let g = &ir.graph;
+    let booleans = g.free_symbols(value);
+    if booleans.len() > 10 || booleans.iter().any(|s| !ir.discretes.contains(s)) {
+        return None;
+    }
+    let mut values = Vec::with_capacity(1 << booleans.len());
+    for assignment in 0..1usize << booleans.len() {
+        let bit = |s: SymbolId| {
+            let k = booleans.iter().position(|&b| b == s).unwrap_or(0);
+            ((assignment >> k) & 1) as f64
+        };
+        let v = g.eval(&[value], &bit)[0];
+        if v.fract() != 0.0 || !v.is_finite() {
+            return None;
+        }
+        values.push(v as i64);
+    }
+    Some(values)
 }
 
 /// The values of the mode variables in mode number `mode` (mixed radix).
