@@ -142,7 +142,7 @@ fn mode_variables(
                 None if boolean => {}
                 None => match values_set_by(ir, action.value) {
                     Some(values) => v.values.extend(values),
-                    None => return Err((format!("the integer mode `{name}` is set to whole numbers, or to an expression of discrete values and relations that gives one (`if w > 20.0 {{ 3 }} else {{ 2 }}`), each a mode analysed at compile time: `.reinit({name}, 2)`"), Some(action.origin.clone()))),
+                    None => return Err((format!("the integer mode `{name}` is set to whole numbers, each a mode analysed at compile time: `.reinit({name}, 2)`, or `.reinit({name}, if w > 20.0 {{ 3 }} else {{ 2 }})`"), Some(action.origin.clone()))),
                 },
             }
         }
@@ -152,13 +152,15 @@ fn mode_variables(
     Ok(variables)
 }
 
-/// Every whole number `value`, an expression of discrete booleans alone
-/// (relations among them), can take, each boolean 0 or 1; `None` where it
-/// reads anything else or gives a number that is not whole.
+/// Every whole number `value`, an expression of relations alone (`if w >
+/// 20.0 { 3 } else { 2 }`), can take, each relation's boolean 0 or 1;
+/// `None` where it reads anything else or gives a number that is not
+/// whole.
 fn values_set_by(ir: &ModelIr, value: Id) -> Option<Vec<i64>> {
     let g = &ir.graph;
     let booleans = g.free_symbols(value);
-    if booleans.len() > 10 || booleans.iter().any(|s| !ir.discretes.contains(s)) {
+    let relation = |s: &SymbolId| ir.relations.iter().any(|r| r.discrete == *s);
+    if booleans.is_empty() || booleans.len() > 10 || !booleans.iter().all(relation) {
         return None;
     }
     let mut values = Vec::with_capacity(1 << booleans.len());
