@@ -344,3 +344,63 @@ fn the_derivative_of_an_algebraic_variable_is_the_derivative_of_what_ties_it() {
         );
     }
 }
+
+/// A nonlinear capacitor as a user writes one, its charge the state:
+/// `v = q/c0 + k q³`.
+#[component]
+fn varactor() {
+    let c0 = param(1.0);
+    let k = param(0.1);
+    let p = pin();
+    let n = pin();
+    let q = state(0.0);
+    let v = algebraic(0.0);
+    v == p.v - n.v;
+    p.i + n.i == 0.0;
+    der(q) == p.i;
+    v == q / c0 + k * q * q * q;
+}
+
+/// 1 V through 1 Ω into two varactors in parallel (c0 = 1 F and 2 F):
+/// their voltages are one, a nonlinear relation between their charges.
+#[dae_model]
+fn parallel_varactors() {
+    let source = constant_voltage(1.0);
+    let r = resistor(1.0);
+    let a = varactor(c0 = 1.0);
+    let b = varactor(c0 = 2.0);
+    let gnd = ground();
+    let charge = state(0.0);
+    connect(source.p, r.p);
+    connect(r.n, a.p, b.p);
+    connect(a.n, b.n, source.n, gnd.p);
+    der(charge) == r.i;
+}
+
+#[test]
+fn a_nonlinear_tie_is_a_constraint_the_run_holds() {
+    // Both charges stay states, tied by a.v = b.v, which index reduction
+    // differentiates and the run projects onto.
+    assert_eq!(<ParallelVaractors as Model>::INFO.states, ["a.q", "b.q", "charge"]);
+    let opts = Options::new().method(Method::Radau5).rtol(1e-10).atol(1e-12);
+    let sol = ParallelVaractors::default().simulate(0.0, 40.0, &opts).unwrap();
+    for &t in &[0.5f64, 2.0, 10.0, 40.0] {
+        let (va, vb): (f64, f64) = (sol.at(t, "a.v").unwrap(), sol.at(t, "b.v").unwrap());
+        assert!((va - vb).abs() < 1e-9, "t = {t}: {va} vs {vb}");
+        // The charge the resistor delivered is the two capacitors'.
+        let (qa, qb, q): (f64, f64, f64) =
+            (sol.at(t, "a.q").unwrap(), sol.at(t, "b.q").unwrap(), sol.at(t, "charge").unwrap());
+        assert!((qa + qb - q).abs() < 1e-8, "t = {t}: {qa} + {qb} vs {q}");
+    }
+    // At rest both sit at 1 V: q/c0 + 0.1 q³ = 1, by Newton's method.
+    let at_one_volt = |c0: f64| {
+        let mut q = c0;
+        for _ in 0..50 {
+            q -= (q / c0 + 0.1 * q * q * q - 1.0) / (1.0 / c0 + 0.3 * q * q);
+        }
+        q
+    };
+    let (qa, qb): (f64, f64) = (sol.last("a.q").unwrap(), sol.last("b.q").unwrap());
+    assert!((qa - at_one_volt(1.0)).abs() < 1e-7, "{qa}");
+    assert!((qb - at_one_volt(2.0)).abs() < 1e-7, "{qb}");
+}

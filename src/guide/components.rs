@@ -197,7 +197,11 @@
 //! source's derivative, `c dv/dt`. Which state of a tie goes: an
 //! `.avoid()` one, never a `.fixed()` one (or one started with
 //! `init(c3.v, 0.0)`) or a `.prefer()` one while another will do, then
-//! the later declared. What remains is sorted and torn as in
+//! the later declared. Where the part is linear in its unknowns but the
+//! relation it leaves among the states is not (two nonlinear capacitors
+//! in parallel, `q/c0 + k q³` each), the relation is a constraint
+//! instead: both states stay, the index reduction differentiates it and
+//! the run projects onto it, as for a constraint you write. What remains is sorted and torn as in
 //! [`super::structure`]. A connected model then has as many states as the
 //! same physics written flat (a motor driving a slider-crank through a
 //! gear keeps the winding's current and the crank's angle and rate).

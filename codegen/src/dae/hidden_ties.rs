@@ -32,6 +32,11 @@ pub(crate) enum Hidden {
     Tie { equation: usize, relation: Linear },
     /// `equation` repeats what the others of its part say.
     Redundant { equation: usize },
+    /// The relation `residual = 0` among the states that `equation`, with
+    /// the others of its part, makes is nonlinear: a constraint in place of
+    /// `equation`, which the index reduction differentiates and the run
+    /// projects onto, both states kept.
+    Constraint { equation: usize, residual: Id },
 }
 
 /// The first tie an over-determined part of the equations hides, over the
@@ -98,10 +103,29 @@ fn eliminated(
     let time = ir.time;
     let g = &mut ir.graph;
     let mut forms: Vec<(usize, Linear)> = Vec::with_capacity(equations.len());
+    let mut nonlinear = false;
     for &e in equations {
         match Linear::over_variables(g, residuals[e], time)? {
             Some(form) => forms.push((e, form)),
-            None => return Ok(None),
+            None => {
+                nonlinear = true;
+                break;
+            }
+        }
+    }
+    if nonlinear {
+        // Linear in the unknowns alone, nonlinear in the states: the
+        // relation left is a constraint, not a tie (a lone equation that
+        // reads no unknown is one already, for the index reduction).
+        if equations.len() < 2 {
+            return Ok(None);
+        }
+        forms.clear();
+        for &e in equations {
+            match Linear::over_symbols(g, residuals[e], unknowns)? {
+                Some(form) => forms.push((e, form)),
+                None => return Ok(None),
+            }
         }
     }
     // The unmatched equation last, so that it is never a pivot: the
@@ -139,6 +163,14 @@ fn eliminated(
     let g = &ir.graph;
     if relation.terms.iter().any(|(y, _)| unknowns.contains(y)) {
         return Ok(None);
+    }
+    if nonlinear {
+        let carried = |s: &SymbolId| {
+            matches!(g.symbol(*s).kind, SymbolKind::State | SymbolKind::Derivative { .. })
+        };
+        let reads_a_state = g.free_symbols(relation.constant).iter().any(carried);
+        let residual = relation.constant;
+        return Ok(reads_a_state.then_some(Hidden::Constraint { equation: unmatched, residual }));
     }
     if relation.terms.is_empty() {
         let redundant = g.as_number(relation.constant).is_some_and(|n| n.is_zero());

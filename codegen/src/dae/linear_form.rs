@@ -17,9 +17,21 @@ pub(crate) struct Linear {
 impl Linear {
     /// `r` so; `None` when it is not linear so or reads another variable.
     pub(crate) fn of(g: &mut Graph, r: Id) -> crate::Result<Option<Linear>> {
-        Linear::in_terms(g, r, None, |kind| {
+        let variable = |g: &Graph, s: SymbolId| g.symbol(s).kind != SymbolKind::Parameter;
+        Linear::in_terms(g, r, variable, |kind| {
             matches!(kind, SymbolKind::State | SymbolKind::Derivative { .. })
         })
+    }
+
+    /// `r` as `Σ c_k y_k + b` over the symbols `unknowns` alone, `b` any
+    /// function of the rest (states, the time); `None` when it is not
+    /// linear so.
+    pub(crate) fn over_symbols(
+        g: &mut Graph,
+        r: Id,
+        unknowns: &[SymbolId],
+    ) -> crate::Result<Option<Linear>> {
+        Linear::in_terms(g, r, |_, s| unknowns.contains(&s), |_| true)
     }
 
     /// `r` as `Σ c_k y_k + b(t)` over every variable it reads (states,
@@ -30,7 +42,9 @@ impl Linear {
         r: Id,
         time: SymbolId,
     ) -> crate::Result<Option<Linear>> {
-        Linear::in_terms(g, r, Some(time), |kind| {
+        let variable =
+            |g: &Graph, s: SymbolId| s != time && g.symbol(s).kind != SymbolKind::Parameter;
+        Linear::in_terms(g, r, variable, |kind| {
             matches!(
                 kind,
                 SymbolKind::State | SymbolKind::Algebraic | SymbolKind::Derivative { .. }
@@ -38,19 +52,16 @@ impl Linear {
         })
     }
 
-    /// `r` linear in every symbol it reads but the parameters (and `time`,
-    /// where given, left in `b`), each of a kind `term` accepts.
+    /// `r` linear in every symbol it reads that `variable` selects, each
+    /// of a kind `term` accepts, the rest left in `b`.
     fn in_terms(
         g: &mut Graph,
         r: Id,
-        time: Option<SymbolId>,
+        variable: impl Fn(&Graph, SymbolId) -> bool,
         term: impl Fn(SymbolKind) -> bool,
     ) -> crate::Result<Option<Linear>> {
-        let variables: Vec<SymbolId> = g
-            .free_symbols(r)
-            .into_iter()
-            .filter(|&s| Some(s) != time && g.symbol(s).kind != SymbolKind::Parameter)
-            .collect();
+        let variables: Vec<SymbolId> =
+            g.free_symbols(r).into_iter().filter(|&s| variable(g, s)).collect();
         let mut terms = Vec::with_capacity(variables.len());
         let mut zeros = FxHashMap::default();
         for &y in &variables {

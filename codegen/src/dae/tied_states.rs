@@ -94,6 +94,11 @@ fn eliminate(ir: &mut ModelIr) -> crate::Result<Vec<(TokenStream, String)>> {
         match find_tie(ir, &residuals, &passed, &orders)? {
             None => break,
             Some(Tie::Redundant { equation }) => gone[equation] = true,
+            Some(Tie::Constraint { equation, residual }) => {
+                let zero = ir.graph.zero();
+                let eq = &mut ir.equations[equation];
+                (eq.lhs, eq.rhs, eq.is_constraint) = (residual, zero, true);
+            }
             Some(Tie::State { equation, state, value }) => {
                 gone[equation] = true;
                 conflicts.extend(start_conflict(ir, state, value));
@@ -116,6 +121,9 @@ enum Tie {
     State { equation: usize, state: SymbolId, value: Id },
     /// The equation repeats another.
     Redundant { equation: usize },
+    /// The equation, with others, makes a nonlinear relation among the
+    /// states: it becomes that constraint.
+    Constraint { equation: usize, residual: Id },
 }
 
 /// Each equation's residual `lhs − rhs` with the algebraic aliases
@@ -239,6 +247,9 @@ fn find_tie(
         Some(Hidden::Tie { equation, relation }) => Ok(solve_for_component_state(ir, &relation)?
             .map(|(state, value)| Tie::State { equation, state, value })),
         Some(Hidden::Redundant { equation }) => Ok(Some(Tie::Redundant { equation })),
+        Some(Hidden::Constraint { equation, residual }) => {
+            Ok(Some(Tie::Constraint { equation, residual }))
+        }
         None => Ok(None),
     }
 }
