@@ -237,8 +237,17 @@ fn structural_errors(
             _ => {
                 let texts: Vec<String> = part_rows.iter().map(|&r| text(r)).collect();
                 let names: Vec<String> = part_columns.iter().map(|&j| name(j)).collect();
+                // Through connections, the part ties states that the index
+                // reduction could not free (it is nonlinear in these
+                // unknowns): removing a `connect` is not the fix.
+                let connected =
+                    part_rows.iter().any(|&r| problem.texts[live[r]].starts_with("connect("));
+                let fix = match connected {
+                    true => "the connections tie the states these equations read in a way the index reduction does not reduce (it is not linear in these unknowns): write that relation among the states as a `constraint(..)` of the model, or check the parts' equations",
+                    false => "remove one of them or add an unknown they determine",
+                };
                 format!(
-                    "these {} equations determine only {} unknowns, {}: {}; remove one of them or add an unknown they determine",
+                    "these {} equations determine only {} unknowns, {}: {}; {fix}",
                     part_rows.len(),
                     part_columns.len(),
                     names.join(", "),
