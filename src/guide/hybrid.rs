@@ -157,8 +157,15 @@
 //! (`.reinit(gear, 2)`); a boolean is 0 or 1 and may be set by any
 //! expression that keeps it so (`.reinit(on, 1.0 - on)`). Each mode must
 //! reduce to an explicit ODE in the same states (a sticking contact is
-//! written with its constraint differentiated, `der(v) == 0.0`); at most
-//! 64 modes. A mode that does not determine its unknowns is a compile
+//! written with its constraint differentiated, `der(v) == 0.0`). Beyond
+//! 64 modes (four clutches of three booleans make 4096), the modes factor:
+//! the discrete values read together in guards form groups (each clutch's
+//! own), each group's branches must hold as many equations (Modelica's
+//! rule for an `if` on variables), and the k-th equation of every branch
+//! is blended into one that holds in every mode, `Σ [the mode holds]·
+//! residual`; the model is then analysed once, and the blocks whose
+//! coefficients switch with the modes are solved at run time with
+//! pivoting. A mode that does not determine its unknowns is a compile
 //! error naming the mode. Every mode's expressions are evaluated at each
 //! evaluation and summed, so each must stay finite in the states the others
 //! visit (a mode dividing by a quantity that is zero while another mode

@@ -98,7 +98,9 @@ pub fn separate(
             let known = g.free_symbols(c).iter().all(|&s| {
                 !z_index.contains_key(&s) && !matches!(g.symbol(s).kind, SymbolKind::Algebraic)
             });
-            if !known {
+            // A coefficient that switches with a mode may vanish in it: no
+            // combination divides by it.
+            if !known || g.reads_switching(c) {
                 eligible = false;
                 break;
             }

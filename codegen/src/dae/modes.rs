@@ -9,7 +9,9 @@
 //! exact where D is a power of two and else to rounding. Every mode must
 //! reduce to an explicit ODE in the same states (a diode conducting or
 //! blocking, a contact sticking or slipping, a gearbox in each gear); at
-//! most [`MAX_MODES`] modes.
+//! most [`MAX_MODES`] modes. Beyond, the modes factor (`blended`): each
+//! group of discrete values read together in guards has its branches'
+//! equations blended, and the model is reduced once.
 
 use crate::dae::system::{FirstOrder, SlotAction, SlotDerivative};
 use crate::front::ctxt::Ctxt;
@@ -46,8 +48,15 @@ pub fn reduce_modes(
     };
     let count: usize = variables.iter().map(|v| v.values.len()).product();
     if count > MAX_MODES {
-        cx.error_at(&first_guarded, format!("the discrete values selecting equations make {count} modes, more than the {MAX_MODES} analysed at compile time: combine modes"));
-        return None;
+        // Too many to analyse each: each group's branches blended into
+        // equations that hold in every mode, the whole reduced once.
+        return match blended(ir, &variables) {
+            Ok(()) => reduce_all(cx, ir),
+            Err(message) => {
+                cx.error_at(&first_guarded, format!("the discrete values selecting equations make {count} modes, more than the {MAX_MODES} analysed at compile time one by one, and they cannot be combined into one system: {message}"));
+                None
+            }
+        };
     }
     let all = std::mem::take(&mut ir.equations);
     let mut systems = Vec::with_capacity(count);
@@ -92,6 +101,115 @@ pub fn reduce_modes(
             None
         }
     }
+}
+
+/// Groups of mode variables read together in guards: the variables of
+/// each guarded equation, joined where they share one (a clutch's own
+/// booleans form its group). Each group's modes select the same number of
+/// equations (as Modelica requires of an `if` on variables); the k-th
+/// equation of every mode of the group is blended into one,
+/// `Σ_modes [the values are the mode's] · residual_k = 0`, which holds in
+/// every mode. Then N independent switches cost one analysis, not 2^N:
+/// the blocks their coefficients make are solved at run time, with
+/// pivoting (a coefficient that switches may vanish in some mode).
+fn blended(ir: &mut ModelIr, variables: &[ModeVariable]) -> Result<(), String> {
+    let mut group: Vec<usize> = (0..variables.len()).collect();
+    fn root(group: &mut [usize], k: usize) -> usize {
+        let mut r = k;
+        while group[r] != r {
+            r = group[r];
+        }
+        group[k] = r;
+        r
+    }
+    let index_of = |s: SymbolId| variables.iter().position(|v| v.symbol == s);
+    for e in ir.equations.iter().filter(|e| !e.mode.is_empty()) {
+        let ks: Vec<usize> = e.mode.iter().filter_map(|m| index_of(m.mode)).collect();
+        for w in ks.windows(2) {
+            let (a, b) = (root(&mut group, w[0]), root(&mut group, w[1]));
+            group[a] = b;
+        }
+    }
+    let roots: Vec<usize> = (0..variables.len()).map(|k| root(&mut group, k)).collect();
+    for v in variables {
+        ir.graph.mark_switching(v.symbol);
+    }
+    let mut groups: Vec<usize> = roots.clone();
+    groups.sort_unstable();
+    groups.dedup();
+    let mut replaced = vec![false; ir.equations.len()];
+    let mut blended_equations = Vec::new();
+    for &r in &groups {
+        let owned: Vec<ModeVariable> = variables
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| roots[*k] == r)
+            .map(|(_, v)| ModeVariable { symbol: v.symbol, values: v.values.clone() })
+            .collect();
+        let count: usize = owned.iter().map(|v| v.values.len()).product();
+        if count > MAX_MODES {
+            let names: Vec<String> =
+                owned.iter().map(|v| format!("`{}`", ir.graph.symbol(v.symbol).name)).collect();
+            return Err(format!("{} select equations together in {count} modes", names.join(", ")));
+        }
+        let in_group = |e: &crate::front::ir::Equation| {
+            e.mode.first().is_some_and(|m| owned.iter().any(|v| v.symbol == m.mode))
+        };
+        let mut selected: Vec<Vec<usize>> = Vec::with_capacity(count);
+        for mode in 0..count {
+            let values = values_of(&owned, mode);
+            let value_of =
+                |s: SymbolId| owned.iter().position(|v| v.symbol == s).map(|k| values[k]);
+            let holds = |e: &crate::front::ir::Equation| {
+                e.mode.iter().all(|g| value_of(g.mode).is_some_and(|v| g.holds_at(v)))
+            };
+            selected.push(
+                (0..ir.equations.len())
+                    .filter(|&e| in_group(&ir.equations[e]) && holds(&ir.equations[e]))
+                    .collect(),
+            );
+        }
+        let n = selected[0].len();
+        if let Some(mode) = selected.iter().position(|s| s.len() != n) {
+            let name = mode_name(&ir.graph, &owned, &values_of(&owned, mode));
+            return Err(format!("{} equations hold {name}, {n} in another: give each branch of an `if` on them as many equations", selected[mode].len()));
+        }
+        let g = &mut ir.graph;
+        for k in 0..n {
+            let mut terms = Vec::with_capacity(count);
+            for (mode, equations) in selected.iter().enumerate() {
+                let values = values_of(&owned, mode);
+                let mut factors = Vec::with_capacity(owned.len() + 1);
+                for (v, &value) in owned.iter().zip(&values) {
+                    factors.push(lagrange(g, v, value).map_err(|e| e.to_string())?);
+                }
+                let e = &ir.equations[equations[k]];
+                factors.push(g.sub(e.lhs, e.rhs).map_err(|e| e.to_string())?);
+                terms.push(g.product(&factors).map_err(|e| e.to_string())?);
+            }
+            let residual = g.sum(&terms).map_err(|e| e.to_string())?;
+            let first = &ir.equations[selected[0][k]];
+            blended_equations.push(crate::front::ir::Equation {
+                lhs: residual,
+                rhs: g.zero(),
+                origin: first.origin.clone(),
+                is_constraint: false,
+                mode: Vec::new(),
+            });
+        }
+        for equations in &selected {
+            for &e in equations {
+                replaced[e] = true;
+            }
+        }
+    }
+    let mut k = 0;
+    ir.equations.retain(|_| {
+        k += 1;
+        !replaced[k - 1]
+    });
+    ir.equations.extend(blended_equations);
+    Ok(())
 }
 
 /// The discrete values that select equations, in order of first use, each

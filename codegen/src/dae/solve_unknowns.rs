@@ -152,7 +152,10 @@ pub fn solve_unknowns(
             let sub: Vec<Vec<Id>> =
                 rest_rows.iter().map(|&r| rest_cols.iter().map(|&c| a[r][c]).collect()).collect();
             let sub_b: Vec<Id> = rest_rows.iter().map(|&r| b[r]).collect();
-            let symbolic_rest = if rest_cols.len() <= SYMBOLIC_BLOCK {
+            // A block whose coefficients switch with a mode is solved at
+            // run time, with pivoting: in some mode a pivot vanishes.
+            let switching = sub.iter().flatten().any(|&c| g.reads_switching(c));
+            let symbolic_rest = if rest_cols.len() <= SYMBOLIC_BLOCK && !switching {
                 solve_symbolic(g, sub.clone(), sub_b.clone())?
             } else {
                 None

@@ -191,6 +191,7 @@ fn solve_linear(
     let c = g.partial(r, u).ok()?;
     if g.as_number(c).is_some_and(|v| v.is_zero())
         || g.free_symbols(c).iter().any(|s| unknowns.contains_key(s))
+        || g.reads_switching(c)
     {
         return None;
     }

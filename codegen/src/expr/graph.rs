@@ -57,6 +57,10 @@ pub struct Graph {
     derivatives: FxHashMap<(SymbolId, u32), SymbolId>,
     /// Partial derivatives already taken, per symbol: node -> derivative.
     pub(crate) partials: FxHashMap<SymbolId, FxHashMap<Id, Id>>,
+    /// Discrete values that switch blended equations between their
+    /// branches: a coefficient that reads one may vanish in some mode, so
+    /// no symbolic solve divides by it.
+    switching: Vec<SymbolId>,
 }
 
 impl Graph {
@@ -249,6 +253,20 @@ impl Graph {
         if symbol.kind == SymbolKind::Algebraic {
             symbol.kind = SymbolKind::State;
         }
+    }
+
+    /// Marks `s` as switching blended equations (see [`Graph::reads_switching`]).
+    pub fn mark_switching(&mut self, s: SymbolId) {
+        if !self.switching.contains(&s) {
+            self.switching.push(s);
+        }
+    }
+
+    /// Whether `e` reads a discrete value that switches blended equations:
+    /// it may vanish in some mode, so a solve must not divide by it.
+    pub fn reads_switching(&self, e: Id) -> bool {
+        !self.switching.is_empty()
+            && self.free_symbols(e).iter().any(|s| self.switching.contains(s))
     }
 
     /// The node standing for a symbol.
