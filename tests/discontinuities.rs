@@ -331,13 +331,13 @@ fn four_clutches_of_three_booleans_compile_into_one_system() {
     };
     let d = FourClutches::default();
     // All locked: one rigid body, 10 N m over 15 kg m².
-    check(speeds(d.clone()), [10.0 / 15.0; 5]);
+    check(speeds(d), [10.0 / 15.0; 5]);
     // The second disengaged: j1 and j2 together (10/3), the rest at rest.
-    let split = FourClutches { c2_engaged0: 0.0, ..d.clone() };
+    let split = FourClutches { c2_engaged0: 0.0, ..d };
     check(speeds(split), [10.0 / 3.0, 10.0 / 3.0, 0.0, 0.0, 0.0]);
     // The third slipping forward: 1 N m passes on to j4 and j5 (1/9),
     // j1–j3 keep the rest (9/6).
-    let slipping = FourClutches { c3_locked0: 0.0, ..d.clone() };
+    let slipping = FourClutches { c3_locked0: 0.0, ..d };
     check(speeds(slipping), [1.5, 1.5, 1.5, 1.0 / 9.0, 1.0 / 9.0]);
     // The first disengaged, the last slipping back: j1 alone; 1 N m from
     // j5 back to j2–j4 (1/9 forward, j5 −1/5).
