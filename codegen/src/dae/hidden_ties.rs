@@ -130,7 +130,7 @@ fn eliminated(
     }
     // The unmatched equation last, so that it is never a pivot: the
     // relation left is it, plus multiples of the others.
-    let last = forms.iter().position(|(e, _)| *e == unmatched).expect("in its part");
+    let Some(last) = forms.iter().position(|(e, _)| *e == unmatched) else { return Ok(None) };
     let end = forms.len() - 1;
     forms.swap(last, end);
     let mut pivoted = vec![false; end];
@@ -146,7 +146,7 @@ fn eliminated(
             continue;
         };
         pivoted[p] = true;
-        let pivot = forms[p].1.coefficient(u).expect("a pivot");
+        let Some(pivot) = forms[p].1.coefficient(u) else { continue };
         let pivot_form =
             std::mem::replace(&mut forms[p].1, Linear { terms: Vec::new(), constant: g.zero() });
         for (k, (_, form)) in forms.iter_mut().enumerate() {
@@ -159,7 +159,7 @@ fn eliminated(
         }
         forms[p].1 = pivot_form;
     }
-    let relation = forms.pop().expect("the unmatched equation").1;
+    let Some((_, relation)) = forms.pop() else { return Ok(None) };
     let g = &ir.graph;
     if relation.terms.iter().any(|(y, _)| unknowns.contains(y)) {
         return Ok(None);

@@ -405,10 +405,11 @@ impl<S: SceneLanguage> Lower<'_, S> {
             // `C1(v(start = 1, fixed = true))`: the start the run keeps,
             // so a tie keeps the state while another will do.
             Some((s, SymbolKind::State)) if self.states.iter().any(|d| d.symbol == s) => {
-                let decl = self.states.iter_mut().find(|d| d.symbol == s).expect("found");
-                decl.init = value;
-                decl.fixed = true;
-                self.fixed_starts.push((s, whole.to_token_stream()));
+                if let Some(decl) = self.states.iter_mut().find(|d| d.symbol == s) {
+                    decl.init = value;
+                    decl.fixed = true;
+                    self.fixed_starts.push((s, whole.to_token_stream()));
+                }
             }
             _ => self.cx.error_at(&call.args[0], "`init` sets a state's start, `init(c1.v, 1.0)`, or a derivative's, `init(der(x), 0.0)`"),
         }
