@@ -24,6 +24,10 @@ fn parallel_capacitors() {
 #[test]
 fn two_capacitors_in_parallel_are_one_state() {
     assert_eq!(<ParallelCapacitors as Model>::INFO.states, ["c1.v"]);
+    // `describe()` says why the other is no state.
+    let described = ParallelCapacitors::default().describe();
+    let why = "Not a state: the connections tie it to the states kept, `c1.v`.";
+    assert!(described.lines().any(|l| l.contains("c2.v") && l.contains(why)), "{described}");
     let opts = Options::new().method(Method::Radau5).rtol(1e-10).atol(1e-12);
     let sol = ParallelCapacitors::default().simulate(0.0, 5.0, &opts).unwrap();
     for &t in &[0.5f64, 1.0, 3.0, 5.0] {

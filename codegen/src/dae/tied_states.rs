@@ -427,6 +427,13 @@ fn replace_state(ir: &mut ModelIr, state: SymbolId, value: Id, top: u32) -> crat
     let Some(k) = ir.states.iter().position(|s| s.symbol == state) else { return Ok(()) };
     let decl = ir.states.remove(k);
     let (name, doc, origin) = (decl.name, decl.doc, decl.origin);
+    // What `describe()` says of it: why it is no state.
+    let why =
+        format!("Not a state: the connections tie it to the states kept, `{}`.", g.show(value));
+    let doc = match doc.is_empty() {
+        true => why,
+        false => format!("{doc} {why}"),
+    };
     ir.outputs.push(Output { name, value, doc, origin, declared: false });
     Ok(())
 }
