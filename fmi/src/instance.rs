@@ -669,7 +669,16 @@ impl<M: Model + Clone + Default + Send + Sync + 'static> Instance<M> {
         self.model.events(t, &self.y, &mut self.known_indicators);
         self.ended |= terminate;
         let values_changed = self.continuous.iter().any(|&i| self.y[i] != before[i]);
-        let next_event_time = self.clocks.as_ref().and_then(|c| c.next_after(t));
+        // The next time event: a clock's instant, or a breakpoint of an
+        // input or of a switch in the time alone (a step source), which
+        // the importer's integrator should not step across.
+        let next_clock = self.clocks.as_ref().and_then(|c| c.next_after(t));
+        let next_breakpoint =
+            self.model.input_breakpoints().into_iter().filter(|&b| b > t).min_by(f64::total_cmp);
+        let next_event_time = match (next_clock, next_breakpoint) {
+            (Some(c), Some(b)) => Some(c.min(b)),
+            (c, b) => c.or(b),
+        };
         Ok(EventUpdate { values_changed, terminate, next_event_time })
     }
 

@@ -162,3 +162,17 @@ fn fmi2_model_exchange_of_the_bouncing_ball() {
     me.terminate().unwrap();
     let _ = bouncing_ball::BouncingBall::default();
 }
+
+#[test]
+fn fmi3_model_exchange_announces_the_load_step_as_a_time_event() {
+    // The speed drive's load torque steps at t = 0.3: an importer's
+    // integrator is told to stop there, as at a clock's instant.
+    let archives = support::fmus("speed_drive_fmu", "archive-importer-time-event");
+    let fmu = Unpacked::new(&archives.fmi3);
+    let mut me = Instance3::model_exchange(&fmu);
+    me.initialize(None, 0.0).unwrap();
+    let update = me.update_discrete_states().unwrap();
+    assert!(update.next_event_time_defined);
+    assert_eq!(update.next_event_time, 0.3);
+    me.terminate().unwrap();
+}
