@@ -394,11 +394,11 @@ fn impossible_circle() {
     let u = state(0.0);
     let v = state(0.0);
     let lambda = algebraic(0.0);
+    constraint(x * x + y * y + 1.0);
     der(x) == u;
     der(y) == v;
     der(u) == -lambda * x;
     der(v) == -lambda * y;
-    constraint(x * x + y * y + 1.0);
 }
 
 /// The same circle twice, each with its own multiplier: Φ_q has rank 1.

@@ -20,6 +20,20 @@ fn torque_step() {
     connect(brake.flange_b, housing.flange);
 }
 
+/// `method` at rtol 1e-10, atol 1e-12.
+fn tight(method: Method) -> Options {
+    Options::new().method(method).rtol(1e-10).atol(1e-12)
+}
+
+/// Checks that `name` stays within `bound` of `exact` at `times`.
+fn assert_follows(sol: &Solution, name: &str, exact: fn(f64) -> f64, times: &[f64], bound: f64) {
+    let method = sol.stats().method;
+    for &t in times {
+        let (v, want): (f64, f64) = (sol.at(t, name).unwrap(), exact(t));
+        assert!((v - want).abs() < bound, "{method} t = {t}: {name} = {v} vs {want}");
+    }
+}
+
 /// The rotor's speed: at rest until 0.4, then `1 − e^(−(t − 0.4)/2)`.
 fn torque_step_exact(t: f64) -> f64 {
     if t <= 0.4 {
@@ -36,11 +50,7 @@ fn a_step_in_time_is_stepped_to_by_every_adaptive_method() {
         let tol = 1e-6;
         let opts = Options::new().method(method).rtol(tol).atol(tol);
         let sol = TorqueStep::default().simulate(0.0, 3.0, &opts).unwrap();
-        for &t in &[0.3f64, 0.4, 0.45, 1.0, 3.0] {
-            let w: f64 = sol.at(t, "rotor.w").unwrap();
-            let exact = torque_step_exact(t);
-            assert!((w - exact).abs() < 10.0 * tol, "{method:?} t = {t}: {w} vs {exact}");
-        }
+        assert_follows(&sol, "rotor.w", torque_step_exact, &[0.3, 0.4, 0.45, 1.0, 3.0], 10.0 * tol);
     }
 }
 
@@ -104,11 +114,13 @@ fn an_if_on_a_variable_switches_where_its_relation_crosses() {
         assert!((fired[0].1 - 9f64.ln()).abs() < 1e-6, "{method:?}: {fired:?}");
         // RADAU5 meets 0.1·rtol^(2/3), the tolerance it turns rtol into
         // (`radau5.f`): about 10·tol here, before the switch as after it.
-        for &t in &[1.0f64, 2.0, 2.5, 4.0, 6.0] {
-            let v: f64 = sol.at(t, "v").unwrap();
-            let exact = piecewise_discharge_exact(t);
-            assert!((v - exact).abs() < 20.0 * tol, "{method:?} t = {t}: {v} vs {exact}");
-        }
+        assert_follows(
+            &sol,
+            "v",
+            piecewise_discharge_exact,
+            &[1.0, 2.0, 2.5, 4.0, 6.0],
+            20.0 * tol,
+        );
     }
 }
 
@@ -132,7 +144,7 @@ fn switching_functions() {
 
 #[test]
 fn min_max_sign_and_if_statements_switch_at_their_relations() {
-    let opts = Options::new().method(Method::Dop853).rtol(1e-10).atol(1e-12);
+    let opts = tight(Method::Dop853);
     let sol = SwitchingFunctions::default().simulate(0.0, 4.0, &opts).unwrap();
     // The three relations on x switch together at t = 1; sign's two at 2.
     let fired: Vec<(&str, f64)> = sol.events().iter().map(|e| (e.name, e.t)).collect();
@@ -250,7 +262,7 @@ fn shifting_gearbox() {
 
 #[test]
 fn an_integer_mode_is_set_by_an_expression_of_a_relation() {
-    let opts = Options::new().method(Method::Dopri5).rtol(1e-10).atol(1e-12);
+    let opts = tight(Method::Dopri5);
     let sol = ShiftingGearbox::default().simulate(0.0, 3.0, &opts).unwrap();
     // w = t to 1, then in second gear w = 1 + (t − 1)/2.
     let (w, gear): (f64, f64) = (sol.at(3.0, "w").unwrap(), sol.at(3.0, "gear").unwrap());
@@ -295,22 +307,22 @@ fn three_state_clutch() {
 fn four_clutches() {
     let drive = torque_source(10.0);
     let j1 = inertia(j = 1.0);
-    let j2 = inertia(j = 2.0);
-    let j3 = inertia(j = 3.0);
-    let j4 = inertia(j = 4.0);
-    let j5 = inertia(j = 5.0);
-    let c1 = three_state_clutch();
-    let c2 = three_state_clutch();
-    let c3 = three_state_clutch();
-    let c4 = three_state_clutch();
     connect(drive.flange, j1.flange_a);
+    let c1 = three_state_clutch();
     connect(j1.flange_b, c1.flange_a);
+    let j2 = inertia(j = 2.0);
     connect(c1.flange_b, j2.flange_a);
+    let c2 = three_state_clutch();
     connect(j2.flange_b, c2.flange_a);
+    let j3 = inertia(j = 3.0);
     connect(c2.flange_b, j3.flange_a);
+    let c3 = three_state_clutch();
     connect(j3.flange_b, c3.flange_a);
+    let j4 = inertia(j = 4.0);
     connect(c3.flange_b, j4.flange_a);
+    let c4 = three_state_clutch();
     connect(j4.flange_b, c4.flange_a);
+    let j5 = inertia(j = 5.0);
     connect(c4.flange_b, j5.flange_a);
 }
 
@@ -320,7 +332,7 @@ fn four_clutches_of_three_booleans_compile_into_one_system() {
     // blended into one equation, the drivetrain analysed once, its block
     // solved at run time in whatever modes the clutches are in.
     let speeds = |model: FourClutches| {
-        let opts = Options::new().method(Method::Radau5).rtol(1e-10).atol(1e-12);
+        let opts = tight(Method::Radau5);
         let sol = model.simulate(0.0, 1.0, &opts).unwrap();
         ["j1.w", "j2.w", "j3.w", "j4.w", "j5.w"].map(|n| sol.last(n).unwrap())
     };

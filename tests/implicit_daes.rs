@@ -122,6 +122,7 @@ fn a_capacitance_of_zero_changes_the_rank_and_is_refused() {
 #[dae_model]
 fn one_transistor_amplifier() {
     let t = time();
+    let ue = 0.4 * sin(200.0 * 3.141592653589793 * t);
     let ub = param(6.0);
     let uf = param(0.026);
     let beta = param(1e-6);
@@ -135,7 +136,6 @@ fn one_transistor_amplifier() {
     let u3 = state(3.0);
     let u4 = state(6.0);
     let u5 = state(0.0);
-    let ue = 0.4 * sin(200.0 * 3.141592653589793 * t);
     let f23 = beta * (exp((u2 - u3) / uf) - 1.0);
     -c1 * der(u1) + c1 * der(u2) == (u1 - ue) / r0;
     c1 * der(u1) - c1 * der(u2) == 2.0 * u2 / r - ub / r + 0.01 * f23;

@@ -13,11 +13,11 @@ use daegen::prelude::*;
 fn parallel_capacitors() {
     let source = constant_voltage(1.0);
     let r = resistor(1.0);
+    connect(source.p, r.p);
     let c1 = capacitor(1.0);
     let c2 = capacitor(2.0);
-    let gnd = ground();
-    connect(source.p, r.p);
     connect(r.n, c1.p, c2.p);
+    let gnd = ground();
     connect(c1.n, c2.n, source.n, gnd.p);
 }
 
@@ -357,11 +357,11 @@ fn varactor() {
     let k = param(0.1);
     let p = pin();
     let n = pin();
+    p.i + n.i == 0.0;
     let q = state(0.0);
+    der(q) == p.i;
     let v = algebraic(0.0);
     v == p.v - n.v;
-    p.i + n.i == 0.0;
-    der(q) == p.i;
     v == q / c0 + k * q * q * q;
 }
 
@@ -371,12 +371,12 @@ fn varactor() {
 fn parallel_varactors() {
     let source = constant_voltage(1.0);
     let r = resistor(1.0);
+    connect(source.p, r.p);
     let a = varactor(c0 = 1.0);
     let b = varactor(c0 = 2.0);
+    connect(r.n, a.p, b.p);
     let gnd = ground();
     let charge = state(0.0);
-    connect(source.p, r.p);
-    connect(r.n, a.p, b.p);
     connect(a.n, b.n, source.n, gnd.p);
     der(charge) == r.i;
 }

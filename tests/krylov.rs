@@ -3,7 +3,7 @@
 //! refuses with what to use instead.
 
 use daegen::prelude::*;
-use daegen::{EvalError, ModelInfo, StructureInfo};
+use daegen::{EvalError, ModelInfo};
 
 mod support;
 use support::harness::{is_implicit, is_stiff_method, methods_for};
@@ -111,34 +111,14 @@ fn by_default_a_large_grid_runs_rodas5p_with_gmres_at_any_tolerance() {
     assert!(worst <= 10.0 * tol, "error {worst:e}");
 }
 
-/// The names of a model written by hand: its states and their docs, no
-/// parameters, outputs, events or structure.
+/// The names of a model written by hand: its states and their docs.
 const fn hand_written_info(
     name: &'static str,
     states: &'static [&'static str],
     state_docs: &'static [&'static str],
     equations: usize,
 ) -> ModelInfo {
-    ModelInfo {
-        name,
-        doc: "",
-        states,
-        state_docs,
-        parameters: &[],
-        parameter_docs: &[],
-        outputs: &[],
-        output_docs: &[],
-        declared_outputs: &[],
-        equations,
-        events: &[],
-        clocks: &[],
-        discrete: &[],
-        inputs: &[],
-        algebraics: &[],
-        algebraic_docs: &[],
-        structure: StructureInfo::NONE,
-        components: &[],
-    }
+    ModelInfo { state_docs, ..ModelInfo::bare(name, states, equations) }
 }
 
 /// y′ = −y with a hand-written right-hand side: no Jacobian to build the

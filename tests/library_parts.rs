@@ -73,12 +73,12 @@ fn an_opamp_integrator_ramps_exactly() {
 /// A diode behind 100 Ω on 1 V, a capacitor across it.
 #[dae_model]
 fn diode_drop() {
-    let source = constant_voltage(1.0);
-    let d = diode(ids = 1e-9, vt = 0.025);
-    let load = resistor(100.0);
-    let store = capacitor(1e-6);
     let gnd = ground();
+    let source = constant_voltage(1.0);
+    let load = resistor(100.0);
     connect(source.p, load.p);
+    let d = diode(ids = 1e-9, vt = 0.025);
+    let store = capacitor(1e-6);
     connect(load.n, d.p, store.p);
     connect(d.n, store.n, source.n, gnd.p);
 }
@@ -156,12 +156,12 @@ fn the_blocks_follow_their_exact_responses() {
 /// plant: the output never leaves its limits.
 #[dae_model]
 fn limited_loop() {
-    let setpoint = constant(10.0);
     let controller = limited_pi(kp = 2.0, ki = 5.0, y_max = 3.0, y_min = -3.0, k_aw = 10.0);
     let plant = first_order(k = 2.0, t = 1.0);
-    connect(setpoint.y, controller.u_s);
     connect(controller.y, plant.u);
     connect(plant.y, controller.u_m);
+    let setpoint = constant(10.0);
+    connect(setpoint.y, controller.u_s);
 }
 
 #[test]

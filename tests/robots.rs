@@ -23,33 +23,20 @@ fn panda() {
     gravity(vec3(0.0, 0.0, -9.81));
 }
 
-include!("support/dense_solve.rs");
+include!("support/pinocchio_reference.rs");
 
-fn reference(name: &str) -> serde_json::Value {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/robots/pinocchio.json"
-    ))
-    .unwrap();
-    let all: serde_json::Value = serde_json::from_str(&text).unwrap();
-    all["robots"].as_array().unwrap().iter().find(|r| r["name"] == name).unwrap().clone()
-}
-
-fn floats(v: &serde_json::Value) -> Vec<f64> {
-    v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+/// `tests/robots/`: example-robot-data's URDF files and what Pinocchio
+/// makes of them.
+fn robots_dir() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/robots")
 }
 
 /// The largest error of the model's joint accelerations against
 /// Pinocchio's, relative to the largest of them, over its five states, and
 /// how many coordinates of welded links were compared (each within 1e-14 m).
 fn worst_against_pinocchio<M: Model>(model: &M, name: &str) -> (f64, usize) {
-    let robot = reference(name);
-    let joints: Vec<String> = robot["bodies"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|b| b["joint"].as_str().unwrap().to_string())
-        .collect();
+    let robot = pinocchio_reference(&robots_dir(), name);
+    let joints = reference_joints(&robot);
     let file = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/robots/");
     let text =
         std::fs::read_to_string(format!("{file}{}", robot["urdf"].as_str().unwrap())).unwrap();
@@ -112,28 +99,28 @@ fn ur5_driven() {
     urdf("tests/robots/ur5.urdf");
     gravity(vec3(0.0, 0.0, -9.81));
     let tau_1 = input(0.0);
-    let tau_2 = input(0.0);
-    let tau_3 = input(0.0);
-    let tau_4 = input(0.0);
-    let tau_5 = input(0.0);
-    let tau_6 = input(0.0);
     let drive_1 = signal_torque();
-    let drive_2 = signal_torque();
-    let drive_3 = signal_torque();
-    let drive_4 = signal_torque();
-    let drive_5 = signal_torque();
-    let drive_6 = signal_torque();
     connect(drive_1.flange, shoulder_pan_joint.flange);
-    connect(drive_2.flange, shoulder_lift_joint.flange);
-    connect(drive_3.flange, elbow_joint.flange);
-    connect(drive_4.flange, wrist_1_joint.flange);
-    connect(drive_5.flange, wrist_2_joint.flange);
-    connect(drive_6.flange, wrist_3_joint.flange);
     drive_1.u == tau_1;
+    let tau_2 = input(0.0);
+    let drive_2 = signal_torque();
+    connect(drive_2.flange, shoulder_lift_joint.flange);
     drive_2.u == tau_2;
+    let tau_3 = input(0.0);
+    let drive_3 = signal_torque();
+    connect(drive_3.flange, elbow_joint.flange);
     drive_3.u == tau_3;
+    let tau_4 = input(0.0);
+    let drive_4 = signal_torque();
+    connect(drive_4.flange, wrist_1_joint.flange);
     drive_4.u == tau_4;
+    let tau_5 = input(0.0);
+    let drive_5 = signal_torque();
+    connect(drive_5.flange, wrist_2_joint.flange);
     drive_5.u == tau_5;
+    let tau_6 = input(0.0);
+    let drive_6 = signal_torque();
+    connect(drive_6.flange, wrist_3_joint.flange);
     drive_6.u == tau_6;
 }
 
@@ -141,7 +128,7 @@ fn ur5_driven() {
 fn ur5_driven_by_joint_torques_is_pinocchio_s_aba() {
     // With the reference's random torques as inputs, the accelerations are
     // pin.aba's themselves.
-    let robot = reference("ur5");
+    let robot = pinocchio_reference(&robots_dir(), "ur5");
     let info = &<Ur5Driven as Model>::INFO;
     let at = |n: &str| info.states.iter().position(|s| *s == n).unwrap();
     let joints = [
@@ -239,7 +226,7 @@ fn solo12_on_its_floating_base_is_pinocchio_s() {
     // those components. The model's base is the body at the base's centre
     // of mass c (base axes): x_c = p + R c, ẋ_c = R (v + ω × c), body rates
     // ω, and ẍ_c = R (v̇ + ω × v + ω̇ × c + ω × (ω × c)).
-    let robot = reference("solo12");
+    let robot = pinocchio_reference(&robots_dir(), "solo12");
     let c = floats(&robot["bodies"][0]["com"]);
     let c = [c[0], c[1], c[2]];
     let info = &<Solo12 as Model>::INFO;

@@ -164,28 +164,26 @@ fn mistakes_name_their_line() {
 }
 
 #[test]
-fn a_loop_is_refused() {
-    let text = r#"<robot name="r">
+fn loops_are_refused() {
+    let closed = r#"<robot name="r">
 <link name="a"/><link name="b"/>
 <joint name="ab" type="fixed"><parent link="a"/><child link="b"/></joint>
 <joint name="ba" type="fixed"><parent link="b"/><child link="a"/></joint>
 </robot>"#;
-    let (line, message) = first_error(text);
-    assert_eq!(line, 3);
-    assert!(message.contains("the joints form a loop"), "{message}");
-}
-
-#[test]
-fn a_loop_apart_from_the_root_is_refused() {
-    let text = r#"<robot name="r">
+    let apart_from_the_root = r#"<robot name="r">
 <link name="a"/>
 <link name="b"/><link name="c"/>
 <joint name="bc" type="fixed"><parent link="b"/><child link="c"/></joint>
 <joint name="cb" type="fixed"><parent link="c"/><child link="b"/></joint>
 </robot>"#;
-    let (line, message) = first_error(text);
-    assert_eq!(line, 3);
-    assert!(message.contains("links `b`, `c` are not reached from the root link `a`"), "{message}");
+    for (text, expected) in [
+        (closed, "the joints form a loop"),
+        (apart_from_the_root, "links `b`, `c` are not reached from the root link `a`"),
+    ] {
+        let (line, message) = first_error(text);
+        assert_eq!(line, 3);
+        assert!(message.contains(expected), "{message}");
+    }
 }
 
 #[path = "../../tests/support/python_peers.rs"]
@@ -325,11 +323,7 @@ fn a_robot_s_names_are_its_file_s() {
     assert!(out.contains("include_bytes"), "{out}");
 }
 
-fn floats(v: &serde_json::Value) -> Vec<f64> {
-    v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
-}
-
-include!("../../tests/support/dense_solve.rs");
+include!("../../tests/support/pinocchio_reference.rs");
 
 /// The TALOS arm (7 joints) and the TALOS humanoid on a fixed base (32
 /// joints), whose files stay out of the repository, through the symbolic
@@ -339,13 +333,8 @@ include!("../../tests/support/dense_solve.rs");
 /// `pin.nonLinearEffects`, D the file's joint damping.
 #[test]
 fn talos_accelerations_are_pinocchio_s() {
-    let reference: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(robots_dir().join("pinocchio.json")).unwrap(),
-    )
-    .unwrap();
     for name in ["talos_arm", "talos"] {
-        let robot =
-            reference["robots"].as_array().unwrap().iter().find(|r| r["name"] == name).unwrap();
+        let robot = pinocchio_reference(&robots_dir(), name);
         let path = robot_file(robot["urdf"].as_str().unwrap());
         let urdf = parse(&std::fs::read_to_string(&path).unwrap()).unwrap();
         let item: syn::ItemFn = syn::parse_str(&format!(
@@ -359,12 +348,7 @@ fn talos_accelerations_are_pinocchio_s() {
                 .unwrap_or_else(|_| panic!("{name}: {:?}", cx.messages()));
         let (g, sys) = (&analysed.ir.graph, &analysed.model.system);
         let slot = |n: String| sys.slots.iter().position(|s| s.name == n).unwrap();
-        let joints: Vec<String> = robot["bodies"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|b| b["joint"].as_str().unwrap().to_string())
-            .collect();
+        let joints = reference_joints(&robot);
         let accelerations: Vec<daegen_codegen::Id> = joints
             .iter()
             .map(|j| match sys.derivatives[slot(format!("der({j}.q)"))] {

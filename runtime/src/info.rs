@@ -228,11 +228,12 @@ pub struct ComponentInfo {
     pub part: &'static str,
 }
 
-#[cfg(test)]
 impl ModelInfo {
-    /// The names of a model written by hand in a unit test: its states, no
-    /// docs, parameters, outputs or events.
-    pub(crate) const fn bare(
+    /// The names of a model written by hand rather than by the macro: its
+    /// states, no docs, parameters, outputs, events or structure. Set what
+    /// else it has with struct update syntax:
+    /// `ModelInfo { state_docs: &["charge"], ..ModelInfo::bare("Rc", &["q"], 1) }`.
+    pub const fn bare(
         name: &'static str,
         states: &'static [&'static str],
         equations: usize,

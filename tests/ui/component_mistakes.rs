@@ -3,21 +3,22 @@ use daegen::prelude::*;
 /// A parameter the part does not have.
 #[dae_model]
 fn wrong_parameter_name() {
-    let r1 = resistor(rr = 100.0);
-    let c1 = capacitor(1e-3, 0.0, 5.0);
     let gnd = ground();
+    let r1 = resistor(rr = 100.0);
+    connect(r1.n, gnd.p);
+    let c1 = capacitor(1e-3, 0.0, 5.0);
     connect(r1.p, c1.p);
-    connect(r1.n, c1.n, gnd.p);
+    connect(r1.n, c1.n);
 }
 
 /// A pin joined to a flange.
 #[dae_model]
 fn kinds_that_do_not_match() {
-    let r1 = resistor(1.0);
-    let j = inertia(1.0);
     let gnd = ground();
-    connect(r1.p, j.flange_a);
+    let r1 = resistor(1.0);
     connect(r1.n, gnd.p);
+    let j = inertia(1.0);
+    connect(r1.p, j.flange_a);
     connect(r1.p, r1.q);
 }
 

@@ -1,19 +1,17 @@
 use daegen::prelude::*;
 
-/// Two capacitors in parallel, each given a start: the connections make
-/// their voltages one.
+/// Two capacitors in parallel discharging through a resistor, each given
+/// a start: the connections make their voltages one.
 #[dae_model]
 fn two_starts_for_one_voltage() {
-    let source = constant_voltage(1.0);
-    let r = resistor(1.0);
-    let c1 = capacitor(1.0);
-    let c2 = capacitor(2.0);
     let gnd = ground();
-    connect(source.p, r.p);
-    connect(r.n, c1.p, c2.p);
-    connect(c1.n, c2.n, source.n, gnd.p);
+    let c1 = capacitor(1.0);
     init(c1.v, 0.0);
+    let c2 = capacitor(2.0);
     init(c2.v, 1.0);
+    let r = resistor(1.0);
+    connect(c1.p, c2.p, r.p);
+    connect(c1.n, c2.n, r.n, gnd.p);
 }
 
 /// A steady start asked of a state whose start is fixed.

@@ -5,24 +5,22 @@ use daegen::prelude::*;
 // derivatives; `Method::Taylor` runs it without either.
 #[dae_model(taylor = 2)]
 fn double_rod() {
-    let g = param(9.81);
     let ground = ground();
     let upper = body(1.0, 1.0 / 12.0, [0.5, 0.0, 0.0]);
-    let lower = body(1.0, 1.0 / 12.0, [1.5, 0.0, 0.0]);
     revolute(ground, vec3(0.0, 0.0, 0.0), upper, vec3(-0.5, 0.0, 0.0));
+    let lower = body(1.0, 1.0 / 12.0, [1.5, 0.0, 0.0]);
     revolute(upper, vec3(0.5, 0.0, 0.0), lower, vec3(-0.5, 0.0, 0.0));
-    gravity(vec3(0.0, -g, 0.0));
+    gravity(vec3(0.0, -9.81, 0.0));
 }
 
 #[dae_model(unroll = [8])]
 fn double_rod_unrolled() {
-    let g = param(9.81);
+    gravity(vec3(0.0, -9.81, 0.0));
     let ground = ground();
-    let upper = body(1.0, 1.0 / 12.0, [0.5, 0.0, 0.0]);
-    let lower = body(1.0, 1.0 / 12.0, [1.5, 0.0, 0.0]);
-    revolute(ground, vec3(0.0, 0.0, 0.0), upper, vec3(-0.5, 0.0, 0.0));
-    revolute(upper, vec3(0.5, 0.0, 0.0), lower, vec3(-0.5, 0.0, 0.0));
-    gravity(vec3(0.0, -g, 0.0));
+    let upper = body(2.0, 2.0 / 12.0, [0.0, -0.5, 0.0]);
+    let lower = body(1.0, 1.0 / 12.0, [0.0, -1.5, 0.0]);
+    revolute(ground, vec3(0.0, 0.0, 0.0), upper, vec3(0.0, 0.5, 0.0));
+    revolute(upper, vec3(0.0, -0.5, 0.0), lower, vec3(0.0, 0.5, 0.0));
 }
 
 fn main() {}

@@ -487,8 +487,7 @@ pub(crate) fn integrate<M: Model>(
     problem: Problem<'_, M>,
     solution: Solution,
 ) -> Result<Solution, Error> {
-    let Problem { t0, t1, options, .. } = problem;
-    let (steps, solution) = crate::step::option_steps(t0, t1, options, solution)?;
+    let (steps, solution) = crate::step::option_steps(&problem, solution)?;
     integrate_in_steps(problem, steps, solution)
 }
 

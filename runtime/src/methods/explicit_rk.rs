@@ -71,9 +71,8 @@ pub(crate) fn integrate<M: Model>(
     problem: Problem<'_, M>,
     solution: Solution,
 ) -> Result<Solution, Error> {
-    let Problem { t0, t1, options, .. } = problem;
-    let (steps, solution) = crate::step::option_steps(t0, t1, options, solution)?;
-    let tableau = match options.method {
+    let (steps, solution) = crate::step::option_steps(&problem, solution)?;
+    let tableau = match problem.options.method {
         Method::Rk4 => &RK4,
         Method::Rk38 => &RK38,
         Method::Euler => &EULER,

@@ -56,12 +56,11 @@ pub(crate) fn equal_steps(
 
 /// The equal steps of a method that takes [`Options::step`]: of about that
 /// step, or of the interval over 1000 where none is given.
-pub(crate) fn option_steps(
-    t0: f64,
-    t1: f64,
-    options: &Options,
+pub(crate) fn option_steps<M>(
+    problem: &Problem<'_, M>,
     solution: Solution,
 ) -> Result<(usize, Solution), Error> {
+    let Problem { t0, t1, options, .. } = *problem;
     let step = options.step.unwrap_or((t1 - t0).abs() / 1000.0);
     if !(step.is_finite() && step > 0.0) && t1 != t0 {
         return Err(Error::InvalidOptions {

@@ -2,6 +2,7 @@
 //! `output`, `event`, and the scene's bodies, each checked and bound to
 //! its name.
 
+use super::hybrid::Trigger;
 use super::scene::SceneLanguage;
 use super::scopes::{Binding, Lower};
 use crate::front::ir::{
@@ -214,21 +215,11 @@ impl<S: SceneLanguage> Lower<'_, S> {
     /// `let e = event(g).rising().terminal();`
     /// Unnamed (`event(h).falling().reinit(..);` as a statement), it is
     /// named by its source text.
-    pub(in crate::front) fn event(
-        &mut self,
-        ident: Option<&syn::Ident>,
-        call: &syn::ExprCall,
-        settings: &[&syn::ExprMethodCall],
-        doc: String,
-        origin: &dyn ToTokens,
-    ) {
-        let name = self.trigger_name(ident, call);
-        if ident.is_some_and(|i| self.already_declared(i)) {
+    pub(in crate::front) fn event(&mut self, trigger: Trigger<'_>) {
+        let Some(name) = self.trigger_declared(&trigger, "event") else {
             return;
-        }
-        if !self.arity(call, "event", 1) {
-            return;
-        }
+        };
+        let Trigger { ident, call, settings, doc, origin } = trigger;
         let (mut direction, mut terminal) = (EventDirection::Any, false);
         let mut actions = Vec::new();
         for m in settings {
@@ -474,7 +465,9 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 }
             }
             // Met first, with its settings, by the statement; here without.
-            Declaration::Event => self.event(Some(ident), call, &[], doc, local),
+            Declaration::Event => {
+                self.event(Trigger { ident: Some(ident), call, settings: &[], doc, origin: local })
+            }
             Declaration::Discrete => self.discrete(ident, call, doc, local),
             Declaration::Input => self.input(ident, call, doc, local),
             Declaration::Output => {

@@ -9,6 +9,20 @@ use crate::{Id, SymbolId, SymbolKind};
 use quote::ToTokens;
 use syn::{Expr, Lit};
 
+/// The declaration of an event or a clock, as the statement writes it.
+pub(in crate::front) struct Trigger<'a> {
+    /// Its `let` name; `None` for one written as a statement.
+    pub ident: Option<&'a syn::Ident>,
+    /// `event(g)` or `every(h)`.
+    pub call: &'a syn::ExprCall,
+    /// The settings after the call: `.rising()`, `.reinit(x, v)`, …
+    pub settings: &'a [&'a syn::ExprMethodCall],
+    /// Its doc comment.
+    pub doc: String,
+    /// The tokens its errors point at.
+    pub origin: &'a dyn ToTokens,
+}
+
 impl<S: SceneLanguage> Lower<'_, S> {
     /// `.reinit(target, value)` on an event or a clock.
     pub(in crate::front) fn action(&mut self, m: &syn::ExprMethodCall) -> Option<Action> {
@@ -139,13 +153,22 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
     }
 
+    /// The name of the event or clock `trigger` declares with `function`,
+    /// or `None` where it declares none: its name taken, or its arguments
+    /// wrong (both said).
+    pub(in crate::front) fn trigger_declared(
+        &mut self,
+        trigger: &Trigger<'_>,
+        function: &str,
+    ) -> Option<String> {
+        let name = self.trigger_name(trigger.ident, trigger.call);
+        let taken = trigger.ident.is_some_and(|i| self.already_declared(i));
+        (!taken && self.arity(trigger.call, function, 1)).then_some(name)
+    }
+
     /// The name of an event or a clock: its `let` name, or for one written
     /// as a statement its source text (`every(0.1)`, then `every(0.1)#2`).
-    pub(in crate::front) fn trigger_name(
-        &self,
-        ident: Option<&syn::Ident>,
-        call: &syn::ExprCall,
-    ) -> String {
+    fn trigger_name(&self, ident: Option<&syn::Ident>, call: &syn::ExprCall) -> String {
         if let Some(ident) = ident {
             return format!("{}{ident}", self.prefix);
         }
@@ -171,28 +194,33 @@ impl<S: SceneLanguage> Lower<'_, S> {
         clock: bool,
     ) {
         if clock {
-            return self.clock(None, call, settings, String::new(), e);
+            return self.clock(Trigger {
+                ident: None,
+                call,
+                settings,
+                doc: String::new(),
+                origin: e,
+            });
         }
         if settings.iter().any(|m| m.method == "reinit") {
-            return self.event(None, call, settings, String::new(), e);
+            return self.event(Trigger {
+                ident: None,
+                call,
+                settings,
+                doc: String::new(),
+                origin: e,
+            });
         }
         self.cx
             .error_at(e, "an event needs a name to be looked up by: write `let hit = event(...);`")
     }
 
     /// `let tick = every(h).offset(t0).reinit(u, ..);`, or as a statement.
-    pub(in crate::front) fn clock(
-        &mut self,
-        ident: Option<&syn::Ident>,
-        call: &syn::ExprCall,
-        settings: &[&syn::ExprMethodCall],
-        doc: String,
-        origin: &dyn ToTokens,
-    ) {
-        let name = self.trigger_name(ident, call);
-        if ident.is_some_and(|i| self.already_declared(i)) || !self.arity(call, "every", 1) {
+    pub(in crate::front) fn clock(&mut self, trigger: Trigger<'_>) {
+        let Some(name) = self.trigger_declared(&trigger, "every") else {
             return;
-        }
+        };
+        let Trigger { ident, call, settings, doc, origin } = trigger;
         let period = self.initial_value(&call.args[0]);
         if let Some(p) = period.and_then(|p| self.g.as_number(p)) {
             if p.to_f64() <= 0.0 || !p.to_f64().is_finite() {

@@ -79,17 +79,16 @@ impl<S: SceneLanguage> Lower<'_, S> {
     fn mode_branch(&mut self, stmts: &[syn::Stmt], guard: ModeGuard, at: &syn::ExprIf) {
         // A relation a branch compares is held in a discrete boolean of its
         // own, with its events: those are the relation's, not declarations.
-        let relations = |l: &Self| l.relations.len();
-        let before = (
-            self.equations.len(),
-            self.states.len() - relations(self),
-            self.algebraics.len(),
-            self.params.len(),
-            self.events.len() - 2 * relations(self)
-                + self.clocks.len()
-                + self.outputs.len()
-                + self.inputs.len(),
-        );
+        let declared = |l: &Self| {
+            let relations = l.relations.len();
+            (
+                l.states.len() - relations,
+                l.algebraics.len(),
+                l.params.len(),
+                l.events.len() - 2 * relations + l.clocks.len() + l.outputs.len() + l.inputs.len(),
+            )
+        };
+        let (equations_before, declared_before) = (self.equations.len(), declared(self));
         self.scopes.push(HashMap::new());
         self.mode_depth += 1;
         for s in stmts {
@@ -97,23 +96,14 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
         self.mode_depth -= 1;
         self.scopes.pop();
-        let after = (
-            self.states.len() - relations(self),
-            self.algebraics.len(),
-            self.params.len(),
-            self.events.len() - 2 * relations(self)
-                + self.clocks.len()
-                + self.outputs.len()
-                + self.inputs.len(),
-        );
-        if after != (before.1, before.2, before.3, before.4) {
+        if declared(self) != declared_before {
             self.cx.error_at(
                 at,
                 "a mode selects equations: declare states, variables, parameters, outputs and events before `if`, and write only equations inside",
             );
         }
         let held: Vec<SymbolId> = self.relations.iter().map(|r| r.discrete).collect();
-        for equation in &mut self.equations[before.0..] {
+        for equation in &mut self.equations[equations_before..] {
             // A relation's discrete is constant in every mode.
             let rate_of = match self.g.as_symbol(equation.lhs).map(|s| self.g.symbol(s).kind) {
                 Some(crate::SymbolKind::Derivative { of, .. }) => Some(of),

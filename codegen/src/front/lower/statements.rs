@@ -2,6 +2,7 @@
 //! `init(..)`, assignments, and where each goes.
 
 use super::declarations::Declaration;
+use super::hybrid::Trigger;
 use super::scene::SceneLanguage;
 use super::scopes::{Binding, Lower};
 use super::syntax::{call_name, doc_comment, is_compound_assignment, trigger_call};
@@ -102,10 +103,12 @@ impl<S: SceneLanguage> Lower<'_, S> {
                     format!("declare `{what}(...)` outside loops: each iteration would declare `{ident}` again"),
                 );
             }
+            let trigger =
+                Trigger { ident: Some(&ident), call, settings: &settings, doc, origin: local };
             if clock {
-                return self.clock(Some(&ident), call, &settings, doc, local);
+                return self.clock(trigger);
             }
-            return self.event(Some(&ident), call, &settings, doc, local);
+            return self.event(trigger);
         }
         // `state(x0).fixed()`: a value consistent initialization keeps;
         // `state(x0).avoid()`: the state eliminated when tied to others;
