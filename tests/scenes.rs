@@ -11,38 +11,7 @@ use support::{assert_agree, tight};
 
 include!("models/slider_crank.rs");
 
-/// `slider_crank_scene!(name, (attributes), crank: (pose[, velocity]),
-/// slider: (pose[, velocity]), { statements })`: the slider-crank of the
-/// DAE tests as a scene (crank r = 0.15 of mass m1 = 1 about the origin, a
-/// massless rod l = 0.4 to the slider of mass m2 = 0.5 on the x axis),
-/// started from the given body poses, followed by `statements`.
-macro_rules! slider_crank_scene {
-    ($name:ident, ($($attr:tt)*), crank: ($($crank:tt)*), slider: ($($slider:tt)*),
-     { $($statements:tt)* }) => {
-        #[dae_model($($attr)*)]
-        fn $name() {
-            let r = param(0.15);
-            let l = param(0.4);
-            let m1 = param(1.0);
-            let m2 = param(0.5);
-            let g = param(9.81);
-            let ground = ground();
-            let crank = body(m1, m1 * r * r / 12.0, $($crank)*);
-            let slider = body(m2, 1.0, $($slider)*);
-            let pivot = revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5 * r, 0.0, 0.0));
-            let rod = distance(crank, vec3(0.5 * r, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), l);
-            prismatic(ground, vec3(0.0, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0));
-            gravity(vec3(0.0, -g, 0.0));
-            $($statements)*
-        }
-    };
-}
-
-// Rough guesses of the body poses: consistent initialization closes the joints.
-slider_crank_scene!(slider_crank_scene, (), crank: ([0.04, 0.06, 1.0]), slider: ([0.45, 0.0, 0.0]), {
-    let pin = position(crank, vec3(0.5 * r, 0.0, 0.0));
-    let pin_x = output(pin[0]);
-});
+include!("models/slider_crank_scene.rs");
 
 #[test]
 fn a_slider_crank_scene_matches_the_hand_written_model() {

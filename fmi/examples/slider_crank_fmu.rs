@@ -1,8 +1,9 @@
-//! `SliderCrank` (`models/slider_crank.rs`) as an FMU: `cargo fmu --example slider_crank_fmu`
-//! writes `target/fmu/slider_crank_fmu.fmu` (FMI 3.0) and
+//! `SliderCrankScene` (`tests/models/slider_crank_scene.rs`) as an FMU:
+//! `cargo fmu --example slider_crank_fmu` writes
+//! `target/fmu/slider_crank_fmu.fmu` (FMI 3.0) and
 //! `target/fmu/slider_crank_fmu_fmi2.fmu` (FMI 2.0).
 
-#[path = "models/slider_crank.rs"]
+#[path = "../../tests/models/slider_crank_scene.rs"]
 mod model;
 
-daegen_fmi::export_fmu!(model::SliderCrank);
+daegen_fmi::export_fmu!(model::SliderCrankScene);

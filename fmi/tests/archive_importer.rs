@@ -14,7 +14,7 @@ use importer::{Instance2, Instance3, Kind, Unpacked};
 
 #[path = "../examples/models/bouncing_ball.rs"]
 mod bouncing_ball;
-#[path = "../examples/models/speed_drive.rs"]
+#[path = "../../tests/models/speed_drive.rs"]
 mod speed_drive;
 #[path = "../examples/models/van_der_pol.rs"]
 mod van_der_pol;

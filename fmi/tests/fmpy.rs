@@ -17,13 +17,17 @@ use serde_json::json;
 
 #[path = "../examples/models/bouncing_ball.rs"]
 mod bouncing_ball;
-#[path = "../examples/models/pendulum.rs"]
-mod pendulum;
+/// The contract's pendulum, as `pendulum_fmu` exports it.
+mod pendulum {
+    use daegen::prelude::*;
+    include!("../../tests/models/items.rs");
+    contract_pendulum!(dae_model_with! { () });
+}
 #[path = "../examples/models/sampled_pi.rs"]
 mod sampled_pi;
-#[path = "../examples/models/slider_crank.rs"]
+#[path = "../../tests/models/slider_crank_scene.rs"]
 mod slider_crank;
-#[path = "../examples/models/speed_drive.rs"]
+#[path = "../../tests/models/speed_drive.rs"]
 mod speed_drive;
 #[path = "../examples/models/tank.rs"]
 mod tank;
@@ -184,7 +188,7 @@ fn the_pendulum_dae_through_fmpy() {
 
 #[test]
 fn a_slider_crank_scene_through_fmpy() {
-    let sol = native(slider_crank::SliderCrank::default(), 1.0, Method::Dop853);
+    let sol = native(slider_crank::SliderCrankScene::default(), 1.0, Method::Dop853);
     check("slider_crank_fmu", &sol, 1.0, &["pin_x", "crank.theta"]);
 }
 

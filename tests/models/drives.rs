@@ -2,56 +2,8 @@
 // hand where there is one: shared by the component tests and the
 // benchmark.
 
-/// A permanent-magnet DC motor: armature resistance and inductance, the
-/// EMF, and the rotor's inertia, between two pins and a shaft.
-#[component]
-fn dc_motor() {
-    /// Armature resistance (Ω).
-    let r = param(1.0);
-    /// Armature inductance (H).
-    let l = param(0.5e-3);
-    /// Motor constant (V s/rad).
-    let k = param(0.05);
-    /// Rotor inertia (kg m²).
-    let j = param(1e-4);
-    let p = pin();
-    let n = pin();
-    let shaft = flange();
-    let armature = resistor(r);
-    let winding = inductor(l);
-    let emf = emf(k);
-    let rotor = inertia(j);
-    connect(p, armature.p);
-    connect(armature.n, winding.p);
-    connect(winding.n, emf.p);
-    connect(emf.n, n);
-    connect(emf.flange, rotor.flange_a);
-    connect(rotor.flange_b, shaft);
-}
-
-/// The motor under a PI speed controller, with viscous friction and a
-/// load torque of 0.02 N m from t = 0.3 s.
-#[dae_model]
-fn speed_drive() {
-    let reference = constant(100.0);
-    let controller = pi_controller(kp = 0.02, ki = 0.5);
-    let sensor = speed_sensor();
-    let supply = signal_voltage();
-    let motor = dc_motor(k = 0.05);
-    let friction = damper(1e-5);
-    let housing = fixed();
-    let load = signal_torque();
-    let load_torque = step(height = -0.02, start_time = 0.3);
-    let gnd = ground();
-    connect(reference.y, controller.u_s);
-    connect(sensor.w, controller.u_m);
-    connect(controller.y, supply.u);
-    connect(supply.p, motor.p);
-    connect(supply.n, motor.n, gnd.p);
-    connect(motor.shaft, friction.flange_a, sensor.flange, load.flange);
-    connect(friction.flange_b, housing.flange);
-    connect(load_torque.y, load.u);
-}
+include!("speed_drive.rs");
+include!("slider_crank_scene.rs");
 
 /// The same drive written flat, by hand.
 #[dae_model]
@@ -148,7 +100,7 @@ fn heating_up() {
 #[component]
 fn geared_drive() {
     let supply = constant_voltage(12.0);
-    let motor = dc_motor(r = 1.0, l = 0.01, k = 0.05, j = 1e-5);
+    let motor = daegen_parts_example::dc_motor(r = 1.0, l = 0.01, k = 0.05, j = 1e-5);
     let gear = ideal_gear(10.0);
     let gnd = ground();
     let shaft = flange();
@@ -164,23 +116,14 @@ fn geared_drive() {
 /// θ = 1 at rest) through a 10:1 gear on its pivot's flange.
 macro_rules! geared_slider_crank {
     ($name:ident, ($($attr:tt)*)) => {
-        #[dae_model($($attr)*)]
-        fn $name() {
-            let r = param(0.15);
-            let l = param(0.4);
-            let m1 = param(1.0);
-            let m2 = param(0.5);
-            let ground = ground();
-            // The poses at θ = 1 with every joint closed.
-            let crank = body(m1, m1 * r * r / 12.0, [0.5 * r * cos(1.0), 0.5 * r * sin(1.0), 1.0]);
-            let slider = body(m2, 1.0, [r * cos(1.0) + sqrt(l * l - r * r * sin(1.0) * sin(1.0)), 0.0, 0.0]);
-            let pivot = revolute(ground, vec3(0.0, 0.0, 0.0), crank, vec3(-0.5 * r, 0.0, 0.0));
-            let rod = distance(crank, vec3(0.5 * r, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), l);
-            prismatic(ground, vec3(0.0, 0.0, 0.0), slider, vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0));
-            gravity(vec3(0.0, -9.81, 0.0));
-            let drive = geared_drive();
-            connect(drive.shaft, pivot.flange);
-        }
+        // The poses at θ = 1 with every joint closed.
+        slider_crank_scene!($name, ($($attr)*),
+            crank: ([0.5 * r * cos(1.0), 0.5 * r * sin(1.0), 1.0]),
+            slider: ([r * cos(1.0) + sqrt(l * l - r * r * sin(1.0) * sin(1.0)), 0.0, 0.0]),
+            {
+                let drive = geared_drive();
+                connect(drive.shaft, pivot.flange);
+            });
     };
 }
 

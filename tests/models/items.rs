@@ -7,28 +7,39 @@
 /// `contract_pendulum!(then! { arguments })`: `then!` called with its
 /// arguments followed by the contract's pendulum as a plain item, so that
 /// `contract_pendulum!(dae_model_with! { (taylor = 1) })` defines it and
-/// tests/expansion.rs snapshots its expansion.
+/// tests/expansion.rs snapshots its expansion. Public, as the FMU tests and
+/// examples define it in a module of their own.
 #[allow(unused_macros)]
 macro_rules! contract_pendulum {
     ($then:ident ! { $($arguments:tt)* }) => {
         $then! {
             $($arguments)*
             /// Planar pendulum as an index-3 DAE in Cartesian coordinates: the
-            /// model of the contract, the notes' eq. 2.1.
-            fn pendulum() {
+            /// model of the contract, the notes' eq. 2.1. A point mass on a
+            /// massless rod, the rod's force λ its algebraic variable.
+            pub fn pendulum() {
+                /// Mass (kg).
                 let m = param(1.0);
+                /// Rod length (m).
                 let l = param(1.0);
+                /// Gravity (m/s²).
                 let g = param(9.81);
+                /// Horizontal position (m).
                 let x = state(1.0);
+                /// Vertical position (m).
                 let y = state(0.0);
+                /// Horizontal velocity (m/s).
                 let u = state(0.0);
+                /// Vertical velocity (m/s).
                 let v = state(0.0);
+                /// Rod force over length (N/m).
                 let lambda = algebraic(0.0);
                 der(x) == u;
                 der(y) == v;
                 m * der(u) == -lambda * x;
                 m * der(v) == -lambda * y - m * g;
                 constraint(x * x + y * y - l * l);
+                /// Total energy (J), kept by the exact solution.
                 let energy = output(0.5 * m * (u * u + v * v) + m * g * y);
             }
         }

@@ -1,5 +1,9 @@
+// The speed drive, shared by the component tests and the benchmark (through
+// tests/models/drives.rs) and by the FMU tests and examples (`#[path]`).
+
+// Already in scope where the file is `include!`d.
+#[allow(unused_imports)]
 use daegen::prelude::*;
-use daegen_parts_example::dc_motor;
 
 /// A DC motor under a PI speed controller, built from the standard
 /// library's parts across the electrical, mechanical and control
@@ -11,7 +15,7 @@ pub fn speed_drive() {
     let controller = pi_controller(kp = 0.02, ki = 0.5);
     let sensor = speed_sensor();
     let supply = signal_voltage();
-    let motor = dc_motor(l = 0.5e-3, k = 0.05, j = 1e-4);
+    let motor = daegen_parts_example::dc_motor(l = 0.5e-3, k = 0.05, j = 1e-4);
     let friction = damper(1e-5);
     let housing = fixed();
     let load = signal_torque();
