@@ -33,17 +33,18 @@ fn hot_motor() {
     let n = pin();
     let shaft = flange();
     let heat = heat_port();
+    // From the pin `p` through the armature to the shaft.
     let armature = heating_resistor(r = r, alpha = 0.0039);
-    let winding = inductor(l);
-    let emf = emf(k);
-    let rotor = inertia(j);
     connect(p, armature.p);
+    connect(armature.heat_port, heat);
+    let winding = inductor(l);
     connect(armature.n, winding.p);
+    let emf = emf(k);
     connect(winding.n, emf.p);
     connect(emf.n, n);
+    let rotor = inertia(j);
     connect(emf.flange, rotor.flange_a);
     connect(rotor.flange_b, shaft);
-    connect(armature.heat_port, heat);
 }
 
 /// The press: the motor at 100 rad/s of crank speed ×20, a crank of

@@ -13,12 +13,11 @@
 use daegen::prelude::*;
 use std::path::PathBuf;
 
-// tests/spatial.rs checks this top; an example is read alone, so it
-// writes its model out rather than share the test's.
+// tests/spatial.rs checks this model.
 /// Mass 1 kg, centre 0.5 m above the pivot, inertia 0.75 / 0.75 / 0.5 kg·m²
 /// about the centre, started tilted by 0.5 rad and spinning at 5 rad/s.
 #[dae_model(taylor = 1)]
-fn spinning_top() {
+pub fn spinning_top() {
     let m = param(1.0);
     let l = param(0.5);
     let g = param(2.0);

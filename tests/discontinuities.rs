@@ -144,8 +144,7 @@ fn switching_functions() {
 
 #[test]
 fn min_max_sign_and_if_statements_switch_at_their_relations() {
-    let opts = tight(Method::Dop853);
-    let sol = SwitchingFunctions::default().simulate(0.0, 4.0, &opts).unwrap();
+    let sol = SwitchingFunctions::default().simulate(0.0, 4.0, &tight(Method::Dop853)).unwrap();
     // The three relations on x switch together at t = 1; sign's two at 2.
     let fired: Vec<(&str, f64)> = sol.events().iter().map(|e| (e.name, e.t)).collect();
     let names: Vec<&str> = fired.iter().map(|f| f.0).collect();
@@ -262,8 +261,7 @@ fn shifting_gearbox() {
 
 #[test]
 fn an_integer_mode_is_set_by_an_expression_of_a_relation() {
-    let opts = tight(Method::Dopri5);
-    let sol = ShiftingGearbox::default().simulate(0.0, 3.0, &opts).unwrap();
+    let sol = ShiftingGearbox::default().simulate(0.0, 3.0, &tight(Method::Dopri5)).unwrap();
     // w = t to 1, then in second gear w = 1 + (t − 1)/2.
     let (w, gear): (f64, f64) = (sol.at(3.0, "w").unwrap(), sol.at(3.0, "gear").unwrap());
     assert_eq!(gear, 2.0);
@@ -306,24 +304,13 @@ fn three_state_clutch() {
 #[dae_model]
 fn four_clutches() {
     let drive = torque_source(10.0);
-    let j1 = inertia(j = 1.0);
-    connect(drive.flange, j1.flange_a);
-    let c1 = three_state_clutch();
-    connect(j1.flange_b, c1.flange_a);
-    let j2 = inertia(j = 2.0);
-    connect(c1.flange_b, j2.flange_a);
-    let c2 = three_state_clutch();
-    connect(j2.flange_b, c2.flange_a);
-    let j3 = inertia(j = 3.0);
-    connect(c2.flange_b, j3.flange_a);
-    let c3 = three_state_clutch();
-    connect(j3.flange_b, c3.flange_a);
-    let j4 = inertia(j = 4.0);
-    connect(c3.flange_b, j4.flange_a);
-    let c4 = three_state_clutch();
-    connect(j4.flange_b, c4.flange_a);
-    let j5 = inertia(j = 5.0);
-    connect(c4.flange_b, j5.flange_a);
+    let j = (0..5).map(|k| inertia(j = k as f64 + 1.0));
+    let c = [three_state_clutch(); 4];
+    connect(drive.flange, j[0].flange_a);
+    for k in 0..4 {
+        connect(j[k].flange_b, c[k].flange_a);
+        connect(c[k].flange_b, j[k + 1].flange_a);
+    }
 }
 
 #[test]
@@ -334,7 +321,7 @@ fn four_clutches_of_three_booleans_compile_into_one_system() {
     let speeds = |model: FourClutches| {
         let opts = tight(Method::Radau5);
         let sol = model.simulate(0.0, 1.0, &opts).unwrap();
-        ["j1.w", "j2.w", "j3.w", "j4.w", "j5.w"].map(|n| sol.last(n).unwrap())
+        ["j[0].w", "j[1].w", "j[2].w", "j[3].w", "j[4].w"].map(|n| sol.last(n).unwrap())
     };
     let check = |speeds: [f64; 5], expected: [f64; 5]| {
         for (w, e) in speeds.iter().zip(expected) {
@@ -344,15 +331,16 @@ fn four_clutches_of_three_booleans_compile_into_one_system() {
     let d = FourClutches::default();
     // All locked: one rigid body, 10 N m over 15 kg m².
     check(speeds(d), [10.0 / 15.0; 5]);
+    // Clutch c[k] joins j[k] and j[k + 1]; below, j1 is j[0] and so on.
     // The second disengaged: j1 and j2 together (10/3), the rest at rest.
-    let split = FourClutches { c2_engaged0: 0.0, ..d };
+    let split = FourClutches { c_1_engaged0: 0.0, ..d };
     check(speeds(split), [10.0 / 3.0, 10.0 / 3.0, 0.0, 0.0, 0.0]);
     // The third slipping forward: 1 N m passes on to j4 and j5 (1/9),
     // j1–j3 keep the rest (9/6).
-    let slipping = FourClutches { c3_locked0: 0.0, ..d };
+    let slipping = FourClutches { c_2_locked0: 0.0, ..d };
     check(speeds(slipping), [1.5, 1.5, 1.5, 1.0 / 9.0, 1.0 / 9.0]);
     // The first disengaged, the last slipping back: j1 alone; 1 N m from
     // j5 back to j2–j4 (1/9 forward, j5 −1/5).
-    let mixed = FourClutches { c1_engaged0: 0.0, c4_locked0: 0.0, c4_forward0: 0.0, ..d };
+    let mixed = FourClutches { c_0_engaged0: 0.0, c_3_locked0: 0.0, c_3_forward0: 0.0, ..d };
     check(speeds(mixed), [10.0, 1.0 / 9.0, 1.0 / 9.0, 1.0 / 9.0, -1.0 / 5.0]);
 }

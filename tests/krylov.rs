@@ -26,11 +26,11 @@ fn advected_heat() {
     }));
     for i in 0..N {
         for j in 0..N {
-            let k = i * N + j;
             let east = ((i + 1) % N) * N + j;
             let west = ((i + N - 1) % N) * N + j;
             let north = i * N + (j + 1) % N;
             let south = i * N + (j + N - 1) % N;
+            let k = i * N + j;
             der(u[k])
                 == c * (u[east] + u[west] + u[north] + u[south] - 4.0 * u[k])
                     - v * (u[east] - u[west]) / 2.0;

@@ -35,18 +35,11 @@ fn sampled_pi_1khz() {
 const BOUNCES: usize = 20;
 const SAMPLES: usize = 1000;
 
-/// The bounce times from the geometric series.
+include!("../../tests/support/impact_times.rs");
+
+/// The bounce times of the ball dropped from 10 m (restitution 0.8).
 fn bounce_times() -> Vec<f64> {
-    let (g, e) = (9.81f64, 0.8);
-    let mut t = (2.0 * 10.0 / g).sqrt();
-    let mut v = g * t;
-    let mut times = vec![t];
-    for _ in 1..BOUNCES {
-        v *= e;
-        t += 2.0 * v / g;
-        times.push(t);
-    }
-    times
+    impact_times(10.0, 9.81, 0.8, BOUNCES)
 }
 
 /// x at 1 s from the zero-order-hold recursion: with u held over a

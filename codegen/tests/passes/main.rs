@@ -192,26 +192,16 @@ fn aliases_and_tearing_leave_newton_one_variable() {
     insta::assert_snapshot!("tearing", ir.graph.with(&sys).to_string());
 }
 
-/// A voltage source charging a capacitor through a resistor, from the
-/// standard library: the flattened equations under the instances' paths,
-/// then Kirchhoff's equations of the connections.
+/// The series RLC circuit of the component tests, from the standard
+/// library: the flattened equations under the instances' paths, then
+/// Kirchhoff's equations of the connections.
 #[test]
 fn lower_flattens_components_and_writes_the_connections() {
     let mut cx = Ctxt::default();
     let ir = lowered(
         &mut cx,
         TokenStream::new(),
-        quote! {
-            fn rc() {
-                let source = constant_voltage(10.0);
-                let r1 = resistor(100.0);
-                let c1 = capacitor(1e-3);
-                let gnd = ground();
-                connect(source.p, r1.p);
-                connect(r1.n, c1.p);
-                connect(c1.n, source.n, gnd.p);
-            }
-        },
+        model_in(include_str!("../../../tests/models/drives.rs"), "rlc_series"),
     );
     insta::assert_snapshot!("components", ir.to_string());
 }
@@ -257,29 +247,7 @@ fn hidden_ties_leave_five_states_of_the_cauer_filter() {
     let mut ir = lowered(
         &mut cx,
         TokenStream::new(),
-        quote! {
-            fn cauer() {
-                let v = step_voltage(height = 1.0, start_time = 1.0);
-                let g = ground();
-                let r1 = resistor(1.0);
-                let r2 = resistor(1.0);
-                let c1 = capacitor(1.072);
-                let c2 = capacitor(0.2638);
-                let c3 = capacitor(1.682);
-                let c4 = capacitor(0.8365);
-                let c5 = capacitor(0.7262);
-                let ind1 = inductor(1.304);
-                let ind2 = inductor(0.8586);
-                connect(v.p, r1.p);
-                connect(r1.n, c1.p, ind1.p, c2.p);
-                connect(ind1.n, c2.n, c3.p, c4.p, ind2.p);
-                connect(ind2.n, c4.n, c5.p, r2.p);
-                connect(v.n, g.p, c1.n, c3.n, c5.n, r2.n);
-                init(c1.v, 0.0);
-                init(c3.v, 0.0);
-                init(c5.v, 0.0);
-            }
-        },
+        model_in(include_str!("../../../tests/index_reduction_of_parts.rs"), "cauer_low_pass"),
     );
     daegen_codegen::dae::tied_states::eliminate_tied_states(&mut cx, &mut ir);
     assert!(cx.is_ok(), "{:?}", cx.messages());
