@@ -201,8 +201,17 @@
 //! relation it leaves among the states is not (two nonlinear capacitors
 //! in parallel, `q/c0 + k q³` each), the relation is a constraint
 //! instead: both states stay, the index reduction differentiates it and
-//! the run projects onto it, as for a constraint you write. What remains is sorted and torn as in
-//! [`super::structure`]. A connected model then has as many states as the
+//! the run projects onto it, as for a constraint you write. So is a
+//! relation the aliases of connected flanges leave among states alone: a
+//! rod of your own joining the positions of two masses (`x.s * x.s +
+//! y.s * y.s == l * l`, the planar pendulum from parts) keeps both
+//! positions and velocities. There a Modelica tool selects states
+//! dynamically, since neither position can be solved for along the whole
+//! swing (the rod's gradient `(2x, 2y)` loses each part in turn); the
+//! projection needs no choice, and holds wherever the gradient is not
+//! zero. `describe()` says of each state so kept: "Kept: the connections
+//! tie it to `vertical.s` by `horizontal.s^2 + vertical.s^2 - tie_l^2 =
+//! 0`, …". What remains is sorted and torn as in [`super::structure`]. A connected model then has as many states as the
 //! same physics written flat (a motor driving a slider-crank through a
 //! gear keeps the winding's current and the crank's angle and rate).
 //!

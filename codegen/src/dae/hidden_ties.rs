@@ -115,16 +115,22 @@ fn eliminated(
     }
     if nonlinear {
         // Linear in the unknowns alone, nonlinear in the states: the
-        // relation left is a constraint, not a tie (a lone equation that
-        // reads no unknown is one already, for the index reduction).
+        // relation left is a constraint, not a tie; so is a lone equation
+        // among states that the aliases of connected flanges leave (a
+        // rod's `x.s² + y.s² = l²` on the positions of two masses).
         if equations.len() < 2 {
-            return Ok(None);
+            return Ok(implied(g, residuals, equations, unmatched, unknowns)?
+                .map(|residual| Hidden::Constraint { equation: unmatched, residual }));
         }
         forms.clear();
         for &e in equations {
             match Linear::over_symbols(g, residuals[e], unknowns)? {
                 Some(form) => forms.push((e, form)),
-                None => return Ok(None),
+                // Nonlinear in an unknown too (a rod's `x.s² + y.s² = l²`
+                // on its flanges' positions): the unknowns the other
+                // equations give linearly substituted away, if that is
+                // all the unmatched equation reads.
+                None => return substituted(ir, residuals, equations, unmatched, unknowns),
             }
         }
     }
@@ -181,6 +187,83 @@ fn eliminated(
         matches!(g.symbol(*y).kind, SymbolKind::State | SymbolKind::Derivative { .. })
     });
     Ok(carried.then_some(Hidden::Tie { equation: unmatched, relation }))
+}
+
+/// The unknowns of an over-determined part substituted away from one of
+/// its equations: each other equation linear in one of them, with a
+/// coefficient that reads parameters only, solved for it and put into the
+/// rest, until no equation gives another. The equation tried first is one
+/// nonlinear in the unknowns (a rod's `x.s² + y.s² = l²` on its flanges'
+/// positions, given by the connections): the part is over-determined by
+/// one, so any of its equations may be the one the others imply. A
+/// constraint in place of the first equation left free of unknowns and
+/// reading a state; `None` where there is none.
+fn substituted(
+    ir: &mut ModelIr,
+    residuals: &[Id],
+    equations: &[usize],
+    unmatched: usize,
+    unknowns: &[SymbolId],
+) -> crate::Result<Option<Hidden>> {
+    let g = &mut ir.graph;
+    let mut candidates: Vec<usize> = Vec::with_capacity(equations.len());
+    for &e in equations {
+        if Linear::over_symbols(g, residuals[e], unknowns)?.is_none() {
+            candidates.push(e);
+        }
+    }
+    candidates.push(unmatched);
+    for candidate in candidates {
+        if let Some(residual) = implied(g, residuals, equations, candidate, unknowns)? {
+            return Ok(Some(Hidden::Constraint { equation: candidate, residual }));
+        }
+    }
+    Ok(None)
+}
+
+/// Equation `chosen` with the unknowns the other equations of its part give
+/// linearly substituted away, if that leaves it free of unknowns and
+/// reading a state.
+fn implied(
+    g: &mut crate::Graph,
+    residuals: &[Id],
+    equations: &[usize],
+    chosen: usize,
+    unknowns: &[SymbolId],
+) -> crate::Result<Option<Id>> {
+    let mut current: Vec<(usize, Id)> = equations.iter().map(|&e| (e, residuals[e])).collect();
+    let mut left: Vec<SymbolId> = unknowns.to_vec();
+    let mut used = vec![false; current.len()];
+    loop {
+        let mut solved = None;
+        'search: for (k, &(e, r)) in current.iter().enumerate() {
+            if e == chosen || used[k] {
+                continue;
+            }
+            for u in g.free_symbols(r).into_iter().filter(|u| left.contains(u)) {
+                let Some(form) = Linear::over_symbols(g, r, &[u])? else { continue };
+                let Some(c) = form.coefficient(u).filter(|&c| !is_zero(g, c)) else { continue };
+                // r = c u + b: u = −b / c.
+                let quotient = g.div(form.constant, c)?;
+                solved = Some((k, u, g.neg(quotient)?));
+                break 'search;
+            }
+        }
+        let Some((k, u, value)) = solved else { break };
+        used[k] = true;
+        left.retain(|&s| s != u);
+        let replace: FxHashMap<SymbolId, Id> = [(u, value)].into_iter().collect();
+        for (_, r) in current.iter_mut() {
+            *r = g.substitute(*r, &replace)?;
+        }
+    }
+    let Some(&(_, rest)) = current.iter().find(|(e, _)| *e == chosen) else { return Ok(None) };
+    let free = g.free_symbols(rest);
+    let carried = |s: &SymbolId| {
+        matches!(g.symbol(*s).kind, SymbolKind::State | SymbolKind::Derivative { .. })
+    };
+    let constraint = !free.iter().any(|s| unknowns.contains(s)) && free.iter().any(carried);
+    Ok(constraint.then_some(rest))
 }
 
 fn is_zero(g: &crate::Graph, c: Id) -> bool {

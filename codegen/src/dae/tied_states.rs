@@ -98,6 +98,7 @@ fn eliminate(ir: &mut ModelIr) -> crate::Result<Vec<(TokenStream, String)>> {
                 let zero = ir.graph.zero();
                 let eq = &mut ir.equations[equation];
                 (eq.lhs, eq.rhs, eq.is_constraint) = (residual, zero, true);
+                say_why_kept(ir, residual);
             }
             Some(Tie::State { equation, state, value }) => {
                 gone[equation] = true;
@@ -113,6 +114,39 @@ fn eliminate(ir: &mut ModelIr) -> crate::Result<Vec<(TokenStream, String)>> {
         !gone[k - 1]
     });
     Ok(conflicts)
+}
+
+/// What `describe()` says of the states a nonlinear tie `residual = 0`
+/// reads: why each is kept, though the connections tie it to the others.
+fn say_why_kept(ir: &mut ModelIr, residual: Id) {
+    let g = &ir.graph;
+    let read: Vec<SymbolId> = g
+        .free_symbols(residual)
+        .into_iter()
+        .filter(|&s| ir.states.iter().any(|d| d.symbol == s))
+        .collect();
+    let relation = g.show(residual);
+    for &state in &read {
+        let others: Vec<String> = read
+            .iter()
+            .filter(|&&s| s != state)
+            .map(|&s| format!("`{}`", g.symbol(s).name))
+            .collect();
+        let with = match others.is_empty() {
+            true => String::new(),
+            false => format!(" to {}", others.join(", ")),
+        };
+        let why = format!(
+            "Kept: the connections tie it{with} by `{relation} = 0`, which is not linear, so no \
+             state is solved for by it; the run holds it as a constraint, projected onto after \
+             each step."
+        );
+        let Some(decl) = ir.states.iter_mut().find(|d| d.symbol == state) else { continue };
+        decl.doc = match decl.doc.is_empty() {
+            true => why,
+            false => format!("{} {why}", decl.doc),
+        };
+    }
 }
 
 /// What `find_tie` found.
