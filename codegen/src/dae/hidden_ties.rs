@@ -39,16 +39,25 @@ pub(crate) enum Hidden {
     Constraint { equation: usize, residual: Id },
 }
 
+/// An over-determined part of the equations: more equations than the
+/// unknowns they read.
+pub(crate) struct Part {
+    /// Its equations, by index.
+    pub(crate) equations: Vec<usize>,
+    /// The unknowns they read.
+    pub(crate) unknowns: Vec<SymbolId>,
+}
+
 /// The first tie an over-determined part of the equations hides, over the
 /// unknowns `is_unknown` says (the highest derivatives and the algebraic
-/// variables); `residuals[e]` is equation `e` after the aliases, `passed`
-/// the equations to leave out.
+/// variables), with that part; `residuals[e]` is equation `e` after the
+/// aliases, `passed` the equations to leave out.
 pub(crate) fn hidden_tie(
     ir: &mut ModelIr,
     residuals: &[Id],
     passed: &[bool],
     is_unknown: &dyn Fn(&crate::Graph, SymbolId) -> bool,
-) -> crate::Result<Option<Hidden>> {
+) -> crate::Result<Option<(Hidden, Part)>> {
     let g = &ir.graph;
     let mut column_of: FxHashMap<SymbolId, usize> = FxHashMap::default();
     let mut columns: Vec<SymbolId> = Vec::new();
@@ -83,7 +92,7 @@ pub(crate) fn hidden_tie(
         let equations: Vec<usize> = part.iter().map(|&k| equation_of[k]).collect();
         let unmatched = equation_of[r];
         if let Some(hidden) = eliminated(ir, residuals, &equations, unmatched, &unknowns)? {
-            return Ok(Some(hidden));
+            return Ok(Some((hidden, Part { equations, unknowns })));
         }
     }
     Ok(None)

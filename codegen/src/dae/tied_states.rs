@@ -20,26 +20,82 @@
 //! keep, and of two the later declared goes. The eliminated state stays
 //! readable by name.
 
-use crate::dae::hidden_ties::Hidden;
+use crate::dae::hidden_ties::{Hidden, Part};
 use crate::dae::linear_form::{is_constant, Linear};
 use crate::front::ctxt::Ctxt;
 use crate::front::ir::{ModelIr, Output};
 use crate::{FxHashMap, Graph, Id, SymbolId, SymbolKind};
 use proc_macro2::TokenStream;
 
-/// Eliminates every tie among the states of `ir`'s components.
-pub fn eliminate_tied_states(cx: &mut Ctxt, ir: &mut ModelIr) {
+/// Eliminates every tie among the states of `ir`'s components; what it
+/// found, in order.
+pub fn eliminate_tied_states(cx: &mut Ctxt, ir: &mut ModelIr) -> Vec<TieFound> {
     match eliminate(ir) {
-        Ok(conflicts) => {
+        Ok((found, conflicts)) => {
             for (at, message) in conflicts {
                 cx.error_at(at, message);
             }
+            found
         }
         Err(e) => {
             let at = ir.equations.first().map(|e| e.origin.clone());
             match at {
                 Some(at) => cx.error_at(at, e),
                 None => cx.error_at(&ir.fn_name, e),
+            }
+            Vec::new()
+        }
+    }
+}
+
+/// A tie the pass found: where, and what it did with it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TieFound {
+    /// The over-determined part of the equations that hid it, empty for a
+    /// tie one equation states.
+    pub part: Vec<String>,
+    /// The unknowns of that part.
+    pub unknowns: Vec<String>,
+    /// The equation the tie makes implied by the others (or a constraint).
+    pub equation: String,
+    /// What became of it.
+    pub outcome: TieOutcome,
+}
+
+/// What the pass did with a tie.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TieOutcome {
+    /// A state eliminated.
+    Eliminated {
+        /// The state.
+        state: String,
+        /// Its value among the states kept.
+        value: String,
+    },
+    /// The equation repeats the others and is dropped.
+    Redundant,
+    /// The relation among states, not linear: a constraint.
+    Constraint {
+        /// The relation, `residual = 0`.
+        residual: String,
+    },
+}
+
+impl std::fmt::Display for TieFound {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if !self.part.is_empty() {
+            writeln!(f, "over-determined part over {}:", self.unknowns.join(", "))?;
+            for e in &self.part {
+                writeln!(f, "  {e}")?;
+            }
+        }
+        match &self.outcome {
+            TieOutcome::Eliminated { state, value } => {
+                write!(f, "`{}` ties {state} = {value}: {state} eliminated", self.equation)
+            }
+            TieOutcome::Redundant => write!(f, "`{}` repeats the others: dropped", self.equation),
+            TieOutcome::Constraint { residual } => {
+                write!(f, "`{}` is the constraint {residual} = 0", self.equation)
             }
         }
     }
@@ -77,8 +133,12 @@ fn start_conflict(ir: &ModelIr, state: SymbolId, value: Id) -> Option<(TokenStre
 /// again at every tie found.
 const TIE_OPERATIONS: usize = 1000;
 
-fn eliminate(ir: &mut ModelIr) -> crate::Result<Vec<(TokenStream, String)>> {
+/// What `eliminate` found, and the start conflicts it met.
+type Eliminated = (Vec<TieFound>, Vec<(TokenStream, String)>);
+
+fn eliminate(ir: &mut ModelIr) -> crate::Result<Eliminated> {
     let mut conflicts = Vec::new();
+    let mut found = Vec::new();
     let mut gone = vec![false; ir.equations.len()];
     // An equation of one mode ties nothing for good, nor does a large
     // one: the search passes them by, as if gone, and they stay.
@@ -91,16 +151,17 @@ fn eliminate(ir: &mut ModelIr) -> crate::Result<Vec<(TokenStream, String)>> {
         let orders = highest_orders(ir);
         let passed: Vec<bool> = gone.iter().zip(&in_a_mode).map(|(g, m)| *g || *m).collect();
         let residuals = residuals_after_aliases(ir, &passed)?;
-        match find_tie(ir, &residuals, &passed, &orders)? {
-            None => break,
-            Some(Tie::Redundant { equation }) => gone[equation] = true,
-            Some(Tie::Constraint { equation, residual }) => {
+        let Some((tie, part)) = find_tie(ir, &residuals, &passed, &orders)? else { break };
+        found.push(tie_found(ir, &tie, part));
+        match tie {
+            Tie::Redundant { equation } => gone[equation] = true,
+            Tie::Constraint { equation, residual } => {
                 let zero = ir.graph.zero();
                 let eq = &mut ir.equations[equation];
                 (eq.lhs, eq.rhs, eq.is_constraint) = (residual, zero, true);
                 say_why_kept(ir, residual);
             }
-            Some(Tie::State { equation, state, value }) => {
+            Tie::State { equation, state, value } => {
                 gone[equation] = true;
                 conflicts.extend(start_conflict(ir, state, value));
                 carry_start(ir, state, value)?;
@@ -113,7 +174,37 @@ fn eliminate(ir: &mut ModelIr) -> crate::Result<Vec<(TokenStream, String)>> {
         k += 1;
         !gone[k - 1]
     });
-    Ok(conflicts)
+    Ok((found, conflicts))
+}
+
+/// `tie` as the pass reports it, before it is acted on.
+fn tie_found(ir: &ModelIr, tie: &Tie, part: Option<Part>) -> TieFound {
+    let g = &ir.graph;
+    let text = |e: usize| {
+        let eq = &ir.equations[e];
+        format!("{} == {}", g.show(eq.lhs), g.show(eq.rhs))
+    };
+    let (part, unknowns) = match part {
+        Some(p) => (
+            p.equations.iter().map(|&e| text(e)).collect(),
+            p.unknowns.iter().map(|&u| g.symbol(u).name.clone()).collect(),
+        ),
+        None => (Vec::new(), Vec::new()),
+    };
+    let (equation, outcome) = match *tie {
+        Tie::State { equation, state, value } => (
+            equation,
+            TieOutcome::Eliminated {
+                state: g.symbol(state).name.clone(),
+                value: g.show(value).to_string(),
+            },
+        ),
+        Tie::Redundant { equation } => (equation, TieOutcome::Redundant),
+        Tie::Constraint { equation, residual } => {
+            (equation, TieOutcome::Constraint { residual: g.show(residual).to_string() })
+        }
+    };
+    TieFound { part, unknowns, equation: text(equation), outcome }
 }
 
 /// What `describe()` says of the states a nonlinear tie `residual = 0`
@@ -213,13 +304,13 @@ fn role(g: &Graph, s: SymbolId, orders: &FxHashMap<SymbolId, u32>) -> Role {
     }
 }
 
-/// The first tie.
+/// The first tie, with the over-determined part that hid it, if one did.
 fn find_tie(
     ir: &mut ModelIr,
     residuals: &[Id],
     gone: &[bool],
     orders: &FxHashMap<SymbolId, u32>,
-) -> crate::Result<Option<Tie>> {
+) -> crate::Result<Option<(Tie, Option<Part>)>> {
     // Equations that give a highest derivative `d` from carried values,
     // `c d + Σ a_k y_k + b = 0`, by `d`.
     let mut by_highest: FxHashMap<SymbolId, (Id, Linear)> = FxHashMap::default();
@@ -241,7 +332,7 @@ fn find_tie(
         match highest.as_slice() {
             [] => {
                 if let Some((state, value)) = solve_for_component_state(ir, &linear)? {
-                    return Ok(Some(Tie::State { equation: e, state, value }));
+                    return Ok(Some((Tie::State { equation: e, state, value }, None)));
                 }
             }
             &[(d, c)] if is_constant(g, c) && integrable(ir, &linear, d, orders) => {
@@ -249,7 +340,7 @@ fn find_tie(
                 // keeps its initial value.
                 if let Some(tie) = integrated(ir, &linear)? {
                     if let Some((state, value)) = solve_for_component_state(ir, &tie)? {
-                        return Ok(Some(Tie::State { equation: e, state, value }));
+                        return Ok(Some((Tie::State { equation: e, state, value }, None)));
                     }
                 }
             }
@@ -259,10 +350,10 @@ fn find_tie(
                     let g = &ir.graph;
                     let constant_zero = g.as_number(tie.constant).is_some_and(|n| n.is_zero());
                     if tie.terms.is_empty() && constant_zero {
-                        return Ok(Some(Tie::Redundant { equation: e }));
+                        return Ok(Some((Tie::Redundant { equation: e }, None)));
                     }
                     if let Some((state, value)) = solve_for_component_state(ir, &tie)? {
-                        return Ok(Some(Tie::State { equation: e, state, value }));
+                        return Ok(Some((Tie::State { equation: e, state, value }, None)));
                     }
                 }
                 None => {
@@ -277,15 +368,18 @@ fn find_tie(
     let is_unknown = |g: &Graph, s: SymbolId| {
         g.symbol(s).kind == SymbolKind::Algebraic || role(g, s, orders) == Role::Highest
     };
-    match crate::dae::hidden_ties::hidden_tie(ir, residuals, gone, &is_unknown)? {
-        Some(Hidden::Tie { equation, relation }) => Ok(solve_for_component_state(ir, &relation)?
-            .map(|(state, value)| Tie::State { equation, state, value })),
-        Some(Hidden::Redundant { equation }) => Ok(Some(Tie::Redundant { equation })),
-        Some(Hidden::Constraint { equation, residual }) => {
-            Ok(Some(Tie::Constraint { equation, residual }))
-        }
-        None => Ok(None),
-    }
+    let Some((hidden, part)) =
+        crate::dae::hidden_ties::hidden_tie(ir, residuals, gone, &is_unknown)?
+    else {
+        return Ok(None);
+    };
+    let tie = match hidden {
+        Hidden::Tie { equation, relation } => solve_for_component_state(ir, &relation)?
+            .map(|(state, value)| Tie::State { equation, state, value }),
+        Hidden::Redundant { equation } => Some(Tie::Redundant { equation }),
+        Hidden::Constraint { equation, residual } => Some(Tie::Constraint { equation, residual }),
+    };
+    Ok(tie.map(|tie| (tie, Some(part))))
 }
 
 /// Whether `c d + Σ a_k y_k' = 0` (`d = s'`, each other term the first
