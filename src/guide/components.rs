@@ -278,77 +278,107 @@
 //! ## The standard library
 //!
 //! Each part as `library.dae` in `daegen-codegen` writes it; parameters in
-//! call order, with their defaults.
+//! call order, with their defaults; beside each, the part of the Modelica
+//! Standard Library (MSL 4.0) it follows, where there is one.
 //!
 //! **Electrical** (pins `p`, `n`; `v = p.v − n.v`, `i = p.i = −n.i` for
-//! the one-ports):
+//! the one-ports; two-ports `p1`, `n1`, `p2`, `n2` with `v1`, `i1`, `v2`,
+//! `i2`):
 //!
-//! | part | parameters | equations |
+//! | part | MSL | equations |
 //! |---|---|---|
-//! | `ground()` | | `p.v = 0` |
-//! | `resistor(r = 1)` | | `v = r i` |
-//! | `capacitor(c = 1, v0 = 0)` | | `c dv/dt = i`, `v` a state |
-//! | `inductor(l = 1, i0 = 0)` | | `l di/dt = v`, `i` a state |
-//! | `constant_voltage(voltage = 1)` | | `v = voltage` |
-//! | `step_voltage(height = 1, start_time = 0, offset = 0)` | | `v = offset + height H(t − start_time)` |
-//! | `sine_voltage(amplitude = 1, f = 1, phase = 0, offset = 0)` | | `v = offset + amplitude sin(2π f t + phase)` |
-//! | `signal_voltage()` | input `u` | `v = u` |
-//! | `constant_current(current = 1)`, `step_current(..)`, `sine_current(..)`, `signal_current()` | as the voltages | `i = ..` |
-//! | `diode(ids = 1e-6, vt = 0.04)` | | `i = ids (exp(v / vt) − 1)` |
-//! | `ideal_diode()` | discrete `on` | `v = 0` while `on`, `i = 0` while not; `on` set where `v` rises through 0, cleared where `i` falls through 0 |
-//! | `emf(k = 1)` | flange `flange` | `v = k w`, `w = dφ/dt`, `flange.tau = −k i` |
-//! | `ideal_opamp()` | pins `in_p`, `in_n`, `out` | `in_p.v = in_n.v`, `in_p.i = in_n.i = 0` |
-//! | `voltage_sensor()`, `current_sensor()` | output `v`, `i` | no current, no voltage drop |
+//! | `ground()` | `Analog.Basic.Ground` | `p.v = 0` |
+//! | `resistor(r = 1)` | `Basic.Resistor` | `v = r i` |
+//! | `conductor(g = 1)` | `Basic.Conductor` | `i = g v` |
+//! | `variable_resistor()`, `variable_conductor()` | `Basic.VariableResistor`, `VariableConductor` | input `r`: `v = r i`; input `g`: `i = g v` |
+//! | `capacitor(c = 1, v0 = 0)` | `Basic.Capacitor` | `c dv/dt = i`, `v` a state |
+//! | `inductor(l = 1, i0 = 0)` | `Basic.Inductor` | `l di/dt = v`, `i` a state |
+//! | `ideal_transformer(n = 1)` | `Ideal.IdealTransformer` (no magnetization) | `v1 = n v2`, `i2 = −n i1` |
+//! | `vcvs(gain = 1)`, `vccs(transconductance = 1)` | `Basic.VCV`, `Basic.VCC` | `v2 = gain v1`, `i2 = transconductance v1`; `i1 = 0` |
+//! | `ccvs(transresistance = 1)`, `cccs(gain = 1)` | `Basic.CCV`, `Basic.CCC` | `v2 = transresistance i1`, `i2 = gain i1`; `v1 = 0` |
+//! | `constant_voltage(voltage = 1)` | `Sources.ConstantVoltage` | `v = voltage` |
+//! | `step_voltage(height = 1, start_time = 0, offset = 0)` | `Sources.StepVoltage` | `v = offset + height H(t − start_time)` |
+//! | `sine_voltage(amplitude = 1, f = 1, phase = 0, offset = 0)` | `Sources.SineVoltage` | `v = offset + amplitude sin(2π f t + phase)` |
+//! | `signal_voltage()` | `Sources.SignalVoltage` | input `u`: `v = u` |
+//! | `constant_current(current = 1)`, `step_current(..)`, `sine_current(..)`, `signal_current()` | `Sources.ConstantCurrent`, … | as the voltages, `i = ..` |
+//! | `diode(ids = 1e-6, vt = 0.04)` | `Semiconductors.Diode` (no `R`) | `i = ids (exp(v / vt) − 1)` |
+//! | `ideal_diode()` | | discrete `on`: `v = 0` while `on`, `i = 0` while not; `on` set where `v` rises through 0, cleared where `i` falls through 0 |
+//! | `piecewise_diode(ron = 1e-5, goff = 1e-5, v_knee = 0)` | `Ideal.IdealDiode` | `v = s (s < 0 ? 1 : ron) + v_knee`, `i = s (s < 0 ? goff : 1) + goff v_knee` |
+//! | `ideal_opening_switch(ron = 1e-5, goff = 1e-5)`, `ideal_closing_switch(..)` | `Ideal.IdealOpeningSwitch`, `IdealClosingSwitch` | input `control` (MSL's Boolean as 0 or 1): open, `i = goff v`, while `control > 0.5` (closed, for the closing switch), else closed, `v = ron i` |
+//! | `emf(k = 1)` | `Basic.EMF` (no support) | flange `flange`: `v = k w`, `w = dφ/dt`, `flange.tau = −k i` |
+//! | `ideal_opamp()` | `Ideal.IdealOpAmp3Pin` | pins `in_p`, `in_n`, `out`: `in_p.v = in_n.v`, `in_p.i = in_n.i = 0` |
+//! | `voltage_sensor()`, `current_sensor()` | `Sensors.VoltageSensor`, `CurrentSensor` | output `v`, `i`: no current, no voltage drop |
 //!
-//! **Rotational** (flanges `flange_a`, `flange_b`; `phi_rel = flange_b.phi − flange_a.phi`):
+//! **Rotational** (flanges `flange_a`, `flange_b`; `phi_rel = flange_b.phi
+//! − flange_a.phi`; MSL's parts without `useSupport`, their support
+//! fixed):
 //!
-//! | part | equations |
-//! |---|---|
-//! | `inertia(j = 1, phi0 = 0, w0 = 0)` | `dφ/dt = w`, `j dw/dt = flange_a.tau + flange_b.tau`, both flanges at `φ` |
-//! | `spring(c = 1, phi_rel0 = 0)` | `tau = c (phi_rel − phi_rel0)` |
-//! | `damper(d = 1)` | `tau = d dphi_rel/dt` |
-//! | `spring_damper(c = 1, d = 1, phi_rel0 = 0)` | `tau = c (phi_rel − phi_rel0) + d dphi_rel/dt` |
-//! | `ideal_gear(ratio = 1)` | `flange_a.phi = ratio flange_b.phi`, `flange_b.tau = −ratio flange_a.tau` |
-//! | `fixed(phi0 = 0)` | `flange.phi = phi0` |
-//! | `torque_source(tau = 1)`, `signal_torque()` (input `u`) | `flange.tau = −tau`, `−u` |
-//! | `speed_sensor()`, `angle_sensor()`, `torque_sensor()` | output `w = dφ/dt`, `phi`, `tau` |
+//! | part | MSL | equations |
+//! |---|---|---|
+//! | `inertia(j = 1, phi0 = 0, w0 = 0)` | `Components.Inertia` | `dφ/dt = w`, `j dw/dt = flange_a.tau + flange_b.tau`, both flanges at `φ` |
+//! | `spring(c = 1, phi_rel0 = 0)` | `Components.Spring` | `tau = c (phi_rel − phi_rel0)` |
+//! | `damper(d = 1)` | `Components.Damper` | `tau = d dphi_rel/dt` |
+//! | `spring_damper(c = 1, d = 1, phi_rel0 = 0)` | `Components.SpringDamper` | `tau = c (phi_rel − phi_rel0) + d dphi_rel/dt` |
+//! | `ideal_gear(ratio = 1)` | `Components.IdealGear` | `flange_a.phi = ratio flange_b.phi`, `flange_b.tau = −ratio flange_a.tau` |
+//! | `fixed(phi0 = 0)` | `Components.Fixed` | `flange.phi = phi0` |
+//! | `torque_source(tau = 1)`, `signal_torque()` | `Sources.ConstantTorque`, `Sources.Torque` | `flange.tau = −tau`; input `u`: `−u` |
+//! | `angle_source()` | `Sources.Position` (`exact = true`) | input `phi_ref`: `flange.phi = phi_ref`, differentiated by the index reduction where the mechanism needs it |
+//! | `speed_source(phi0 = 0)`, `acceleration_source(phi0 = 0, w0 = 0)` | `Sources.Speed` (`exact = true`), `Sources.Accelerate` | input `w_ref`: `dφ/dt = w_ref`; input `a_ref`: `d²φ/dt² = a_ref` |
+//! | `speed_sensor()`, `angle_sensor()`, `acceleration_sensor()` | `Sensors.SpeedSensor`, `AngleSensor`, `AccSensor` | output `w = dφ/dt`, `phi`, `a = d²φ/dt²` |
+//! | `torque_sensor()`, `power_sensor()` | `Sensors.TorqueSensor`, `PowerSensor` | between two flanges: output `tau = flange_a.tau`, `power = flange_a.tau w` |
+//! | `relative_angle_sensor()`, `relative_speed_sensor()`, `relative_acceleration_sensor()` | `Sensors.RelAngleSensor`, `RelSpeedSensor`, `RelAccSensor` | output `phi_rel`, `w_rel`, `a_rel`, no torque |
 //!
-//! **Translational**: `mass(m = 1, s0 = 0, v0 = 0)`,
-//! `translational_spring(c = 1, s_rel0 = 0)`, `translational_damper(d = 1)`,
-//! `translational_fixed(s0 = 0)`, `force_source(force = 1)`,
-//! `signal_force()` (input `u`), `position_sensor()` (output `s`), as the
-//! rotational ones with `s`, `v`, `f`.
+//! **Translational**:
 //!
-//! **Thermal** (ports `port`, or `port_a`/`port_b`):
+//! | part | MSL | equations |
+//! |---|---|---|
+//! | `mass(m = 1, s0 = 0, v0 = 0)` | `Components.Mass` | `ds/dt = v`, `m dv/dt = flange_a.f + flange_b.f` |
+//! | `translational_spring(c = 1, s_rel0 = 0)`, `translational_damper(d = 1)`, `translational_spring_damper(c = 1, d = 1, s_rel0 = 0)` | `Components.Spring`, `Damper`, `SpringDamper` | as the rotational ones with `s`, `v`, `f` |
+//! | `translational_fixed(s0 = 0)` | `Components.Fixed` | `flange.s = s0` |
+//! | `force_source(force = 1)`, `signal_force()` | `Sources.ConstantForce`, `Sources.Force` | `flange.f = −force`; input `u`: `−u` |
+//! | `position_source()`, `velocity_source(s0 = 0)` | `Sources.Position`, `Sources.Speed` (`exact = true`) | input `s_ref`: `flange.s = s_ref`; input `v_ref`: `ds/dt = v_ref` |
+//! | `position_sensor()`, `velocity_sensor()`, `force_sensor()`, `relative_position_sensor()` | `Sensors.PositionSensor`, `SpeedSensor`, `ForceSensor`, `RelPositionSensor` | output `s`, `v`, `f = flange_a.f`, `s_rel` |
 //!
-//! | part | equations |
-//! |---|---|
-//! | `heat_capacitor(c = 1, t0 = 293.15)` | `c dT/dt = port.q`, `T` a state |
-//! | `thermal_conductor(g = 1)` | `q = g (port_a.t − port_b.t)` |
-//! | `convection(h_a = 1)` | `q = h_a (solid.t − fluid.t)` |
-//! | `fixed_temperature(t = 293.15)` | `port.t = t` |
-//! | `heat_flow_source(q = 0)`, `signal_heat_flow()` (input `u`) | `port.q = −q`, `−u` |
-//! | `temperature_sensor()` | output `t = port.t` |
-//! | `heating_resistor(r = 1, t_ref = 293.15, alpha = 0)` | pins and `heat_port`: `v = r (1 + alpha (T − t_ref)) i`, `heat_port.q = −v i` |
+//! **Thermal** (ports `port`, or `port_a`/`port_b`; temperatures in K
+//! unless named Celsius):
+//!
+//! | part | MSL | equations |
+//! |---|---|---|
+//! | `heat_capacitor(c = 1, t0 = 293.15)` | `Components.HeatCapacitor` | `c dT/dt = port.q`, `T` a state |
+//! | `thermal_conductor(g = 1)`, `thermal_resistor(r = 1)` | `Components.ThermalConductor`, `ThermalResistor` | `q = g (port_a.t − port_b.t)`; `port_a.t − port_b.t = r q` |
+//! | `convection(h_a = 1)`, `signal_convection()` | `Components.Convection` (input `Gc`) | `q = h_a (solid.t − fluid.t)`; input `gc`: `q = gc (solid.t − fluid.t)` |
+//! | `body_radiation(gr = 1)` | `Components.BodyRadiation` | `q = gr σ (port_a.t⁴ − port_b.t⁴)`, σ = 5.670374419e-8 |
+//! | `fixed_temperature(t = 293.15)`, `fixed_temperature_celsius(t_c = 20)`, `signal_temperature()` | `Sources.FixedTemperature`, `Celsius.FixedTemperature`, `Sources.PrescribedTemperature` | `port.t = t`; `t_c + 273.15`; input `t` |
+//! | `heat_flow_source(q = 0)`, `signal_heat_flow()` | `Sources.FixedHeatFlow`, `PrescribedHeatFlow` | `port.q = −q`; input `u`: `−u` |
+//! | `temperature_sensor()`, `celsius_sensor()`, `fahrenheit_sensor()` | `Sensors.TemperatureSensor`, `Celsius.TemperatureSensor`, `Fahrenheit.TemperatureSensor` | output `t = port.t`, `t_c = t − 273.15`, `t_f = 1.8 t_c + 32` |
+//! | `heating_resistor(r = 1, t_ref = 293.15, alpha = 0)` | `Analog.Basic.Resistor` (`useHeatPort`) | pins and `heat_port`: `v = r (1 + alpha (T − t_ref)) i`, `heat_port.q = −v i` |
 //!
 //! **Blocks** (inputs `u`, `u1`, `u2`, or `u_s` set point and `u_m`
 //! measurement; output `y`):
 //!
-//! | part | equations |
-//! |---|---|
-//! | `constant(k = 1)`, `step(height = 1, start_time = 0, offset = 0)`, `ramp(height = 1, duration = 1, start_time = 0, offset = 0)`, `sine(amplitude = 1, f = 1, phase = 0, offset = 0)` | sources |
-//! | `gain(k = 1)`, `add(k1 = 1, k2 = 1)`, `feedback()` | `y = k u`, `y = k1 u1 + k2 u2`, `y = u1 − u2` |
-//! | `integrator(k = 1, y0 = 0)` | `dy/dt = k u` |
-//! | `first_order(k = 1, t = 1, y0 = 0)` | `t dy/dt + y = k u` |
-//! | `saturation(y_max = 1, y_min = −1, eps = 1e-3)` | `y = u` within the limits, corners rounded over `eps` (`\|y − clamp(u)\| ≤ eps/2`) |
-//! | `pi_controller(kp = 1, ki = 1)` | `y = kp e + x`, `dx/dt = ki e`, `e = u_s − u_m` |
-//! | `pid_controller(kp = 1, ki = 1, kd = 0, td = 1e-3)` | plus `kd (e − d)/td`, `td dd/dt = e − d` |
-//! | `limited_pi(kp, ki, y_max = 1, y_min = −1, k_aw = 1, eps = 1e-3)`, `limited_pid(kp, ki, kd, td, y_max, y_min, k_aw, eps)` | `y = sat(v)`, `dx/dt = ki e + k_aw (y − v)` (back-calculation anti-windup) |
-//! | `zero_order_hold(period = 0.01)` | `y` = `u` at the instants `k·period`, held between |
-//! | `sampled_pi(kp = 1, ki = 1, period = 0.01)` | at each instant `x ← x + ki·period·e`, then `y ← kp e + x`; held between |
-//! | `sampled_pid(kp = 1, ki = 1, kd = 0, period = 0.01)` | plus `kd (e − e_prev)/period`, `e_prev ← e` |
+//! | part | MSL | equations |
+//! |---|---|---|
+//! | `constant(k = 1)`, `step(height = 1, start_time = 0, offset = 0)`, `ramp(height = 1, duration = 1, start_time = 0, offset = 0)`, `sine(amplitude = 1, f = 1, phase = 0, offset = 0)` | `Sources.Constant`, `Step`, `Ramp`, `Sine` | sources |
+//! | `gain(k = 1)`, `add(k1 = 1, k2 = 1)`, `feedback()` | `Math.Gain`, `Add`, `Feedback` | `y = k u`, `y = k1 u1 + k2 u2`, `y = u1 − u2` |
+//! | `integrator(k = 1, y0 = 0)` | `Continuous.Integrator` | `dy/dt = k u` |
+//! | `derivative(k = 1, t = 0.01, x0 = 0)` | `Continuous.Derivative` | `y = k (u − x)/t`, `t dx/dt = u − x` |
+//! | `first_order(k = 1, t = 1, y0 = 0)` | `Continuous.FirstOrder` | `t dy/dt + y = k u` |
+//! | `limiter(u_max = 1, u_min = −1)` | `Nonlinear.Limiter` | `y = max(u_min, min(u_max, u))`, switched by events at the limits |
+//! | `dead_zone(u_max = 1, u_min = −1)` | `Nonlinear.DeadZone` | `y = 0` inside, `u − u_max` above, `u − u_min` below |
+//! | `saturation(y_max = 1, y_min = −1, eps = 1e-3)` | | `y = u` within the limits, corners rounded over `eps` (`\|y − clamp(u)\| ≤ eps/2`): smooth, for the Taylor methods |
+//! | `pi_controller(kp = 1, ki = 1)` | `Continuous.PI` (as gains) | `y = kp e + x`, `dx/dt = ki e`, `e = u_s − u_m` |
+//! | `pid_controller(kp = 1, ki = 1, kd = 0, td = 1e-3)` | `Continuous.PID` (as gains) | plus `kd (e − d)/td`, `td dd/dt = e − d` |
+//! | `limited_pi(kp, ki, y_max = 1, y_min = −1, k_aw = 1, eps = 1e-3)`, `limited_pid(kp, ki, kd, td, y_max, y_min, k_aw, eps)` | `Continuous.LimPID` (as gains) | `y = sat(v)`, `dx/dt = ki e + k_aw (y − v)` (back-calculation anti-windup) |
+//! | `zero_order_hold(period = 0.01)` | `Discrete.ZeroOrderHold` | `y` = `u` at the instants `k·period`, held between |
+//! | `sampled_pi(kp = 1, ki = 1, period = 0.01)` | | at each instant `x ← x + ki·period·e`, then `y ← kp e + x`; held between |
+//! | `sampled_pid(kp = 1, ki = 1, kd = 0, period = 0.01)` | | plus `kd (e − e_prev)/period`, `e_prev ← e` |
 //!
 //! Sources switching in time (`step_voltage`, `step`, `ramp`) use the
-//! step function `heaviside(x)` (0 below zero, 1 above), which the
-//! adaptive methods step across with their error control; the Taylor
-//! methods refuse it, as they refuse `abs`.
+//! step function `heaviside(x)` (0 below zero, 1 above) of the time
+//! alone: every method steps to the switch exactly, as to an event known
+//! in advance. Parts switching on a variable (`limiter`, `dead_zone`,
+//! `piecewise_diode`, the switches) hold each relation between events and
+//! switch where it crosses, as Modelica does. A model whose states do not
+//! bound its steps (a circuit of sources, resistors and diodes alone)
+//! needs `Options::max_step` shorter than the time between two crossings,
+//! which one long step could pass over unseen.

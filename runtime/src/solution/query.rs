@@ -75,7 +75,9 @@ impl Solution {
 
     /// A state, algebraic variable or output at the end of the run.
     pub fn last(&self, name: &str) -> Result<f64, Error> {
-        if self.end_y.is_empty() {
+        // Nothing recorded yet (a model without states records an empty
+        // state at each time).
+        if self.end_t.is_nan() {
             return Err(Error::OutOfRange { t: f64::NAN, interval: (f64::NAN, f64::NAN) });
         }
         Ok(self.reader(name)?.read(self, self.end_t, &self.end_y))

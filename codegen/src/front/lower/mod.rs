@@ -67,7 +67,9 @@ pub(crate) fn lower_with<S: SceneLanguage>(
     l.connection_equations();
     l.connection_diagnostics(written);
     S::equations(&mut l, item);
-    if l.states.is_empty() && l.cx.is_ok() {
+    // A circuit of parts may have none (sources and resistors): Modelica
+    // runs it, its variables algebraic functions of the time.
+    if l.states.is_empty() && l.instances.is_empty() && l.cx.is_ok() {
         l.cx.error_at(&item.sig.ident, "the model declares no state: add one with `let x = state(0.0);` and an equation `der(x) == ...;`");
     }
     let mut doc = doc_comment(&item.attrs);
