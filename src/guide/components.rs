@@ -290,7 +290,7 @@
 //! | `ground()` | `Analog.Basic.Ground` | `p.v = 0` |
 //! | `resistor(r = 1)` | `Basic.Resistor` | `v = r i` |
 //! | `conductor(g = 1)` | `Basic.Conductor` | `i = g v` |
-//! | `variable_resistor()`, `variable_conductor()` | `Basic.VariableResistor`, `VariableConductor` | input `r`: `v = r i`; input `g`: `i = g v` |
+//! | `variable_resistor()`, `variable_conductor()` | `Basic.VariableResistor`, `Basic.VariableConductor` | input `r`: `v = r i`; input `g`: `i = g v` |
 //! | `capacitor(c = 1, v0 = 0)` | `Basic.Capacitor` | `c dv/dt = i`, `v` a state |
 //! | `inductor(l = 1, i0 = 0)` | `Basic.Inductor` | `l di/dt = v`, `i` a state |
 //! | `ideal_transformer(n = 1)` | `Ideal.IdealTransformer` (no magnetization) | `v1 = n v2`, `i2 = −n i1` |
@@ -304,10 +304,10 @@
 //! | `diode(ids = 1e-6, vt = 0.04)` | `Semiconductors.Diode` (no `R`) | `i = ids (exp(v / vt) − 1)` |
 //! | `ideal_diode()` | | discrete `on`: `v = 0` while `on`, `i = 0` while not; `on` set where `v` rises through 0, cleared where `i` falls through 0 |
 //! | `piecewise_diode(ron = 1e-5, goff = 1e-5, v_knee = 0)` | `Ideal.IdealDiode` | `v = s (s < 0 ? 1 : ron) + v_knee`, `i = s (s < 0 ? goff : 1) + goff v_knee` |
-//! | `ideal_opening_switch(ron = 1e-5, goff = 1e-5)`, `ideal_closing_switch(..)` | `Ideal.IdealOpeningSwitch`, `IdealClosingSwitch` | input `control` (MSL's Boolean as 0 or 1): open, `i = goff v`, while `control > 0.5` (closed, for the closing switch), else closed, `v = ron i` |
+//! | `ideal_opening_switch(ron = 1e-5, goff = 1e-5)`, `ideal_closing_switch(..)` | `Ideal.IdealOpeningSwitch`, `Ideal.IdealClosingSwitch` | input `control` (MSL's Boolean as 0 or 1): open, `i = goff v`, while `control > 0.5` (closed, for the closing switch), else closed, `v = ron i` |
 //! | `emf(k = 1)` | `Basic.EMF` (no support) | flange `flange`: `v = k w`, `w = dφ/dt`, `flange.tau = −k i` |
 //! | `ideal_opamp()` | `Ideal.IdealOpAmp3Pin` | pins `in_p`, `in_n`, `out`: `in_p.v = in_n.v`, `in_p.i = in_n.i = 0` |
-//! | `voltage_sensor()`, `current_sensor()` | `Sensors.VoltageSensor`, `CurrentSensor` | output `v`, `i`: no current, no voltage drop |
+//! | `voltage_sensor()`, `current_sensor()` | `Sensors.VoltageSensor`, `Sensors.CurrentSensor` | output `v`, `i`: no current, no voltage drop |
 //!
 //! **Rotational** (flanges `flange_a`, `flange_b`; `phi_rel = flange_b.phi
 //! − flange_a.phi`; MSL's parts without `useSupport`, their support
@@ -324,20 +324,20 @@
 //! | `torque_source(tau = 1)`, `signal_torque()` | `Sources.ConstantTorque`, `Sources.Torque` | `flange.tau = −tau`; input `u`: `−u` |
 //! | `angle_source()` | `Sources.Position` (`exact = true`) | input `phi_ref`: `flange.phi = phi_ref`, differentiated by the index reduction where the mechanism needs it |
 //! | `speed_source(phi0 = 0)`, `acceleration_source(phi0 = 0, w0 = 0)` | `Sources.Speed` (`exact = true`), `Sources.Accelerate` | input `w_ref`: `dφ/dt = w_ref`; input `a_ref`: `d²φ/dt² = a_ref` |
-//! | `speed_sensor()`, `angle_sensor()`, `acceleration_sensor()` | `Sensors.SpeedSensor`, `AngleSensor`, `AccSensor` | output `w = dφ/dt`, `phi`, `a = d²φ/dt²` |
-//! | `torque_sensor()`, `power_sensor()` | `Sensors.TorqueSensor`, `PowerSensor` | between two flanges: output `tau = flange_a.tau`, `power = flange_a.tau w` |
-//! | `relative_angle_sensor()`, `relative_speed_sensor()`, `relative_acceleration_sensor()` | `Sensors.RelAngleSensor`, `RelSpeedSensor`, `RelAccSensor` | output `phi_rel`, `w_rel`, `a_rel`, no torque |
+//! | `speed_sensor()`, `angle_sensor()`, `acceleration_sensor()` | `Sensors.SpeedSensor`, `Sensors.AngleSensor`, `Sensors.AccSensor` | output `w = dφ/dt`, `phi`, `a = d²φ/dt²` |
+//! | `torque_sensor()`, `power_sensor()` | `Sensors.TorqueSensor`, `Sensors.PowerSensor` | between two flanges: output `tau = flange_a.tau`, `power = flange_a.tau w` |
+//! | `relative_angle_sensor()`, `relative_speed_sensor()`, `relative_acceleration_sensor()` | `Sensors.RelAngleSensor`, `Sensors.RelSpeedSensor`, `Sensors.RelAccSensor` | output `phi_rel`, `w_rel`, `a_rel`, no torque |
 //!
 //! **Translational**:
 //!
 //! | part | MSL | equations |
 //! |---|---|---|
 //! | `mass(m = 1, s0 = 0, v0 = 0)` | `Components.Mass` | `ds/dt = v`, `m dv/dt = flange_a.f + flange_b.f` |
-//! | `translational_spring(c = 1, s_rel0 = 0)`, `translational_damper(d = 1)`, `translational_spring_damper(c = 1, d = 1, s_rel0 = 0)` | `Components.Spring`, `Damper`, `SpringDamper` | as the rotational ones with `s`, `v`, `f` |
+//! | `translational_spring(c = 1, s_rel0 = 0)`, `translational_damper(d = 1)`, `translational_spring_damper(c = 1, d = 1, s_rel0 = 0)` | `Components.Spring`, `Components.Damper`, `Components.SpringDamper` | as the rotational ones with `s`, `v`, `f` |
 //! | `translational_fixed(s0 = 0)` | `Components.Fixed` | `flange.s = s0` |
 //! | `force_source(force = 1)`, `signal_force()` | `Sources.ConstantForce`, `Sources.Force` | `flange.f = −force`; input `u`: `−u` |
 //! | `position_source()`, `velocity_source(s0 = 0)` | `Sources.Position`, `Sources.Speed` (`exact = true`) | input `s_ref`: `flange.s = s_ref`; input `v_ref`: `ds/dt = v_ref` |
-//! | `position_sensor()`, `velocity_sensor()`, `force_sensor()`, `relative_position_sensor()` | `Sensors.PositionSensor`, `SpeedSensor`, `ForceSensor`, `RelPositionSensor` | output `s`, `v`, `f = flange_a.f`, `s_rel` |
+//! | `position_sensor()`, `velocity_sensor()`, `force_sensor()`, `relative_position_sensor()` | `Sensors.PositionSensor`, `Sensors.SpeedSensor`, `Sensors.ForceSensor`, `Sensors.RelPositionSensor` | output `s`, `v`, `f = flange_a.f`, `s_rel` |
 //!
 //! **Thermal** (ports `port`, or `port_a`/`port_b`; temperatures in K
 //! unless named Celsius):
@@ -345,11 +345,11 @@
 //! | part | MSL | equations |
 //! |---|---|---|
 //! | `heat_capacitor(c = 1, t0 = 293.15)` | `Components.HeatCapacitor` | `c dT/dt = port.q`, `T` a state |
-//! | `thermal_conductor(g = 1)`, `thermal_resistor(r = 1)` | `Components.ThermalConductor`, `ThermalResistor` | `q = g (port_a.t − port_b.t)`; `port_a.t − port_b.t = r q` |
+//! | `thermal_conductor(g = 1)`, `thermal_resistor(r = 1)` | `Components.ThermalConductor`, `Components.ThermalResistor` | `q = g (port_a.t − port_b.t)`; `port_a.t − port_b.t = r q` |
 //! | `convection(h_a = 1)`, `signal_convection()` | `Components.Convection` (input `Gc`) | `q = h_a (solid.t − fluid.t)`; input `gc`: `q = gc (solid.t − fluid.t)` |
 //! | `body_radiation(gr = 1)` | `Components.BodyRadiation` | `q = gr σ (port_a.t⁴ − port_b.t⁴)`, σ = 5.670374419e-8 |
 //! | `fixed_temperature(t = 293.15)`, `fixed_temperature_celsius(t_c = 20)`, `signal_temperature()` | `Sources.FixedTemperature`, `Celsius.FixedTemperature`, `Sources.PrescribedTemperature` | `port.t = t`; `t_c + 273.15`; input `t` |
-//! | `heat_flow_source(q = 0)`, `signal_heat_flow()` | `Sources.FixedHeatFlow`, `PrescribedHeatFlow` | `port.q = −q`; input `u`: `−u` |
+//! | `heat_flow_source(q = 0)`, `signal_heat_flow()` | `Sources.FixedHeatFlow`, `Sources.PrescribedHeatFlow` | `port.q = −q`; input `u`: `−u` |
 //! | `temperature_sensor()`, `celsius_sensor()`, `fahrenheit_sensor()` | `Sensors.TemperatureSensor`, `Celsius.TemperatureSensor`, `Fahrenheit.TemperatureSensor` | output `t = port.t`, `t_c = t − 273.15`, `t_f = 1.8 t_c + 32` |
 //! | `heating_resistor(r = 1, t_ref = 293.15, alpha = 0)` | `Analog.Basic.Resistor` (`useHeatPort`) | pins and `heat_port`: `v = r (1 + alpha (T − t_ref)) i`, `heat_port.q = −v i` |
 //!
@@ -358,8 +358,8 @@
 //!
 //! | part | MSL | equations |
 //! |---|---|---|
-//! | `constant(k = 1)`, `step(height = 1, start_time = 0, offset = 0)`, `ramp(height = 1, duration = 1, start_time = 0, offset = 0)`, `sine(amplitude = 1, f = 1, phase = 0, offset = 0)` | `Sources.Constant`, `Step`, `Ramp`, `Sine` | sources |
-//! | `gain(k = 1)`, `add(k1 = 1, k2 = 1)`, `feedback()` | `Math.Gain`, `Add`, `Feedback` | `y = k u`, `y = k1 u1 + k2 u2`, `y = u1 − u2` |
+//! | `constant(k = 1)`, `step(height = 1, start_time = 0, offset = 0)`, `ramp(height = 1, duration = 1, start_time = 0, offset = 0)`, `sine(amplitude = 1, f = 1, phase = 0, offset = 0)` | `Sources.Constant`, `Sources.Step`, `Sources.Ramp`, `Sources.Sine` | sources |
+//! | `gain(k = 1)`, `add(k1 = 1, k2 = 1)`, `feedback()` | `Math.Gain`, `Math.Add`, `Math.Feedback` | `y = k u`, `y = k1 u1 + k2 u2`, `y = u1 − u2` |
 //! | `integrator(k = 1, y0 = 0)` | `Continuous.Integrator` | `dy/dt = k u` |
 //! | `derivative(k = 1, t = 0.01, x0 = 0)` | `Continuous.Derivative` | `y = k (u − x)/t`, `t dx/dt = u − x` |
 //! | `first_order(k = 1, t = 1, y0 = 0)` | `Continuous.FirstOrder` | `t dy/dt + y = k u` |
