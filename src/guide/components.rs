@@ -332,7 +332,7 @@
 //!
 //! | part | MSL | equations |
 //! |---|---|---|
-//! | `mass(m = 1, s0 = 0, v0 = 0)` | `Components.Mass` | `ds/dt = v`, `m dv/dt = flange_a.f + flange_b.f` |
+//! | `mass(m = 1, s0 = 0, v0 = 0, l = 0)` | `Components.Mass` | `ds/dt = v`, `m dv/dt = flange_a.f + flange_b.f`, `flange_a.s = s − l/2`, `flange_b.s = s + l/2` |
 //! | `translational_spring(c = 1, s_rel0 = 0)`, `translational_damper(d = 1)`, `translational_spring_damper(c = 1, d = 1, s_rel0 = 0)` | `Components.Spring`, `Components.Damper`, `Components.SpringDamper` | as the rotational ones with `s`, `v`, `f` |
 //! | `translational_fixed(s0 = 0)` | `Components.Fixed` | `flange.s = s0` |
 //! | `force_source(force = 1)`, `signal_force()` | `Sources.ConstantForce`, `Sources.Force` | `flange.f = −force`; input `u`: `−u` |

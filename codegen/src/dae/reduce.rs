@@ -560,8 +560,10 @@ fn known_values(
 }
 
 /// The outputs and event functions with the highest derivatives replaced
-/// by their solutions; an event that reads an unknown solved at run time
-/// is an error (`false`), an output may solve the blocks it reads.
+/// by their solutions; an output may solve the blocks and the Newton
+/// block it reads, an event the linear blocks (a piecewise-linear
+/// diode's curve parameter in a bridge), and an event that reads a Newton
+/// block's unknown is an error (`false`).
 fn observables(
     cx: &mut Ctxt,
     g: &mut Graph,
@@ -578,9 +580,11 @@ fn observables(
             // Outputs may solve the blocks they read (λ of a mechanism).
             return Some(v);
         }
-        if let Some(s) =
-            g.free_symbols(v).into_iter().find(|s| z_index.contains_key(s) || in_newton(s))
-        {
+        let run_time = |s: &SymbolId| match what {
+            "event" => in_newton(s),
+            _ => z_index.contains_key(s) || in_newton(s),
+        };
+        if let Some(s) = g.free_symbols(v).into_iter().find(run_time) {
             let name = g.symbol(s).name.clone();
             cx.error_at(origin, format!("this {what} reads `{name}`, which is only known after a numerical solve; compute it from the states instead"));
             ok = false;

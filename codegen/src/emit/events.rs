@@ -5,20 +5,38 @@
 
 use crate::dae::system::FirstOrder;
 use crate::emit::layout::{index, program_into, Layout};
+use crate::emit::newton::block_solve_code;
+use crate::programs::rhs::RhsEntry;
 use crate::programs::schedule::Program;
 use crate::Graph;
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
 /// `events`, writing every event function, all at once sharing their
-/// subexpressions; nothing for a model without events.
+/// subexpressions; nothing for a model without events. Where one reads
+/// an unknown a run-time block solves, the blocks are solved first
+/// (`blocks`: the program assembling them), and a singular block makes
+/// every event function NaN, which the run reports.
 pub(crate) fn events_method(
     g: &Graph,
-    layout: &Layout,
+    layout: &mut Layout,
     sys: &FirstOrder,
     program: Option<&Program>,
+    blocks: &(Vec<RhsEntry>, Program),
 ) -> TokenStream {
-    per_event_method(g, layout, sys, program, "events", "g")
+    if !crate::programs::derivatives::events_read_blocks(g, sys) {
+        return per_event_method(g, layout, sys, program, "events", "g", TokenStream::new());
+    }
+    let m = index(sys.events.len());
+    let on_singular = quote! {
+        *g = [f64::NAN; #m];
+        return
+    };
+    let solve = block_solve_code(g, layout, sys, blocks, on_singular);
+    layout.block_of = sys.block_unknowns.iter().map(|&(s, b, r)| (s, (b, r))).collect();
+    let method = per_event_method(g, layout, sys, program, "events", "g", solve);
+    layout.block_of.clear();
+    method
 }
 
 /// `event_rates`, where f is explicit.
@@ -28,7 +46,7 @@ pub(crate) fn event_rates_method(
     sys: &FirstOrder,
     program: Option<&Program>,
 ) -> TokenStream {
-    let method = per_event_method(g, layout, sys, program, "event_rates", "dg");
+    let method = per_event_method(g, layout, sys, program, "event_rates", "dg", TokenStream::new());
     if method.is_empty() {
         return method;
     }
@@ -40,7 +58,7 @@ pub(crate) fn event_rates_method(
 }
 
 /// `fn method(&self, t, y, out)` writing one value per event function into
-/// `out`.
+/// `out`, after `solve`.
 fn per_event_method(
     g: &Graph,
     layout: &Layout,
@@ -48,6 +66,7 @@ fn per_event_method(
     program: Option<&Program>,
     method: &str,
     out: &str,
+    solve: TokenStream,
 ) -> TokenStream {
     let Some(program) = program else { return TokenStream::new() };
     let (m, n_lit) = (index(sys.events.len()), index(sys.slots.len()));
@@ -58,6 +77,7 @@ fn per_event_method(
         fn #method(&self, t: f64, y: &[f64], #out: &mut [f64]) {
             let (::core::result::Result::Ok(y), ::core::result::Result::Ok(#out)) =
                 (<&[f64; #n_lit]>::try_from(y), <&mut [f64; #m]>::try_from(#out)) else { return };
+            #solve
             #body
         }
     }

@@ -76,7 +76,8 @@ fn expand_system(
         n,
         p.initialization.as_ref(),
     );
-    let events_method = events_method(g, &layout, sys, p.events.as_ref());
+    let events_method =
+        events_method(g, &mut layout, sys, p.events.as_ref(), &p.outputs.block_solve);
     let start_relations = crate::emit::actions::start_relations_method(sys, &ir.relations);
     let act_method = crate::emit::actions::act_method(g, &layout, sys, &ir.pre, &p.actions);
     let rhs_method_body = fixed_size_body(

@@ -61,6 +61,10 @@ pub fn event_rates_program(
     explicit: Option<&[Id]>,
 ) -> crate::Result<Option<Program>> {
     let (Some(f), false) = (explicit, sys.events.is_empty()) else { return Ok(None) };
+    // An event that reads a block's unknown has no rate from f alone.
+    if events_read_blocks(g, sys) {
+        return Ok(None);
+    }
     let mut field = crate::VectorField::new();
     let one = g.one();
     field.set(time, one);
@@ -78,6 +82,12 @@ pub fn event_rates_program(
         .map(|&e| g.total_derivative(e, &mut field))
         .collect::<crate::Result<Vec<Id>>>()?;
     Ok(Some(g.schedule(&rates)))
+}
+
+/// Whether an event function reads an unknown a run-time block solves.
+pub fn events_read_blocks(g: &Graph, sys: &FirstOrder) -> bool {
+    let solved: Vec<SymbolId> = sys.block_unknowns.iter().map(|&(s, _, _)| s).collect();
+    sys.events.iter().any(|&e| g.free_symbols(e).iter().any(|s| solved.contains(s)))
 }
 
 /// The constraints and their Jacobian rows.

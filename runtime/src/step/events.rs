@@ -27,6 +27,17 @@ use crate::info::EventDirection;
 use crate::model::Model;
 use crate::solution::{EventHit, Solution};
 
+/// How close to a restart, relative to the time (at least 1), an event
+/// that fires again counts as the restart's instant: 1000 roundings.
+const CHATTER: f64 = 1e3 * f64::EPSILON;
+
+/// Whether `event` is one of the two a relation on variables makes, which
+/// set the relation's value and nothing else (`(v > 1.0)` when it turns
+/// true, `!(v > 1.0)` when false).
+fn is_relation(event: &crate::info::EventInfo) -> bool {
+    matches!(event.resets, [held] if event.name.trim_start_matches('!') == *held)
+}
+
 /// Watches a run's steps for events.
 pub(crate) struct EventWatch<'m, M: Model> {
     model: &'m M,
@@ -150,7 +161,7 @@ impl<'m, M: Model> EventWatch<'m, M> {
             // Fired again right after a restart: the crossings accumulate
             // and one more restart would not move.
             let after = (hits[k].t - self.t_start).abs();
-            if after <= 1e3 * f64::EPSILON * hits[k].t.abs().max(1.0) {
+            if after <= CHATTER * hits[k].t.abs().max(1.0) {
                 let hit = &hits[k];
                 solution.end_last_step_at(hit.t, &hit.state);
                 return Err(Error::EventChatter {
@@ -239,9 +250,19 @@ impl<'m, M: Model> EventWatch<'m, M> {
                 true => left_zero(|t| self.along(solution, i, t, false), lo, hi),
                 false => bracketed_root(|t| self.along(solution, i, t, false), lo, hi, g_lo, g_hi),
             };
+            // A root at the restart itself is the instant the run restarted
+            // from, not a new event. Where an event switched a relation, the
+            // relation's function starts on zero and may read a rounding's
+            // width on the wrong side (a piecewise-linear diode's curve
+            // parameter, zero in either mode at the switch): the width the
+            // chatter test allows another event that fires again, which
+            // stays an error.
             let t_new = solution.last_step().map_or(t, |(_, t_new)| t_new);
-            let start_tolerance =
+            let mut start_tolerance =
                 16.0 * f64::EPSILON * self.t_start.abs().max((t_new - self.t_start).abs());
+            if is_relation(&M::INFO.events[i]) {
+                start_tolerance = start_tolerance.max(CHATTER * self.t_start.abs().max(1.0));
+            }
             if (t - self.t_start).abs() <= start_tolerance {
                 continue;
             }
