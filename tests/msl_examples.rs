@@ -287,3 +287,79 @@ fn analog_rectifier() {
     ];
     check("Rectifier", Rectifier::default(), &options(), &signals);
 }
+
+/// `Modelica.Electrical.Machines.Examples.DCMachines.DCPM_Start`: a DC
+/// machine with permanent magnets started by an armature voltage ramp
+/// (0 to 100 V from 0.2 s over 0.8 s) driving a 0.15 kg m² load, a load
+/// torque of 63.66 N m stepped on at 1.5 s. The machine's data are MSL's
+/// `DcPermanentMagnetData`, our part's defaults; its losses are zero there
+/// as here.
+#[dae_model]
+fn dcpm_start() {
+    let ramp = ramp(height = 100.0, duration = 0.8, start_time = 0.2);
+    let signal_voltage = signal_voltage();
+    let ground = ground();
+    let dcpm = dc_permanent_magnet();
+    init(dcpm.phi_mechanical, 0.0);
+    init(dcpm.w_mechanical, 0.0);
+    init(dcpm.ia, 0.0);
+    let load_inertia = inertia(j = 0.15);
+    let load_torque_step = step(height = -63.66, start_time = 1.5);
+    let load_torque = signal_torque();
+    connect(ramp.y, signal_voltage.u);
+    connect(signal_voltage.p, dcpm.pin_ap);
+    connect(signal_voltage.n, dcpm.pin_an, ground.p);
+    connect(dcpm.flange, load_inertia.flange_a);
+    connect(load_torque_step.y, load_torque.u);
+    connect(load_inertia.flange_b, load_torque.flange);
+}
+
+#[test]
+fn machines_dcpm_start() {
+    // MSL's armature inductor `la` carries the armature current, `ia` here.
+    let signals = [
+        ("dcpm.la.i", "dcpm.ia"),
+        ("loadInertia.phi", "load_inertia.phi"),
+        ("loadInertia.w", "load_inertia.w"),
+    ];
+    check("DCPM_Start", DcpmStart::default(), &options(), &signals);
+}
+
+/// `Modelica.Electrical.Machines.Examples.DCMachines.DCEE_Start`: the same
+/// start with a separately excited machine, its field on 100 V.
+#[dae_model]
+fn dcee_start() {
+    let ramp = ramp(height = 100.0, duration = 0.8, start_time = 0.2);
+    let signal_voltage = signal_voltage();
+    let ground = ground();
+    let constant_voltage = constant_voltage(100.0);
+    let ground_excitation = ground();
+    let dcee = dc_electrical_excited();
+    init(dcee.phi_mechanical, 0.0);
+    init(dcee.w_mechanical, 0.0);
+    init(dcee.ia, 0.0);
+    init(dcee.ie, 0.0);
+    let load_inertia = inertia(j = 0.15);
+    let load_torque_step = step(height = -63.66, start_time = 1.5);
+    let load_torque = signal_torque();
+    connect(ramp.y, signal_voltage.u);
+    connect(signal_voltage.p, dcee.pin_ap);
+    connect(signal_voltage.n, dcee.pin_an, ground.p);
+    connect(constant_voltage.p, dcee.pin_ep);
+    connect(constant_voltage.n, dcee.pin_en, ground_excitation.p);
+    connect(dcee.flange, load_inertia.flange_a);
+    connect(load_torque_step.y, load_torque.u);
+    connect(load_inertia.flange_b, load_torque.flange);
+}
+
+#[test]
+fn machines_dcee_start() {
+    // MSL's air gap holds the excitation flux, the machine itself here.
+    let signals = [
+        ("dcee.airGapDC.psi_e", "dcee.psi_e"),
+        ("dcee.la.i", "dcee.ia"),
+        ("loadInertia.phi", "load_inertia.phi"),
+        ("loadInertia.w", "load_inertia.w"),
+    ];
+    check("DCEE_Start", DceeStart::default(), &options(), &signals);
+}

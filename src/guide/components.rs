@@ -328,6 +328,16 @@
 //! | `torque_sensor()`, `power_sensor()` | `Sensors.TorqueSensor`, `Sensors.PowerSensor` | between two flanges: output `tau = flange_a.tau`, `power = flange_a.tau w` |
 //! | `relative_angle_sensor()`, `relative_speed_sensor()`, `relative_acceleration_sensor()` | `Sensors.RelAngleSensor`, `Sensors.RelSpeedSensor`, `Sensors.RelAccSensor` | output `phi_rel`, `w_rel`, `a_rel`, no torque |
 //!
+//! **Machines** (armature pins `pin_ap`, `pin_an`, field pins `pin_ep`,
+//! `pin_en`, shaft `flange`; MSL's default losses, which are zero, at the
+//! reference temperature, without support; the states `ia`, `ie`,
+//! `phi_mechanical`, `w_mechanical`):
+//!
+//! | part | MSL | equations |
+//! |---|---|---|
+//! | `dc_permanent_magnet(va_nominal = 100, ia_nominal = 100, w_nominal = 149.23, ra = 0.05, la = 0.0015, jr = 0.15)` | `Machines.BasicMachines.DCMachines.DC_PermanentMagnet` | `la dia/dt = va − ra ia − psi_e w`, `jr dw/dt = psi_e ia + flange.tau`, `psi_e = (va_nominal − ra ia_nominal)/w_nominal` |
+//! | `dc_electrical_excited(.., ie_nominal = 1, re = 100, le = 1, sigmae = 0)` | `DCMachines.DC_ElectricalExcited` | `le die/dt = ve − re ie`, `psi_e = le (1 − sigmae) ie`, the armature and torque with `k psi_e`, `k` from the nominal point |
+//!
 //! **Translational**:
 //!
 //! | part | MSL | equations |
