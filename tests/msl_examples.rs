@@ -292,7 +292,7 @@ fn analog_rectifier() {
 /// machine with permanent magnets started by an armature voltage ramp
 /// (0 to 100 V from 0.2 s over 0.8 s) driving a 0.15 kg m² load, a load
 /// torque of 63.66 N m stepped on at 1.5 s. The machine's data are MSL's
-/// `DcPermanentMagnetData`, our part's defaults; its losses are zero there
+/// `Machines.Utilities.ParameterRecords.DcPermanentMagnetData`, our part's defaults; its losses are zero there
 /// as here.
 #[dae_model]
 fn dcpm_start() {

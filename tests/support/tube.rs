@@ -1,7 +1,7 @@
 // The comparison MAP-LIB's regression tests make of a result with a
-// reference: csv-compare 2.1.1's tube (modelica-tools/csv-compare,
-// `TubeSize.cs`, `Algorithms/Rectangle.cs`, `Tube.cs`; Walther & Ruetz's
-// CurveCompare). Around the reference curve, linear between its points,
+// reference: csv-compare 2.1.1's tube (modelica-tools/csv-compare, its
+// files TubeSize.cs, Algorithms/Rectangle.cs and Tube.cs; Walther &
+// Ruetz's CurveCompare). Around the reference curve, linear between its points,
 // a tube of half-width δx = r·max(t_end − t_start, |t_start|) in time and
 // half-height δy = r·max(max − min, |min|, 0.001) of the signal, r =
 // 0.002 for the MSL. Its upper edge at t is the reference's largest value
