@@ -363,3 +363,88 @@ fn machines_dcee_start() {
     ];
     check("DCEE_Start", DceeStart::default(), &options(), &signals);
 }
+
+/// `Modelica.Mechanics.Translational.Examples.PreLoad`: a spool held
+/// between two spring plates by elastic contacts with a preloaded spring,
+/// in a housing, pushed by a slow 150 N sine; rods set the distances.
+#[dae_model]
+fn pre_load() {
+    let inner_contact_a = elasto_gap(c = 1000e3, d = 250.0, s_rel0 = 0.001);
+    let inner_contact_b = elasto_gap(c = 1000e3, d = 250.0, s_rel0 = 0.001);
+    let spool = mass(m = 0.150, s0 = 0.01475, l = 0.19);
+    init(spool.s, 0.01475);
+    init(spool.v, 0.0);
+    let fixed_le = translational_fixed(-0.0955);
+    let spring_plate_a = mass(m = 10e-3, s0 = -0.093, l = 0.002);
+    init(spring_plate_a.s, -0.093);
+    init(spring_plate_a.v, 0.0);
+    let spring_plate_b = mass(m = 10e-3, s0 = -0.06925, l = 0.002);
+    init(spring_plate_b.s, -0.06925);
+    init(spring_plate_b.v, 0.0);
+    let spring = translational_spring(c = 20e3, s_rel0 = 0.025);
+    let outer_contact_a = elasto_gap(c = 1000e3, d = 250.0, s_rel0 = 0.0015);
+    let outer_contact_b = elasto_gap(c = 1000e3, d = 250.0, s_rel0 = 0.0015);
+    let rod1 = rod(0.007);
+    let friction = translational_damper(2500.0);
+    let force = signal_force();
+    let housing = rod(0.0305);
+    let rod3 = rod(0.00575);
+    let rod4 = rod(0.00575);
+    let rod2 = rod(0.007);
+    let sine_force = sine(amplitude = 150.0, f = 0.01);
+    connect(outer_contact_a.flange_b, spring_plate_a.flange_a);
+    connect(spring_plate_a.flange_b, spring.flange_a, rod1.flange_a);
+    connect(spring.flange_b, spring_plate_b.flange_a, rod2.flange_b);
+    connect(spring_plate_b.flange_b, outer_contact_b.flange_a);
+    connect(outer_contact_b.flange_b, housing.flange_b);
+    connect(inner_contact_a.flange_a, rod3.flange_a, friction.flange_b);
+    connect(inner_contact_a.flange_b, rod1.flange_b);
+    connect(rod2.flange_a, inner_contact_b.flange_a);
+    connect(rod4.flange_b, inner_contact_b.flange_b);
+    connect(rod3.flange_b, rod4.flange_a, spool.flange_a, force.flange);
+    connect(sine_force.y, force.u);
+    connect(outer_contact_a.flange_a, housing.flange_a, friction.flange_a, fixed_le.flange);
+}
+
+#[test]
+fn translational_pre_load() {
+    let signals = [
+        ("friction.v_rel", "friction.v_rel"),
+        ("innerContactA.s_rel", "inner_contact_a.s_rel"),
+        ("innerContactB.s_rel", "inner_contact_b.s_rel"),
+        ("outerContactA.v_rel", "outer_contact_a.v_rel"),
+        ("outerContactB.s_rel", "outer_contact_b.s_rel"),
+        ("outerContactB.v_rel", "outer_contact_b.v_rel"),
+    ];
+    check("PreLoad", PreLoad::default(), &options(), &signals);
+}
+
+/// `Modelica.Blocks.Examples.InverseModel`: the inverse of a first-order
+/// lag, built by holding its output to a filtered sine (inverse-model
+/// constraints around it) and feeding the input that needs to a copy of
+/// the lag, whose output then follows the sine. MSL's `CriticalDamping`
+/// of order 1 and cut-off `f` is the first-order lag of time constant
+/// 1/(2π f) here; the lags start steady, MSL's `initType = SteadyState`.
+#[dae_model]
+fn inverse_model() {
+    let first_order1 = first_order(k = 1.0, t = 0.3);
+    initial(der(first_order1.x) == 0.0);
+    let sine = sine(f = 2.0, offset = 1.0, start_time = 0.2);
+    let inverse_block_constraints = inverse_block_constraints();
+    let first_order2 = first_order(k = 1.0, t = 0.3);
+    initial(der(first_order2.x) == 0.0);
+    let feedback = feedback();
+    let critical_damping = first_order(k = 1.0, t = 1.0 / (2.0 * 3.141592653589793 * 100.0));
+    connect(first_order1.y, inverse_block_constraints.u2);
+    connect(inverse_block_constraints.y2, first_order1.u);
+    connect(first_order2.y, feedback.u1);
+    connect(sine.y, critical_damping.u, feedback.u2);
+    connect(critical_damping.y, inverse_block_constraints.u1);
+    connect(inverse_block_constraints.y1, first_order2.u);
+}
+
+#[test]
+fn blocks_inverse_model() {
+    let signals = [("firstOrder1.y", "first_order1.y"), ("firstOrder2.y", "first_order2.y")];
+    check("InverseModel", InverseModel::default(), &options(), &signals);
+}

@@ -344,6 +344,8 @@
 //! |---|---|---|
 //! | `mass(m = 1, s0 = 0, v0 = 0, l = 0)` | `Components.Mass` | `ds/dt = v`, `m dv/dt = flange_a.f + flange_b.f`, `flange_a.s = s − l/2`, `flange_b.s = s + l/2` |
 //! | `translational_spring(c = 1, s_rel0 = 0)`, `translational_damper(d = 1)`, `translational_spring_damper(c = 1, d = 1, s_rel0 = 0)` | `Components.Spring`, `Components.Damper`, `Components.SpringDamper` | as the rotational ones with `s`, `v`, `f` |
+//! | `rod(l = 0)` | `Components.Rod` | `flange_b.s = flange_a.s + l`, massless |
+//! | `elasto_gap(c = 1, d = 1, s_rel0 = 0, n = 1)` | `Components.ElastoGap` | while `s_rel < s_rel0`: `f = −c \|s_rel − s_rel0\|^n + f_d`, the damping `d v_rel` bounded by the spring's force; apart, `f = 0` (continuous, no event) |
 //! | `translational_fixed(s0 = 0)` | `Components.Fixed` | `flange.s = s0` |
 //! | `force_source(force = 1)`, `signal_force()` | `Sources.ConstantForce`, `Sources.Force` | `flange.f = −force`; input `u`: `−u` |
 //! | `position_source()`, `velocity_source(s0 = 0)` | `Sources.Position`, `Sources.Speed` (`exact = true`) | input `s_ref`: `flange.s = s_ref`; input `v_ref`: `ds/dt = v_ref` |
@@ -368,7 +370,8 @@
 //!
 //! | part | MSL | equations |
 //! |---|---|---|
-//! | `constant(k = 1)`, `step(height = 1, start_time = 0, offset = 0)`, `ramp(height = 1, duration = 1, start_time = 0, offset = 0)`, `sine(amplitude = 1, f = 1, phase = 0, offset = 0)` | `Sources.Constant`, `Sources.Step`, `Sources.Ramp`, `Sources.Sine` | sources |
+//! | `constant(k = 1)`, `step(height = 1, start_time = 0, offset = 0)`, `ramp(height = 1, duration = 1, start_time = 0, offset = 0)`, `sine(amplitude = 1, f = 1, phase = 0, offset = 0, start_time = 0)` | `Sources.Constant`, `Sources.Step`, `Sources.Ramp`, `Sources.Sine` | sources; the sine is `offset` before `start_time`, `offset + amplitude sin(2π f (t − start_time) + phase)` from it |
+//! | `inverse_block_constraints()` | `Math.InverseBlockConstraints` | `u1 = u2`, `y1 = y2`: around a block, its output held to `u1`'s signal and its input given to `y1`'s block, solved backwards by the index reduction |
 //! | `gain(k = 1)`, `add(k1 = 1, k2 = 1)`, `feedback()` | `Math.Gain`, `Math.Add`, `Math.Feedback` | `y = k u`, `y = k1 u1 + k2 u2`, `y = u1 − u2` |
 //! | `integrator(k = 1, y0 = 0)` | `Continuous.Integrator` | `dy/dt = k u` |
 //! | `derivative(k = 1, t = 0.01, x0 = 0)` | `Continuous.Derivative` | `y = k (u − x)/t`, `t dx/dt = u − x` |
