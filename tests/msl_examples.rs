@@ -422,7 +422,7 @@ fn translational_pre_load() {
 /// `Modelica.Blocks.Examples.InverseModel`: the inverse of a first-order
 /// lag, built by holding its output to a filtered sine (inverse-model
 /// constraints around it) and feeding the input that needs to a copy of
-/// the lag, whose output then follows the sine. MSL's `CriticalDamping`
+/// the lag, whose output then follows the sine. MSL's `Continuous.CriticalDamping`
 /// of order 1 and cut-off `f` is the first-order lag of time constant
 /// 1/(2π f) here; the lags start steady, MSL's `initType = SteadyState`.
 #[dae_model]
