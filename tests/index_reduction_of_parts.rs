@@ -255,7 +255,7 @@ fn the_cauer_filter_of_library_capacitors_keeps_five_states_and_follows_nodal_an
 /// An accelerometer as a user writes one: the flange's angle and its
 /// second derivative.
 #[component]
-fn acceleration_sensor() {
+fn accelerometer() {
     let flange = flange();
     let a = real_output();
     let phi = state(0.0).avoid();
@@ -271,7 +271,7 @@ fn measured_rotor() {
     let rotor = inertia(j = 1.0, w0 = 10.0);
     let brake = damper(0.5);
     let housing = fixed();
-    let sensor = acceleration_sensor();
+    let sensor = accelerometer();
     connect(rotor.flange_a, sensor.flange);
     connect(rotor.flange_b, brake.flange_a);
     connect(brake.flange_b, housing.flange);
@@ -279,9 +279,9 @@ fn measured_rotor() {
 
 #[test]
 fn an_accelerometer_keeps_the_rotors_start() {
-    // The sensor's `der(der(phi))` reads the rotor's acceleration: the
-    // rotor keeps its angle and speed, the speed started at w0.
-    assert_eq!(<MeasuredRotor as Model>::INFO.states, ["rotor.phi", "rotor.w"]);
+    // The sensor's `der(der(phi))` makes the rotor's angle a state of
+    // order two: its speed is the slot `der(rotor.phi)`, started at w0.
+    assert_eq!(<MeasuredRotor as Model>::INFO.states, ["rotor.phi", "der(rotor.phi)"]);
     let opts = Options::new().method(Method::Radau5).rtol(1e-10).atol(1e-12);
     let sol = MeasuredRotor::default().simulate(0.0, 4.0, &opts).unwrap();
     for &t in &[0.0f64, 1.0, 4.0] {
@@ -413,7 +413,7 @@ fn a_nonlinear_tie_is_a_constraint_the_run_holds() {
 /// coordinates are the positions of the flanges `x` and `y`, as a user
 /// writes one: it pulls along itself, `f = λ (x, y)`.
 #[component]
-fn rod() {
+fn pendulum_rod() {
     let l = param(1.0);
     let x = translational_flange();
     let y = translational_flange();
@@ -431,7 +431,7 @@ fn pendulum_of_parts() {
     let horizontal = mass(m = 1.0, s0 = 1.0);
     let vertical = mass(m = 1.0, s0 = 0.0);
     let weight = force_source(-9.81);
-    let tie = rod(l = 1.0);
+    let tie = pendulum_rod(l = 1.0);
     connect(horizontal.flange_a, tie.x);
     connect(vertical.flange_a, tie.y, weight.flange);
 }

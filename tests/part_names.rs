@@ -1,13 +1,13 @@
 //! How a model finds the parts it calls: the user's own first, then the
 //! standard library. A part of the user's whose name is like a library
-//! part's (`conductor` beside `inductor`, `ideal_gear_s` beside
+//! part's (`conductor_g` beside `conductor`, `ideal_gear_s` beside
 //! `ideal_gear`) is the user's, never a misspelling.
 
 use daegen::prelude::*;
 
 /// A conductance between two pins: `i = g v`.
 #[component]
-fn conductor() {
+fn conductor_g() {
     let g = param(1.0);
     let p = pin();
     let n = pin();
@@ -31,7 +31,7 @@ fn my_damper() {
 #[dae_model]
 fn conductance_charging() {
     let source = constant_voltage(2.0);
-    let g = conductor(4.0);
+    let g = conductor_g(4.0);
     let c = capacitor(0.5);
     let gnd = ground();
     connect(source.p, g.p);

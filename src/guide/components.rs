@@ -156,7 +156,7 @@
 //! used from another crate in its tests). A library part's name wins over
 //! a part of yours with the same name: call yours by path
 //! (`self::resistor(..)`). A name only like a library part's
-//! (`conductor`, `my_damper`) is yours: it is fetched, never taken for a
+//! (`conductor_g`, `my_damper`) is yours: it is fetched, never taken for a
 //! misspelling, and where you have no such part the compiler says it
 //! cannot find it.
 //!
