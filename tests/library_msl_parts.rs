@@ -355,3 +355,45 @@ fn nonlinear_blocks_clamp_and_cut_and_the_derivative_follows_the_slope() {
     // their ends: 4 crossings each in a period.
     assert!(sol.events().len() >= 8, "{:?}", sol.events().len());
 }
+
+/// A torque of 1 N m between a rotor (1 kg m²) and a housing free to turn
+/// (2 kg m²): the source's support is the housing; and a 2:1 gear whose
+/// support turns with a third inertia, driven by a torque on its input.
+#[dae_model]
+fn reacting_supports() {
+    let one = constant(1.0);
+    let motor = signal_torque();
+    connect(one.y, motor.u);
+    let rotor = inertia(j = 1.0);
+    let housing = inertia(j = 2.0);
+    connect(motor.flange, rotor.flange_a);
+    connect(motor.support, housing.flange_a);
+    let push = torque_source(2.0);
+    let input = inertia(j = 1.0);
+    let gear = ideal_gear(2.0);
+    let output = inertia(j = 4.0);
+    let carrier = inertia(j = 3.0);
+    connect(push.flange, input.flange_a);
+    connect(input.flange_b, gear.flange_a);
+    connect(gear.flange_b, output.flange_a);
+    connect(gear.support, carrier.flange_a);
+    let anchor = fixed();
+    connect(push.support, anchor.flange);
+}
+
+#[test]
+fn supports_carry_the_reaction() {
+    let sol = ReactingSupports::default().simulate(0.0, 1.0, &tight()).unwrap();
+    // The rotor speeds up at 1 rad/s², the housing back at 1/2.
+    close("rotor.w", sol.last("rotor.w").unwrap(), 1.0, 1e-9);
+    close("housing.w", sol.last("housing.w").unwrap(), -0.5, 1e-9);
+    // The gear: φ_in − φ_c = 2 (φ_out − φ_c), τ_out = −2 τ_in, its support
+    // taking τ_s = −τ_in − τ_out = τ_in. With τ the torque the gear takes at
+    // its input, the accelerations a_in = 2 − τ, a_out = 2τ/4, a_c = −τ/3,
+    // and a_in − a_c = 2 (a_out − a_c): 2 − τ + τ/3 = τ + 2τ/3, τ = 6/7.
+    let tau = 6.0 / 7.0;
+    let (a_in, a_out, a_c) = (2.0 - tau, 2.0 * tau / 4.0, -tau / 3.0);
+    close("input.w", sol.last("input.w").unwrap(), a_in, 1e-9);
+    close("output.w", sol.last("output.w").unwrap(), a_out, 1e-9);
+    close("carrier.w", sol.last("carrier.w").unwrap(), a_c, 1e-9);
+}

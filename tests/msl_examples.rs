@@ -40,15 +40,16 @@ fn options() -> Options {
 }
 
 /// `Modelica.Mechanics.Rotational.Examples.First`: a motor driving a load
-/// through a gear and an elastic shaft, the gear's bearing damped. MSL's
-/// torque source and gear use their support flanges, connected to the
-/// housing; ours have none and act against the housing directly, the same.
+/// through a gear and an elastic shaft, the gear's bearing damped; the
+/// torque source's and the gear's supports on the housing, as MSL's
+/// `useSupport = true` connects them.
 #[dae_model]
 fn first() {
     let housing = fixed();
     let sine = sine(amplitude = 10.0, f = 5.0);
     let torque = signal_torque();
     connect(sine.y, torque.u);
+    connect(torque.support, housing.flange);
     let inertia1 = inertia(j = 0.1);
     let ideal_gear = ideal_gear(10.0);
     let inertia2 = inertia(j = 2.0);
@@ -64,6 +65,7 @@ fn first() {
     connect(inertia2.flange_b, spring.flange_a, damper.flange_a);
     connect(spring.flange_b, inertia3.flange_a);
     connect(damper.flange_b, housing.flange);
+    connect(ideal_gear.support, housing.flange);
 }
 
 #[test]

@@ -310,8 +310,14 @@
 //! | `voltage_sensor()`, `current_sensor()` | `Sensors.VoltageSensor`, `Sensors.CurrentSensor` | output `v`, `i`: no current, no voltage drop |
 //!
 //! **Rotational** (flanges `flange_a`, `flange_b`; `phi_rel = flange_b.phi
-//! − flange_a.phi`; MSL's parts without `useSupport`, their support
-//! fixed):
+//! − flange_a.phi`). The gear, the EMF and the torque, angle, speed and
+//! acceleration sources have a `support` flange, their housing, which
+//! takes the reaction torque: connect it as MSL's `useSupport = true` does
+//! (to a housing free to turn, a gear's carrier), or leave it, and it is
+//! fixed, as MSL's `useSupport = false`. The translational sources have
+//! one too. A part of yours declares one with `flange().support()`
+//! (`translational_flange().support()`): where nothing connects it, its
+//! angle (position) is zero rather than its torque (force).
 //!
 //! | part | MSL | equations |
 //! |---|---|---|
@@ -319,7 +325,7 @@
 //! | `spring(c = 1, phi_rel0 = 0)` | `Components.Spring` | `tau = c (phi_rel − phi_rel0)` |
 //! | `damper(d = 1)` | `Components.Damper` | `tau = d dphi_rel/dt` |
 //! | `spring_damper(c = 1, d = 1, phi_rel0 = 0)` | `Components.SpringDamper` | `tau = c (phi_rel − phi_rel0) + d dphi_rel/dt` |
-//! | `ideal_gear(ratio = 1)` | `Components.IdealGear` | `flange_a.phi = ratio flange_b.phi`, `flange_b.tau = −ratio flange_a.tau` |
+//! | `ideal_gear(ratio = 1)` | `Components.IdealGear` | `flange_a.phi − support.phi = ratio (flange_b.phi − support.phi)`, `flange_b.tau = −ratio flange_a.tau`, `support.tau = −flange_a.tau − flange_b.tau` |
 //! | `fixed(phi0 = 0)` | `Components.Fixed` | `flange.phi = phi0` |
 //! | `torque_source(tau = 1)`, `signal_torque()` | `Sources.ConstantTorque`, `Sources.Torque` | `flange.tau = −tau`; input `u`: `−u` |
 //! | `angle_source()` | `Sources.Position` (`exact = true`) | input `phi_ref`: `flange.phi = phi_ref`, differentiated by the index reduction where the mechanism needs it |

@@ -113,12 +113,14 @@ pub fn connection_equations(
             Err(e) => errors.push((origin.clone(), e.to_string())),
         }
     }
-    // An unconnected flow is zero: a pin left open carries no current.
+    // An unconnected flow is zero: a pin left open carries no current. An
+    // unconnected support is the housing instead: its potential is zero.
     for (c, connector) in connectors.iter().enumerate() {
         let (Some(flow), Some(_)) = (connector.flow, connector.owner) else { continue };
         if !reached_from_outside[c] {
             let zero = g.zero();
-            equations.push(equation(flow, zero, &connector.origin));
+            let held = if connector.support { connector.potential } else { flow };
+            equations.push(equation(held, zero, &connector.origin));
         }
     }
     match errors.is_empty() {

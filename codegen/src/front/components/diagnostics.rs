@@ -37,12 +37,16 @@ pub fn floating_potentials(
     }
     // A part joins its own connectors of one kind: its equations may tie
     // them (a resistor's two pins); the group is then the whole circuit.
-    let mut first_of: FxHashMap<(Option<usize>, ConnectorKind), usize> = FxHashMap::default();
+    // A support stands apart: it is the reference the others move against
+    // (a torque source's housing holds the housing, not the shaft).
+    type Key = (Option<usize>, ConnectorKind, bool);
+    let mut first_of: FxHashMap<Key, usize> = FxHashMap::default();
     for (c, connector) in connectors.iter().enumerate() {
-        match first_of.get(&(connector.owner, connector.kind)) {
+        let key = (connector.owner, connector.kind, connector.support);
+        match first_of.get(&key) {
             Some(&first) => union(&mut parent, first, c),
             None => {
-                first_of.insert((connector.owner, connector.kind), c);
+                first_of.insert(key, c);
             }
         }
     }

@@ -48,6 +48,10 @@ pub struct Connector {
     pub flow: Option<Id>,
     /// The instance whose body declared it; `None` at the model's level.
     pub owner: Option<usize>,
+    /// A support (`flange().support()`, MSL's `useSupport`): held at
+    /// potential zero, the housing, where nothing connects it, rather than
+    /// carrying no flow.
+    pub support: bool,
     /// The declaration, for errors.
     pub origin: TokenStream,
 }

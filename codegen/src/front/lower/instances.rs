@@ -368,7 +368,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         kind: ConnectorKind,
         call: &syn::ExprCall,
         local: &syn::Local,
-        doc: String,
+        (doc, support): (String, bool),
     ) {
         if self.already_declared(ident) || !self.arity(call, kind.name(), 0) {
             return;
@@ -400,6 +400,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
             potential,
             flow,
             owner: self.instance,
+            support,
             origin: local.to_token_stream(),
         });
         self.bind(ident, Binding::Connector(self.connectors.len() - 1));
@@ -656,6 +657,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
             potential,
             flow: Some(flow),
             owner: Some(k),
+            support: false,
             origin,
         });
         let c = self.connectors.len() - 1;

@@ -113,7 +113,9 @@ impl<S: SceneLanguage> Lower<'_, S> {
         // `state(x0).fixed()`: a value consistent initialization keeps;
         // `state(x0).avoid()`: the state eliminated when tied to others;
         // `state(x0).prefer()`: the state kept.
-        let (mut e, mut fixed, mut avoid, mut prefer) = (e, false, false, false);
+        // `flange().support()`: a support flange, at rest where unconnected.
+        let (mut e, mut fixed, mut avoid, mut prefer, mut support) =
+            (e, false, false, false, false);
         while let Expr::MethodCall(m) = e {
             let is_state = |r: &Expr| {
                 let mut r = r;
@@ -122,10 +124,12 @@ impl<S: SceneLanguage> Lower<'_, S> {
                 }
                 matches!(call_name(r), Some((n, _)) if n == "state" || n == "state_array")
             };
+            let is_connector = |r: &Expr| matches!(call_name(r), Some((n, _)) if ConnectorKind::from_name(&n).is_some_and(|k| !k.is_signal()));
             match m.method.to_string().as_str() {
                 "fixed" if m.args.is_empty() && is_state(&m.receiver) => fixed = true,
                 "avoid" if m.args.is_empty() && is_state(&m.receiver) => avoid = true,
                 "prefer" if m.args.is_empty() && is_state(&m.receiver) => prefer = true,
+                "support" if m.args.is_empty() && is_connector(&m.receiver) => support = true,
                 _ => break,
             }
             e = &m.receiver;
@@ -138,7 +142,7 @@ impl<S: SceneLanguage> Lower<'_, S> {
         }
         if let Some((name, call)) = call_name(e) {
             if let Some(kind) = ConnectorKind::from_name(&name) {
-                return self.connector(&ident, kind, call, local, doc);
+                return self.connector(&ident, kind, call, local, (doc, support));
             }
         }
         if self.instance_statement(&ident, e) {
