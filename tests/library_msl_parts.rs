@@ -397,3 +397,22 @@ fn supports_carry_the_reaction() {
     close("output.w", sol.last("output.w").unwrap(), a_out, 1e-9);
     close("carrier.w", sol.last("carrier.w").unwrap(), a_c, 1e-9);
 }
+
+/// A pulse of 2 for 30 % of each 0.5 s from 0.1 s, on 1, integrated.
+#[dae_model]
+fn pulsed_wave() {
+    let wave = pulse(amplitude = 2.0, width = 30.0, period = 0.5, offset = 1.0, start_time = 0.1);
+    let total = integrator();
+    connect(wave.y, total.u);
+}
+
+#[test]
+fn a_pulse_switches_at_its_instants() {
+    let sol = PulsedWave::default().simulate(0.0, 1.2, &tight()).unwrap();
+    for (t, y) in [(0.05, 1.0), (0.2, 3.0), (0.3, 1.0), (0.65, 3.0), (0.8, 1.0), (1.15, 3.0)] {
+        close(&format!("wave.y at {t}"), sol.at(t, "wave.y").unwrap(), y, 1e-12);
+    }
+    // ∫ y = t + 2 × (time high): 0.15 s high in each of 0.1–0.6, 0.6–1.1,
+    // and 0.1 s of the third pulse by 1.2.
+    close("total.y", sol.last("total.y").unwrap(), 1.2 + 2.0 * 0.4, 1e-9);
+}

@@ -378,6 +378,7 @@
 //! | part | MSL | equations |
 //! |---|---|---|
 //! | `constant(k = 1)`, `step(height = 1, start_time = 0, offset = 0)`, `ramp(height = 1, duration = 1, start_time = 0, offset = 0)`, `sine(amplitude = 1, f = 1, phase = 0, offset = 0, start_time = 0)` | `Sources.Constant`, `Sources.Step`, `Sources.Ramp`, `Sources.Sine` | sources; the sine is `offset` before `start_time`, `offset + amplitude sin(2π f (t − start_time) + phase)` from it |
+//! | `pulse(amplitude = 1, width = 50, period = 1, offset = 0, start_time = 0)` | `Sources.Pulse` | `offset + amplitude` for `width` % of each period from `start_time`, else `offset`; switched by two clocks |
 //! | `inverse_block_constraints()` | `Math.InverseBlockConstraints` | `u1 = u2`, `y1 = y2`: around a block, its output held to `u1`'s signal and its input given to `y1`'s block, solved backwards by the index reduction |
 //! | `gain(k = 1)`, `add(k1 = 1, k2 = 1)`, `feedback()` | `Math.Gain`, `Math.Add`, `Math.Feedback` | `y = k u`, `y = k1 u1 + k2 u2`, `y = u1 − u2` |
 //! | `integrator(k = 1, y0 = 0)` | `Continuous.Integrator` | `dy/dt = k u` |
