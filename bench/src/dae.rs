@@ -130,9 +130,7 @@ fn rod_chain_source(n: usize) -> String {
 /// A ten-rod chain in body and in joint coordinates: macro
 /// expansion time and generated size, and the run's cost per step.
 fn formulations() {
-    println!(
-        "\n### Ten-rod chain: body against joint coordinates (DOP853, tol 1e-8, t = 1)\n"
-    );
+    println!("\n### Ten-rod chain: body against joint coordinates (DOP853, tol 1e-8, t = 1)\n");
     println!(
         "| formulation | expansion (ms) | generated (kB) | states | run (ms) | steps | µs/step |"
     );

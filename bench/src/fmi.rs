@@ -14,8 +14,8 @@
 //! Writes `results/fmi.md`.
 
 use super::*;
-use daegen_fmi::description::{instantiation_token, FmiVersion};
 use daegen_fmi::calls;
+use daegen_fmi::description::{instantiation_token, FmiVersion};
 use daegen_fmi::fmi3::{self, Fmi3};
 use daegen_workprecision::median_time;
 use std::ffi::{c_void, CString};

@@ -34,6 +34,9 @@
 //! without (`results/sensitivities.md`);
 //! `--ensemble` times `daegen::Ensemble` on one thread and every core
 //! against heyoka's ensembles (`results/ensemble.md`);
+//! `--msl` runs the Modelica Standard Library's examples rewritten with
+//! the library against MAP-LIB's references: states, run time, and the
+//! deviation in csv-compare's tube (`results/msl.md`);
 //! `--versus-heyoka` times our Taylor method and heyoka in alternation,
 //! `results/versus_heyoka.md`; with `--only name`, one problem, printed
 //! only); `--readme` rewrites `README.md` from the results there. Writes
@@ -56,6 +59,7 @@ mod fmi;
 mod hybrid;
 #[cfg(feature = "sundials")]
 mod large;
+mod msl;
 mod peers;
 mod readme;
 mod robots;
@@ -626,6 +630,13 @@ fn main() {
     if has("--hybrid") {
         let text = hybrid::hybrid_section();
         let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join("hybrid.md");
+        let _ = std::fs::write(&out, &text);
+        println!("{text}");
+        return;
+    }
+    if has("--msl") {
+        let text = msl::msl_section();
+        let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join("msl.md");
         let _ = std::fs::write(&out, &text);
         println!("{text}");
         return;

@@ -29,9 +29,15 @@ pub struct Reference {
 }
 
 /// MSL's reference of the example `name` (tests/msl/`name`.csv).
+#[allow(dead_code)]
 pub fn reference(name: &str) -> Reference {
-    let path = format!("{}/tests/msl/{name}.csv", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    reference_in(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/msl"), name)
+}
+
+/// The reference of the example `name` in the folder `dir`.
+pub fn reference_in(dir: &std::path::Path, name: &str) -> Reference {
+    let path = dir.join(format!("{name}.csv"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let mut lines = text.lines().filter(|l| !l.starts_with('#') && !l.trim().is_empty());
     let header = lines.next().expect("a header");
     let names: Vec<String> = header.split(',').map(|h| h.trim_matches('"').to_string()).collect();
