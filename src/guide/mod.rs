@@ -29,11 +29,15 @@
 //!     Model Exchange and Co-Simulation) for FMPy, Simulink and the rigs.
 //! 12. [`work_precision`]: registering a model in the benchmarks and
 //!     reading a work-precision diagram.
+//! 13. [`from_modelica`]: coming from Modelica: each construct a Modelica
+//!     model uses and ours, with an example of the Modelica Standard
+//!     Library rewritten.
 
 pub mod components;
 pub mod daes;
 pub mod ensembles;
 pub mod fmi;
+pub mod from_modelica;
 pub mod hybrid;
 pub mod kinematics;
 pub mod language;

@@ -57,6 +57,7 @@ pub fn reference_in(dir: &std::path::Path, name: &str) -> Reference {
 #[derive(Debug)]
 pub struct Comparison {
     /// The signal, as MSL names it.
+    #[allow(dead_code)] // In the tests' messages; the bench's table has none.
     pub signal: String,
     /// The largest distance of the result from the reference at a
     /// reference row, over the tube's half-height δy (within 1: inside
