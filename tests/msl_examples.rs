@@ -101,3 +101,8 @@ fn msl_inverse_model() {
 fn msl_coupled_clutches() {
     check("CoupledClutches");
 }
+
+#[test]
+fn msl_pid_controller() {
+    check("PID_Controller");
+}

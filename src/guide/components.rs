@@ -390,6 +390,8 @@
 //! | `pi_controller(kp = 1, ki = 1)` | `Continuous.PI` (as gains) | `y = kp e + x`, `dx/dt = ki e`, `e = u_s − u_m` |
 //! | `pid_controller(kp = 1, ki = 1, kd = 0, td = 1e-3)` | `Continuous.PID` (as gains) | plus `kd (e − d)/td`, `td dd/dt = e − d` |
 //! | `limited_pi(kp, ki, y_max = 1, y_min = −1, k_aw = 1, eps = 1e-3)`, `limited_pid(kp, ki, kd, td, y_max, y_min, k_aw, eps)` | `Continuous.LimPID` (as gains) | `y = sat(v)`, `dx/dt = ki e + k_aw (y − v)` (back-calculation anti-windup) |
+//! | `lim_pi(k = 1, ti = 0.5, y_max = 1, y_min = −1, ni = 0.9, xi_start = 0)` | `Continuous.LimPID` (`controllerType = PI`) | `v = k (e + x_i)`, `y = max(y_min, min(y_max, v))` (events at the limits), `ti dx_i/dt = e + (y − v)/(k ni)`; MSL's `initType`: `init(pi.x_i, xi_start)` (InitialState), `initial(der(pi.x_i) == 0.0)` (SteadyState), `initial(pi.y == y_start)` (InitialOutput) |
+//! | `kinematic_ptp(delta_q = 1, qd_max = 1, qdd_max = 1, start_time = 0)` | `Sources.KinematicPTP` (one axis) | the acceleration of a move by `delta_q`: `±qdd_max` speeding up and slowing down, 0 between, switched at instants every method steps to |
 //! | `zero_order_hold(period = 0.01)` | `Discrete.ZeroOrderHold` | `y` = `u` at the instants `k·period`, held between |
 //! | `sampled_pi(kp = 1, ki = 1, period = 0.01)` | | at each instant `x ← x + ki·period·e`, then `y ← kp e + x`; held between |
 //! | `sampled_pid(kp = 1, ki = 1, kd = 0, period = 0.01)` | | plus `kd (e − e_prev)/period`, `e_prev ← e` |

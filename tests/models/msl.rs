@@ -102,6 +102,21 @@ pub fn msl_examples() -> Vec<MslExample> {
             doc: <CoupledClutches as Model>::INFO.doc,
             run: |t1, options| CoupledClutches::default().simulate(0.0, t1, options),
         },
+        MslExample {
+            name: "PID_Controller",
+            signals: &[
+                ("PI.I.y", "pi.x_i"),
+                ("inertia1.phi", "inertia1.phi"),
+                ("inertia1.w", "inertia1.w"),
+                ("integrator.y", "integrator.y"),
+                ("spring.phi_rel", "spring.phi_rel"),
+                ("spring.w_rel", "spring.w_rel"),
+            ],
+            states: <PidControllerExample as Model>::STATES
+                - <PidControllerExample as Model>::INFO.discrete.len(),
+            doc: <PidControllerExample as Model>::INFO.doc,
+            run: |t1, options| PidControllerExample::default().simulate(0.0, t1, options),
+        },
     ]
 }
 
@@ -450,4 +465,41 @@ fn coupled_clutches() {
     connect(step1.y, clutch2.f_normalized);
     connect(step2.y, clutch3.f_normalized);
     connect(fixed.flange, torque.support);
+}
+
+/// `Modelica.Blocks.Examples.PID_Controller`: a PI speed controller
+/// (MSL's `LimPID` with `controllerType = PI`: k = 100, Ti = 0.1, output
+/// within ±12, Ni = 0.1) driving an inertia through a torque source, a
+/// stiff spring-damper to a second inertia loaded by 10 N m; the speed
+/// reference the integral of a point-to-point profile (π/2 rad at most
+/// 1 rad/s and 1 rad/s² from 0.5 s). It starts in the steady state MSL's
+/// initial equations and `initType = SteadyState` ask for. MSL's `Td`,
+/// unused by a PI, and the spring-damper's `StateSelect.prefer` are left
+/// out.
+#[dae_model]
+fn pid_controller_example() {
+    let pi = lim_pi(k = 100.0, ti = 0.1, y_max = 12.0, y_min = -12.0, ni = 0.1);
+    initial(der(pi.x_i) == 0.0);
+    let inertia1 = inertia(j = 1.0);
+    init(inertia1.phi, 0.0);
+    initial(der(inertia1.w) == 0.0);
+    let torque = signal_torque();
+    let spring = spring_damper(c = 1e4, d = 100.0);
+    initial(spring.w_rel == 0.0);
+    initial(der(spring.w_rel) == 0.0);
+    let inertia2 = inertia(j = 2.0);
+    let kinematic_ptp =
+        kinematic_ptp(delta_q = 1.570796326794897, qd_max = 1.0, qdd_max = 1.0, start_time = 0.5);
+    let integrator = integrator();
+    init(integrator.x, 0.0);
+    let speed_sensor = speed_sensor();
+    let load_torque = torque_source(10.0);
+    connect(spring.flange_b, inertia2.flange_a);
+    connect(inertia1.flange_b, spring.flange_a, speed_sensor.flange);
+    connect(torque.flange, inertia1.flange_a);
+    connect(kinematic_ptp.y, integrator.u);
+    connect(load_torque.flange, inertia2.flange_b);
+    connect(pi.y, torque.u);
+    connect(speed_sensor.w, pi.u_m);
+    connect(integrator.y, pi.u_s);
 }
