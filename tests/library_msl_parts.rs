@@ -104,10 +104,10 @@ fn switched_rc() {
     let open_at = step(height = 1.0, start_time = 2.0);
     let off = ideal_opening_switch();
     connect(open_at.y, off.control);
-    let r = resistor(1.0);
-    let c = capacitor(1.0);
     connect(source.p, on.p);
     connect(on.n, off.p);
+    let r = resistor(1.0);
+    let c = capacitor(1.0);
     connect(off.n, r.p);
     connect(r.n, c.p);
     connect(c.n, gnd.p);

@@ -43,14 +43,15 @@ fn a_geared_motor_from_another_crate_reaches_its_exact_speed() {
 /// Three layers from the crate between two fixed temperatures.
 #[dae_model]
 fn layered_wall() {
+    // From the inside out, each layer joined to the one before.
     let inside = fixed_temperature(300.0);
-    let outside = fixed_temperature(270.0);
     let l1 = wall_layer(g = 3.0);
-    let l2 = wall_layer(g = 1.0);
-    let l3 = wall_layer(g = 2.0);
     connect(inside.port, l1.a);
+    let l2 = wall_layer(g = 1.0);
     connect(l1.b, l2.a);
+    let l3 = wall_layer(g = 2.0);
     connect(l2.b, l3.a);
+    let outside = fixed_temperature(270.0);
     connect(l3.b, outside.port);
 }
 

@@ -416,12 +416,13 @@ fn inverse_model() {
     initial(der(first_order2.x) == 0.0);
     let feedback = feedback();
     let critical_damping = first_order(k = 1.0, t = 1.0 / (2.0 * 3.141592653589793 * 100.0));
+    connect(sine.y, critical_damping.u, feedback.u2);
+    // The lag held to the filtered sine, its input given to the copy.
+    connect(critical_damping.y, inverse_block_constraints.u1);
     connect(first_order1.y, inverse_block_constraints.u2);
     connect(inverse_block_constraints.y2, first_order1.u);
-    connect(first_order2.y, feedback.u1);
-    connect(sine.y, critical_damping.u, feedback.u2);
-    connect(critical_damping.y, inverse_block_constraints.u1);
     connect(inverse_block_constraints.y1, first_order2.u);
+    connect(first_order2.y, feedback.u1);
 }
 
 /// `Modelica.Mechanics.Rotational.Examples.CoupledClutches`: four
@@ -453,18 +454,19 @@ fn coupled_clutches() {
     let sin2 = sine(amplitude = 1.0, f = 0.2, phase = 1.570796326794897);
     let step2 = step(start_time = 0.9);
     let fixed = fixed();
+    // Along the shaft, each clutch with its engagement.
+    connect(sin1.y, torque.u);
+    connect(fixed.flange, torque.support);
     connect(torque.flange, j1.flange_a);
     connect(j1.flange_b, clutch1.flange_a);
+    connect(sin2.y, clutch1.f_normalized);
     connect(clutch1.flange_b, j2.flange_a);
     connect(j2.flange_b, clutch2.flange_a);
+    connect(step1.y, clutch2.f_normalized);
     connect(clutch2.flange_b, j3.flange_a);
     connect(j3.flange_b, clutch3.flange_a);
-    connect(clutch3.flange_b, j4.flange_a);
-    connect(sin1.y, torque.u);
-    connect(sin2.y, clutch1.f_normalized);
-    connect(step1.y, clutch2.f_normalized);
     connect(step2.y, clutch3.f_normalized);
-    connect(fixed.flange, torque.support);
+    connect(clutch3.flange_b, j4.flange_a);
 }
 
 /// `Modelica.Blocks.Examples.PID_Controller`: a PI speed controller

@@ -90,9 +90,9 @@ pub(crate) fn hidden_tie(
         let (part, unknowns) = over_determined(r, &rows, &owner);
         let unknowns: Vec<SymbolId> = unknowns.iter().map(|&c| columns[c]).collect();
         let equations: Vec<usize> = part.iter().map(|&k| equation_of[k]).collect();
-        let unmatched = equation_of[r];
-        if let Some(hidden) = eliminated(ir, residuals, &equations, unmatched, &unknowns)? {
-            return Ok(Some((hidden, Part { equations, unknowns })));
+        let part = Part { equations, unknowns };
+        if let Some(hidden) = eliminated(ir, residuals, &part, equation_of[r])? {
+            return Ok(Some((hidden, part)));
         }
     }
     Ok(None)
@@ -105,10 +105,10 @@ pub(crate) fn hidden_tie(
 fn eliminated(
     ir: &mut ModelIr,
     residuals: &[Id],
-    equations: &[usize],
+    part: &Part,
     unmatched: usize,
-    unknowns: &[SymbolId],
 ) -> crate::Result<Option<Hidden>> {
+    let (equations, unknowns) = (&part.equations[..], &part.unknowns[..]);
     let time = ir.time;
     let g = &mut ir.graph;
     let mut forms: Vec<(usize, Linear)> = Vec::with_capacity(equations.len());
@@ -139,7 +139,7 @@ fn eliminated(
                 // on its flanges' positions): the unknowns the other
                 // equations give linearly substituted away, if that is
                 // all the unmatched equation reads.
-                None => return substituted(ir, residuals, equations, unmatched, unknowns),
+                None => return substituted(g, residuals, part, unmatched),
             }
         }
     }
@@ -208,13 +208,11 @@ fn eliminated(
 /// constraint in place of the first equation left free of unknowns and
 /// reading a state; `None` where there is none.
 fn substituted(
-    ir: &mut ModelIr,
+    g: &mut crate::Graph,
     residuals: &[Id],
-    equations: &[usize],
+    Part { equations, unknowns }: &Part,
     unmatched: usize,
-    unknowns: &[SymbolId],
 ) -> crate::Result<Option<Hidden>> {
-    let g = &mut ir.graph;
     let mut candidates: Vec<usize> = Vec::with_capacity(equations.len());
     for &e in equations {
         if Linear::over_symbols(g, residuals[e], unknowns)?.is_none() {
