@@ -416,3 +416,36 @@ fn a_pulse_switches_at_its_instants() {
     // and 0.1 s of the third pulse by 1.2.
     close("total.y", sol.last("total.y").unwrap(), 1.2 + 2.0 * 0.4, 1e-9);
 }
+
+/// A flywheel (2 kg m²) at 10 rad/s braked from t = 0.5 s (μ = 0.5,
+/// cgeo = 0.2, 40 N: 4 N m), then held by the brake against a 1 N m
+/// torque from t = 6 s, which its static friction (peak 1.5, 6 N m)
+/// withstands.
+#[dae_model]
+fn braked_flywheel() {
+    let flywheel = inertia(j = 2.0, w0 = 10.0);
+    let brake = brake(mu = 0.5, peak = 1.5, cgeo = 0.2, fn_max = 40.0);
+    let press = step(height = 1.0, start_time = 0.5);
+    connect(press.y, brake.f_normalized);
+    connect(flywheel.flange_b, brake.flange_a);
+    let pull = step(height = 1.0, start_time = 6.0);
+    let motor = signal_torque();
+    connect(pull.y, motor.u);
+    connect(motor.flange, flywheel.flange_a);
+}
+
+#[test]
+fn a_brake_slides_to_a_stop_and_holds() {
+    let sol = BrakedFlywheel::default().simulate(0.0, 8.0, &tight()).unwrap();
+    // Sliding from 0.5 s: w = 10 − 4 (t − 0.5)/2, stopping at t = 5.5.
+    for t in [0.25f64, 1.0, 3.0, 5.0] {
+        let w = if t < 0.5 { 10.0 } else { 10.0 - 2.0 * (t - 0.5) };
+        close(&format!("flywheel.w at {t}"), sol.at(t, "flywheel.w").unwrap(), w, 1e-8);
+    }
+    // Stuck from 5.5 s, also under the 1 N m pull from 6 s.
+    for t in [5.75f64, 6.5, 8.0] {
+        close(&format!("flywheel.w at {t}"), sol.at(t, "flywheel.w").unwrap(), 0.0, 1e-8);
+        assert_eq!(sol.at(t, "brake.mode").unwrap(), 1.0, "t = {t}");
+    }
+    close("brake.tau", sol.at(7.0, "brake.tau").unwrap(), 1.0, 1e-8);
+}

@@ -326,6 +326,7 @@
 //! | `damper(d = 1)` | `Components.Damper` | `tau = d dphi_rel/dt` |
 //! | `spring_damper(c = 1, d = 1, phi_rel0 = 0)` | `Components.SpringDamper` | `tau = c (phi_rel − phi_rel0) + d dphi_rel/dt` |
 //! | `clutch(mu = 0.5, peak = 1, cgeo = 1, fn_max = 1)` | `Components.Clutch` (μ constant: MSL's default table) | input `f_normalized`, `fn = fn_max f_normalized`: no torque while `fn ≤ 0`; slipping `tau = ±cgeo fn mu` against `w_rel`; stuck (`mode` 1) `dw_rel/dt = 0` until `\|tau\|` exceeds `peak cgeo fn mu`; sticks where `w_rel` crosses zero |
+//! | `brake(mu = 0.5, peak = 1, cgeo = 1, fn_max = 1)` | `Components.Brake` (μ constant) | `flange_a`, `flange_b` on one shaft, `w` against the `support`: as the clutch, braking `±cgeo fn mu` against `w`, stuck (`mode` 1) `dw/dt = 0` while the torque held stays within the peak |
 //! | `ideal_gear(ratio = 1)` | `Components.IdealGear` | `flange_a.phi − support.phi = ratio (flange_b.phi − support.phi)`, `flange_b.tau = −ratio flange_a.tau`, `support.tau = −flange_a.tau − flange_b.tau` |
 //! | `fixed(phi0 = 0)` | `Components.Fixed` | `flange.phi = phi0` |
 //! | `torque_source(tau = 1)`, `signal_torque()` | `Sources.ConstantTorque`, `Sources.Torque` | `flange.tau = −tau`; input `u`: `−u` |
