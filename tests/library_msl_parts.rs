@@ -449,3 +449,29 @@ fn a_brake_slides_to_a_stop_and_holds() {
     }
     close("brake.tau", sol.at(7.0, "brake.tau").unwrap(), 1.0, 1e-8);
 }
+
+/// A unit step at 0.1 s through a rate limiter of 2/s up (td = 1 ms).
+#[dae_model]
+fn slewed_step() {
+    let command = step(height = 1.0, start_time = 0.1);
+    let slew = rate_limiter(rising = 2.0, falling = -2.0, td = 1e-3);
+    connect(command.y, slew.u);
+}
+
+#[test]
+fn a_rate_limiter_ramps_then_follows() {
+    let sol = SlewedStep::default().simulate(0.0, 1.0, &tight()).unwrap();
+    // Up at 2/s until the gap falls to 2·td = 0.002 (t1 = 0.1 + 0.499),
+    // then y = 1 − 0.002 e^{−(t − t1)/td}.
+    let t1 = 0.1 + 0.998 / 2.0;
+    for t in [0.05f64, 0.3, 0.5, 0.6, 0.62, 1.0] {
+        let y = if t <= 0.1 {
+            0.0
+        } else if t <= t1 {
+            2.0 * (t - 0.1)
+        } else {
+            1.0 - 0.002 * (-(t - t1) / 1e-3).exp()
+        };
+        close(&format!("slew.y at {t}"), sol.at(t, "slew.y").unwrap(), y, 1e-8);
+    }
+}

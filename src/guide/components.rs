@@ -386,6 +386,7 @@
 //! | `derivative(k = 1, t = 0.01, x0 = 0)` | `Continuous.Derivative` | `y = k (u − x)/t`, `t dx/dt = u − x` |
 //! | `first_order(k = 1, t = 1, y0 = 0)` | `Continuous.FirstOrder` | `t dy/dt + y = k u` |
 //! | `limiter(u_max = 1, u_min = −1)` | `Nonlinear.Limiter` | `y = max(u_min, min(u_max, u))`, switched by events at the limits |
+//! | `rate_limiter(rising = 1, falling = −1, td = 0.001, y0 = 0)` | `Nonlinear.SlewRateLimiter` | `dy/dt = max(falling, min(rising, (u − y)/td))`, switched by events at the limits |
 //! | `dead_zone(u_max = 1, u_min = −1)` | `Nonlinear.DeadZone` | `y = 0` inside, `u − u_max` above, `u − u_min` below |
 //! | `saturation(y_max = 1, y_min = −1, eps = 1e-3)` | | `y = u` within the limits, corners rounded over `eps` (`\|y − clamp(u)\| ≤ eps/2`): smooth, for the Taylor methods |
 //! | `pi_controller(kp = 1, ki = 1)` | `Continuous.PI` (as gains) | `y = kp e + x`, `dx/dt = ki e`, `e = u_s − u_m` |
